@@ -1,0 +1,10 @@
+//! plcrun: an IEC 61131-3 runtime.
+//!
+//! Instruction List, Structured Text and textual SFC are parsed into one AST,
+//! checked, lowered into one typed IR and executed by one interpreter under a
+//! cyclic scheduler on a virtual clock.
+
+pub mod diagnostics;
+pub mod source;
+pub mod syntax;
+pub mod types;
