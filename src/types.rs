@@ -336,7 +336,7 @@ impl ElemType {
             }
             Family::Real => self == Real && to == Lreal,
             Family::Duration => self == Time && to == Ltime,
-            Family::Char => (self == Char && to == Wchar) || (self == Char && to == String),
+            Family::Char => self == Char && to == Wchar,
             _ => false,
         }
     }

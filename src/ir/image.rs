@@ -1,0 +1,139 @@
+//! A compiled, linked program: code blocks, constants, array descriptors,
+//! the initial memory image and the directory of runnable program instances.
+
+use crate::ir::op::Op;
+use crate::ir::types::{TypeId, TypeTable};
+use crate::source::Span;
+use crate::types::ElemType;
+
+/// What a code block belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CodeKind {
+    /// A PROGRAM body (runs at its instance's base).
+    Program,
+    /// A FUNCTION_BLOCK body (runs at the called instance's base).
+    FunctionBlock,
+    /// A FUNCTION body (runs at its static frame).
+    Function,
+    /// An SFC action or transition condition (runs at the owner's base).
+    Block,
+}
+
+/// One compiled body.
+#[derive(Debug, Clone)]
+pub struct CodeBlock {
+    /// POU (or `POU.action`) name for messages.
+    pub name: String,
+    /// Kind.
+    pub kind: CodeKind,
+    /// The instructions; the last one is `Ret`.
+    pub ops: Vec<Op>,
+    /// Source span of each instruction (for runtime faults).
+    pub spans: Vec<Span>,
+    /// Slots reset at every call (VAR_TEMP, function locals): `(slot, value)`.
+    pub entry_init: Vec<(u32, u64)>,
+    /// Strings reset at every call: `(slot holding the string index, constant string index)`.
+    pub entry_strings: Vec<(u32, u32)>,
+    /// For functions: absolute address of the static frame.
+    pub frame: u32,
+    /// Size of one frame/instance in slots.
+    pub frame_size: u32,
+}
+
+/// Bounds of one array dimension used by checked indexing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ArrayDesc {
+    /// Slot offset of element 0 (relative to the base the instruction uses).
+    pub offset: u32,
+    /// Lower bound.
+    pub lo: i64,
+    /// Number of elements.
+    pub len: u64,
+    /// Slots per element.
+    pub stride: u32,
+    /// Source span of the indexing expression (for the fault message).
+    pub span: Span,
+}
+
+/// The initial state of one string variable.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StringInit {
+    /// Maximum length in characters.
+    pub max: u32,
+    /// WSTRING.
+    pub wide: bool,
+    /// Initial value.
+    pub init: String,
+}
+
+/// A variable reachable by name from outside (trace, stimulus, API).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RootVar {
+    /// Name as declared.
+    pub name: String,
+    /// Type.
+    pub ty: TypeId,
+    /// Absolute slot address.
+    pub addr: u32,
+    /// Role in the program (`Input`, `Output`, `Local`...).
+    pub kind: crate::ir::types::MemberKind,
+    /// Located address text, normalised (e.g. `%QX0.0.0.0.1`), if any.
+    pub location: Option<String>,
+}
+
+/// A program instance the scheduler runs.
+#[derive(Debug, Clone)]
+pub struct ProgramInstance {
+    /// Instance name (the PROGRAM name when there is no configuration).
+    pub name: String,
+    /// The PROGRAM type name.
+    pub type_name: String,
+    /// Code block of its body.
+    pub code: u32,
+    /// Absolute base address of its instance memory.
+    pub base: u32,
+    /// Its type (for naming its variables).
+    pub ty: TypeId,
+    /// Task it runs under (index into `tasks`).
+    pub task: usize,
+}
+
+/// A cyclic (or event) task.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Task {
+    /// Name.
+    pub name: String,
+    /// Interval in nanoseconds (0 for an event task).
+    pub interval: i64,
+    /// Priority (0 runs first).
+    pub priority: i64,
+    /// For SINGLE tasks: absolute slot of the triggering BOOL.
+    pub single: Option<u32>,
+}
+
+/// A fully compiled program ready to run.
+#[derive(Debug, Clone)]
+pub struct Image {
+    /// All code blocks.
+    pub codes: Vec<CodeBlock>,
+    /// 64-bit constants referenced by `LoadK`.
+    pub consts: Vec<u64>,
+    /// Constant strings referenced by `StrConst` and string resets.
+    pub str_consts: Vec<String>,
+    /// Array descriptors referenced by indexing instructions.
+    pub arrays: Vec<ArrayDesc>,
+    /// Initial contents of the whole memory.
+    pub memory: Vec<u64>,
+    /// Initial string variables (index = string id).
+    pub strings: Vec<StringInit>,
+    /// All types.
+    pub types: TypeTable,
+    /// Elementary type list used by `ToStr`/`FromStr` (index = `ty` operand).
+    pub scalar_types: Vec<ElemType>,
+    /// Globals and located variables.
+    pub globals: Vec<RootVar>,
+    /// Program instances in execution order.
+    pub programs: Vec<ProgramInstance>,
+    /// Tasks.
+    pub tasks: Vec<Task>,
+}

@@ -1,0 +1,5 @@
+//! The typed intermediate representation all three languages lower into.
+
+pub mod image;
+pub mod op;
+pub mod types;

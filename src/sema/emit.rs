@@ -1,0 +1,401 @@
+//! The per-body emission context: instruction buffer, temporaries, loop
+//! targets, and the value/place vocabulary the expression checker uses.
+
+use super::Compiler;
+use super::consts::Const;
+use crate::ir::image::StringInit;
+use crate::ir::op::{Op, Slot};
+use crate::ir::types::{TypeId, TypeKind, TypeTable};
+use crate::source::Span;
+use crate::types::ElemType;
+
+/// The type of an expression: a known type, or an untyped literal that
+/// adapts to its context.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ty {
+    /// A resolved type.
+    T(TypeId),
+    /// An untyped integer constant.
+    AnyInt,
+    /// An untyped real constant.
+    AnyReal,
+}
+
+impl Ty {
+    /// The resolved type, if any.
+    pub fn id(self) -> Option<TypeId> {
+        match self {
+            Ty::T(t) => Some(t),
+            _ => None,
+        }
+    }
+}
+
+/// A checked expression value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Val {
+    /// Known at compile time.
+    Const(Const, Ty),
+    /// In a frame slot.
+    Slot(Slot, TypeId),
+    /// After an error (type ERROR), or a call without result.
+    None(TypeId),
+}
+
+impl Val {
+    /// The value's type.
+    pub fn ty(&self) -> Ty {
+        match self {
+            Val::Const(_, t) => *t,
+            Val::Slot(_, t) | Val::None(t) => Ty::T(*t),
+        }
+    }
+
+    /// The error placeholder.
+    pub fn error() -> Val {
+        Val::None(TypeTable::error())
+    }
+
+    /// True for the error placeholder.
+    pub fn is_error(&self) -> bool {
+        matches!(self, Val::None(t) if *t == TypeTable::error())
+    }
+}
+
+/// Where an assignable (or readable) value lives.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Place {
+    /// A frame slot.
+    Frame(Slot),
+    /// An absolute address.
+    Abs(u32),
+    /// `mem[mem[base + p] + off]`.
+    Ind {
+        /// Frame slot holding the address.
+        p: Slot,
+        /// Static offset.
+        off: u32,
+    },
+    /// A checked element of a 1-D array in the frame.
+    Elem {
+        /// Frame slot holding the index.
+        idx: Slot,
+        /// Array descriptor.
+        desc: u32,
+    },
+}
+
+/// A place with its type and access rights.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaceRef {
+    /// Location.
+    pub place: Place,
+    /// Type.
+    pub ty: TypeId,
+    /// Writable by the current body.
+    pub writable: bool,
+    /// Why not writable (for the message).
+    pub readonly_reason: Option<&'static str>,
+    /// A located `%I` input (writing it warns).
+    pub input_image: bool,
+}
+
+/// Loop bookkeeping for EXIT and CONTINUE.
+#[derive(Debug, Default)]
+pub struct LoopCtx {
+    /// Jumps to patch to the loop's end.
+    pub exits: Vec<usize>,
+    /// Jumps to patch to the loop's continue point.
+    pub continues: Vec<usize>,
+}
+
+/// Emission state of one body.
+#[derive(Debug)]
+pub struct Fcx {
+    /// POU index.
+    pub pou: usize,
+    /// Instructions.
+    pub ops: Vec<Op>,
+    /// Their spans.
+    pub spans: Vec<Span>,
+    /// Span attached to emitted instructions.
+    pub span: Span,
+    /// First temporary slot.
+    pub temp_base: u32,
+    /// Next free temporary.
+    pub temp_next: u32,
+    /// High-water mark.
+    pub temp_max: u32,
+    /// Enclosing loops.
+    pub loops: Vec<LoopCtx>,
+    /// Jumps to the end of the body (RETURN).
+    pub returns: Vec<usize>,
+    /// Index of the last instruction whose destination may be retargeted.
+    pub last_def: Option<(usize, Slot)>,
+    /// Instructions whose address operand is relative to a called
+    /// function's frame, to be relocated at link time: (instruction, POU).
+    pub fixups: Vec<(usize, usize)>,
+}
+
+impl Fcx {
+    /// A fresh context whose temporaries start at `temp_base`.
+    pub fn new(pou: usize, temp_base: u32) -> Fcx {
+        Fcx {
+            pou,
+            ops: Vec::new(),
+            spans: Vec::new(),
+            span: Span::default(),
+            temp_base,
+            temp_next: temp_base,
+            temp_max: temp_base,
+            loops: Vec::new(),
+            returns: Vec::new(),
+            last_def: None,
+            fixups: Vec::new(),
+        }
+    }
+
+    /// Appends an instruction.
+    pub fn emit(&mut self, op: Op) -> usize {
+        self.ops.push(op);
+        self.spans.push(self.span);
+        self.last_def = dest_of(&op).map(|d| (self.ops.len() - 1, d));
+        self.ops.len() - 1
+    }
+
+    /// Index of the next instruction (a jump target).
+    pub fn here(&mut self) -> u32 {
+        self.last_def = None;
+        self.ops.len() as u32
+    }
+
+    /// Points the jump at `at` to `target`.
+    pub fn patch(&mut self, at: usize, target: u32) {
+        match &mut self.ops[at] {
+            Op::Jmp { t }
+            | Op::Jz { t, .. }
+            | Op::Jnz { t, .. }
+            | Op::JnCmpSI { t, .. }
+            | Op::JnCmpS { t, .. } => *t = target,
+            _ => {}
+        }
+    }
+
+    /// A fresh temporary slot.
+    pub fn temp(&mut self) -> Slot {
+        let t = self.temp_next;
+        self.temp_next += 1;
+        self.temp_max = self.temp_max.max(self.temp_next);
+        t
+    }
+
+    /// `n` consecutive temporaries.
+    pub fn temps(&mut self, n: u32) -> Slot {
+        let t = self.temp_next;
+        self.temp_next += n;
+        self.temp_max = self.temp_max.max(self.temp_next);
+        t
+    }
+
+    /// True if `s` is a temporary.
+    pub fn is_temp(&self, s: Slot) -> bool {
+        s >= self.temp_base
+    }
+
+    /// Writes `s` into `d`: when `s` is a temporary just defined by the last
+    /// instruction, that instruction is retargeted instead of adding a move.
+    pub fn mov(&mut self, d: Slot, s: Slot) {
+        if d == s {
+            return;
+        }
+        if let Some((at, def)) = self.last_def
+            && def == s
+            && self.is_temp(s)
+            && at + 1 == self.ops.len()
+        {
+            set_dest(&mut self.ops[at], d);
+            self.last_def = Some((at, d));
+            return;
+        }
+        self.emit(Op::Mov { d, s });
+    }
+}
+
+/// The destination slot an instruction writes, if it writes exactly one.
+fn dest_of(op: &Op) -> Option<Slot> {
+    use Op::*;
+    Some(match *op {
+        LoadK { d, .. } | LoadI { d, .. } | Mov { d, .. } | LoadAbs { d, .. }
+        | LoadInd { d, .. } | LoadElem { d, .. } | AddS { d, .. } | AddU { d, .. }
+        | AddSI { d, .. } | SubS { d, .. } | SubU { d, .. } | MulS { d, .. }
+        | MulU { d, .. } | DivS { d, .. } | DivU { d, .. } | ModS { d, .. }
+        | ModU { d, .. } | ModSI { d, .. } | NegS { d, .. } | PowS { d, .. }
+        | AbsS { d, .. } | AddF32 { d, .. } | SubF32 { d, .. } | MulF32 { d, .. }
+        | DivF32 { d, .. } | NegF32 { d, .. } | PowF32 { d, .. } | MathF32 { d, .. }
+        | AddF64 { d, .. } | SubF64 { d, .. } | MulF64 { d, .. } | DivF64 { d, .. }
+        | NegF64 { d, .. } | PowF64 { d, .. } | MathF64 { d, .. } | And { d, .. }
+        | Or { d, .. } | Xor { d, .. } | NotB { d, .. } | NotW { d, .. }
+        | AndN { d, .. } | OrN { d, .. } | Shift { d, .. } | CmpS { d, .. }
+        | CmpU { d, .. } | CmpF32 { d, .. } | CmpF64 { d, .. } | CmpSI { d, .. }
+        | CmpStr { d, .. } | Convert { d, .. } | Select { d, .. } | MinMaxS { d, .. }
+        | MinMaxU { d, .. } | MinMaxF32 { d, .. } | MinMaxF64 { d, .. } | Mux { d, .. }
+        | MulTimeF64 { d, .. } | DivTimeF64 { d, .. } | Clock { d } => d,
+        _ => return None,
+    })
+}
+
+fn set_dest(op: &mut Op, new: Slot) {
+    use Op::*;
+    match op {
+        LoadK { d, .. } | LoadI { d, .. } | Mov { d, .. } | LoadAbs { d, .. }
+        | LoadInd { d, .. } | LoadElem { d, .. } | AddS { d, .. } | AddU { d, .. }
+        | AddSI { d, .. } | SubS { d, .. } | SubU { d, .. } | MulS { d, .. }
+        | MulU { d, .. } | DivS { d, .. } | DivU { d, .. } | ModS { d, .. }
+        | ModU { d, .. } | ModSI { d, .. } | NegS { d, .. } | PowS { d, .. }
+        | AbsS { d, .. } | AddF32 { d, .. } | SubF32 { d, .. } | MulF32 { d, .. }
+        | DivF32 { d, .. } | NegF32 { d, .. } | PowF32 { d, .. } | MathF32 { d, .. }
+        | AddF64 { d, .. } | SubF64 { d, .. } | MulF64 { d, .. } | DivF64 { d, .. }
+        | NegF64 { d, .. } | PowF64 { d, .. } | MathF64 { d, .. } | And { d, .. }
+        | Or { d, .. } | Xor { d, .. } | NotB { d, .. } | NotW { d, .. }
+        | AndN { d, .. } | OrN { d, .. } | Shift { d, .. } | CmpS { d, .. }
+        | CmpU { d, .. } | CmpF32 { d, .. } | CmpF64 { d, .. } | CmpSI { d, .. }
+        | CmpStr { d, .. } | Convert { d, .. } | Select { d, .. } | MinMaxS { d, .. }
+        | MinMaxU { d, .. } | MinMaxF32 { d, .. } | MinMaxF64 { d, .. } | Mux { d, .. }
+        | MulTimeF64 { d, .. } | DivTimeF64 { d, .. } | Clock { d } => *d = new,
+        _ => {}
+    }
+}
+
+impl Compiler<'_> {
+    /// A string temporary of capacity `max`: a fresh string id (private to
+    /// this POU, safe because IEC forbids recursion) loaded into a temporary.
+    pub(super) fn string_temp(&mut self, f: &mut Fcx, max: u32, wide: bool) -> Slot {
+        self.strings.push(StringInit {
+            max,
+            wide,
+            init: String::new(),
+        });
+        let id = self.strings.len() as i32 - 1;
+        let t = f.temp();
+        f.emit(Op::LoadI { d: t, imm: id });
+        f.last_def = None;
+        t
+    }
+
+    /// Puts a value into a slot (constants are loaded into a temporary).
+    pub(super) fn materialize(&mut self, f: &mut Fcx, v: &Val) -> Slot {
+        match v {
+            Val::Slot(s, _) => *s,
+            Val::None(_) => f.temp(),
+            Val::Const(c, ty) => {
+                let bits = match c {
+                    Const::Bits(b) => *b,
+                    Const::Int(i) => *i as i64 as u64,
+                    Const::Real(r) => r.to_bits(),
+                    Const::Str(s) => {
+                        let (max, wide) = match ty.id().map(|t| &self.types.get(t).kind) {
+                            Some(TypeKind::Str { max, wide }) => (*max, *wide),
+                            _ => (254, false),
+                        };
+                        let t = self.string_temp(f, max.max(s.chars().count() as u32), wide);
+                        let k = self.str_const(s);
+                        f.emit(Op::StrConst { d: t, k });
+                        f.last_def = None;
+                        return t;
+                    }
+                };
+                let t = f.temp();
+                if let Ok(imm) = i32::try_from(bits as i64) {
+                    f.emit(Op::LoadI { d: t, imm });
+                } else {
+                    let k = self.konst(bits);
+                    f.emit(Op::LoadK { d: t, k });
+                }
+                t
+            }
+        }
+    }
+
+    /// Reads a place into a slot.
+    pub(super) fn read_place(&mut self, f: &mut Fcx, p: &PlaceRef) -> Val {
+        let slot = match p.place {
+            Place::Frame(s) => s,
+            Place::Abs(abs) => {
+                let t = f.temp();
+                f.emit(Op::LoadAbs { d: t, abs });
+                t
+            }
+            Place::Ind { p: ptr, off } => {
+                let t = f.temp();
+                f.emit(Op::LoadInd { d: t, p: ptr, off });
+                t
+            }
+            Place::Elem { idx, desc } => {
+                let t = f.temp();
+                f.emit(Op::LoadElem { d: t, idx, desc });
+                t
+            }
+        };
+        Val::Slot(slot, p.ty)
+    }
+
+    /// Stores slot `s` into a scalar place.
+    pub(super) fn write_place(&mut self, f: &mut Fcx, p: &PlaceRef, s: Slot) {
+        let is_string = matches!(self.types.get(p.ty).kind, TypeKind::Str { .. });
+        if is_string {
+            // Strings are copied by content; the place holds the target's string id.
+            let target = match self.read_place(f, p) {
+                Val::Slot(t, _) => t,
+                _ => return,
+            };
+            f.emit(Op::StrMov { d: target, s });
+            return;
+        }
+        match p.place {
+            Place::Frame(d) => f.mov(d, s),
+            Place::Abs(abs) => {
+                f.emit(Op::StoreAbs { abs, s });
+            }
+            Place::Ind { p: ptr, off } => {
+                f.emit(Op::StoreInd { p: ptr, off, s });
+            }
+            Place::Elem { idx, desc } => {
+                f.emit(Op::StoreElem { idx, s, desc });
+            }
+        }
+    }
+
+    /// An absolute-address pointer to a place, in a slot.
+    pub(super) fn address_of(&mut self, f: &mut Fcx, p: &PlaceRef) -> Slot {
+        let t = f.temp();
+        match p.place {
+            Place::Frame(s) => {
+                f.emit(Op::AddrOf { d: t, off: s });
+            }
+            Place::Abs(abs) => {
+                let k = self.konst(abs as u64);
+                f.emit(Op::LoadK { d: t, k });
+            }
+            Place::Ind { p: ptr, off } => {
+                f.emit(Op::AddrAdd { d: t, p: ptr, off });
+            }
+            Place::Elem { idx, desc } => {
+                let base = f.temp();
+                f.emit(Op::AddrOf { d: base, off: 0 });
+                f.emit(Op::ElemAddr {
+                    d: t,
+                    p: base,
+                    idx,
+                    desc,
+                });
+            }
+        }
+        f.last_def = None;
+        t
+    }
+
+    /// Elementary storage type of `t`, if scalar.
+    pub(super) fn scalar(&self, t: TypeId) -> Option<ElemType> {
+        self.types.scalar(t)
+    }
+}

@@ -1,0 +1,137 @@
+//! Semantic analysis and lowering: resolves every name, types every
+//! expression (IEC implicit widening only), folds constants, and emits the
+//! typed IR for each POU body in the same walk. All diagnostics are
+//! collected; nothing stops at the first error.
+
+pub mod consts;
+mod declare;
+mod emit;
+mod expr;
+mod link;
+pub mod model;
+mod stdfuncs;
+mod stmt;
+mod typeck;
+
+use crate::diagnostics::Diagnostics;
+use crate::ir::image::{ArrayDesc, CodeBlock, Image, StringInit};
+use crate::ir::types::{TypeId, TypeTable};
+use crate::source::Span;
+use crate::syntax::ast::CompilationUnit;
+use crate::types::ElemType;
+use indexmap::IndexMap;
+use model::{ConstInit, LayoutState, PouInfo, VarInfo};
+use std::collections::HashMap;
+
+/// What to build.
+#[derive(Debug, Clone, Default)]
+pub struct CompileOptions {
+    /// The PROGRAM to run when there is no CONFIGURATION (or to pick one).
+    pub program: Option<String>,
+    /// Cycle time in nanoseconds for the implicit task.
+    pub cycle_time: i64,
+    /// Only check; do not require a runnable program.
+    pub check_only: bool,
+}
+
+/// Checks and lowers parsed files into an [`Image`]. Returns `None` when
+/// there were errors (all of them are in `diags`).
+pub fn compile(
+    units: &[CompilationUnit],
+    options: &CompileOptions,
+    diags: &mut Diagnostics,
+) -> Option<Image> {
+    let mut c = Compiler::new(units, diags);
+    c.declare_all();
+    c.emit_all();
+    let image = c.link(options);
+    if c.diags.has_errors() { None } else { image }
+}
+
+/// State of one compilation.
+pub(crate) struct Compiler<'a> {
+    units: &'a [CompilationUnit],
+    diags: &'a mut Diagnostics,
+    types: TypeTable,
+    pous: Vec<PouInfo>,
+    pou_index: HashMap<String, usize>,
+    pou_state: Vec<LayoutState>,
+    type_decls: HashMap<String, (usize, usize, usize)>,
+    type_ids: HashMap<String, TypeId>,
+    type_state: HashMap<String, LayoutState>,
+    type_inits: HashMap<TypeId, ConstInit>,
+    enum_values: HashMap<String, Vec<(TypeId, i64)>>,
+    globals: IndexMap<String, VarInfo>,
+    located: HashMap<String, (u32, TypeId)>,
+    memory: Vec<u64>,
+    strings: Vec<StringInit>,
+    codes: Vec<CodeBlock>,
+    consts: Vec<u64>,
+    str_consts: Vec<String>,
+    arrays: Vec<ArrayDesc>,
+    scalar_types: Vec<ElemType>,
+    /// Call graph edges between code blocks (for recursion detection).
+    calls: Vec<(u32, u32, Span)>,
+}
+
+impl<'a> Compiler<'a> {
+    fn new(units: &'a [CompilationUnit], diags: &'a mut Diagnostics) -> Compiler<'a> {
+        Compiler {
+            units,
+            diags,
+            types: TypeTable::new(),
+            pous: Vec::new(),
+            pou_index: HashMap::new(),
+            pou_state: Vec::new(),
+            type_decls: HashMap::new(),
+            type_ids: HashMap::new(),
+            type_state: HashMap::new(),
+            type_inits: HashMap::new(),
+            enum_values: HashMap::new(),
+            globals: IndexMap::new(),
+            located: HashMap::new(),
+            memory: Vec::new(),
+            strings: Vec::new(),
+            codes: Vec::new(),
+            consts: Vec::new(),
+            str_consts: Vec::new(),
+            arrays: Vec::new(),
+            scalar_types: Vec::new(),
+            calls: Vec::new(),
+        }
+    }
+
+    /// Reserves `size` slots of absolute memory.
+    fn alloc_abs(&mut self, size: u32) -> u32 {
+        let at = self.memory.len() as u32;
+        self.memory.resize(self.memory.len() + size as usize, 0);
+        at
+    }
+
+    /// Interns a 64-bit constant.
+    fn konst(&mut self, v: u64) -> u32 {
+        if let Some(i) = self.consts.iter().position(|c| *c == v) {
+            return i as u32;
+        }
+        self.consts.push(v);
+        self.consts.len() as u32 - 1
+    }
+
+    /// Interns a constant string.
+    fn str_const(&mut self, s: &str) -> u32 {
+        if let Some(i) = self.str_consts.iter().position(|c| c == s) {
+            return i as u32;
+        }
+        self.str_consts.push(s.to_string());
+        self.str_consts.len() as u32 - 1
+    }
+
+    /// Index of an elementary type in the `ToStr`/`FromStr` list.
+    fn scalar_index(&mut self, e: ElemType) -> u8 {
+        if let Some(i) = self.scalar_types.iter().position(|c| *c == e) {
+            return i as u8;
+        }
+        self.scalar_types.push(e);
+        self.scalar_types.len() as u8 - 1
+    }
+}

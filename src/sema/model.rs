@@ -1,0 +1,92 @@
+//! What the checker knows about declarations: POUs, variables, globals.
+
+use super::consts::Const;
+use crate::ir::types::{MemberKind, TypeId};
+use crate::source::Span;
+use crate::syntax::ast::PouKind;
+use indexmap::IndexMap;
+
+/// A resolved initial value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ConstInit {
+    /// A scalar in slot encoding.
+    Scalar(u64),
+    /// A string value.
+    Str(String),
+    /// Array elements in order (missing trailing elements keep their default).
+    Array(Vec<ConstInit>),
+    /// Struct fields by member index.
+    Struct(Vec<(usize, ConstInit)>),
+}
+
+/// Where a variable lives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Storage {
+    /// At a slot of the current frame.
+    Frame(u32),
+    /// At an absolute address (globals, located variables).
+    Abs(u32),
+    /// The frame slot holds the address of the variable (VAR_IN_OUT).
+    Ref(u32),
+}
+
+/// A declared variable.
+#[derive(Debug, Clone)]
+pub struct VarInfo {
+    /// Name as declared.
+    pub name: String,
+    /// Type.
+    pub ty: TypeId,
+    /// Section.
+    pub kind: MemberKind,
+    /// Where it lives.
+    pub storage: Storage,
+    /// CONSTANT.
+    pub constant: bool,
+    /// Folded value of a CONSTANT with an initializer.
+    pub value: Option<Const>,
+    /// Initial value.
+    pub init: Option<ConstInit>,
+    /// Normalised located address (`%IX0.1`).
+    pub location: Option<String>,
+    /// Declaration span.
+    pub span: Span,
+}
+
+/// A checked POU.
+#[derive(Debug, Clone)]
+pub struct PouInfo {
+    /// Name as declared.
+    pub name: String,
+    /// Kind.
+    pub kind: PouKind,
+    /// Position of the AST: (unit index, item index).
+    pub ast: (usize, usize),
+    /// Instance/frame type (for FBs and programs: `TypeKind::Pou`).
+    pub ty: TypeId,
+    /// Function result type (VOID for none).
+    pub ret: TypeId,
+    /// Variables by case-folded name, in declaration order.
+    pub vars: IndexMap<String, VarInfo>,
+    /// Keys of VAR_INPUT, VAR_IN_OUT, VAR_OUTPUT in declaration order (call interface).
+    pub params: Vec<String>,
+    /// Code block index.
+    pub code: u32,
+    /// Frame size before temporaries.
+    pub vars_size: u32,
+    /// Functions: absolute address of the static frame.
+    pub frame_abs: u32,
+    /// Declaration span.
+    pub span: Span,
+}
+
+/// Layout state of a POU while declarations are resolved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LayoutState {
+    /// Not started.
+    Pending,
+    /// Being computed (a second visit means a cycle).
+    InProgress,
+    /// Computed.
+    Done,
+}

@@ -1,0 +1,462 @@
+//! The dispatch loop.
+
+use super::{Fault, FaultKind, Machine, convert, strings};
+use crate::ir::image::Image;
+use crate::ir::op::{Cmp, MathFn, Op, ShiftKind, wrap_s, wrap_u};
+use crate::stdlib;
+
+#[inline(always)]
+fn f32_of(x: u64) -> f32 {
+    f32::from_bits(x as u32)
+}
+
+#[inline(always)]
+fn of_f32(x: f32) -> u64 {
+    x.to_bits() as u64
+}
+
+#[inline(always)]
+fn f64_of(x: u64) -> f64 {
+    f64::from_bits(x)
+}
+
+#[inline(always)]
+fn of_f64(x: f64) -> u64 {
+    x.to_bits()
+}
+
+#[inline(always)]
+fn cmp_s(a: u64, b: u64, c: Cmp) -> u64 {
+    c.test((a as i64).cmp(&(b as i64))) as u64
+}
+
+#[inline(always)]
+fn cmp_f<T: PartialOrd>(a: T, b: T, c: Cmp) -> u64 {
+    (match c {
+        Cmp::Eq => a == b,
+        Cmp::Ne => a != b,
+        Cmp::Lt => a < b,
+        Cmp::Le => a <= b,
+        Cmp::Gt => a > b,
+        Cmp::Ge => a >= b,
+    }) as u64
+}
+
+fn math32(f: MathFn, x: f32) -> f32 {
+    match f {
+        MathFn::Abs => x.abs(),
+        MathFn::Sqrt => x.sqrt(),
+        MathFn::Ln => x.ln(),
+        MathFn::Log => x.log10(),
+        MathFn::Exp => x.exp(),
+        MathFn::Sin => x.sin(),
+        MathFn::Cos => x.cos(),
+        MathFn::Tan => x.tan(),
+        MathFn::Asin => x.asin(),
+        MathFn::Acos => x.acos(),
+        MathFn::Atan => x.atan(),
+    }
+}
+
+fn math64(f: MathFn, x: f64) -> f64 {
+    match f {
+        MathFn::Abs => x.abs(),
+        MathFn::Sqrt => x.sqrt(),
+        MathFn::Ln => x.ln(),
+        MathFn::Log => x.log10(),
+        MathFn::Exp => x.exp(),
+        MathFn::Sin => x.sin(),
+        MathFn::Cos => x.cos(),
+        MathFn::Tan => x.tan(),
+        MathFn::Asin => x.asin(),
+        MathFn::Acos => x.acos(),
+        MathFn::Atan => x.atan(),
+    }
+}
+
+fn shift(x: u64, n: u64, kind: ShiftKind, bits: u8) -> u64 {
+    let bits = bits as u64;
+    let mask = if bits == 64 { u64::MAX } else { (1u64 << bits) - 1 };
+    let x = x & mask;
+    match kind {
+        ShiftKind::Shl => {
+            if n >= bits {
+                0
+            } else {
+                (x << n) & mask
+            }
+        }
+        ShiftKind::Shr => {
+            if n >= bits {
+                0
+            } else {
+                x >> n
+            }
+        }
+        ShiftKind::Rol => {
+            let n = n % bits;
+            if n == 0 {
+                x
+            } else {
+                ((x << n) | (x >> (bits - n))) & mask
+            }
+        }
+        ShiftKind::Ror => {
+            let n = n % bits;
+            if n == 0 {
+                x
+            } else {
+                ((x >> n) | (x << (bits - n))) & mask
+            }
+        }
+    }
+}
+
+fn int_pow(base: i64, exp: i64) -> Option<u64> {
+    if exp < 0 {
+        return None;
+    }
+    let mut result: i64 = 1;
+    let mut b = base;
+    let mut e = exp as u64;
+    while e > 0 {
+        if e & 1 == 1 {
+            result = result.wrapping_mul(b);
+        }
+        b = b.wrapping_mul(b);
+        e >>= 1;
+    }
+    Some(result as u64)
+}
+
+/// Executes code block `code` at frame base `base` until it returns.
+pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Result<(), Fault> {
+    let block = &img.codes[code as usize];
+    for &(slot, value) in &block.entry_init {
+        m.mem[base + slot as usize] = value;
+    }
+    for &(slot, k) in &block.entry_strings {
+        let id = m.mem[base + slot as usize] as usize;
+        m.strings[id].set(&img.str_consts[k as usize]);
+    }
+    let ops = &block.ops[..];
+    let mut pc: usize = 0;
+    macro_rules! r {
+        ($s:expr) => {
+            m.mem[base + $s as usize]
+        };
+    }
+    macro_rules! fault {
+        ($kind:expr) => {
+            return Err(Fault {
+                kind: $kind,
+                code,
+                pc: (pc - 1) as u32,
+            })
+        };
+    }
+    macro_rules! jump {
+        ($t:expr) => {{
+            let t = $t as usize;
+            if t < pc && m.watchdog_expired() {
+                fault!(FaultKind::Watchdog);
+            }
+            pc = t;
+        }};
+    }
+    loop {
+        let op = ops[pc];
+        pc += 1;
+        match op {
+            Op::Nop => {}
+            Op::LoadK { d, k } => r!(d) = img.consts[k as usize],
+            Op::LoadI { d, imm } => r!(d) = imm as i64 as u64,
+            Op::Mov { d, s } => r!(d) = r!(s),
+            Op::LoadAbs { d, abs } => r!(d) = m.mem[abs as usize],
+            Op::StoreAbs { abs, s } => m.mem[abs as usize] = r!(s),
+            Op::LoadInd { d, p, off } => {
+                let a = r!(p) as usize + off as usize;
+                r!(d) = m.mem[a];
+            }
+            Op::StoreInd { p, off, s } => {
+                let a = r!(p) as usize + off as usize;
+                m.mem[a] = r!(s);
+            }
+            Op::AddrOf { d, off } => r!(d) = (base + off as usize) as u64,
+            Op::AddrAdd { d, p, off } => r!(d) = r!(p) + off as u64,
+            Op::LoadElem { d, idx, desc } => {
+                let ad = &img.arrays[desc as usize];
+                let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
+                if i >= ad.len {
+                    fault!(index_fault(r!(idx), ad));
+                }
+                r!(d) = r!(ad.offset as u64 + i * ad.stride as u64);
+            }
+            Op::StoreElem { idx, s, desc } => {
+                let ad = &img.arrays[desc as usize];
+                let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
+                if i >= ad.len {
+                    fault!(index_fault(r!(idx), ad));
+                }
+                r!(ad.offset as u64 + i * ad.stride as u64) = r!(s);
+            }
+            Op::ElemAddr { d, p, idx, desc } => {
+                let ad = &img.arrays[desc as usize];
+                let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
+                if i >= ad.len {
+                    fault!(index_fault(r!(idx), ad));
+                }
+                r!(d) = r!(p) + ad.offset as u64 + i * ad.stride as u64;
+            }
+            Op::IndexStep { acc, idx, desc } => {
+                let ad = &img.arrays[desc as usize];
+                let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
+                if i >= ad.len {
+                    fault!(index_fault(r!(idx), ad));
+                }
+                r!(acc) = r!(acc).wrapping_mul(ad.len).wrapping_add(i);
+            }
+
+            Op::AddS { d, a, b, shift } => r!(d) = wrap_s(r!(a).wrapping_add(r!(b)), shift),
+            Op::AddU { d, a, b, shift } => r!(d) = wrap_u(r!(a).wrapping_add(r!(b)), shift),
+            Op::AddSI { d, a, imm, shift } => {
+                r!(d) = wrap_s(r!(a).wrapping_add(imm as i64 as u64), shift)
+            }
+            Op::SubS { d, a, b, shift } => r!(d) = wrap_s(r!(a).wrapping_sub(r!(b)), shift),
+            Op::SubU { d, a, b, shift } => r!(d) = wrap_u(r!(a).wrapping_sub(r!(b)), shift),
+            Op::MulS { d, a, b, shift } => r!(d) = wrap_s(r!(a).wrapping_mul(r!(b)), shift),
+            Op::MulU { d, a, b, shift } => r!(d) = wrap_u(r!(a).wrapping_mul(r!(b)), shift),
+            Op::DivS { d, a, b, shift } => {
+                let y = r!(b) as i64;
+                if y == 0 {
+                    fault!(FaultKind::DivisionByZero);
+                }
+                r!(d) = wrap_s((r!(a) as i64).wrapping_div(y) as u64, shift);
+            }
+            Op::DivU { d, a, b, shift } => {
+                let y = r!(b);
+                if y == 0 {
+                    fault!(FaultKind::DivisionByZero);
+                }
+                r!(d) = wrap_u(r!(a) / y, shift);
+            }
+            Op::ModS { d, a, b, shift } => {
+                let y = r!(b) as i64;
+                if y == 0 {
+                    fault!(FaultKind::DivisionByZero);
+                }
+                r!(d) = wrap_s((r!(a) as i64).wrapping_rem(y) as u64, shift);
+            }
+            Op::ModU { d, a, b, shift } => {
+                let y = r!(b);
+                if y == 0 {
+                    fault!(FaultKind::DivisionByZero);
+                }
+                r!(d) = wrap_u(r!(a) % y, shift);
+            }
+            Op::ModSI { d, a, imm, shift } => {
+                r!(d) = wrap_s((r!(a) as i64).wrapping_rem(imm as i64) as u64, shift)
+            }
+            Op::NegS { d, a, shift } => r!(d) = wrap_s(r!(a).wrapping_neg(), shift),
+            Op::PowS { d, a, b, shift } => match int_pow(r!(a) as i64, r!(b) as i64) {
+                Some(v) => r!(d) = wrap_s(v, shift),
+                None => fault!(FaultKind::NegativeExponent),
+            },
+            Op::AbsS { d, a, shift } => r!(d) = wrap_s((r!(a) as i64).wrapping_abs() as u64, shift),
+
+            Op::AddF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)) + f32_of(r!(b))),
+            Op::SubF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)) - f32_of(r!(b))),
+            Op::MulF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)) * f32_of(r!(b))),
+            Op::DivF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)) / f32_of(r!(b))),
+            Op::NegF32 { d, a } => r!(d) = of_f32(-f32_of(r!(a))),
+            Op::PowF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)).powf(f32_of(r!(b)))),
+            Op::MathF32 { d, a, f } => r!(d) = of_f32(math32(f, f32_of(r!(a)))),
+            Op::AddF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)) + f64_of(r!(b))),
+            Op::SubF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)) - f64_of(r!(b))),
+            Op::MulF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)) * f64_of(r!(b))),
+            Op::DivF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)) / f64_of(r!(b))),
+            Op::NegF64 { d, a } => r!(d) = of_f64(-f64_of(r!(a))),
+            Op::PowF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)).powf(f64_of(r!(b)))),
+            Op::MathF64 { d, a, f } => r!(d) = of_f64(math64(f, f64_of(r!(a)))),
+
+            Op::And { d, a, b } => r!(d) = r!(a) & r!(b),
+            Op::Or { d, a, b } => r!(d) = r!(a) | r!(b),
+            Op::Xor { d, a, b } => r!(d) = r!(a) ^ r!(b),
+            Op::NotB { d, a } => r!(d) = r!(a) ^ 1,
+            Op::NotW { d, a, shift } => r!(d) = wrap_u(!r!(a), shift),
+            Op::AndN { d, a, b } => r!(d) = r!(a) & (r!(b) ^ 1),
+            Op::OrN { d, a, b } => r!(d) = r!(a) | (r!(b) ^ 1),
+            Op::Shift {
+                d,
+                a,
+                b,
+                kind,
+                bits,
+            } => r!(d) = shift(r!(a), r!(b), kind, bits),
+
+            Op::CmpS { d, a, b, cmp } => r!(d) = cmp_s(r!(a), r!(b), cmp),
+            Op::CmpU { d, a, b, cmp } => r!(d) = cmp.test(r!(a).cmp(&r!(b))) as u64,
+            Op::CmpF32 { d, a, b, cmp } => r!(d) = cmp_f(f32_of(r!(a)), f32_of(r!(b)), cmp),
+            Op::CmpF64 { d, a, b, cmp } => r!(d) = cmp_f(f64_of(r!(a)), f64_of(r!(b)), cmp),
+            Op::CmpSI { d, a, imm, cmp } => r!(d) = cmp_s(r!(a), imm as i64 as u64, cmp),
+            Op::CmpStr { d, a, b, cmp } => {
+                let x = &m.strings[r!(a) as usize];
+                let y = &m.strings[r!(b) as usize];
+                r!(d) = cmp.test(x.as_str().cmp(y.as_str())) as u64;
+            }
+
+            Op::Convert { d, a, conv } => match convert::convert(conv, r!(a)) {
+                Ok(v) => r!(d) = v,
+                Err(kind) => fault!(kind),
+            },
+            Op::Select { d, c, a, b } => r!(d) = if r!(c) != 0 { r!(a) } else { r!(b) },
+            Op::MinMaxS { d, a, b, max } => {
+                let (x, y) = (r!(a) as i64, r!(b) as i64);
+                r!(d) = (if (x < y) != max { x } else { y }) as u64;
+            }
+            Op::MinMaxU { d, a, b, max } => {
+                let (x, y) = (r!(a), r!(b));
+                r!(d) = if (x < y) != max { x } else { y };
+            }
+            Op::MinMaxF32 { d, a, b, max } => {
+                let (x, y) = (f32_of(r!(a)), f32_of(r!(b)));
+                r!(d) = of_f32(if max { x.max(y) } else { x.min(y) });
+            }
+            Op::MinMaxF64 { d, a, b, max } => {
+                let (x, y) = (f64_of(r!(a)), f64_of(r!(b)));
+                r!(d) = of_f64(if max { x.max(y) } else { x.min(y) });
+            }
+            Op::Mux { d, k, first, n } => {
+                let sel = r!(k) as i64;
+                if sel < 0 || sel >= n as i64 {
+                    fault!(FaultKind::MuxOutOfRange { k: sel, n });
+                }
+                r!(d) = r!(first as u64 + sel as u64);
+            }
+            Op::MulTimeF64 { d, a, b } => {
+                let v = (r!(a) as i64) as f64 * f64_of(r!(b));
+                match convert::f64_to_i64(v.round()) {
+                    Some(x) => r!(d) = x as u64,
+                    None => fault!(FaultKind::ConversionOverflow),
+                }
+            }
+            Op::DivTimeF64 { d, a, b } => {
+                let y = f64_of(r!(b));
+                if y == 0.0 {
+                    fault!(FaultKind::DivisionByZero);
+                }
+                let v = (r!(a) as i64) as f64 / y;
+                match convert::f64_to_i64(v.round()) {
+                    Some(x) => r!(d) = x as u64,
+                    None => fault!(FaultKind::ConversionOverflow),
+                }
+            }
+
+            Op::StrMov { d, s } => {
+                let (di, si) = (r!(d) as usize, r!(s) as usize);
+                if di != si {
+                    let text = std::mem::take(&mut m.strings[si].text);
+                    m.strings[di].set(&text);
+                    m.strings[si].text = text;
+                }
+            }
+            Op::StrConst { d, k } => {
+                let di = r!(d) as usize;
+                m.strings[di].set(&img.str_consts[k as usize]);
+            }
+            Op::StrCall { d, a, f } => {
+                let args = [
+                    r!(a),
+                    r!(a as usize + 1),
+                    r!(a as usize + 2),
+                    r!(a as usize + 3),
+                ];
+                let dst = r!(d);
+                match strings::call(&mut m.strings, f, dst, &args) {
+                    Ok(Some(v)) => r!(d) = v,
+                    Ok(None) => {}
+                    Err(kind) => fault!(kind),
+                }
+            }
+            Op::ToStr { d, a, ty } => {
+                let text = crate::runtime::format::format_value(
+                    img.scalar_types[ty as usize],
+                    r!(a),
+                );
+                let di = r!(d) as usize;
+                m.strings[di].set(&text);
+            }
+            Op::FromStr { d, a, ty } => {
+                let text = m.strings[r!(a) as usize].as_str();
+                match crate::sema::consts::parse_scalar(text, img.scalar_types[ty as usize]) {
+                    Some(v) => r!(d) = v,
+                    None => fault!(FaultKind::ConversionOverflow),
+                }
+            }
+
+            Op::Jmp { t } => jump!(t),
+            Op::Jz { c, t } => {
+                if r!(c) == 0 {
+                    jump!(t)
+                }
+            }
+            Op::Jnz { c, t } => {
+                if r!(c) != 0 {
+                    jump!(t)
+                }
+            }
+            Op::JnCmpSI { a, imm, cmp, t } => {
+                if !cmp.test((r!(a) as i64).cmp(&(imm as i64))) {
+                    jump!(t)
+                }
+            }
+            Op::JnCmpS { a, b, cmp, t } => {
+                if !cmp.test((r!(a) as i64).cmp(&(r!(b) as i64))) {
+                    jump!(t)
+                }
+            }
+
+            Op::CallFb { code: c, inst } => run(m, img, c, base + inst as usize)?,
+            Op::CallFbInd { code: c, p } => {
+                let at = r!(p) as usize;
+                run(m, img, c, at)?
+            }
+            Op::CallNative { fb, inst } => {
+                let at = base + inst as usize;
+                let now = m.now;
+                stdlib::call(fb, &mut m.mem[at..], now);
+            }
+            Op::CallNativeInd { fb, p } => {
+                let at = r!(p) as usize;
+                let now = m.now;
+                stdlib::call(fb, &mut m.mem[at..], now);
+            }
+            Op::CallFn { code: c } => {
+                let frame = img.codes[c as usize].frame as usize;
+                run(m, img, c, frame)?
+            }
+            Op::Clock { d } => r!(d) = m.now as u64,
+            Op::MemCopy { d, s, n } => {
+                let (to, from) = (r!(d) as usize, r!(s) as usize);
+                m.mem.copy_within(from..from + n as usize, to);
+            }
+            Op::Ret => return Ok(()),
+        }
+    }
+}
+
+fn index_fault(raw: u64, ad: &crate::ir::image::ArrayDesc) -> FaultKind {
+    if ad.stride == 0 {
+        // Descriptors with stride 0 describe subranges, not arrays.
+        return FaultKind::SubrangeViolation {
+            value: raw as i64,
+            lo: ad.lo,
+            hi: ad.lo + ad.len as i64 - 1,
+        };
+    }
+    FaultKind::IndexOutOfRange {
+        index: raw as i64,
+        lo: ad.lo,
+        hi: ad.lo + ad.len as i64 - 1,
+    }
+}

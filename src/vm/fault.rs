@@ -1,0 +1,77 @@
+//! Runtime faults: conditions that stop the PLC.
+
+use std::fmt;
+
+/// Why execution stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FaultKind {
+    /// Integer division or MOD by zero.
+    DivisionByZero,
+    /// An array index outside the declared bounds.
+    IndexOutOfRange {
+        /// The index value.
+        index: i64,
+        /// Lower bound.
+        lo: i64,
+        /// Upper bound.
+        hi: i64,
+    },
+    /// A value stored into a subrange variable lies outside the subrange.
+    SubrangeViolation {
+        /// The value.
+        value: i64,
+        /// Lower bound.
+        lo: i64,
+        /// Upper bound.
+        hi: i64,
+    },
+    /// A conversion whose result does not fit the target type (or NaN).
+    ConversionOverflow,
+    /// MUX selector out of range.
+    MuxOutOfRange {
+        /// Selector value.
+        k: i64,
+        /// Number of inputs.
+        n: u32,
+    },
+    /// A BCD value with a nibble above 9.
+    InvalidBcd,
+    /// A negative exponent in an integer `**`.
+    NegativeExponent,
+    /// A cycle ran longer than the watchdog allows.
+    Watchdog,
+}
+
+impl fmt::Display for FaultKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FaultKind::DivisionByZero => write!(f, "division by zero"),
+            FaultKind::IndexOutOfRange { index, lo, hi } => {
+                write!(f, "array index {index} out of bounds [{lo}..{hi}]")
+            }
+            FaultKind::SubrangeViolation { value, lo, hi } => {
+                write!(f, "value {value} outside the subrange {lo}..{hi}")
+            }
+            FaultKind::ConversionOverflow => {
+                write!(f, "conversion result out of the target type's range")
+            }
+            FaultKind::MuxOutOfRange { k, n } => {
+                write!(f, "MUX selector {k} out of range (0..{})", n.saturating_sub(1))
+            }
+            FaultKind::InvalidBcd => write!(f, "invalid BCD value"),
+            FaultKind::NegativeExponent => write!(f, "negative exponent in integer `**`"),
+            FaultKind::Watchdog => write!(f, "watchdog: cycle exceeded its time limit"),
+        }
+    }
+}
+
+/// A fault with the instruction that raised it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fault {
+    /// What happened.
+    pub kind: FaultKind,
+    /// Code block.
+    pub code: u32,
+    /// Instruction index inside the block.
+    pub pc: u32,
+}

@@ -1,0 +1,80 @@
+//! The interpreter: executes IR code blocks over one flat slot memory.
+//!
+//! The executor resolves nothing at run time: every operand is a slot index
+//! relative to the frame base, every operation carries its type. Faults
+//! (division by zero, index out of range, conversion overflow, watchdog)
+//! stop execution and report the code block and instruction, which the
+//! runtime maps back to a source location.
+
+mod convert;
+mod exec;
+mod fault;
+mod strings;
+
+pub use fault::{Fault, FaultKind};
+pub use strings::PlcString;
+
+use crate::ir::image::Image;
+use std::time::{Duration, Instant};
+
+/// How many backward jumps run between two looks at the wall clock.
+const WATCHDOG_STRIDE: u32 = 4096;
+
+/// The mutable state of a running PLC: memory, strings, clock, watchdog.
+#[derive(Debug, Clone)]
+pub struct Machine {
+    /// All slots (globals, program instances, FB instances, function frames).
+    pub mem: Vec<u64>,
+    /// String variables, indexed by the string id a slot holds.
+    pub strings: Vec<PlcString>,
+    /// The current cycle's clock value in nanoseconds.
+    pub now: i64,
+    watchdog: Option<Duration>,
+    deadline: Option<Instant>,
+    budget: u32,
+}
+
+impl Machine {
+    /// A machine holding the image's initial memory.
+    pub fn new(image: &Image) -> Machine {
+        Machine {
+            mem: image.memory.clone(),
+            strings: image
+                .strings
+                .iter()
+                .map(|s| PlcString::new(&s.init, s.max, s.wide))
+                .collect(),
+            now: 0,
+            watchdog: None,
+            deadline: None,
+            budget: WATCHDOG_STRIDE,
+        }
+    }
+
+    /// Sets the wall-clock limit for one cycle (`None` disables it).
+    pub fn set_watchdog(&mut self, limit: Option<Duration>) {
+        self.watchdog = limit;
+    }
+
+    /// Starts the watchdog for a new cycle.
+    pub fn start_cycle(&mut self) {
+        self.deadline = self.watchdog.map(|d| Instant::now() + d);
+        self.budget = WATCHDOG_STRIDE;
+    }
+
+    /// Runs code block `code` with frame base `base`.
+    pub fn run(&mut self, image: &Image, code: u32, base: u32) -> Result<(), Fault> {
+        exec::run(self, image, code, base as usize)
+    }
+
+    /// Called on backward jumps: true when the cycle has run out of time.
+    #[inline]
+    fn watchdog_expired(&mut self) -> bool {
+        self.budget -= 1;
+        if self.budget != 0 {
+            return false;
+        }
+        self.budget = WATCHDOG_STRIDE;
+        self.deadline.is_some_and(|d| Instant::now() >= d)
+    }
+}
