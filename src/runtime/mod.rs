@@ -1,7 +1,7 @@
 //! Runtime: everything around the executor that talks to the outside world
 //! while a program runs.
 //!
-//! - [`format`]: values as IEC literal text (and JSON) for traces and messages;
+//! - [`format`](mod@format): values as IEC literal text (and JSON) for traces and messages;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 

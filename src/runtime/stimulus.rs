@@ -241,12 +241,17 @@ fn parse_row(
             line,
             None,
             format!(
-                "expected {} cells (the {} and {} value{}), found {}",
+                "expected {} cells (the {} and {} value{}), found {}{}",
                 columns + 1,
                 key_name(key),
                 columns,
                 if columns == 1 { "" } else { "s" },
-                record.len()
+                record.len(),
+                if record.iter().any(|f| f.contains('"')) {
+                    "; a quoted cell must start with `\"` right after the comma"
+                } else {
+                    ""
+                }
             ),
         ));
     }
@@ -464,6 +469,12 @@ mod tests {
         2,
         None,
         "expected 2 cells (the cycle and 1 value), found 3"
+    )]
+    #[case(
+        "cycle,s,n\n0, \"'a,b'\",1\n",
+        2,
+        None,
+        "found 4; a quoted cell must start with `\"` right after the comma"
     )]
     #[case(
         "cycle,x\n0,1\n\n5,1\n3,1\n",
