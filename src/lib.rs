@@ -5,6 +5,7 @@
 //! cyclic scheduler on a virtual clock.
 
 pub mod diagnostics;
+pub mod runtime;
 pub mod source;
 pub mod syntax;
 pub mod types;

@@ -149,6 +149,9 @@ mod tests {
         assert_eq!(format_duration(1_500_000_000, "T#"), "T#1s500ms");
         assert_eq!(format_duration(600_000_000_000, "T#"), "T#10m");
         assert_eq!(format_duration(-2_000_000, "T#"), "T#-2ms");
-        assert_eq!(format_duration(90_061_001_001_001, "LT#"), "LT#1d1h1m1s1ms1us1ns");
+        assert_eq!(
+            format_duration(90_061_001_001_001, "LT#"),
+            "LT#1d1h1m1s1ms1us1ns"
+        );
     }
 }

@@ -1,0 +1,528 @@
+//! The trace: one row per cycle with the cycle number, the clock and the
+//! traced values, written as an aligned table, CSV or JSON lines.
+//!
+//! CSV (`cycle,time,` then the names exactly as given; standard quoting):
+//! ```text
+//! cycle,time,start,count
+//! 0,T#0s,TRUE,42
+//! ```
+//! JSON lines (keys in this order; values from [`TraceCell::json`]):
+//! ```text
+//! {"cycle":0,"time":"T#0s","start":true,"count":42}
+//! ```
+//! Table (columns left-aligned, two spaces apart; written by
+//! [`TraceWriter::finish`], since the widths depend on every row):
+//! ```text
+//! cycle  time  start  count
+//! -----  ----  -----  -----
+//! 0      T#0s  TRUE   42
+//! ```
+//!
+//! With `changes_only`, the first row is written, then only rows where at
+//! least one traced cell's text differs from the previous cycle's row (the
+//! previous row given to [`TraceWriter::row`], written or not).
+
+use crate::runtime::format::{json_value, write_value};
+use crate::syntax::literal::format_duration;
+use crate::types::ElemType;
+use std::fmt::Write as _;
+use std::io::{self, Write};
+use std::str::FromStr;
+
+/// How a trace is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TraceFormat {
+    /// Human-readable aligned columns.
+    Table,
+    /// Comma-separated values with a header line.
+    Csv,
+    /// One JSON object per line.
+    Jsonl,
+}
+
+impl FromStr for TraceFormat {
+    type Err = String;
+
+    /// `table`, `csv` or `jsonl` (case-insensitive).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let s = s.trim();
+        if s.eq_ignore_ascii_case("table") {
+            Ok(TraceFormat::Table)
+        } else if s.eq_ignore_ascii_case("csv") {
+            Ok(TraceFormat::Csv)
+        } else if s.eq_ignore_ascii_case("jsonl") {
+            Ok(TraceFormat::Jsonl)
+        } else {
+            Err(format!(
+                "unknown trace format `{s}` (expected table, csv or jsonl)"
+            ))
+        }
+    }
+}
+
+impl std::fmt::Display for TraceFormat {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            TraceFormat::Table => "table",
+            TraceFormat::Csv => "csv",
+            TraceFormat::Jsonl => "jsonl",
+        })
+    }
+}
+
+/// One traced value: its literal text (table, CSV, change detection) and
+/// its JSON form (JSON lines).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TraceCell {
+    /// The IEC literal text, as [`crate::runtime::format::format_value`] or
+    /// [`crate::runtime::format::format_string`] print it.
+    pub text: String,
+    /// The value as JSON, as [`json_value`] gives it.
+    pub json: serde_json::Value,
+}
+
+impl TraceCell {
+    /// The cell for an elementary (non-string) value.
+    pub fn from_value(ty: ElemType, raw: u64) -> Self {
+        let mut cell = TraceCell {
+            text: String::new(),
+            json: serde_json::Value::Null,
+        };
+        cell.set_value(ty, raw);
+        cell
+    }
+
+    /// Overwrites the cell with another elementary value, reusing the text
+    /// buffer (for callers that keep one row of cells across cycles).
+    pub fn set_value(&mut self, ty: ElemType, raw: u64) {
+        self.text.clear();
+        write_value(&mut self.text, ty, raw);
+        self.json = json_value(ty, raw);
+    }
+
+    /// The cell for a STRING (`wide == false`) or WSTRING value: the quoted
+    /// literal as text, the plain string as JSON.
+    pub fn from_string(s: &str, wide: bool) -> Self {
+        TraceCell {
+            text: crate::runtime::format::format_string(s, wide),
+            json: serde_json::Value::String(s.to_string()),
+        }
+    }
+}
+
+/// Where the rows go.
+enum Sink<W: Write> {
+    Csv(Box<csv::Writer<W>>),
+    Plain(W),
+}
+
+/// Rows kept for the table until [`TraceWriter::finish`]: all cell texts in
+/// one buffer, with their end offsets.
+#[derive(Default)]
+struct TableBuffer {
+    text: String,
+    ends: Vec<usize>,
+    /// Width in characters of each column so far (header included).
+    widths: Vec<usize>,
+}
+
+/// Writes a trace, row by row (see the module docs for the formats).
+pub struct TraceWriter<W: Write> {
+    sink: Sink<W>,
+    format: TraceFormat,
+    names: Vec<String>,
+    changes_only: bool,
+    /// Whether the CSV header has been written.
+    header_written: bool,
+    /// The previous cycle's cell texts (with `changes_only`).
+    prev: Vec<String>,
+    has_prev: bool,
+    /// Scratch for the cycle number.
+    cycle_text: String,
+    /// Scratch for one JSON line.
+    line: Vec<u8>,
+    /// `,"NAME":` for each name, JSON-escaped once.
+    json_keys: Vec<String>,
+    table: TableBuffer,
+}
+
+impl<W: Write> TraceWriter<W> {
+    /// A writer of `format` to `out`, with one traced column per name (printed
+    /// exactly as given). `changes_only` drops rows where no traced value
+    /// changed since the previous cycle (the first row is always written).
+    pub fn new(out: W, format: TraceFormat, names: Vec<String>, changes_only: bool) -> Self {
+        let sink = match format {
+            TraceFormat::Csv => Sink::Csv(Box::new(csv::WriterBuilder::new().from_writer(out))),
+            TraceFormat::Table | TraceFormat::Jsonl => Sink::Plain(out),
+        };
+        let json_keys = match format {
+            TraceFormat::Jsonl => names
+                .iter()
+                .map(|name| {
+                    let key = serde_json::Value::String(name.clone());
+                    format!(",{key}:")
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        let mut table = TableBuffer::default();
+        if format == TraceFormat::Table {
+            table.widths = ["cycle", "time"]
+                .into_iter()
+                .chain(names.iter().map(String::as_str))
+                .map(|h| h.chars().count())
+                .collect();
+        }
+        TraceWriter {
+            sink,
+            format,
+            names,
+            changes_only,
+            header_written: false,
+            prev: Vec::new(),
+            has_prev: false,
+            cycle_text: String::new(),
+            line: Vec::new(),
+            json_keys,
+            table,
+        }
+    }
+
+    /// Records the row of cycle `cycle` at clock `time_ns`; `cells` has one
+    /// entry per name, in the same order (else an `InvalidInput` error).
+    pub fn row(&mut self, cycle: u64, time_ns: i64, cells: &[TraceCell]) -> io::Result<()> {
+        if cells.len() != self.names.len() {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "trace row has {} cells for {} traced names",
+                    cells.len(),
+                    self.names.len()
+                ),
+            ));
+        }
+        if self.changes_only && !self.changed(cells) {
+            return Ok(());
+        }
+        self.cycle_text.clear();
+        let _ = write!(self.cycle_text, "{cycle}");
+        let time = format_duration(time_ns, "T#");
+        match self.format {
+            TraceFormat::Table => {
+                let table = &mut self.table;
+                let texts = [self.cycle_text.as_str(), time.as_str()]
+                    .into_iter()
+                    .chain(cells.iter().map(|c| c.text.as_str()));
+                for (width, text) in table.widths.iter_mut().zip(texts) {
+                    *width = (*width).max(text.chars().count());
+                    table.text.push_str(text);
+                    table.ends.push(table.text.len());
+                }
+                Ok(())
+            }
+            TraceFormat::Csv => {
+                self.write_csv_header()?;
+                let Sink::Csv(csv) = &mut self.sink else {
+                    return Ok(());
+                };
+                let fields = [self.cycle_text.as_bytes(), time.as_bytes()]
+                    .into_iter()
+                    .chain(cells.iter().map(|c| c.text.as_bytes()));
+                csv.write_record(fields)?;
+                Ok(())
+            }
+            TraceFormat::Jsonl => {
+                let line = &mut self.line;
+                line.clear();
+                line.extend_from_slice(b"{\"cycle\":");
+                line.extend_from_slice(self.cycle_text.as_bytes());
+                line.extend_from_slice(b",\"time\":");
+                serde_json::to_writer(&mut *line, time.as_str())?;
+                for (key, cell) in self.json_keys.iter().zip(cells) {
+                    line.extend_from_slice(key.as_bytes());
+                    serde_json::to_writer(&mut *line, &cell.json)?;
+                }
+                line.extend_from_slice(b"}\n");
+                match &mut self.sink {
+                    Sink::Plain(out) => out.write_all(line),
+                    Sink::Csv(_) => Ok(()),
+                }
+            }
+        }
+    }
+
+    /// Writes what is still pending (the CSV header of an empty trace, the
+    /// whole table), flushes, and hands the output back.
+    pub fn finish(mut self) -> io::Result<W> {
+        match self.format {
+            TraceFormat::Csv => self.write_csv_header()?,
+            TraceFormat::Table => self.write_table()?,
+            TraceFormat::Jsonl => {}
+        }
+        match self.sink {
+            Sink::Csv(csv) => csv.into_inner().map_err(|err| err.into_error()),
+            Sink::Plain(mut out) => {
+                out.flush()?;
+                Ok(out)
+            }
+        }
+    }
+
+    /// True when the row must be written under `changes_only`; remembers
+    /// the row as the previous cycle's either way.
+    fn changed(&mut self, cells: &[TraceCell]) -> bool {
+        if !self.has_prev {
+            self.has_prev = true;
+            self.prev = cells.iter().map(|c| c.text.clone()).collect();
+            return true;
+        }
+        let mut changed = false;
+        for (prev, cell) in self.prev.iter_mut().zip(cells) {
+            if *prev != cell.text {
+                changed = true;
+                prev.clear();
+                prev.push_str(&cell.text);
+            }
+        }
+        changed
+    }
+
+    fn write_csv_header(&mut self) -> io::Result<()> {
+        if self.header_written {
+            return Ok(());
+        }
+        self.header_written = true;
+        if let Sink::Csv(csv) = &mut self.sink {
+            let fields = ["cycle", "time"]
+                .into_iter()
+                .chain(self.names.iter().map(String::as_str));
+            csv.write_record(fields)?;
+        }
+        Ok(())
+    }
+
+    fn write_table(&mut self) -> io::Result<()> {
+        let Sink::Plain(out) = &mut self.sink else {
+            return Ok(());
+        };
+        let table = &self.table;
+        let widths = &table.widths;
+        let mut line = String::new();
+        let mut emit = |line: &mut String, cells: &mut dyn Iterator<Item = &str>| {
+            line.clear();
+            for (i, (text, width)) in cells.zip(widths).enumerate() {
+                if i > 0 {
+                    line.push_str("  ");
+                }
+                line.push_str(text);
+                if i + 1 < widths.len() {
+                    let pad = width.saturating_sub(text.chars().count());
+                    line.extend(std::iter::repeat_n(' ', pad));
+                }
+            }
+            let kept = line.trim_end_matches(' ').len();
+            line.truncate(kept);
+            line.push('\n');
+            out.write_all(line.as_bytes())
+        };
+        let header = ["cycle", "time"]
+            .into_iter()
+            .chain(self.names.iter().map(String::as_str));
+        emit(&mut line, &mut header.into_iter())?;
+        let rules: Vec<String> = widths.iter().map(|w| "-".repeat(*w)).collect();
+        emit(&mut line, &mut rules.iter().map(String::as_str))?;
+        let mut start = 0;
+        for row in table.ends.chunks(widths.len().max(1)) {
+            let mut cells = row.iter().map(|&end| {
+                let text = table.text.get(start..end).unwrap_or("");
+                start = end;
+                text
+            });
+            emit(&mut line, &mut cells)?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ElemType::{Bool, Int, Lreal, Real};
+    use rstest::rstest;
+
+    const MS: i64 = 1_000_000;
+
+    fn names(list: &[&str]) -> Vec<String> {
+        list.iter().map(|s| s.to_string()).collect()
+    }
+
+    /// Writes `rows` of (start: BOOL, count: INT) and returns the output.
+    fn run(format: TraceFormat, changes_only: bool, rows: &[(bool, i16)]) -> String {
+        let mut w = TraceWriter::new(Vec::new(), format, names(&["start", "Count"]), changes_only);
+        for (cycle, &(start, count)) in rows.iter().enumerate() {
+            let cells = [
+                TraceCell::from_value(Bool, start as u64),
+                TraceCell::from_value(Int, count as u64),
+            ];
+            w.row(cycle as u64, cycle as i64 * 10 * MS, &cells).unwrap();
+        }
+        String::from_utf8(w.finish().unwrap()).unwrap()
+    }
+
+    const ROWS: [(bool, i16); 4] = [(false, 0), (true, 0), (true, 0), (true, -1200)];
+
+    #[test]
+    fn csv_output() {
+        assert_eq!(
+            run(TraceFormat::Csv, false, &ROWS),
+            "cycle,time,start,Count\n\
+             0,T#0s,FALSE,0\n\
+             1,T#10ms,TRUE,0\n\
+             2,T#20ms,TRUE,0\n\
+             3,T#30ms,TRUE,-1200\n"
+        );
+    }
+
+    #[test]
+    fn jsonl_output() {
+        assert_eq!(
+            run(TraceFormat::Jsonl, false, &ROWS[..2]),
+            "{\"cycle\":0,\"time\":\"T#0s\",\"start\":false,\"Count\":0}\n\
+             {\"cycle\":1,\"time\":\"T#10ms\",\"start\":true,\"Count\":0}\n"
+        );
+    }
+
+    #[test]
+    fn table_output() {
+        assert_eq!(
+            run(TraceFormat::Table, false, &ROWS),
+            "cycle  time    start  Count\n\
+             -----  ------  -----  -----\n\
+             0      T#0s    FALSE  0\n\
+             1      T#10ms  TRUE   0\n\
+             2      T#20ms  TRUE   0\n\
+             3      T#30ms  TRUE   -1200\n"
+        );
+    }
+
+    #[rstest]
+    #[case(
+        TraceFormat::Csv,
+        "cycle,time,start,Count\n0,T#0s,FALSE,0\n1,T#10ms,TRUE,0\n3,T#30ms,TRUE,-1200\n"
+    )]
+    #[case(
+        TraceFormat::Table,
+        "cycle  time    start  Count\n-----  ------  -----  -----\n0      T#0s    FALSE  0\n1      T#10ms  TRUE   0\n3      T#30ms  TRUE   -1200\n"
+    )]
+    fn changes_only(#[case] format: TraceFormat, #[case] expected: &str) {
+        assert_eq!(run(format, true, &ROWS), expected);
+    }
+
+    #[test]
+    fn changes_only_compares_with_the_previous_cycle_not_the_last_written_row() {
+        // Cycle 0 is written (first), 1 changed, 2 did not, 3 changed back
+        // (against cycle 2), 4 did not.
+        let rows = [(false, 0), (false, 1), (false, 1), (false, 0), (false, 0)];
+        assert_eq!(
+            run(TraceFormat::Csv, true, &rows),
+            "cycle,time,start,Count\n0,T#0s,FALSE,0\n1,T#10ms,FALSE,1\n3,T#30ms,FALSE,0\n"
+        );
+    }
+
+    #[test]
+    fn empty_traces() {
+        assert_eq!(
+            run(TraceFormat::Csv, false, &[]),
+            "cycle,time,start,Count\n"
+        );
+        assert_eq!(run(TraceFormat::Jsonl, false, &[]), "");
+        assert_eq!(
+            run(TraceFormat::Table, false, &[]),
+            "cycle  time  start  Count\n-----  ----  -----  -----\n"
+        );
+    }
+
+    #[test]
+    fn no_traced_names() {
+        let mut w = TraceWriter::new(Vec::new(), TraceFormat::Csv, Vec::new(), true);
+        w.row(0, 0, &[]).unwrap();
+        w.row(1, 10 * MS, &[]).unwrap();
+        assert_eq!(
+            String::from_utf8(w.finish().unwrap()).unwrap(),
+            "cycle,time\n0,T#0s\n"
+        );
+    }
+
+    fn strings_trace(format: TraceFormat) -> String {
+        let mut w = TraceWriter::new(
+            Vec::new(),
+            format,
+            names(&["msg", "grid[1,2]", "say \"x\""]),
+            false,
+        );
+        let cells = [
+            TraceCell::from_string("a,b", false),
+            TraceCell::from_value(Real, u64::from(0.1f32.to_bits())),
+            TraceCell::from_string("hé \"ho\"", true),
+        ];
+        w.row(7, 1_500 * MS, &cells).unwrap();
+        String::from_utf8(w.finish().unwrap()).unwrap()
+    }
+
+    #[test]
+    fn csv_quotes_when_needed() {
+        assert_eq!(
+            strings_trace(TraceFormat::Csv),
+            "cycle,time,msg,\"grid[1,2]\",\"say \"\"x\"\"\"\n\
+             7,T#1s500ms,\"'a,b'\",0.1,\"\"\"hé $\"\"ho$\"\"\"\"\"\n"
+        );
+    }
+
+    #[test]
+    fn jsonl_escapes_keys_and_strings() {
+        assert_eq!(
+            strings_trace(TraceFormat::Jsonl),
+            "{\"cycle\":7,\"time\":\"T#1s500ms\",\"msg\":\"a,b\",\"grid[1,2]\":0.1,\"say \\\"x\\\"\":\"hé \\\"ho\\\"\"}\n"
+        );
+    }
+
+    #[test]
+    fn table_counts_characters_not_bytes() {
+        assert_eq!(
+            strings_trace(TraceFormat::Table),
+            "cycle  time       msg    grid[1,2]  say \"x\"\n\
+             -----  ---------  -----  ---------  -----------\n\
+             7      T#1s500ms  'a,b'  0.1        \"hé $\"ho$\"\"\n"
+        );
+    }
+
+    #[test]
+    fn wrong_cell_count_is_an_error_not_a_panic() {
+        let mut w = TraceWriter::new(Vec::new(), TraceFormat::Table, names(&["a"]), false);
+        let err = w.row(0, 0, &[]).unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::InvalidInput);
+    }
+
+    #[test]
+    fn cells_can_be_reused() {
+        let mut cell = TraceCell::from_value(Int, 5);
+        cell.set_value(Lreal, 2.5f64.to_bits());
+        assert_eq!(cell.text, "2.5");
+        assert_eq!(cell.json, serde_json::json!(2.5));
+    }
+
+    #[rstest]
+    #[case("table", TraceFormat::Table)]
+    #[case("csv", TraceFormat::Csv)]
+    #[case("JSONL", TraceFormat::Jsonl)]
+    fn formats_by_name(#[case] name: &str, #[case] format: TraceFormat) {
+        assert_eq!(name.parse::<TraceFormat>(), Ok(format));
+        assert_eq!(format.to_string(), name.to_ascii_lowercase());
+    }
+
+    #[test]
+    fn unknown_format() {
+        let err = "xml".parse::<TraceFormat>().unwrap_err();
+        assert!(err.contains("`xml`"), "{err}");
+    }
+}
