@@ -7,6 +7,7 @@ pub mod consts;
 mod declare;
 mod emit;
 mod expr;
+mod calls;
 mod link;
 pub mod model;
 mod stdfuncs;

@@ -14,6 +14,11 @@ mod strings;
 pub use fault::{Fault, FaultKind};
 pub use strings::PlcString;
 
+/// Applies a conversion to a slot value (also used for constant folding).
+pub fn convert_value(c: crate::ir::op::Conv, x: u64) -> Result<u64, FaultKind> {
+    convert::convert(c, x)
+}
+
 use crate::ir::image::Image;
 use std::time::{Duration, Instant};
 

@@ -1,0 +1,635 @@
+//! Statements: assignment, calls, IF, CASE, FOR, WHILE, REPEAT, EXIT,
+//! CONTINUE, RETURN — lowered to typed instructions and jumps.
+
+use super::Compiler;
+use super::consts::Const;
+use super::emit::{Fcx, LoopCtx, Ty, Val};
+use crate::ir::op::{Cmp, Op};
+use crate::ir::types::{TypeKind, TypeTable};
+use crate::source::Span;
+use crate::syntax::ast::{CaseLabel, Expr, ExprKind, Stmt, StmtKind};
+use crate::types::ElemType;
+
+/// The predicate that is TRUE exactly when `c` is FALSE.
+pub fn negate(c: Cmp) -> Cmp {
+    match c {
+        Cmp::Eq => Cmp::Ne,
+        Cmp::Ne => Cmp::Eq,
+        Cmp::Lt => Cmp::Ge,
+        Cmp::Ge => Cmp::Lt,
+        Cmp::Le => Cmp::Gt,
+        Cmp::Gt => Cmp::Le,
+    }
+}
+
+impl Compiler<'_> {
+    /// Emits a statement list.
+    pub(super) fn stmts(&mut self, f: &mut Fcx, list: &[Stmt]) {
+        for s in list {
+            self.stmt(f, s);
+        }
+    }
+
+    fn stmt(&mut self, f: &mut Fcx, s: &Stmt) {
+        let mark = f.temp_next;
+        f.span = s.span;
+        match &s.kind {
+            StmtKind::Assign { target, value } => self.assign(f, target, value, s.span),
+            StmtKind::Call(call) => self.call_stmt(f, call),
+            StmtKind::If {
+                branches,
+                else_branch,
+            } => {
+                let mut ends = Vec::new();
+                for (cond, body) in branches {
+                    let skip = self.cond_jump(f, cond, false);
+                    f.temp_next = mark;
+                    self.stmts(f, body);
+                    ends.push(f.emit(Op::Jmp { t: 0 }));
+                    let next = f.here();
+                    if let Some(j) = skip {
+                        f.patch(j, next);
+                    }
+                }
+                if let Some(body) = else_branch {
+                    self.stmts(f, body);
+                }
+                let end = f.here();
+                for j in ends {
+                    f.patch(j, end);
+                }
+            }
+            StmtKind::Case {
+                selector,
+                arms,
+                else_branch,
+            } => self.case(f, selector, arms, else_branch.as_deref()),
+            StmtKind::For {
+                var,
+                from,
+                to,
+                by,
+                body,
+            } => self.for_loop(f, var, from, to, by.as_ref(), body, s.span),
+            StmtKind::While { cond, body } => {
+                let to_cond = f.emit(Op::Jmp { t: 0 });
+                let top = f.here();
+                f.loops.push(LoopCtx::default());
+                self.stmts(f, body);
+                let cont = f.here();
+                f.patch(to_cond, cont);
+                f.span = cond.span;
+                self.cond_branch_to(f, cond, true, top);
+                let lp = f.loops.pop().unwrap_or_default();
+                let end = f.here();
+                for j in lp.exits {
+                    f.patch(j, end);
+                }
+                for j in lp.continues {
+                    f.patch(j, cont);
+                }
+            }
+            StmtKind::Repeat { body, until } => {
+                let top = f.here();
+                f.loops.push(LoopCtx::default());
+                self.stmts(f, body);
+                let cont = f.here();
+                f.span = until.span;
+                self.cond_branch_to(f, until, false, top);
+                let lp = f.loops.pop().unwrap_or_default();
+                let end = f.here();
+                for j in lp.exits {
+                    f.patch(j, end);
+                }
+                for j in lp.continues {
+                    f.patch(j, cont);
+                }
+            }
+            StmtKind::Exit => match f.loops.last_mut() {
+                Some(_) => {
+                    let j = f.emit(Op::Jmp { t: 0 });
+                    if let Some(lp) = f.loops.last_mut() {
+                        lp.exits.push(j);
+                    }
+                }
+                None => self
+                    .diags
+                    .error("E405", s.span, "EXIT outside of a FOR, WHILE or REPEAT loop"),
+            },
+            StmtKind::Continue => match f.loops.last_mut() {
+                Some(_) => {
+                    let j = f.emit(Op::Jmp { t: 0 });
+                    if let Some(lp) = f.loops.last_mut() {
+                        lp.continues.push(j);
+                    }
+                }
+                None => self.diags.error(
+                    "E405",
+                    s.span,
+                    "CONTINUE outside of a FOR, WHILE or REPEAT loop",
+                ),
+            },
+            StmtKind::Return => {
+                let j = f.emit(Op::Jmp { t: 0 });
+                f.returns.push(j);
+            }
+            StmtKind::Empty => {}
+        }
+        f.temp_next = mark;
+    }
+
+    /// Checks a condition and emits a jump taken when it equals `when`;
+    /// returns the jump to patch (None if the condition was invalid or is
+    /// a constant that never jumps).
+    pub(super) fn cond_jump(&mut self, f: &mut Fcx, cond: &Expr, when: bool) -> Option<usize> {
+        let v = self.bool_expr(f, cond)?;
+        if let Val::Const(Const::Bits(b), _) = v {
+            if (b != 0) == when {
+                return Some(f.emit(Op::Jmp { t: 0 }));
+            }
+            return None;
+        }
+        let s = self.materialize(f, &v);
+        Some(self.branch_on_slot(f, s, when, 0))
+    }
+
+    /// Emits a jump to `target` taken when `cond` equals `when`.
+    fn cond_branch_to(&mut self, f: &mut Fcx, cond: &Expr, when: bool, target: u32) {
+        let Some(v) = self.bool_expr(f, cond) else {
+            return;
+        };
+        if let Val::Const(Const::Bits(b), _) = v {
+            if (b != 0) == when {
+                f.emit(Op::Jmp { t: target });
+            }
+            return;
+        }
+        let s = self.materialize(f, &v);
+        self.branch_on_slot(f, s, when, target);
+    }
+
+    /// Jump on a BOOL slot, fusing a just-computed integer comparison.
+    fn branch_on_slot(&mut self, f: &mut Fcx, s: u32, when: bool, target: u32) -> usize {
+        if let Some((at, d)) = f.last_def
+            && d == s
+            && f.is_temp(s)
+            && at + 1 == f.ops.len()
+        {
+            let fused = match f.ops[at] {
+                Op::CmpSI { a, imm, cmp, .. } => Some(Op::JnCmpSI {
+                    a,
+                    imm,
+                    cmp: if when { negate(cmp) } else { cmp },
+                    t: target,
+                }),
+                Op::CmpS { a, b, cmp, .. } => Some(Op::JnCmpS {
+                    a,
+                    b,
+                    cmp: if when { negate(cmp) } else { cmp },
+                    t: target,
+                }),
+                _ => None,
+            };
+            if let Some(op) = fused {
+                f.ops[at] = op;
+                f.last_def = None;
+                return at;
+            }
+        }
+        if when {
+            f.emit(Op::Jnz { c: s, t: target })
+        } else {
+            f.emit(Op::Jz { c: s, t: target })
+        }
+    }
+
+    /// A condition: must be BOOL (E303).
+    fn bool_expr(&mut self, f: &mut Fcx, cond: &Expr) -> Option<Val> {
+        let v = self.expr(f, cond, Some(TypeTable::elem(ElemType::Bool)));
+        if v.is_error() {
+            return None;
+        }
+        if v.ty() != Ty::T(TypeTable::elem(ElemType::Bool)) {
+            let name = self.ty_name(v.ty());
+            self.diags
+                .error("E303", cond.span, format!("condition must be BOOL, found {name}"));
+            return None;
+        }
+        Some(v)
+    }
+
+    fn assign(&mut self, f: &mut Fcx, target: &Expr, value: &Expr, span: Span) {
+        if let ExprKind::BitAccess(..) = target.kind {
+            self.diags.error(
+                "E402",
+                target.span,
+                "assigning a single bit of a bit string is not supported; use AND/OR masks",
+            );
+            return;
+        }
+        let Some(p) = self.place(f, target) else {
+            // Still check the right-hand side for its own errors.
+            self.expr(f, value, None);
+            return;
+        };
+        if !p.writable {
+            let why = p.readonly_reason.unwrap_or("it is read-only");
+            self.diags.error(
+                "E401",
+                target.span,
+                format!("cannot assign to this variable: {why}"),
+            );
+            return;
+        }
+        if p.input_image {
+            self.diags.warning(
+                "W202",
+                target.span,
+                "the program writes a %I input; the next stimulus value will overwrite it",
+            );
+        }
+        let kind = self.types.get(p.ty).kind.clone();
+        match kind {
+            TypeKind::Array { .. } | TypeKind::Struct { .. } => {
+                let Some(src) = self.place(f, value) else {
+                    return;
+                };
+                if !self.assignable(src.ty, p.ty) {
+                    self.mismatch(value.span, Ty::T(src.ty), p.ty, "assignment");
+                    return;
+                }
+                self.copy_aggregate(f, &p, &src, span);
+            }
+            TypeKind::NativeFb(_) | TypeKind::Pou { .. } | TypeKind::Step => {
+                self.diags.error(
+                    "E302",
+                    target.span,
+                    "function block instances cannot be assigned",
+                );
+            }
+            _ => {
+                let v = self.expr(f, value, Some(p.ty));
+                let v = self.coerce(f, v, p.ty, value.span, "assignment");
+                if v.is_error() {
+                    return;
+                }
+                let s = self.materialize(f, &v);
+                self.write_place(f, &p, s);
+            }
+        }
+    }
+
+    /// Copies an array or structure by value.
+    pub(super) fn copy_aggregate(
+        &mut self,
+        f: &mut Fcx,
+        dst: &super::emit::PlaceRef,
+        src: &super::emit::PlaceRef,
+        span: Span,
+    ) {
+        if self.contains_strings(dst.ty) {
+            self.diags.error(
+                "E302",
+                span,
+                "copying arrays or structures that contain strings is not supported yet",
+            );
+            return;
+        }
+        let n = self.types.size(dst.ty);
+        let d = self.address_of(f, dst);
+        let s = self.address_of(f, src);
+        f.emit(Op::MemCopy { d, s, n });
+    }
+
+    /// True if a value of `t` holds string slots.
+    pub(super) fn contains_strings(&self, t: crate::ir::types::TypeId) -> bool {
+        match &self.types.get(t).kind {
+            TypeKind::Str { .. } => true,
+            TypeKind::Array { elem, .. } => self.contains_strings(*elem),
+            TypeKind::Struct { fields } => fields.iter().any(|m| self.contains_strings(m.ty)),
+            _ => false,
+        }
+    }
+
+    fn case(
+        &mut self,
+        f: &mut Fcx,
+        selector: &Expr,
+        arms: &[crate::syntax::ast::CaseArm],
+        else_branch: Option<&[Stmt]>,
+    ) {
+        let sv = self.expr(f, selector, None);
+        if sv.is_error() {
+            return;
+        }
+        let st = match sv.ty() {
+            Ty::T(t) => t,
+            other => self.default_type(other, None),
+        };
+        let Some(e) = self.scalar(st).filter(|e| e.is_int() || e.is_bit() && *e != ElemType::Bool)
+        else {
+            let name = self.types.name(st).to_string();
+            self.diags.error(
+                "E301",
+                selector.span,
+                format!("CASE selector must be an integer or enumeration, found {name}"),
+            );
+            return;
+        };
+        let sv = self.coerce(f, sv, st, selector.span, "CASE selector");
+        let sel = self.materialize(f, &sv);
+        let mut seen: Vec<(i128, i128)> = Vec::new();
+        let mut to_body: Vec<Vec<usize>> = Vec::new();
+        for arm in arms {
+            let mut jumps = Vec::new();
+            for label in &arm.labels {
+                let (lo, hi, lspan) = match label {
+                    CaseLabel::Value(x) => {
+                        let Some(v) = self.case_label(f, x, st) else {
+                            continue;
+                        };
+                        (v, v, x.span)
+                    }
+                    CaseLabel::Range(a, b) => {
+                        let (Some(x), Some(y)) = (self.case_label(f, a, st), self.case_label(f, b, st))
+                        else {
+                            continue;
+                        };
+                        if y < x {
+                            self.diags.error("E408", a.span.to(b.span), "empty CASE range");
+                            continue;
+                        }
+                        (x, y, a.span.to(b.span))
+                    }
+                };
+                if seen.iter().any(|&(a, b)| lo <= b && a <= hi) {
+                    self.diags.error(
+                        "E408",
+                        lspan,
+                        "this CASE label overlaps an earlier one",
+                    );
+                    continue;
+                }
+                seen.push((lo, hi));
+                let signed = super::typeck::compares_signed(e);
+                let k = |c: &mut Compiler, f: &mut Fcx, v: i128| -> u32 {
+                    let t = f.temp();
+                    match i32::try_from(v) {
+                        Ok(imm) => {
+                            f.emit(Op::LoadI { d: t, imm });
+                        }
+                        Err(_) => {
+                            let k = c.konst(v as u64);
+                            f.emit(Op::LoadK { d: t, k });
+                        }
+                    }
+                    t
+                };
+                if lo == hi {
+                    let c = k(self, f, lo);
+                    let d = f.temp();
+                    f.emit(if signed {
+                        Op::CmpS { d, a: sel, b: c, cmp: Cmp::Eq }
+                    } else {
+                        Op::CmpU { d, a: sel, b: c, cmp: Cmp::Eq }
+                    });
+                    jumps.push(self.branch_on_slot(f, d, true, 0));
+                } else {
+                    let (cl, ch) = (k(self, f, lo), k(self, f, hi));
+                    let (d1, d2, d) = (f.temp(), f.temp(), f.temp());
+                    if signed {
+                        f.emit(Op::CmpS { d: d1, a: sel, b: cl, cmp: Cmp::Ge });
+                        f.emit(Op::CmpS { d: d2, a: sel, b: ch, cmp: Cmp::Le });
+                    } else {
+                        f.emit(Op::CmpU { d: d1, a: sel, b: cl, cmp: Cmp::Ge });
+                        f.emit(Op::CmpU { d: d2, a: sel, b: ch, cmp: Cmp::Le });
+                    }
+                    f.emit(Op::And { d, a: d1, b: d2 });
+                    jumps.push(f.emit(Op::Jnz { c: d, t: 0 }));
+                }
+            }
+            to_body.push(jumps);
+        }
+        let to_else = f.emit(Op::Jmp { t: 0 });
+        let mut ends = Vec::new();
+        for (arm, jumps) in arms.iter().zip(to_body) {
+            let start = f.here();
+            for j in jumps {
+                f.patch(j, start);
+            }
+            self.stmts(f, &arm.body);
+            ends.push(f.emit(Op::Jmp { t: 0 }));
+        }
+        let else_at = f.here();
+        f.patch(to_else, else_at);
+        if let Some(body) = else_branch {
+            self.stmts(f, body);
+        }
+        let end = f.here();
+        for j in ends {
+            f.patch(j, end);
+        }
+    }
+
+    /// A CASE label's constant value in the selector's type.
+    fn case_label(&mut self, f: &mut Fcx, x: &Expr, st: crate::ir::types::TypeId) -> Option<i128> {
+        let v = self.expr(f, x, Some(st));
+        let Val::Const(c, t) = &v else {
+            if !v.is_error() {
+                self.diags.error("E408", x.span, "CASE labels must be constants");
+            }
+            return None;
+        };
+        match self.const_as(c, *t, st) {
+            Ok(Const::Bits(b)) => Some(super::consts::slot_to_int(
+                b,
+                self.scalar(st).unwrap_or(ElemType::Dint),
+            )),
+            _ => {
+                self.mismatch(x.span, *t, st, "CASE label");
+                None
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn for_loop(
+        &mut self,
+        f: &mut Fcx,
+        var: &crate::syntax::ast::Ident,
+        from: &Expr,
+        to: &Expr,
+        by: Option<&Expr>,
+        body: &[Stmt],
+        span: Span,
+    ) {
+        let var_expr = Expr {
+            kind: ExprKind::Name(var.clone()),
+            span: var.span,
+        };
+        let Some(p) = self.place(f, &var_expr) else {
+            return;
+        };
+        let super::emit::Place::Frame(i) = p.place else {
+            self.diags.error(
+                "E407",
+                var.span,
+                "the FOR control variable must be a local variable of this POU",
+            );
+            return;
+        };
+        let Some(e) = self.scalar(p.ty).filter(|e| e.is_int()) else {
+            let name = self.types.name(p.ty).to_string();
+            self.diags.error(
+                "E407",
+                var.span,
+                format!("the FOR control variable must be an integer, found {name}"),
+            );
+            return;
+        };
+        if !p.writable {
+            self.diags.error("E401", var.span, "the FOR control variable is read-only");
+            return;
+        }
+        let vt = p.ty;
+        let v0 = self.expr(f, from, Some(vt));
+        let v0 = self.coerce(f, v0, vt, from.span, "FOR start");
+        let vlim = self.expr(f, to, Some(vt));
+        let vlim = self.coerce(f, vlim, vt, to.span, "FOR end");
+        let vstep = match by {
+            Some(b) => {
+                let v = self.expr(f, b, Some(vt));
+                self.coerce(f, v, vt, b.span, "FOR step")
+            }
+            None => Val::Const(Const::Bits(1), Ty::T(vt)),
+        };
+        if v0.is_error() || vlim.is_error() || vstep.is_error() {
+            return;
+        }
+        if !e.is_signed_int() && by.is_some() {
+            // Unsigned steps are positive by construction.
+        }
+        let start = self.materialize(f, &v0);
+        f.mov(i, start);
+        let step_const = match &vstep {
+            Val::Const(Const::Bits(b), _) => Some(super::consts::slot_to_int(*b, e)),
+            _ => None,
+        };
+        if step_const == Some(0) {
+            self.diags.error("E407", span, "FOR step must not be zero");
+            return;
+        }
+        let lim_imm = match &vlim {
+            Val::Const(Const::Bits(b), _) if e.is_signed_int() || e.bits() <= 32 => {
+                i32::try_from(super::consts::slot_to_int(*b, e)).ok()
+            }
+            _ => None,
+        };
+        let lim = if lim_imm.is_none() {
+            let t = f.temp();
+            let s = self.materialize(f, &vlim);
+            f.emit(Op::Mov { d: t, s });
+            Some(t)
+        } else {
+            None
+        };
+        let step_slot = if step_const.is_none() {
+            let t = f.temp();
+            let s = self.materialize(f, &vstep);
+            f.emit(Op::Mov { d: t, s });
+            Some(t)
+        } else {
+            None
+        };
+        let signed = super::typeck::compares_signed(e);
+        // Test at the top: continue while i <= lim (step > 0) or i >= lim (step < 0).
+        let test_at = f.here();
+        let exit_jumps: Vec<usize> = match step_const {
+            Some(st) => {
+                let cmp = if st > 0 { Cmp::Le } else { Cmp::Ge };
+                vec![self.loop_test(f, i, lim_imm, lim, cmp, signed)]
+            }
+            None => {
+                // Runtime sign: positive steps test `<=`, negative `>=`.
+                let sp = step_slot.unwrap_or(i);
+                let neg = f.temp();
+                f.emit(Op::CmpSI { d: neg, a: sp, imm: 0, cmp: Cmp::Lt });
+                let to_neg = f.emit(Op::Jnz { c: neg, t: 0 });
+                let up = self.loop_test(f, i, lim_imm, lim, Cmp::Le, signed);
+                let to_body = f.emit(Op::Jmp { t: 0 });
+                let neg_at = f.here();
+                f.patch(to_neg, neg_at);
+                let down = self.loop_test(f, i, lim_imm, lim, Cmp::Ge, signed);
+                let body_at = f.here();
+                f.patch(to_body, body_at);
+                vec![up, down]
+            }
+        };
+        f.loops.push(LoopCtx::default());
+        self.stmts(f, body);
+        let cont = f.here();
+        f.span = span;
+        let shift = super::typeck::shift_of(e);
+        match (step_const, step_slot) {
+            (Some(st), _) if i32::try_from(st).is_ok() && e.is_signed_int() => {
+                f.emit(Op::AddSI { d: i, a: i, imm: st as i32, shift });
+            }
+            (Some(st), _) => {
+                let t = f.temp();
+                let k = self.konst(st as u64);
+                f.emit(Op::LoadK { d: t, k });
+                f.emit(if e.is_signed_int() {
+                    Op::AddS { d: i, a: i, b: t, shift }
+                } else {
+                    Op::AddU { d: i, a: i, b: t, shift }
+                });
+            }
+            (None, Some(sp)) => {
+                f.emit(if e.is_signed_int() {
+                    Op::AddS { d: i, a: i, b: sp, shift }
+                } else {
+                    Op::AddU { d: i, a: i, b: sp, shift }
+                });
+            }
+            (None, None) => {}
+        }
+        f.emit(Op::Jmp { t: test_at });
+        let lp = f.loops.pop().unwrap_or_default();
+        let end = f.here();
+        for j in exit_jumps.into_iter().chain(lp.exits) {
+            f.patch(j, end);
+        }
+        for j in lp.continues {
+            f.patch(j, cont);
+        }
+    }
+
+    /// Emits "leave the loop unless `i cmp lim`"; returns the jump to patch.
+    fn loop_test(
+        &mut self,
+        f: &mut Fcx,
+        i: u32,
+        lim_imm: Option<i32>,
+        lim: Option<u32>,
+        cmp: Cmp,
+        signed: bool,
+    ) -> usize {
+        match (lim_imm, lim) {
+            (Some(imm), _) if signed => f.emit(Op::JnCmpSI { a: i, imm, cmp, t: 0 }),
+            (Some(imm), _) => {
+                let t = f.temp();
+                f.emit(Op::LoadI { d: t, imm });
+                let d = f.temp();
+                f.emit(Op::CmpU { d, a: i, b: t, cmp });
+                f.emit(Op::Jz { c: d, t: 0 })
+            }
+            (None, Some(l)) if signed => f.emit(Op::JnCmpS { a: i, b: l, cmp, t: 0 }),
+            (None, Some(l)) => {
+                let d = f.temp();
+                f.emit(Op::CmpU { d, a: i, b: l, cmp });
+                f.emit(Op::Jz { c: d, t: 0 })
+            }
+            (None, None) => f.emit(Op::Jmp { t: 0 }),
+        }
+    }
+}
