@@ -30,7 +30,7 @@ impl Stimulus {
             .map(str::trim)
             .collect();
         assert_eq!(header[0], "cycle", "model stimuli are cycle-keyed");
-        let names = header[1..].iter().map(|s| s.to_string()).collect();
+        let names = header[1..].iter().map(ToString::to_string).collect();
         let mut rows: Vec<(u64, Vec<Option<String>>)> = Vec::new();
         for line in lines {
             let cells: Vec<&str> = line.split(',').map(str::trim).collect();
@@ -163,7 +163,7 @@ pub fn bool_changes(names: &[&str], rows: &[Vec<bool>]) -> Vec<(usize, String)> 
         if !parts.is_empty() {
             out.push((k, parts.join(" ")));
         }
-        prev = row.clone();
+        prev.clone_from(row);
     }
     out
 }
