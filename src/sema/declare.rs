@@ -107,6 +107,7 @@ impl Compiler<'_> {
                             span: p.name.span,
                         });
                         self.pou_state.push(LayoutState::Pending);
+                        self.emit_state.push(LayoutState::Pending);
                     }
                     Item::Types(decls) => {
                         for (d, decl) in decls.iter().enumerate() {

@@ -8,6 +8,7 @@ mod declare;
 mod emit;
 mod expr;
 mod calls;
+mod il;
 mod link;
 pub mod model;
 mod stdfuncs;
@@ -73,6 +74,10 @@ pub(crate) struct Compiler<'a> {
     scalar_types: Vec<ElemType>,
     /// Call graph edges between code blocks (for recursion detection).
     calls: Vec<(u32, u32, Span)>,
+    /// Emission state of each POU body.
+    emit_state: Vec<LayoutState>,
+    /// Function-frame relocations: (code block, instruction, callee POU).
+    fixups: Vec<(u32, usize, usize)>,
 }
 
 impl<'a> Compiler<'a> {
@@ -99,6 +104,8 @@ impl<'a> Compiler<'a> {
             arrays: Vec::new(),
             scalar_types: Vec::new(),
             calls: Vec::new(),
+            emit_state: Vec::new(),
+            fixups: Vec::new(),
         }
     }
 

@@ -1,0 +1,537 @@
+//! Linking: emits every body, places function frames and program
+//! instances in memory, writes initial values, and builds the [`Image`].
+
+use super::emit::Fcx;
+use super::model::{ConstInit, LayoutState, Storage};
+use super::{CompileOptions, Compiler};
+use crate::ir::image::{Image, ProgramInstance, RootVar, StringInit, Task};
+use crate::ir::op::Op;
+use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind};
+use crate::source::Span;
+use crate::syntax::ast::{Body, ExprKind, Item, LiteralValue, PouKind};
+use crate::types::ElemType;
+
+impl Compiler<'_> {
+    /// Emits the body of every POU.
+    pub(super) fn emit_all(&mut self) {
+        for p in 0..self.pous.len() {
+            let span = self.pous[p].span;
+            self.ensure_emitted(p, span);
+        }
+    }
+
+    /// Emits POU `p` (after laying it out) unless already done.
+    pub(super) fn ensure_emitted(&mut self, p: usize, span: Span) {
+        let _ = span;
+        self.layout_pou(p);
+        if self.pou_state[p] != LayoutState::Done || self.emit_state[p] != LayoutState::Pending {
+            return;
+        }
+        self.emit_state[p] = LayoutState::InProgress;
+        let (u, i) = self.pous[p].ast;
+        let units = self.units;
+        let Item::Pou(pou) = &units[u].items[i] else {
+            return;
+        };
+        let mut f = Fcx::new(p, self.pous[p].vars_size);
+        match &pou.body {
+            Body::St(stmts) => self.stmts(&mut f, stmts),
+            Body::Il(lines) => self.il_body(&mut f, lines),
+            Body::Sfc(_) => {
+                self.diags.error(
+                    "E601",
+                    pou.name.span,
+                    "Sequential Function Chart bodies are not supported yet",
+                );
+            }
+        }
+        let end = f.here();
+        for j in std::mem::take(&mut f.returns) {
+            f.patch(j, end);
+        }
+        f.span = pou.span;
+        f.emit(Op::Ret);
+        let code = self.pous[p].code;
+        let frame_size = f.temp_max;
+        for (at, callee) in std::mem::take(&mut f.fixups) {
+            self.fixups.push((code, at, callee));
+        }
+        let block = &mut self.codes[code as usize];
+        block.ops = f.ops;
+        block.spans = f.spans;
+        block.frame_size = frame_size;
+        let ty = self.pous[p].ty;
+        let mut def: TypeDef = self.types.get(ty).clone();
+        def.size = frame_size;
+        self.types.set(ty, def);
+        self.emit_state[p] = LayoutState::Done;
+    }
+
+    /// Writes the initial value of a `ty` at `at` in `buf`, collecting string slots.
+    fn write_init(
+        &self,
+        buf: &mut [u64],
+        at: usize,
+        ty: TypeId,
+        init: Option<&ConstInit>,
+        strs: &mut Vec<(usize, StringInit)>,
+    ) {
+        let default;
+        let init = match init {
+            Some(i) => Some(i),
+            None => {
+                default = self.type_inits.get(&ty).cloned();
+                default.as_ref()
+            }
+        };
+        match &self.types.get(ty).kind {
+            TypeKind::Elem(_) | TypeKind::Enum { .. } | TypeKind::Subrange { .. } => {
+                buf[at] = match init {
+                    Some(ConstInit::Scalar(b)) => *b,
+                    _ => match self.default_init(ty) {
+                        ConstInit::Scalar(b) => b,
+                        _ => 0,
+                    },
+                };
+            }
+            TypeKind::Str { max, wide } => {
+                let text = match init {
+                    Some(ConstInit::Str(s)) => s.clone(),
+                    _ => String::new(),
+                };
+                strs.push((
+                    at,
+                    StringInit {
+                        max: *max,
+                        wide: *wide,
+                        init: text,
+                    },
+                ));
+            }
+            TypeKind::Array { dims, elem } => {
+                let n: u64 = dims.iter().map(|d| d.len()).product();
+                let stride = self.types.size(*elem) as usize;
+                let items = match init {
+                    Some(ConstInit::Array(v)) => v.as_slice(),
+                    _ => &[],
+                };
+                for k in 0..n as usize {
+                    self.write_init(buf, at + k * stride, *elem, items.get(k), strs);
+                }
+            }
+            TypeKind::Struct { fields } => {
+                let overrides = match init {
+                    Some(ConstInit::Struct(v)) => v.as_slice(),
+                    _ => &[],
+                };
+                let type_defaults = match self.type_inits.get(&ty) {
+                    Some(ConstInit::Struct(v)) => v.clone(),
+                    _ => Vec::new(),
+                };
+                for (k, m) in fields.iter().enumerate() {
+                    let fi = overrides
+                        .iter()
+                        .find(|(i, _)| *i == k)
+                        .or_else(|| type_defaults.iter().find(|(i, _)| *i == k))
+                        .map(|(_, c)| c);
+                    self.write_init(buf, at + m.offset as usize, m.ty, fi, strs);
+                }
+            }
+            TypeKind::NativeFb(fb) => {
+                for (k, p) in crate::stdlib::interface(*fb).iter().enumerate() {
+                    buf[at + k] = p.init;
+                }
+            }
+            TypeKind::Pou { code, .. } => {
+                let Some(p) = self.pous.iter().position(|p| p.code == *code) else {
+                    return;
+                };
+                for var in self.pous[p].vars.values() {
+                    if let Storage::Frame(o) = var.storage {
+                        self.write_init(buf, at + o as usize, var.ty, var.init.as_ref(), strs);
+                    }
+                }
+            }
+            TypeKind::Step | TypeKind::Void | TypeKind::Error => {}
+        }
+    }
+
+    /// Writes initial values into absolute memory and allocates string ids.
+    fn instantiate(&mut self, addr: u32, ty: TypeId, init: Option<&ConstInit>) {
+        let mut strs = Vec::new();
+        let mut buf = std::mem::take(&mut self.memory);
+        self.write_init(&mut buf, addr as usize, ty, init, &mut strs);
+        for (slot, s) in strs {
+            buf[slot] = self.strings.len() as u64;
+            self.strings.push(s);
+        }
+        self.memory = buf;
+    }
+
+    /// Entry resets of a POU's VAR_TEMP (FBs, programs) or of all its
+    /// non-input variables (functions).
+    fn entry_resets(&mut self, p: usize) -> (Vec<(u32, u64)>, Vec<(u32, u32)>) {
+        let kind = self.pous[p].kind;
+        let size = self.pous[p].vars_size as usize;
+        let mut buf = vec![0u64; size];
+        let mut strs = Vec::new();
+        let mut slots = Vec::new();
+        let vars: Vec<_> = self.pous[p].vars.values().cloned().collect();
+        for var in vars {
+            let reset = match kind {
+                PouKind::Function => !matches!(var.kind, MemberKind::Input | MemberKind::InOut),
+                _ => var.kind == MemberKind::Temp,
+            };
+            let Storage::Frame(o) = var.storage else {
+                continue;
+            };
+            if !reset {
+                continue;
+            }
+            let before = strs.len();
+            self.write_init(&mut buf, o as usize, var.ty, var.init.as_ref(), &mut strs);
+            let n = self.types.size(var.ty) as usize;
+            let string_slots: Vec<usize> = strs[before..].iter().map(|(s, _)| *s).collect();
+            for k in o as usize..o as usize + n {
+                if !string_slots.contains(&k) {
+                    slots.push((k as u32, buf[k]));
+                }
+            }
+        }
+        let strings = strs
+            .into_iter()
+            .map(|(slot, s)| (slot as u32, self.str_const(&s.init)))
+            .collect();
+        (slots, strings)
+    }
+
+    /// Places everything in memory and builds the image.
+    pub(super) fn link(&mut self, options: &CompileOptions) -> Option<Image> {
+        // Function frames.
+        for p in 0..self.pous.len() {
+            if self.pous[p].kind != PouKind::Function || self.emit_state[p] != LayoutState::Done {
+                continue;
+            }
+            let code = self.pous[p].code as usize;
+            let size = self.codes[code].frame_size.max(1);
+            let at = self.alloc_abs(size);
+            self.pous[p].frame_abs = at;
+            self.codes[code].frame = at;
+            let ty = self.pous[p].ty;
+            self.instantiate(at, ty, None);
+        }
+        for p in 0..self.pous.len() {
+            if self.emit_state[p] != LayoutState::Done {
+                continue;
+            }
+            let (init, strings) = self.entry_resets(p);
+            let code = self.pous[p].code as usize;
+            self.codes[code].entry_init = init;
+            self.codes[code].entry_strings = strings;
+        }
+        for (code, at, callee) in std::mem::take(&mut self.fixups) {
+            let base = self.pous[callee].frame_abs;
+            match &mut self.codes[code as usize].ops[at] {
+                Op::StoreAbs { abs, .. } | Op::LoadAbs { abs, .. } => *abs += base,
+                Op::LoadI { imm, .. } => *imm += base as i32,
+                _ => {}
+            }
+        }
+        self.check_recursion();
+        // Globals and located variables with initial values.
+        let globals: Vec<_> = self.globals.values().cloned().collect();
+        for g in &globals {
+            if let Storage::Abs(a) = g.storage {
+                self.instantiate(a, g.ty, g.init.as_ref());
+            }
+        }
+        for p in 0..self.pous.len() {
+            if self.pous[p].kind != PouKind::Program {
+                continue;
+            }
+            let vars: Vec<_> = self.pous[p].vars.values().cloned().collect();
+            for v in vars {
+                if let (Storage::Abs(a), Some(_), Some(init)) = (v.storage, &v.location, &v.init) {
+                    self.instantiate(a, v.ty, Some(init));
+                }
+            }
+        }
+        let (tasks, programs) = self.schedule(options)?;
+        let mut instances = Vec::new();
+        for (name, p, task) in programs {
+            let ty = self.pous[p].ty;
+            let size = self.types.size(ty).max(1);
+            let base = self.alloc_abs(size);
+            self.instantiate(base, ty, None);
+            instances.push(ProgramInstance {
+                name,
+                type_name: self.pous[p].name.clone(),
+                code: self.pous[p].code,
+                base,
+                ty,
+                task,
+            });
+        }
+        let mut roots: Vec<RootVar> = globals
+            .iter()
+            .filter_map(|g| match g.storage {
+                Storage::Abs(a) => Some(RootVar {
+                    name: g.name.clone(),
+                    ty: g.ty,
+                    addr: a,
+                    kind: MemberKind::Local,
+                    location: g.location.clone(),
+                }),
+                _ => None,
+            })
+            .collect();
+        let mut located: Vec<(&String, &(u32, TypeId))> = self.located.iter().collect();
+        located.sort_by_key(|(_, (a, _))| *a);
+        for (text, (addr, ty)) in located {
+            if !roots.iter().any(|r| r.addr == *addr) {
+                roots.push(RootVar {
+                    name: text.clone(),
+                    ty: *ty,
+                    addr: *addr,
+                    kind: MemberKind::Local,
+                    location: Some(text.clone()),
+                });
+            }
+        }
+        // Located variables declared inside programs are named by the program.
+        for inst in &instances {
+            let p = self.pous.iter().position(|x| x.code == inst.code)?;
+            for v in self.pous[p].vars.values() {
+                if let (Storage::Abs(a), Some(loc)) = (v.storage, &v.location) {
+                    roots.push(RootVar {
+                        name: v.name.clone(),
+                        ty: v.ty,
+                        addr: a,
+                        kind: v.kind,
+                        location: Some(loc.clone()),
+                    });
+                }
+            }
+        }
+        Some(Image {
+            codes: std::mem::take(&mut self.codes),
+            consts: std::mem::take(&mut self.consts),
+            str_consts: std::mem::take(&mut self.str_consts),
+            arrays: std::mem::take(&mut self.arrays),
+            memory: std::mem::take(&mut self.memory),
+            strings: std::mem::take(&mut self.strings),
+            types: self.types.clone(),
+            scalar_types: std::mem::take(&mut self.scalar_types),
+            globals: roots,
+            programs: instances,
+            tasks,
+        })
+    }
+
+    /// Reports calls that form a cycle (IEC forbids recursion).
+    fn check_recursion(&mut self) {
+        let n = self.codes.len();
+        let mut adj: Vec<Vec<(u32, Span)>> = vec![Vec::new(); n];
+        for &(a, b, s) in &self.calls {
+            if (a as usize) < n {
+                adj[a as usize].push((b, s));
+            }
+        }
+        // 0 = unvisited, 1 = on stack, 2 = done
+        let mut state = vec![0u8; n];
+        let mut reported = false;
+        for start in 0..n {
+            if state[start] != 0 {
+                continue;
+            }
+            let mut stack: Vec<(usize, usize)> = vec![(start, 0)];
+            state[start] = 1;
+            while let Some(&mut (node, ref mut next)) = stack.last_mut() {
+                if *next < adj[node].len() {
+                    let (to, span) = adj[node][*next];
+                    *next += 1;
+                    match state[to as usize] {
+                        0 => {
+                            state[to as usize] = 1;
+                            stack.push((to as usize, 0));
+                        }
+                        1 if !reported => {
+                            reported = true;
+                            let name = self.codes[to as usize].name.clone();
+                            self.diags.error(
+                                "E409",
+                                span,
+                                format!("recursive call of `{name}`: IEC 61131-3 forbids recursion"),
+                            );
+                        }
+                        _ => {}
+                    }
+                } else {
+                    state[node] = 2;
+                    stack.pop();
+                }
+            }
+        }
+    }
+
+    /// Tasks and the program instances to run: (instance name, POU, task index).
+    #[allow(clippy::type_complexity)]
+    fn schedule(&mut self, options: &CompileOptions) -> Option<(Vec<Task>, Vec<(String, usize, usize)>)> {
+        let implicit = Task {
+            name: "default".into(),
+            interval: options.cycle_time,
+            priority: 0,
+            single: None,
+        };
+        let configs: Vec<&crate::syntax::ast::Configuration> = self
+            .units
+            .iter()
+            .flat_map(|u| u.items.iter())
+            .filter_map(|i| match i {
+                Item::Configuration(c) => Some(c),
+                _ => None,
+            })
+            .collect();
+        if configs.len() > 1 {
+            self.diags.error(
+                "E701",
+                configs[1].name.span,
+                "only one CONFIGURATION can be run at a time",
+            );
+            return None;
+        }
+        if let Some(cfg) = configs.first().copied().filter(|_| options.program.is_none()) {
+            let mut tasks: Vec<Task> = Vec::new();
+            let mut progs = Vec::new();
+            for res in &cfg.resources {
+                for t in &res.tasks {
+                    let mut task = Task {
+                        name: t.name.name.clone(),
+                        interval: 0,
+                        priority: 0,
+                        single: None,
+                    };
+                    for (k, v) in &t.settings {
+                        match (k.key().as_str(), &v.kind) {
+                            ("INTERVAL", ExprKind::Literal(l)) => match l.value {
+                                LiteralValue::Duration { nanos, .. } if nanos > 0 => task.interval = nanos,
+                                _ => self.diags.error("E702", v.span, "INTERVAL must be a positive duration literal"),
+                            },
+                            ("PRIORITY", ExprKind::Literal(l)) => match l.value {
+                                LiteralValue::Int(n) if n >= 0 => task.priority = n as i64,
+                                _ => self.diags.error("E702", v.span, "PRIORITY must be a non-negative integer"),
+                            },
+                            ("SINGLE", ExprKind::Name(id)) => match self.globals.get(&id.key()) {
+                                Some(g) if self.types.scalar(g.ty) == Some(ElemType::Bool) => {
+                                    if let Storage::Abs(a) = g.storage {
+                                        task.single = Some(a);
+                                    }
+                                }
+                                _ => self.diags.error("E702", v.span, "SINGLE must name a global BOOL variable"),
+                            },
+                            _ => self.diags.error("E702", k.span, format!("unknown or invalid task setting `{}`", k.name)),
+                        }
+                    }
+                    if task.interval == 0 && task.single.is_none() {
+                        self.diags.error("E702", t.name.span, "a TASK needs an INTERVAL or a SINGLE trigger");
+                    }
+                    tasks.push(task);
+                }
+            }
+            for res in &cfg.resources {
+                for pi in &res.programs {
+                    let Some(&p) = self.pou_index.get(&pi.type_name.key()) else {
+                        self.diags.error("E208", pi.type_name.span, format!("unknown PROGRAM `{}`", pi.type_name.name));
+                        continue;
+                    };
+                    if self.pous[p].kind != PouKind::Program {
+                        self.diags.error("E208", pi.type_name.span, format!("`{}` is not a PROGRAM", pi.type_name.name));
+                        continue;
+                    }
+                    if !pi.args.is_empty() {
+                        self.diags.error(
+                            "E703",
+                            pi.span,
+                            "connecting program parameters in a configuration is not supported yet; use VAR_EXTERNAL",
+                        );
+                    }
+                    let task = match &pi.task {
+                        Some(t) => match tasks.iter().position(|x| x.name.eq_ignore_ascii_case(&t.name)) {
+                            Some(i) => i,
+                            None => {
+                                self.diags.error("E702", t.span, format!("unknown TASK `{}`", t.name));
+                                continue;
+                            }
+                        },
+                        None => {
+                            if !tasks.iter().any(|t| t.name == implicit.name) {
+                                tasks.push(implicit.clone());
+                            }
+                            tasks.iter().position(|t| t.name == implicit.name).unwrap_or(0)
+                        }
+                    };
+                    if progs.iter().any(|(n, _, _): &(String, usize, usize)| n.eq_ignore_ascii_case(&pi.name.name)) {
+                        self.diags.error("E202", pi.name.span, format!("program instance `{}` is declared twice", pi.name.name));
+                        continue;
+                    }
+                    progs.push((pi.name.name.clone(), p, task));
+                }
+            }
+            if progs.is_empty() && !options.check_only {
+                self.diags.error("E208", cfg.name.span, "the CONFIGURATION runs no PROGRAM");
+            }
+            return Some((tasks, progs));
+        }
+        let programs: Vec<usize> = (0..self.pous.len())
+            .filter(|&p| self.pous[p].kind == PouKind::Program)
+            .collect();
+        let chosen = match &options.program {
+            Some(name) => match programs.iter().find(|&&p| self.pous[p].name.eq_ignore_ascii_case(name)) {
+                Some(&p) => Some(p),
+                None => {
+                    self.diags.error(
+                        "E208",
+                        Span::default(),
+                        format!("no PROGRAM named `{name}` (use --program with one of: {})", self.program_names(&programs)),
+                    );
+                    return None;
+                }
+            },
+            None => match programs.len() {
+                1 => Some(programs[0]),
+                0 => None,
+                _ => None,
+            },
+        };
+        match chosen {
+            Some(p) => Some((vec![implicit], vec![(self.pous[p].name.clone(), p, 0)])),
+            None if options.check_only => Some((vec![implicit], Vec::new())),
+            None => {
+                let span = self.units.iter().flat_map(|u| u.items.first()).next().map(item_span).unwrap_or_default();
+                if programs.is_empty() {
+                    self.diags.error("E208", span, "there is no PROGRAM to run");
+                } else {
+                    self.diags.error(
+                        "E208",
+                        span,
+                        format!("several PROGRAMs ({}): choose one with --program", self.program_names(&programs)),
+                    );
+                }
+                None
+            }
+        }
+    }
+
+    fn program_names(&self, programs: &[usize]) -> String {
+        programs.iter().map(|&p| self.pous[p].name.clone()).collect::<Vec<_>>().join(", ")
+    }
+}
+
+fn item_span(i: &Item) -> Span {
+    match i {
+        Item::Pou(p) => p.name.span,
+        Item::Types(t) => t.first().map(|d| d.name.span).unwrap_or_default(),
+        Item::Configuration(c) => c.name.span,
+        Item::Globals(b) => b.span,
+    }
+}
