@@ -255,11 +255,9 @@ pub fn sfc_ring_checksum(steps: usize, advancing: bool, cycles: u64) -> i32 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-
     #[test]
     fn large_program_has_the_requested_size_and_variety() {
-        let src = large_program(100_000);
+        let src = super::large_program(100_000);
         assert_eq!(src.lines().count(), 100_000);
         assert!(
             src.len() > 2_000_000 && src.len() < 6_000_000,
@@ -284,14 +282,14 @@ mod tests {
         ] {
             assert!(src.contains(needle), "no `{needle}`");
         }
-        assert_eq!(large_program(100_000), src, "deterministic");
-        assert_eq!(large_program(3000).lines().count(), 3000);
+        assert_eq!(super::large_program(100_000), src, "deterministic");
+        assert_eq!(super::large_program(3000).lines().count(), 3000);
     }
 
     #[test]
     fn sfc_ring_has_one_step_transition_and_action_per_position() {
         for steps in [10, 10_000] {
-            let src = sfc_ring(steps, true);
+            let src = super::sfc_ring(steps, true);
             assert_eq!(src.matches("INITIAL_STEP ").count(), 1);
             assert_eq!(src.matches("  STEP S").count(), steps - 1);
             assert_eq!(src.matches("TRANSITION FROM").count(), steps);
@@ -299,17 +297,17 @@ mod tests {
             let last = format!("TRANSITION FROM S{} TO S0 := c{};", steps - 1, steps - 1);
             assert!(src.contains(&last));
         }
-        assert!(sfc_ring(10, true).contains("  STEP S1 : A1(N); END_STEP\n"));
-        assert!(sfc_ring(10, false).contains("c3 : BOOL := FALSE;"));
+        assert!(super::sfc_ring(10, true).contains("  STEP S1 : A1(N); END_STEP\n"));
+        assert!(super::sfc_ring(10, false).contains("c3 : BOOL := FALSE;"));
     }
 
     #[test]
     fn sfc_ring_checksum_follows_the_ring() {
         // Call 0: S1 runs (1). Call 1: S2 runs, S1 final scan (2 + 1).
-        assert_eq!(sfc_ring_checksum(10, true, 1), 1);
-        assert_eq!(sfc_ring_checksum(10, true, 2), 4);
+        assert_eq!(super::sfc_ring_checksum(10, true, 1), 1);
+        assert_eq!(super::sfc_ring_checksum(10, true, 2), 4);
         // Ring of 3: actives 1,2,0,1; final scans -,1,2,0.
-        assert_eq!(sfc_ring_checksum(3, true, 4), 1 + 2 + 1 + 2 + 1);
-        assert_eq!(sfc_ring_checksum(10_000, false, 1000), 0);
+        assert_eq!(super::sfc_ring_checksum(3, true, 4), 1 + 2 + 1 + 2 + 1);
+        assert_eq!(super::sfc_ring_checksum(10_000, false, 1000), 0);
     }
 }

@@ -14,7 +14,9 @@ mod native;
 #[path = "../benches/generate.rs"]
 mod generate;
 
-use native::{BenchA, BenchB, BenchC, BenchD, BenchEmpty, Reference, run};
+use native::{
+    BenchA, BenchB, BenchC, BenchD, BenchEmpty, Ctu, RTrig, Reference, Ton, cycle_time_ns, run,
+};
 
 /// Asserts that reference `R` gives `expected` after `cycles` cycles.
 fn check<R: Reference>(cycles: u64, expected: i32) {
@@ -30,6 +32,66 @@ fn check_near<R: Reference>(cycles: u64, expected: i32, tolerance: i32) {
         "bench {} after {cycles} cycles: {got}, expected {expected} ± {tolerance}",
         R::NAME
     );
+}
+
+// Standard FBs (semantics.md §4).
+
+#[test]
+fn r_trig_pulses_on_true_first_call_and_on_rising_edges() {
+    let mut t = RTrig::default();
+    let seen: Vec<bool> = [true, true, false, true, false, false]
+        .iter()
+        .map(|&clk| {
+            t.call(clk);
+            t.q
+        })
+        .collect();
+    assert_eq!(seen, [true, false, false, true, false, false]);
+}
+
+#[test]
+fn ctu_counts_rising_edges_resets_and_saturates() {
+    let mut c = Ctu::default();
+    for cu in [true, true, false, true, false, true] {
+        c.call(cu, false, 3);
+    }
+    assert_eq!(c.cv, 3);
+    assert!(c.q);
+    // R wins over a rising CU, and the edge memory still follows CU.
+    c.call(false, false, 3);
+    c.call(true, true, 3);
+    assert_eq!(c.cv, 0);
+    assert!(!c.q);
+    c.call(true, false, 3);
+    assert_eq!(c.cv, 0, "CU stayed TRUE: no new edge");
+    c.cv = i16::MAX;
+    c.call(false, false, 3);
+    c.call(true, false, 3);
+    assert_eq!(c.cv, i16::MAX);
+}
+
+#[test]
+fn ton_q_is_first_true_500_cycles_after_the_rise_with_pt_5s() {
+    let mut t = Ton::default();
+    let pt = 5_000_000_000;
+    t.call(false, pt, cycle_time_ns(0));
+    for k in 1..=500u64 {
+        t.call(true, pt, cycle_time_ns(k));
+        assert_eq!(t.q, k == 501, "cycle {k}");
+    }
+    t.call(true, pt, cycle_time_ns(501));
+    assert!(t.q);
+    assert_eq!(t.et, pt);
+    t.call(false, pt, cycle_time_ns(502));
+    assert!(!t.q);
+    assert_eq!(t.et, 0);
+}
+
+#[test]
+fn ton_with_zero_pt_is_true_in_the_same_call() {
+    let mut t = Ton::default();
+    t.call(true, 0, cycle_time_ns(7));
+    assert!(t.q);
 }
 
 #[test]

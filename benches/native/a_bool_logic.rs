@@ -58,7 +58,7 @@ const fn transition_inputs() -> [[u8; 4]; 16] {
 
 /// Index of the step whose transition activates step `k`.
 pub const fn predecessor(k: usize) -> usize {
-    if k % CHAIN_LEN == 0 {
+    if k.is_multiple_of(CHAIN_LEN) {
         k + CHAIN_LEN - 1
     } else {
         k - 1

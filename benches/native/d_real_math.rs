@@ -10,6 +10,11 @@
 /// Number of loops (array length).
 pub const LOOPS: usize = 1000;
 
+/// The program's wrap-around bound for `phase`: the literal `6.2831853`
+/// (kept as written in the ST, not `TAU`).
+#[allow(clippy::approx_constant)]
+const PHASE_WRAP: f32 = 6.283_185_3;
+
 /// Program state of `bench_d_real_math.st`.
 // Every ST variable is kept, including ones only written (`outp`, `i`, ...).
 #[allow(dead_code)]
@@ -71,8 +76,8 @@ impl BenchD {
         std::hint::black_box(now_ns);
         s.cycles = s.cycles.wrapping_add(1);
         s.phase += 0.001;
-        if s.phase > 6.283_185_3 {
-            s.phase -= 6.283_185_3;
+        if s.phase > PHASE_WRAP {
+            s.phase -= PHASE_WRAP;
         }
         let (kp, ki, kd, tstep, phase) = (s.kp, s.ki, s.kd, s.tstep, s.phase);
         let mut acc: f32 = 0.0;
@@ -81,12 +86,8 @@ impl BenchD {
         for i in 0..LOOPS {
             sp = 50.0 + 40.0 * (phase + x).sin();
             err = sp - s.pv[i];
-            let mut integ = s.integ[i] + ki * err * tstep;
-            if integ > 100.0 {
-                integ = 100.0;
-            } else if integ < -100.0 {
-                integ = -100.0;
-            }
+            // IF integ > 100 THEN 100 ELSIF integ < -100 THEN -100: a clamp.
+            let integ = (s.integ[i] + ki * err * tstep).clamp(-100.0, 100.0);
             s.integ[i] = integ;
             deriv = (err - s.prev_err[i]) / tstep;
             u = kp * err + integ + kd * deriv;
