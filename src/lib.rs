@@ -5,7 +5,11 @@
 //! cyclic scheduler on a virtual clock.
 
 pub mod diagnostics;
+pub mod ir;
 pub mod runtime;
+pub mod sema;
 pub mod source;
+pub mod stdlib;
 pub mod syntax;
 pub mod types;
+pub mod vm;

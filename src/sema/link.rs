@@ -36,7 +36,9 @@ impl Compiler<'_> {
         let mut f = Fcx::new(p, self.pous[p].vars_size);
         match &pou.body {
             Body::St(stmts) => self.stmts(&mut f, stmts),
-            Body::Il(lines) => self.il_body(&mut f, lines),
+            Body::Il(lines) => {
+                self.il_body(&mut f, lines);
+            }
             Body::Sfc(_) => {
                 self.diags.error(
                     "E601",

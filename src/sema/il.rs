@@ -1,0 +1,580 @@
+//! Instruction List lowering. The current result (CR) lives in a frame
+//! slot whose type the checker tracks instruction by instruction; deferred
+//! operations `OP(` save CR in their own slot; jumps and labels become IR
+//! jumps. IL therefore runs on the same executor as ST.
+
+use super::Compiler;
+use super::emit::{Fcx, Ty, Val};
+use super::model::{Storage, VarInfo};
+use crate::ir::op::Op;
+use crate::ir::types::{MemberKind, TypeId, TypeTable};
+use crate::source::Span;
+use crate::syntax::ast::{
+    Arg, BinaryOp, Call, Expr, ExprKind, Ident, IlInstr, IlInstrKind, IlLine, IlOperator,
+};
+use crate::types::ElemType;
+use std::collections::HashMap;
+
+/// Name under which the CR slot is visible to the expression checker.
+const CR_KEY: &str = "\u{0}CR";
+
+/// A pending deferred operation.
+struct Deferred {
+    op: IlOperator,
+    negate: bool,
+    saved: u32,
+    saved_ty: Option<TypeId>,
+    span: Span,
+}
+
+fn binary_of(op: IlOperator) -> Option<BinaryOp> {
+    Some(match op {
+        IlOperator::And => BinaryOp::And,
+        IlOperator::Or => BinaryOp::Or,
+        IlOperator::Xor => BinaryOp::Xor,
+        IlOperator::Add => BinaryOp::Add,
+        IlOperator::Sub => BinaryOp::Sub,
+        IlOperator::Mul => BinaryOp::Mul,
+        IlOperator::Div => BinaryOp::Div,
+        IlOperator::Mod => BinaryOp::Mod,
+        IlOperator::Gt => BinaryOp::Gt,
+        IlOperator::Ge => BinaryOp::Ge,
+        IlOperator::Eq => BinaryOp::Eq,
+        IlOperator::Ne => BinaryOp::Ne,
+        IlOperator::Le => BinaryOp::Le,
+        IlOperator::Lt => BinaryOp::Lt,
+        _ => return None,
+    })
+}
+
+fn op_name(op: IlOperator) -> &'static str {
+    match op {
+        IlOperator::Ld => "LD",
+        IlOperator::St => "ST",
+        IlOperator::S => "S",
+        IlOperator::R => "R",
+        IlOperator::And => "AND",
+        IlOperator::Or => "OR",
+        IlOperator::Xor => "XOR",
+        IlOperator::Not => "NOT",
+        IlOperator::Add => "ADD",
+        IlOperator::Sub => "SUB",
+        IlOperator::Mul => "MUL",
+        IlOperator::Div => "DIV",
+        IlOperator::Mod => "MOD",
+        IlOperator::Gt => "GT",
+        IlOperator::Ge => "GE",
+        IlOperator::Eq => "EQ",
+        IlOperator::Ne => "NE",
+        IlOperator::Le => "LE",
+        IlOperator::Lt => "LT",
+    }
+}
+
+/// IL lowering state of one body.
+struct IlState {
+    cr: u32,
+    cr_ty: Option<TypeId>,
+    stack: Vec<Deferred>,
+    labels: HashMap<String, (u32, Option<TypeId>)>,
+    pending: Vec<(usize, Ident, Option<TypeId>)>,
+}
+
+impl Compiler<'_> {
+    /// Lowers an IL body. Returns the CR slot and its final type (used for
+    /// IL transition conditions).
+    pub(super) fn il_body(&mut self, f: &mut Fcx, lines: &[IlLine]) -> (u32, Option<TypeId>) {
+        let cr = f.temp();
+        // Keep the CR and deferred slots out of statement-level temp reuse.
+        f.temp_base = f.temp_next;
+        let mut st = IlState {
+            cr,
+            cr_ty: None,
+            stack: Vec::new(),
+            labels: HashMap::new(),
+            pending: Vec::new(),
+        };
+        // Collect labels first so forward jumps know their targets exist.
+        let mut declared: HashMap<String, Span> = HashMap::new();
+        for line in lines {
+            if let Some(l) = &line.label {
+                if let Some(prev) = declared.insert(l.key(), l.span) {
+                    let _ = prev;
+                    self.diags
+                        .error("E503", l.span, format!("label `{}` is defined twice", l.name));
+                }
+            }
+        }
+        for line in lines {
+            if let Some(l) = &line.label {
+                let at = f.here();
+                // The CR type at a label: what falls through, else what jumps bring.
+                let jumped = st
+                    .pending
+                    .iter()
+                    .find(|(_, id, _)| id.key() == l.key())
+                    .and_then(|(_, _, t)| *t);
+                if st.cr_ty.is_none() {
+                    st.cr_ty = jumped;
+                }
+                st.labels.entry(l.key()).or_insert((at, st.cr_ty));
+                if !st.stack.is_empty() {
+                    self.diags.error(
+                        "E501",
+                        l.span,
+                        "a label cannot stand inside an open `(`",
+                    );
+                }
+            }
+            if let Some(instr) = &line.instr {
+                let mark = f.temp_next;
+                f.span = instr.span;
+                self.il_instr(f, &mut st, instr);
+                f.temp_next = mark.max(f.temp_base);
+            }
+        }
+        for d in &st.stack {
+            self.diags.error(
+                "E501",
+                d.span,
+                format!("`{}(` is never closed by `)`", op_name(d.op)),
+            );
+        }
+        for (at, label, _) in std::mem::take(&mut st.pending) {
+            match st.labels.get(&label.key()) {
+                Some(&(target, _)) => f.patch(at, target),
+                None => self.diags.error(
+                    "E502",
+                    label.span,
+                    format!("jump to unknown label `{}`", label.name),
+                ),
+            }
+        }
+        self.pous[f.pou].vars.shift_remove(CR_KEY);
+        (st.cr, st.cr_ty)
+    }
+
+    fn cr_val(&mut self, st: &IlState, span: Span, what: &str) -> Option<Val> {
+        match st.cr_ty {
+            Some(t) => Some(Val::Slot(st.cr, t)),
+            None => {
+                self.diags.error(
+                    "E505",
+                    span,
+                    format!("{what} needs a current result: load one first (LD)"),
+                );
+                None
+            }
+        }
+    }
+
+    /// Makes the CR readable as a hidden variable for call arguments.
+    fn expose_cr(&mut self, f: &Fcx, st: &IlState) {
+        let ty = st.cr_ty.unwrap_or(TypeTable::error());
+        self.pous[f.pou].vars.insert(
+            CR_KEY.to_string(),
+            VarInfo {
+                name: "current result".into(),
+                ty,
+                kind: MemberKind::Temp,
+                storage: Storage::Frame(st.cr),
+                constant: false,
+                value: None,
+                init: None,
+                location: None,
+                span: Span::default(),
+            },
+        );
+    }
+
+    fn cr_expr(span: Span) -> Expr {
+        Expr {
+            kind: ExprKind::Name(Ident {
+                name: CR_KEY.to_string(),
+                span,
+            }),
+            span,
+        }
+    }
+
+    /// Sets CR from a value.
+    fn set_cr(&mut self, f: &mut Fcx, st: &mut IlState, v: Val) {
+        if v.is_error() {
+            return;
+        }
+        let t = match v.ty() {
+            Ty::T(t) => t,
+            other => self.default_type(other, None),
+        };
+        let v = self.coerce(f, v, t, f.span, "current result");
+        let s = self.materialize(f, &v);
+        if self.types.scalar(t).is_some_and(|e| e.is_string()) {
+            // The CR holds the id of a string temporary owned by this body.
+            let (max, wide) = match self.types.get(t).kind {
+                crate::ir::types::TypeKind::Str { max, wide } => (max, wide),
+                _ => (254, false),
+            };
+            let tmp = self.string_temp(f, max, wide);
+            f.emit(Op::StrMov { d: tmp, s });
+            f.emit(Op::Mov { d: st.cr, s: tmp });
+        } else {
+            f.mov(st.cr, s);
+        }
+        st.cr_ty = Some(t);
+    }
+
+    fn operand(&mut self, f: &mut Fcx, e: Option<&Expr>, negate: bool, span: Span, what: &str) -> Option<Val> {
+        let Some(e) = e else {
+            self.diags
+                .error("E504", span, format!("{what} needs an operand"));
+            return None;
+        };
+        let v = self.expr(f, e, None);
+        if v.is_error() {
+            return None;
+        }
+        if negate {
+            return Some(self.negate_val(f, v, e.span, what));
+        }
+        Some(v)
+    }
+
+    fn negate_val(&mut self, f: &mut Fcx, v: Val, span: Span, what: &str) -> Val {
+        let bits = v
+            .ty()
+            .id()
+            .and_then(|t| self.types.scalar(t))
+            .filter(|e| e.is_bit());
+        match bits {
+            Some(ElemType::Bool) => {
+                if let Val::Const(crate::sema::consts::Const::Bits(b), t) = v {
+                    return Val::Const(crate::sema::consts::Const::Bits(b ^ 1), t);
+                }
+                let a = self.materialize(f, &v);
+                let d = f.temp();
+                f.emit(Op::NotB { d, a });
+                Val::Slot(d, TypeTable::elem(ElemType::Bool))
+            }
+            Some(e) => {
+                let a = self.materialize(f, &v);
+                let d = f.temp();
+                f.emit(Op::NotW {
+                    d,
+                    a,
+                    shift: super::typeck::shift_of(e),
+                });
+                Val::Slot(d, TypeTable::elem(e))
+            }
+            None => {
+                self.diags.error(
+                    "E302",
+                    span,
+                    format!("the N modifier of {what} needs a BOOL or bit-string operand"),
+                );
+                Val::error()
+            }
+        }
+    }
+
+    fn il_instr(&mut self, f: &mut Fcx, st: &mut IlState, instr: &IlInstr) {
+        let span = instr.span;
+        match &instr.kind {
+            IlInstrKind::Simple {
+                op,
+                negate,
+                operand,
+            } => self.il_simple(f, st, *op, *negate, operand.as_ref(), span),
+            IlInstrKind::Deferred {
+                op,
+                negate,
+                operand,
+            } => {
+                if matches!(op, IlOperator::Ld | IlOperator::St | IlOperator::S | IlOperator::R | IlOperator::Not) {
+                    self.diags.error(
+                        "E504",
+                        span,
+                        format!("{} cannot be deferred with `(`", op_name(*op)),
+                    );
+                    return;
+                }
+                let Some(cur) = self.cr_val(st, span, op_name(*op)) else {
+                    return;
+                };
+                let saved = f.temp();
+                f.temp_base = f.temp_next;
+                let s = self.materialize(f, &cur);
+                f.emit(Op::Mov { d: saved, s });
+                f.last_def = None;
+                st.stack.push(Deferred {
+                    op: *op,
+                    negate: *negate,
+                    saved,
+                    saved_ty: st.cr_ty,
+                    span,
+                });
+                st.cr_ty = None;
+                if let Some(e) = operand {
+                    let v = self.expr(f, e, None);
+                    self.set_cr(f, st, v);
+                }
+            }
+            IlInstrKind::Close => {
+                let Some(d) = st.stack.pop() else {
+                    self.diags
+                        .error("E501", span, "`)` without a matching `OP(`");
+                    return;
+                };
+                let Some(inner) = self.cr_val(st, span, "`)`") else {
+                    return;
+                };
+                let inner = if d.negate {
+                    self.negate_val(f, inner, span, op_name(d.op))
+                } else {
+                    inner
+                };
+                let Some(bop) = binary_of(d.op) else { return };
+                let saved = Val::Slot(d.saved, d.saved_ty.unwrap_or(TypeTable::error()));
+                let r = self.binary_vals(f, bop, saved, inner, span);
+                self.set_cr(f, st, r);
+            }
+            IlInstrKind::Jump { cond, label } => {
+                let at = match cond {
+                    None => f.emit(Op::Jmp { t: 0 }),
+                    Some(when) => {
+                        if !self.cr_is_bool(st, span, "JMPC") {
+                            return;
+                        }
+                        if *when {
+                            f.emit(Op::Jnz { c: st.cr, t: 0 })
+                        } else {
+                            f.emit(Op::Jz { c: st.cr, t: 0 })
+                        }
+                    }
+                };
+                f.last_def = None;
+                st.pending.push((at, label.clone(), st.cr_ty));
+                if cond.is_none() {
+                    st.cr_ty = None;
+                }
+            }
+            IlInstrKind::Return { cond } => {
+                let at = match cond {
+                    None => f.emit(Op::Jmp { t: 0 }),
+                    Some(when) => {
+                        if !self.cr_is_bool(st, span, "RETC") {
+                            return;
+                        }
+                        if *when {
+                            f.emit(Op::Jnz { c: st.cr, t: 0 })
+                        } else {
+                            f.emit(Op::Jz { c: st.cr, t: 0 })
+                        }
+                    }
+                };
+                f.returns.push(at);
+            }
+            IlInstrKind::Call {
+                cond,
+                instance,
+                args,
+                outputs,
+            } => {
+                let skip = match cond {
+                    None => None,
+                    Some(when) => {
+                        if !self.cr_is_bool(st, span, "CALC") {
+                            return;
+                        }
+                        Some(if *when {
+                            f.emit(Op::Jz { c: st.cr, t: 0 })
+                        } else {
+                            f.emit(Op::Jnz { c: st.cr, t: 0 })
+                        })
+                    }
+                };
+                self.expose_cr(f, st);
+                if let Some(inst) = self.place(f, instance) {
+                    self.fb_call(f, &inst, args, span);
+                    for out in outputs {
+                        let Some(dest) = &out.dest else { continue };
+                        let member = Expr {
+                            kind: ExprKind::Member(Box::new(instance.clone()), out.output.clone()),
+                            span: out.span,
+                        };
+                        f.span = out.span;
+                        self.assign_il(f, dest, &member);
+                    }
+                }
+                if let Some(j) = skip {
+                    let end = f.here();
+                    f.patch(j, end);
+                }
+            }
+            IlInstrKind::FunctionCall { name, args } => {
+                self.expose_cr(f, st);
+                if st.cr_ty.is_none() {
+                    self.diags.error(
+                        "E505",
+                        span,
+                        format!("{} needs a current result as first argument: load one first", name.name),
+                    );
+                    return;
+                }
+                let mut all = vec![Arg::Positional(Self::cr_expr(span))];
+                all.extend(args.iter().cloned());
+                let call = Call {
+                    callee: Box::new(Expr {
+                        kind: ExprKind::Name(name.clone()),
+                        span: name.span,
+                    }),
+                    args: all,
+                    span,
+                };
+                let v = self.call_expr(f, &call, None);
+                self.set_cr(f, st, v);
+            }
+            IlInstrKind::FbInput { pin, instance } => {
+                if st.cr_ty.is_none() {
+                    self.diags.error(
+                        "E505",
+                        span,
+                        format!("{} needs a current result: load one first", pin.name),
+                    );
+                    return;
+                }
+                self.expose_cr(f, st);
+                if let Some(inst) = self.place(f, instance) {
+                    let arg = Arg::Input {
+                        name: pin.clone(),
+                        value: Self::cr_expr(span),
+                    };
+                    self.fb_call(f, &inst, &[arg], span);
+                }
+            }
+        }
+    }
+
+    fn cr_is_bool(&mut self, st: &IlState, span: Span, what: &str) -> bool {
+        match st.cr_ty {
+            Some(t) if t == TypeTable::elem(ElemType::Bool) => true,
+            Some(t) => {
+                let n = self.types.name(t).to_string();
+                self.diags.error(
+                    "E506",
+                    span,
+                    format!("{what} needs a BOOL current result, found {n}"),
+                );
+                false
+            }
+            None => {
+                self.diags.error(
+                    "E505",
+                    span,
+                    format!("{what} needs a current result: load one first"),
+                );
+                false
+            }
+        }
+    }
+
+    /// `dest := source` for the Moeller output list.
+    fn assign_il(&mut self, f: &mut Fcx, dest: &Expr, source: &Expr) {
+        let stmt = crate::syntax::ast::Stmt {
+            kind: crate::syntax::ast::StmtKind::Assign {
+                target: dest.clone(),
+                value: source.clone(),
+            },
+            span: source.span,
+        };
+        let mark = f.temp_next;
+        self.stmts(f, std::slice::from_ref(&stmt));
+        f.temp_next = mark;
+    }
+
+    fn il_simple(
+        &mut self,
+        f: &mut Fcx,
+        st: &mut IlState,
+        op: IlOperator,
+        negate: bool,
+        operand: Option<&Expr>,
+        span: Span,
+    ) {
+        let name = op_name(op);
+        match op {
+            IlOperator::Ld => {
+                if let Some(v) = self.operand(f, operand, negate, span, name) {
+                    self.set_cr(f, st, v);
+                }
+            }
+            IlOperator::St => {
+                let Some(target) = operand else {
+                    self.diags.error("E504", span, "ST needs an operand");
+                    return;
+                };
+                let Some(cur) = self.cr_val(st, span, name) else { return };
+                let cur = if negate { self.negate_val(f, cur, span, name) } else { cur };
+                self.store_value(f, target, cur);
+            }
+            IlOperator::S | IlOperator::R => {
+                let Some(target) = operand else {
+                    self.diags.error("E504", span, format!("{name} needs an operand"));
+                    return;
+                };
+                if !self.cr_is_bool(st, span, name) {
+                    return;
+                }
+                let skip = f.emit(Op::Jz { c: st.cr, t: 0 });
+                let v = Val::Const(
+                    crate::sema::consts::Const::Bits((op == IlOperator::S) as u64),
+                    Ty::T(TypeTable::elem(ElemType::Bool)),
+                );
+                self.store_value(f, target, v);
+                let end = f.here();
+                f.patch(skip, end);
+            }
+            IlOperator::Not => {
+                if operand.is_some() {
+                    self.diags.error("E504", span, "NOT takes no operand in IL (it negates the current result)");
+                    return;
+                }
+                let Some(cur) = self.cr_val(st, span, name) else { return };
+                let v = self.negate_val(f, cur, span, name);
+                self.set_cr(f, st, v);
+            }
+            _ => {
+                let Some(bop) = binary_of(op) else { return };
+                let Some(cur) = self.cr_val(st, span, name) else { return };
+                let Some(v) = self.operand(f, operand, negate, span, name) else {
+                    return;
+                };
+                let r = self.binary_vals(f, bop, cur, v, span);
+                self.set_cr(f, st, r);
+            }
+        }
+    }
+
+    /// Stores a value into the place `target` (ST, S, R).
+    fn store_value(&mut self, f: &mut Fcx, target: &Expr, v: Val) {
+        let Some(p) = self.place(f, target) else { return };
+        if !p.writable {
+            let why = p.readonly_reason.unwrap_or("it is read-only");
+            self.diags
+                .error("E401", target.span, format!("cannot store here: {why}"));
+            return;
+        }
+        if p.input_image {
+            self.diags.warning(
+                "W202",
+                target.span,
+                "the program writes a %I input; the next stimulus value will overwrite it",
+            );
+        }
+        let v = self.coerce(f, v, p.ty, target.span, "ST");
+        if v.is_error() {
+            return;
+        }
+        let s = self.materialize(f, &v);
+        self.write_place(f, &p, s);
+    }
+}
