@@ -1,6 +1,9 @@
 //! Decoding of IEC literal text (the part after `T#`, `16#`, ...) into values,
 //! shared by the lexer, the stimulus reader and `--set`.
 
+use crate::source::Span;
+use crate::syntax::ast::{Ident, LiteralValue};
+
 /// Nanoseconds per duration unit, largest first, with their IEC suffixes.
 pub const DURATION_UNITS: [(&str, i128); 7] = [
     ("d", 86_400_000_000_000),
@@ -122,6 +125,314 @@ pub fn format_duration(nanos: i64, prefix: &str) -> String {
         }
     }
     out
+}
+
+/// Parses an integer literal: decimal (`1_000`) or based (`2#1010`,
+/// `8#17`, `16#FF`), without sign.
+pub fn parse_int_text(text: &str) -> Result<i128, String> {
+    let (base, digits) = match text.split_once('#') {
+        None => (10, text),
+        Some((b, d)) => {
+            let base = match b.replace('_', "").as_str() {
+                "2" => 2,
+                "8" => 8,
+                "16" => 16,
+                _ => return Err(format!("base `{b}` is not 2, 8 or 16 in `{text}`")),
+            };
+            (base, d)
+        }
+    };
+    if digits.is_empty() {
+        return Err(format!("missing digits in `{text}`"));
+    }
+    if digits.starts_with('_') || digits.ends_with('_') || digits.contains("__") {
+        return Err(format!("misplaced `_` in `{text}`"));
+    }
+    let mut value: i128 = 0;
+    for c in digits.chars().filter(|c| *c != '_') {
+        let d = c
+            .to_digit(base)
+            .ok_or_else(|| format!("`{c}` is not a base-{base} digit in `{text}`"))?;
+        value = value
+            .checked_mul(i128::from(base))
+            .and_then(|v| v.checked_add(i128::from(d)))
+            .filter(|v| *v <= i128::from(u64::MAX))
+            .ok_or_else(|| format!("integer `{text}` is too large"))?;
+    }
+    Ok(value)
+}
+
+/// Parses a real literal such as `1.5`, `1_000.25`, `1.5E-3`, `1e10`.
+pub fn parse_real_text(text: &str) -> Result<f64, String> {
+    let clean: String = text.chars().filter(|c| *c != '_').collect();
+    let ok_shape = clean.starts_with(|c: char| c.is_ascii_digit())
+        && clean
+            .chars()
+            .all(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '+' | '-'));
+    match clean.parse::<f64>() {
+        Ok(v) if ok_shape && v.is_finite() => Ok(v),
+        Ok(_) => Err(format!("real `{text}` is out of range")),
+        Err(_) => Err(format!("malformed real `{text}`")),
+    }
+}
+
+/// Decodes the inside of a string literal (without its quotes). `wide`
+/// selects the WSTRING rules (`$"` and four-digit `$hhhh` codes) instead of
+/// the STRING ones (`$'` and two-digit `$hh`). On error returns the byte
+/// range (inside `inner`) of the bad escape and a message.
+pub fn decode_string(inner: &str, wide: bool) -> Result<String, (usize, usize, String)> {
+    let mut out = String::with_capacity(inner.len());
+    let mut chars = inner.char_indices().peekable();
+    while let Some((i, c)) = chars.next() {
+        if c != '$' {
+            out.push(c);
+            continue;
+        }
+        let Some((_, e)) = chars.next() else {
+            return Err((i, i + 1, "`$` at the end of a string".into()));
+        };
+        match e.to_ascii_uppercase() {
+            '$' => out.push('$'),
+            '\'' => out.push('\''),
+            '"' => out.push('"'),
+            'L' | 'N' => out.push('\n'),
+            'P' => out.push('\u{0c}'),
+            'R' => out.push('\r'),
+            'T' => out.push('\t'),
+            h if h.is_ascii_hexdigit() => {
+                let want = if wide { 4 } else { 2 };
+                let mut code = h.to_digit(16).unwrap_or(0);
+                let mut end = i + 2;
+                for _ in 1..want {
+                    match chars.peek() {
+                        Some(&(j, d)) if d.is_ascii_hexdigit() => {
+                            code = code * 16 + d.to_digit(16).unwrap_or(0);
+                            end = j + 1;
+                            chars.next();
+                        }
+                        _ => {
+                            return Err((
+                                i,
+                                end,
+                                format!("`$` code needs {want} hexadecimal digits"),
+                            ));
+                        }
+                    }
+                }
+                match char::from_u32(code) {
+                    Some(ch) => out.push(ch),
+                    None => return Err((i, end, format!("`$` code {code:#x} is not a character"))),
+                }
+            }
+            _ => {
+                let end = i + 1 + e.len_utf8();
+                return Err((
+                    i,
+                    end,
+                    format!("unknown escape `${e}` (use $$ $' $\" $L $N $P $R $T or $hh)"),
+                ));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Nanoseconds per day.
+const NANOS_PER_DAY: i128 = 86_400_000_000_000;
+
+fn is_leap(year: i64) -> bool {
+    (year % 4 == 0 && year % 100 != 0) || year % 400 == 0
+}
+
+fn days_in_month(year: i64, month: u32) -> u32 {
+    match month {
+        1 | 3 | 5 | 7 | 8 | 10 | 12 => 31,
+        4 | 6 | 9 | 11 => 30,
+        _ if is_leap(year) => 29,
+        _ => 28,
+    }
+}
+
+/// Days from 1970-01-01 to `year-month-day` (proleptic Gregorian calendar;
+/// negative before 1970). The date must be valid.
+pub fn days_since_epoch(year: i64, month: u32, day: u32) -> i64 {
+    // Whole years: 365 days each plus one per leap year in [1970, year).
+    let leaps_before = |y: i64| {
+        let y = y - 1;
+        y.div_euclid(4) - y.div_euclid(100) + y.div_euclid(400)
+    };
+    let mut days = 365 * (year - 1970) + leaps_before(year) - leaps_before(1970);
+    for m in 1..month {
+        days += i64::from(days_in_month(year, m));
+    }
+    days + i64::from(day) - 1
+}
+
+/// Splits `s` on `sep` into exactly `n` unsigned numeric fields (`_` allowed).
+fn fields(s: &str, sep: char, n: usize, what: &str) -> Result<Vec<u64>, String> {
+    let parts: Vec<&str> = s.split(sep).collect();
+    if parts.len() != n {
+        return Err(format!("malformed {what} `{s}`"));
+    }
+    parts
+        .iter()
+        .map(|p| {
+            let p: String = p.chars().filter(|c| *c != '_').collect();
+            if p.is_empty() || !p.chars().all(|c| c.is_ascii_digit()) || p.len() > 9 {
+                Err(format!("malformed {what} `{s}`"))
+            } else {
+                p.parse::<u64>()
+                    .map_err(|_| format!("malformed {what} `{s}`"))
+            }
+        })
+        .collect()
+}
+
+/// Parses the body of a date literal (`2024-01-31`) into nanoseconds since
+/// 1970-01-01.
+pub fn parse_date_body(body: &str) -> Result<i64, String> {
+    let f = fields(body, '-', 3, "date")?;
+    let (y, m, d) = (f[0] as i64, f[1] as u32, f[2] as u32);
+    if !(1..=12).contains(&m) {
+        return Err(format!("month {m} is not 1..12 in date `{body}`"));
+    }
+    if d == 0 || d > days_in_month(y, m) {
+        return Err(format!(
+            "day {d} does not exist in month {m} of date `{body}`"
+        ));
+    }
+    let nanos = i128::from(days_since_epoch(y, m, d)) * NANOS_PER_DAY;
+    i64::try_from(nanos).map_err(|_| format!("date `{body}` is out of range (1678..2262)"))
+}
+
+/// Parses the body of a time-of-day literal (`12:00:00.5`, seconds
+/// optional) into nanoseconds since midnight.
+pub fn parse_tod_body(body: &str) -> Result<i64, String> {
+    let (hms, frac) = match body.split_once('.') {
+        Some((a, b)) => (a, Some(b)),
+        None => (body, None),
+    };
+    let parts = hms.split(':').count();
+    if !(2..=3).contains(&parts) {
+        return Err(format!(
+            "malformed time of day `{body}` (expected hh:mm:ss)"
+        ));
+    }
+    let f = fields(hms, ':', parts, "time of day")?;
+    let (h, m, s) = (f[0], f[1], f.get(2).copied().unwrap_or(0));
+    if h > 23 || m > 59 || s > 59 {
+        return Err(format!("time of day `{body}` is out of range"));
+    }
+    let mut nanos = ((h * 60 + m) * 60 + s) as i64 * 1_000_000_000;
+    if let Some(frac) = frac {
+        if parts != 3 {
+            return Err(format!("malformed time of day `{body}`"));
+        }
+        let digits: String = frac.chars().filter(|c| *c != '_').collect();
+        if digits.is_empty() || !digits.chars().all(|c| c.is_ascii_digit()) {
+            return Err(format!("malformed fraction in time of day `{body}`"));
+        }
+        let mut scale = 100_000_000;
+        for c in digits.chars().take(9) {
+            nanos += i64::from(c as u8 - b'0') * scale;
+            scale /= 10;
+        }
+    }
+    Ok(nanos)
+}
+
+/// Parses the body of a date-and-time literal (`2024-01-31-12:00:00.5`)
+/// into nanoseconds since 1970-01-01T00:00:00.
+pub fn parse_dt_body(body: &str) -> Result<i64, String> {
+    let mut dashes = body.match_indices('-').map(|(i, _)| i);
+    let split = dashes.nth(2).ok_or_else(|| {
+        format!("malformed date and time `{body}` (expected yyyy-mm-dd-hh:mm:ss)")
+    })?;
+    let date = parse_date_body(&body[..split])?;
+    let tod = parse_tod_body(&body[split + 1..])?;
+    date.checked_add(tod)
+        .ok_or_else(|| format!("date and time `{body}` is out of range"))
+}
+
+/// The elementary type names whose typed literals hold numbers.
+fn numeric_type(upper: &str) -> Option<NumKind> {
+    Some(match upper {
+        "SINT" | "INT" | "DINT" | "LINT" | "USINT" | "UINT" | "UDINT" | "ULINT" => NumKind::Int,
+        "BYTE" | "WORD" | "DWORD" | "LWORD" => NumKind::Int,
+        "REAL" | "LREAL" => NumKind::Real,
+        "BOOL" => NumKind::Bool,
+        "STRING" | "WSTRING" => NumKind::Str,
+        _ => return None,
+    })
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum NumKind {
+    Int,
+    Real,
+    Bool,
+    Str,
+}
+
+/// Decodes the body of a literal with a type prefix (`INT#-3`,
+/// `WORD#16#FF`, `REAL#1.5`, `BOOL#1`, `STRING#'x'`, `Color#Red`).
+/// `prefix` has no `#`. Time and date prefixes are not handled here.
+pub fn decode_typed_body(prefix: &str, body: &str) -> Result<LiteralValue, String> {
+    let upper = prefix.to_ascii_uppercase();
+    let kind = numeric_type(&upper);
+    if body.is_empty() {
+        return Err(format!("missing value after `{prefix}#`"));
+    }
+    let quoted = body.starts_with('\'') || body.starts_with('"');
+    if quoted {
+        let wide = body.starts_with('"');
+        let q = if wide { '"' } else { '\'' };
+        if body.len() < 2 || !body.ends_with(q) {
+            return Err(format!("unterminated string in `{prefix}#{body}`"));
+        }
+        if !matches!(kind, Some(NumKind::Str) | None) {
+            return Err(format!("`{prefix}#` cannot take a string"));
+        }
+        let value = decode_string(&body[1..body.len() - 1], wide).map_err(|e| e.2)?;
+        return Ok(LiteralValue::String { value, wide });
+    }
+    let first = body.trim_start_matches(['+', '-']);
+    let is_word = first.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
+    if is_word {
+        if first.len() != body.len() {
+            return Err(format!("malformed literal `{prefix}#{body}`"));
+        }
+        return match (kind, first.to_ascii_uppercase().as_str()) {
+            (Some(NumKind::Bool), "TRUE") => Ok(LiteralValue::Bool(true)),
+            (Some(NumKind::Bool), "FALSE") => Ok(LiteralValue::Bool(false)),
+            (Some(_), _) => Err(format!("`{body}` is not a value of type {upper}")),
+            (None, _) => Ok(LiteralValue::EnumValue(Ident {
+                name: body.to_string(),
+                span: Span::default(),
+            })),
+        };
+    }
+    let negative = body.starts_with('-');
+    let is_real = !first.contains('#') && first.contains(['.', 'e', 'E']);
+    if is_real {
+        if matches!(kind, Some(NumKind::Int | NumKind::Bool | NumKind::Str)) {
+            return Err(format!("`{body}` is not a value of type {upper}"));
+        }
+        let v = parse_real_text(first)?;
+        return Ok(LiteralValue::Real(if negative { -v } else { v }));
+    }
+    let v = parse_int_text(first)?;
+    let v = if negative { -v } else { v };
+    match kind {
+        Some(NumKind::Bool) => match v {
+            0 => Ok(LiteralValue::Bool(false)),
+            1 => Ok(LiteralValue::Bool(true)),
+            _ => Err(format!("`{body}` is not a BOOL (use 0, 1, TRUE or FALSE)")),
+        },
+        Some(NumKind::Real) => Ok(LiteralValue::Real(v as f64)),
+        Some(NumKind::Str) => Err(format!("`{prefix}#` needs a quoted string")),
+        _ => Ok(LiteralValue::Int(v)),
+    }
 }
 
 #[cfg(test)]

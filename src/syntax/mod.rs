@@ -1,4 +1,66 @@
 //! Front-end: lexing and parsing of IL, ST and SFC source into the AST.
+//!
+//! Pipeline: [`lexer`] (logos scanner + literal decoding) → [`layout`] (IL
+//! line orientation) → [`parser`] (lalrpop grammar, error recovery) → [`ast`].
 
 pub mod ast;
+pub mod construct;
+pub mod layout;
+pub mod lexer;
 pub mod literal;
+pub mod parser;
+pub mod token;
+
+use crate::diagnostics::{Diagnostics, Severity};
+use crate::source::FileId;
+use ast::{Literal, LiteralValue};
+use token::Tok;
+
+/// Parses one file. Never panics, on any input. Reports every syntax error it can (recover, don't stop at the first).
+pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> ast::CompilationUnit {
+    let tokens = lexer::lex(file, text, diags);
+    let tokens = layout::layout(tokens);
+    parser::parse_tokens(construct::State::new(file, text), tokens, diags)
+}
+
+/// Parses one standalone IEC literal as written on a command line / stimulus cell:
+/// `TRUE`, `FALSE`, `1`, `-5`, `16#FF`, `INT#-3`, `1.5`, `-2.5E3`, `T#1s500ms`, `TIME#-2ms`, `LT#1ns`, `D#2024-01-31`, `TOD#12:00:00.5`, `DT#2024-01-31-12:00:00`, `'text'`, `"wide"`, `Color#Red`.
+pub fn parse_literal(text: &str) -> Result<ast::Literal, String> {
+    let text = text.trim();
+    let mut diags = Diagnostics::new();
+    let tokens: Vec<Tok> = lexer::lex(FileId(0), text, &mut diags)
+        .into_iter()
+        .map(|t| t.1)
+        .filter(|t| *t != Tok::Eol)
+        .collect();
+    if let Some(d) = diags.iter().find(|d| d.severity == Severity::Error) {
+        return Err(d.message.clone());
+    }
+    let (sign, rest) = match tokens.split_first() {
+        Some((Tok::Minus, rest)) => (-1, rest),
+        Some((Tok::Plus, rest)) => (1, rest),
+        _ => (0, tokens.as_slice()),
+    };
+    let lit = match rest {
+        [Tok::Lit(lit)] => lit.clone(),
+        [] => return Err(format!("`{text}` is not a literal: it is empty")),
+        _ => return Err(format!("`{text}` is not a single IEC literal")),
+    };
+    if sign == 0 {
+        return Ok(lit);
+    }
+    let negate = sign < 0;
+    let value = match (lit.type_prefix.is_some(), lit.value) {
+        (false, LiteralValue::Int(v)) => LiteralValue::Int(if negate { -v } else { v }),
+        (false, LiteralValue::Real(v)) => LiteralValue::Real(if negate { -v } else { v }),
+        _ => {
+            return Err(format!(
+                "`{text}`: a sign is only allowed before a plain number"
+            ));
+        }
+    };
+    Ok(Literal {
+        value,
+        type_prefix: None,
+    })
+}

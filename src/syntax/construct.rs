@@ -1,0 +1,817 @@
+//! AST construction helpers called from the grammar actions: parser state
+//! (file, diagnostics), nesting-depth guards, and the few constructs whose
+//! shape is decided after parsing (CASE arms, SFC bodies, action
+//! associations, configurations).
+//!
+//! Depth guard: every node with children is built here, and refuses to grow
+//! deeper than a fixed limit (reporting `E106` once). The AST handed to later
+//! stages is therefore shallow enough for them to walk recursively, and
+//! dropping it never overflows the stack, whatever the input.
+
+use crate::diagnostics::Diagnostic;
+use crate::source::{FileId, Span};
+use crate::syntax::ast::*;
+use crate::syntax::parser::recovery_diagnostic;
+use crate::syntax::token::Tok;
+use lalrpop_util::ErrorRecovery;
+use std::cell::{Cell, RefCell};
+
+/// Maximum nesting of expressions (operators, parentheses, calls, members).
+pub const MAX_EXPR_DEPTH: usize = 200;
+/// Maximum nesting of statements (IF inside FOR inside ...).
+pub const MAX_STMT_DEPTH: usize = 100;
+/// Maximum nesting of initializers and of ARRAY types.
+pub const MAX_INIT_DEPTH: usize = 64;
+/// Most syntax errors recorded per file; the rest are counted.
+const MAX_SYNTAX_ERRORS: usize = 200;
+
+/// Mutable state shared by all grammar actions of one parse.
+pub struct State<'t> {
+    file: FileId,
+    text: &'t str,
+    line_starts: Vec<usize>,
+    diags: RefCell<Vec<Diagnostic>>,
+    depth_reported: Cell<bool>,
+    last_error_line: Cell<Option<usize>>,
+    suppressed: Cell<usize>,
+}
+
+impl<'t> State<'t> {
+    /// State for parsing `text` of `file`.
+    pub fn new(file: FileId, text: &'t str) -> State<'t> {
+        let mut line_starts = vec![0];
+        line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
+        State {
+            file,
+            text,
+            line_starts,
+            diags: RefCell::new(Vec::new()),
+            depth_reported: Cell::new(false),
+            last_error_line: Cell::new(None),
+            suppressed: Cell::new(0),
+        }
+    }
+
+    /// The span `l..r` in this file.
+    pub fn span(&self, l: usize, r: usize) -> Span {
+        Span::new(self.file, l, r.max(l))
+    }
+
+    /// The source text.
+    pub fn text(&self) -> &'t str {
+        self.text
+    }
+
+    /// The file being parsed.
+    pub fn file(&self) -> FileId {
+        self.file
+    }
+
+    /// Records an error.
+    pub fn error(&self, code: &'static str, span: Span, message: impl Into<String>) {
+        self.diags
+            .borrow_mut()
+            .push(Diagnostic::error(code, span, message));
+    }
+
+    /// Records a syntax error found by the parser, unless it is a cascade
+    /// of the previous one (same line) or there are already too many.
+    pub fn syntax_error(&self, d: Diagnostic) {
+        let line = match self.line_starts.binary_search(&(d.span.start as usize)) {
+            Ok(l) => l,
+            Err(l) => l.saturating_sub(1),
+        };
+        if self.last_error_line.get() == Some(line) {
+            return;
+        }
+        self.last_error_line.set(Some(line));
+        let count = self.diags.borrow().len();
+        if count >= MAX_SYNTAX_ERRORS {
+            self.suppressed.set(self.suppressed.get() + 1);
+            return;
+        }
+        self.diags.borrow_mut().push(d);
+    }
+
+    /// Records a recovered parse error.
+    pub fn recover(&self, e: ErrorRecovery<usize, Tok, ()>) {
+        self.syntax_error(recovery_diagnostic(self, e.error));
+    }
+
+    /// Takes the collected diagnostics.
+    pub fn finish(self) -> Vec<Diagnostic> {
+        let mut d = self.diags.into_inner();
+        if self.suppressed.get() > 0 {
+            let span = Span::new(self.file, self.text.len(), self.text.len());
+            d.push(Diagnostic::error(
+                "E101",
+                span,
+                format!(
+                    "{} more syntax errors not shown; fix the ones above first",
+                    self.suppressed.get()
+                ),
+            ));
+        }
+        d
+    }
+
+    fn too_deep(&self, span: Span, what: &str, limit: usize) {
+        if !self.depth_reported.replace(true) {
+            self.error(
+                "E106",
+                span,
+                format!("{what} nested too deeply (more than {limit} levels); split it up"),
+            );
+        }
+    }
+}
+
+// ------------------------------------------------------------------ depth
+
+fn arg_expr(a: &Arg) -> &Expr {
+    match a {
+        Arg::Positional(e) | Arg::Input { value: e, .. } | Arg::Output { target: e, .. } => e,
+    }
+}
+
+/// Nesting depth of an expression (a leaf is 1).
+pub fn expr_depth(e: &Expr) -> usize {
+    let children = match &e.kind {
+        ExprKind::Literal(_) | ExprKind::Name(_) | ExprKind::Direct(_) => 0,
+        ExprKind::Member(b, _)
+        | ExprKind::BitAccess(b, _)
+        | ExprKind::Unary(_, b)
+        | ExprKind::Paren(b) => expr_depth(b),
+        ExprKind::Index(b, idx) => idx.iter().map(expr_depth).fold(expr_depth(b), usize::max),
+        ExprKind::Binary(_, a, b) => expr_depth(a).max(expr_depth(b)),
+        ExprKind::Call(c) => c
+            .args
+            .iter()
+            .map(|a| expr_depth(arg_expr(a)))
+            .fold(expr_depth(&c.callee), usize::max),
+    };
+    1 + children
+}
+
+fn list_depth(body: &[Stmt]) -> usize {
+    body.iter().map(stmt_depth).max().unwrap_or(0)
+}
+
+/// Statement nesting depth (a simple statement is 1).
+pub fn stmt_depth(s: &Stmt) -> usize {
+    let inner = match &s.kind {
+        StmtKind::If {
+            branches,
+            else_branch,
+        } => branches
+            .iter()
+            .map(|(_, b)| list_depth(b))
+            .chain(else_branch.iter().map(|b| list_depth(b)))
+            .max()
+            .unwrap_or(0),
+        StmtKind::Case {
+            arms, else_branch, ..
+        } => arms
+            .iter()
+            .map(|a| list_depth(&a.body))
+            .chain(else_branch.iter().map(|b| list_depth(b)))
+            .max()
+            .unwrap_or(0),
+        StmtKind::For { body, .. }
+        | StmtKind::While { body, .. }
+        | StmtKind::Repeat { body, .. } => list_depth(body),
+        _ => 0,
+    };
+    1 + inner
+}
+
+fn init_depth(i: &Initializer) -> usize {
+    1 + match i {
+        Initializer::Expr(_) => 0,
+        Initializer::Array(elems, _) => elems
+            .iter()
+            .filter_map(|e| e.value.as_ref())
+            .map(init_depth)
+            .max()
+            .unwrap_or(0),
+        Initializer::Struct(fields, _) => {
+            fields.iter().map(|(_, i)| init_depth(i)).max().unwrap_or(0)
+        }
+    }
+}
+
+fn type_depth(t: &TypeSpec) -> usize {
+    match t {
+        TypeSpec::Array { elem, .. } => 1 + type_depth(elem),
+        _ => 1,
+    }
+}
+
+/// Returns `node` if it is not too deep, else reports `E106` and returns
+/// `fallback` (a shallower child).
+fn guard(st: &State, node: Expr, fallback: impl FnOnce(Expr) -> Expr) -> Expr {
+    if expr_depth(&node) > MAX_EXPR_DEPTH {
+        st.too_deep(node.span, "expression", MAX_EXPR_DEPTH);
+        fallback(node)
+    } else {
+        node
+    }
+}
+
+fn first_child(e: Expr) -> Expr {
+    match e.kind {
+        ExprKind::Member(b, _)
+        | ExprKind::BitAccess(b, _)
+        | ExprKind::Unary(_, b)
+        | ExprKind::Paren(b)
+        | ExprKind::Index(b, _)
+        | ExprKind::Binary(_, b, _) => *b,
+        ExprKind::Call(c) => *c.callee,
+        _ => e,
+    }
+}
+
+// ------------------------------------------------------------------ expressions
+
+/// `l op r`.
+pub fn binary(st: &State, op: BinaryOp, l: Expr, r: Expr) -> Expr {
+    let span = l.span.to(r.span);
+    let node = Expr {
+        kind: ExprKind::Binary(op, Box::new(l), Box::new(r)),
+        span,
+    };
+    guard(st, node, first_child)
+}
+
+/// `op e`; a minus directly before an untyped number or duration literal is
+/// folded into the literal (`-5` is the literal -5).
+pub fn unary(st: &State, op: UnaryOp, e: Expr, l: usize, r: usize) -> Expr {
+    let span = st.span(l, r);
+    if op == UnaryOp::Neg
+        && let ExprKind::Literal(lit) = &e.kind
+        && lit.type_prefix.is_none()
+    {
+        let negated = match lit.value {
+            LiteralValue::Int(v) => Some(LiteralValue::Int(-v)),
+            LiteralValue::Real(v) => Some(LiteralValue::Real(-v)),
+            LiteralValue::Duration { nanos, long } => nanos
+                .checked_neg()
+                .map(|nanos| LiteralValue::Duration { nanos, long }),
+            _ => None,
+        };
+        if let Some(value) = negated {
+            return Expr {
+                kind: ExprKind::Literal(Literal {
+                    value,
+                    type_prefix: None,
+                }),
+                span,
+            };
+        }
+    }
+    let node = Expr {
+        kind: ExprKind::Unary(op, Box::new(e)),
+        span,
+    };
+    guard(st, node, first_child)
+}
+
+/// `( e )`.
+pub fn paren(st: &State, e: Expr, l: usize, r: usize) -> Expr {
+    let node = Expr {
+        kind: ExprKind::Paren(Box::new(e)),
+        span: st.span(l, r),
+    };
+    guard(st, node, first_child)
+}
+
+/// `b.m`.
+pub fn member(st: &State, b: Expr, m: Ident) -> Expr {
+    let span = b.span.to(m.span);
+    let node = Expr {
+        kind: ExprKind::Member(Box::new(b), m),
+        span,
+    };
+    guard(st, node, first_child)
+}
+
+/// `b.3`: bit access with an integer literal.
+pub fn bit_access(st: &State, b: Expr, lit: Literal, l: usize, r: usize) -> Expr {
+    let span = b.span.to(st.span(l, r));
+    let bit = match lit {
+        Literal {
+            value: LiteralValue::Int(v),
+            type_prefix: None,
+        } if (0..=63).contains(&v) => v as u32,
+        _ => {
+            st.error(
+                "E108",
+                st.span(l, r),
+                "expected a member name or a bit number 0..63 after `.`",
+            );
+            0
+        }
+    };
+    let node = Expr {
+        kind: ExprKind::BitAccess(Box::new(b), bit),
+        span,
+    };
+    guard(st, node, first_child)
+}
+
+/// `b.%X3`: bit access written with a direct-address style suffix.
+pub fn bit_access_direct(st: &State, b: Expr, d: DirectAddress) -> Expr {
+    st.error(
+        "E108",
+        d.span,
+        format!("`.{}` is not a valid member or bit number", d.text),
+    );
+    b
+}
+
+/// `b[i, j]`.
+pub fn index(st: &State, b: Expr, idx: Vec<Expr>, r: usize) -> Expr {
+    let span = b.span.to(st.span(r, r));
+    let node = Expr {
+        kind: ExprKind::Index(Box::new(b), idx),
+        span,
+    };
+    guard(st, node, first_child)
+}
+
+/// `b(args)`.
+pub fn call(st: &State, b: Expr, args: Vec<Arg>, r: usize) -> Expr {
+    let span = b.span.to(st.span(r, r));
+    let node = Expr {
+        kind: ExprKind::Call(Call {
+            callee: Box::new(b),
+            args,
+            span,
+        }),
+        span,
+    };
+    guard(st, node, first_child)
+}
+
+// ------------------------------------------------------------------ statements
+
+/// Intermediate element of a CASE body: labels or a statement.
+pub enum CaseItem {
+    /// `1, 2..5 :`
+    Labels(Vec<CaseLabel>, Span),
+    /// A statement of the current arm.
+    Stmt(Stmt),
+}
+
+fn is_compound(s: &Stmt) -> bool {
+    matches!(
+        s.kind,
+        StmtKind::If { .. }
+            | StmtKind::Case { .. }
+            | StmtKind::For { .. }
+            | StmtKind::While { .. }
+            | StmtKind::Repeat { .. }
+    )
+}
+
+/// Drops the `;` written after `END_IF`, `END_FOR`, ... (it terminates the
+/// compound statement and is not an empty statement of its own).
+pub fn stmt_list(stmts: Vec<Stmt>) -> Vec<Stmt> {
+    let mut out: Vec<Stmt> = Vec::with_capacity(stmts.len());
+    let mut absorb = false;
+    for s in stmts {
+        if absorb && s.kind == StmtKind::Empty {
+            absorb = false;
+            continue;
+        }
+        absorb = is_compound(&s);
+        out.push(s);
+    }
+    out
+}
+
+/// A compound statement, replaced by an empty one if nested too deeply.
+pub fn compound(st: &State, kind: StmtKind, l: usize, r: usize) -> Stmt {
+    let s = Stmt {
+        kind,
+        span: st.span(l, r),
+    };
+    if stmt_depth(&s) > MAX_STMT_DEPTH {
+        st.too_deep(s.span, "statement", MAX_STMT_DEPTH);
+        return Stmt {
+            kind: StmtKind::Empty,
+            span: s.span,
+        };
+    }
+    s
+}
+
+/// `IF ... END_IF`.
+pub fn if_stmt(
+    st: &State,
+    cond: Expr,
+    then: Vec<Stmt>,
+    elsifs: Vec<(Expr, Vec<Stmt>)>,
+    else_branch: Option<Vec<Stmt>>,
+    l: usize,
+    r: usize,
+) -> Stmt {
+    let mut branches = vec![(cond, then)];
+    branches.extend(elsifs);
+    compound(
+        st,
+        StmtKind::If {
+            branches,
+            else_branch,
+        },
+        l,
+        r,
+    )
+}
+
+/// `CASE ... END_CASE`: groups labels and statements into arms.
+pub fn case_stmt(
+    st: &State,
+    selector: Expr,
+    items: Vec<CaseItem>,
+    else_branch: Option<Vec<Stmt>>,
+    l: usize,
+    r: usize,
+) -> Stmt {
+    let mut arms: Vec<CaseArm> = Vec::new();
+    for item in items {
+        match item {
+            CaseItem::Labels(labels, span) => arms.push(CaseArm {
+                labels,
+                body: Vec::new(),
+                span,
+            }),
+            CaseItem::Stmt(s) => match arms.last_mut() {
+                Some(arm) => arm.body.push(s),
+                None => st.error(
+                    "E107",
+                    s.span,
+                    "statement before the first CASE label: expected a label such as `1:`",
+                ),
+            },
+        }
+    }
+    for arm in &mut arms {
+        arm.body = stmt_list(std::mem::take(&mut arm.body));
+    }
+    compound(
+        st,
+        StmtKind::Case {
+            selector,
+            arms,
+            else_branch,
+        },
+        l,
+        r,
+    )
+}
+
+/// `expr;` where `expr` contains a call: must be the call itself.
+pub fn call_stmt(st: &State, e: Expr, l: usize, r: usize) -> Stmt {
+    let span = st.span(l, r);
+    match e.kind {
+        ExprKind::Call(c) => Stmt {
+            kind: StmtKind::Call(c),
+            span,
+        },
+        _ => {
+            st.error(
+                "E103",
+                e.span,
+                "this expression is not a statement: expected an assignment `:=` or a call",
+            );
+            Stmt {
+                kind: StmtKind::Empty,
+                span,
+            }
+        }
+    }
+}
+
+/// `x;`: a name alone.
+pub fn bare_stmt(st: &State, e: Expr, l: usize, r: usize) -> Stmt {
+    let shown = st
+        .text()
+        .get(e.span.start as usize..e.span.end as usize)
+        .unwrap_or("?")
+        .to_string();
+    st.error(
+        "E103",
+        e.span,
+        format!("`{shown}` alone is not a statement: expected `{shown} := ...` or `{shown}(...)`"),
+    );
+    Stmt {
+        kind: StmtKind::Empty,
+        span: st.span(l, r),
+    }
+}
+
+// ------------------------------------------------------------------ declarations
+
+/// A `VAR...END_VAR` block; `quals` holds `None` for CONSTANT.
+pub fn var_block(
+    st: &State,
+    kind: VarKind,
+    quals: Vec<Option<Retain>>,
+    decls: Vec<VarDecl>,
+    l: usize,
+    r: usize,
+) -> VarBlock {
+    VarBlock {
+        kind,
+        constant: quals.iter().any(Option::is_none),
+        retain: quals.iter().flatten().last().copied(),
+        decls,
+        span: st.span(l, r),
+    }
+}
+
+/// A var block outside any POU: only VAR_GLOBAL is allowed.
+pub fn top_level_globals(st: &State, vb: VarBlock) -> Option<Item> {
+    if vb.kind == VarKind::Global {
+        return Some(Item::Globals(vb));
+    }
+    let at = Span {
+        end: vb.span.start,
+        ..vb.span
+    };
+    st.error(
+        "E111",
+        at,
+        "variable block outside a POU: only VAR_GLOBAL may appear at the top level \
+         (is a `PROGRAM name` header missing?)",
+    );
+    None
+}
+
+/// `ARRAY [ranges] OF elem`.
+pub fn array_type(
+    st: &State,
+    ranges: Vec<(Expr, Expr)>,
+    elem: TypeSpec,
+    l: usize,
+    r: usize,
+) -> TypeSpec {
+    let span = st.span(l, r);
+    if type_depth(&elem) >= MAX_INIT_DEPTH {
+        st.too_deep(span, "array type", MAX_INIT_DEPTH);
+        return elem;
+    }
+    TypeSpec::Array {
+        ranges,
+        elem: Box::new(elem),
+        span,
+    }
+}
+
+fn guard_init(st: &State, init: Initializer, span: Span) -> Initializer {
+    if init_depth(&init) > MAX_INIT_DEPTH {
+        st.too_deep(span, "initializer", MAX_INIT_DEPTH);
+        return Initializer::Array(Vec::new(), span);
+    }
+    init
+}
+
+/// `[a, n(b), m()]`.
+pub fn array_init(st: &State, elems: Vec<ArrayInitElem>, l: usize, r: usize) -> Initializer {
+    let span = st.span(l, r);
+    guard_init(st, Initializer::Array(elems, span), span)
+}
+
+/// `(a := x, b := y)`.
+pub fn struct_init(
+    st: &State,
+    fields: Vec<(Ident, Initializer)>,
+    l: usize,
+    r: usize,
+) -> Initializer {
+    let span = st.span(l, r);
+    guard_init(st, Initializer::Struct(fields, span), span)
+}
+
+/// A POU.
+#[allow(clippy::too_many_arguments)]
+pub fn pou(
+    st: &State,
+    kind: PouKind,
+    name: Ident,
+    return_type: Option<TypeSpec>,
+    var_blocks: Vec<VarBlock>,
+    body: Body,
+    l: usize,
+    r: usize,
+) -> Pou {
+    Pou {
+        kind,
+        name,
+        return_type,
+        var_blocks,
+        body,
+        span: st.span(l, r),
+    }
+}
+
+// ------------------------------------------------------------------ SFC
+
+/// Intermediate element of a POU body.
+pub enum BodyElem {
+    /// A plain statement.
+    Stmt(Stmt),
+    /// A step, transition or action.
+    Sfc(SfcElement),
+}
+
+/// ST statements, or an SFC chart if any chart element is present.
+pub fn body(elems: Vec<BodyElem>) -> Body {
+    if elems.iter().all(|e| matches!(e, BodyElem::Stmt(_))) {
+        let stmts = elems
+            .into_iter()
+            .filter_map(|e| match e {
+                BodyElem::Stmt(s) => Some(s),
+                BodyElem::Sfc(_) => None,
+            })
+            .collect();
+        return Body::St(stmt_list(stmts));
+    }
+    let mut out = Vec::with_capacity(elems.len());
+    let mut absorb = false;
+    for e in elems {
+        match e {
+            BodyElem::Stmt(s) => {
+                if absorb && s.kind == StmtKind::Empty {
+                    absorb = false;
+                    continue;
+                }
+                absorb = is_compound(&s);
+                out.push(SfcElement::Statement(s));
+            }
+            BodyElem::Sfc(x) => {
+                absorb = false;
+                out.push(x);
+            }
+        }
+    }
+    Body::Sfc(out)
+}
+
+/// Qualifiers of IEC 61131-3 action associations.
+const QUALIFIERS: [&str; 11] = ["N", "R", "S", "L", "D", "P", "P0", "P1", "SD", "DS", "SL"];
+/// Qualifiers that take a duration.
+const TIMED: [&str; 5] = ["L", "D", "SD", "DS", "SL"];
+
+/// `A(qualifier, duration, indicators...)`: the first argument is the
+/// qualifier when it is one of the qualifier names; a timed qualifier takes
+/// the next argument as duration; the remaining arguments are indicator
+/// variables.
+pub fn association(
+    st: &State,
+    action: Ident,
+    args: Vec<Expr>,
+    l: usize,
+    r: usize,
+) -> Option<ActionAssociation> {
+    let mut args = args.into_iter().peekable();
+    let mut qualifier = None;
+    if let Some(Expr {
+        kind: ExprKind::Name(id),
+        ..
+    }) = args.peek()
+        && QUALIFIERS.contains(&id.key().as_str())
+    {
+        qualifier = Some(id.clone());
+        args.next();
+    }
+    let timed = qualifier
+        .as_ref()
+        .is_some_and(|q| TIMED.contains(&q.key().as_str()));
+    let duration = if timed { args.next() } else { None };
+    let mut indicators = Vec::new();
+    for a in args {
+        match a.kind {
+            ExprKind::Name(id) => indicators.push(id),
+            _ => {
+                let why = match &qualifier {
+                    Some(q) if !timed => {
+                        format!(
+                            "qualifier {} takes no duration; expected an indicator variable",
+                            q.name
+                        )
+                    }
+                    _ => "expected an indicator variable name".to_string(),
+                };
+                st.error("E104", a.span, why);
+            }
+        }
+    }
+    Some(ActionAssociation {
+        action,
+        qualifier,
+        duration,
+        indicators,
+        span: st.span(l, r),
+    })
+}
+
+/// `(PRIORITY := n)` of a transition.
+pub fn priority(st: &State, key: Ident, e: Expr) -> Expr {
+    if key.key() != "PRIORITY" {
+        st.error(
+            "E105",
+            key.span,
+            format!(
+                "expected `PRIORITY := n` in transition, found `{}`",
+                key.name
+            ),
+        );
+    }
+    e
+}
+
+// ------------------------------------------------------------------ configuration
+
+/// Intermediate element of a CONFIGURATION or RESOURCE.
+pub enum ConfElem {
+    /// VAR_GLOBAL block.
+    Globals(VarBlock),
+    /// RESOURCE (only directly in a configuration).
+    Resource(Resource),
+    /// TASK.
+    Task(TaskDecl),
+    /// PROGRAM instance.
+    Program(ProgramInstance),
+    /// A recovered syntax error.
+    Error,
+}
+
+/// `CONFIGURATION`; tasks and programs given directly go to an implicit
+/// resource named like the configuration.
+pub fn configuration(
+    st: &State,
+    name: Ident,
+    elems: Vec<ConfElem>,
+    l: usize,
+    r: usize,
+) -> Configuration {
+    let span = st.span(l, r);
+    let mut globals = Vec::new();
+    let mut resources = Vec::new();
+    let mut implicit = Resource {
+        name: name.clone(),
+        on: None,
+        globals: Vec::new(),
+        tasks: Vec::new(),
+        programs: Vec::new(),
+        span,
+    };
+    for e in elems {
+        match e {
+            ConfElem::Globals(g) => globals.push(g),
+            ConfElem::Resource(res) => resources.push(res),
+            ConfElem::Task(t) => implicit.tasks.push(t),
+            ConfElem::Program(p) => implicit.programs.push(p),
+            ConfElem::Error => {}
+        }
+    }
+    if !implicit.tasks.is_empty() || !implicit.programs.is_empty() {
+        resources.push(implicit);
+    }
+    Configuration {
+        name,
+        globals,
+        resources,
+        span,
+    }
+}
+
+/// `RESOURCE name ON type ... END_RESOURCE`.
+pub fn resource(
+    st: &State,
+    name: Ident,
+    on: Option<Ident>,
+    elems: Vec<ConfElem>,
+    l: usize,
+    r: usize,
+) -> Resource {
+    let mut res = Resource {
+        name,
+        on,
+        globals: Vec::new(),
+        tasks: Vec::new(),
+        programs: Vec::new(),
+        span: st.span(l, r),
+    };
+    for e in elems {
+        match e {
+            ConfElem::Globals(g) => res.globals.push(g),
+            ConfElem::Task(t) => res.tasks.push(t),
+            ConfElem::Program(p) => res.programs.push(p),
+            ConfElem::Resource(_) | ConfElem::Error => {}
+        }
+    }
+    res
+}

@@ -1,0 +1,309 @@
+//! The lexer: runs the `logos` scanner, decodes literals, classifies
+//! keywords, and reports malformed input as `E0xx` diagnostics (then keeps
+//! going). Line breaks become [`Tok::Eol`]; [`crate::syntax::layout`] decides
+//! where they matter.
+
+use crate::diagnostics::Diagnostics;
+use crate::source::{FileId, Span};
+use crate::syntax::ast::{AddrSize, Area, DirectAddress, Ident, Literal, LiteralValue};
+use crate::syntax::literal::{
+    decode_string, decode_typed_body, parse_date_body, parse_dt_body, parse_duration_body,
+    parse_int_text, parse_real_text, parse_tod_body,
+};
+use crate::syntax::token::{Kw, PrefixKind, Raw, Tok, prefix_kind};
+use logos::Logos;
+
+/// A token with its byte range, as the grammar wants it.
+pub type Spanned = (usize, Tok, usize);
+
+/// Lexes `text`. Never fails: bad input is reported into `diags` and either
+/// skipped or turned into a harmless placeholder token.
+pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
+    let mut out = Vec::with_capacity(text.len() / 4);
+    let mut lexer = Raw::lexer(text);
+    let mut bad_run: Option<(usize, usize)> = None;
+    let span = |s: usize, e: usize| Span::new(file, s, e);
+    while let Some(raw) = lexer.next() {
+        let r = lexer.span();
+        let slice = lexer.slice();
+        let Ok(raw) = raw else {
+            // Merge adjacent invalid characters into one diagnostic.
+            match &mut bad_run {
+                Some((_, e)) if *e == r.start => *e = r.end,
+                _ => {
+                    flush_bad(file, text, &mut bad_run, diags);
+                    bad_run = Some((r.start, r.end));
+                }
+            }
+            continue;
+        };
+        flush_bad(file, text, &mut bad_run, diags);
+        let tok = match raw {
+            Raw::Newline => Tok::Eol,
+            Raw::BlockComment => {
+                if !slice.ends_with("*)") || slice.len() < 4 {
+                    diags.error(
+                        "E002",
+                        span(r.start, r.start + 2),
+                        "unterminated comment: `(*` has no closing `*)`",
+                    );
+                }
+                if slice.contains('\n') {
+                    Tok::Eol
+                } else {
+                    continue;
+                }
+            }
+            Raw::LineComment => continue,
+            Raw::Pragma => {
+                if slice.ends_with('}') {
+                    let shown: String = slice.chars().take(40).collect();
+                    let more = if shown.len() < slice.len() { "..." } else { "" };
+                    diags.warning(
+                        "W001",
+                        span(r.start, r.end),
+                        format!("pragma `{shown}{more}` ignored"),
+                    );
+                } else {
+                    diags.error(
+                        "E010",
+                        span(r.start, r.start + 1),
+                        "unterminated pragma: `{` has no closing `}`",
+                    );
+                }
+                if slice.contains('\n') {
+                    Tok::Eol
+                } else {
+                    continue;
+                }
+            }
+            Raw::Word => word(slice),
+            Raw::Typed => typed(file, slice, r.start, diags),
+            Raw::Int | Raw::Based => {
+                let value = parse_int_text(slice).unwrap_or_else(|m| {
+                    diags.error("E005", span(r.start, r.end), m);
+                    0
+                });
+                lit(LiteralValue::Int(value), None)
+            }
+            Raw::Real => {
+                let value = parse_real_text(slice).unwrap_or_else(|m| {
+                    diags.error("E005", span(r.start, r.end), m);
+                    0.0
+                });
+                lit(LiteralValue::Real(value), None)
+            }
+            Raw::SString | Raw::DString => {
+                let wide = raw == Raw::DString;
+                let value = string(file, slice, r.start, wide, diags);
+                lit(LiteralValue::String { value, wide }, None)
+            }
+            Raw::Direct => match direct(file, slice, r.start) {
+                Ok(d) => Tok::Direct(d),
+                Err(m) => {
+                    diags.error("E009", span(r.start, r.end), m);
+                    Tok::Ident(String::from("_"))
+                }
+            },
+            Raw::Assign => Tok::Assign,
+            Raw::Arrow => Tok::Arrow,
+            Raw::Colon => Tok::Colon,
+            Raw::Semi => Tok::Semi,
+            Raw::Comma => Tok::Comma,
+            Raw::Dot => Tok::Dot,
+            Raw::DotDot => Tok::DotDot,
+            Raw::LParen => Tok::LParen,
+            Raw::RParen => Tok::RParen,
+            Raw::LBracket => Tok::LBracket,
+            Raw::RBracket => Tok::RBracket,
+            Raw::Plus => Tok::Plus,
+            Raw::Minus => Tok::Minus,
+            Raw::Star => Tok::Star,
+            Raw::Power => Tok::Power,
+            Raw::Slash => Tok::Slash,
+            Raw::Amp => Tok::Amp,
+            Raw::Eq => Tok::Eq,
+            Raw::Ne => Tok::Ne,
+            Raw::Lt => Tok::Lt,
+            Raw::Le => Tok::Le,
+            Raw::Gt => Tok::Gt,
+            Raw::Ge => Tok::Ge,
+            Raw::Bar => Tok::Bar,
+        };
+        out.push((r.start, tok, r.end));
+    }
+    flush_bad(file, text, &mut bad_run, diags);
+    out
+}
+
+fn flush_bad(file: FileId, text: &str, run: &mut Option<(usize, usize)>, diags: &mut Diagnostics) {
+    if let Some((s, e)) = run.take() {
+        let shown: String = text.get(s..e).unwrap_or("?").chars().take(20).collect();
+        diags.error(
+            "E001",
+            Span::new(file, s, e),
+            format!("invalid character `{}` in source", shown.escape_debug()),
+        );
+    }
+}
+
+fn lit(value: LiteralValue, type_prefix: Option<Ident>) -> Tok {
+    Tok::Lit(Literal { value, type_prefix })
+}
+
+/// A word: keyword, `TRUE`/`FALSE`, or identifier.
+fn word(slice: &str) -> Tok {
+    if slice.eq_ignore_ascii_case("TRUE") {
+        return lit(LiteralValue::Bool(true), None);
+    }
+    if slice.eq_ignore_ascii_case("FALSE") {
+        return lit(LiteralValue::Bool(false), None);
+    }
+    match Kw::lookup(slice) {
+        Some(k) => Tok::Kw(k),
+        None => Tok::Ident(slice.to_string()),
+    }
+}
+
+/// Decodes a string literal token (with its quotes).
+fn string(file: FileId, slice: &str, start: usize, wide: bool, diags: &mut Diagnostics) -> String {
+    let quote = if wide { '"' } else { '\'' };
+    let terminated = slice.len() >= 2 && slice.ends_with(quote) && closes(slice);
+    let inner = if terminated {
+        &slice[1..slice.len() - 1]
+    } else {
+        diags.error(
+            "E003",
+            Span::new(file, start, start + slice.len()),
+            format!("unterminated string: missing closing {quote} before the end of the line"),
+        );
+        &slice[1..]
+    };
+    match decode_string(inner, wide) {
+        Ok(s) => s,
+        Err((s, e, m)) => {
+            diags.error("E004", Span::new(file, start + 1 + s, start + 1 + e), m);
+            String::new()
+        }
+    }
+}
+
+/// True when the final quote of `slice` is not escaped by `$` (counting
+/// consecutive `$` signs).
+fn closes(slice: &str) -> bool {
+    let body = &slice.as_bytes()[1..slice.len() - 1];
+    let dollars = body.iter().rev().take_while(|c| **c == b'$').count();
+    dollars % 2 == 0
+}
+
+/// Decodes `PREFIX#body`.
+fn typed(file: FileId, slice: &str, start: usize, diags: &mut Diagnostics) -> Tok {
+    let hash = slice.find('#').unwrap_or(slice.len());
+    let prefix = &slice[..hash];
+    let body = slice.get(hash + 1..).unwrap_or("");
+    let whole = Span::new(file, start, start + slice.len());
+    let prefix_ident = Ident {
+        name: prefix.to_string(),
+        span: Span::new(file, start, start + hash),
+    };
+    let fail = |diags: &mut Diagnostics, code, msg: String| {
+        diags.error(code, whole, msg);
+    };
+    let result = match prefix_kind(prefix) {
+        PrefixKind::Duration { long } => match parse_duration_body(body) {
+            Ok(nanos) => Ok(LiteralValue::Duration { nanos, long }),
+            Err(m) => Err(("E006", m)),
+        },
+        PrefixKind::Date { long } => match parse_date_body(body) {
+            Ok(nanos) => Ok(LiteralValue::Date { nanos, long }),
+            Err(m) => Err(("E007", m)),
+        },
+        PrefixKind::TimeOfDay { long } => match parse_tod_body(body) {
+            Ok(nanos) => Ok(LiteralValue::TimeOfDay { nanos, long }),
+            Err(m) => Err(("E007", m)),
+        },
+        PrefixKind::DateTime { long } => match parse_dt_body(body) {
+            Ok(nanos) => Ok(LiteralValue::DateTime { nanos, long }),
+            Err(m) => Err(("E007", m)),
+        },
+        PrefixKind::Type => match decode_typed_body(prefix, body) {
+            Ok(LiteralValue::EnumValue(mut id)) => {
+                id.span = Span::new(file, start + hash + 1, start + slice.len());
+                return lit(LiteralValue::EnumValue(id), Some(prefix_ident));
+            }
+            Ok(v) => return lit(v, Some(prefix_ident)),
+            Err(m) => Err(("E008", m)),
+        },
+    };
+    match result {
+        Ok(v) => lit(v, None),
+        Err((code, m)) => {
+            let m = if body.is_empty() {
+                format!("missing value after `{prefix}#`")
+            } else {
+                m
+            };
+            fail(diags, code, m);
+            lit(LiteralValue::Int(0), None)
+        }
+    }
+}
+
+/// Decodes `%IX0.3`, `%QW4`, `%I0.0.0.0.1`, `%MD12`, `%I*`.
+pub fn direct(file: FileId, slice: &str, start: usize) -> Result<DirectAddress, String> {
+    let rest = &slice[1..];
+    let letters: String = rest
+        .chars()
+        .take_while(|c| c.is_ascii_alphabetic())
+        .collect::<String>()
+        .to_ascii_uppercase();
+    let tail = &rest[letters.len()..];
+    let mut chars = letters.chars();
+    let area = match chars.next() {
+        Some('I') => Area::Input,
+        Some('Q') => Area::Output,
+        Some('M') => Area::Memory,
+        _ => {
+            return Err(format!(
+                "direct address `{slice}` must start with %I, %Q or %M"
+            ));
+        }
+    };
+    let size = match chars.next() {
+        None => None,
+        Some('X') => Some(AddrSize::Bit),
+        Some('B') => Some(AddrSize::Byte),
+        Some('W') => Some(AddrSize::Word),
+        Some('D') => Some(AddrSize::Dword),
+        Some('L') => Some(AddrSize::Lword),
+        Some(c) => {
+            return Err(format!(
+                "unknown size `{c}` in direct address `{slice}` (use X, B, W, D or L)"
+            ));
+        }
+    };
+    if chars.next().is_some() {
+        return Err(format!("malformed direct address `{slice}`"));
+    }
+    let fields = if tail == "*" {
+        Vec::new()
+    } else if tail.is_empty() {
+        return Err(format!("direct address `{slice}` has no address fields"));
+    } else {
+        tail.split('.')
+            .map(|f| {
+                let f: String = f.chars().filter(|c| *c != '_').collect();
+                f.parse::<u64>()
+                    .map_err(|_| format!("address field `{f}` of `{slice}` is not a valid number"))
+            })
+            .collect::<Result<Vec<u64>, String>>()?
+    };
+    Ok(DirectAddress {
+        area,
+        size: size.unwrap_or(AddrSize::Bit),
+        explicit_size: size.is_some(),
+        fields,
+        text: slice.to_string(),
+        span: Span::new(file, start, start + slice.len()),
+    })
+}

@@ -1,0 +1,194 @@
+//! Glue to the lalrpop-generated parser (`grammars/plc.lalrpop`) and the
+//! conversion of its errors into `E1xx` diagnostics worded in user terms.
+
+use crate::diagnostics::{Diagnostic, Diagnostics};
+use crate::source::Span;
+use crate::syntax::ast::CompilationUnit;
+use crate::syntax::construct::State;
+use crate::syntax::lexer::Spanned;
+use crate::syntax::token::Tok;
+use lalrpop_util::ParseError;
+
+lalrpop_util::lalrpop_mod!(
+    #[allow(
+        clippy::all,
+        clippy::pedantic,
+        unused,
+        missing_docs,
+        unused_qualifications
+    )]
+    grammar,
+    "/plc.rs"
+);
+
+/// Words that other dialects use and plcrun does not support; named
+/// explicitly in messages (`E110`).
+const UNSUPPORTED: [&str; 16] = [
+    "R_EDGE",
+    "F_EDGE",
+    "VAR_ACCESS",
+    "VAR_CONFIG",
+    "METHOD",
+    "END_METHOD",
+    "INTERFACE",
+    "PROPERTY",
+    "CLASS",
+    "EXTENDS",
+    "IMPLEMENTS",
+    "POINTER",
+    "REF_TO",
+    "NAMESPACE",
+    "USING",
+    "OVERLAP",
+];
+
+/// Parses a laid-out token stream (see [`crate::syntax::layout`]) of `text`.
+pub fn parse_tokens(
+    st: State<'_>,
+    tokens: Vec<Spanned>,
+    diags: &mut Diagnostics,
+) -> CompilationUnit {
+    let parser = grammar::UnitParser::new();
+    let result = parser.parse(&st, tokens.into_iter().map(Ok::<Spanned, ()>));
+    let unit = match result {
+        Ok(unit) => unit,
+        Err(e) => {
+            let d = recovery_diagnostic(&st, e);
+            st.syntax_error(d);
+            CompilationUnit::default()
+        }
+    };
+    for d in st.finish() {
+        diags.push(d);
+    }
+    unit
+}
+
+/// How a found token is named in messages.
+fn found(st: &State, tok: &Tok, l: usize, r: usize) -> String {
+    match tok {
+        Tok::Eol => "end of line".to_string(),
+        _ => {
+            let text: String = st
+                .text()
+                .get(l..r)
+                .unwrap_or("?")
+                .chars()
+                .take(40)
+                .collect();
+            format!("`{text}`")
+        }
+    }
+}
+
+/// How an expected terminal is named in messages.
+fn expected_name(raw: &str) -> String {
+    let name = raw.trim_matches('"').replace("\\\"", "\"");
+    match name.as_str() {
+        "identifier" => "a name".to_string(),
+        "literal" => "a literal".to_string(),
+        "direct address" => "a direct address".to_string(),
+        "end of line" => "end of line".to_string(),
+        "label" => "a label".to_string(),
+        "IL operator" => "an IL operator".to_string(),
+        "function name" => "a function name".to_string(),
+        "FB input operator" => "an FB input operator".to_string(),
+        _ => format!("`{name}`"),
+    }
+}
+
+const OPERATORS: [&str; 18] = [
+    "`+`", "`-`", "`*`", "`/`", "`**`", "`=`", "`<>`", "`<`", "`>`", "`<=`", "`>=`", "`&`",
+    "`AND`", "`OR`", "`XOR`", "`MOD`", "`.`", "`[`",
+];
+
+/// Summarises an expected-token list: operators are folded into "an
+/// operator", `END_...` keywords come first, at most six items are shown.
+fn expected_text(expected: &[String]) -> String {
+    let names: Vec<String> = expected.iter().map(|e| expected_name(e)).collect();
+    let mut shown: Vec<String> = names
+        .iter()
+        .filter(|n| !OPERATORS.contains(&n.as_str()) && n.as_str() != "`(`")
+        .cloned()
+        .collect();
+    let had_ops = shown.len() < names.len();
+    if shown.is_empty() {
+        shown = names;
+    } else if had_ops && shown.len() > 1 {
+        shown.push("an operator".to_string());
+    }
+    shown.sort_by_key(|n| {
+        if n.starts_with("`END_") {
+            0
+        } else if n == "`;`" {
+            1
+        } else if n.starts_with('`') {
+            2
+        } else {
+            3
+        }
+    });
+    shown.dedup();
+    let more = shown.len() > 6;
+    shown.truncate(6);
+    match shown.len() {
+        0 => "something else".to_string(),
+        1 => shown.remove(0),
+        _ => {
+            let last = shown.pop().unwrap_or_default();
+            let list = format!("{} or {last}", shown.join(", "));
+            if more {
+                format!("one of {list}, ...")
+            } else {
+                list
+            }
+        }
+    }
+}
+
+/// Converts a parse error into a diagnostic.
+pub fn recovery_diagnostic(st: &State, e: ParseError<usize, Tok, ()>) -> Diagnostic {
+    let span = |l: usize, r: usize| Span::new(st.file(), l, r.max(l));
+    match e {
+        ParseError::UnrecognizedToken {
+            token: (l, tok, r),
+            expected,
+        } => {
+            if let Tok::Ident(word) = &tok
+                && UNSUPPORTED.contains(&word.to_ascii_uppercase().as_str())
+            {
+                return Diagnostic::error(
+                    "E110",
+                    span(l, r),
+                    format!("`{word}` is not supported by plcrun"),
+                );
+            }
+            Diagnostic::error(
+                "E101",
+                span(l, r),
+                format!(
+                    "expected {}, found {}",
+                    expected_text(&expected),
+                    found(st, &tok, l, r)
+                ),
+            )
+        }
+        ParseError::UnrecognizedEof { location, expected } => Diagnostic::error(
+            "E102",
+            span(location, location),
+            format!(
+                "unexpected end of file: expected {}",
+                expected_text(&expected)
+            ),
+        ),
+        ParseError::ExtraToken { token: (l, tok, r) } => Diagnostic::error(
+            "E101",
+            span(l, r),
+            format!("unexpected {}", found(st, &tok, l, r)),
+        ),
+        ParseError::InvalidToken { location } => {
+            Diagnostic::error("E101", span(location, location), "invalid token")
+        }
+        ParseError::User { .. } => Diagnostic::error("E101", span(0, 0), "syntax error"),
+    }
+}
