@@ -13,3 +13,5 @@ pub mod stdlib;
 pub mod syntax;
 pub mod types;
 pub mod vm;
+
+pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault, Value};

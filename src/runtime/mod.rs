@@ -8,3 +8,5 @@
 pub mod format;
 pub mod stimulus;
 pub mod trace;
+pub mod engine;
+pub mod names;

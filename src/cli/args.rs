@@ -1,0 +1,60 @@
+//! Command-line options.
+
+use clap::Parser;
+use std::path::PathBuf;
+
+/// `plcrun FILES... --cycles N [options]`: run a program and print a trace.
+#[derive(Debug, Parser)]
+#[command(
+    name = "plcrun",
+    version,
+    about = "Run IEC 61131-3 programs (IL, ST, SFC) on a virtual clock and print a trace",
+    after_help = "Check sources without running them: plcrun check FILES...\nExit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault."
+)]
+pub struct RunArgs {
+    /// Source files (IL, ST and SFC may be mixed; the language is recognised from the content).
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Number of cycles to run.
+    #[arg(long)]
+    pub cycles: u64,
+    /// Cycle time of the implicit task (e.g. 10ms, T#100ms).
+    #[arg(long, default_value = "10ms")]
+    pub cycle_time: String,
+    /// The PROGRAM to run when the files hold several.
+    #[arg(long)]
+    pub program: Option<String>,
+    /// Initial value NAME=VALUE (IEC literal), applied before cycle 0. Repeatable.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// Stimulus CSV file (first column `cycle` or `time`).
+    #[arg(long)]
+    pub stimulus: Option<PathBuf>,
+    /// Comma-separated variables to trace (default: VAR_OUTPUTs and %Q variables).
+    #[arg(long, value_delimiter = ',')]
+    pub trace: Vec<String>,
+    /// Trace format.
+    #[arg(long, default_value = "csv", value_parser = ["table", "csv", "jsonl"])]
+    pub format: String,
+    /// Print the first row, then only rows where a traced value changed.
+    #[arg(long)]
+    pub changes_only: bool,
+    /// Write the trace to FILE instead of standard output.
+    #[arg(long)]
+    pub output: Option<PathBuf>,
+    /// Wall-clock limit of one cycle (e.g. 1s, 250ms); 0 disables it.
+    #[arg(long, default_value = "1s")]
+    pub watchdog: String,
+    /// Pace cycles on the wall clock instead of running as fast as possible.
+    #[arg(long)]
+    pub realtime: bool,
+}
+
+/// `plcrun check FILES...`: parse and check only.
+#[derive(Debug, Parser)]
+#[command(name = "plcrun check", about = "Parse and check IEC 61131-3 sources; exit 0 iff there is no error")]
+pub struct CheckArgs {
+    /// Source files.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+}

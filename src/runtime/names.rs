@@ -1,0 +1,225 @@
+//! Naming variables from outside the program (trace, stimulus, `--set`,
+//! the embedding API): `x`, `inst.ET`, `arr[3]`, `grid[1,2]`, `S1.X`,
+//! `prog.x` for configuration instances, and located addresses `%IX0.1`.
+
+use crate::ir::image::Image;
+use crate::ir::types::{MemberKind, TypeId, TypeKind, step_layout};
+use crate::types::ElemType;
+
+/// A resolved variable: where it is and what it holds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VarRef {
+    /// The name as the user wrote it.
+    pub name: String,
+    /// Absolute slot address.
+    pub addr: u32,
+    /// Type.
+    pub ty: TypeId,
+}
+
+/// One step of a path.
+#[derive(Debug, Clone, PartialEq)]
+enum Seg {
+    Member(String),
+    Index(Vec<i64>),
+}
+
+fn parse_path(text: &str) -> Result<(String, Vec<Seg>), String> {
+    let t = text.trim();
+    if t.is_empty() {
+        return Err("empty variable name".into());
+    }
+    if t.starts_with('%') {
+        return Ok((t.to_string(), Vec::new()));
+    }
+    let bytes: Vec<char> = t.chars().collect();
+    let mut i = 0;
+    let ident = |i: &mut usize| -> Result<String, String> {
+        let start = *i;
+        while *i < bytes.len() && (bytes[*i].is_alphanumeric() || bytes[*i] == '_') {
+            *i += 1;
+        }
+        if start == *i {
+            return Err(format!("`{text}` is not a variable name"));
+        }
+        Ok(bytes[start..*i].iter().collect())
+    };
+    let root = ident(&mut i)?;
+    let mut segs = Vec::new();
+    while i < bytes.len() {
+        match bytes[i] {
+            '.' => {
+                i += 1;
+                segs.push(Seg::Member(ident(&mut i)?));
+            }
+            '[' => {
+                let close = bytes[i..]
+                    .iter()
+                    .position(|c| *c == ']')
+                    .ok_or_else(|| format!("`{text}`: missing `]`"))?;
+                let inner: String = bytes[i + 1..i + close].iter().collect();
+                let mut idx = Vec::new();
+                for part in inner.split(',') {
+                    idx.push(
+                        part.trim()
+                            .parse::<i64>()
+                            .map_err(|_| format!("`{text}`: array index `{}` is not an integer", part.trim()))?,
+                    );
+                }
+                segs.push(Seg::Index(idx));
+                i += close + 1;
+            }
+            c => return Err(format!("`{text}`: unexpected `{c}`")),
+        }
+    }
+    Ok((root, segs))
+}
+
+/// Normalises a direct address text: `%I0.1` → `%IX0.1`, case-insensitive.
+fn normalize(text: &str) -> String {
+    let upper = text.trim().to_ascii_uppercase();
+    let rest = &upper[1..];
+    let mut chars = rest.chars();
+    let area = chars.next().unwrap_or('?');
+    let after: String = chars.collect();
+    match after.chars().next() {
+        Some('X' | 'B' | 'W' | 'D' | 'L') => format!("%{area}{after}"),
+        _ => format!("%{area}X{after}"),
+    }
+}
+
+/// Resolves `text` against the image; the error names what is unknown.
+pub fn resolve(image: &Image, text: &str) -> Result<VarRef, String> {
+    let (root, segs) = parse_path(text)?;
+    let (mut addr, mut ty) = if root.starts_with('%') {
+        let key = normalize(&root);
+        let r = image
+            .globals
+            .iter()
+            .find(|r| r.location.as_deref() == Some(key.as_str()))
+            .ok_or_else(|| format!("no variable is located at `{root}`"))?;
+        (r.addr, r.ty)
+    } else {
+        find_root(image, &root)?
+    };
+    for seg in segs {
+        match seg {
+            Seg::Member(m) => {
+                let (off, t) = member(image, ty, &m)
+                    .ok_or_else(|| format!("`{text}`: {} has no member `{m}`", image.types.name(ty)))?;
+                addr += off;
+                ty = t;
+            }
+            Seg::Index(idx) => {
+                let TypeKind::Array { dims, elem } = &image.types.get(ty).kind else {
+                    return Err(format!("`{text}`: {} is not an array", image.types.name(ty)));
+                };
+                if idx.len() != dims.len() {
+                    return Err(format!(
+                        "`{text}`: the array has {} dimension(s), {} index(es) given",
+                        dims.len(),
+                        idx.len()
+                    ));
+                }
+                let mut linear: u64 = 0;
+                for (i, d) in idx.iter().zip(dims) {
+                    if *i < d.lo || *i > d.hi {
+                        return Err(format!("`{text}`: index {i} is outside [{}..{}]", d.lo, d.hi));
+                    }
+                    linear = linear * d.len() + (*i - d.lo) as u64;
+                }
+                addr += (linear * image.types.size(*elem) as u64) as u32;
+                ty = *elem;
+            }
+        }
+    }
+    Ok(VarRef {
+        name: text.trim().to_string(),
+        addr,
+        ty,
+    })
+}
+
+fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId), String> {
+    // A variable of the (single) program, then globals, then instance names.
+    if image.programs.len() == 1 {
+        let inst = &image.programs[0];
+        if let Some(m) = image
+            .types
+            .members(inst.ty)
+            .iter()
+            .find(|m| m.name.eq_ignore_ascii_case(name) && m.kind != MemberKind::InOut)
+        {
+            return Ok((inst.base + m.offset, m.ty));
+        }
+    }
+    if let Some(r) = image.globals.iter().find(|r| r.name.eq_ignore_ascii_case(name)) {
+        return Ok((r.addr, r.ty));
+    }
+    if let Some(inst) = image.programs.iter().find(|p| p.name.eq_ignore_ascii_case(name)) {
+        return Ok((inst.base, inst.ty));
+    }
+    Err(format!("unknown variable `{name}`"))
+}
+
+/// Offset and type of member `name` of `ty`.
+fn member(image: &Image, ty: TypeId, name: &str) -> Option<(u32, TypeId)> {
+    use crate::ir::types::TypeTable;
+    match &image.types.get(ty).kind {
+        TypeKind::Struct { .. } | TypeKind::Pou { .. } => image
+            .types
+            .members(ty)
+            .iter()
+            .find(|m| m.name.eq_ignore_ascii_case(name) && m.kind != MemberKind::InOut)
+            .map(|m| (m.offset, m.ty)),
+        TypeKind::NativeFb(fb) => crate::stdlib::interface(*fb)
+            .iter()
+            .enumerate()
+            .find(|(_, p)| {
+                p.dir != crate::stdlib::ParamDir::Hidden
+                    && (p.name.eq_ignore_ascii_case(name)
+                        || p.aliases.iter().any(|a| a.eq_ignore_ascii_case(name)))
+            })
+            .map(|(i, p)| (i as u32, TypeTable::elem(p.ty))),
+        TypeKind::Step => match name.to_ascii_uppercase().as_str() {
+            "X" => Some((step_layout::X, TypeTable::elem(ElemType::Bool))),
+            "T" => Some((step_layout::T, TypeTable::elem(ElemType::Time))),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// The variables traced when the user names none: every program
+/// instance's VAR_OUTPUTs and its `%Q` located variables.
+pub fn default_trace(image: &Image) -> Vec<String> {
+    let mut out = Vec::new();
+    let qualify = image.programs.len() > 1;
+    for inst in &image.programs {
+        for m in image.types.members(inst.ty) {
+            if m.kind == MemberKind::Output {
+                out.push(if qualify {
+                    format!("{}.{}", inst.name, m.name)
+                } else {
+                    m.name.clone()
+                });
+            }
+        }
+    }
+    // One name per %Q address: the declared name when there is one.
+    let mut seen: Vec<u32> = Vec::new();
+    let outputs = image
+        .globals
+        .iter()
+        .filter(|r| r.location.as_deref().is_some_and(|l| l.starts_with("%Q")));
+    let mut named: Vec<&crate::ir::image::RootVar> = outputs.collect();
+    named.sort_by_key(|r| (r.name.starts_with('%'), r.addr));
+    for r in named {
+        if seen.contains(&r.addr) || out.iter().any(|n| n.eq_ignore_ascii_case(&r.name)) {
+            continue;
+        }
+        seen.push(r.addr);
+        out.push(r.name.clone());
+    }
+    out
+}
