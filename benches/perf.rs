@@ -23,7 +23,6 @@
 #[path = "native/mod.rs"]
 mod native;
 
-#[cfg(feature = "bench-plcrun")]
 #[path = "generate.rs"]
 mod generate;
 
@@ -199,7 +198,6 @@ fn cases() -> Vec<Case> {
 // It is compiled only with `--features bench-plcrun` until that API exists.
 // ---------------------------------------------------------------------------
 
-#[cfg(feature = "bench-plcrun")]
 mod plc {
     use super::Runner;
 
@@ -213,7 +211,7 @@ mod plc {
         /// Compiles `text` (named `file` in diagnostics).
         pub fn compile(file: &str, text: &str, var: &'static str) -> Result<Self, String> {
             let plc = plcrun::Plc::compile_files(&[(file, text)], &plcrun::Options::default())
-                .map_err(|e| format!("{file} does not compile: {e:?}"))?;
+                .map_err(|e| format!("{file} does not compile:\n{e}"))?;
             Ok(Self { plc, var })
         }
     }
@@ -226,13 +224,13 @@ mod plc {
             // plcrun's scheduler owns the clock; it is at k × 10 ms in cycle
             // k, like the `now_ns` the harness passes.
             if let Err(e) = self.plc.run_cycle() {
-                panic!("plcrun cycle failed: {e:?}");
+                panic!("plcrun cycle failed: {e}");
             }
         }
         fn checksum(&self) -> i64 {
             match self.plc.read_i64(self.var) {
                 Ok(v) => v,
-                Err(e) => panic!("cannot read `{}`: {e:?}", self.var),
+                Err(e) => panic!("cannot read `{}`: {e}", self.var),
             }
         }
     }
@@ -241,7 +239,6 @@ mod plc {
 /// A fresh plcrun runner for `case`: `None` when the harness is built
 /// without the `bench-plcrun` feature, `Some(Err)` when the program does not
 /// compile.
-#[cfg(feature = "bench-plcrun")]
 fn plcrun_runner(case: &Case) -> Option<Result<Box<dyn Runner>, String>> {
     Some(
         plc::PlcRunner::compile(case.file, case.source, case.checksum_var)
@@ -249,11 +246,6 @@ fn plcrun_runner(case: &Case) -> Option<Result<Box<dyn Runner>, String>> {
     )
 }
 
-/// Without the `bench-plcrun` feature there is no plcrun runner.
-#[cfg(not(feature = "bench-plcrun"))]
-fn plcrun_runner(_case: &Case) -> Option<Result<Box<dyn Runner>, String>> {
-    None
-}
 
 // ---------------------------------------------------------------------------
 // Measurement.
@@ -417,8 +409,7 @@ fn main() {
         println!("geomean ratio (a, b, c unrolled, d): {geomean:.2}");
     }
 
-    #[cfg(feature = "bench-plcrun")]
-    {
+        {
         failed |= plcrun_only::run(opts.quick);
     }
 
@@ -430,7 +421,6 @@ fn main() {
 
 /// Benchmarks without a native counterpart: compile time of a generated
 /// 100 000-line program and SFC chart-size scaling.
-#[cfg(feature = "bench-plcrun")]
 mod plcrun_only {
     use super::generate::{large_program, sfc_ring, sfc_ring_checksum};
     use std::time::Instant;
@@ -447,7 +437,7 @@ mod plcrun_only {
         match compiled {
             Ok(_) => println!("compile 100 000-line program: {ms:.1} ms (budget 1000 ms)"),
             Err(e) => {
-                println!("compile 100 000-line program: FAILED: {e:?}");
+                println!("compile 100 000-line program: FAILED: {e}");
                 failed = true;
             }
         }
@@ -462,7 +452,7 @@ mod plcrun_only {
                     match plcrun::Plc::compile_files(&[("sfc_ring.st", src.as_str())], &options) {
                         Ok(p) => p,
                         Err(e) => {
-                            println!("  {steps:>6} steps, {mode:<6}: does not compile: {e:?}");
+                            println!("  {steps:>6} steps, {mode:<6}: does not compile: {e}");
                             failed = true;
                             continue;
                         }
@@ -470,7 +460,7 @@ mod plcrun_only {
                 let start = Instant::now();
                 for _ in 0..cycles {
                     if let Err(e) = plc.run_cycle() {
-                        panic!("SFC ring of {steps} steps: cycle failed: {e:?}");
+                        panic!("SFC ring of {steps} steps: cycle failed: {e}");
                     }
                 }
                 let ns = start.elapsed().as_nanos() as f64 / cycles as f64;

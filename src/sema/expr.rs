@@ -2,7 +2,7 @@
 //! folding, and emission of typed instructions.
 
 use super::Compiler;
-use super::consts::{Const, literal_to_slot, literal_type, slot_to_int, slot_to_real, typed_literal};
+use super::consts::{Const, literal_to_slot, literal_type, slot_to_int, slot_to_real};
 use super::declare::{address_type, normalize_address};
 use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
 use super::model::Storage;
@@ -1058,10 +1058,6 @@ impl Compiler<'_> {
         }))
     }
 
-    /// Type prefix helper for typed literals used elsewhere.
-    pub(super) fn literal_elem(l: &Literal) -> Option<ElemType> {
-        typed_literal(l)
-    }
 }
 
 /// The comparison an operator denotes.
