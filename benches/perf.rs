@@ -246,7 +246,6 @@ fn plcrun_runner(case: &Case) -> Option<Result<Box<dyn Runner>, String>> {
     )
 }
 
-
 // ---------------------------------------------------------------------------
 // Measurement.
 // ---------------------------------------------------------------------------
@@ -409,7 +408,7 @@ fn main() {
         println!("geomean ratio (a, b, c unrolled, d): {geomean:.2}");
     }
 
-        {
+    {
         failed |= plcrun_only::run(opts.quick);
     }
 

@@ -331,9 +331,7 @@ impl ElemType {
                 },
                 _ => false,
             },
-            Family::Bool | Family::Bits => {
-                to.is_bit() && rank_bits(self) < rank_bits(to) && rank_bits(to) > 0
-            }
+            Family::Bool | Family::Bits => rank_bits(to) > 0 && rank_bits(self) < rank_bits(to),
             Family::Real => self == Real && to == Lreal,
             Family::Duration => self == Time && to == Ltime,
             Family::Char => self == Char && to == Wchar,

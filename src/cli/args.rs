@@ -52,7 +52,10 @@ pub struct RunArgs {
 
 /// `plcrun check FILES...`: parse and check only.
 #[derive(Debug, Parser)]
-#[command(name = "plcrun check", about = "Parse and check IEC 61131-3 sources; exit 0 iff there is no error")]
+#[command(
+    name = "plcrun check",
+    about = "Parse and check IEC 61131-3 sources; exit 0 iff there is no error"
+)]
 pub struct CheckArgs {
     /// Source files.
     #[arg(required = true)]

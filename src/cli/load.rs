@@ -10,7 +10,8 @@ use std::path::PathBuf;
 pub fn load(files: &[PathBuf], diags: &mut Diagnostics) -> Result<SourceMap, String> {
     let mut sources = SourceMap::new();
     for path in files {
-        let bytes = std::fs::read(path).map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+        let bytes =
+            std::fs::read(path).map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
         let name = path.display().to_string();
         match String::from_utf8(bytes) {
             Ok(text) => {

@@ -104,7 +104,9 @@ pub fn run(args: &RunArgs) -> i32 {
     if let Some(path) = &args.stimulus {
         let text = match std::fs::read_to_string(path) {
             Ok(t) => t,
-            Err(e) => return usage_error(format!("cannot read stimulus `{}`: {e}", path.display())),
+            Err(e) => {
+                return usage_error(format!("cannot read stimulus `{}`: {e}", path.display()));
+            }
         };
         let stim = match parse_stimulus(&text) {
             Ok(s) => s,
@@ -142,7 +144,11 @@ pub fn run(args: &RunArgs) -> i32 {
     let names: Vec<String> = if args.trace.is_empty() {
         plc.default_trace()
     } else {
-        args.trace.iter().map(|s| s.trim().to_string()).filter(|s| !s.is_empty()).collect()
+        args.trace
+            .iter()
+            .map(|s| s.trim().to_string())
+            .filter(|s| !s.is_empty())
+            .collect()
     };
     let mut traced: Vec<VarRef> = Vec::new();
     for n in &names {
@@ -159,7 +165,10 @@ pub fn run(args: &RunArgs) -> i32 {
         None => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
     };
     let mut writer = TraceWriter::new(out, format, names, args.changes_only);
-    let mut cells: Vec<TraceCell> = traced.iter().map(|_| TraceCell::from_string("", false)).collect();
+    let mut cells: Vec<TraceCell> = traced
+        .iter()
+        .map(|_| TraceCell::from_string("", false))
+        .collect();
     let mut cursor = StimulusCursor::new();
     let mut applied = 0usize;
     let started = Instant::now();

@@ -248,38 +248,108 @@ pub enum Op {
     /// Checked 1-D element store.
     StoreElem { idx: Slot, s: Slot, desc: u32 },
     /// Element address: `d := mem[p] + checked(idx - lo) * stride` (descriptor `desc`; its offset is added too).
-    ElemAddr { d: Slot, p: Slot, idx: Slot, desc: u32 },
+    ElemAddr {
+        d: Slot,
+        p: Slot,
+        idx: Slot,
+        desc: u32,
+    },
     /// Linearised multi-dimensional index step: `acc := acc * len + checked(idx - lo)`.
     IndexStep { acc: Slot, idx: Slot, desc: u32 },
 
     /// Signed add wrapped at `64 - shift` bits.
-    AddS { d: Slot, a: Slot, b: Slot, shift: u8 },
+    AddS {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Unsigned add wrapped at `64 - shift` bits.
-    AddU { d: Slot, a: Slot, b: Slot, shift: u8 },
+    AddU {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Signed add of an immediate.
-    AddSI { d: Slot, a: Slot, imm: i32, shift: u8 },
+    AddSI {
+        d: Slot,
+        a: Slot,
+        imm: i32,
+        shift: u8,
+    },
     /// Signed subtract.
-    SubS { d: Slot, a: Slot, b: Slot, shift: u8 },
+    SubS {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Unsigned subtract.
-    SubU { d: Slot, a: Slot, b: Slot, shift: u8 },
+    SubU {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Signed multiply.
-    MulS { d: Slot, a: Slot, b: Slot, shift: u8 },
+    MulS {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Unsigned multiply.
-    MulU { d: Slot, a: Slot, b: Slot, shift: u8 },
+    MulU {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Signed divide (truncating); faults on zero.
-    DivS { d: Slot, a: Slot, b: Slot, shift: u8 },
+    DivS {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Unsigned divide; faults on zero.
-    DivU { d: Slot, a: Slot, b: Slot, shift: u8 },
+    DivU {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Signed MOD (sign of the dividend); faults on zero.
-    ModS { d: Slot, a: Slot, b: Slot, shift: u8 },
+    ModS {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Unsigned MOD; faults on zero.
-    ModU { d: Slot, a: Slot, b: Slot, shift: u8 },
+    ModU {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Signed MOD by a non-zero immediate.
-    ModSI { d: Slot, a: Slot, imm: i32, shift: u8 },
+    ModSI {
+        d: Slot,
+        a: Slot,
+        imm: i32,
+        shift: u8,
+    },
     /// Signed negation.
     NegS { d: Slot, a: Slot, shift: u8 },
     /// Integer power `a ** b` (b >= 0), wrapping.
-    PowS { d: Slot, a: Slot, b: Slot, shift: u8 },
+    PowS {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        shift: u8,
+    },
     /// Signed ABS, wrapping.
     AbsS { d: Slot, a: Slot, shift: u8 },
 
@@ -327,7 +397,13 @@ pub enum Op {
     /// `d := a OR NOT b` (BOOL).
     OrN { d: Slot, a: Slot, b: Slot },
     /// Shifts/rotations of a `bits`-wide bit string by `n` (slot `b`).
-    Shift { d: Slot, a: Slot, b: Slot, kind: ShiftKind, bits: u8 },
+    Shift {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        kind: ShiftKind,
+        bits: u8,
+    },
 
     /// Signed comparison (also for unsigned up to 32 bits, TIME, dates).
     CmpS { d: Slot, a: Slot, b: Slot, cmp: Cmp },
@@ -338,7 +414,12 @@ pub enum Op {
     /// LREAL comparison.
     CmpF64 { d: Slot, a: Slot, b: Slot, cmp: Cmp },
     /// Signed comparison with an immediate.
-    CmpSI { d: Slot, a: Slot, imm: i32, cmp: Cmp },
+    CmpSI {
+        d: Slot,
+        a: Slot,
+        imm: i32,
+        cmp: Cmp,
+    },
     /// String comparison.
     CmpStr { d: Slot, a: Slot, b: Slot, cmp: Cmp },
 
@@ -347,15 +428,40 @@ pub enum Op {
     /// `d := if c { a } else { b }` (SEL, MUX chains).
     Select { d: Slot, c: Slot, a: Slot, b: Slot },
     /// Signed MIN/MAX: `d := if (a < b) == min { a } else { b }`.
-    MinMaxS { d: Slot, a: Slot, b: Slot, max: bool },
+    MinMaxS {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        max: bool,
+    },
     /// Unsigned 64-bit MIN/MAX.
-    MinMaxU { d: Slot, a: Slot, b: Slot, max: bool },
+    MinMaxU {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        max: bool,
+    },
     /// REAL MIN/MAX.
-    MinMaxF32 { d: Slot, a: Slot, b: Slot, max: bool },
+    MinMaxF32 {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        max: bool,
+    },
     /// LREAL MIN/MAX.
-    MinMaxF64 { d: Slot, a: Slot, b: Slot, max: bool },
+    MinMaxF64 {
+        d: Slot,
+        a: Slot,
+        b: Slot,
+        max: bool,
+    },
     /// MUX: `d := slots[first + k]` for k = value of `k`, faulting if `k >= n`.
-    Mux { d: Slot, k: Slot, first: Slot, n: u32 },
+    Mux {
+        d: Slot,
+        k: Slot,
+        first: Slot,
+        n: u32,
+    },
     /// Duration times REAL/LREAL factor (TIME * REAL), rounding to ns.
     MulTimeF64 { d: Slot, a: Slot, b: Slot },
     /// Duration divided by LREAL.
@@ -379,9 +485,19 @@ pub enum Op {
     /// Jump if the BOOL slot is TRUE.
     Jnz { c: Slot, t: Target },
     /// Jump if `a cmp imm` is FALSE (fused compare and branch on signed values).
-    JnCmpSI { a: Slot, imm: i32, cmp: Cmp, t: Target },
+    JnCmpSI {
+        a: Slot,
+        imm: i32,
+        cmp: Cmp,
+        t: Target,
+    },
     /// Jump if `a cmp b` is FALSE (signed).
-    JnCmpS { a: Slot, b: Slot, cmp: Cmp, t: Target },
+    JnCmpS {
+        a: Slot,
+        b: Slot,
+        cmp: Cmp,
+        t: Target,
+    },
 
     /// Call a user FB body (code block `code`) on the instance at frame slot `inst`.
     CallFb { code: u32, inst: Slot },
@@ -419,7 +535,11 @@ mod tests {
 
     #[test]
     fn ops_stay_small() {
-        assert!(std::mem::size_of::<Op>() <= 16, "{}", std::mem::size_of::<Op>());
+        assert!(
+            std::mem::size_of::<Op>() <= 16,
+            "{}",
+            std::mem::size_of::<Op>()
+        );
     }
 
     #[test]

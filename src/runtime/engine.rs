@@ -105,7 +105,9 @@ impl Value {
     /// The value as a signed integer, if it is an integer-like scalar.
     pub fn as_i64(&self) -> Option<i64> {
         match self {
-            Value::Scalar(t, raw) if t.is_signed_int() || t.family() == crate::types::Family::Duration => {
+            Value::Scalar(t, raw)
+                if t.is_signed_int() || t.family() == crate::types::Family::Duration =>
+            {
                 Some(*raw as i64)
             }
             Value::Scalar(t, raw) if t.is_int() || t.is_bit() => i64::try_from(*raw).ok(),
@@ -147,7 +149,9 @@ impl Plc {
         let mut diags = Diagnostics::new();
         let image = check_sources(&sources, options, false, &mut diags);
         match image {
-            Some(image) if !diags.has_errors() => Ok(Plc::from_image(image, sources, diags, options)),
+            Some(image) if !diags.has_errors() => {
+                Ok(Plc::from_image(image, sources, diags, options))
+            }
             _ => Err(CompileError {
                 diagnostics: diags,
                 sources,
@@ -155,7 +159,12 @@ impl Plc {
         }
     }
 
-    fn from_image(image: Image, sources: SourceMap, warnings: Diagnostics, options: &Options) -> Plc {
+    fn from_image(
+        image: Image,
+        sources: SourceMap,
+        warnings: Diagnostics,
+        options: &Options,
+    ) -> Plc {
         let mut machine = Machine::new(&image);
         machine.set_watchdog(options.watchdog);
         let base_tick = image
@@ -246,7 +255,11 @@ impl Plc {
 
     fn locate(&self, fault: Fault) -> RuntimeFault {
         let block = &self.image.codes[fault.code as usize];
-        let span: Span = block.spans.get(fault.pc as usize).copied().unwrap_or_default();
+        let span: Span = block
+            .spans
+            .get(fault.pc as usize)
+            .copied()
+            .unwrap_or_default();
         let file = self.sources.file(span.file);
         let (line, _) = file.line_col(span.start);
         RuntimeFault {
@@ -262,9 +275,10 @@ impl Plc {
     pub fn resolve(&self, name: &str) -> Result<VarRef, String> {
         let r = names::resolve(&self.image, name)?;
         match &self.image.types.get(r.ty).kind {
-            TypeKind::Elem(_) | TypeKind::Str { .. } | TypeKind::Enum { .. } | TypeKind::Subrange { .. } => {
-                Ok(r)
-            }
+            TypeKind::Elem(_)
+            | TypeKind::Str { .. }
+            | TypeKind::Enum { .. }
+            | TypeKind::Subrange { .. } => Ok(r),
             _ => Err(format!(
                 "`{name}` is a {}, not a single value",
                 self.image.types.name(r.ty)
@@ -317,7 +331,9 @@ impl Plc {
             TypeKind::Str { wide, .. } => {
                 let lit = crate::syntax::parse_literal(t)?;
                 match lit.value {
-                    crate::syntax::ast::LiteralValue::String { value, .. } => Ok(Value::String(value, *wide)),
+                    crate::syntax::ast::LiteralValue::String { value, .. } => {
+                        Ok(Value::String(value, *wide))
+                    }
                     _ => Err(format!("`{t}` is not a string literal (write 'text')")),
                 }
             }
@@ -327,11 +343,14 @@ impl Plc {
                     .iter()
                     .find(|(n, _)| n.eq_ignore_ascii_case(name))
                     .map(|(n, v)| Value::Enum(n.clone(), *v))
-                    .ok_or_else(|| format!("`{t}` is not a value of {}", self.image.types.name(r.ty)))
+                    .ok_or_else(|| {
+                        format!("`{t}` is not a value of {}", self.image.types.name(r.ty))
+                    })
             }
             TypeKind::Subrange { base, lo, hi } => {
-                let raw = sema::consts::parse_scalar(t, *base)
-                    .ok_or_else(|| format!("`{t}` is not a valid {}", self.image.types.name(r.ty)))?;
+                let raw = sema::consts::parse_scalar(t, *base).ok_or_else(|| {
+                    format!("`{t}` is not a valid {}", self.image.types.name(r.ty))
+                })?;
                 let v = raw as i64;
                 if v < *lo || v > *hi {
                     return Err(format!("{v} is outside {}", self.image.types.name(r.ty)));

@@ -5,8 +5,8 @@
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
+pub mod engine;
 pub mod format;
+pub mod names;
 pub mod stimulus;
 pub mod trace;
-pub mod engine;
-pub mod names;

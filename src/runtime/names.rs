@@ -60,11 +60,9 @@ fn parse_path(text: &str) -> Result<(String, Vec<Seg>), String> {
                 let inner: String = bytes[i + 1..i + close].iter().collect();
                 let mut idx = Vec::new();
                 for part in inner.split(',') {
-                    idx.push(
-                        part.trim()
-                            .parse::<i64>()
-                            .map_err(|_| format!("`{text}`: array index `{}` is not an integer", part.trim()))?,
-                    );
+                    idx.push(part.trim().parse::<i64>().map_err(|_| {
+                        format!("`{text}`: array index `{}` is not an integer", part.trim())
+                    })?);
                 }
                 segs.push(Seg::Index(idx));
                 i += close + 1;
@@ -105,14 +103,18 @@ pub fn resolve(image: &Image, text: &str) -> Result<VarRef, String> {
     for seg in segs {
         match seg {
             Seg::Member(m) => {
-                let (off, t) = member(image, ty, &m)
-                    .ok_or_else(|| format!("`{text}`: {} has no member `{m}`", image.types.name(ty)))?;
+                let (off, t) = member(image, ty, &m).ok_or_else(|| {
+                    format!("`{text}`: {} has no member `{m}`", image.types.name(ty))
+                })?;
                 addr += off;
                 ty = t;
             }
             Seg::Index(idx) => {
                 let TypeKind::Array { dims, elem } = &image.types.get(ty).kind else {
-                    return Err(format!("`{text}`: {} is not an array", image.types.name(ty)));
+                    return Err(format!(
+                        "`{text}`: {} is not an array",
+                        image.types.name(ty)
+                    ));
                 };
                 if idx.len() != dims.len() {
                     return Err(format!(
@@ -124,7 +126,10 @@ pub fn resolve(image: &Image, text: &str) -> Result<VarRef, String> {
                 let mut linear: u64 = 0;
                 for (i, d) in idx.iter().zip(dims) {
                     if *i < d.lo || *i > d.hi {
-                        return Err(format!("`{text}`: index {i} is outside [{}..{}]", d.lo, d.hi));
+                        return Err(format!(
+                            "`{text}`: index {i} is outside [{}..{}]",
+                            d.lo, d.hi
+                        ));
                     }
                     linear = linear * d.len() + (*i - d.lo) as u64;
                 }
@@ -153,10 +158,18 @@ fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId), String> {
             return Ok((inst.base + m.offset, m.ty));
         }
     }
-    if let Some(r) = image.globals.iter().find(|r| r.name.eq_ignore_ascii_case(name)) {
+    if let Some(r) = image
+        .globals
+        .iter()
+        .find(|r| r.name.eq_ignore_ascii_case(name))
+    {
         return Ok((r.addr, r.ty));
     }
-    if let Some(inst) = image.programs.iter().find(|p| p.name.eq_ignore_ascii_case(name)) {
+    if let Some(inst) = image
+        .programs
+        .iter()
+        .find(|p| p.name.eq_ignore_ascii_case(name))
+    {
         return Ok((inst.base, inst.ty));
     }
     Err(format!("unknown variable `{name}`"))

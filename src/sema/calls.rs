@@ -24,7 +24,8 @@ struct Param {
 
 impl Param {
     fn matches(&self, name: &str) -> bool {
-        self.name.eq_ignore_ascii_case(name) || self.aliases.iter().any(|a| a.eq_ignore_ascii_case(name))
+        self.name.eq_ignore_ascii_case(name)
+            || self.aliases.iter().any(|a| a.eq_ignore_ascii_case(name))
     }
 }
 
@@ -67,7 +68,13 @@ impl Compiler<'_> {
         Val::error()
     }
 
-    fn call_function(&mut self, f: &mut Fcx, call: &Call, expect: Option<TypeId>, want: bool) -> Val {
+    fn call_function(
+        &mut self,
+        f: &mut Fcx,
+        call: &Call,
+        expect: Option<TypeId>,
+        want: bool,
+    ) -> Val {
         let ExprKind::Name(id) = &call.callee.kind else {
             return Val::error();
         };
@@ -80,7 +87,11 @@ impl Compiler<'_> {
                     format!(
                         "`{}` is a {}: declare an instance and call the instance",
                         id.name,
-                        if self.pous[p].kind == PouKind::Program { "PROGRAM" } else { "FUNCTION_BLOCK" }
+                        if self.pous[p].kind == PouKind::Program {
+                            "PROGRAM"
+                        } else {
+                            "FUNCTION_BLOCK"
+                        }
                     ),
                 );
                 return Val::error();
@@ -94,7 +105,10 @@ impl Compiler<'_> {
             self.diags.error(
                 "E406",
                 id.span,
-                format!("`{}` is a function block type: declare an instance and call it", id.name),
+                format!(
+                    "`{}` is a function block type: declare an instance and call it",
+                    id.name
+                ),
             );
         } else {
             self.diags
@@ -104,7 +118,13 @@ impl Compiler<'_> {
     }
 
     /// Matches arguments to parameters (formal by name, or non-formal in order).
-    fn bind<'e>(&mut self, params: &[Param], args: &'e [Arg], callee: &str, span: Span) -> Option<Bound<'e>> {
+    fn bind<'e>(
+        &mut self,
+        params: &[Param],
+        args: &'e [Arg],
+        callee: &str,
+        span: Span,
+    ) -> Option<Bound<'e>> {
         let mut b = Bound {
             inputs: Vec::new(),
             outputs: Vec::new(),
@@ -156,7 +176,9 @@ impl Compiler<'_> {
                         continue;
                     }
                     match params.iter().position(|p| p.matches(&name.name)) {
-                        Some(i) if matches!(params[i].kind, MemberKind::Input | MemberKind::InOut) => {
+                        Some(i)
+                            if matches!(params[i].kind, MemberKind::Input | MemberKind::InOut) =>
+                        {
                             if b.inputs.iter().any(|(j, _)| *j == i) {
                                 self.diags.error(
                                     "E404",
@@ -171,7 +193,10 @@ impl Compiler<'_> {
                             self.diags.error(
                                 "E403",
                                 name.span,
-                                format!("`{}` is an output of `{callee}`: use `{} => variable`", name.name, name.name),
+                                format!(
+                                    "`{}` is an output of `{callee}`: use `{} => variable`",
+                                    name.name, name.name
+                                ),
                             );
                             ok = false;
                         }
@@ -245,7 +270,12 @@ impl Compiler<'_> {
             } => (
                 members
                     .iter()
-                    .filter(|m| matches!(m.kind, MemberKind::Input | MemberKind::Output | MemberKind::InOut))
+                    .filter(|m| {
+                        matches!(
+                            m.kind,
+                            MemberKind::Input | MemberKind::Output | MemberKind::InOut
+                        )
+                    })
                     .map(|m| Param {
                         name: m.name.clone(),
                         aliases: &[],
@@ -259,11 +289,8 @@ impl Compiler<'_> {
             ),
             TypeKind::Error => return,
             _ => {
-                self.diags.error(
-                    "E406",
-                    span,
-                    format!("a {} cannot be called", def.name),
-                );
+                self.diags
+                    .error("E406", span, format!("a {} cannot be called", def.name));
                 return;
             }
         };
@@ -305,9 +332,16 @@ impl Compiler<'_> {
                 input_image: false,
             };
             if p.kind == MemberKind::InOut {
-                let Some(arg) = self.place(f, e) else { continue };
+                let Some(arg) = self.place(f, e) else {
+                    continue;
+                };
                 if arg.ty != p.ty && arg.ty != TypeTable::error() {
-                    self.mismatch(e.span, Ty::T(arg.ty), p.ty, &format!("VAR_IN_OUT `{}`", p.name));
+                    self.mismatch(
+                        e.span,
+                        Ty::T(arg.ty),
+                        p.ty,
+                        &format!("VAR_IN_OUT `{}`", p.name),
+                    );
                     continue;
                 }
                 if !arg.writable {
@@ -338,7 +372,10 @@ impl Compiler<'_> {
             (TypeKind::Pou { code, .. }, Some(o), _) => {
                 let caller = self.pous[f.pou].code;
                 self.calls.push((caller, *code, span));
-                f.emit(Op::CallFb { code: *code, inst: o });
+                f.emit(Op::CallFb {
+                    code: *code,
+                    inst: o,
+                });
             }
             (TypeKind::Pou { code, .. }, None, Some(p)) => {
                 let caller = self.pous[f.pou].code;
@@ -387,8 +424,17 @@ impl Compiler<'_> {
     }
 
     /// Copies an output parameter to the `=>` target.
-    fn store_output(&mut self, f: &mut Fcx, src: &PlaceRef, negated: bool, target: &Expr, name: &str) {
-        let Some(t) = self.place(f, target) else { return };
+    fn store_output(
+        &mut self,
+        f: &mut Fcx,
+        src: &PlaceRef,
+        negated: bool,
+        target: &Expr,
+        name: &str,
+    ) {
+        let Some(t) = self.place(f, target) else {
+            return;
+        };
         if !t.writable {
             let why = t.readonly_reason.unwrap_or("it is read-only");
             self.diags.error(
@@ -401,7 +447,8 @@ impl Compiler<'_> {
         let v = self.read_place(f, src);
         let v = if negated {
             if src.ty != TypeTable::elem(ElemType::Bool) {
-                self.diags.error("E302", target.span, "`NOT ... =>` needs a BOOL output");
+                self.diags
+                    .error("E302", target.span, "`NOT ... =>` needs a BOOL output");
                 return;
             }
             let s = self.materialize(f, &v);
@@ -430,7 +477,12 @@ impl Compiler<'_> {
         };
         let Some(t) = self.place(f, eno) else { return };
         if t.ty != TypeTable::elem(ElemType::Bool) {
-            self.mismatch(eno.span, Ty::T(t.ty), TypeTable::elem(ElemType::Bool), "ENO");
+            self.mismatch(
+                eno.span,
+                Ty::T(t.ty),
+                TypeTable::elem(ElemType::Bool),
+                "ENO",
+            );
             return;
         }
         let one = f.temp();
@@ -498,7 +550,9 @@ impl Compiler<'_> {
             let what = format!("argument `{}`", prm.name);
             match (prm.kind, given) {
                 (MemberKind::InOut, Some(e)) => {
-                    let Some(arg) = self.place(f, e) else { continue };
+                    let Some(arg) = self.place(f, e) else {
+                        continue;
+                    };
                     if arg.ty != prm.ty {
                         self.mismatch(e.span, Ty::T(arg.ty), prm.ty, &what);
                         continue;
@@ -518,12 +572,17 @@ impl Compiler<'_> {
                     self.diags.error(
                         "E404",
                         call.span,
-                        format!("VAR_IN_OUT `{}` of `{}` must be connected", prm.name, callee.name),
+                        format!(
+                            "VAR_IN_OUT `{}` of `{}` must be connected",
+                            prm.name, callee.name
+                        ),
                     );
                 }
                 (_, Some(e)) => match self.types.get(prm.ty).kind {
                     TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                        let Some(src) = self.place(f, e) else { continue };
+                        let Some(src) = self.place(f, e) else {
+                            continue;
+                        };
                         if !self.assignable(src.ty, prm.ty) {
                             self.mismatch(e.span, Ty::T(src.ty), prm.ty, &what);
                             continue;
@@ -565,10 +624,17 @@ impl Compiler<'_> {
                 },
                 (_, None) => {
                     // Missing input: its declared initial value.
-                    let init = prm.default.clone().unwrap_or_else(|| self.default_init(prm.ty));
+                    let init = prm
+                        .default
+                        .clone()
+                        .unwrap_or_else(|| self.default_init(prm.ty));
                     let v = match init {
-                        ConstInit::Scalar(bits) => Val::Const(super::consts::Const::Bits(bits), Ty::T(prm.ty)),
-                        ConstInit::Str(s) => Val::Const(super::consts::Const::Str(s), Ty::T(prm.ty)),
+                        ConstInit::Scalar(bits) => {
+                            Val::Const(super::consts::Const::Bits(bits), Ty::T(prm.ty))
+                        }
+                        ConstInit::Str(s) => {
+                            Val::Const(super::consts::Const::Str(s), Ty::T(prm.ty))
+                        }
                         _ => {
                             self.diags.error(
                                 "E404",
@@ -589,7 +655,10 @@ impl Compiler<'_> {
                 Ready::Scalar(s) => {
                     if self.types.scalar(prm.ty).is_some_and(|e| e.is_string()) {
                         let id = f.temp();
-                        let at = f.emit(Op::LoadAbs { d: id, abs: prm.offset });
+                        let at = f.emit(Op::LoadAbs {
+                            d: id,
+                            abs: prm.offset,
+                        });
                         f.fixups.push((at, p));
                         f.emit(Op::StrMov { d: id, s });
                     } else {
@@ -598,12 +667,18 @@ impl Compiler<'_> {
                     }
                 }
                 Ready::Pointer(a) => {
-                    let at = f.emit(Op::StoreAbs { abs: prm.offset, s: a });
+                    let at = f.emit(Op::StoreAbs {
+                        abs: prm.offset,
+                        s: a,
+                    });
                     f.fixups.push((at, p));
                 }
                 Ready::Aggregate(a, n) => {
                     let d = f.temp();
-                    let at = f.emit(Op::LoadI { d, imm: prm.offset as i32 });
+                    let at = f.emit(Op::LoadI {
+                        d,
+                        imm: prm.offset as i32,
+                    });
                     f.fixups.push((at, p));
                     f.emit(Op::MemCopy { d, s: a, n });
                 }
@@ -635,7 +710,10 @@ impl Compiler<'_> {
         for &(i, negated, target) in &b.outputs {
             let prm = &params[i];
             let t = f.temp();
-            let at = f.emit(Op::LoadAbs { d: t, abs: prm.offset });
+            let at = f.emit(Op::LoadAbs {
+                d: t,
+                abs: prm.offset,
+            });
             f.fixups.push((at, p));
             let src = PlaceRef {
                 place: Place::Frame(t),

@@ -144,7 +144,9 @@ pub fn literal_to_slot(lit: &LiteralValue, ty: ElemType) -> Result<Const, String
             if ty.is_string() && (*wide == (ty == ElemType::WString) || !*wide) {
                 Ok(Const::Str(value.clone()))
             } else if ty.family() == Family::Char && value.chars().count() == 1 {
-                Ok(Const::Bits(value.chars().next().map(|c| c as u64).unwrap_or(0)))
+                Ok(Const::Bits(
+                    value.chars().next().map(|c| c as u64).unwrap_or(0),
+                ))
             } else {
                 Err(format!("a string literal is not a {ty}"))
             }

@@ -2,7 +2,9 @@
 //! specifications and lays out instance memory.
 
 use super::Compiler;
-use super::consts::{Const, int_to_slot, literal_to_slot, real_to_slot, slot_to_int, typed_literal};
+use super::consts::{
+    Const, int_to_slot, literal_to_slot, real_to_slot, slot_to_int, typed_literal,
+};
 use super::model::{ConstInit, LayoutState, PouInfo, Storage, VarInfo};
 use crate::ir::types::{Dim, Member, MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
@@ -473,18 +475,22 @@ impl Compiler<'_> {
                 let count: u64 = dims.iter().map(|d| d.len()).product();
                 let size = count.saturating_mul(self.types.size(elem_ty) as u64);
                 if size > 64 * 1024 * 1024 {
-                    self.diags.error(
-                        "E206",
-                        *span,
-                        "array too large (more than 64 Mi slots)",
-                    );
+                    self.diags
+                        .error("E206", *span, "array too large (more than 64 Mi slots)");
                     return TypeTable::error();
                 }
                 let dims_text: Vec<String> =
                     dims.iter().map(|d| format!("{}..{}", d.lo, d.hi)).collect();
                 self.types.intern(TypeDef {
-                    name: format!("ARRAY[{}] OF {}", dims_text.join(","), self.types.name(elem_ty)),
-                    kind: TypeKind::Array { dims, elem: elem_ty },
+                    name: format!(
+                        "ARRAY[{}] OF {}",
+                        dims_text.join(","),
+                        self.types.name(elem_ty)
+                    ),
+                    kind: TypeKind::Array {
+                        dims,
+                        elem: elem_ty,
+                    },
                     size: size as u32,
                 })
             }
@@ -502,11 +508,8 @@ impl Compiler<'_> {
                     return TypeTable::error();
                 };
                 if h < l || int_to_slot(l, b).is_none() || int_to_slot(h, b).is_none() {
-                    self.diags.error(
-                        "E206",
-                        *span,
-                        format!("invalid subrange {l}..{h} of {b}"),
-                    );
+                    self.diags
+                        .error("E206", *span, format!("invalid subrange {l}..{h} of {b}"));
                     return TypeTable::error();
                 }
                 self.types.intern(TypeDef {
@@ -521,7 +524,9 @@ impl Compiler<'_> {
             }
             TypeSpec::Enum { base, values, span } => {
                 let b = match base {
-                    Some(b) => match ElemType::from_name(&b.name).filter(|e| e.is_int() || e.is_bit()) {
+                    Some(b) => match ElemType::from_name(&b.name)
+                        .filter(|e| e.is_int() || e.is_bit())
+                    {
                         Some(e) => e,
                         None => {
                             self.diags.error(
@@ -553,7 +558,8 @@ impl Compiler<'_> {
                     next += 1;
                 }
                 if out.is_empty() {
-                    self.diags.error("E206", *span, "an enumeration needs at least one value");
+                    self.diags
+                        .error("E206", *span, "an enumeration needs at least one value");
                 }
                 let names: Vec<&str> = out.iter().map(|(n, _)| n.as_str()).collect();
                 let id = self.types.add(TypeDef {
@@ -586,7 +592,10 @@ impl Compiler<'_> {
                         .as_ref()
                         .and_then(|i| self.resolve_init(i, fty, local));
                     for name in &decl.names {
-                        if members.iter().any(|m| m.name.eq_ignore_ascii_case(&name.name)) {
+                        if members
+                            .iter()
+                            .any(|m| m.name.eq_ignore_ascii_case(&name.name))
+                        {
                             self.diags.error(
                                 "E202",
                                 name.span,
@@ -628,20 +637,13 @@ impl Compiler<'_> {
     ) -> Option<i128> {
         let r = self.const_int_inner(e, local);
         if r.is_none() {
-            self.diags.error(
-                "E205",
-                e.span,
-                "expected a constant integer expression",
-            );
+            self.diags
+                .error("E205", e.span, "expected a constant integer expression");
         }
         r
     }
 
-    fn const_int_inner(
-        &self,
-        e: &Expr,
-        local: Option<&IndexMap<String, VarInfo>>,
-    ) -> Option<i128> {
+    fn const_int_inner(&self, e: &Expr, local: Option<&IndexMap<String, VarInfo>>) -> Option<i128> {
         match &e.kind {
             ExprKind::Literal(l) => match l.value {
                 LiteralValue::Int(v) => Some(v),
@@ -784,7 +786,9 @@ impl Compiler<'_> {
                 _ => None,
             };
             if let Some(id) = name
-                && let Some((_, v)) = values.iter().find(|(n, _)| n.eq_ignore_ascii_case(&id.name))
+                && let Some((_, v)) = values
+                    .iter()
+                    .find(|(n, _)| n.eq_ignore_ascii_case(&id.name))
             {
                 return Some(Const::Bits(*v as u64));
             }
@@ -860,11 +864,13 @@ impl Compiler<'_> {
                     return literal_to_slot(&neg, elem).map_err(|m| ("E304", m));
                 }
                 match self.const_scalar(x, elem, local)? {
-                    Const::Bits(b) if elem.is_real() => Ok(Const::Bits(if elem == ElemType::Real {
-                        (-(f32::from_bits(b as u32))).to_bits() as u64
-                    } else {
-                        (-f64::from_bits(b)).to_bits()
-                    })),
+                    Const::Bits(b) if elem.is_real() => {
+                        Ok(Const::Bits(if elem == ElemType::Real {
+                            (-(f32::from_bits(b as u32))).to_bits() as u64
+                        } else {
+                            (-f64::from_bits(b)).to_bits()
+                        }))
+                    }
                     Const::Bits(b) => int_to_slot(-slot_to_int(b, elem), elem)
                         .map(Const::Bits)
                         .ok_or(("E305", format!("constant overflows {elem}"))),
@@ -892,14 +898,14 @@ impl Compiler<'_> {
                             }
                         }
                         (Some(Const::Str(s)), _) if elem.is_string() => Ok(Const::Str(s.clone())),
-                        _ => Err((
-                            "E301",
-                            format!("constant `{}` is not a {elem}", id.name),
-                        )),
+                        _ => Err(("E301", format!("constant `{}` is not a {elem}", id.name))),
                     },
                     _ => Err((
                         "E205",
-                        format!("`{}` is not a constant; initial values must be constant", id.name),
+                        format!(
+                            "`{}` is not a constant; initial values must be constant",
+                            id.name
+                        ),
                     )),
                 }
             }
@@ -946,10 +952,7 @@ impl Compiler<'_> {
                     .map(Const::Bits)
                     .ok_or(("E305", format!("constant overflows {elem}")))
             }
-            _ => Err((
-                "E205",
-                "initial values must be constant expressions".into(),
-            )),
+            _ => Err(("E205", "initial values must be constant expressions".into())),
         }
     }
 
@@ -1118,7 +1121,10 @@ impl Compiler<'_> {
                                 self.diags.error(
                                     "E201",
                                     name.span,
-                                    format!("no VAR_GLOBAL named `{}` for this VAR_EXTERNAL", name.name),
+                                    format!(
+                                        "no VAR_GLOBAL named `{}` for this VAR_EXTERNAL",
+                                        name.name
+                                    ),
                                 );
                                 continue;
                             }
@@ -1236,6 +1242,9 @@ fn unreachable_span() -> ! {
 impl TypeKind {
     /// True for types whose values can be copied (not FB instances).
     pub fn is_value_type(&self) -> bool {
-        !matches!(self, TypeKind::NativeFb(_) | TypeKind::Pou { .. } | TypeKind::Step)
+        !matches!(
+            self,
+            TypeKind::NativeFb(_) | TypeKind::Pou { .. } | TypeKind::Step
+        )
     }
 }

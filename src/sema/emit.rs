@@ -225,21 +225,65 @@ impl Fcx {
 fn dest_of(op: &Op) -> Option<Slot> {
     use Op::*;
     Some(match *op {
-        LoadK { d, .. } | LoadI { d, .. } | Mov { d, .. } | LoadAbs { d, .. }
-        | LoadInd { d, .. } | LoadElem { d, .. } | AddS { d, .. } | AddU { d, .. }
-        | AddSI { d, .. } | SubS { d, .. } | SubU { d, .. } | MulS { d, .. }
-        | MulU { d, .. } | DivS { d, .. } | DivU { d, .. } | ModS { d, .. }
-        | ModU { d, .. } | ModSI { d, .. } | NegS { d, .. } | PowS { d, .. }
-        | AbsS { d, .. } | AddF32 { d, .. } | SubF32 { d, .. } | MulF32 { d, .. }
-        | DivF32 { d, .. } | NegF32 { d, .. } | PowF32 { d, .. } | MathF32 { d, .. }
-        | AddF64 { d, .. } | SubF64 { d, .. } | MulF64 { d, .. } | DivF64 { d, .. }
-        | NegF64 { d, .. } | PowF64 { d, .. } | MathF64 { d, .. } | And { d, .. }
-        | Or { d, .. } | Xor { d, .. } | NotB { d, .. } | NotW { d, .. }
-        | AndN { d, .. } | OrN { d, .. } | Shift { d, .. } | CmpS { d, .. }
-        | CmpU { d, .. } | CmpF32 { d, .. } | CmpF64 { d, .. } | CmpSI { d, .. }
-        | CmpStr { d, .. } | Convert { d, .. } | Select { d, .. } | MinMaxS { d, .. }
-        | MinMaxU { d, .. } | MinMaxF32 { d, .. } | MinMaxF64 { d, .. } | Mux { d, .. }
-        | MulTimeF64 { d, .. } | DivTimeF64 { d, .. } | Clock { d } => d,
+        LoadK { d, .. }
+        | LoadI { d, .. }
+        | Mov { d, .. }
+        | LoadAbs { d, .. }
+        | LoadInd { d, .. }
+        | LoadElem { d, .. }
+        | AddS { d, .. }
+        | AddU { d, .. }
+        | AddSI { d, .. }
+        | SubS { d, .. }
+        | SubU { d, .. }
+        | MulS { d, .. }
+        | MulU { d, .. }
+        | DivS { d, .. }
+        | DivU { d, .. }
+        | ModS { d, .. }
+        | ModU { d, .. }
+        | ModSI { d, .. }
+        | NegS { d, .. }
+        | PowS { d, .. }
+        | AbsS { d, .. }
+        | AddF32 { d, .. }
+        | SubF32 { d, .. }
+        | MulF32 { d, .. }
+        | DivF32 { d, .. }
+        | NegF32 { d, .. }
+        | PowF32 { d, .. }
+        | MathF32 { d, .. }
+        | AddF64 { d, .. }
+        | SubF64 { d, .. }
+        | MulF64 { d, .. }
+        | DivF64 { d, .. }
+        | NegF64 { d, .. }
+        | PowF64 { d, .. }
+        | MathF64 { d, .. }
+        | And { d, .. }
+        | Or { d, .. }
+        | Xor { d, .. }
+        | NotB { d, .. }
+        | NotW { d, .. }
+        | AndN { d, .. }
+        | OrN { d, .. }
+        | Shift { d, .. }
+        | CmpS { d, .. }
+        | CmpU { d, .. }
+        | CmpF32 { d, .. }
+        | CmpF64 { d, .. }
+        | CmpSI { d, .. }
+        | CmpStr { d, .. }
+        | Convert { d, .. }
+        | Select { d, .. }
+        | MinMaxS { d, .. }
+        | MinMaxU { d, .. }
+        | MinMaxF32 { d, .. }
+        | MinMaxF64 { d, .. }
+        | Mux { d, .. }
+        | MulTimeF64 { d, .. }
+        | DivTimeF64 { d, .. }
+        | Clock { d } => d,
         _ => return None,
     })
 }
@@ -247,21 +291,65 @@ fn dest_of(op: &Op) -> Option<Slot> {
 fn set_dest(op: &mut Op, new: Slot) {
     use Op::*;
     match op {
-        LoadK { d, .. } | LoadI { d, .. } | Mov { d, .. } | LoadAbs { d, .. }
-        | LoadInd { d, .. } | LoadElem { d, .. } | AddS { d, .. } | AddU { d, .. }
-        | AddSI { d, .. } | SubS { d, .. } | SubU { d, .. } | MulS { d, .. }
-        | MulU { d, .. } | DivS { d, .. } | DivU { d, .. } | ModS { d, .. }
-        | ModU { d, .. } | ModSI { d, .. } | NegS { d, .. } | PowS { d, .. }
-        | AbsS { d, .. } | AddF32 { d, .. } | SubF32 { d, .. } | MulF32 { d, .. }
-        | DivF32 { d, .. } | NegF32 { d, .. } | PowF32 { d, .. } | MathF32 { d, .. }
-        | AddF64 { d, .. } | SubF64 { d, .. } | MulF64 { d, .. } | DivF64 { d, .. }
-        | NegF64 { d, .. } | PowF64 { d, .. } | MathF64 { d, .. } | And { d, .. }
-        | Or { d, .. } | Xor { d, .. } | NotB { d, .. } | NotW { d, .. }
-        | AndN { d, .. } | OrN { d, .. } | Shift { d, .. } | CmpS { d, .. }
-        | CmpU { d, .. } | CmpF32 { d, .. } | CmpF64 { d, .. } | CmpSI { d, .. }
-        | CmpStr { d, .. } | Convert { d, .. } | Select { d, .. } | MinMaxS { d, .. }
-        | MinMaxU { d, .. } | MinMaxF32 { d, .. } | MinMaxF64 { d, .. } | Mux { d, .. }
-        | MulTimeF64 { d, .. } | DivTimeF64 { d, .. } | Clock { d } => *d = new,
+        LoadK { d, .. }
+        | LoadI { d, .. }
+        | Mov { d, .. }
+        | LoadAbs { d, .. }
+        | LoadInd { d, .. }
+        | LoadElem { d, .. }
+        | AddS { d, .. }
+        | AddU { d, .. }
+        | AddSI { d, .. }
+        | SubS { d, .. }
+        | SubU { d, .. }
+        | MulS { d, .. }
+        | MulU { d, .. }
+        | DivS { d, .. }
+        | DivU { d, .. }
+        | ModS { d, .. }
+        | ModU { d, .. }
+        | ModSI { d, .. }
+        | NegS { d, .. }
+        | PowS { d, .. }
+        | AbsS { d, .. }
+        | AddF32 { d, .. }
+        | SubF32 { d, .. }
+        | MulF32 { d, .. }
+        | DivF32 { d, .. }
+        | NegF32 { d, .. }
+        | PowF32 { d, .. }
+        | MathF32 { d, .. }
+        | AddF64 { d, .. }
+        | SubF64 { d, .. }
+        | MulF64 { d, .. }
+        | DivF64 { d, .. }
+        | NegF64 { d, .. }
+        | PowF64 { d, .. }
+        | MathF64 { d, .. }
+        | And { d, .. }
+        | Or { d, .. }
+        | Xor { d, .. }
+        | NotB { d, .. }
+        | NotW { d, .. }
+        | AndN { d, .. }
+        | OrN { d, .. }
+        | Shift { d, .. }
+        | CmpS { d, .. }
+        | CmpU { d, .. }
+        | CmpF32 { d, .. }
+        | CmpF64 { d, .. }
+        | CmpSI { d, .. }
+        | CmpStr { d, .. }
+        | Convert { d, .. }
+        | Select { d, .. }
+        | MinMaxS { d, .. }
+        | MinMaxU { d, .. }
+        | MinMaxF32 { d, .. }
+        | MinMaxF64 { d, .. }
+        | Mux { d, .. }
+        | MulTimeF64 { d, .. }
+        | DivTimeF64 { d, .. }
+        | Clock { d } => *d = new,
         _ => {}
     }
 }

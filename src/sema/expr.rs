@@ -52,12 +52,18 @@ impl Compiler<'_> {
                 let Some(t) = v.ty().id() else {
                     return Val::error();
                 };
-                let Some(el) = self.scalar(t).filter(|e| e.is_bit() && *e != ElemType::Bool) else {
+                let Some(el) = self
+                    .scalar(t)
+                    .filter(|e| e.is_bit() && *e != ElemType::Bool)
+                else {
                     if !v.is_error() {
                         self.diags.error(
                             "E302",
                             e.span,
-                            format!("bit access needs a bit string, found {}", self.types.name(t)),
+                            format!(
+                                "bit access needs a bit string, found {}",
+                                self.types.name(t)
+                            ),
                         );
                     }
                     return Val::error();
@@ -72,7 +78,10 @@ impl Compiler<'_> {
                 }
                 let a = self.materialize(f, &v);
                 let n = f.temp();
-                f.emit(Op::LoadI { d: n, imm: *bit as i32 });
+                f.emit(Op::LoadI {
+                    d: n,
+                    imm: *bit as i32,
+                });
                 let d = f.temp();
                 f.emit(Op::Shift {
                     d,
@@ -137,8 +146,11 @@ impl Compiler<'_> {
             LiteralValue::EnumValue(id) => match self.enum_value(&id.key(), expect) {
                 Some(v) => v,
                 None => {
-                    self.diags
-                        .error("E201", span, format!("unknown enumeration value `{}`", id.name));
+                    self.diags.error(
+                        "E201",
+                        span,
+                        format!("unknown enumeration value `{}`", id.name),
+                    );
                     Val::error()
                 }
             },
@@ -183,10 +195,7 @@ impl Compiler<'_> {
                 self.diags.error(
                     "E302",
                     e.span,
-                    format!(
-                        "a {} cannot be used as a value here",
-                        self.types.name(p.ty)
-                    ),
+                    format!("a {} cannot be used as a value here", self.types.name(p.ty)),
                 );
             }
             return Val::error();
@@ -256,7 +265,9 @@ impl Compiler<'_> {
                 let def = self.types.get(b.ty).clone();
                 let (offset, ty, writable, reason) = match &def.kind {
                     TypeKind::Struct { fields } => {
-                        let m = fields.iter().find(|m| m.name.eq_ignore_ascii_case(&name.name));
+                        let m = fields
+                            .iter()
+                            .find(|m| m.name.eq_ignore_ascii_case(&name.name));
                         match m {
                             Some(m) => (m.offset, m.ty, b.writable, b.readonly_reason),
                             None => {
@@ -283,7 +294,9 @@ impl Compiler<'_> {
                                     TypeTable::elem(p.ty),
                                     !is_out && b.writable,
                                     if is_out {
-                                        Some("outputs of a function block are written only by the block")
+                                        Some(
+                                            "outputs of a function block are written only by the block",
+                                        )
                                     } else {
                                         b.readonly_reason
                                     },
@@ -300,7 +313,9 @@ impl Compiler<'_> {
                         }
                     }
                     TypeKind::Pou { members, .. } => {
-                        let m = members.iter().find(|m| m.name.eq_ignore_ascii_case(&name.name));
+                        let m = members
+                            .iter()
+                            .find(|m| m.name.eq_ignore_ascii_case(&name.name));
                         match m {
                             Some(m)
                                 if matches!(
@@ -410,7 +425,10 @@ impl Compiler<'_> {
                             self.diags.error(
                                 "E301",
                                 ix.span,
-                                format!("array index must be an integer, found {}", self.ty_name(v.ty())),
+                                format!(
+                                    "array index must be an integer, found {}",
+                                    self.ty_name(v.ty())
+                                ),
                             );
                         }
                         return None;
@@ -432,14 +450,21 @@ impl Compiler<'_> {
                             self.diags.error(
                                 "E304",
                                 *span,
-                                format!("index {i} is outside the array bounds [{}..{}]", d.lo, d.hi),
+                                format!(
+                                    "index {i} is outside the array bounds [{}..{}]",
+                                    d.lo, d.hi
+                                ),
                             );
                             return None;
                         }
                         linear = linear * d.len() + (i - d.lo as i128) as u64;
                     }
                     let place = self.offset_place(f, b.place, (linear * elem_size as u64) as u32);
-                    return Some(PlaceRef { place, ty: elem, ..b });
+                    return Some(PlaceRef {
+                        place,
+                        ty: elem,
+                        ..b
+                    });
                 }
                 // Dynamic: linearise with checked steps.
                 let total: u64 = dims.iter().map(|d| d.len()).product();
@@ -505,11 +530,8 @@ impl Compiler<'_> {
                 }
             }
             _ => {
-                self.diags.error(
-                    "E402",
-                    e.span,
-                    "this expression is not a variable",
-                );
+                self.diags
+                    .error("E402", e.span, "this expression is not a variable");
                 None
             }
         }
@@ -544,7 +566,14 @@ impl Compiler<'_> {
         }
     }
 
-    fn unary(&mut self, f: &mut Fcx, op: UnaryOp, x: &Expr, span: Span, expect: Option<TypeId>) -> Val {
+    fn unary(
+        &mut self,
+        f: &mut Fcx,
+        op: UnaryOp,
+        x: &Expr,
+        span: Span,
+        expect: Option<TypeId>,
+    ) -> Val {
         let v = self.expr(f, x, expect);
         if v.is_error() {
             return v;
@@ -564,7 +593,12 @@ impl Compiler<'_> {
                         .id()
                         .and_then(|t| self.scalar(t))
                         .is_some_and(|e| e.family() == Family::Duration);
-                if !ok || ty.id().and_then(|t| self.scalar(t)).is_some_and(|e| e.is_unsigned_int()) {
+                if !ok
+                    || ty
+                        .id()
+                        .and_then(|t| self.scalar(t))
+                        .is_some_and(|e| e.is_unsigned_int())
+                {
                     self.bad_operand(span, "unary `-`", ty);
                     return Val::error();
                 }
@@ -581,7 +615,8 @@ impl Compiler<'_> {
                         match r {
                             Some(b) => Val::Const(Const::Bits(b), Ty::T(t)),
                             None => {
-                                self.diags.error("E305", span, "constant overflow in negation");
+                                self.diags
+                                    .error("E305", span, "constant overflow in negation");
                                 Val::error()
                             }
                         }
@@ -607,7 +642,9 @@ impl Compiler<'_> {
                 let ty = v.ty();
                 match v {
                     Val::Const(Const::Int(i), t) => Val::Const(Const::Int(!i), t),
-                    Val::Const(Const::Bits(b), Ty::T(t)) if self.scalar(t).is_some_and(|e| e.is_bit()) => {
+                    Val::Const(Const::Bits(b), Ty::T(t))
+                        if self.scalar(t).is_some_and(|e| e.is_bit()) =>
+                    {
                         let e = self.scalar(t).unwrap_or(ElemType::Bool);
                         let r = if e == ElemType::Bool {
                             b ^ 1
@@ -665,7 +702,12 @@ impl Compiler<'_> {
         expect: Option<TypeId>,
     ) -> Val {
         let hint = match op {
-            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge => None,
+            BinaryOp::Eq
+            | BinaryOp::Ne
+            | BinaryOp::Lt
+            | BinaryOp::Le
+            | BinaryOp::Gt
+            | BinaryOp::Ge => None,
             _ => expect,
         };
         let va = self.expr(f, a, hint);
@@ -674,7 +716,14 @@ impl Compiler<'_> {
     }
 
     /// Applies a binary operator to two checked values.
-    pub(super) fn binary_vals(&mut self, f: &mut Fcx, op: BinaryOp, va: Val, vb: Val, span: Span) -> Val {
+    pub(super) fn binary_vals(
+        &mut self,
+        f: &mut Fcx,
+        op: BinaryOp,
+        va: Val,
+        vb: Val,
+        span: Span,
+    ) -> Val {
         if va.is_error() || vb.is_error() {
             return Val::error();
         }
@@ -710,7 +759,9 @@ impl Compiler<'_> {
                 Ty::AnyReal => false,
                 Ty::T(t) => !self.is_enum(t) && elem.is_some_and(|e| e.is_bit()),
             },
-            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div => self.is_numeric(common),
+            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div => {
+                self.is_numeric(common)
+            }
             BinaryOp::Mod => match common {
                 Ty::AnyInt => true,
                 Ty::T(t) => !self.is_enum(t) && elem.is_some_and(|e| e.is_int()),
@@ -774,17 +825,32 @@ impl Compiler<'_> {
             match op {
                 BinaryOp::Add => {
                     let d = f.temp();
-                    f.emit(Op::AddSI { d, a, imm, shift: shift_of(e) });
+                    f.emit(Op::AddSI {
+                        d,
+                        a,
+                        imm,
+                        shift: shift_of(e),
+                    });
                     return Val::Slot(d, ct);
                 }
                 BinaryOp::Sub if imm != i32::MIN => {
                     let d = f.temp();
-                    f.emit(Op::AddSI { d, a, imm: -imm, shift: shift_of(e) });
+                    f.emit(Op::AddSI {
+                        d,
+                        a,
+                        imm: -imm,
+                        shift: shift_of(e),
+                    });
                     return Val::Slot(d, ct);
                 }
                 BinaryOp::Mod if imm != 0 => {
                     let d = f.temp();
-                    f.emit(Op::ModSI { d, a, imm, shift: shift_of(e) });
+                    f.emit(Op::ModSI {
+                        d,
+                        a,
+                        imm,
+                        shift: shift_of(e),
+                    });
                     return Val::Slot(d, ct);
                 }
                 _ => {}
@@ -828,7 +894,14 @@ impl Compiler<'_> {
 
     /// TIME/DATE arithmetic: `TIME ± TIME`, `TOD ± TIME`, `DT ± TIME`,
     /// `DATE - DATE`, `TOD - TOD`, `DT - DT`, `TIME * num`, `TIME / num`.
-    fn time_arith(&mut self, f: &mut Fcx, op: BinaryOp, va: &Val, vb: &Val, span: Span) -> Option<Val> {
+    fn time_arith(
+        &mut self,
+        f: &mut Fcx,
+        op: BinaryOp,
+        va: &Val,
+        vb: &Val,
+        span: Span,
+    ) -> Option<Val> {
         let fam = |c: &Compiler, v: &Val| v.ty().id().and_then(|t| c.scalar(t));
         let (ea, eb) = (fam(self, va), fam(self, vb));
         let is_dur = |e: Option<ElemType>| e.is_some_and(|e| e.family() == Family::Duration);
@@ -836,20 +909,29 @@ impl Compiler<'_> {
         if !(is_dur(ea) || is_date(ea) || is_dur(eb) || is_date(eb)) {
             return None;
         }
-        if !matches!(op, BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div) {
+        if !matches!(
+            op,
+            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div
+        ) {
             return None;
         }
-        let time = TypeTable::elem(if ea == Some(ElemType::Ltime) || eb == Some(ElemType::Ltime) {
-            ElemType::Ltime
-        } else {
-            ElemType::Time
-        });
+        let time = TypeTable::elem(
+            if ea == Some(ElemType::Ltime) || eb == Some(ElemType::Ltime) {
+                ElemType::Ltime
+            } else {
+                ElemType::Time
+            },
+        );
         let result = match (op, ea, eb) {
             (BinaryOp::Add | BinaryOp::Sub, a, b) if is_dur(a) && is_dur(b) => time,
-            (BinaryOp::Add | BinaryOp::Sub, Some(a), b) if is_date(Some(a)) && is_dur(b) && a != ElemType::Date && a != ElemType::Ldate => {
+            (BinaryOp::Add | BinaryOp::Sub, Some(a), b)
+                if is_date(Some(a)) && is_dur(b) && a != ElemType::Date && a != ElemType::Ldate =>
+            {
                 TypeTable::elem(a)
             }
-            (BinaryOp::Add, a, Some(b)) if is_dur(a) && is_date(Some(b)) && b != ElemType::Date && b != ElemType::Ldate => {
+            (BinaryOp::Add, a, Some(b))
+                if is_dur(a) && is_date(Some(b)) && b != ElemType::Date && b != ElemType::Ldate =>
+            {
                 TypeTable::elem(b)
             }
             (BinaryOp::Sub, Some(a), Some(b)) if is_date(Some(a)) && a == b => time,
@@ -878,7 +960,8 @@ impl Compiler<'_> {
             return Some(match r {
                 Some(v) => Val::Const(Const::Bits(v as u64), Ty::T(result)),
                 None => {
-                    self.diags.error("E305", span, "constant time arithmetic overflows");
+                    self.diags
+                        .error("E305", span, "constant time arithmetic overflows");
                     Val::error()
                 }
             });
@@ -894,7 +977,15 @@ impl Compiler<'_> {
         Some(Val::Slot(d, result))
     }
 
-    fn time_scale(&mut self, f: &mut Fcx, op: BinaryOp, t: &Val, n: &Val, time: TypeId, span: Span) -> Val {
+    fn time_scale(
+        &mut self,
+        f: &mut Fcx,
+        op: BinaryOp,
+        t: &Val,
+        n: &Val,
+        time: TypeId,
+        span: Span,
+    ) -> Val {
         let a = self.materialize(f, t);
         let ne = match n.ty() {
             Ty::AnyInt => ElemType::Lint,
@@ -907,7 +998,11 @@ impl Compiler<'_> {
         if ne.is_real() {
             let b = if ne == ElemType::Real {
                 let x = f.temp();
-                f.emit(Op::Convert { d: x, a: b, conv: crate::ir::op::Conv::F32ToF64 });
+                f.emit(Op::Convert {
+                    d: x,
+                    a: b,
+                    conv: crate::ir::op::Conv::F32ToF64,
+                });
                 x
             } else {
                 b
@@ -935,7 +1030,15 @@ impl Compiler<'_> {
 
     /// Folds a binary operator over two constants. `Ok(None)` when the
     /// combination is not folded (left to run time).
-    fn fold(&mut self, op: BinaryOp, ca: &Const, ta: Ty, cb: &Const, tb: Ty, common: Ty) -> Result<Option<Val>, String> {
+    fn fold(
+        &mut self,
+        op: BinaryOp,
+        ca: &Const,
+        ta: Ty,
+        cb: &Const,
+        tb: Ty,
+        common: Ty,
+    ) -> Result<Option<Val>, String> {
         let bool_t = Ty::T(TypeTable::elem(ElemType::Bool));
         let is_cmp = matches!(
             op,
@@ -1057,7 +1160,6 @@ impl Compiler<'_> {
             _ => Val::Const(Const::Int(value), Ty::AnyInt),
         }))
     }
-
 }
 
 /// The comparison an operator denotes.

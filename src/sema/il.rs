@@ -100,8 +100,11 @@ impl Compiler<'_> {
             if let Some(l) = &line.label {
                 if let Some(prev) = declared.insert(l.key(), l.span) {
                     let _ = prev;
-                    self.diags
-                        .error("E503", l.span, format!("label `{}` is defined twice", l.name));
+                    self.diags.error(
+                        "E503",
+                        l.span,
+                        format!("label `{}` is defined twice", l.name),
+                    );
                 }
             }
         }
@@ -119,11 +122,8 @@ impl Compiler<'_> {
                 }
                 st.labels.entry(l.key()).or_insert((at, st.cr_ty));
                 if !st.stack.is_empty() {
-                    self.diags.error(
-                        "E501",
-                        l.span,
-                        "a label cannot stand inside an open `(`",
-                    );
+                    self.diags
+                        .error("E501", l.span, "a label cannot stand inside an open `(`");
                 }
             }
             if let Some(instr) = &line.instr {
@@ -223,7 +223,14 @@ impl Compiler<'_> {
         st.cr_ty = Some(t);
     }
 
-    fn operand(&mut self, f: &mut Fcx, e: Option<&Expr>, negate: bool, span: Span, what: &str) -> Option<Val> {
+    fn operand(
+        &mut self,
+        f: &mut Fcx,
+        e: Option<&Expr>,
+        negate: bool,
+        span: Span,
+        what: &str,
+    ) -> Option<Val> {
         let Some(e) = e else {
             self.diags
                 .error("E504", span, format!("{what} needs an operand"));
@@ -289,7 +296,14 @@ impl Compiler<'_> {
                 negate,
                 operand,
             } => {
-                if matches!(op, IlOperator::Ld | IlOperator::St | IlOperator::S | IlOperator::R | IlOperator::Not) {
+                if matches!(
+                    op,
+                    IlOperator::Ld
+                        | IlOperator::St
+                        | IlOperator::S
+                        | IlOperator::R
+                        | IlOperator::Not
+                ) {
                     self.diags.error(
                         "E504",
                         span,
@@ -416,7 +430,10 @@ impl Compiler<'_> {
                     self.diags.error(
                         "E505",
                         span,
-                        format!("{} needs a current result as first argument: load one first", name.name),
+                        format!(
+                            "{} needs a current result as first argument: load one first",
+                            name.name
+                        ),
                     );
                     return;
                 }
@@ -512,13 +529,20 @@ impl Compiler<'_> {
                     self.diags.error("E504", span, "ST needs an operand");
                     return;
                 };
-                let Some(cur) = self.cr_val(st, span, name) else { return };
-                let cur = if negate { self.negate_val(f, cur, span, name) } else { cur };
+                let Some(cur) = self.cr_val(st, span, name) else {
+                    return;
+                };
+                let cur = if negate {
+                    self.negate_val(f, cur, span, name)
+                } else {
+                    cur
+                };
                 self.store_value(f, target, cur);
             }
             IlOperator::S | IlOperator::R => {
                 let Some(target) = operand else {
-                    self.diags.error("E504", span, format!("{name} needs an operand"));
+                    self.diags
+                        .error("E504", span, format!("{name} needs an operand"));
                     return;
                 };
                 if !self.cr_is_bool(st, span, name) {
@@ -535,16 +559,24 @@ impl Compiler<'_> {
             }
             IlOperator::Not => {
                 if operand.is_some() {
-                    self.diags.error("E504", span, "NOT takes no operand in IL (it negates the current result)");
+                    self.diags.error(
+                        "E504",
+                        span,
+                        "NOT takes no operand in IL (it negates the current result)",
+                    );
                     return;
                 }
-                let Some(cur) = self.cr_val(st, span, name) else { return };
+                let Some(cur) = self.cr_val(st, span, name) else {
+                    return;
+                };
                 let v = self.negate_val(f, cur, span, name);
                 self.set_cr(f, st, v);
             }
             _ => {
                 let Some(bop) = binary_of(op) else { return };
-                let Some(cur) = self.cr_val(st, span, name) else { return };
+                let Some(cur) = self.cr_val(st, span, name) else {
+                    return;
+                };
                 let Some(v) = self.operand(f, operand, negate, span, name) else {
                     return;
                 };
@@ -556,7 +588,9 @@ impl Compiler<'_> {
 
     /// Stores a value into the place `target` (ST, S, R).
     fn store_value(&mut self, f: &mut Fcx, target: &Expr, v: Val) {
-        let Some(p) = self.place(f, target) else { return };
+        let Some(p) = self.place(f, target) else {
+            return;
+        };
         if !p.writable {
             let why = p.readonly_reason.unwrap_or("it is read-only");
             self.diags

@@ -363,7 +363,9 @@ impl Compiler<'_> {
                             self.diags.error(
                                 "E409",
                                 span,
-                                format!("recursive call of `{name}`: IEC 61131-3 forbids recursion"),
+                                format!(
+                                    "recursive call of `{name}`: IEC 61131-3 forbids recursion"
+                                ),
                             );
                         }
                         _ => {}
@@ -378,7 +380,10 @@ impl Compiler<'_> {
 
     /// Tasks and the program instances to run: (instance name, POU, task index).
     #[allow(clippy::type_complexity)]
-    fn schedule(&mut self, options: &CompileOptions) -> Option<(Vec<Task>, Vec<(String, usize, usize)>)> {
+    fn schedule(
+        &mut self,
+        options: &CompileOptions,
+    ) -> Option<(Vec<Task>, Vec<(String, usize, usize)>)> {
         let implicit = Task {
             name: "default".into(),
             interval: options.cycle_time,
@@ -402,7 +407,11 @@ impl Compiler<'_> {
             );
             return None;
         }
-        if let Some(cfg) = configs.first().copied().filter(|_| options.program.is_none()) {
+        if let Some(cfg) = configs
+            .first()
+            .copied()
+            .filter(|_| options.program.is_none())
+        {
             let mut tasks: Vec<Task> = Vec::new();
             let mut progs = Vec::new();
             for res in &cfg.resources {
@@ -416,12 +425,22 @@ impl Compiler<'_> {
                     for (k, v) in &t.settings {
                         match (k.key().as_str(), &v.kind) {
                             ("INTERVAL", ExprKind::Literal(l)) => match l.value {
-                                LiteralValue::Duration { nanos, .. } if nanos > 0 => task.interval = nanos,
-                                _ => self.diags.error("E702", v.span, "INTERVAL must be a positive duration literal"),
+                                LiteralValue::Duration { nanos, .. } if nanos > 0 => {
+                                    task.interval = nanos
+                                }
+                                _ => self.diags.error(
+                                    "E702",
+                                    v.span,
+                                    "INTERVAL must be a positive duration literal",
+                                ),
                             },
                             ("PRIORITY", ExprKind::Literal(l)) => match l.value {
                                 LiteralValue::Int(n) if n >= 0 => task.priority = n as i64,
-                                _ => self.diags.error("E702", v.span, "PRIORITY must be a non-negative integer"),
+                                _ => self.diags.error(
+                                    "E702",
+                                    v.span,
+                                    "PRIORITY must be a non-negative integer",
+                                ),
                             },
                             ("SINGLE", ExprKind::Name(id)) => match self.globals.get(&id.key()) {
                                 Some(g) if self.types.scalar(g.ty) == Some(ElemType::Bool) => {
@@ -429,13 +448,25 @@ impl Compiler<'_> {
                                         task.single = Some(a);
                                     }
                                 }
-                                _ => self.diags.error("E702", v.span, "SINGLE must name a global BOOL variable"),
+                                _ => self.diags.error(
+                                    "E702",
+                                    v.span,
+                                    "SINGLE must name a global BOOL variable",
+                                ),
                             },
-                            _ => self.diags.error("E702", k.span, format!("unknown or invalid task setting `{}`", k.name)),
+                            _ => self.diags.error(
+                                "E702",
+                                k.span,
+                                format!("unknown or invalid task setting `{}`", k.name),
+                            ),
                         }
                     }
                     if task.interval == 0 && task.single.is_none() {
-                        self.diags.error("E702", t.name.span, "a TASK needs an INTERVAL or a SINGLE trigger");
+                        self.diags.error(
+                            "E702",
+                            t.name.span,
+                            "a TASK needs an INTERVAL or a SINGLE trigger",
+                        );
                     }
                     tasks.push(task);
                 }
@@ -443,11 +474,19 @@ impl Compiler<'_> {
             for res in &cfg.resources {
                 for pi in &res.programs {
                     let Some(&p) = self.pou_index.get(&pi.type_name.key()) else {
-                        self.diags.error("E208", pi.type_name.span, format!("unknown PROGRAM `{}`", pi.type_name.name));
+                        self.diags.error(
+                            "E208",
+                            pi.type_name.span,
+                            format!("unknown PROGRAM `{}`", pi.type_name.name),
+                        );
                         continue;
                     };
                     if self.pous[p].kind != PouKind::Program {
-                        self.diags.error("E208", pi.type_name.span, format!("`{}` is not a PROGRAM", pi.type_name.name));
+                        self.diags.error(
+                            "E208",
+                            pi.type_name.span,
+                            format!("`{}` is not a PROGRAM", pi.type_name.name),
+                        );
                         continue;
                     }
                     if !pi.args.is_empty() {
@@ -458,10 +497,17 @@ impl Compiler<'_> {
                         );
                     }
                     let task = match &pi.task {
-                        Some(t) => match tasks.iter().position(|x| x.name.eq_ignore_ascii_case(&t.name)) {
+                        Some(t) => match tasks
+                            .iter()
+                            .position(|x| x.name.eq_ignore_ascii_case(&t.name))
+                        {
                             Some(i) => i,
                             None => {
-                                self.diags.error("E702", t.span, format!("unknown TASK `{}`", t.name));
+                                self.diags.error(
+                                    "E702",
+                                    t.span,
+                                    format!("unknown TASK `{}`", t.name),
+                                );
                                 continue;
                             }
                         },
@@ -469,18 +515,28 @@ impl Compiler<'_> {
                             if !tasks.iter().any(|t| t.name == implicit.name) {
                                 tasks.push(implicit.clone());
                             }
-                            tasks.iter().position(|t| t.name == implicit.name).unwrap_or(0)
+                            tasks
+                                .iter()
+                                .position(|t| t.name == implicit.name)
+                                .unwrap_or(0)
                         }
                     };
-                    if progs.iter().any(|(n, _, _): &(String, usize, usize)| n.eq_ignore_ascii_case(&pi.name.name)) {
-                        self.diags.error("E202", pi.name.span, format!("program instance `{}` is declared twice", pi.name.name));
+                    if progs.iter().any(|(n, _, _): &(String, usize, usize)| {
+                        n.eq_ignore_ascii_case(&pi.name.name)
+                    }) {
+                        self.diags.error(
+                            "E202",
+                            pi.name.span,
+                            format!("program instance `{}` is declared twice", pi.name.name),
+                        );
                         continue;
                     }
                     progs.push((pi.name.name.clone(), p, task));
                 }
             }
             if progs.is_empty() && !options.check_only {
-                self.diags.error("E208", cfg.name.span, "the CONFIGURATION runs no PROGRAM");
+                self.diags
+                    .error("E208", cfg.name.span, "the CONFIGURATION runs no PROGRAM");
             }
             return Some((tasks, progs));
         }
@@ -488,13 +544,19 @@ impl Compiler<'_> {
             .filter(|&p| self.pous[p].kind == PouKind::Program)
             .collect();
         let chosen = match &options.program {
-            Some(name) => match programs.iter().find(|&&p| self.pous[p].name.eq_ignore_ascii_case(name)) {
+            Some(name) => match programs
+                .iter()
+                .find(|&&p| self.pous[p].name.eq_ignore_ascii_case(name))
+            {
                 Some(&p) => Some(p),
                 None => {
                     self.diags.error(
                         "E208",
                         Span::default(),
-                        format!("no PROGRAM named `{name}` (use --program with one of: {})", self.program_names(&programs)),
+                        format!(
+                            "no PROGRAM named `{name}` (use --program with one of: {})",
+                            self.program_names(&programs)
+                        ),
                     );
                     return None;
                 }
@@ -509,14 +571,23 @@ impl Compiler<'_> {
             Some(p) => Some((vec![implicit], vec![(self.pous[p].name.clone(), p, 0)])),
             None if options.check_only => Some((vec![implicit], Vec::new())),
             None => {
-                let span = self.units.iter().flat_map(|u| u.items.first()).next().map(item_span).unwrap_or_default();
+                let span = self
+                    .units
+                    .iter()
+                    .flat_map(|u| u.items.first())
+                    .next()
+                    .map(item_span)
+                    .unwrap_or_default();
                 if programs.is_empty() {
                     self.diags.error("E208", span, "there is no PROGRAM to run");
                 } else {
                     self.diags.error(
                         "E208",
                         span,
-                        format!("several PROGRAMs ({}): choose one with --program", self.program_names(&programs)),
+                        format!(
+                            "several PROGRAMs ({}): choose one with --program",
+                            self.program_names(&programs)
+                        ),
                     );
                 }
                 None
@@ -525,7 +596,11 @@ impl Compiler<'_> {
     }
 
     fn program_names(&self, programs: &[usize]) -> String {
-        programs.iter().map(|&p| self.pous[p].name.clone()).collect::<Vec<_>>().join(", ")
+        programs
+            .iter()
+            .map(|&p| self.pous[p].name.clone())
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 }
 

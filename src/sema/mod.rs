@@ -3,11 +3,11 @@
 //! typed IR for each POU body in the same walk. All diagnostics are
 //! collected; nothing stops at the first error.
 
+mod calls;
 pub mod consts;
 mod declare;
 mod emit;
 mod expr;
-mod calls;
 mod il;
 mod link;
 pub mod model;

@@ -85,8 +85,8 @@ fn classify(name: &str) -> Option<Std> {
         "ADD_TIME" | "ADD_LTIME" | "ADD_TOD_TIME" | "ADD_DT_TIME" | "ADD_LTOD_LTIME"
         | "ADD_LDT_LTIME" => Some(Std::Time(B::Add)),
         "SUB_TIME" | "SUB_LTIME" | "SUB_DATE_DATE" | "SUB_TOD_TIME" | "SUB_TOD_TOD"
-        | "SUB_DT_TIME" | "SUB_DT_DT" | "SUB_LDATE_LDATE" | "SUB_LTOD_LTIME"
-        | "SUB_LTOD_LTOD" | "SUB_LDT_LTIME" | "SUB_LDT_LDT" => Some(Std::Time(B::Sub)),
+        | "SUB_DT_TIME" | "SUB_DT_DT" | "SUB_LDATE_LDATE" | "SUB_LTOD_LTIME" | "SUB_LTOD_LTOD"
+        | "SUB_LDT_LTIME" | "SUB_LDT_LDT" => Some(Std::Time(B::Sub)),
         "MUL_TIME" | "MUL_LTIME" => Some(Std::Time(B::Mul)),
         "DIV_TIME" | "DIV_LTIME" => Some(Std::Time(B::Div)),
         "CONCAT_DATE_TOD" | "CONCAT_LDATE_LTOD" => Some(Std::ConcatDateTod),
@@ -201,7 +201,10 @@ impl Compiler<'_> {
                     }
                 }
                 Arg::Input { name, value } => {
-                    match names.iter().position(|n| n.eq_ignore_ascii_case(&name.name)) {
+                    match names
+                        .iter()
+                        .position(|n| n.eq_ignore_ascii_case(&name.name))
+                    {
                         Some(k) => exprs[k] = Some(value),
                         None => {
                             self.diags.error(
@@ -234,7 +237,10 @@ impl Compiler<'_> {
             _ => names.len(),
         };
         let given: Vec<&crate::syntax::ast::Expr> = exprs.iter().flatten().copied().collect();
-        if given.len() < min || (!extensible && given.len() != names.len()) || given.len() != exprs.len() {
+        if given.len() < min
+            || (!extensible && given.len() != names.len())
+            || given.len() != exprs.len()
+        {
             let expected = if extensible {
                 format!("at least {min}")
             } else {
@@ -243,7 +249,10 @@ impl Compiler<'_> {
             self.diags.error(
                 "E404",
                 span,
-                format!("{fname} takes {expected} argument(s), {} given", given.len()),
+                format!(
+                    "{fname} takes {expected} argument(s), {} given",
+                    given.len()
+                ),
             );
             return Some(Val::error());
         }
@@ -276,7 +285,9 @@ impl Compiler<'_> {
         match std {
             Std::Binary(op, _) | Std::Time(op) => {
                 let mut it = vals.into_iter();
-                let Some((mut acc, _)) = it.next() else { return Val::error() };
+                let Some((mut acc, _)) = it.next() else {
+                    return Val::error();
+                };
                 for (v, _) in it {
                     acc = self.binary_vals(f, op, acc, v, span);
                 }
@@ -291,9 +302,12 @@ impl Compiler<'_> {
                         Val::Const(Const::Bits(b ^ 1), Ty::T(t))
                     }
                     _ => {
-                        let Some(t) = expr_ty.id().filter(|t| self.scalar(*t).is_some_and(|e| e.is_bit()))
+                        let Some(t) = expr_ty
+                            .id()
+                            .filter(|t| self.scalar(*t).is_some_and(|e| e.is_bit()))
                         else {
-                            self.diags.error("E302", s, "NOT needs a BOOL or bit string");
+                            self.diags
+                                .error("E302", s, "NOT needs a BOOL or bit string");
                             return Val::error();
                         };
                         let e = self.scalar(t).unwrap_or(ElemType::Bool);
@@ -302,7 +316,11 @@ impl Compiler<'_> {
                         f.emit(if e == ElemType::Bool {
                             Op::NotB { d, a }
                         } else {
-                            Op::NotW { d, a, shift: super::typeck::shift_of(e) }
+                            Op::NotW {
+                                d,
+                                a,
+                                shift: super::typeck::shift_of(e),
+                            }
                         });
                         Val::Slot(d, t)
                     }
@@ -314,7 +332,9 @@ impl Compiler<'_> {
                     Val::Const(Const::Int(i), t) => Val::Const(Const::Int(i.abs()), t),
                     Val::Const(Const::Real(r), t) => Val::Const(Const::Real(r.abs()), t),
                     _ => {
-                        let Some(t) = v.ty().id() else { return Val::error() };
+                        let Some(t) = v.ty().id() else {
+                            return Val::error();
+                        };
                         let Some(e) = self.scalar(t).filter(|e| e.is_num()) else {
                             self.diags.error("E302", s, "ABS needs a number");
                             return Val::error();
@@ -322,10 +342,22 @@ impl Compiler<'_> {
                         let a = self.materialize(f, &v);
                         let d = f.temp();
                         f.emit(match e {
-                            ElemType::Real => Op::MathF32 { d, a, f: MathFn::Abs },
-                            ElemType::Lreal => Op::MathF64 { d, a, f: MathFn::Abs },
+                            ElemType::Real => Op::MathF32 {
+                                d,
+                                a,
+                                f: MathFn::Abs,
+                            },
+                            ElemType::Lreal => Op::MathF64 {
+                                d,
+                                a,
+                                f: MathFn::Abs,
+                            },
                             _ if e.is_unsigned_int() => Op::Mov { d, s: a },
-                            _ => Op::AbsS { d, a, shift: super::typeck::shift_of(e) },
+                            _ => Op::AbsS {
+                                d,
+                                a,
+                                shift: super::typeck::shift_of(e),
+                            },
                         });
                         Val::Slot(d, t)
                     }
@@ -350,7 +382,11 @@ impl Compiler<'_> {
                     Some(x) if x.widens_to(ElemType::Lreal) => ElemType::Lreal,
                     _ => {
                         let n = self.types.name(t).to_string();
-                        self.diags.error("E302", s, format!("{fname} needs a REAL or LREAL, found {n}"));
+                        self.diags.error(
+                            "E302",
+                            s,
+                            format!("{fname} needs a REAL or LREAL, found {n}"),
+                        );
                         return Val::error();
                     }
                 };
@@ -407,7 +443,12 @@ impl Compiler<'_> {
                 let b = self.coerce(f, b, t, span, fname);
                 let (sa, sb) = (self.materialize(f, &a), self.materialize(f, &b));
                 let d = f.temp();
-                f.emit(Op::Select { d, c: gs_slot, a: sb, b: sa });
+                f.emit(Op::Select {
+                    d,
+                    c: gs_slot,
+                    a: sb,
+                    b: sa,
+                });
                 Val::Slot(d, t)
             }
             Std::MinMax(max) => {
@@ -464,10 +505,18 @@ impl Compiler<'_> {
                 }
                 let first = f.temps(n);
                 for (i, s) in slots.into_iter().enumerate() {
-                    f.emit(Op::Mov { d: first + i as u32, s });
+                    f.emit(Op::Mov {
+                        d: first + i as u32,
+                        s,
+                    });
                 }
                 let d = f.temp();
-                f.emit(Op::Mux { d, k: ksl, first, n });
+                f.emit(Op::Mux {
+                    d,
+                    k: ksl,
+                    first,
+                    n,
+                });
                 Val::Slot(d, t)
             }
             Std::Compare(op) => {
@@ -485,11 +534,19 @@ impl Compiler<'_> {
                 let (n, ns) = vals.pop().unwrap_or((Val::error(), span));
                 let (v, vs) = vals.pop().unwrap_or((Val::error(), span));
                 let Some(t) = v.ty().id() else {
-                    self.diags.error("E301", vs, format!("{fname}: IN needs a typed bit string (e.g. WORD#16#00FF)"));
+                    self.diags.error(
+                        "E301",
+                        vs,
+                        format!("{fname}: IN needs a typed bit string (e.g. WORD#16#00FF)"),
+                    );
                     return Val::error();
                 };
-                let Some(e) = self.scalar(t).filter(|e| e.family() == Family::Bits || e.is_int()) else {
-                    self.diags.error("E302", vs, format!("{fname}: IN must be a bit string"));
+                let Some(e) = self
+                    .scalar(t)
+                    .filter(|e| e.family() == Family::Bits || e.is_int())
+                else {
+                    self.diags
+                        .error("E302", vs, format!("{fname}: IN must be a bit string"));
                     return Val::error();
                 };
                 let n_ok = match n.ty() {
@@ -498,16 +555,27 @@ impl Compiler<'_> {
                     _ => false,
                 };
                 if !n_ok {
-                    self.diags.error("E301", ns, format!("{fname}: N must be an integer"));
+                    self.diags
+                        .error("E301", ns, format!("{fname}: N must be an integer"));
                     return Val::error();
                 }
                 let a = self.materialize(f, &v);
                 let b = self.materialize(f, &n);
                 let d = f.temp();
-                f.emit(Op::Shift { d, a, b, kind, bits: e.bits() as u8 });
+                f.emit(Op::Shift {
+                    d,
+                    a,
+                    b,
+                    kind,
+                    bits: e.bits() as u8,
+                });
                 if e.is_signed_int() {
                     let w = f.temp();
-                    f.emit(Op::Convert { d: w, a: d, conv: Conv::WrapS(super::typeck::shift_of(e)) });
+                    f.emit(Op::Convert {
+                        d: w,
+                        a: d,
+                        conv: Conv::WrapS(super::typeck::shift_of(e)),
+                    });
                     return Val::Slot(w, t);
                 }
                 Val::Slot(d, t)
@@ -520,7 +588,8 @@ impl Compiler<'_> {
                     Ty::AnyReal => from.or(Some(ElemType::Lreal)),
                 };
                 let Some(actual) = actual else {
-                    self.diags.error("E302", s, format!("{fname} cannot convert this value"));
+                    self.diags
+                        .error("E302", s, format!("{fname} cannot convert this value"));
                     return Val::error();
                 };
                 let from = from.unwrap_or(actual);
@@ -532,9 +601,16 @@ impl Compiler<'_> {
             }
             Std::BcdTo(to) => {
                 let (v, s) = vals.remove(0);
-                let Some(t) = v.ty().id().filter(|t| self.scalar(*t).is_some_and(|e| e.family() == Family::Bits))
+                let Some(t) = v
+                    .ty()
+                    .id()
+                    .filter(|t| self.scalar(*t).is_some_and(|e| e.family() == Family::Bits))
                 else {
-                    self.diags.error("E302", s, format!("{fname} needs a bit string (BYTE, WORD, ...)"));
+                    self.diags.error(
+                        "E302",
+                        s,
+                        format!("{fname} needs a bit string (BYTE, WORD, ...)"),
+                    );
                     return Val::error();
                 };
                 let _ = t;
@@ -543,10 +619,19 @@ impl Compiler<'_> {
             }
             Std::ToBcd(to) => {
                 let (v, s) = vals.remove(0);
-                let Some(from) = v.ty().id().and_then(|t| self.scalar(t)).filter(|e| e.is_int()).or(
-                    if v.ty() == Ty::AnyInt { Some(ElemType::Lint) } else { None },
-                ) else {
-                    self.diags.error("E302", s, format!("{fname} needs an integer"));
+                let Some(from) = v
+                    .ty()
+                    .id()
+                    .and_then(|t| self.scalar(t))
+                    .filter(|e| e.is_int())
+                    .or(if v.ty() == Ty::AnyInt {
+                        Some(ElemType::Lint)
+                    } else {
+                        None
+                    })
+                else {
+                    self.diags
+                        .error("E302", s, format!("{fname} needs an integer"));
                     return Val::error();
                 };
                 let to = to.unwrap_or(match from.bits() {
@@ -567,7 +652,12 @@ impl Compiler<'_> {
                 let t = self.coerce(f, t, tt, ds, fname);
                 let (a, b) = (self.materialize(f, &d), self.materialize(f, &t));
                 let r = f.temp();
-                f.emit(Op::AddS { d: r, a, b, shift: 0 });
+                f.emit(Op::AddS {
+                    d: r,
+                    a,
+                    b,
+                    shift: 0,
+                });
                 Val::Slot(r, TypeTable::elem(ElemType::Dt))
             }
             Std::Clock => {
@@ -580,7 +670,10 @@ impl Compiler<'_> {
                 for (v, s) in vals {
                     acc = Some(match acc {
                         None => (v, s),
-                        Some((a, _)) => (self.string_fn(f, StrFn::Concat, vec![(a, s), (v, s)], fname), s),
+                        Some((a, _)) => (
+                            self.string_fn(f, StrFn::Concat, vec![(a, s), (v, s)], fname),
+                            s,
+                        ),
                     });
                 }
                 acc.map(|a| a.0).unwrap_or_else(Val::error)
@@ -589,14 +682,20 @@ impl Compiler<'_> {
         }
     }
 
-    fn unify_all(&mut self, tys: &[Ty], span: Span, fname: &str) -> Option<crate::ir::types::TypeId> {
+    fn unify_all(
+        &mut self,
+        tys: &[Ty],
+        span: Span,
+        fname: &str,
+    ) -> Option<crate::ir::types::TypeId> {
         let mut acc = *tys.first()?;
         for t in &tys[1..] {
             match self.unify(acc, *t) {
                 Some(u) => acc = u,
                 None => {
                     let (a, b) = (self.ty_name(acc), self.ty_name(*t));
-                    self.diags.error("E306", span, format!("{fname} cannot mix {a} and {b}"));
+                    self.diags
+                        .error("E306", span, format!("{fname} cannot mix {a} and {b}"));
                     return None;
                 }
             }
@@ -604,7 +703,14 @@ impl Compiler<'_> {
         Some(self.default_type(acc, None))
     }
 
-    fn minmax(&mut self, f: &mut Fcx, t: crate::ir::types::TypeId, a: u32, b: u32, max: bool) -> u32 {
+    fn minmax(
+        &mut self,
+        f: &mut Fcx,
+        t: crate::ir::types::TypeId,
+        a: u32,
+        b: u32,
+        max: bool,
+    ) -> u32 {
         let e = self.scalar(t).unwrap_or(ElemType::Dint);
         let d = f.temp();
         f.emit(match e {
@@ -618,7 +724,12 @@ impl Compiler<'_> {
 
     /// A string function with arguments in consecutive slots.
     fn string_fn(&mut self, f: &mut Fcx, func: StrFn, vals: Vec<(Val, Span)>, fname: &str) -> Val {
-        let is_str = |c: &Compiler, v: &Val| v.ty().id().and_then(|t| c.scalar(t)).is_some_and(|e| e.is_string());
+        let is_str = |c: &Compiler, v: &Val| {
+            v.ty()
+                .id()
+                .and_then(|t| c.scalar(t))
+                .is_some_and(|e| e.is_string())
+        };
         // Which positions are strings.
         let string_pos: &[usize] = match func {
             StrFn::Len | StrFn::Left | StrFn::Right | StrFn::Mid | StrFn::Delete => &[0],
@@ -631,10 +742,13 @@ impl Compiler<'_> {
             if string_pos.contains(&i) {
                 if !is_str(self, &v) {
                     let n = self.ty_name(v.ty());
-                    self.diags.error("E301", s, format!("{fname}: expected a string, found {n}"));
+                    self.diags
+                        .error("E301", s, format!("{fname}: expected a string, found {n}"));
                     return Val::error();
                 }
-                if let Some(TypeKind::Str { max: m, wide: w }) = v.ty().id().map(|t| self.types.get(t).kind.clone()) {
+                if let Some(TypeKind::Str { max: m, wide: w }) =
+                    v.ty().id().map(|t| self.types.get(t).kind.clone())
+                {
                     max = max.saturating_add(m);
                     wide |= w;
                 }
@@ -674,7 +788,8 @@ impl Compiler<'_> {
             return match crate::vm::convert_value(conv, b) {
                 Ok(r) => Val::Const(Const::Bits(r), Ty::T(rt)),
                 Err(k) => {
-                    self.diags.error("E305", span, format!("constant conversion fails: {k}"));
+                    self.diags
+                        .error("E305", span, format!("constant conversion fails: {k}"));
                     Val::error()
                 }
             };
@@ -686,12 +801,25 @@ impl Compiler<'_> {
     }
 
     /// `FROM_TO_TO` conversion of a value already of type `from`.
-    fn convert(&mut self, f: &mut Fcx, v: Val, from: ElemType, to: ElemType, span: Span, fname: &str) -> Val {
+    fn convert(
+        &mut self,
+        f: &mut Fcx,
+        v: Val,
+        from: ElemType,
+        to: ElemType,
+        span: Span,
+        fname: &str,
+    ) -> Val {
         use ElemType as E;
         let rt = TypeTable::elem(to);
         let shift = super::typeck::shift_of(to);
         let (ff, tf) = (from.family(), to.family());
-        let int_like = |fam: Family| matches!(fam, Family::Signed | Family::Unsigned | Family::Bits | Family::Bool | Family::Char);
+        let int_like = |fam: Family| {
+            matches!(
+                fam,
+                Family::Signed | Family::Unsigned | Family::Bits | Family::Bool | Family::Char
+            )
+        };
         if from == to {
             return match v {
                 Val::Const(c, _) => Val::Const(c, Ty::T(rt)),
@@ -736,34 +864,59 @@ impl Compiler<'_> {
                 (false, E::Real) => Conv::UToF32,
                 (false, _) => Conv::UToF64,
             }),
-            (Family::Real, b) if int_like(b) && to != E::Bool => Some(match (from, to.is_signed_int()) {
-                (E::Real, true) => Conv::F32ToS(shift),
-                (E::Real, false) => Conv::F32ToU(shift),
-                (_, true) => Conv::F64ToS(shift),
-                (_, false) => Conv::F64ToU(shift),
+            (Family::Real, b) if int_like(b) && to != E::Bool => {
+                Some(match (from, to.is_signed_int()) {
+                    (E::Real, true) => Conv::F32ToS(shift),
+                    (E::Real, false) => Conv::F32ToU(shift),
+                    (_, true) => Conv::F64ToS(shift),
+                    (_, false) => Conv::F64ToU(shift),
+                })
+            }
+            (Family::Real, Family::Real) => Some(if from == E::Real {
+                Conv::F32ToF64
+            } else {
+                Conv::F64ToF32
             }),
-            (Family::Real, Family::Real) => Some(if from == E::Real { Conv::F32ToF64 } else { Conv::F64ToF32 }),
             (Family::Duration, Family::Duration) => None,
             (Family::Duration, b) if int_like(b) && to != E::Bool => Some(if to.is_signed_int() {
                 Conv::NsToMsS(shift)
             } else {
                 Conv::NsToMsU(shift)
             }),
-            (a, Family::Duration) if int_like(a) => Some(if from.is_signed_int() { Conv::MsToNsS } else { Conv::MsToNsU }),
-            (Family::Duration, Family::Real) => Some(if to == E::Real { Conv::NsToMsF32 } else { Conv::NsToMsF64 }),
-            (Family::Real, Family::Duration) => Some(if from == E::Real { Conv::MsF32ToNs } else { Conv::MsF64ToNs }),
+            (a, Family::Duration) if int_like(a) => Some(if from.is_signed_int() {
+                Conv::MsToNsS
+            } else {
+                Conv::MsToNsU
+            }),
+            (Family::Duration, Family::Real) => Some(if to == E::Real {
+                Conv::NsToMsF32
+            } else {
+                Conv::NsToMsF64
+            }),
+            (Family::Real, Family::Duration) => Some(if from == E::Real {
+                Conv::MsF32ToNs
+            } else {
+                Conv::MsF64ToNs
+            }),
             (Family::DateTime, Family::DateTime) => match (from, to) {
                 (E::Dt | E::Ldt, E::Date | E::Ldate) => Some(Conv::DtToDate),
                 (E::Dt | E::Ldt, E::Tod | E::Ltod) => Some(Conv::DtToTod),
-                (E::Date, E::Ldate) | (E::Ldate, E::Date) | (E::Tod, E::Ltod) | (E::Ltod, E::Tod)
-                | (E::Dt, E::Ldt) | (E::Ldt, E::Dt) | (E::Date | E::Ldate, E::Dt | E::Ldt) => None,
+                (E::Date, E::Ldate)
+                | (E::Ldate, E::Date)
+                | (E::Tod, E::Ltod)
+                | (E::Ltod, E::Tod)
+                | (E::Dt, E::Ldt)
+                | (E::Ldt, E::Dt)
+                | (E::Date | E::Ldate, E::Dt | E::Ldt) => None,
                 _ => {
-                    self.diags.error("E302", span, format!("{fname}: no such conversion"));
+                    self.diags
+                        .error("E302", span, format!("{fname}: no such conversion"));
                     return Val::error();
                 }
             },
             _ => {
-                self.diags.error("E302", span, format!("{fname}: no such conversion"));
+                self.diags
+                    .error("E302", span, format!("{fname}: no such conversion"));
                 return Val::error();
             }
         };

@@ -112,9 +112,11 @@ impl Compiler<'_> {
                         lp.exits.push(j);
                     }
                 }
-                None => self
-                    .diags
-                    .error("E405", s.span, "EXIT outside of a FOR, WHILE or REPEAT loop"),
+                None => self.diags.error(
+                    "E405",
+                    s.span,
+                    "EXIT outside of a FOR, WHILE or REPEAT loop",
+                ),
             },
             StmtKind::Continue => match f.loops.last_mut() {
                 Some(_) => {
@@ -211,8 +213,11 @@ impl Compiler<'_> {
         }
         if v.ty() != Ty::T(TypeTable::elem(ElemType::Bool)) {
             let name = self.ty_name(v.ty());
-            self.diags
-                .error("E303", cond.span, format!("condition must be BOOL, found {name}"));
+            self.diags.error(
+                "E303",
+                cond.span,
+                format!("condition must be BOOL, found {name}"),
+            );
             return None;
         }
         Some(v)
@@ -326,7 +331,9 @@ impl Compiler<'_> {
             Ty::T(t) => t,
             other => self.default_type(other, None),
         };
-        let Some(e) = self.scalar(st).filter(|e| e.is_int() || e.is_bit() && *e != ElemType::Bool)
+        let Some(e) = self
+            .scalar(st)
+            .filter(|e| e.is_int() || e.is_bit() && *e != ElemType::Bool)
         else {
             let name = self.types.name(st).to_string();
             self.diags.error(
@@ -351,23 +358,22 @@ impl Compiler<'_> {
                         (v, v, x.span)
                     }
                     CaseLabel::Range(a, b) => {
-                        let (Some(x), Some(y)) = (self.case_label(f, a, st), self.case_label(f, b, st))
+                        let (Some(x), Some(y)) =
+                            (self.case_label(f, a, st), self.case_label(f, b, st))
                         else {
                             continue;
                         };
                         if y < x {
-                            self.diags.error("E408", a.span.to(b.span), "empty CASE range");
+                            self.diags
+                                .error("E408", a.span.to(b.span), "empty CASE range");
                             continue;
                         }
                         (x, y, a.span.to(b.span))
                     }
                 };
                 if seen.iter().any(|&(a, b)| lo <= b && a <= hi) {
-                    self.diags.error(
-                        "E408",
-                        lspan,
-                        "this CASE label overlaps an earlier one",
-                    );
+                    self.diags
+                        .error("E408", lspan, "this CASE label overlaps an earlier one");
                     continue;
                 }
                 seen.push((lo, hi));
@@ -389,20 +395,50 @@ impl Compiler<'_> {
                     let c = k(self, f, lo);
                     let d = f.temp();
                     f.emit(if signed {
-                        Op::CmpS { d, a: sel, b: c, cmp: Cmp::Eq }
+                        Op::CmpS {
+                            d,
+                            a: sel,
+                            b: c,
+                            cmp: Cmp::Eq,
+                        }
                     } else {
-                        Op::CmpU { d, a: sel, b: c, cmp: Cmp::Eq }
+                        Op::CmpU {
+                            d,
+                            a: sel,
+                            b: c,
+                            cmp: Cmp::Eq,
+                        }
                     });
                     jumps.push(self.branch_on_slot(f, d, true, 0));
                 } else {
                     let (cl, ch) = (k(self, f, lo), k(self, f, hi));
                     let (d1, d2, d) = (f.temp(), f.temp(), f.temp());
                     if signed {
-                        f.emit(Op::CmpS { d: d1, a: sel, b: cl, cmp: Cmp::Ge });
-                        f.emit(Op::CmpS { d: d2, a: sel, b: ch, cmp: Cmp::Le });
+                        f.emit(Op::CmpS {
+                            d: d1,
+                            a: sel,
+                            b: cl,
+                            cmp: Cmp::Ge,
+                        });
+                        f.emit(Op::CmpS {
+                            d: d2,
+                            a: sel,
+                            b: ch,
+                            cmp: Cmp::Le,
+                        });
                     } else {
-                        f.emit(Op::CmpU { d: d1, a: sel, b: cl, cmp: Cmp::Ge });
-                        f.emit(Op::CmpU { d: d2, a: sel, b: ch, cmp: Cmp::Le });
+                        f.emit(Op::CmpU {
+                            d: d1,
+                            a: sel,
+                            b: cl,
+                            cmp: Cmp::Ge,
+                        });
+                        f.emit(Op::CmpU {
+                            d: d2,
+                            a: sel,
+                            b: ch,
+                            cmp: Cmp::Le,
+                        });
                     }
                     f.emit(Op::And { d, a: d1, b: d2 });
                     jumps.push(f.emit(Op::Jnz { c: d, t: 0 }));
@@ -436,7 +472,8 @@ impl Compiler<'_> {
         let v = self.expr(f, x, Some(st));
         let Val::Const(c, t) = &v else {
             if !v.is_error() {
-                self.diags.error("E408", x.span, "CASE labels must be constants");
+                self.diags
+                    .error("E408", x.span, "CASE labels must be constants");
             }
             return None;
         };
@@ -488,7 +525,8 @@ impl Compiler<'_> {
             return;
         };
         if !p.writable {
-            self.diags.error("E401", var.span, "the FOR control variable is read-only");
+            self.diags
+                .error("E401", var.span, "the FOR control variable is read-only");
             return;
         }
         let vt = p.ty;
@@ -553,7 +591,12 @@ impl Compiler<'_> {
                 // Runtime sign: positive steps test `<=`, negative `>=`.
                 let sp = step_slot.unwrap_or(i);
                 let neg = f.temp();
-                f.emit(Op::CmpSI { d: neg, a: sp, imm: 0, cmp: Cmp::Lt });
+                f.emit(Op::CmpSI {
+                    d: neg,
+                    a: sp,
+                    imm: 0,
+                    cmp: Cmp::Lt,
+                });
                 let to_neg = f.emit(Op::Jnz { c: neg, t: 0 });
                 let up = self.loop_test(f, i, lim_imm, lim, Cmp::Le, signed);
                 let to_body = f.emit(Op::Jmp { t: 0 });
@@ -572,23 +615,48 @@ impl Compiler<'_> {
         let shift = super::typeck::shift_of(e);
         match (step_const, step_slot) {
             (Some(st), _) if i32::try_from(st).is_ok() && e.is_signed_int() => {
-                f.emit(Op::AddSI { d: i, a: i, imm: st as i32, shift });
+                f.emit(Op::AddSI {
+                    d: i,
+                    a: i,
+                    imm: st as i32,
+                    shift,
+                });
             }
             (Some(st), _) => {
                 let t = f.temp();
                 let k = self.konst(st as u64);
                 f.emit(Op::LoadK { d: t, k });
                 f.emit(if e.is_signed_int() {
-                    Op::AddS { d: i, a: i, b: t, shift }
+                    Op::AddS {
+                        d: i,
+                        a: i,
+                        b: t,
+                        shift,
+                    }
                 } else {
-                    Op::AddU { d: i, a: i, b: t, shift }
+                    Op::AddU {
+                        d: i,
+                        a: i,
+                        b: t,
+                        shift,
+                    }
                 });
             }
             (None, Some(sp)) => {
                 f.emit(if e.is_signed_int() {
-                    Op::AddS { d: i, a: i, b: sp, shift }
+                    Op::AddS {
+                        d: i,
+                        a: i,
+                        b: sp,
+                        shift,
+                    }
                 } else {
-                    Op::AddU { d: i, a: i, b: sp, shift }
+                    Op::AddU {
+                        d: i,
+                        a: i,
+                        b: sp,
+                        shift,
+                    }
                 });
             }
             (None, None) => {}
@@ -615,7 +683,12 @@ impl Compiler<'_> {
         signed: bool,
     ) -> usize {
         match (lim_imm, lim) {
-            (Some(imm), _) if signed => f.emit(Op::JnCmpSI { a: i, imm, cmp, t: 0 }),
+            (Some(imm), _) if signed => f.emit(Op::JnCmpSI {
+                a: i,
+                imm,
+                cmp,
+                t: 0,
+            }),
             (Some(imm), _) => {
                 let t = f.temp();
                 f.emit(Op::LoadI { d: t, imm });
@@ -623,7 +696,12 @@ impl Compiler<'_> {
                 f.emit(Op::CmpU { d, a: i, b: t, cmp });
                 f.emit(Op::Jz { c: d, t: 0 })
             }
-            (None, Some(l)) if signed => f.emit(Op::JnCmpS { a: i, b: l, cmp, t: 0 }),
+            (None, Some(l)) if signed => f.emit(Op::JnCmpS {
+                a: i,
+                b: l,
+                cmp,
+                t: 0,
+            }),
             (None, Some(l)) => {
                 let d = f.temp();
                 f.emit(Op::CmpU { d, a: i, b: l, cmp });

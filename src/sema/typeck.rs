@@ -170,7 +170,14 @@ impl Compiler<'_> {
 
     /// Converts `v` to type `to` with implicit widening only; reports E301
     /// and returns an error value otherwise. `what` names the context.
-    pub(super) fn coerce(&mut self, f: &mut Fcx, v: Val, to: TypeId, span: Span, what: &str) -> Val {
+    pub(super) fn coerce(
+        &mut self,
+        f: &mut Fcx,
+        v: Val,
+        to: TypeId,
+        span: Span,
+        what: &str,
+    ) -> Val {
         if v.is_error() || to == TypeTable::error() {
             return Val::error();
         }
@@ -229,11 +236,8 @@ impl Compiler<'_> {
             }
             Val::None(t) => {
                 if *t == TypeTable::void() {
-                    self.diags.error(
-                        "E301",
-                        span,
-                        format!("{what}: this call returns no value"),
-                    );
+                    self.diags
+                        .error("E301", span, format!("{what}: this call returns no value"));
                 }
                 Val::error()
             }
@@ -257,7 +261,11 @@ impl Compiler<'_> {
         // An element load with stride 0 checks the range and reads slot 0 of
         // a dummy; instead use IndexStep on a zeroed accumulator.
         f.emit(Op::LoadI { d, imm: 0 });
-        f.emit(Op::IndexStep { acc: d, idx: s, desc });
+        f.emit(Op::IndexStep {
+            acc: d,
+            idx: s,
+            desc,
+        });
         s
     }
 

@@ -142,6 +142,9 @@ mod tests {
         assert_eq!(convert(Conv::ToBcd(16), 1234), Ok(0x1234));
         assert_eq!(convert(Conv::FromBcd, 0x1234), Ok(1234));
         assert_eq!(convert(Conv::FromBcd, 0x1A), Err(FaultKind::InvalidBcd));
-        assert_eq!(convert(Conv::ToBcd(8), 100), Err(FaultKind::ConversionOverflow));
+        assert_eq!(
+            convert(Conv::ToBcd(8), 100),
+            Err(FaultKind::ConversionOverflow)
+        );
     }
 }

@@ -76,7 +76,11 @@ fn math64(f: MathFn, x: f64) -> f64 {
 
 fn shift(x: u64, n: u64, kind: ShiftKind, bits: u8) -> u64 {
     let bits = bits as u64;
-    let mask = if bits == 64 { u64::MAX } else { (1u64 << bits) - 1 };
+    let mask = if bits == 64 {
+        u64::MAX
+    } else {
+        (1u64 << bits) - 1
+    };
     let x = x & mask;
     match kind {
         ShiftKind::Shl => {
@@ -379,10 +383,8 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 }
             }
             Op::ToStr { d, a, ty } => {
-                let text = crate::runtime::format::format_value(
-                    img.scalar_types[ty as usize],
-                    r!(a),
-                );
+                let text =
+                    crate::runtime::format::format_value(img.scalar_types[ty as usize], r!(a));
                 let di = r!(d) as usize;
                 m.strings[di].set(&text);
             }

@@ -56,7 +56,11 @@ impl fmt::Display for FaultKind {
                 write!(f, "conversion result out of the target type's range")
             }
             FaultKind::MuxOutOfRange { k, n } => {
-                write!(f, "MUX selector {k} out of range (0..{})", n.saturating_sub(1))
+                write!(
+                    f,
+                    "MUX selector {k} out of range (0..{})",
+                    n.saturating_sub(1)
+                )
             }
             FaultKind::InvalidBcd => write!(f, "invalid BCD value"),
             FaultKind::NegativeExponent => write!(f, "negative exponent in integer `**`"),

@@ -110,7 +110,12 @@ pub fn call(
         StrFn::Insert => {
             let s = text(0);
             let pos = byte_at(&s, count(args[2])?);
-            format!("{}{}{}", &s[..pos], strings[args[1] as usize].text, &s[pos..])
+            format!(
+                "{}{}{}",
+                &s[..pos],
+                strings[args[1] as usize].text,
+                &s[pos..]
+            )
         }
         StrFn::Delete => {
             let s = text(0);
