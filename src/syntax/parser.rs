@@ -173,9 +173,9 @@ pub fn recovery_diagnostic(st: &State, e: ParseError<usize, Tok, ()>) -> Diagnos
                 ),
             )
         }
-        ParseError::UnrecognizedEof { location, expected } => Diagnostic::error(
+        ParseError::UnrecognizedEof { expected, .. } => Diagnostic::error(
             "E102",
-            span(location, location),
+            span(st.text().len(), st.text().len()),
             format!(
                 "unexpected end of file: expected {}",
                 expected_text(&expected)
