@@ -356,6 +356,7 @@ pub fn call(st: &State, b: Expr, args: Vec<Arg>, r: usize) -> Expr {
 // ------------------------------------------------------------------ statements
 
 /// Intermediate element of a CASE body: labels or a statement.
+#[allow(clippy::large_enum_variant)]
 pub enum CaseItem {
     /// `1, 2..5 :`
     Labels(Vec<CaseLabel>, Span),
@@ -619,6 +620,7 @@ pub fn pou(
 // ------------------------------------------------------------------ SFC
 
 /// Intermediate element of a POU body.
+#[allow(clippy::large_enum_variant)]
 pub enum BodyElem {
     /// A plain statement.
     Stmt(Stmt),
@@ -735,6 +737,7 @@ pub fn priority(st: &State, key: Ident, e: Expr) -> Expr {
 // ------------------------------------------------------------------ configuration
 
 /// Intermediate element of a CONFIGURATION or RESOURCE.
+#[allow(clippy::large_enum_variant)]
 pub enum ConfElem {
     /// VAR_GLOBAL block.
     Globals(VarBlock),

@@ -250,8 +250,8 @@ fn classify_body(tokens: &[Spanned], start: usize, end: usize, regions: &mut Vec
                     .unwrap_or(end);
                 let mut depth = 0i32;
                 let mut colon = None;
-                for j in q + 1..t_end {
-                    match tokens[j].1 {
+                for (j, t) in tokens.iter().enumerate().take(t_end).skip(q + 1) {
+                    match t.1 {
                         Tok::LParen => depth += 1,
                         Tok::RParen => depth -= 1,
                         Tok::Assign if depth == 0 => break,
@@ -288,7 +288,7 @@ fn emit_il(body: &[Spanned], out: &mut Vec<Spanned>) {
     while i < body.len() {
         let (s, tok, e) = &body[i];
         if *tok == Tok::Eol {
-            if !line_start && !(track_parens && depth > 0) {
+            if !(line_start || (track_parens && depth > 0)) {
                 out.push((*s, Tok::Eol, *e));
                 line_start = true;
                 op_pos = false;

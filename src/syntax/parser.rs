@@ -108,7 +108,7 @@ fn expected_text(expected: &[String]) -> String {
     let names: Vec<String> = expected.iter().map(|e| expected_name(e)).collect();
     let mut shown: Vec<String> = names
         .iter()
-        .filter(|n| !OPERATORS.contains(&n.as_str()) && n.as_str() != "`(`")
+        .filter(|n| !OPERATORS.contains(&n.as_str()))
         .cloned()
         .collect();
     let had_ops = shown.len() < names.len();

@@ -29,7 +29,10 @@ pub fn parse_ok(src: &str) -> CompilationUnit {
         .iter()
         .map(|x| format!("{} {:?} {}", x.code, x.span, x.message))
         .collect();
-    assert!(msgs.is_empty(), "unexpected diagnostics: {msgs:#?}\nsource:\n{src}");
+    assert!(
+        msgs.is_empty(),
+        "unexpected diagnostics: {msgs:#?}\nsource:\n{src}"
+    );
     unit
 }
 
@@ -37,7 +40,10 @@ pub fn parse_ok(src: &str) -> CompilationUnit {
 pub fn messages(src: &str) -> Vec<String> {
     let mut d = Diagnostics::new();
     plcrun::syntax::parse(FileId(0), src, &mut d);
-    d.sorted().into_iter().map(|x| format!("{}: {}", x.code, x.message)).collect()
+    d.sorted()
+        .into_iter()
+        .map(|x| format!("{}: {}", x.code, x.message))
+        .collect()
 }
 
 /// The first POU of a unit.
@@ -70,7 +76,9 @@ pub fn expr(src: &str) -> String {
 
 /// Parses IL lines wrapped in a PROGRAM.
 pub fn il(body: &str) -> Vec<IlLine> {
-    let unit = parse_ok(&format!("PROGRAM p\nVAR x : BOOL; END_VAR\n{body}\nEND_PROGRAM\n"));
+    let unit = parse_ok(&format!(
+        "PROGRAM p\nVAR x : BOOL; END_VAR\n{body}\nEND_PROGRAM\n"
+    ));
     match &pou(&unit).body {
         Body::Il(lines) => lines.clone(),
         other => panic!("expected an IL body, got {other:?}"),

@@ -55,7 +55,10 @@ fn messages_name_what_was_expected() {
     let m = messages("PROGRAM p\nx := T#5;\nEND_PROGRAM");
     assert!(m[0].contains("missing unit"), "{m:?}");
     let m = messages("PROGRAM p\nx := 1;\n");
-    assert!(m[0].contains("end of file") && m[0].contains("END_PROGRAM"), "{m:?}");
+    assert!(
+        m[0].contains("end of file") && m[0].contains("END_PROGRAM"),
+        "{m:?}"
+    );
     let m = messages("PROGRAM p\n{ pragma }\nEND_PROGRAM");
     assert!(m[0].contains("{ pragma }"), "{m:?}");
 }
@@ -93,15 +96,22 @@ fn deep_nesting_is_an_error_not_a_crash(#[case] src: String) {
     let (_unit, errs) = parse_all(&src);
     // Valid but absurd nesting is reported as E106; unbalanced input gets E10x.
     assert!(
-        errs.iter().all(|(c, _, _)| c.starts_with("E10") || c.starts_with("E11")),
+        errs.iter()
+            .all(|(c, _, _)| c.starts_with("E10") || c.starts_with("E11")),
         "{errs:?}"
     );
 }
 
 #[test]
 fn moderate_nesting_is_fine() {
-    parse_ok(&format!("PROGRAM p x := {}; END_PROGRAM", nested("(", "1", ")", 150)));
-    parse_ok(&format!("PROGRAM p {} END_PROGRAM", nested("IF a THEN ", "x := 1;", " END_IF;", 90)));
+    parse_ok(&format!(
+        "PROGRAM p x := {}; END_PROGRAM",
+        nested("(", "1", ")", 150)
+    ));
+    parse_ok(&format!(
+        "PROGRAM p {} END_PROGRAM",
+        nested("IF a THEN ", "x := 1;", " END_IF;", 90)
+    ));
 }
 
 /// A small deterministic pseudo-random generator (xorshift64*).
@@ -120,9 +130,46 @@ impl Rng {
 }
 
 const PIECES: [&str; 40] = [
-    "(", ")", "[", "]", ";", ":", ":=", "=>", ",", ".", "..", "\n", "'", "\"", "(*", "*)", "{",
-    "}", "%", "#", "T#", "16#", "INT#", "END_IF", "IF", "THEN", "END_VAR", "VAR", "PROGRAM",
-    "END_PROGRAM", "CAL", "LD", "AND(", "STEP", "TRANSITION", "ACTION", "|", "é", "$", "\u{0}",
+    "(",
+    ")",
+    "[",
+    "]",
+    ";",
+    ":",
+    ":=",
+    "=>",
+    ",",
+    ".",
+    "..",
+    "\n",
+    "'",
+    "\"",
+    "(*",
+    "*)",
+    "{",
+    "}",
+    "%",
+    "#",
+    "T#",
+    "16#",
+    "INT#",
+    "END_IF",
+    "IF",
+    "THEN",
+    "END_VAR",
+    "VAR",
+    "PROGRAM",
+    "END_PROGRAM",
+    "CAL",
+    "LD",
+    "AND(",
+    "STEP",
+    "TRANSITION",
+    "ACTION",
+    "|",
+    "é",
+    "$",
+    "\u{0}",
 ];
 
 fn mutate(rng: &mut Rng, src: &str) -> String {
@@ -162,7 +209,12 @@ fn fuzz_mutated_programs_never_panic() {
         "TYPE c : (a, b := 2); s : STRUCT x : INT := 1; END_STRUCT; END_TYPE",
     ];
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
-    for round in 0..600 {
+    // More rounds locally: PLCRUN_FUZZ_ROUNDS=100000 cargo test fuzz
+    let rounds = std::env::var("PLCRUN_FUZZ_ROUNDS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(600);
+    for round in 0..rounds {
         let seed = seeds[round % seeds.len()];
         let src = mutate(&mut rng, seed);
         let _ = parse_all(&src);
@@ -175,7 +227,10 @@ fn fuzz_random_token_soup_never_panics() {
     for _ in 0..300 {
         let n = rng.below(200);
         let src: String = (0..n)
-            .map(|_| PIECES[rng.below(PIECES.len())].to_string() + if rng.below(2) == 0 { " " } else { "" })
+            .map(|_| {
+                PIECES[rng.below(PIECES.len())].to_string()
+                    + if rng.below(2) == 0 { " " } else { "" }
+            })
             .collect();
         let _ = parse_all(&src);
         let _ = plcrun::syntax::parse_literal(&src);

@@ -8,19 +8,35 @@ use rstest::rstest;
 /// One IL instruction in a compact form.
 fn show(i: &IlInstr) -> String {
     match &i.kind {
-        IlInstrKind::Simple { op, negate, operand } => format!(
+        IlInstrKind::Simple {
+            op,
+            negate,
+            operand,
+        } => format!(
             "{op:?}{}{}",
             if *negate { "N" } else { "" },
-            operand.as_ref().map(|o| format!(" {}", sx(o))).unwrap_or_default()
+            operand
+                .as_ref()
+                .map(|o| format!(" {}", sx(o)))
+                .unwrap_or_default()
         ),
-        IlInstrKind::Deferred { op, negate, operand } => format!(
+        IlInstrKind::Deferred {
+            op,
+            negate,
+            operand,
+        } => format!(
             "{op:?}{}({}",
             if *negate { "N" } else { "" },
             operand.as_ref().map(sx).unwrap_or_default()
         ),
         IlInstrKind::Close => ")".into(),
         IlInstrKind::Jump { cond, label } => format!("JMP{:?} {}", cond, label.name),
-        IlInstrKind::Call { cond, instance, args: a, outputs } => format!(
+        IlInstrKind::Call {
+            cond,
+            instance,
+            args: a,
+            outputs,
+        } => format!(
             "CAL{:?} {}({}{})",
             cond,
             sx(instance),
@@ -104,7 +120,10 @@ fn one(line: &str) -> String {
 #[case("CALCN fbs[2]", "CALSome(false) fbs[2]()")]
 #[case("CAL t1(IN := x, PT := T#1s)", "CALNone t1(IN := x, PT := T#1s)")]
 #[case("CAL t1(x, T#1s)", "CALNone t1(x, T#1s)")]
-#[case("CAL t1(IN := x, Q => q, NOT ET => e)", "CALNone t1(IN := x, Q => q, NOT ET => e)")]
+#[case(
+    "CAL t1(IN := x, Q => q, NOT ET => e)",
+    "CALNone t1(IN := x, Q => q, NOT ET => e)"
+)]
 #[case("MAX b, c", "FUN MAX b, c")]
 #[case("LIMIT 0, 100", "FUN LIMIT 0, 100")]
 #[case("SEL a, b", "FUN SEL a, b")]
@@ -137,7 +156,10 @@ fn labels_alone_and_before_instructions() {
 #[test]
 fn deferred_over_several_lines() {
     let lines = il("LD a\nAND(\nLD b\nOR c\n)\nST q");
-    let shown: Vec<String> = lines.iter().map(|l| show(l.instr.as_ref().unwrap())).collect();
+    let shown: Vec<String> = lines
+        .iter()
+        .map(|l| show(l.instr.as_ref().unwrap()))
+        .collect();
     assert_eq!(shown, ["Ld a", "And(", "Ld b", "Or c", ")", "St q"]);
 }
 
@@ -149,21 +171,28 @@ fn moeller_call_with_output_list() {
         show(lines[0].instr.as_ref().unwrap()),
         "CALNone T1(IN := M23, PT := DT1 | QT1 := Q,  := ET)"
     );
-    let IlInstrKind::Call { outputs, .. } = &lines[0].instr.as_ref().unwrap().kind else { panic!() };
+    let IlInstrKind::Call { outputs, .. } = &lines[0].instr.as_ref().unwrap().kind else {
+        panic!()
+    };
     assert!(outputs[1].dest.is_none());
 }
 
 #[test]
 fn moeller_sr_call() {
     let lines = il("CAL SR0(\nSET1 := APM0,\nRESET:= M1\n|\nM0 := Q1\n)");
-    assert_eq!(show(lines[0].instr.as_ref().unwrap()), "CALNone SR0(SET1 := APM0, RESET := M1 | M0 := Q1)");
+    assert_eq!(
+        show(lines[0].instr.as_ref().unwrap()),
+        "CALNone SR0(SET1 := APM0, RESET := M1 | M0 := Q1)"
+    );
 }
 
 #[test]
 fn line_spans_are_exact() {
     let src = "PROGRAM p\nVAR x : BOOL; END_VAR\n  LD x\n  ST x\nEND_PROGRAM";
     let unit = parse_ok(src);
-    let Body::Il(lines) = &pou(&unit).body else { panic!() };
+    let Body::Il(lines) = &pou(&unit).body else {
+        panic!()
+    };
     let texts: Vec<&str> = lines
         .iter()
         .map(|l| &src[l.span.start as usize..l.span.end as usize])
@@ -182,8 +211,12 @@ fn function_body_in_il_and_st_pous_in_the_same_file() {
         .items
         .iter()
         .map(|i| match i {
-            Item::Pou(Pou { body: Body::Il(_), .. }) => "il",
-            Item::Pou(Pou { body: Body::St(_), .. }) => "st",
+            Item::Pou(Pou {
+                body: Body::Il(_), ..
+            }) => "il",
+            Item::Pou(Pou {
+                body: Body::St(_), ..
+            }) => "st",
             _ => "?",
         })
         .collect();
@@ -208,7 +241,11 @@ fn il_action_in_sfc() {
         "PROGRAM p VAR a : BOOL; END_VAR\nINITIAL_STEP s0 : act(N); END_STEP\n\
          ACTION act :\n  LD a\n  ST b\nEND_ACTION\nEND_PROGRAM",
     );
-    let Body::Sfc(e) = &pou(&unit).body else { panic!() };
-    let SfcElement::Action(a) = &e[1] else { panic!() };
+    let Body::Sfc(e) = &pou(&unit).body else {
+        panic!()
+    };
+    let SfcElement::Action(a) = &e[1] else {
+        panic!()
+    };
     assert!(matches!(&a.body, Body::Il(l) if l.len() == 2));
 }

@@ -123,7 +123,9 @@ fn direct_addresses(
     #[case] explicit: bool,
     #[case] fields: &[u64],
 ) {
-    let unit = parse_ok(&format!("PROGRAM p VAR v AT {text} : BOOL; END_VAR END_PROGRAM"));
+    let unit = parse_ok(&format!(
+        "PROGRAM p VAR v AT {text} : BOOL; END_VAR END_PROGRAM"
+    ));
     let d = pou(&unit).var_blocks[0].decls[0].location.clone().unwrap();
     assert_eq!(format!("{:?}", d.area), area);
     assert_eq!(format!("{:?}", d.size), size);

@@ -24,7 +24,9 @@ fn alg01_parses_as_il() {
     let p = pou(&unit);
     assert_eq!(p.name.name, "ALG01");
     assert_eq!(p.var_blocks[0].decls.len(), 18);
-    let Body::Il(lines) = &p.body else { panic!("IL body expected") };
+    let Body::Il(lines) = &p.body else {
+        panic!("IL body expected")
+    };
     assert_eq!(lines.len(), 51);
     let calls = lines
         .iter()
@@ -41,12 +43,25 @@ fn alg01_parses_as_il() {
 #[test]
 fn chariot_parses_as_sfc() {
     let unit = parse_ok(include_str!("../fixtures/chariot.sfc"));
-    let Body::Sfc(elems) = &pou(&unit).body else { panic!("SFC body expected") };
-    let steps = elems.iter().filter(|e| matches!(e, SfcElement::Step(_))).count();
-    let transitions = elems.iter().filter(|e| matches!(e, SfcElement::Transition(_))).count();
-    let statements = elems.iter().filter(|e| matches!(e, SfcElement::Statement(_))).count();
+    let Body::Sfc(elems) = &pou(&unit).body else {
+        panic!("SFC body expected")
+    };
+    let steps = elems
+        .iter()
+        .filter(|e| matches!(e, SfcElement::Step(_)))
+        .count();
+    let transitions = elems
+        .iter()
+        .filter(|e| matches!(e, SfcElement::Transition(_)))
+        .count();
+    let statements = elems
+        .iter()
+        .filter(|e| matches!(e, SfcElement::Statement(_)))
+        .count();
     assert_eq!((steps, transitions, statements), (4, 4, 1));
-    let SfcElement::Step(av) = &elems[3] else { panic!("{:?}", elems[3]) };
+    let SfcElement::Step(av) = &elems[3] else {
+        panic!("{:?}", elems[3])
+    };
     assert_eq!(av.actions[0].action.name, "KMAV");
     assert_eq!(av.actions[0].indicators[0].name, "fcB");
 }

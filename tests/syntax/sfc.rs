@@ -17,7 +17,11 @@ fn assoc(a: &ActionAssociation) -> String {
         a.action.name,
         a.qualifier.as_ref().map(|q| q.name.as_str()).unwrap_or("-"),
         a.duration.as_ref().map(sx).unwrap_or_default(),
-        a.indicators.iter().map(|i| i.name.as_str()).collect::<Vec<_>>().join(",")
+        a.indicators
+            .iter()
+            .map(|i| i.name.as_str())
+            .collect::<Vec<_>>()
+            .join(",")
     )
 }
 
@@ -27,7 +31,9 @@ fn steps_and_associations() {
         "INITIAL_STEP s0 : A(N); B(L, T#10s); C(D, t#5s, ind); D(); E(N, ind2); F(SD, dly); G; K(fcB); END_STEP \
          STEP s1 : END_STEP",
     );
-    let SfcElement::Step(s0) = &e[0] else { panic!() };
+    let SfcElement::Step(s0) = &e[0] else {
+        panic!()
+    };
     assert!(s0.initial);
     let shown: Vec<String> = s0.actions.iter().map(assoc).collect();
     assert_eq!(
@@ -43,7 +49,9 @@ fn steps_and_associations() {
             "K[-||fcB]"
         ]
     );
-    let SfcElement::Step(s1) = &e[1] else { panic!() };
+    let SfcElement::Step(s1) = &e[1] else {
+        panic!()
+    };
     assert!(!s1.initial && s1.actions.is_empty());
 }
 
@@ -58,7 +66,10 @@ fn all_qualifiers() {
         .iter()
         .map(|a| a.qualifier.as_ref().unwrap().name.as_str())
         .collect();
-    assert_eq!(q, ["N", "R", "S", "L", "D", "P", "P0", "P1", "SD", "DS", "SL"]);
+    assert_eq!(
+        q,
+        ["N", "R", "S", "L", "D", "P", "P0", "P1", "SD", "DS", "SL"]
+    );
 }
 
 #[test]
@@ -94,7 +105,9 @@ fn actions_and_plain_statements() {
          ACTION empty : END_ACTION",
     );
     assert!(matches!(&e[1], SfcElement::Statement(s) if matches!(s.kind, StmtKind::Assign { .. })));
-    let SfcElement::Action(a) = &e[2] else { panic!() };
+    let SfcElement::Action(a) = &e[2] else {
+        panic!()
+    };
     assert_eq!(a.name.name, "act");
     assert!(matches!(&a.body, Body::St(s) if s.len() == 2));
     assert!(matches!(&e[3], SfcElement::Action(a) if a.body == Body::St(vec![])));
@@ -102,6 +115,8 @@ fn actions_and_plain_statements() {
 
 #[test]
 fn function_block_with_chart() {
-    let unit = parse_ok("FUNCTION_BLOCK fb VAR_INPUT go : BOOL; END_VAR INITIAL_STEP s : END_STEP TRANSITION FROM s TO s := go; END_TRANSITION END_FUNCTION_BLOCK");
+    let unit = parse_ok(
+        "FUNCTION_BLOCK fb VAR_INPUT go : BOOL; END_VAR INITIAL_STEP s : END_STEP TRANSITION FROM s TO s := go; END_TRANSITION END_FUNCTION_BLOCK",
+    );
     assert!(matches!(&pou(&unit).body, Body::Sfc(e) if e.len() == 2));
 }

@@ -30,7 +30,10 @@ use rstest::rstest;
 #[case("NOT NOT a", "(NOT (NOT a))")]
 #[case("f(a, b)", "f(a, b)")]
 #[case("f()", "f()")]
-#[case("LIMIT(MN := 0, IN := x, MX := 10)", "LIMIT(MN := 0, IN := x, MX := 10)")]
+#[case(
+    "LIMIT(MN := 0, IN := x, MX := 10)",
+    "LIMIT(MN := 0, IN := x, MX := 10)"
+)]
 #[case("a.b[2].c", "a.b[2].c")]
 #[case("arr[i, j + 1]", "arr[i, (+ j 1)]")]
 #[case("inst.Q", "inst.Q")]
@@ -75,9 +78,20 @@ fn assignment_and_call_statements() {
 
 #[test]
 fn if_elsif_else() {
-    let s = stmts("IF a THEN x := 1; ELSIF b THEN x := 2; ELSIF c THEN ; ELSE x := 3; y := 4; END_IF;");
-    assert_eq!(s.len(), 1, "the `;` after END_IF is not a separate statement");
-    let StmtKind::If { branches, else_branch } = &s[0].kind else { panic!() };
+    let s =
+        stmts("IF a THEN x := 1; ELSIF b THEN x := 2; ELSIF c THEN ; ELSE x := 3; y := 4; END_IF;");
+    assert_eq!(
+        s.len(),
+        1,
+        "the `;` after END_IF is not a separate statement"
+    );
+    let StmtKind::If {
+        branches,
+        else_branch,
+    } = &s[0].kind
+    else {
+        panic!()
+    };
     assert_eq!(branches.len(), 3);
     assert_eq!(sx(&branches[1].0), "b");
     assert_eq!(branches[2].1[0].kind, StmtKind::Empty);
@@ -95,7 +109,14 @@ fn case_forms() {
     let s = stmts(
         "CASE n OF 1: x := 1; 2, 3: x := 2; y := 3; 4..6, 8: ; Red: x := 4; -1: x := 5; Color#Blue: ; ELSE x := 0; END_CASE;",
     );
-    let StmtKind::Case { selector, arms, else_branch } = &s[0].kind else { panic!() };
+    let StmtKind::Case {
+        selector,
+        arms,
+        else_branch,
+    } = &s[0].kind
+    else {
+        panic!()
+    };
     assert_eq!(sx(selector), "n");
     assert_eq!(arms.len(), 6);
     let labels: Vec<String> = arms
@@ -136,12 +157,21 @@ fn loops_and_jumps() {
             _ => "other",
         })
         .collect();
-    assert_eq!(kinds, ["for-by", "for", "while", "repeat", "return", "empty"]);
-    let StmtKind::For { var, body, .. } = &s[0].kind else { panic!() };
+    assert_eq!(
+        kinds,
+        ["for-by", "for", "while", "repeat", "return", "empty"]
+    );
+    let StmtKind::For { var, body, .. } = &s[0].kind else {
+        panic!()
+    };
     assert_eq!(var.name, "i");
-    let StmtKind::If { branches, .. } = &body[1].kind else { panic!() };
+    let StmtKind::If { branches, .. } = &body[1].kind else {
+        panic!()
+    };
     assert_eq!(branches[0].1[0].kind, StmtKind::Exit);
-    let StmtKind::For { body, .. } = &s[1].kind else { panic!() };
+    let StmtKind::For { body, .. } = &s[1].kind else {
+        panic!()
+    };
     assert_eq!(body[0].kind, StmtKind::Continue);
 }
 
@@ -158,7 +188,10 @@ fn comments_pragmas_and_spans() {
     let p = pou(&unit);
     assert_eq!(p.name.name, "p");
     let Body::St(s) = &p.body else { panic!() };
-    assert_eq!(&src[s[0].span.start as usize..s[0].span.end as usize], "x := 1;");
+    assert_eq!(
+        &src[s[0].span.start as usize..s[0].span.end as usize],
+        "x := 1;"
+    );
     assert_eq!(p.span.start, 0);
     assert_eq!(p.span.end as usize, src.len());
 }
@@ -186,12 +219,25 @@ fn pou_kinds() {
     assert_eq!(pous[0].kind, PouKind::Function);
     assert!(matches!(&pous[0].return_type, Some(TypeSpec::Named(n)) if n.name == "INT"));
     assert!(pous[1].return_type.is_none());
-    assert!(matches!(&pous[2].return_type, Some(TypeSpec::String { wide: false, len: Some(_), .. })));
+    assert!(matches!(
+        &pous[2].return_type,
+        Some(TypeSpec::String {
+            wide: false,
+            len: Some(_),
+            ..
+        })
+    ));
     assert_eq!(pous[3].kind, PouKind::FunctionBlock);
     let kinds: Vec<VarKind> = pous[3].var_blocks.iter().map(|b| b.kind).collect();
     assert_eq!(
         kinds,
-        [VarKind::Input, VarKind::Output, VarKind::InOut, VarKind::Temp, VarKind::External]
+        [
+            VarKind::Input,
+            VarKind::Output,
+            VarKind::InOut,
+            VarKind::Temp,
+            VarKind::External
+        ]
     );
     let b = &pous[4].var_blocks;
     assert!(b[0].constant && b[0].retain.is_none());
@@ -216,24 +262,44 @@ fn var_declarations() {
     assert_eq!(d[0].names.len(), 2);
     assert!(matches!(&d[0].init, Some(Initializer::Expr(_))));
     assert_eq!(d[1].location.as_ref().unwrap().fields, [0, 0, 0, 0, 0]);
-    assert!(matches!(&d[2].ty, TypeSpec::String { wide: false, len: None, .. }));
+    assert!(matches!(
+        &d[2].ty,
+        TypeSpec::String {
+            wide: false,
+            len: None,
+            ..
+        }
+    ));
     assert!(matches!(&d[3].ty, TypeSpec::String { len: Some(_), .. }));
     assert!(matches!(&d[4].ty, TypeSpec::String { wide: true, .. }));
-    let Some(Initializer::Array(elems, _)) = &d[5].init else { panic!() };
+    let Some(Initializer::Array(elems, _)) = &d[5].init else {
+        panic!()
+    };
     assert_eq!(elems.len(), 3);
     assert!(elems[2].repeat.is_some());
-    let TypeSpec::Array { ranges, elem, .. } = &d[6].ty else { panic!() };
+    let TypeSpec::Array { ranges, elem, .. } = &d[6].ty else {
+        panic!()
+    };
     assert_eq!(ranges.len(), 2);
     assert_eq!(sx(&ranges[0].1), "(- N 1)");
     assert!(matches!(**elem, TypeSpec::Array { .. }));
     assert!(matches!(&d[7].ty, TypeSpec::Subrange { base, .. } if base.name == "INT"));
-    let TypeSpec::Enum { base: None, values, .. } = &d[8].ty else { panic!() };
+    let TypeSpec::Enum {
+        base: None, values, ..
+    } = &d[8].ty
+    else {
+        panic!()
+    };
     assert_eq!(values.len(), 3);
     assert!(values[1].1.is_some());
     assert!(matches!(&d[9].ty, TypeSpec::Enum { base: Some(_), .. }));
-    let Some(Initializer::Struct(fields, _)) = &d[10].init else { panic!() };
+    let Some(Initializer::Struct(fields, _)) = &d[10].init else {
+        panic!()
+    };
     assert!(matches!(&fields[1].1, Initializer::Struct(..)));
-    let Some(Initializer::Array(elems, _)) = &d[11].init else { panic!() };
+    let Some(Initializer::Array(elems, _)) = &d[11].init else {
+        panic!()
+    };
     assert!(elems[1].repeat.is_some() && elems[1].value.is_none());
     assert!(matches!(&d[12].ty, TypeSpec::Named(n) if n.name == "TON"));
 }
@@ -252,7 +318,9 @@ fn type_declarations() {
            Nested : STRUCT p : Point; END_STRUCT \
          END_TYPE",
     );
-    let Item::Types(t) = &unit.items[0] else { panic!() };
+    let Item::Types(t) = &unit.items[0] else {
+        panic!()
+    };
     assert_eq!(t.len(), 8);
     assert!(matches!(&t[0].ty, TypeSpec::Named(_)));
     assert!(matches!(&t[1].ty, TypeSpec::Enum { .. }) && t[1].init.is_some());
@@ -260,7 +328,9 @@ fn type_declarations() {
     assert!(matches!(&t[3].ty, TypeSpec::Subrange { .. }));
     assert!(matches!(&t[4].ty, TypeSpec::Array { .. }));
     assert!(matches!(&t[5].ty, TypeSpec::String { .. }));
-    let TypeSpec::Struct { fields, .. } = &t[6].ty else { panic!() };
+    let TypeSpec::Struct { fields, .. } = &t[6].ty else {
+        panic!()
+    };
     assert_eq!(fields.len(), 3);
     assert!(matches!(&t[7].ty, TypeSpec::Struct { .. }));
 }
@@ -279,7 +349,9 @@ fn configuration_with_resource() {
            END_RESOURCE \
          END_CONFIGURATION",
     );
-    let Item::Configuration(c) = &unit.items[0] else { panic!() };
+    let Item::Configuration(c) = &unit.items[0] else {
+        panic!()
+    };
     assert_eq!(c.name.name, "plant");
     assert_eq!(c.globals.len(), 1);
     let r = &c.resources[0];
@@ -299,7 +371,9 @@ fn configuration_without_resource_gets_implicit_one() {
     let unit = parse_ok(
         "CONFIGURATION cfg TASK t (INTERVAL := T#20ms); PROGRAM inst WITH t : Main; END_CONFIGURATION",
     );
-    let Item::Configuration(c) = &unit.items[0] else { panic!() };
+    let Item::Configuration(c) = &unit.items[0] else {
+        panic!()
+    };
     assert_eq!(c.resources.len(), 1);
     assert_eq!(c.resources[0].name.name, "cfg");
     assert_eq!(c.resources[0].tasks.len(), 1);
@@ -308,7 +382,8 @@ fn configuration_without_resource_gets_implicit_one() {
 
 #[test]
 fn top_level_globals() {
-    let unit = parse_ok("VAR_GLOBAL g1 : INT := 3; g2 AT %QX0.0 : BOOL; END_VAR PROGRAM p END_PROGRAM");
+    let unit =
+        parse_ok("VAR_GLOBAL g1 : INT := 3; g2 AT %QX0.0 : BOOL; END_VAR PROGRAM p END_PROGRAM");
     assert!(matches!(&unit.items[0], Item::Globals(b) if b.decls.len() == 2));
     assert!(matches!(&unit.items[1], Item::Pou(_)));
 }
