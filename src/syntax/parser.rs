@@ -163,7 +163,7 @@ pub fn recovery_diagnostic(st: &State, e: ParseError<usize, Tok, ()>) -> Diagnos
                     format!("`{word}` is not supported by plcrun"),
                 );
             }
-            Diagnostic::error(
+            let d = Diagnostic::error(
                 "E101",
                 span(l, r),
                 format!(
@@ -171,7 +171,12 @@ pub fn recovery_diagnostic(st: &State, e: ParseError<usize, Tok, ()>) -> Diagnos
                     expected_text(&expected),
                     found(st, &tok, l, r)
                 ),
-            )
+            );
+            if tok == Tok::Eq {
+                d.with_note("assignment and parameter passing are written `:=`")
+            } else {
+                d
+            }
         }
         ParseError::UnrecognizedEof { expected, .. } => Diagnostic::error(
             "E102",
