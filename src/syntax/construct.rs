@@ -4,24 +4,20 @@
 //! associations, configurations).
 //!
 //! Depth guard: every node with children is built here, and refuses to grow
-//! deeper than a fixed limit (reporting `E106` once). The AST handed to later
-//! stages is therefore shallow enough for them to walk recursively, and
-//! dropping it never overflows the stack, whatever the input.
+//! deeper than the limits of [`crate::syntax::depth`] (reporting `E106`
+//! once).
 
 use crate::diagnostics::Diagnostic;
 use crate::source::{FileId, Span};
 use crate::syntax::ast::*;
+use crate::syntax::depth::{
+    MAX_EXPR_DEPTH, MAX_INIT_DEPTH, MAX_STMT_DEPTH, expr_depth, init_depth, stmt_depth, type_depth,
+};
 use crate::syntax::parser::recovery_diagnostic;
 use crate::syntax::token::Tok;
 use lalrpop_util::ErrorRecovery;
 use std::cell::{Cell, RefCell};
 
-/// Maximum nesting of expressions (operators, parentheses, calls, members).
-pub const MAX_EXPR_DEPTH: usize = 200;
-/// Maximum nesting of statements (IF inside FOR inside ...).
-pub const MAX_STMT_DEPTH: usize = 100;
-/// Maximum nesting of initializers and of ARRAY types.
-pub const MAX_INIT_DEPTH: usize = 64;
 /// Most syntax errors recorded per file; the rest are counted.
 const MAX_SYNTAX_ERRORS: usize = 200;
 
@@ -123,87 +119,6 @@ impl<'t> State<'t> {
                 format!("{what} nested too deeply (more than {limit} levels); split it up"),
             );
         }
-    }
-}
-
-// ------------------------------------------------------------------ depth
-
-fn arg_expr(a: &Arg) -> &Expr {
-    match a {
-        Arg::Positional(e) | Arg::Input { value: e, .. } | Arg::Output { target: e, .. } => e,
-    }
-}
-
-/// Nesting depth of an expression (a leaf is 1).
-pub fn expr_depth(e: &Expr) -> usize {
-    let children = match &e.kind {
-        ExprKind::Literal(_) | ExprKind::Name(_) | ExprKind::Direct(_) => 0,
-        ExprKind::Member(b, _)
-        | ExprKind::BitAccess(b, _)
-        | ExprKind::Unary(_, b)
-        | ExprKind::Paren(b) => expr_depth(b),
-        ExprKind::Index(b, idx) => idx.iter().map(expr_depth).fold(expr_depth(b), usize::max),
-        ExprKind::Binary(_, a, b) => expr_depth(a).max(expr_depth(b)),
-        ExprKind::Call(c) => c
-            .args
-            .iter()
-            .map(|a| expr_depth(arg_expr(a)))
-            .fold(expr_depth(&c.callee), usize::max),
-    };
-    1 + children
-}
-
-fn list_depth(body: &[Stmt]) -> usize {
-    body.iter().map(stmt_depth).max().unwrap_or(0)
-}
-
-/// Statement nesting depth (a simple statement is 1).
-pub fn stmt_depth(s: &Stmt) -> usize {
-    let inner = match &s.kind {
-        StmtKind::If {
-            branches,
-            else_branch,
-        } => branches
-            .iter()
-            .map(|(_, b)| list_depth(b))
-            .chain(else_branch.iter().map(|b| list_depth(b)))
-            .max()
-            .unwrap_or(0),
-        StmtKind::Case {
-            arms, else_branch, ..
-        } => arms
-            .iter()
-            .map(|a| list_depth(&a.body))
-            .chain(else_branch.iter().map(|b| list_depth(b)))
-            .max()
-            .unwrap_or(0),
-        StmtKind::For { body, .. }
-        | StmtKind::While { body, .. }
-        | StmtKind::Repeat { body, .. } => list_depth(body),
-        _ => 0,
-    };
-    1 + inner
-}
-
-fn init_depth(i: &Initializer) -> usize {
-    1 + match i {
-        Initializer::Expr(_) => 0,
-        Initializer::Array(elems, _) => elems
-            .iter()
-            .filter_map(|e| e.value.as_ref())
-            .map(init_depth)
-            .max()
-            .unwrap_or(0),
-        Initializer::Struct(fields, _) => {
-            fields.iter().map(|(_, i)| init_depth(i)).max().unwrap_or(0)
-        }
-    }
-}
-
-fn type_depth(t: &TypeSpec) -> usize {
-    match t {
-        TypeSpec::Array { elem, .. } => 1 + type_depth(elem),
-        _ => 1,
     }
 }
 
@@ -356,6 +271,7 @@ pub fn call(st: &State, b: Expr, args: Vec<Arg>, r: usize) -> Expr {
 // ------------------------------------------------------------------ statements
 
 /// Intermediate element of a CASE body: labels or a statement.
+#[allow(clippy::large_enum_variant)]
 pub enum CaseItem {
     /// `1, 2..5 :`
     Labels(Vec<CaseLabel>, Span),
@@ -619,6 +535,7 @@ pub fn pou(
 // ------------------------------------------------------------------ SFC
 
 /// Intermediate element of a POU body.
+#[allow(clippy::large_enum_variant)]
 pub enum BodyElem {
     /// A plain statement.
     Stmt(Stmt),
@@ -735,6 +652,7 @@ pub fn priority(st: &State, key: Ident, e: Expr) -> Expr {
 // ------------------------------------------------------------------ configuration
 
 /// Intermediate element of a CONFIGURATION or RESOURCE.
+#[allow(clippy::large_enum_variant)]
 pub enum ConfElem {
     /// VAR_GLOBAL block.
     Globals(VarBlock),

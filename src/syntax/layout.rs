@@ -250,8 +250,8 @@ fn classify_body(tokens: &[Spanned], start: usize, end: usize, regions: &mut Vec
                     .unwrap_or(end);
                 let mut depth = 0i32;
                 let mut colon = None;
-                for j in q + 1..t_end {
-                    match tokens[j].1 {
+                for (j, t) in tokens.iter().enumerate().take(t_end).skip(q + 1) {
+                    match t.1 {
                         Tok::LParen => depth += 1,
                         Tok::RParen => depth -= 1,
                         Tok::Assign if depth == 0 => break,
@@ -288,7 +288,7 @@ fn emit_il(body: &[Spanned], out: &mut Vec<Spanned>) {
     while i < body.len() {
         let (s, tok, e) = &body[i];
         if *tok == Tok::Eol {
-            if !line_start && !(track_parens && depth > 0) {
+            if !(line_start || (track_parens && depth > 0)) {
                 out.push((*s, Tok::Eol, *e));
                 line_start = true;
                 op_pos = false;
@@ -349,5 +349,68 @@ fn emit_il(body: &[Spanned], out: &mut Vec<Spanned>) {
     }
     if !line_start {
         out.push((last_end, Tok::Eol, last_end));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostics::Diagnostics;
+    use crate::source::FileId;
+    use crate::syntax::lexer::lex;
+
+    fn kinds(src: &str) -> Vec<String> {
+        let toks = layout(lex(FileId(0), src, &mut Diagnostics::new()));
+        toks.into_iter()
+            .map(|(_, t, _)| match t {
+                Tok::Eol => "EOL".to_string(),
+                Tok::IlOp(c) => format!("op:{:?}{}", c.op, if c.negate { "N" } else { "" }),
+                Tok::IlLabel(l) => format!("label:{l}"),
+                Tok::IlCal(_) => "cal".to_string(),
+                Tok::IlFun(f) => format!("fun:{f}"),
+                Tok::Ident(i) => i,
+                Tok::Kw(k) => k.as_str().to_string(),
+                other => format!("{other:?}"),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn il_body_keeps_line_ends_and_retags_operators() {
+        let k = kinds(
+            "PROGRAM p\nVAR END_VAR\n\n  l1: LDN a (* c *)\n\n  AND( b\n  )\n  MAX c\nEND_PROGRAM",
+        );
+        assert_eq!(
+            k.join(" "),
+            "PROGRAM p VAR END_VAR label:l1 Colon op:LdN a EOL op:And LParen b EOL RParen EOL fun:MAX c EOL END_PROGRAM"
+        );
+    }
+
+    #[test]
+    fn st_body_drops_line_ends() {
+        let k = kinds("PROGRAM p\nST := 1;\nLD\n:= 2;\nEND_PROGRAM");
+        assert!(!k.contains(&"EOL".to_string()), "{k:?}");
+        assert!(k.contains(&"ST".to_string()));
+    }
+
+    #[test]
+    fn multi_line_cal_is_one_line() {
+        let k = kinds("PROGRAM p\nCAL t(\n IN := x\n |\n q := Q\n)\nLD q\nEND_PROGRAM");
+        assert_eq!(k.iter().filter(|t| *t == "EOL").count(), 2, "{k:?}");
+    }
+
+    #[test]
+    fn il_transition_and_action_bodies() {
+        let k = kinds(
+            "PROGRAM p\nSTEP s : END_STEP\nTRANSITION FROM s TO s : LD a\nAND b\nEND_TRANSITION\n\
+             ACTION a :\nLD x\nST y\nEND_ACTION\nACTION b : x := 1;\nEND_ACTION\nEND_PROGRAM",
+        );
+        assert_eq!(k.iter().filter(|t| *t == "EOL").count(), 4, "{k:?}");
+    }
+
+    #[test]
+    fn configuration_programs_are_not_pous() {
+        let k = kinds("CONFIGURATION c\nPROGRAM i : LD;\nEND_CONFIGURATION");
+        assert!(!k.contains(&"EOL".to_string()), "{k:?}");
     }
 }

@@ -465,4 +465,81 @@ mod tests {
             "LT#1d1h1m1s1ms1us1ns"
         );
     }
+
+    #[test]
+    fn integers() {
+        assert_eq!(parse_int_text("1_000"), Ok(1000));
+        assert_eq!(parse_int_text("16#FF"), Ok(255));
+        assert_eq!(parse_int_text("2#1_0"), Ok(2));
+        assert_eq!(parse_int_text("8#777"), Ok(511));
+        assert!(parse_int_text("16#").is_err());
+        assert!(parse_int_text("10#5").is_err());
+        assert!(parse_int_text("1__0").is_err());
+        assert!(parse_int_text("18446744073709551616").is_err());
+    }
+
+    #[test]
+    fn civil_dates() {
+        assert_eq!(days_since_epoch(1970, 1, 1), 0);
+        assert_eq!(days_since_epoch(1970, 3, 1), 59);
+        assert_eq!(days_since_epoch(1972, 3, 1), 790);
+        assert_eq!(days_since_epoch(2000, 3, 1), 11_017);
+        assert_eq!(days_since_epoch(2024, 1, 31), 19_753);
+        assert_eq!(days_since_epoch(1969, 12, 31), -1);
+        assert_eq!(days_since_epoch(1900, 3, 1), -25_508);
+        assert!(parse_date_body("2100-02-29").is_err());
+        assert!(parse_date_body("2000-02-29").is_ok());
+        assert!(parse_date_body("2024-1-31").is_ok());
+        assert!(parse_date_body("3000-01-01").is_err());
+    }
+
+    #[test]
+    fn times_of_day() {
+        assert_eq!(parse_tod_body("00:00:00"), Ok(0));
+        assert_eq!(parse_tod_body("12:30"), Ok(45_000_000_000_000));
+        assert_eq!(parse_tod_body("00:00:00.000000001"), Ok(1));
+        assert!(parse_tod_body("12:60:00").is_err());
+        assert!(parse_tod_body("12:00:00.").is_err());
+        assert_eq!(parse_dt_body("1970-01-01-00:00:01"), Ok(1_000_000_000));
+        assert!(parse_dt_body("1970-01-01").is_err());
+    }
+
+    #[test]
+    fn strings() {
+        assert_eq!(decode_string("a$$b$'c", false).as_deref(), Ok("a$b'c"));
+        assert_eq!(
+            decode_string("$l$N$p$r$t", false).as_deref(),
+            Ok("\n\n\u{c}\r\t")
+        );
+        assert_eq!(decode_string("$41$7E", false).as_deref(), Ok("A~"));
+        assert_eq!(decode_string("$0041$\"", true).as_deref(), Ok("A\""));
+        assert_eq!(decode_string("ab$Q", false).unwrap_err().0, 2);
+        assert!(decode_string("$4", false).is_err());
+        assert!(decode_string("$", false).is_err());
+    }
+
+    #[test]
+    fn typed_bodies() {
+        assert_eq!(decode_typed_body("INT", "-3"), Ok(LiteralValue::Int(-3)));
+        assert_eq!(
+            decode_typed_body("word", "16#FF"),
+            Ok(LiteralValue::Int(255))
+        );
+        assert_eq!(
+            decode_typed_body("LREAL", "2.5"),
+            Ok(LiteralValue::Real(2.5))
+        );
+        assert_eq!(
+            decode_typed_body("BOOL", "FALSE"),
+            Ok(LiteralValue::Bool(false))
+        );
+        assert_eq!(decode_typed_body("MyAlias", "7"), Ok(LiteralValue::Int(7)));
+        assert!(matches!(
+            decode_typed_body("Color", "Red"),
+            Ok(LiteralValue::EnumValue(i)) if i.name == "Red"
+        ));
+        assert!(decode_typed_body("INT", "").is_err());
+        assert!(decode_typed_body("INT", "Red").is_err());
+        assert!(decode_typed_body("DINT", "1.5").is_err());
+    }
 }

@@ -5,6 +5,7 @@
 
 pub mod ast;
 pub mod construct;
+pub mod depth;
 pub mod layout;
 pub mod lexer;
 pub mod literal;

@@ -108,7 +108,7 @@ fn expected_text(expected: &[String]) -> String {
     let names: Vec<String> = expected.iter().map(|e| expected_name(e)).collect();
     let mut shown: Vec<String> = names
         .iter()
-        .filter(|n| !OPERATORS.contains(&n.as_str()) && n.as_str() != "`(`")
+        .filter(|n| !OPERATORS.contains(&n.as_str()))
         .cloned()
         .collect();
     let had_ops = shown.len() < names.len();
@@ -163,7 +163,7 @@ pub fn recovery_diagnostic(st: &State, e: ParseError<usize, Tok, ()>) -> Diagnos
                     format!("`{word}` is not supported by plcrun"),
                 );
             }
-            Diagnostic::error(
+            let d = Diagnostic::error(
                 "E101",
                 span(l, r),
                 format!(
@@ -171,11 +171,16 @@ pub fn recovery_diagnostic(st: &State, e: ParseError<usize, Tok, ()>) -> Diagnos
                     expected_text(&expected),
                     found(st, &tok, l, r)
                 ),
-            )
+            );
+            if tok == Tok::Eq {
+                d.with_note("assignment and parameter passing are written `:=`")
+            } else {
+                d
+            }
         }
-        ParseError::UnrecognizedEof { location, expected } => Diagnostic::error(
+        ParseError::UnrecognizedEof { expected, .. } => Diagnostic::error(
             "E102",
-            span(location, location),
+            span(st.text().len(), st.text().len()),
             format!(
                 "unexpected end of file: expected {}",
                 expected_text(&expected)

@@ -228,9 +228,8 @@ fn date_like_len(s: &[u8], seps: &[u8]) -> usize {
     let mut i = 0;
     while i < s.len() {
         let c = s[i];
-        if c.is_ascii_digit() || c == b'_' {
-            i += 1;
-        } else if seps.contains(&c) && s.get(i + 1).is_some_and(u8::is_ascii_digit) {
+        let sep_then_digit = seps.contains(&c) && s.get(i + 1).is_some_and(u8::is_ascii_digit);
+        if c.is_ascii_digit() || c == b'_' || sep_then_digit {
             i += 1;
         } else {
             break;
