@@ -10,13 +10,10 @@
 //! main benchmarks (a, b, c unrolled, d). The process exits with status 1 if
 //! any checksum is wrong.
 //!
-//! Usage: `cargo bench --bench perf [--features bench-plcrun] -- [--quick]
+//! Usage: `cargo bench --bench perf -- [--quick]
 //! [--rounds=N] [NAME...]` — `--quick` (or `PLCRUN_BENCH_QUICK=1`) uses
 //! small cycle counts; names select benchmarks by prefix (`a`, `c`,
 //! `c_fb_array`, `empty`, ...).
-//!
-//! Without the `bench-plcrun` feature only the native runners exist (the
-//! plcrun engine API is being written); see [`plcrun_runner`].
 
 // Shared with tests/native_reference.rs, which uses all of it.
 #[allow(dead_code)]
@@ -83,13 +80,10 @@ struct Case {
     /// Row name in the table.
     name: &'static str,
     /// File name of the program (as given to plcrun).
-    #[cfg_attr(not(feature = "bench-plcrun"), allow(dead_code))]
     file: &'static str,
     /// Program text.
-    #[cfg_attr(not(feature = "bench-plcrun"), allow(dead_code))]
     source: &'static str,
     /// Variable holding the checksum.
-    #[cfg_attr(not(feature = "bench-plcrun"), allow(dead_code))]
     checksum_var: &'static str,
     /// Full and `--quick` cycle counts (README values).
     full: Target,
@@ -194,8 +188,6 @@ fn cases() -> Vec<Case> {
 //     let mut plc = plcrun::Plc::compile_files(&[(file, text)], &plcrun::Options::default())?;
 //     plc.run_cycle()?;                  // one cycle on the virtual clock (10 ms)
 //     let v = plc.read_i64("checksum")?;
-//
-// It is compiled only with `--features bench-plcrun` until that API exists.
 // ---------------------------------------------------------------------------
 
 mod plc {
@@ -236,9 +228,8 @@ mod plc {
     }
 }
 
-/// A fresh plcrun runner for `case`: `None` when the harness is built
-/// without the `bench-plcrun` feature, `Some(Err)` when the program does not
-/// compile.
+/// A fresh plcrun runner for `case` (`Some(Err)` when the program does not
+/// compile).
 fn plcrun_runner(case: &Case) -> Option<Result<Box<dyn Runner>, String>> {
     Some(
         plc::PlcRunner::compile(case.file, case.source, case.checksum_var)
@@ -400,8 +391,7 @@ fn main() {
     }
     if log_ratios.is_empty() {
         println!(
-            "geomean ratio: - (no plcrun runner; build with `--features bench-plcrun` once \
-             plcrun::Plc exists)"
+            "geomean ratio: - (no benchmark selected)"
         );
     } else {
         let geomean = (log_ratios.iter().sum::<f64>() / log_ratios.len() as f64).exp();

@@ -183,7 +183,7 @@ fn body_lines(src: &str) -> Vec<&str> {
     src[start..]
         .lines()
         .map(str::trim)
-        .filter(|l| !l.is_empty() && !(l.starts_with("(*") && l.ends_with("*)")))
+        .filter(|l| !l.is_empty() && (!l.starts_with("(*") || !l.ends_with("*)")))
         .collect()
 }
 

@@ -60,4 +60,10 @@ pub struct CheckArgs {
     /// Source files.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
+    /// Print the compiled IR of every code block (a debugging aid).
+    #[arg(long)]
+    pub dump_ir: bool,
+    /// The PROGRAM to build when the files hold several (with --dump-ir).
+    #[arg(long)]
+    pub program: Option<String>,
 }

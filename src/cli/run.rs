@@ -37,8 +37,14 @@ pub fn check(args: &CheckArgs) -> i32 {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
-    let options = Options::default();
-    check_sources(&sources, &options, true, &mut diags);
+    let options = Options {
+        program: args.program.clone(),
+        ..Options::default()
+    };
+    let image = check_sources(&sources, &options, !args.dump_ir, &mut diags);
+    if let (true, Some(image)) = (args.dump_ir, &image) {
+        print!("{}", image.dump());
+    }
     eprint!("{}", diags.render(&sources));
     if diags.has_errors() {
         EXIT_COMPILE

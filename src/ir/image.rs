@@ -137,3 +137,22 @@ pub struct Image {
     /// Tasks.
     pub tasks: Vec<Task>,
 }
+
+impl Image {
+    /// A readable listing of every code block (for `plcrun check --dump-ir`).
+    pub fn dump(&self) -> String {
+        use std::fmt::Write;
+        let mut out = String::new();
+        for (i, c) in self.codes.iter().enumerate() {
+            let _ = writeln!(
+                out,
+                "code {i} `{}` ({:?}, frame {} slots, frame base {})",
+                c.name, c.kind, c.frame_size, c.frame
+            );
+            for (pc, op) in c.ops.iter().enumerate() {
+                let _ = writeln!(out, "  {pc:4}  {op:?}");
+            }
+        }
+        out
+    }
+}

@@ -247,13 +247,9 @@ pub enum Op {
     LoadElem { d: Slot, idx: Slot, desc: u32 },
     /// Checked 1-D element store.
     StoreElem { idx: Slot, s: Slot, desc: u32 },
-    /// Element address: `d := mem[p] + checked(idx - lo) * stride` (descriptor `desc`; its offset is added too).
-    ElemAddr {
-        d: Slot,
-        p: Slot,
-        idx: Slot,
-        desc: u32,
-    },
+    /// Element address: `d := d + offset + checked(idx - lo) * stride` where
+    /// `d` holds the array's absolute address on entry (descriptor `desc`).
+    ElemAddr { d: Slot, idx: Slot, desc: u32 },
     /// Linearised multi-dimensional index step: `acc := acc * len + checked(idx - lo)`.
     IndexStep { acc: Slot, idx: Slot, desc: u32 },
 
@@ -425,8 +421,8 @@ pub enum Op {
 
     /// Conversion.
     Convert { d: Slot, a: Slot, conv: Conv },
-    /// `d := if c { a } else { b }` (SEL, MUX chains).
-    Select { d: Slot, c: Slot, a: Slot, b: Slot },
+    /// Conditional move: `if c { d := s }` (SEL).
+    CMov { d: Slot, c: Slot, s: Slot },
     /// Signed MIN/MAX: `d := if (a < b) == min { a } else { b }`.
     MinMaxS {
         d: Slot,
@@ -456,12 +452,7 @@ pub enum Op {
         max: bool,
     },
     /// MUX: `d := slots[first + k]` for k = value of `k`, faulting if `k >= n`.
-    Mux {
-        d: Slot,
-        k: Slot,
-        first: Slot,
-        n: u32,
-    },
+    Mux { d: Slot, k: Slot, first: Slot, n: u16 },
     /// Duration times REAL/LREAL factor (TIME * REAL), rounding to ns.
     MulTimeF64 { d: Slot, a: Slot, b: Slot },
     /// Duration divided by LREAL.

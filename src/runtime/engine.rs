@@ -418,7 +418,7 @@ pub fn check_sources(
 /// A diagnostic for a file that is not valid UTF-8.
 pub fn invalid_utf8(file: crate::source::FileId, offset: usize) -> Diagnostic {
     Diagnostic::error(
-        "E009",
+        "E011",
         Span::new(file, offset, offset + 1),
         "the file is not valid UTF-8 (invalid bytes replaced by U+FFFD)",
     )

@@ -542,10 +542,10 @@ impl Compiler<'_> {
                 let mut out: Vec<(String, i64)> = Vec::new();
                 let mut next: i128 = 0;
                 for (name, v) in values {
-                    if let Some(e) = v {
-                        if let Some(n) = self.const_int(e, local) {
-                            next = n;
-                        }
+                    if let Some(e) = v
+                        && let Some(n) = self.const_int(e, local)
+                    {
+                        next = n;
                     }
                     if out.iter().any(|(n, _)| n.eq_ignore_ascii_case(&name.name)) {
                         self.diags.error(

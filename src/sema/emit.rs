@@ -275,7 +275,7 @@ fn dest_of(op: &Op) -> Option<Slot> {
         | CmpSI { d, .. }
         | CmpStr { d, .. }
         | Convert { d, .. }
-        | Select { d, .. }
+        | CMov { d, .. }
         | MinMaxS { d, .. }
         | MinMaxU { d, .. }
         | MinMaxF32 { d, .. }
@@ -341,7 +341,7 @@ fn set_dest(op: &mut Op, new: Slot) {
         | CmpSI { d, .. }
         | CmpStr { d, .. }
         | Convert { d, .. }
-        | Select { d, .. }
+        | CMov { d, .. }
         | MinMaxS { d, .. }
         | MinMaxU { d, .. }
         | MinMaxF32 { d, .. }
@@ -468,14 +468,8 @@ impl Compiler<'_> {
                 f.emit(Op::AddrAdd { d: t, p: ptr, off });
             }
             Place::Elem { idx, desc } => {
-                let base = f.temp();
-                f.emit(Op::AddrOf { d: base, off: 0 });
-                f.emit(Op::ElemAddr {
-                    d: t,
-                    p: base,
-                    idx,
-                    desc,
-                });
+                f.emit(Op::AddrOf { d: t, off: 0 });
+                f.emit(Op::ElemAddr { d: t, idx, desc });
             }
         }
         f.last_def = None;

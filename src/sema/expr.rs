@@ -513,13 +513,8 @@ impl Compiler<'_> {
                             stride: elem_size,
                             span: e.span,
                         });
-                        let p = f.temp();
-                        f.emit(Op::ElemAddr {
-                            d: p,
-                            p: base_ptr,
-                            idx,
-                            desc,
-                        });
+                        let p = base_ptr;
+                        f.emit(Op::ElemAddr { d: p, idx, desc });
                         f.last_def = None;
                         Some(PlaceRef {
                             place: Place::Ind { p, off: 0 },
@@ -549,18 +544,10 @@ impl Compiler<'_> {
             Place::Abs(a) => Place::Abs(a + off),
             Place::Ind { p, off: o } => Place::Ind { p, off: o + off },
             Place::Elem { idx, desc } => {
-                let ad = self.arrays[desc as usize];
-                let base = f.temp();
-                f.emit(Op::AddrOf { d: base, off: 0 });
                 let p = f.temp();
-                f.emit(Op::ElemAddr {
-                    d: p,
-                    p: base,
-                    idx,
-                    desc,
-                });
+                f.emit(Op::AddrOf { d: p, off: 0 });
+                f.emit(Op::ElemAddr { d: p, idx, desc });
                 f.last_def = None;
-                let _ = ad;
                 Place::Ind { p, off }
             }
         }
@@ -1012,12 +999,6 @@ impl Compiler<'_> {
             } else {
                 Op::DivTimeF64 { d, a, b }
             });
-        } else if ne.is_unsigned_int() {
-            f.emit(if op == BinaryOp::Mul {
-                Op::MulS { d, a, b, shift: 0 }
-            } else {
-                Op::DivS { d, a, b, shift: 0 }
-            });
         } else {
             f.emit(if op == BinaryOp::Mul {
                 Op::MulS { d, a, b, shift: 0 }
@@ -1146,17 +1127,10 @@ impl Compiler<'_> {
             return Err("constant expression overflows".into());
         };
         Ok(Some(match (result_ty, target_elem) {
-            (Ty::T(t), Some(e)) => {
-                let v = if e.is_unsigned_int() || e.is_bit() {
-                    value
-                } else {
-                    value
-                };
-                match super::consts::int_to_slot(v, e) {
-                    Some(bits) => Val::Const(Const::Bits(bits), Ty::T(t)),
-                    None => return Err(format!("constant {value} overflows {e}")),
-                }
-            }
+            (Ty::T(t), Some(e)) => match super::consts::int_to_slot(value, e) {
+                Some(bits) => Val::Const(Const::Bits(bits), Ty::T(t)),
+                None => return Err(format!("constant {value} overflows {e}")),
+            },
             _ => Val::Const(Const::Int(value), Ty::AnyInt),
         }))
     }

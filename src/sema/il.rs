@@ -97,9 +97,10 @@ impl Compiler<'_> {
         // Collect labels first so forward jumps know their targets exist.
         let mut declared: HashMap<String, Span> = HashMap::new();
         for line in lines {
-            if let Some(l) = &line.label {
-                if let Some(prev) = declared.insert(l.key(), l.span) {
-                    let _ = prev;
+            if let Some(l) = &line.label
+                && declared.insert(l.key(), l.span).is_some()
+            {
+                {
                     self.diags.error(
                         "E503",
                         l.span,

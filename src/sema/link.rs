@@ -11,6 +11,10 @@ use crate::source::Span;
 use crate::syntax::ast::{Body, ExprKind, Item, LiteralValue, PouKind};
 use crate::types::ElemType;
 
+/// Slots and strings a code block resets on entry: `(slot, value)` and
+/// `(slot, constant string)`.
+type EntryResets = (Vec<(u32, u64)>, Vec<(u32, u32)>);
+
 impl Compiler<'_> {
     /// Emits the body of every POU.
     pub(super) fn emit_all(&mut self) {
@@ -172,7 +176,7 @@ impl Compiler<'_> {
 
     /// Entry resets of a POU's VAR_TEMP (FBs, programs) or of all its
     /// non-input variables (functions).
-    fn entry_resets(&mut self, p: usize) -> (Vec<(u32, u64)>, Vec<(u32, u32)>) {
+    fn entry_resets(&mut self, p: usize) -> EntryResets {
         let kind = self.pous[p].kind;
         let size = self.pous[p].vars_size as usize;
         let mut buf = vec![0u64; size];
@@ -194,9 +198,9 @@ impl Compiler<'_> {
             self.write_init(&mut buf, o as usize, var.ty, var.init.as_ref(), &mut strs);
             let n = self.types.size(var.ty) as usize;
             let string_slots: Vec<usize> = strs[before..].iter().map(|(s, _)| *s).collect();
-            for k in o as usize..o as usize + n {
+            for (k, value) in buf.iter().enumerate().skip(o as usize).take(n) {
                 if !string_slots.contains(&k) {
-                    slots.push((k as u32, buf[k]));
+                    slots.push((k as u32, *value));
                 }
             }
         }

@@ -443,12 +443,13 @@ impl Compiler<'_> {
                 let b = self.coerce(f, b, t, span, fname);
                 let (sa, sb) = (self.materialize(f, &a), self.materialize(f, &b));
                 let d = f.temp();
-                f.emit(Op::Select {
+                f.emit(Op::Mov { d, s: sa });
+                f.emit(Op::CMov {
                     d,
                     c: gs_slot,
-                    a: sb,
-                    b: sa,
+                    s: sb,
                 });
+                f.last_def = None;
                 Val::Slot(d, t)
             }
             Std::MinMax(max) => {
@@ -497,13 +498,16 @@ impl Compiler<'_> {
                     return Val::error();
                 };
                 let ksl = self.materialize(f, &k);
-                let n = vals.len() as u32;
+                let Ok(n) = u16::try_from(vals.len()) else {
+                    self.diags.error("E404", span, "MUX takes at most 65535 inputs");
+                    return Val::error();
+                };
                 let mut slots = Vec::new();
                 for (v, s) in vals {
                     let v = self.coerce(f, v, t, s, fname);
                     slots.push(self.materialize(f, &v));
                 }
-                let first = f.temps(n);
+                let first = f.temps(n as u32);
                 for (i, s) in slots.into_iter().enumerate() {
                     f.emit(Op::Mov {
                         d: first + i as u32,

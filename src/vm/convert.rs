@@ -5,7 +5,7 @@ use crate::ir::op::{Conv, wrap_s, wrap_u};
 
 /// `f` as i64 if it is finite and in range.
 pub fn f64_to_i64(f: f64) -> Option<i64> {
-    if f.is_finite() && f >= -9_223_372_036_854_775_808.0 && f < 9_223_372_036_854_775_808.0 {
+    if f.is_finite() && (-9_223_372_036_854_775_808.0..9_223_372_036_854_775_808.0).contains(&f) {
         Some(f as i64)
     } else {
         None

@@ -204,13 +204,13 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 }
                 r!(ad.offset as u64 + i * ad.stride as u64) = r!(s);
             }
-            Op::ElemAddr { d, p, idx, desc } => {
+            Op::ElemAddr { d, idx, desc } => {
                 let ad = &img.arrays[desc as usize];
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
                 }
-                r!(d) = r!(p) + ad.offset as u64 + i * ad.stride as u64;
+                r!(d) = r!(d) + ad.offset as u64 + i * ad.stride as u64;
             }
             Op::IndexStep { acc, idx, desc } => {
                 let ad = &img.arrays[desc as usize];
@@ -313,7 +313,11 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 Ok(v) => r!(d) = v,
                 Err(kind) => fault!(kind),
             },
-            Op::Select { d, c, a, b } => r!(d) = if r!(c) != 0 { r!(a) } else { r!(b) },
+            Op::CMov { d, c, s } => {
+                if r!(c) != 0 {
+                    r!(d) = r!(s)
+                }
+            }
             Op::MinMaxS { d, a, b, max } => {
                 let (x, y) = (r!(a) as i64, r!(b) as i64);
                 r!(d) = (if (x < y) != max { x } else { y }) as u64;
@@ -333,7 +337,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::Mux { d, k, first, n } => {
                 let sel = r!(k) as i64;
                 if sel < 0 || sel >= n as i64 {
-                    fault!(FaultKind::MuxOutOfRange { k: sel, n });
+                    fault!(FaultKind::MuxOutOfRange { k: sel, n: n as u32 });
                 }
                 r!(d) = r!(first as u64 + sel as u64);
             }
