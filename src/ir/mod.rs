@@ -2,4 +2,6 @@
 
 pub mod image;
 pub mod op;
+pub mod operands;
 pub mod types;
+pub mod verify;

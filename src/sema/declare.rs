@@ -106,6 +106,7 @@ impl Compiler<'_> {
                             code: u32::MAX,
                             vars_size: 0,
                             frame_abs: 0,
+                            consts: Vec::new(),
                             span: p.name.span,
                         });
                         self.pou_state.push(LayoutState::Pending);

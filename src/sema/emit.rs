@@ -135,7 +135,13 @@ pub struct Fcx {
     /// Instructions whose address operand is relative to a called
     /// function's frame, to be relocated at link time: (instruction, POU).
     pub fixups: Vec<(usize, usize)>,
+    /// Constant values that live in frame slots (numbered with
+    /// [`CONST_TAG`] until the frame size is known).
+    pub consts: Vec<u64>,
 }
+
+/// Marks a provisional constant-slot number during emission.
+pub const CONST_TAG: u32 = 0x8000_0000;
 
 impl Fcx {
     /// A fresh context whose temporaries start at `temp_base`.
@@ -152,6 +158,7 @@ impl Fcx {
             returns: Vec::new(),
             last_def: None,
             fixups: Vec::new(),
+            consts: Vec::new(),
         }
     }
 
@@ -199,7 +206,39 @@ impl Fcx {
 
     /// True if `s` is a temporary.
     pub fn is_temp(&self, s: Slot) -> bool {
-        s >= self.temp_base
+        s >= self.temp_base && s < CONST_TAG
+    }
+
+    /// A read-only frame slot holding `bits`, initialised once per instance.
+    pub fn const_slot(&mut self, bits: u64) -> Slot {
+        let k = match self.consts.iter().position(|c| *c == bits) {
+            Some(k) => k,
+            None => {
+                self.consts.push(bits);
+                self.consts.len() - 1
+            }
+        };
+        CONST_TAG | k as u32
+    }
+
+    /// Gives constant slots their final numbers after the temporaries and
+    /// returns the frame size including them, with the `(slot, value)` list.
+    pub fn place_consts(&mut self) -> (u32, Vec<(u32, u64)>) {
+        let first = self.temp_max;
+        for op in &mut self.ops {
+            crate::ir::operands::for_each_slot(op, &mut |s| {
+                if *s & CONST_TAG != 0 {
+                    *s = first + (*s & !CONST_TAG);
+                }
+            });
+        }
+        let list = self
+            .consts
+            .iter()
+            .enumerate()
+            .map(|(k, v)| (first + k as u32, *v))
+            .collect();
+        (first + self.consts.len() as u32, list)
     }
 
     /// Writes `s` into `d`: when `s` is a temporary just defined by the last
@@ -363,11 +402,8 @@ impl Compiler<'_> {
             wide,
             init: String::new(),
         });
-        let id = self.strings.len() as i32 - 1;
-        let t = f.temp();
-        f.emit(Op::LoadI { d: t, imm: id });
-        f.last_def = None;
-        t
+        // The slot only holds the string's id, which never changes.
+        f.const_slot(self.strings.len() as u64 - 1)
     }
 
     /// Puts a value into a slot (constants are loaded into a temporary).
@@ -392,14 +428,7 @@ impl Compiler<'_> {
                         return t;
                     }
                 };
-                let t = f.temp();
-                if let Ok(imm) = i32::try_from(bits as i64) {
-                    f.emit(Op::LoadI { d: t, imm });
-                } else {
-                    let k = self.konst(bits);
-                    f.emit(Op::LoadK { d: t, k });
-                }
-                t
+                f.const_slot(bits)
             }
         }
     }

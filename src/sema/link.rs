@@ -58,7 +58,8 @@ impl Compiler<'_> {
         f.span = pou.span;
         f.emit(Op::Ret);
         let code = self.pous[p].code;
-        let frame_size = f.temp_max;
+        let (frame_size, consts) = f.place_consts();
+        self.pous[p].consts = consts;
         for (at, callee) in std::mem::take(&mut f.fixups) {
             self.fixups.push((code, at, callee));
         }
@@ -156,6 +157,9 @@ impl Compiler<'_> {
                     if let Storage::Frame(o) = var.storage {
                         self.write_init(buf, at + o as usize, var.ty, var.init.as_ref(), strs);
                     }
+                }
+                for &(slot, value) in &self.pous[p].consts {
+                    buf[at + slot as usize] = value;
                 }
             }
             TypeKind::Step | TypeKind::Void | TypeKind::Error => {}
@@ -319,7 +323,7 @@ impl Compiler<'_> {
                 }
             }
         }
-        Some(Image {
+        let image = Image {
             codes: std::mem::take(&mut self.codes),
             consts: std::mem::take(&mut self.consts),
             str_consts: std::mem::take(&mut self.str_consts),
@@ -331,7 +335,19 @@ impl Compiler<'_> {
             globals: roots,
             programs: instances,
             tasks,
-        })
+        };
+        if self.diags.has_errors() {
+            return None;
+        }
+        if let Err(e) = crate::ir::verify::verify(&image) {
+            self.diags.error(
+                "E999",
+                Span::default(),
+                format!("internal compiler error: the generated code failed verification ({e})"),
+            );
+            return None;
+        }
+        Some(image)
     }
 
     /// Reports calls that form a cycle (IEC forbids recursion).

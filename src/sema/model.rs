@@ -76,6 +76,8 @@ pub struct PouInfo {
     pub vars_size: u32,
     /// Functions: absolute address of the static frame.
     pub frame_abs: u32,
+    /// Constant slots of the frame: `(slot, value)`.
+    pub consts: Vec<(u32, u64)>,
     /// Declaration span.
     pub span: Span,
 }

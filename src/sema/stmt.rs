@@ -41,11 +41,14 @@ impl Compiler<'_> {
                 else_branch,
             } => {
                 let mut ends = Vec::new();
-                for (cond, body) in branches {
+                for (k, (cond, body)) in branches.iter().enumerate() {
                     let skip = self.cond_jump(f, cond, false);
                     f.temp_next = mark;
                     self.stmts(f, body);
-                    ends.push(f.emit(Op::Jmp { t: 0 }));
+                    let last = k + 1 == branches.len() && else_branch.is_none();
+                    if !last {
+                        ends.push(f.emit(Op::Jmp { t: 0 }));
+                    }
                     let next = f.here();
                     if let Some(j) = skip {
                         f.patch(j, next);
@@ -378,19 +381,7 @@ impl Compiler<'_> {
                 }
                 seen.push((lo, hi));
                 let signed = super::typeck::compares_signed(e);
-                let k = |c: &mut Compiler, f: &mut Fcx, v: i128| -> u32 {
-                    let t = f.temp();
-                    match i32::try_from(v) {
-                        Ok(imm) => {
-                            f.emit(Op::LoadI { d: t, imm });
-                        }
-                        Err(_) => {
-                            let k = c.konst(v as u64);
-                            f.emit(Op::LoadK { d: t, k });
-                        }
-                    }
-                    t
-                };
+                let k = |_: &mut Compiler, f: &mut Fcx, v: i128| -> u32 { f.const_slot(v as u64) };
                 if lo == hi {
                     let c = k(self, f, lo);
                     let d = f.temp();
@@ -585,7 +576,7 @@ impl Compiler<'_> {
         let exit_jumps: Vec<usize> = match step_const {
             Some(st) => {
                 let cmp = if st > 0 { Cmp::Le } else { Cmp::Ge };
-                vec![self.loop_test(f, i, lim_imm, lim, cmp, signed)]
+                vec![self.loop_test(f, i, lim_imm, lim, cmp, signed, false)]
             }
             None => {
                 // Runtime sign: positive steps test `<=`, negative `>=`.
@@ -598,16 +589,17 @@ impl Compiler<'_> {
                     cmp: Cmp::Lt,
                 });
                 let to_neg = f.emit(Op::Jnz { c: neg, t: 0 });
-                let up = self.loop_test(f, i, lim_imm, lim, Cmp::Le, signed);
+                let up = self.loop_test(f, i, lim_imm, lim, Cmp::Le, signed, false);
                 let to_body = f.emit(Op::Jmp { t: 0 });
                 let neg_at = f.here();
                 f.patch(to_neg, neg_at);
-                let down = self.loop_test(f, i, lim_imm, lim, Cmp::Ge, signed);
+                let down = self.loop_test(f, i, lim_imm, lim, Cmp::Ge, signed, false);
                 let body_at = f.here();
                 f.patch(to_body, body_at);
                 vec![up, down]
             }
         };
+        let body_at = f.here();
         f.loops.push(LoopCtx::default());
         self.stmts(f, body);
         let cont = f.here();
@@ -623,9 +615,7 @@ impl Compiler<'_> {
                 });
             }
             (Some(st), _) => {
-                let t = f.temp();
-                let k = self.konst(st as u64);
-                f.emit(Op::LoadK { d: t, k });
+                let t = f.const_slot(st as u64);
                 f.emit(if e.is_signed_int() {
                     Op::AddS {
                         d: i,
@@ -661,7 +651,17 @@ impl Compiler<'_> {
             }
             (None, None) => {}
         }
-        f.emit(Op::Jmp { t: test_at });
+        match step_const {
+            // Rotated loop: test again at the bottom and jump back to the body.
+            Some(st) => {
+                let cmp = if st > 0 { Cmp::Le } else { Cmp::Ge };
+                let back = self.loop_test(f, i, lim_imm, lim, cmp, signed, true);
+                f.patch(back, body_at);
+            }
+            None => {
+                f.emit(Op::Jmp { t: test_at });
+            }
+        }
         let lp = f.loops.pop().unwrap_or_default();
         let end = f.here();
         for j in exit_jumps.into_iter().chain(lp.exits) {
@@ -672,7 +672,8 @@ impl Compiler<'_> {
         }
     }
 
-    /// Emits "leave the loop unless `i cmp lim`"; returns the jump to patch.
+    /// Emits a jump taken when `(i cmp lim) == when`; returns it for patching.
+    #[allow(clippy::too_many_arguments)]
     fn loop_test(
         &mut self,
         f: &mut Fcx,
@@ -681,31 +682,40 @@ impl Compiler<'_> {
         lim: Option<u32>,
         cmp: Cmp,
         signed: bool,
+        when: bool,
     ) -> usize {
+        // The fused branches jump when the comparison is FALSE.
+        let jcmp = if when { negate(cmp) } else { cmp };
+        let branch = |f: &mut Fcx, d: u32| {
+            if when {
+                f.emit(Op::Jnz { c: d, t: 0 })
+            } else {
+                f.emit(Op::Jz { c: d, t: 0 })
+            }
+        };
         match (lim_imm, lim) {
             (Some(imm), _) if signed => f.emit(Op::JnCmpSI {
                 a: i,
                 imm,
-                cmp,
+                cmp: jcmp,
                 t: 0,
             }),
             (Some(imm), _) => {
-                let t = f.temp();
-                f.emit(Op::LoadI { d: t, imm });
+                let t = f.const_slot(imm as i64 as u64);
                 let d = f.temp();
                 f.emit(Op::CmpU { d, a: i, b: t, cmp });
-                f.emit(Op::Jz { c: d, t: 0 })
+                branch(f, d)
             }
             (None, Some(l)) if signed => f.emit(Op::JnCmpS {
                 a: i,
                 b: l,
-                cmp,
+                cmp: jcmp,
                 t: 0,
             }),
             (None, Some(l)) => {
                 let d = f.temp();
                 f.emit(Op::CmpU { d, a: i, b: l, cmp });
-                f.emit(Op::Jz { c: d, t: 0 })
+                branch(f, d)
             }
             (None, None) => f.emit(Op::Jmp { t: 0 }),
         }

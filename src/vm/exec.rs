@@ -134,22 +134,50 @@ fn int_pow(base: i64, exp: i64) -> Option<u64> {
 }
 
 /// Executes code block `code` at frame base `base` until it returns.
+///
+/// Frame operands are accessed without bounds checks: [`crate::ir::verify`]
+/// proved at link time that every frame operand of every block lies inside
+/// the block's frame and that every frame a block runs on lies inside memory
+/// (`base + frame_size <= mem.len()`, re-checked below for frames reached
+/// through run-time pointers). All memory goes through one raw pointer taken
+/// with `Vec::as_mut_ptr`, which stays valid across nested calls because no
+/// reference to the buffer is created while a block runs; addresses computed
+/// at run time (pointers, absolute addresses) are checked against the length.
 pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Result<(), Fault> {
     let block = &img.codes[code as usize];
+    let len = m.mem.len();
+    if base + block.frame_size as usize > len {
+        return Err(Fault {
+            kind: FaultKind::BadAddress,
+            code,
+            pc: 0,
+        });
+    }
+    let mem: *mut u64 = m.mem.as_mut_ptr();
+    // SAFETY: base + frame_size <= len was checked just above.
+    let fp: *mut u64 = unsafe { mem.add(base) };
+    macro_rules! r {
+        ($s:expr) => {
+            // SAFETY: frame operands are < frame_size (verified at link time).
+            unsafe { *fp.add($s as usize) }
+        };
+    }
+    macro_rules! w {
+        ($s:expr, $v:expr) => {{
+            let v = $v;
+            // SAFETY: as for `r!`.
+            unsafe { *fp.add($s as usize) = v }
+        }};
+    }
     for &(slot, value) in &block.entry_init {
-        m.mem[base + slot as usize] = value;
+        w!(slot, value);
     }
     for &(slot, k) in &block.entry_strings {
-        let id = m.mem[base + slot as usize] as usize;
+        let id = r!(slot) as usize;
         m.strings[id].set(&img.str_consts[k as usize]);
     }
     let ops = &block.ops[..];
     let mut pc: usize = 0;
-    macro_rules! r {
-        ($s:expr) => {
-            m.mem[base + $s as usize]
-        };
-    }
     macro_rules! fault {
         ($kind:expr) => {
             return Err(Fault {
@@ -158,6 +186,31 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 pc: (pc - 1) as u32,
             })
         };
+    }
+    // A checked absolute address.
+    macro_rules! at {
+        ($a:expr) => {{
+            let a = $a as usize;
+            if a >= len {
+                fault!(FaultKind::BadAddress);
+            }
+            a
+        }};
+    }
+    macro_rules! mload {
+        ($a:expr) => {{
+            let a = at!($a);
+            // SAFETY: a < len.
+            unsafe { *mem.add(a) }
+        }};
+    }
+    macro_rules! mstore {
+        ($a:expr, $v:expr) => {{
+            let v = $v;
+            let a = at!($a);
+            // SAFETY: a < len.
+            unsafe { *mem.add(a) = v }
+        }};
     }
     macro_rules! jump {
         ($t:expr) => {{
@@ -169,32 +222,34 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
         }};
     }
     loop {
-        let op = ops[pc];
+        // SAFETY: blocks end with Ret and jump targets are inside the block
+        // (verified), so pc never leaves `ops`.
+        let op = unsafe { *ops.get_unchecked(pc) };
         pc += 1;
         match op {
             Op::Nop => {}
-            Op::LoadK { d, k } => r!(d) = img.consts[k as usize],
-            Op::LoadI { d, imm } => r!(d) = imm as i64 as u64,
-            Op::Mov { d, s } => r!(d) = r!(s),
-            Op::LoadAbs { d, abs } => r!(d) = m.mem[abs as usize],
-            Op::StoreAbs { abs, s } => m.mem[abs as usize] = r!(s),
+            Op::LoadK { d, k } => w!(d, img.consts[k as usize]),
+            Op::LoadI { d, imm } => w!(d, imm as i64 as u64),
+            Op::Mov { d, s } => w!(d, r!(s)),
+            Op::LoadAbs { d, abs } => w!(d, mload!(abs)),
+            Op::StoreAbs { abs, s } => mstore!(abs, r!(s)),
             Op::LoadInd { d, p, off } => {
                 let a = r!(p) as usize + off as usize;
-                r!(d) = m.mem[a];
+                w!(d, mload!(a));
             }
             Op::StoreInd { p, off, s } => {
                 let a = r!(p) as usize + off as usize;
-                m.mem[a] = r!(s);
+                mstore!(a, r!(s));
             }
-            Op::AddrOf { d, off } => r!(d) = (base + off as usize) as u64,
-            Op::AddrAdd { d, p, off } => r!(d) = r!(p) + off as u64,
+            Op::AddrOf { d, off } => w!(d, (base + off as usize) as u64),
+            Op::AddrAdd { d, p, off } => w!(d, r!(p) + off as u64),
             Op::LoadElem { d, idx, desc } => {
                 let ad = &img.arrays[desc as usize];
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
                 }
-                r!(d) = r!(ad.offset as u64 + i * ad.stride as u64);
+                w!(d, r!(ad.offset as u64 + i * ad.stride as u64));
             }
             Op::StoreElem { idx, s, desc } => {
                 let ad = &img.arrays[desc as usize];
@@ -202,7 +257,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
                 }
-                r!(ad.offset as u64 + i * ad.stride as u64) = r!(s);
+                w!(ad.offset as u64 + i * ad.stride as u64, r!(s));
             }
             Op::ElemAddr { d, idx, desc } => {
                 let ad = &img.arrays[desc as usize];
@@ -210,7 +265,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
                 }
-                r!(d) = r!(d) + ad.offset as u64 + i * ad.stride as u64;
+                w!(d, r!(d) + ad.offset as u64 + i * ad.stride as u64);
             }
             Op::IndexStep { acc, idx, desc } => {
                 let ad = &img.arrays[desc as usize];
@@ -218,133 +273,133 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
                 }
-                r!(acc) = r!(acc).wrapping_mul(ad.len).wrapping_add(i);
+                w!(acc, r!(acc).wrapping_mul(ad.len).wrapping_add(i));
             }
 
-            Op::AddS { d, a, b, shift } => r!(d) = wrap_s(r!(a).wrapping_add(r!(b)), shift),
-            Op::AddU { d, a, b, shift } => r!(d) = wrap_u(r!(a).wrapping_add(r!(b)), shift),
+            Op::AddS { d, a, b, shift } => w!(d, wrap_s(r!(a).wrapping_add(r!(b)), shift)),
+            Op::AddU { d, a, b, shift } => w!(d, wrap_u(r!(a).wrapping_add(r!(b)), shift)),
             Op::AddSI { d, a, imm, shift } => {
-                r!(d) = wrap_s(r!(a).wrapping_add(imm as i64 as u64), shift)
+                w!(d, wrap_s(r!(a).wrapping_add(imm as i64 as u64), shift))
             }
-            Op::SubS { d, a, b, shift } => r!(d) = wrap_s(r!(a).wrapping_sub(r!(b)), shift),
-            Op::SubU { d, a, b, shift } => r!(d) = wrap_u(r!(a).wrapping_sub(r!(b)), shift),
-            Op::MulS { d, a, b, shift } => r!(d) = wrap_s(r!(a).wrapping_mul(r!(b)), shift),
-            Op::MulU { d, a, b, shift } => r!(d) = wrap_u(r!(a).wrapping_mul(r!(b)), shift),
+            Op::SubS { d, a, b, shift } => w!(d, wrap_s(r!(a).wrapping_sub(r!(b)), shift)),
+            Op::SubU { d, a, b, shift } => w!(d, wrap_u(r!(a).wrapping_sub(r!(b)), shift)),
+            Op::MulS { d, a, b, shift } => w!(d, wrap_s(r!(a).wrapping_mul(r!(b)), shift)),
+            Op::MulU { d, a, b, shift } => w!(d, wrap_u(r!(a).wrapping_mul(r!(b)), shift)),
             Op::DivS { d, a, b, shift } => {
                 let y = r!(b) as i64;
                 if y == 0 {
                     fault!(FaultKind::DivisionByZero);
                 }
-                r!(d) = wrap_s((r!(a) as i64).wrapping_div(y) as u64, shift);
+                w!(d, wrap_s((r!(a) as i64).wrapping_div(y) as u64, shift));
             }
             Op::DivU { d, a, b, shift } => {
                 let y = r!(b);
                 if y == 0 {
                     fault!(FaultKind::DivisionByZero);
                 }
-                r!(d) = wrap_u(r!(a) / y, shift);
+                w!(d, wrap_u(r!(a) / y, shift));
             }
             Op::ModS { d, a, b, shift } => {
                 let y = r!(b) as i64;
                 if y == 0 {
                     fault!(FaultKind::DivisionByZero);
                 }
-                r!(d) = wrap_s((r!(a) as i64).wrapping_rem(y) as u64, shift);
+                w!(d, wrap_s((r!(a) as i64).wrapping_rem(y) as u64, shift));
             }
             Op::ModU { d, a, b, shift } => {
                 let y = r!(b);
                 if y == 0 {
                     fault!(FaultKind::DivisionByZero);
                 }
-                r!(d) = wrap_u(r!(a) % y, shift);
+                w!(d, wrap_u(r!(a) % y, shift));
             }
             Op::ModSI { d, a, imm, shift } => {
-                r!(d) = wrap_s((r!(a) as i64).wrapping_rem(imm as i64) as u64, shift)
+                w!(d, wrap_s((r!(a) as i64).wrapping_rem(imm as i64) as u64, shift))
             }
-            Op::NegS { d, a, shift } => r!(d) = wrap_s(r!(a).wrapping_neg(), shift),
+            Op::NegS { d, a, shift } => w!(d, wrap_s(r!(a).wrapping_neg(), shift)),
             Op::PowS { d, a, b, shift } => match int_pow(r!(a) as i64, r!(b) as i64) {
-                Some(v) => r!(d) = wrap_s(v, shift),
+                Some(v) => w!(d, wrap_s(v, shift)),
                 None => fault!(FaultKind::NegativeExponent),
             },
-            Op::AbsS { d, a, shift } => r!(d) = wrap_s((r!(a) as i64).wrapping_abs() as u64, shift),
+            Op::AbsS { d, a, shift } => w!(d, wrap_s((r!(a) as i64).wrapping_abs() as u64, shift)),
 
-            Op::AddF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)) + f32_of(r!(b))),
-            Op::SubF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)) - f32_of(r!(b))),
-            Op::MulF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)) * f32_of(r!(b))),
-            Op::DivF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)) / f32_of(r!(b))),
-            Op::NegF32 { d, a } => r!(d) = of_f32(-f32_of(r!(a))),
-            Op::PowF32 { d, a, b } => r!(d) = of_f32(f32_of(r!(a)).powf(f32_of(r!(b)))),
-            Op::MathF32 { d, a, f } => r!(d) = of_f32(math32(f, f32_of(r!(a)))),
-            Op::AddF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)) + f64_of(r!(b))),
-            Op::SubF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)) - f64_of(r!(b))),
-            Op::MulF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)) * f64_of(r!(b))),
-            Op::DivF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)) / f64_of(r!(b))),
-            Op::NegF64 { d, a } => r!(d) = of_f64(-f64_of(r!(a))),
-            Op::PowF64 { d, a, b } => r!(d) = of_f64(f64_of(r!(a)).powf(f64_of(r!(b)))),
-            Op::MathF64 { d, a, f } => r!(d) = of_f64(math64(f, f64_of(r!(a)))),
+            Op::AddF32 { d, a, b } => w!(d, of_f32(f32_of(r!(a)) + f32_of(r!(b)))),
+            Op::SubF32 { d, a, b } => w!(d, of_f32(f32_of(r!(a)) - f32_of(r!(b)))),
+            Op::MulF32 { d, a, b } => w!(d, of_f32(f32_of(r!(a)) * f32_of(r!(b)))),
+            Op::DivF32 { d, a, b } => w!(d, of_f32(f32_of(r!(a)) / f32_of(r!(b)))),
+            Op::NegF32 { d, a } => w!(d, of_f32(-f32_of(r!(a)))),
+            Op::PowF32 { d, a, b } => w!(d, of_f32(f32_of(r!(a)).powf(f32_of(r!(b))))),
+            Op::MathF32 { d, a, f } => w!(d, of_f32(math32(f, f32_of(r!(a))))),
+            Op::AddF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)) + f64_of(r!(b)))),
+            Op::SubF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)) - f64_of(r!(b)))),
+            Op::MulF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)) * f64_of(r!(b)))),
+            Op::DivF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)) / f64_of(r!(b)))),
+            Op::NegF64 { d, a } => w!(d, of_f64(-f64_of(r!(a)))),
+            Op::PowF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)).powf(f64_of(r!(b))))),
+            Op::MathF64 { d, a, f } => w!(d, of_f64(math64(f, f64_of(r!(a))))),
 
-            Op::And { d, a, b } => r!(d) = r!(a) & r!(b),
-            Op::Or { d, a, b } => r!(d) = r!(a) | r!(b),
-            Op::Xor { d, a, b } => r!(d) = r!(a) ^ r!(b),
-            Op::NotB { d, a } => r!(d) = r!(a) ^ 1,
-            Op::NotW { d, a, shift } => r!(d) = wrap_u(!r!(a), shift),
-            Op::AndN { d, a, b } => r!(d) = r!(a) & (r!(b) ^ 1),
-            Op::OrN { d, a, b } => r!(d) = r!(a) | (r!(b) ^ 1),
+            Op::And { d, a, b } => w!(d, r!(a) & r!(b)),
+            Op::Or { d, a, b } => w!(d, r!(a) | r!(b)),
+            Op::Xor { d, a, b } => w!(d, r!(a) ^ r!(b)),
+            Op::NotB { d, a } => w!(d, r!(a) ^ 1),
+            Op::NotW { d, a, shift } => w!(d, wrap_u(!r!(a), shift)),
+            Op::AndN { d, a, b } => w!(d, r!(a) & (r!(b) ^ 1)),
+            Op::OrN { d, a, b } => w!(d, r!(a) | (r!(b) ^ 1)),
             Op::Shift {
                 d,
                 a,
                 b,
                 kind,
                 bits,
-            } => r!(d) = shift(r!(a), r!(b), kind, bits),
+            } => w!(d, shift(r!(a), r!(b), kind, bits)),
 
-            Op::CmpS { d, a, b, cmp } => r!(d) = cmp_s(r!(a), r!(b), cmp),
-            Op::CmpU { d, a, b, cmp } => r!(d) = cmp.test(r!(a).cmp(&r!(b))) as u64,
-            Op::CmpF32 { d, a, b, cmp } => r!(d) = cmp_f(f32_of(r!(a)), f32_of(r!(b)), cmp),
-            Op::CmpF64 { d, a, b, cmp } => r!(d) = cmp_f(f64_of(r!(a)), f64_of(r!(b)), cmp),
-            Op::CmpSI { d, a, imm, cmp } => r!(d) = cmp_s(r!(a), imm as i64 as u64, cmp),
+            Op::CmpS { d, a, b, cmp } => w!(d, cmp_s(r!(a), r!(b), cmp)),
+            Op::CmpU { d, a, b, cmp } => w!(d, cmp.test(r!(a).cmp(&r!(b))) as u64),
+            Op::CmpF32 { d, a, b, cmp } => w!(d, cmp_f(f32_of(r!(a)), f32_of(r!(b)), cmp)),
+            Op::CmpF64 { d, a, b, cmp } => w!(d, cmp_f(f64_of(r!(a)), f64_of(r!(b)), cmp)),
+            Op::CmpSI { d, a, imm, cmp } => w!(d, cmp_s(r!(a), imm as i64 as u64, cmp)),
             Op::CmpStr { d, a, b, cmp } => {
                 let x = &m.strings[r!(a) as usize];
                 let y = &m.strings[r!(b) as usize];
-                r!(d) = cmp.test(x.as_str().cmp(y.as_str())) as u64;
+                w!(d, cmp.test(x.as_str().cmp(y.as_str())) as u64);
             }
 
             Op::Convert { d, a, conv } => match convert::convert(conv, r!(a)) {
-                Ok(v) => r!(d) = v,
+                Ok(v) => w!(d, v),
                 Err(kind) => fault!(kind),
             },
             Op::CMov { d, c, s } => {
                 if r!(c) != 0 {
-                    r!(d) = r!(s)
+                    w!(d, r!(s))
                 }
             }
             Op::MinMaxS { d, a, b, max } => {
                 let (x, y) = (r!(a) as i64, r!(b) as i64);
-                r!(d) = (if (x < y) != max { x } else { y }) as u64;
+                w!(d, (if (x < y) != max { x } else { y }) as u64);
             }
             Op::MinMaxU { d, a, b, max } => {
                 let (x, y) = (r!(a), r!(b));
-                r!(d) = if (x < y) != max { x } else { y };
+                w!(d, if (x < y) != max { x } else { y });
             }
             Op::MinMaxF32 { d, a, b, max } => {
                 let (x, y) = (f32_of(r!(a)), f32_of(r!(b)));
-                r!(d) = of_f32(if max { x.max(y) } else { x.min(y) });
+                w!(d, of_f32(if max { x.max(y) } else { x.min(y) }));
             }
             Op::MinMaxF64 { d, a, b, max } => {
                 let (x, y) = (f64_of(r!(a)), f64_of(r!(b)));
-                r!(d) = of_f64(if max { x.max(y) } else { x.min(y) });
+                w!(d, of_f64(if max { x.max(y) } else { x.min(y) }));
             }
             Op::Mux { d, k, first, n } => {
                 let sel = r!(k) as i64;
                 if sel < 0 || sel >= n as i64 {
                     fault!(FaultKind::MuxOutOfRange { k: sel, n: n as u32 });
                 }
-                r!(d) = r!(first as u64 + sel as u64);
+                w!(d, r!(first as u64 + sel as u64));
             }
             Op::MulTimeF64 { d, a, b } => {
                 let v = (r!(a) as i64) as f64 * f64_of(r!(b));
                 match convert::f64_to_i64(v.round()) {
-                    Some(x) => r!(d) = x as u64,
+                    Some(x) => w!(d, x as u64),
                     None => fault!(FaultKind::ConversionOverflow),
                 }
             }
@@ -355,7 +410,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 }
                 let v = (r!(a) as i64) as f64 / y;
                 match convert::f64_to_i64(v.round()) {
-                    Some(x) => r!(d) = x as u64,
+                    Some(x) => w!(d, x as u64),
                     None => fault!(FaultKind::ConversionOverflow),
                 }
             }
@@ -381,7 +436,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 ];
                 let dst = r!(d);
                 match strings::call(&mut m.strings, f, dst, &args) {
-                    Ok(Some(v)) => r!(d) = v,
+                    Ok(Some(v)) => w!(d, v),
                     Ok(None) => {}
                     Err(kind) => fault!(kind),
                 }
@@ -395,7 +450,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::FromStr { d, a, ty } => {
                 let text = m.strings[r!(a) as usize].as_str();
                 match crate::sema::consts::parse_scalar(text, img.scalar_types[ty as usize]) {
-                    Some(v) => r!(d) = v,
+                    Some(v) => w!(d, v),
                     None => fault!(FaultKind::ConversionOverflow),
                 }
             }
@@ -428,23 +483,35 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 run(m, img, c, at)?
             }
             Op::CallNative { fb, inst } => {
-                let at = base + inst as usize;
-                let now = m.now;
-                stdlib::call(fb, &mut m.mem[at..], now);
+                let n = stdlib::interface(fb).len();
+                // SAFETY: inst + n <= frame_size (verified), so the slice is
+                // inside this frame; no other reference to it exists.
+                let slots = unsafe { std::slice::from_raw_parts_mut(fp.add(inst as usize), n) };
+                stdlib::call(fb, slots, m.now);
             }
             Op::CallNativeInd { fb, p } => {
-                let at = r!(p) as usize;
-                let now = m.now;
-                stdlib::call(fb, &mut m.mem[at..], now);
+                let n = stdlib::interface(fb).len();
+                let start = r!(p) as usize;
+                if start + n > len {
+                    fault!(FaultKind::BadAddress);
+                }
+                // SAFETY: start + n <= len was checked above.
+                let slots = unsafe { std::slice::from_raw_parts_mut(mem.add(start), n) };
+                stdlib::call(fb, slots, m.now);
             }
             Op::CallFn { code: c } => {
                 let frame = img.codes[c as usize].frame as usize;
                 run(m, img, c, frame)?
             }
-            Op::Clock { d } => r!(d) = m.now as u64,
+            Op::Clock { d } => w!(d, m.now as u64),
             Op::MemCopy { d, s, n } => {
-                let (to, from) = (r!(d) as usize, r!(s) as usize);
-                m.mem.copy_within(from..from + n as usize, to);
+                let (to, from, n) = (r!(d) as usize, r!(s) as usize, n as usize);
+                if to + n > len || from + n > len {
+                    fault!(FaultKind::BadAddress);
+                }
+                // SAFETY: both ranges lie inside memory (checked above);
+                // `copy` allows overlap.
+                unsafe { std::ptr::copy(mem.add(from), mem.add(to), n) };
             }
             Op::Ret => return Ok(()),
         }

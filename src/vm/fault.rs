@@ -40,6 +40,8 @@ pub enum FaultKind {
     NegativeExponent,
     /// A cycle ran longer than the watchdog allows.
     Watchdog,
+    /// A computed address fell outside memory (an internal error).
+    BadAddress,
 }
 
 impl fmt::Display for FaultKind {
@@ -65,6 +67,7 @@ impl fmt::Display for FaultKind {
             FaultKind::InvalidBcd => write!(f, "invalid BCD value"),
             FaultKind::NegativeExponent => write!(f, "negative exponent in integer `**`"),
             FaultKind::Watchdog => write!(f, "watchdog: cycle exceeded its time limit"),
+            FaultKind::BadAddress => write!(f, "internal error: computed address outside memory"),
         }
     }
 }

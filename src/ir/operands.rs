@@ -1,0 +1,152 @@
+//! Enumerates the frame-slot operands of an instruction, for relocation
+//! (constant slots are numbered after emission) and for the link-time
+//! verifier that lets the executor skip per-operand bounds checks.
+
+use super::op::Op;
+
+/// Calls `f` on every frame-relative slot operand of `op` (destinations,
+/// sources, pointer slots, instance bases). Absolute addresses, jump
+/// targets and table indexes are not slots and are not visited. Operands
+/// that start a run of consecutive slots are visited once; see
+/// [`slot_span`] for the run length.
+pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
+    use Op::*;
+    match op {
+        Nop | Jmp { .. } | CallFn { .. } | Ret => {}
+        LoadK { d, .. } | LoadI { d, .. } | LoadAbs { d, .. } | Clock { d } => f(d),
+        StoreAbs { s, .. } => f(s),
+        Mov { d, s } | StrMov { d, s } => {
+            f(d);
+            f(s);
+        }
+        LoadInd { d, p, .. } | AddrAdd { d, p, .. } => {
+            f(d);
+            f(p);
+        }
+        StoreInd { p, s, .. } => {
+            f(p);
+            f(s);
+        }
+        AddrOf { d, off } => {
+            f(d);
+            f(off);
+        }
+        LoadElem { d, idx, .. } | ElemAddr { d, idx, .. } => {
+            f(d);
+            f(idx);
+        }
+        StoreElem { idx, s, .. } => {
+            f(idx);
+            f(s);
+        }
+        IndexStep { acc, idx, .. } => {
+            f(acc);
+            f(idx);
+        }
+        AddS { d, a, b, .. }
+        | AddU { d, a, b, .. }
+        | SubS { d, a, b, .. }
+        | SubU { d, a, b, .. }
+        | MulS { d, a, b, .. }
+        | MulU { d, a, b, .. }
+        | DivS { d, a, b, .. }
+        | DivU { d, a, b, .. }
+        | ModS { d, a, b, .. }
+        | ModU { d, a, b, .. }
+        | PowS { d, a, b, .. }
+        | AddF32 { d, a, b }
+        | SubF32 { d, a, b }
+        | MulF32 { d, a, b }
+        | DivF32 { d, a, b }
+        | PowF32 { d, a, b }
+        | AddF64 { d, a, b }
+        | SubF64 { d, a, b }
+        | MulF64 { d, a, b }
+        | DivF64 { d, a, b }
+        | PowF64 { d, a, b }
+        | And { d, a, b }
+        | Or { d, a, b }
+        | Xor { d, a, b }
+        | AndN { d, a, b }
+        | OrN { d, a, b }
+        | Shift { d, a, b, .. }
+        | CmpS { d, a, b, .. }
+        | CmpU { d, a, b, .. }
+        | CmpF32 { d, a, b, .. }
+        | CmpF64 { d, a, b, .. }
+        | CmpStr { d, a, b, .. }
+        | MinMaxS { d, a, b, .. }
+        | MinMaxU { d, a, b, .. }
+        | MinMaxF32 { d, a, b, .. }
+        | MinMaxF64 { d, a, b, .. }
+        | MulTimeF64 { d, a, b }
+        | DivTimeF64 { d, a, b } => {
+            f(d);
+            f(a);
+            f(b);
+        }
+        AddSI { d, a, .. }
+        | ModSI { d, a, .. }
+        | NegS { d, a, .. }
+        | AbsS { d, a, .. }
+        | NegF32 { d, a }
+        | NegF64 { d, a }
+        | MathF32 { d, a, .. }
+        | MathF64 { d, a, .. }
+        | NotB { d, a }
+        | NotW { d, a, .. }
+        | CmpSI { d, a, .. }
+        | Convert { d, a, .. }
+        | ToStr { d, a, .. }
+        | FromStr { d, a, .. }
+        | StrCall { d, a, .. } => {
+            f(d);
+            f(a);
+        }
+        CMov { d, c, s } => {
+            f(d);
+            f(c);
+            f(s);
+        }
+        Mux { d, k, first, .. } => {
+            f(d);
+            f(k);
+            f(first);
+        }
+        StrConst { d, .. } => f(d),
+        Jz { c, .. } | Jnz { c, .. } => f(c),
+        JnCmpSI { a, .. } => f(a),
+        JnCmpS { a, b, .. } => {
+            f(a);
+            f(b);
+        }
+        CallFb { inst, .. } | CallNative { inst, .. } => f(inst),
+        CallFbInd { p, .. } | CallNativeInd { p, .. } => f(p),
+        MemCopy { d, s, .. } => {
+            f(d);
+            f(s);
+        }
+    }
+}
+
+/// How many consecutive slots an instruction reads starting at its run
+/// operand (`Mux` inputs, `StrCall` arguments); 1 for everything else.
+pub fn slot_span(op: &Op) -> u32 {
+    match op {
+        Op::Mux { n, .. } => *n as u32,
+        Op::StrCall { .. } => 4,
+        _ => 1,
+    }
+}
+
+/// The jump target of a branch instruction.
+pub fn target_mut(op: &mut Op) -> Option<&mut u32> {
+    match op {
+        Op::Jmp { t }
+        | Op::Jz { t, .. }
+        | Op::Jnz { t, .. }
+        | Op::JnCmpSI { t, .. }
+        | Op::JnCmpS { t, .. } => Some(t),
+        _ => None,
+    }
+}
