@@ -390,9 +390,7 @@ fn main() {
         failed |= !row.errors.is_empty();
     }
     if log_ratios.is_empty() {
-        println!(
-            "geomean ratio: - (no benchmark selected)"
-        );
+        println!("geomean ratio: - (no benchmark selected)");
     } else {
         let geomean = (log_ratios.iter().sum::<f64>() / log_ratios.len() as f64).exp();
         println!("geomean ratio (a, b, c unrolled, d): {geomean:.2}");

@@ -452,7 +452,12 @@ pub enum Op {
         max: bool,
     },
     /// MUX: `d := slots[first + k]` for k = value of `k`, faulting if `k >= n`.
-    Mux { d: Slot, k: Slot, first: Slot, n: u16 },
+    Mux {
+        d: Slot,
+        k: Slot,
+        first: Slot,
+        n: u16,
+    },
     /// Duration times REAL/LREAL factor (TIME * REAL), rounding to ns.
     MulTimeF64 { d: Slot, a: Slot, b: Slot },
     /// Duration divided by LREAL.
@@ -488,6 +493,30 @@ pub enum Op {
         b: Slot,
         cmp: Cmp,
         t: Target,
+    },
+
+    /// Jump if `a cmp b` is FALSE on REAL values (NaN compares FALSE, so it jumps).
+    JnCmpF32 {
+        a: Slot,
+        b: Slot,
+        cmp: Cmp,
+        t: Target,
+    },
+    /// Jump if `a cmp b` is FALSE on LREAL values.
+    JnCmpF64 {
+        a: Slot,
+        b: Slot,
+        cmp: Cmp,
+        t: Target,
+    },
+    /// FOR back edge: `i := i + step` (wrapped), then jump to `t` while
+    /// `i <= lim` (`step > 0`) or `i >= lim` (`step < 0`).
+    ForNext {
+        i: Slot,
+        lim: i32,
+        t: Target,
+        step: i16,
+        shift: u8,
     },
 
     /// Call a user FB body (code block `code`) on the instance at frame slot `inst`.

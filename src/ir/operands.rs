@@ -116,10 +116,11 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
         StrConst { d, .. } => f(d),
         Jz { c, .. } | Jnz { c, .. } => f(c),
         JnCmpSI { a, .. } => f(a),
-        JnCmpS { a, b, .. } => {
+        JnCmpS { a, b, .. } | JnCmpF32 { a, b, .. } | JnCmpF64 { a, b, .. } => {
             f(a);
             f(b);
         }
+        ForNext { i, .. } => f(i),
         CallFb { inst, .. } | CallNative { inst, .. } => f(inst),
         CallFbInd { p, .. } | CallNativeInd { p, .. } => f(p),
         MemCopy { d, s, .. } => {
@@ -146,7 +147,10 @@ pub fn target_mut(op: &mut Op) -> Option<&mut u32> {
         | Op::Jz { t, .. }
         | Op::Jnz { t, .. }
         | Op::JnCmpSI { t, .. }
-        | Op::JnCmpS { t, .. } => Some(t),
+        | Op::JnCmpS { t, .. }
+        | Op::JnCmpF32 { t, .. }
+        | Op::JnCmpF64 { t, .. }
+        | Op::ForNext { t, .. } => Some(t),
         _ => None,
     }
 }

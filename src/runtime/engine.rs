@@ -127,6 +127,7 @@ pub struct Plc {
     base_tick: i64,
     single_prev: Vec<bool>,
     order: Vec<usize>,
+    due: Vec<bool>,
 }
 
 /// Greatest common divisor.
@@ -186,6 +187,7 @@ impl Plc {
             warnings,
             cycle: 0,
             base_tick,
+            due: vec![false; single_prev.len()],
             single_prev,
             order,
         }
@@ -227,9 +229,8 @@ impl Plc {
         self.machine.now = now;
         self.machine.start_cycle();
         // SINGLE tasks run on the rising edge of their trigger.
-        let mut due = vec![false; self.image.tasks.len()];
         for (i, t) in self.image.tasks.iter().enumerate() {
-            due[i] = match t.single {
+            self.due[i] = match t.single {
                 Some(addr) => {
                     let v = self.machine.mem[addr as usize] != 0;
                     let rising = v && !self.single_prev[i];
@@ -241,7 +242,7 @@ impl Plc {
         }
         for k in 0..self.order.len() {
             let inst = &self.image.programs[self.order[k]];
-            if !due[inst.task] {
+            if !self.due[inst.task] {
                 continue;
             }
             let (code, base) = (inst.code, inst.base);

@@ -183,7 +183,10 @@ impl Fcx {
             | Op::Jz { t, .. }
             | Op::Jnz { t, .. }
             | Op::JnCmpSI { t, .. }
-            | Op::JnCmpS { t, .. } => *t = target,
+            | Op::JnCmpS { t, .. }
+            | Op::JnCmpF32 { t, .. }
+            | Op::JnCmpF64 { t, .. }
+            | Op::ForNext { t, .. } => *t = target,
             _ => {}
         }
     }

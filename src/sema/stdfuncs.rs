@@ -499,7 +499,8 @@ impl Compiler<'_> {
                 };
                 let ksl = self.materialize(f, &k);
                 let Ok(n) = u16::try_from(vals.len()) else {
-                    self.diags.error("E404", span, "MUX takes at most 65535 inputs");
+                    self.diags
+                        .error("E404", span, "MUX takes at most 65535 inputs");
                     return Val::error();
                 };
                 let mut slots = Vec::new();

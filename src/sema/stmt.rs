@@ -193,6 +193,20 @@ impl Compiler<'_> {
                     cmp: if when { negate(cmp) } else { cmp },
                     t: target,
                 }),
+                // Negating a float comparison is wrong for NaN: fuse only
+                // "jump when FALSE".
+                Op::CmpF32 { a, b, cmp, .. } if !when => Some(Op::JnCmpF32 {
+                    a,
+                    b,
+                    cmp,
+                    t: target,
+                }),
+                Op::CmpF64 { a, b, cmp, .. } if !when => Some(Op::JnCmpF64 {
+                    a,
+                    b,
+                    cmp,
+                    t: target,
+                }),
                 _ => None,
             };
             if let Some(op) = fused {
@@ -605,6 +619,27 @@ impl Compiler<'_> {
         let cont = f.here();
         f.span = span;
         let shift = super::typeck::shift_of(e);
+        if let (Some(st), Some(lim)) = (step_const, lim_imm)
+            && e.is_signed_int()
+            && let Ok(step) = i16::try_from(st)
+        {
+            f.emit(Op::ForNext {
+                i,
+                lim,
+                t: body_at,
+                step,
+                shift,
+            });
+            let lp = f.loops.pop().unwrap_or_default();
+            let end = f.here();
+            for j in exit_jumps.into_iter().chain(lp.exits) {
+                f.patch(j, end);
+            }
+            for j in lp.continues {
+                f.patch(j, cont);
+            }
+            return;
+        }
         match (step_const, step_slot) {
             (Some(st), _) if i32::try_from(st).is_ok() && e.is_signed_int() => {
                 f.emit(Op::AddSI {

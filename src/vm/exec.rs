@@ -224,9 +224,9 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
     loop {
         // SAFETY: blocks end with Ret and jump targets are inside the block
         // (verified), so pc never leaves `ops`.
-        let op = unsafe { *ops.get_unchecked(pc) };
+        let op = unsafe { ops.get_unchecked(pc) };
         pc += 1;
-        match op {
+        match *op {
             Op::Nop => {}
             Op::LoadK { d, k } => w!(d, img.consts[k as usize]),
             Op::LoadI { d, imm } => w!(d, imm as i64 as u64),
@@ -244,7 +244,8 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::AddrOf { d, off } => w!(d, (base + off as usize) as u64),
             Op::AddrAdd { d, p, off } => w!(d, r!(p) + off as u64),
             Op::LoadElem { d, idx, desc } => {
-                let ad = &img.arrays[desc as usize];
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
@@ -252,7 +253,8 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 w!(d, r!(ad.offset as u64 + i * ad.stride as u64));
             }
             Op::StoreElem { idx, s, desc } => {
-                let ad = &img.arrays[desc as usize];
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
@@ -260,7 +262,8 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 w!(ad.offset as u64 + i * ad.stride as u64, r!(s));
             }
             Op::ElemAddr { d, idx, desc } => {
-                let ad = &img.arrays[desc as usize];
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
@@ -268,7 +271,8 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 w!(d, r!(d) + ad.offset as u64 + i * ad.stride as u64);
             }
             Op::IndexStep { acc, idx, desc } => {
-                let ad = &img.arrays[desc as usize];
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
@@ -314,7 +318,10 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 w!(d, wrap_u(r!(a) % y, shift));
             }
             Op::ModSI { d, a, imm, shift } => {
-                w!(d, wrap_s((r!(a) as i64).wrapping_rem(imm as i64) as u64, shift))
+                w!(
+                    d,
+                    wrap_s((r!(a) as i64).wrapping_rem(imm as i64) as u64, shift)
+                )
             }
             Op::NegS { d, a, shift } => w!(d, wrap_s(r!(a).wrapping_neg(), shift)),
             Op::PowS { d, a, b, shift } => match int_pow(r!(a) as i64, r!(b) as i64) {
@@ -392,7 +399,10 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::Mux { d, k, first, n } => {
                 let sel = r!(k) as i64;
                 if sel < 0 || sel >= n as i64 {
-                    fault!(FaultKind::MuxOutOfRange { k: sel, n: n as u32 });
+                    fault!(FaultKind::MuxOutOfRange {
+                        k: sel,
+                        n: n as u32
+                    });
                 }
                 w!(d, r!(first as u64 + sel as u64));
             }
@@ -477,6 +487,34 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 }
             }
 
+            Op::JnCmpF32 { a, b, cmp, t } => {
+                if cmp_f(f32_of(r!(a)), f32_of(r!(b)), cmp) == 0 {
+                    jump!(t)
+                }
+            }
+            Op::JnCmpF64 { a, b, cmp, t } => {
+                if cmp_f(f64_of(r!(a)), f64_of(r!(b)), cmp) == 0 {
+                    jump!(t)
+                }
+            }
+            Op::ForNext {
+                i,
+                lim,
+                t,
+                step,
+                shift,
+            } => {
+                let v = wrap_s(r!(i).wrapping_add(step as i64 as u64), shift);
+                w!(i, v);
+                let go = if step > 0 {
+                    (v as i64) <= lim as i64
+                } else {
+                    (v as i64) >= lim as i64
+                };
+                if go {
+                    jump!(t)
+                }
+            }
             Op::CallFb { code: c, inst } => run(m, img, c, base + inst as usize)?,
             Op::CallFbInd { code: c, p } => {
                 let at = r!(p) as usize;
