@@ -90,6 +90,10 @@ pub fn run(args: &RunArgs) -> i32 {
         Ok(p) => p,
         Err(e) => {
             eprint!("{e}");
+            // Only "which program?" problems: the user must pick one.
+            if e.diagnostics.iter().all(|d| d.code == "E208") {
+                return EXIT_USAGE;
+            }
             return EXIT_COMPILE;
         }
     };
