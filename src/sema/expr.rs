@@ -810,6 +810,8 @@ impl Compiler<'_> {
             && e.is_signed_int()
         {
             match op {
+                // x + 0 and x - 0 are x (already of the common type).
+                BinaryOp::Add | BinaryOp::Sub if imm == 0 => return Val::Slot(a, ct),
                 BinaryOp::Add => {
                     let d = f.temp();
                     f.emit(Op::AddSI {
