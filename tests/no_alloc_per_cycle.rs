@@ -54,10 +54,22 @@ fn cycles_do_not_allocate_and_fb_instances_are_small() {
     assert_eq!(bytes("TON"), 56);
 
     let programs = [
-        ("bench_a", include_str!("../benches/programs/bench_a_bool_logic.st")),
-        ("bench_b", include_str!("../benches/programs/bench_b_int_sieve.st")),
-        ("bench_c_array", include_str!("../benches/programs/bench_c_fb_array.st")),
-        ("bench_d", include_str!("../benches/programs/bench_d_real_math.st")),
+        (
+            "bench_a",
+            include_str!("../benches/programs/bench_a_bool_logic.st"),
+        ),
+        (
+            "bench_b",
+            include_str!("../benches/programs/bench_b_int_sieve.st"),
+        ),
+        (
+            "bench_c_array",
+            include_str!("../benches/programs/bench_c_fb_array.st"),
+        ),
+        (
+            "bench_d",
+            include_str!("../benches/programs/bench_d_real_math.st"),
+        ),
         ("cmd_monitor", include_str!("../programs/cmd_monitor.st")),
         ("alg02", include_str!("../programs/alg02.il")),
     ];

@@ -250,6 +250,9 @@ pub enum Op {
     /// Element address: `d := d + offset + checked(idx - lo) * stride` where
     /// `d` holds the array's absolute address on entry (descriptor `desc`).
     ElemAddr { d: Slot, idx: Slot, desc: u32 },
+    /// Element address in the current frame:
+    /// `d := base + offset + checked(idx - lo) * stride` (descriptor `desc`).
+    ElemRef { d: Slot, idx: Slot, desc: u32 },
     /// Linearised multi-dimensional index step: `acc := acc * len + checked(idx - lo)`.
     IndexStep { acc: Slot, idx: Slot, desc: u32 },
 

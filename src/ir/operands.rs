@@ -31,7 +31,7 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
             f(d);
             f(off);
         }
-        LoadElem { d, idx, .. } | ElemAddr { d, idx, .. } => {
+        LoadElem { d, idx, .. } | ElemAddr { d, idx, .. } | ElemRef { d, idx, .. } => {
             f(d);
             f(idx);
         }

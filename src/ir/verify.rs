@@ -58,6 +58,9 @@ pub fn verify(image: &Image) -> Result<(), String> {
                             && d.offset as u64 + d.len.saturating_mul(d.stride as u64) <= size
                     })
                 }
+                Op::ElemRef { desc, .. } => image.arrays.get(desc as usize).is_some_and(|d| {
+                    d.offset as u64 + d.len.saturating_mul(d.stride as u64) <= size
+                }),
                 Op::ElemAddr { desc, .. } | Op::IndexStep { desc, .. } => {
                     (desc as usize) < image.arrays.len()
                 }

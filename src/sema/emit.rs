@@ -138,7 +138,29 @@ pub struct Fcx {
     /// Constant values that live in frame slots (numbered with
     /// [`CONST_TAG`] until the frame size is known).
     pub consts: Vec<u64>,
+    /// Number of pinned slots (numbered with [`PIN_TAG`] until placed).
+    pub pins: u32,
+    /// Element addresses computed in the current basic block.
+    pub elem_cache: Vec<ElemEntry>,
+    /// Size of the declared variables (slots below it are variables).
+    pub vars_size: u32,
 }
+
+/// A cached element address: the element of the frame array described by
+/// `key` (frame offset, lower bound, length, stride) at index variable `idx`
+/// is at the address held in pinned slot `ptr`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ElemEntry {
+    /// Array identity.
+    pub key: (u32, i64, u64, u32),
+    /// Index variable slot.
+    pub idx: Slot,
+    /// Pinned slot with the element's address.
+    pub ptr: Slot,
+}
+
+/// Marks a provisional pinned-slot number during emission.
+pub const PIN_TAG: u32 = 0x4000_0000;
 
 /// Marks a provisional constant-slot number during emission.
 pub const CONST_TAG: u32 = 0x8000_0000;
@@ -159,21 +181,62 @@ impl Fcx {
             last_def: None,
             fixups: Vec::new(),
             consts: Vec::new(),
+            pins: 0,
+            elem_cache: Vec::new(),
+            vars_size: temp_base,
         }
     }
 
     /// Appends an instruction.
     pub fn emit(&mut self, op: Op) -> usize {
+        self.invalidate(&op);
         self.ops.push(op);
         self.spans.push(self.span);
         self.last_def = dest_of(&op).map(|d| (self.ops.len() - 1, d));
         self.ops.len() - 1
     }
 
-    /// Index of the next instruction (a jump target).
+    /// Index of the next instruction (a jump target). A label ends the
+    /// basic block, so cached element addresses are forgotten.
     pub fn here(&mut self) -> u32 {
         self.last_def = None;
+        self.elem_cache.clear();
         self.ops.len() as u32
+    }
+
+    /// A slot that keeps its value across statements (for cached addresses).
+    pub fn pin(&mut self) -> Slot {
+        self.pins += 1;
+        PIN_TAG | (self.pins - 1)
+    }
+
+    /// Forgets cached element addresses that `op` may make stale: any write
+    /// to a cached index variable, user calls (which may write variables
+    /// through VAR_IN_OUT), and stores through pointers that are not cached
+    /// element addresses.
+    fn invalidate(&mut self, op: &Op) {
+        if self.elem_cache.is_empty() {
+            return;
+        }
+        let clear_all = match op {
+            Op::CallFb { .. } | Op::CallFbInd { .. } | Op::CallFn { .. } | Op::MemCopy { .. } => {
+                true
+            }
+            Op::StoreInd { p, .. } => !self.elem_cache.iter().any(|e| e.ptr == *p),
+            Op::AddrOf { .. } => true,
+            _ => false,
+        };
+        if clear_all {
+            self.elem_cache.clear();
+            return;
+        }
+        let written = match op {
+            Op::ForNext { i, .. } => Some(*i),
+            _ => dest_of(op),
+        };
+        if let Some(w) = written {
+            self.elem_cache.retain(|e| e.idx != w && e.ptr != w);
+        }
     }
 
     /// Points the jump at `at` to `target`.
@@ -209,7 +272,7 @@ impl Fcx {
 
     /// True if `s` is a temporary.
     pub fn is_temp(&self, s: Slot) -> bool {
-        s >= self.temp_base && s < CONST_TAG
+        s >= self.temp_base && s < PIN_TAG
     }
 
     /// A read-only frame slot holding `bits`, initialised once per instance.
@@ -228,10 +291,13 @@ impl Fcx {
     /// returns the frame size including them, with the `(slot, value)` list.
     pub fn place_consts(&mut self) -> (u32, Vec<(u32, u64)>) {
         let first = self.temp_max;
+        let pins_at = first + self.consts.len() as u32;
         for op in &mut self.ops {
             crate::ir::operands::for_each_slot(op, &mut |s| {
                 if *s & CONST_TAG != 0 {
                     *s = first + (*s & !CONST_TAG);
+                } else if *s & PIN_TAG != 0 {
+                    *s = pins_at + (*s & !PIN_TAG);
                 }
             });
         }
@@ -241,7 +307,7 @@ impl Fcx {
             .enumerate()
             .map(|(k, v)| (first + k as u32, *v))
             .collect();
-        (first + self.consts.len() as u32, list)
+        (pins_at + self.pins, list)
     }
 
     /// Writes `s` into `d`: when `s` is a temporary just defined by the last
@@ -487,6 +553,9 @@ impl Compiler<'_> {
 
     /// An absolute-address pointer to a place, in a slot.
     pub(super) fn address_of(&mut self, f: &mut Fcx, p: &PlaceRef) -> Slot {
+        if let Place::Ind { p: ptr, off: 0 } = p.place {
+            return ptr;
+        }
         let t = f.temp();
         match p.place {
             Place::Frame(s) => {
@@ -500,8 +569,7 @@ impl Compiler<'_> {
                 f.emit(Op::AddrAdd { d: t, p: ptr, off });
             }
             Place::Elem { idx, desc } => {
-                f.emit(Op::AddrOf { d: t, off: 0 });
-                f.emit(Op::ElemAddr { d: t, idx, desc });
+                f.emit(Op::ElemRef { d: t, idx, desc });
             }
         }
         f.last_def = None;

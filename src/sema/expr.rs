@@ -504,8 +504,50 @@ impl Compiler<'_> {
                             ..b
                         })
                     }
+                    Place::Frame(o) => {
+                        // Arrays of FBs or structures in this frame: the
+                        // element address, reused within the basic block.
+                        let key = (o, lo, total, elem_size);
+                        let cacheable = idx < f.vars_size && dims.len() == 1;
+                        let cached = f
+                            .elem_cache
+                            .iter()
+                            .find(|c| cacheable && c.key == key && c.idx == idx)
+                            .map(|c| c.ptr);
+                        let p = match cached {
+                            Some(p) => p,
+                            None => {
+                                let desc = self.array_desc(ArrayDesc {
+                                    offset: o,
+                                    lo,
+                                    len: total,
+                                    stride: elem_size,
+                                    span: e.span,
+                                });
+                                let p = if cacheable { f.pin() } else { f.temp() };
+                                f.emit(Op::ElemRef { d: p, idx, desc });
+                                f.last_def = None;
+                                if cacheable {
+                                    f.elem_cache
+                                        .push(super::emit::ElemEntry { key, idx, ptr: p });
+                                }
+                                p
+                            }
+                        };
+                        Some(PlaceRef {
+                            place: Place::Ind { p, off: 0 },
+                            ty: elem,
+                            ..b
+                        })
+                    }
                     _ => {
                         let base_ptr = self.address_of(f, &b);
+                        let fresh = f.temp();
+                        f.emit(Op::Mov {
+                            d: fresh,
+                            s: base_ptr,
+                        });
+                        let base_ptr = fresh;
                         let desc = self.array_desc(ArrayDesc {
                             offset: 0,
                             lo,
@@ -545,8 +587,7 @@ impl Compiler<'_> {
             Place::Ind { p, off: o } => Place::Ind { p, off: o + off },
             Place::Elem { idx, desc } => {
                 let p = f.temp();
-                f.emit(Op::AddrOf { d: p, off: 0 });
-                f.emit(Op::ElemAddr { d: p, idx, desc });
+                f.emit(Op::ElemRef { d: p, idx, desc });
                 f.last_def = None;
                 Place::Ind { p, off }
             }
@@ -847,6 +888,25 @@ impl Compiler<'_> {
         }
         let xb = self.coerce(f, vb, ct, span, "operand");
         let b = self.materialize(f, &xb);
+        // `a AND NOT x` / `a OR NOT x` on BOOL: fold the NOT just computed.
+        if e == ElemType::Bool
+            && matches!(op, BinaryOp::And | BinaryOp::Or)
+            && let Some((at, def)) = f.last_def
+            && def == b
+            && f.is_temp(b)
+            && at + 1 == f.ops.len()
+            && let Op::NotB { a: x, .. } = f.ops[at]
+        {
+            f.ops.pop();
+            f.spans.pop();
+            let d = f.temp();
+            f.emit(if op == BinaryOp::And {
+                Op::AndN { d, a, b: x }
+            } else {
+                Op::OrN { d, a, b: x }
+            });
+            return Val::Slot(d, ct);
+        }
         let d = f.temp();
         let s = shift_of(e);
         let signed = e.is_signed_int();

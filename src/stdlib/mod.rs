@@ -16,20 +16,31 @@ pub use layout::{NativeParam, ParamDir, interface, lookup_native, native_name};
 
 use crate::ir::op::NativeFb;
 
-/// Runs one call of the native block `fb` on instance memory `inst`, with the
-/// cycle's clock value `now` (nanoseconds).
-#[inline]
-pub fn call(fb: NativeFb, inst: &mut [u64], now: i64) {
+/// Runs one call of `fb` on the instance whose first slot is at `p`.
+///
+/// # Safety
+/// `p` must point to at least `interface(fb).len()` valid, writable slots
+/// that nothing else references during the call.
+#[inline(always)]
+pub(crate) unsafe fn call_raw(fb: NativeFb, p: *mut u64, now: i64) {
+    // Each arm builds a slice of the block's fixed size, so the compiler
+    // knows the bounds and the call is inlined into the executor.
+    macro_rules! slots {
+        ($n:expr) => {
+            // SAFETY: the caller guarantees `$n` (= interface length) slots.
+            unsafe { std::slice::from_raw_parts_mut(p, $n) }
+        };
+    }
     match fb {
-        NativeFb::RTrig => edges::r_trig(inst),
-        NativeFb::FTrig => edges::f_trig(inst),
-        NativeFb::Sr => bistable::sr(inst),
-        NativeFb::Rs => bistable::rs(inst),
-        NativeFb::Ctu(r) => counters::ctu(inst, r),
-        NativeFb::Ctd(r) => counters::ctd(inst, r),
-        NativeFb::Ctud(r) => counters::ctud(inst, r),
-        NativeFb::Ton => timers::ton(inst, now),
-        NativeFb::Tof => timers::tof(inst, now),
-        NativeFb::Tp => timers::tp(inst, now),
+        NativeFb::RTrig => edges::r_trig(slots!(3)),
+        NativeFb::FTrig => edges::f_trig(slots!(3)),
+        NativeFb::Sr => bistable::sr(slots!(3)),
+        NativeFb::Rs => bistable::rs(slots!(3)),
+        NativeFb::Ctu(r) => counters::ctu(slots!(6), r),
+        NativeFb::Ctd(r) => counters::ctd(slots!(6), r),
+        NativeFb::Ctud(r) => counters::ctud(slots!(10), r),
+        NativeFb::Ton => timers::ton(slots!(7), now),
+        NativeFb::Tof => timers::tof(slots!(7), now),
+        NativeFb::Tp => timers::tp(slots!(7), now),
     }
 }

@@ -270,6 +270,15 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 }
                 w!(d, r!(d) + ad.offset as u64 + i * ad.stride as u64);
             }
+            Op::ElemRef { d, idx, desc } => {
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
+                if i >= ad.len {
+                    fault!(index_fault(r!(idx), ad));
+                }
+                w!(d, (base + ad.offset as usize) as u64 + i * ad.stride as u64);
+            }
             Op::IndexStep { acc, idx, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
                 let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
@@ -521,11 +530,9 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 run(m, img, c, at)?
             }
             Op::CallNative { fb, inst } => {
-                let n = stdlib::interface(fb).len();
-                // SAFETY: inst + n <= frame_size (verified), so the slice is
-                // inside this frame; no other reference to it exists.
-                let slots = unsafe { std::slice::from_raw_parts_mut(fp.add(inst as usize), n) };
-                stdlib::call(fb, slots, m.now);
+                // SAFETY: inst + pins(fb) <= frame_size (verified), so the
+                // instance lies inside this frame.
+                unsafe { stdlib::call_raw(fb, fp.add(inst as usize), m.now) }
             }
             Op::CallNativeInd { fb, p } => {
                 let n = stdlib::interface(fb).len();
@@ -534,8 +541,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                     fault!(FaultKind::BadAddress);
                 }
                 // SAFETY: start + n <= len was checked above.
-                let slots = unsafe { std::slice::from_raw_parts_mut(mem.add(start), n) };
-                stdlib::call(fb, slots, m.now);
+                unsafe { stdlib::call_raw(fb, mem.add(start), m.now) }
             }
             Op::CallFn { code: c } => {
                 let frame = img.codes[c as usize].frame as usize;
