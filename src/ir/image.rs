@@ -136,4 +136,6 @@ pub struct Image {
     pub programs: Vec<ProgramInstance>,
     /// Tasks.
     pub tasks: Vec<Task>,
+    /// Step tables of the SFC bodies (referenced by `Op::Sfc`).
+    pub charts: Vec<crate::ir::chart::Chart>,
 }

@@ -39,13 +39,7 @@ impl Compiler<'_> {
             Body::Il(lines) => {
                 self.il_body(&mut f, lines);
             }
-            Body::Sfc(_) => {
-                self.diags.error(
-                    "E601",
-                    pou.name.span,
-                    "Sequential Function Chart bodies are not supported yet",
-                );
-            }
+            Body::Sfc(elems) => self.emit_chart(&mut f, pou, elems),
         }
         let end = f.here();
         for j in std::mem::take(&mut f.returns) {
@@ -327,6 +321,7 @@ impl Compiler<'_> {
             globals: roots,
             programs: instances,
             tasks,
+            charts: std::mem::take(&mut self.charts),
         })
     }
 

@@ -11,6 +11,7 @@ mod calls;
 mod il;
 mod link;
 pub mod model;
+mod sfc;
 mod stdfuncs;
 mod stmt;
 mod typeck;
@@ -78,6 +79,8 @@ pub(crate) struct Compiler<'a> {
     emit_state: Vec<LayoutState>,
     /// Function-frame relocations: (code block, instruction, callee POU).
     fixups: Vec<(u32, usize, usize)>,
+    /// Step tables of chart bodies.
+    charts: Vec<crate::ir::chart::Chart>,
 }
 
 impl<'a> Compiler<'a> {
@@ -106,6 +109,7 @@ impl<'a> Compiler<'a> {
             calls: Vec::new(),
             emit_state: Vec::new(),
             fixups: Vec::new(),
+            charts: Vec::new(),
         }
     }
 

@@ -441,6 +441,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 m.mem.copy_within(from..from + n as usize, to);
             }
             Op::Ret => return Ok(()),
+            Op::Sfc { chart } => super::chart::run(m, img, chart, base)?,
         }
     }
 }
