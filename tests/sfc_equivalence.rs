@@ -29,7 +29,7 @@ fn random_stimulus(names: &[&str], cycles: usize, flip: u64, seed: u64) -> Strin
     let mut s = format!("cycle,{}\n", names.join(","));
     for k in 0..cycles {
         for v in values.iter_mut() {
-            if rng.next() % flip == 0 {
+            if rng.next().is_multiple_of(flip) {
                 *v = !*v;
             }
         }
@@ -59,7 +59,10 @@ fn run(program: &str, stimulus_file: &str, cycles: usize, trace: &str) -> Vec<Ve
         "csv",
     ]);
     assert_eq!(r.code, 0, "{program}: {}", r.stderr);
-    rows(&r.stdout).into_iter().map(|r| r[2..].to_vec()).collect()
+    rows(&r.stdout)
+        .into_iter()
+        .map(|r| r[2..].to_vec())
+        .collect()
 }
 
 /// Cycles at which the two traces differ in the given columns.
@@ -76,11 +79,31 @@ const GRAF1_CYCLES: usize = 20_000;
 
 #[test]
 fn graf1_chart_sync_and_async() {
-    let stim = random_stimulus(&["m", "a", "b", "c", "d"], GRAF1_CYCLES, 6, 0x9E37_79B9_7F4A_7C15);
+    let stim = random_stimulus(
+        &["m", "a", "b", "c", "d"],
+        GRAF1_CYCLES,
+        6,
+        0x9E37_79B9_7F4A_7C15,
+    );
     let file = write_temp("graf1.csv", &stim);
-    let chart = run("programs/graf1_sfc.sfc", &file, GRAF1_CYCLES, "S10,S20,S30,X0.X,X1.X,X2.X,X3.X,X4.X");
-    let sync = run("programs/graf1_sync.st", &file, GRAF1_CYCLES, "S10,S20,S30,X0,X1,X2,X3,X4");
-    let asyn = run("programs/graf1_async.st", &file, GRAF1_CYCLES, "S10,S20,S30,X0,X1,X2,X3,X4");
+    let chart = run(
+        "programs/graf1_sfc.sfc",
+        &file,
+        GRAF1_CYCLES,
+        "S10,S20,S30,X0.X,X1.X,X2.X,X3.X,X4.X",
+    );
+    let sync = run(
+        "programs/graf1_sync.st",
+        &file,
+        GRAF1_CYCLES,
+        "S10,S20,S30,X0,X1,X2,X3,X4",
+    );
+    let asyn = run(
+        "programs/graf1_async.st",
+        &file,
+        GRAF1_CYCLES,
+        "S10,S20,S30,X0,X1,X2,X3,X4",
+    );
     // The chart really cycles under this stimulus (each step many times).
     let activations = |col: usize| {
         chart
@@ -89,7 +112,11 @@ fn graf1_chart_sync_and_async() {
             .count()
     };
     for col in 3..8 {
-        assert!(activations(col) > 50, "step column {col}: {}", activations(col));
+        assert!(
+            activations(col) > 50,
+            "step column {col}: {}",
+            activations(col)
+        );
     }
     // Synchronous method: same outputs and same step bits at every cycle.
     let sync_out = differences(&chart, &sync, 0..3);
@@ -99,8 +126,16 @@ fn graf1_chart_sync_and_async() {
         sync_out.len(),
         sync_steps.len()
     );
-    assert!(sync_out.is_empty(), "first differing cycles: {:?}", &sync_out[..sync_out.len().min(10)]);
-    assert!(sync_steps.is_empty(), "first differing cycles: {:?}", &sync_steps[..sync_steps.len().min(10)]);
+    assert!(
+        sync_out.is_empty(),
+        "first differing cycles: {:?}",
+        &sync_out[..sync_out.len().min(10)]
+    );
+    assert!(
+        sync_steps.is_empty(),
+        "first differing cycles: {:?}",
+        &sync_steps[..sync_steps.len().min(10)]
+    );
     // Asynchronous method: it differs. Every divergence (a cycle where the
     // two agreed on the steps in the previous cycle and disagree now) has
     // one of the two causes the method predicts: the "answer" comes one
@@ -123,7 +158,10 @@ fn graf1_chart_sync_and_async() {
             continue;
         }
         let before = step_of(&chart[k - 1]).unwrap_or(0);
-        let (c, a) = (step_of(&chart[k]).unwrap_or(0), step_of(&asyn[k]).unwrap_or(0));
+        let (c, a) = (
+            step_of(&chart[k]).unwrap_or(0),
+            step_of(&asyn[k]).unwrap_or(0),
+        );
         let advance = |to: usize| (to + 5 - before) % 5;
         assert!(
             advance(a) >= 2 && advance(a) > advance(c),
@@ -149,7 +187,12 @@ fn graf1_chart_sync_and_async() {
 #[test]
 fn transfer_station_chart_and_b_ft_il() {
     let cycles = 20_000;
-    let stim = random_stimulus(&["I0_0", "I0_1", "I0_2", "I0_3", "I0_4"], cycles, 5, 0x2545_F491_4F6C_DD1D);
+    let stim = random_stimulus(
+        &["I0_0", "I0_1", "I0_2", "I0_3", "I0_4"],
+        cycles,
+        5,
+        0x2545_F491_4F6C_DD1D,
+    );
     let file = write_temp("transfer.csv", &stim);
     let chart = run(
         "programs/transfer_station.sfc",
@@ -168,8 +211,15 @@ fn transfer_station_chart_and_b_ft_il() {
         assert!(steps(&chart, col) > 100, "step column {col} rarely active");
     }
     let d = differences(&chart, &il, 0..8);
-    eprintln!("transfer station, {cycles} cycles: {} differing cycles", d.len());
-    assert!(d.is_empty(), "first differing cycles: {:?}", &d[..d.len().min(10)]);
+    eprintln!(
+        "transfer station, {cycles} cycles: {} differing cycles",
+        d.len()
+    );
+    assert!(
+        d.is_empty(),
+        "first differing cycles: {:?}",
+        &d[..d.len().min(10)]
+    );
 }
 
 /// ALG01: the chart against the IL on the four ALG01 scenarios. The
@@ -194,7 +244,12 @@ fn alg01_chart_against_il() {
     for (scenario, want_steps) in cases {
         let stim = repo(&format!("programs/alg01_{scenario}.csv"));
         let stim = stim.to_str().unwrap();
-        let chart = run("programs/alg01.sfc", stim, 1200, "V1,V2,L1,E0.X,E1.X,E2.X,E3.X,E4.X");
+        let chart = run(
+            "programs/alg01.sfc",
+            stim,
+            1200,
+            "V1,V2,L1,E0.X,E1.X,E2.X,E3.X,E4.X",
+        );
         let il = run("programs/alg01.il", stim, 1200, "V1,V2,L1,M0,M1,M2,M3,M4");
         let out = differences(&chart, &il, 0..3);
         let steps = differences(&chart, &il, 3..8);

@@ -121,10 +121,7 @@ fn qualifier_across_deactivation(#[case] assoc: &str, #[case] want: &str) {
 /// S0 -go1-> S1 -go2-> S2 -go3-> S0 with `out(<assoc>)` on S1 and
 /// `out(R)` on S2.
 fn with_reset(assoc: &str) -> String {
-    sequence(assoc).replace(
-        "STEP S2 : END_STEP",
-        "STEP S2 : out(R); END_STEP",
-    )
+    sequence(assoc).replace("STEP S2 : END_STEP", "STEP S2 : out(R); END_STEP")
 }
 
 // S1 active 2..=5 (go2 in 6), S2 (with R) active 6..=9 (go3 in 10), S0 from 10.

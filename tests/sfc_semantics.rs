@@ -44,7 +44,9 @@ END_PROGRAM";
     // leaves in cycle 2 keeping T#20ms.
     assert_eq!(
         column(&csv, "S0.T"),
-        ["T#0s", "T#10ms", "T#20ms", "T#20ms", "T#20ms", "T#20ms", "T#20ms", "T#20ms"]
+        [
+            "T#0s", "T#10ms", "T#20ms", "T#20ms", "T#20ms", "T#20ms", "T#20ms", "T#20ms"
+        ]
     );
     // S1: T#0s before its first activation; T#0s in the activating call
     // (cycle 2), 10, 20 ms; deactivated in cycle 5 with T = 30 ms (the value
@@ -52,7 +54,9 @@ END_PROGRAM";
     assert_eq!(bits(&csv, "S1.X"), "00111000");
     assert_eq!(
         column(&csv, "S1.T"),
-        ["T#0s", "T#0s", "T#0s", "T#10ms", "T#20ms", "T#30ms", "T#30ms", "T#30ms"]
+        [
+            "T#0s", "T#0s", "T#0s", "T#10ms", "T#20ms", "T#30ms", "T#30ms", "T#30ms"
+        ]
     );
 }
 
@@ -158,7 +162,13 @@ END_PROGRAM";
 #[case::c4("0001", "X4")]
 #[case::c1("1000", "X1")]
 fn alternative_branches_by_priority(#[case] conds: &str, #[case] winner: &str) {
-    let c = |k: usize| if conds.as_bytes()[k] == b'1' { "TRUE" } else { "FALSE" };
+    let c = |k: usize| {
+        if conds.as_bytes()[k] == b'1' {
+            "TRUE"
+        } else {
+            "FALSE"
+        }
+    };
     let src = format!(
         "PROGRAM p
 INITIAL_STEP S0 : END_STEP
@@ -242,7 +252,12 @@ END_ACTION
 seenQ := Act.Q;
 END_PROGRAM";
     let stim = stimulus(&[("go1", "01000000"), ("go2", "00001000")]);
-    let csv = trace_src(src, Some(&stim), 7, "Act.Q,Act.A,runs,finals,prun,pfinal,seenQ,seenA");
+    let csv = trace_src(
+        src,
+        Some(&stim),
+        7,
+        "Act.Q,Act.A,runs,finals,prun,pfinal,seenQ,seenA",
+    );
     assert_eq!(bits(&csv, "Act.Q"), "0111000");
     // A is TRUE while the body runs (also in the final scan) and FALSE after.
     assert_eq!(bits(&csv, "Act.A"), "0111000");

@@ -59,7 +59,15 @@ pub fn trace_src(src: &str, stimulus: Option<&str>, cycles: u64, trace: &str) ->
     let file = write_temp("prog.st", src);
     let stim = stimulus.map(|s| write_temp("stim.csv", s));
     let n = cycles.to_string();
-    let mut args = vec![file.as_str(), "--cycles", &n, "--trace", trace, "--format", "csv"];
+    let mut args = vec![
+        file.as_str(),
+        "--cycles",
+        &n,
+        "--trace",
+        trace,
+        "--format",
+        "csv",
+    ];
     if let Some(s) = &stim {
         args.push("--stimulus");
         args.push(s);
