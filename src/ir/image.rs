@@ -136,6 +136,8 @@ pub struct Image {
     pub programs: Vec<ProgramInstance>,
     /// Tasks.
     pub tasks: Vec<Task>,
+    /// Step tables of the SFC bodies (referenced by `Op::Sfc`).
+    pub charts: Vec<crate::ir::chart::Chart>,
 }
 
 impl Image {

@@ -1,5 +1,6 @@
 //! The typed intermediate representation all three languages lower into.
 
+pub mod chart;
 pub mod image;
 pub mod op;
 pub mod operands;

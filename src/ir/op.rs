@@ -538,6 +538,9 @@ pub enum Op {
     Clock { d: Slot },
     /// Return from the current code block.
     Ret,
+    /// One call of the SFC chart `chart` (index into `Image::charts`) on
+    /// the current instance: evolution, then action control.
+    Sfc { chart: u32 },
 }
 
 /// Sign-extends or zero-extends `x` from `64 - shift` bits.

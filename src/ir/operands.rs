@@ -12,7 +12,7 @@ use super::op::Op;
 pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
     use Op::*;
     match op {
-        Nop | Jmp { .. } | CallFn { .. } | Ret => {}
+        Nop | Jmp { .. } | CallFn { .. } | Ret | Sfc { .. } => {}
         LoadK { d, .. } | LoadI { d, .. } | LoadAbs { d, .. } | Clock { d } => f(d),
         StoreAbs { s, .. } => f(s),
         Mov { d, s } | StrMov { d, s } => {

@@ -1192,6 +1192,9 @@ impl Compiler<'_> {
                 }
             }
         }
+        if let crate::syntax::ast::Body::Sfc(elems) = &pou.body {
+            self.layout_chart(pou, elems, &mut vars, &mut members, &mut offset);
+        }
         let code = self.codes.len() as u32;
         self.codes.push(crate::ir::image::CodeBlock {
             name: pou.name.name.clone(),

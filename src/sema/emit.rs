@@ -287,27 +287,49 @@ impl Fcx {
         CONST_TAG | k as u32
     }
 
-    /// Gives constant slots their final numbers after the temporaries and
-    /// returns the frame size including them, with the `(slot, value)` list.
-    pub fn place_consts(&mut self) -> (u32, Vec<(u32, u64)>) {
-        let first = self.temp_max;
-        let pins_at = first + self.consts.len() as u32;
-        for op in &mut self.ops {
-            crate::ir::operands::for_each_slot(op, &mut |s| {
-                if *s & CONST_TAG != 0 {
-                    *s = first + (*s & !CONST_TAG);
-                } else if *s & PIN_TAG != 0 {
-                    *s = pins_at + (*s & !PIN_TAG);
-                }
-            });
-        }
-        let list = self
-            .consts
-            .iter()
-            .enumerate()
-            .map(|(k, v)| (first + k as u32, *v))
-            .collect();
-        (pins_at + self.pins, list)
+    /// Gives this body's constant and pinned slots their final numbers
+    /// from `first` on; returns the end of the region and the constants'
+    /// `(slot, value)` list.
+    pub fn place_consts(&mut self, first: u32) -> (u32, Vec<(u32, u64)>) {
+        place_tagged(&mut self.ops, &self.consts, self.pins, first)
+    }
+}
+
+/// Relocates provisional constant and pinned slots of `ops` to a region
+/// starting at `first`: constants first, then pinned slots. Returns the end
+/// of the region and the constants' `(slot, value)` list.
+pub fn place_tagged(
+    ops: &mut [Op],
+    consts: &[u64],
+    pins: u32,
+    first: u32,
+) -> (u32, Vec<(u32, u64)>) {
+    let pins_at = first + consts.len() as u32;
+    for op in ops.iter_mut() {
+        crate::ir::operands::for_each_slot(op, &mut |s| {
+            if *s & CONST_TAG != 0 {
+                *s = first + (*s & !CONST_TAG);
+            } else if *s & PIN_TAG != 0 {
+                *s = pins_at + (*s & !PIN_TAG);
+            }
+        });
+    }
+    let list = consts
+        .iter()
+        .enumerate()
+        .map(|(k, v)| (first + k as u32, *v))
+        .collect();
+    (pins_at + pins, list)
+}
+
+impl Fcx {
+    /// Hands over the provisional constants and pin count (for blocks
+    /// relocated later together with their owner).
+    pub fn take_tagged(&mut self) -> (Vec<u64>, u32) {
+        (
+            std::mem::take(&mut self.consts),
+            std::mem::replace(&mut self.pins, 0),
+        )
     }
 
     /// Writes `s` into `d`: when `s` is a temporary just defined by the last

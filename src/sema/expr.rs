@@ -232,6 +232,8 @@ impl Compiler<'_> {
                     Some("it is an input of the function")
                 } else if var.kind == MemberKind::Step {
                     Some("step flags are read-only")
+                } else if var.kind == MemberKind::Action {
+                    Some("action flags are read-only")
                 } else {
                     None
                 };
@@ -320,7 +322,10 @@ impl Compiler<'_> {
                             Some(m)
                                 if matches!(
                                     m.kind,
-                                    MemberKind::Input | MemberKind::Output | MemberKind::Step
+                                    MemberKind::Input
+                                        | MemberKind::Output
+                                        | MemberKind::Step
+                                        | MemberKind::Action
                                 ) =>
                             {
                                 let ro = match m.kind {
@@ -328,6 +333,7 @@ impl Compiler<'_> {
                                         "outputs of a function block are written only by the block",
                                     ),
                                     MemberKind::Step => Some("step flags are read-only"),
+                                    MemberKind::Action => Some("action flags are read-only"),
                                     _ => b.readonly_reason,
                                 };
                                 (m.offset, m.ty, ro.is_none() && b.writable, ro)

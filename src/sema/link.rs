@@ -43,13 +43,7 @@ impl Compiler<'_> {
             Body::Il(lines) => {
                 self.il_body(&mut f, lines);
             }
-            Body::Sfc(_) => {
-                self.diags.error(
-                    "E601",
-                    pou.name.span,
-                    "Sequential Function Chart bodies are not supported yet",
-                );
-            }
+            Body::Sfc(elems) => self.emit_chart(&mut f, pou, elems),
         }
         let end = f.here();
         for j in std::mem::take(&mut f.returns) {
@@ -58,7 +52,20 @@ impl Compiler<'_> {
         f.span = pou.span;
         f.emit(Op::Ret);
         let code = self.pous[p].code;
-        let (frame_size, consts) = f.place_consts();
+        // The body and its SFC blocks share the frame: temporaries first
+        // (each block's start at the same base), then one region of
+        // constants and pinned slots per block.
+        let first = f.temp_max;
+        let (mut frame_size, mut consts) = f.place_consts(first);
+        for (block, block_consts, pins) in std::mem::take(&mut self.pending_blocks) {
+            let ops = &mut self.codes[block as usize].ops;
+            let (end, list) = super::emit::place_tagged(ops, &block_consts, pins, frame_size);
+            consts.extend(list);
+            frame_size = end;
+        }
+        for c in std::mem::take(&mut self.owned_blocks) {
+            self.codes[c as usize].frame_size = frame_size;
+        }
         self.pous[p].consts = consts;
         for (at, callee) in std::mem::take(&mut f.fixups) {
             self.fixups.push((code, at, callee));
@@ -335,6 +342,7 @@ impl Compiler<'_> {
             globals: roots,
             programs: instances,
             tasks,
+            charts: std::mem::take(&mut self.charts),
         };
         if self.diags.has_errors() {
             return None;

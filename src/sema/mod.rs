@@ -11,6 +11,7 @@ mod expr;
 mod il;
 mod link;
 pub mod model;
+mod sfc;
 mod stdfuncs;
 mod stmt;
 mod typeck;
@@ -78,6 +79,13 @@ pub(crate) struct Compiler<'a> {
     emit_state: Vec<LayoutState>,
     /// Function-frame relocations: (code block, instruction, callee POU).
     fixups: Vec<(u32, usize, usize)>,
+    /// Step tables of chart bodies.
+    charts: Vec<crate::ir::chart::Chart>,
+    /// SFC blocks of the POU being emitted whose constant and pinned slots
+    /// still need placing: (code block, constants, pin count).
+    pending_blocks: Vec<(u32, Vec<u64>, u32)>,
+    /// SFC blocks of the POU being emitted (they share its frame size).
+    owned_blocks: Vec<u32>,
 }
 
 impl<'a> Compiler<'a> {
@@ -106,6 +114,9 @@ impl<'a> Compiler<'a> {
             calls: Vec::new(),
             emit_state: Vec::new(),
             fixups: Vec::new(),
+            charts: Vec::new(),
+            pending_blocks: Vec::new(),
+            owned_blocks: Vec::new(),
         }
     }
 

@@ -581,10 +581,9 @@ const QUALIFIERS: [&str; 11] = ["N", "R", "S", "L", "D", "P", "P0", "P1", "SD", 
 /// Qualifiers that take a duration.
 const TIMED: [&str; 5] = ["L", "D", "SD", "DS", "SL"];
 
-/// `A(qualifier, duration, indicators...)`: the first argument is the
-/// qualifier when it is one of the qualifier names; a timed qualifier takes
-/// the next argument as duration; the remaining arguments are indicator
-/// variables.
+/// `A(qualifier, duration, indicators...)`: the first argument, when it is
+/// a name, is the qualifier; a timed qualifier takes the next argument as
+/// duration; the remaining arguments are indicator variables.
 pub fn association(
     st: &State,
     action: Ident,
@@ -598,15 +597,25 @@ pub fn association(
         kind: ExprKind::Name(id),
         ..
     }) = args.peek()
-        && QUALIFIERS.contains(&id.key().as_str())
     {
+        // The first name is always the qualifier; an unknown one is
+        // reported by the checker (E609).
         qualifier = Some(id.clone());
         args.next();
     }
+    let known = qualifier
+        .as_ref()
+        .is_some_and(|q| QUALIFIERS.contains(&q.key().as_str()));
     let timed = qualifier
         .as_ref()
         .is_some_and(|q| TIMED.contains(&q.key().as_str()));
-    let duration = if timed { args.next() } else { None };
+    // A duration follows a timed qualifier; after an unknown qualifier, a
+    // non-name argument is taken as its duration too.
+    let duration = match args.peek() {
+        Some(_) if timed => args.next(),
+        Some(e) if !known && !matches!(e.kind, ExprKind::Name(_)) => args.next(),
+        _ => None,
+    };
     let mut indicators = Vec::new();
     for a in args {
         match a.kind {

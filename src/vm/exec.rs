@@ -153,9 +153,9 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             pc: 0,
         });
     }
-    let mem: *mut u64 = m.mem.as_mut_ptr();
+    let mut mem: *mut u64 = m.mem.as_mut_ptr();
     // SAFETY: base + frame_size <= len was checked just above.
-    let fp: *mut u64 = unsafe { mem.add(base) };
+    let mut fp: *mut u64 = unsafe { mem.add(base) };
     macro_rules! r {
         ($s:expr) => {
             // SAFETY: frame operands are < frame_size (verified at link time).
@@ -558,6 +558,14 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 unsafe { std::ptr::copy(mem.add(from), mem.add(to), n) };
             }
             Op::Ret => return Ok(()),
+            Op::Sfc { chart } => {
+                super::chart::run(m, img, chart, base)?;
+                // The chart runtime indexes memory through references:
+                // take fresh pointers (same buffer, same length).
+                mem = m.mem.as_mut_ptr();
+                // SAFETY: as at entry.
+                fp = unsafe { mem.add(base) };
+            }
         }
     }
 }

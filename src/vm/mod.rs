@@ -6,6 +6,7 @@
 //! stop execution and report the code block and instruction, which the
 //! runtime maps back to a source location.
 
+mod chart;
 mod convert;
 mod exec;
 mod fault;

@@ -200,11 +200,11 @@ fn mutate(rng: &mut Rng, src: &str) -> String {
 #[test]
 fn fuzz_mutated_programs_never_panic() {
     let seeds = [
-        include_str!("../fixtures/alg01.il"),
-        include_str!("../fixtures/chariot.sfc"),
-        include_str!("../fixtures/bench_b_int_sieve.st"),
-        include_str!("../fixtures/bench_c_fb_array.st"),
-        include_str!("../fixtures/bench_d_real_math.st"),
+        include_str!("../../programs/alg01.il"),
+        include_str!("../../programs/chariot.sfc"),
+        include_str!("../../benches/programs/bench_b_int_sieve.st"),
+        include_str!("../../benches/programs/bench_c_fb_array.st"),
+        include_str!("../../benches/programs/bench_d_real_math.st"),
         "CONFIGURATION c RESOURCE r ON x TASK t (INTERVAL := T#1s); PROGRAM i WITH t : p (a := 1); END_RESOURCE END_CONFIGURATION",
         "TYPE c : (a, b := 2); s : STRUCT x : INT := 1; END_STRUCT; END_TYPE",
     ];

@@ -5,11 +5,11 @@ use plcrun::syntax::ast::*;
 use rstest::rstest;
 
 #[rstest]
-#[case::bench_a(include_str!("../fixtures/bench_a_bool_logic.st"))]
-#[case::bench_b(include_str!("../fixtures/bench_b_int_sieve.st"))]
-#[case::bench_c_array(include_str!("../fixtures/bench_c_fb_array.st"))]
-#[case::bench_c_unrolled(include_str!("../fixtures/bench_c_fb_unrolled.st"))]
-#[case::bench_d(include_str!("../fixtures/bench_d_real_math.st"))]
+#[case::bench_a(include_str!("../../benches/programs/bench_a_bool_logic.st"))]
+#[case::bench_b(include_str!("../../benches/programs/bench_b_int_sieve.st"))]
+#[case::bench_c_array(include_str!("../../benches/programs/bench_c_fb_array.st"))]
+#[case::bench_c_unrolled(include_str!("../../benches/programs/bench_c_fb_unrolled.st"))]
+#[case::bench_d(include_str!("../../benches/programs/bench_d_real_math.st"))]
 fn bench_programs_parse(#[case] src: &str) {
     let unit = parse_ok(src);
     let p = pou(&unit);
@@ -20,7 +20,7 @@ fn bench_programs_parse(#[case] src: &str) {
 
 #[test]
 fn alg01_parses_as_il() {
-    let unit = parse_ok(include_str!("../fixtures/alg01.il"));
+    let unit = parse_ok(include_str!("../../programs/alg01.il"));
     let p = pou(&unit);
     assert_eq!(p.name.name, "ALG01");
     assert_eq!(p.var_blocks[0].decls.len(), 18);
@@ -42,7 +42,7 @@ fn alg01_parses_as_il() {
 
 #[test]
 fn chariot_parses_as_sfc() {
-    let unit = parse_ok(include_str!("../fixtures/chariot.sfc"));
+    let unit = parse_ok(include_str!("../../programs/chariot.sfc"));
     let Body::Sfc(elems) = &pou(&unit).body else {
         panic!("SFC body expected")
     };
@@ -59,8 +59,8 @@ fn chariot_parses_as_sfc() {
         .filter(|e| matches!(e, SfcElement::Statement(_)))
         .count();
     assert_eq!((steps, transitions, statements), (4, 4, 1));
-    let SfcElement::Step(av) = &elems[3] else {
-        panic!("{:?}", elems[3])
+    let SfcElement::Step(av) = &elems[2] else {
+        panic!("{:?}", elems[2])
     };
     assert_eq!(av.actions[0].action.name, "KMAV");
     assert_eq!(av.actions[0].indicators[0].name, "fcB");

@@ -46,7 +46,7 @@ fn steps_and_associations() {
             "E[N||ind2]",
             "F[SD|dly|]",
             "G[-||]",
-            "K[-||fcB]"
+            "K[fcB||]"
         ]
     );
     let SfcElement::Step(s1) = &e[1] else {
