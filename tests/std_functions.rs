@@ -324,3 +324,20 @@ END_PROGRAM";
     assert_eq!(lit(&p, "w"), "16#FF0");
     assert_eq!(lit(&p, "s"), "3");
 }
+
+/// An untyped literal loaded in IL takes the type of where it goes, as in
+/// ST (`x := 1` with `x : INT`; docs/semantics.md §3).
+#[test]
+#[ignore = "bug: IL `LD 1` then `ST x` with x : INT is rejected (E301 expected INT, found DINT)"]
+fn il_untyped_literal_takes_the_type_of_its_store() {
+    let src = "PROGRAM P
+VAR x : INT; b : BYTE; END_VAR
+    LD 1
+    ST x
+    LD 16#0F
+    ST b
+END_PROGRAM";
+    let p = run_once(src);
+    assert_eq!(lit(&p, "x"), "1");
+    assert_eq!(lit(&p, "b"), "16#F");
+}
