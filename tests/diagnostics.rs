@@ -557,3 +557,10 @@ fn mutated_programs_do_not_panic() {
         s.into_iter().collect()
     });
 }
+
+/// docs/diagnostics.md: unsupported words are reported as such (E110).
+#[test]
+#[ignore = "bug: `p : REF_TO INT;` gives E101 (expected `;`, found `INT`) instead of E110 naming REF_TO"]
+fn ref_to_is_reported_as_unsupported() {
+    check_error("E110", &prog("p : REF_TO INT;", ""), "3:5");
+}
