@@ -82,7 +82,7 @@ const INC: &str =
 // ---- E1xx: syntax
 #[case("E101", prog("x : INT;", "x := ;"), "5:6")]
 // reported just after the last token
-#[case("E102", "PROGRAM P\nVAR x : INT; END_VAR\nx := 1;\n".to_string(), "3:8")]
+#[case("E102", "PROGRAM P\nVAR x : INT; END_VAR\nx := 1;\n".to_string(), "4:1")]
 #[case("E103", prog("x : INT;", "x;"), "5:1")]
 #[case(
     "E104",
@@ -170,7 +170,7 @@ const INC: &str =
 #[case("E505", "PROGRAM P\nVAR x : INT; END_VAR\n    ST x\nEND_PROGRAM\n".to_string(), "3:5")]
 #[case("E506", "PROGRAM P\nVAR x : INT; END_VAR\n    LD 5\n    JMPC L1\nL1: ST x\nEND_PROGRAM\n".to_string(), "4:5")]
 // ---- E6xx: SFC
-#[case("E601", "PROGRAM P\nINITIAL_STEP S0: END_STEP\nEND_PROGRAM\n".to_string(), "1:9")]
+#[case("E601", "FUNCTION F : INT\nINITIAL_STEP S0: END_STEP\nEND_FUNCTION\n".to_string(), "1:10")]
 // ---- E7xx: configurations
 #[case(
     "E701",
@@ -358,7 +358,7 @@ fn check_reports_invalid_utf8() {
     let f = temp_file("latin.st", &bytes);
     let (code, err) = plcrun_check(&[&f]);
     assert_eq!(code, 1, "{err}");
-    assert!(err.contains("E009"), "{err}");
+    assert!(err.contains("E011"), "{err}");
 }
 
 #[test]

@@ -598,6 +598,9 @@ impl Compiler<'_> {
         match chosen {
             Some(p) => Some((vec![implicit], vec![(self.pous[p].name.clone(), p, 0)])),
             None if options.check_only => Some((vec![implicit], Vec::new())),
+            // After other errors the missing PROGRAM is usually their
+            // consequence (a POU dropped by syntax recovery): say nothing.
+            None if self.diags.has_errors() => None,
             None => {
                 let span = self
                     .units
