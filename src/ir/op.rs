@@ -118,6 +118,8 @@ pub enum Conv {
     CheckS(u8),
     /// Integer checked into an unsigned range.
     CheckU(u8),
+    /// Signed integer checked into an unsigned range (negative values fault).
+    CheckSToU(u8),
     /// Binary to BCD (value of `bits` width); faults if it does not fit.
     ToBcd(u8),
     /// BCD to binary; faults on an invalid nibble.
@@ -512,11 +514,20 @@ pub enum Op {
         cmp: Cmp,
         t: Target,
     },
-    /// FOR back edge: `i := i + step` (wrapped), then jump to `t` while
-    /// `i <= lim` (`step > 0`) or `i >= lim` (`step < 0`).
+    /// FOR back edge: `i := i + step`, then jump to `t` while
+    /// `i <= lim` (`step > 0`) or `i >= lim` (`step < 0`). The test uses the
+    /// exact sum, so a loop up to its type's largest value ends.
     ForNext {
         i: Slot,
         lim: i32,
+        t: Target,
+        step: i16,
+        shift: u8,
+    },
+    /// As `ForNext` with the limit in a slot.
+    ForNextS {
+        i: Slot,
+        lim: Slot,
         t: Target,
         step: i16,
         shift: u8,

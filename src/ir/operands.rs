@@ -121,6 +121,10 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
             f(b);
         }
         ForNext { i, .. } => f(i),
+        ForNextS { i, lim, .. } => {
+            f(i);
+            f(lim);
+        }
         CallFb { inst, .. } | CallNative { inst, .. } => f(inst),
         CallFbInd { p, .. } | CallNativeInd { p, .. } => f(p),
         MemCopy { d, s, .. } => {
@@ -131,7 +135,7 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
 }
 
 /// How many consecutive slots an instruction reads starting at its run
-/// operand (`Mux` inputs, `StrCall` arguments); 1 for everything else.
+/// operand (`Mux::first`, `StrCall::a`); 1 for everything else.
 pub fn slot_span(op: &Op) -> u32 {
     match op {
         Op::Mux { n, .. } => *n as u32,
@@ -150,7 +154,8 @@ pub fn target_mut(op: &mut Op) -> Option<&mut u32> {
         | Op::JnCmpS { t, .. }
         | Op::JnCmpF32 { t, .. }
         | Op::JnCmpF64 { t, .. }
-        | Op::ForNext { t, .. } => Some(t),
+        | Op::ForNext { t, .. }
+        | Op::ForNextS { t, .. } => Some(t),
         _ => None,
     }
 }

@@ -36,13 +36,23 @@ pub fn verify(image: &Image) -> Result<(), String> {
         }
         for (pc, op) in c.ops.iter().enumerate() {
             let mut op = *op;
-            let span = slot_span(&op) as u64;
             let mut bad = false;
             for_each_slot(&mut op, &mut |s| {
-                if *s as u64 + span.max(1) > size {
+                if *s as u64 >= size {
                     bad = true;
                 }
             });
+            // Operands that start a run of consecutive slots.
+            let run = match op {
+                Op::Mux { first, .. } => Some(first),
+                Op::StrCall { a, .. } => Some(a),
+                _ => None,
+            };
+            if let Some(start) = run
+                && start as u64 + slot_span(&op) as u64 > size
+            {
+                bad = true;
+            }
             if bad {
                 return fail(pc, "frame operand outside the frame");
             }

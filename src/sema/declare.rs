@@ -343,6 +343,10 @@ impl Compiler<'_> {
                 let mut def = self.types.get(base).clone();
                 def.name = decl.name.name.clone();
                 let id = self.types.add(def);
+                // Field defaults belong to the named type too.
+                if let Some(ci) = self.type_inits.get(&base).cloned() {
+                    self.type_inits.insert(id, ci);
+                }
                 if let TypeKind::Enum { values, .. } = &self.types.get(id).kind {
                     for (name, v) in values.clone() {
                         self.enum_values

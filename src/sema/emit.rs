@@ -231,7 +231,7 @@ impl Fcx {
             return;
         }
         let written = match op {
-            Op::ForNext { i, .. } => Some(*i),
+            Op::ForNext { i, .. } | Op::ForNextS { i, .. } => Some(*i),
             _ => dest_of(op),
         };
         if let Some(w) = written {
@@ -249,7 +249,8 @@ impl Fcx {
             | Op::JnCmpS { t, .. }
             | Op::JnCmpF32 { t, .. }
             | Op::JnCmpF64 { t, .. }
-            | Op::ForNext { t, .. } => *t = target,
+            | Op::ForNext { t, .. }
+            | Op::ForNextS { t, .. } => *t = target,
             _ => {}
         }
     }

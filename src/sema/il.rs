@@ -75,6 +75,9 @@ fn op_name(op: IlOperator) -> &'static str {
 struct IlState {
     cr: u32,
     cr_ty: Option<TypeId>,
+    /// The CR as an untyped literal (`LD 1`), so that the next operation
+    /// or store gives it its type; the slot holds it in the default type.
+    cr_lit: Option<Val>,
     stack: Vec<Deferred>,
     labels: HashMap<String, (u32, Option<TypeId>)>,
     pending: Vec<(usize, Ident, Option<TypeId>)>,
@@ -90,6 +93,7 @@ impl Compiler<'_> {
         let mut st = IlState {
             cr,
             cr_ty: None,
+            cr_lit: None,
             stack: Vec::new(),
             labels: HashMap::new(),
             pending: Vec::new(),
@@ -121,6 +125,7 @@ impl Compiler<'_> {
                 if st.cr_ty.is_none() {
                     st.cr_ty = jumped;
                 }
+                st.cr_lit = None;
                 st.labels.entry(l.key()).or_insert((at, st.cr_ty));
                 if !st.stack.is_empty() {
                     self.diags
@@ -156,6 +161,9 @@ impl Compiler<'_> {
     }
 
     fn cr_val(&mut self, st: &IlState, span: Span, what: &str) -> Option<Val> {
+        if let Some(lit) = &st.cr_lit {
+            return Some(lit.clone());
+        }
         match st.cr_ty {
             Some(t) => Some(Val::Slot(st.cr, t)),
             None => {
@@ -203,6 +211,10 @@ impl Compiler<'_> {
         if v.is_error() {
             return;
         }
+        st.cr_lit = match &v {
+            Val::Const(_, Ty::AnyInt | Ty::AnyReal) => Some(v.clone()),
+            _ => None,
+        };
         let t = match v.ty() {
             Ty::T(t) => t,
             other => self.default_type(other, None),
@@ -328,6 +340,7 @@ impl Compiler<'_> {
                     span,
                 });
                 st.cr_ty = None;
+                st.cr_lit = None;
                 if let Some(e) = operand {
                     let v = self.expr(f, e, None);
                     self.set_cr(f, st, v);
@@ -370,6 +383,7 @@ impl Compiler<'_> {
                 st.pending.push((at, label.clone(), st.cr_ty));
                 if cond.is_none() {
                     st.cr_ty = None;
+                    st.cr_lit = None;
                 }
             }
             IlInstrKind::Return { cond } => {

@@ -260,7 +260,12 @@ impl Compiler<'_> {
         let mut vals: Vec<(Val, Span)> = Vec::new();
         for e in &given {
             let hint = match std {
-                Std::Binary(..) | Std::MinMax(_) | Std::Move => expect,
+                Std::Binary(..)
+                | Std::MinMax(_)
+                | Std::Move
+                | Std::Sel
+                | Std::Limit
+                | Std::Mux => expect,
                 _ => None,
             };
             let v = self.expr(f, e, hint);
@@ -431,7 +436,7 @@ impl Compiler<'_> {
                     self.diags.error("E301", gs, "SEL: G must be BOOL");
                     return Val::error();
                 }
-                let Some(t) = self.unify_all(&[a.ty(), b.ty()], span, fname) else {
+                let Some(t) = self.unify_all(&[a.ty(), b.ty()], span, fname, expect) else {
                     return Val::error();
                 };
                 if let Val::Const(Const::Bits(c), _) = g {
@@ -454,7 +459,7 @@ impl Compiler<'_> {
             }
             Std::MinMax(max) => {
                 let tys: Vec<Ty> = vals.iter().map(|(v, _)| v.ty()).collect();
-                let Some(t) = self.unify_all(&tys, span, fname) else {
+                let Some(t) = self.unify_all(&tys, span, fname, expect) else {
                     return Val::error();
                 };
                 let mut acc: Option<u32> = None;
@@ -470,7 +475,7 @@ impl Compiler<'_> {
             }
             Std::Limit => {
                 let tys: Vec<Ty> = vals.iter().map(|(v, _)| v.ty()).collect();
-                let Some(t) = self.unify_all(&tys, span, fname) else {
+                let Some(t) = self.unify_all(&tys, span, fname, expect) else {
                     return Val::error();
                 };
                 let mut slots = Vec::new();
@@ -494,7 +499,7 @@ impl Compiler<'_> {
                     return Val::error();
                 }
                 let tys: Vec<Ty> = vals.iter().map(|(v, _)| v.ty()).collect();
-                let Some(t) = self.unify_all(&tys, span, fname) else {
+                let Some(t) = self.unify_all(&tys, span, fname, expect) else {
                     return Val::error();
                 };
                 let ksl = self.materialize(f, &k);
@@ -687,11 +692,14 @@ impl Compiler<'_> {
         }
     }
 
+    /// The common type of the arguments; untyped literals alone take the
+    /// type the context expects (`i := MAX(1, 2)` with `i : INT` is INT).
     fn unify_all(
         &mut self,
         tys: &[Ty],
         span: Span,
         fname: &str,
+        expect: Option<crate::ir::types::TypeId>,
     ) -> Option<crate::ir::types::TypeId> {
         let mut acc = *tys.first()?;
         for t in &tys[1..] {
@@ -704,6 +712,11 @@ impl Compiler<'_> {
                     return None;
                 }
             }
+        }
+        if let (Ty::AnyInt | Ty::AnyReal, Some(e)) = (acc, expect)
+            && let Some(Ty::T(t)) = self.unify(acc, Ty::T(e))
+        {
+            return Some(t);
         }
         Some(self.default_type(acc, None))
     }
@@ -855,12 +868,23 @@ impl Compiler<'_> {
         let conv = match (ff, tf) {
             _ if to == E::Bool && int_like(ff) => Some(Conv::ToBool),
             (a, b) if int_like(a) && int_like(b) => {
+                let binary = a == Family::Bits || b == Family::Bits;
                 if from.widens_to(to) || (from == E::Bool) {
                     None
+                } else if binary {
+                    // Bit strings convert as bit patterns (IEC: binary transfer).
+                    if to.is_signed_int() {
+                        Some(Conv::WrapS(shift))
+                    } else {
+                        Some(Conv::WrapU(shift))
+                    }
                 } else if to.is_signed_int() {
-                    Some(Conv::WrapS(shift))
+                    // Between integers the value must fit (semantics §3).
+                    Some(Conv::CheckS(shift))
+                } else if from.is_signed_int() {
+                    Some(Conv::CheckSToU(shift))
                 } else {
-                    Some(Conv::WrapU(shift))
+                    Some(Conv::CheckU(shift))
                 }
             }
             (a, Family::Real) if int_like(a) => Some(match (from.is_signed_int(), to) {

@@ -619,16 +619,27 @@ impl Compiler<'_> {
         let cont = f.here();
         f.span = span;
         let shift = super::typeck::shift_of(e);
-        if let (Some(st), Some(lim)) = (step_const, lim_imm)
+        if let Some(st) = step_const
             && e.is_signed_int()
             && let Ok(step) = i16::try_from(st)
+            && (lim_imm.is_some() || lim.is_some())
         {
-            f.emit(Op::ForNext {
-                i,
-                lim,
-                t: body_at,
-                step,
-                shift,
+            f.emit(match (lim_imm, lim) {
+                (Some(lim), _) => Op::ForNext {
+                    i,
+                    lim,
+                    t: body_at,
+                    step,
+                    shift,
+                },
+                (None, Some(l)) => Op::ForNextS {
+                    i,
+                    lim: l,
+                    t: body_at,
+                    step,
+                    shift,
+                },
+                (None, None) => Op::Nop,
             });
             let lp = f.loops.pop().unwrap_or_default();
             let end = f.here();

@@ -100,6 +100,12 @@ pub fn convert(c: Conv, x: u64) -> Result<u64, FaultKind> {
         Conv::ToBool => (x != 0) as u64,
         Conv::CheckS(s) => fits_s(x as i64, s).ok_or(FaultKind::ConversionOverflow)?,
         Conv::CheckU(s) => fits_u(x, s).ok_or(FaultKind::ConversionOverflow)?,
+        Conv::CheckSToU(s) => {
+            if (x as i64) < 0 {
+                return Err(FaultKind::ConversionOverflow);
+            }
+            fits_u(x, s).ok_or(FaultKind::ConversionOverflow)?
+        }
         Conv::ToBcd(bits) => to_bcd(x, bits)?,
         Conv::FromBcd => from_bcd(x)?,
         Conv::NsToMsS(s) => wrap_s(((x as i64) / NS_PER_MS) as u64, s),

@@ -116,6 +116,21 @@ fn shift(x: u64, n: u64, kind: ShiftKind, bits: u8) -> u64 {
     }
 }
 
+/// Advances a FOR variable: the new (wrapped) value and whether the loop
+/// goes on. The comparison uses the exact sum, so a sum past the type's
+/// range ends the loop instead of wrapping around.
+#[inline(always)]
+fn for_next(i: u64, step: i16, lim: i64, shift: u8) -> (u64, bool) {
+    let sum = (i as i64).checked_add(step as i64);
+    let v = wrap_s(i.wrapping_add(step as i64 as u64), shift);
+    let go = match sum {
+        Some(s) if step > 0 => s <= lim,
+        Some(s) => s >= lim,
+        None => false,
+    };
+    (v, go)
+}
+
 fn int_pow(base: i64, exp: i64) -> Option<u64> {
     if exp < 0 {
         return None;
@@ -513,13 +528,21 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 step,
                 shift,
             } => {
-                let v = wrap_s(r!(i).wrapping_add(step as i64 as u64), shift);
+                let (v, go) = for_next(r!(i), step, lim as i64, shift);
                 w!(i, v);
-                let go = if step > 0 {
-                    (v as i64) <= lim as i64
-                } else {
-                    (v as i64) >= lim as i64
-                };
+                if go {
+                    jump!(t)
+                }
+            }
+            Op::ForNextS {
+                i,
+                lim,
+                t,
+                step,
+                shift,
+            } => {
+                let (v, go) = for_next(r!(i), step, r!(lim) as i64, shift);
+                w!(i, v);
                 if go {
                     jump!(t)
                 }
