@@ -1036,6 +1036,13 @@ impl Compiler<'_> {
             }
         }
         for block in &pou.var_blocks {
+            if block.retain == Some(crate::syntax::ast::Retain::Retain) {
+                self.diags.warning(
+                    "W203",
+                    block.span,
+                    "RETAIN is accepted but has no effect: plcrun starts every run from the declared initial values",
+                );
+            }
             if block.kind == VarKind::Global {
                 self.diags.error(
                     "E209",

@@ -144,6 +144,8 @@ pub struct Fcx {
     pub elem_cache: Vec<ElemEntry>,
     /// Size of the declared variables (slots below it are variables).
     pub vars_size: u32,
+    /// Control variables of the FOR loops being emitted (read-only inside).
+    pub for_vars: Vec<Slot>,
 }
 
 /// A cached element address: the element of the frame array described by
@@ -184,6 +186,7 @@ impl Fcx {
             pins: 0,
             elem_cache: Vec::new(),
             vars_size: temp_base,
+            for_vars: Vec::new(),
         }
     }
 

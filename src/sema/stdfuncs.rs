@@ -260,12 +260,9 @@ impl Compiler<'_> {
         let mut vals: Vec<(Val, Span)> = Vec::new();
         for e in &given {
             let hint = match std {
-                Std::Binary(..)
-                | Std::MinMax(_)
-                | Std::Move
-                | Std::Sel
-                | Std::Limit
-                | Std::Mux => expect,
+                Std::Binary(..) | Std::MinMax(_) | Std::Move | Std::Sel | Std::Limit | Std::Mux => {
+                    expect
+                }
                 _ => None,
             };
             let v = self.expr(f, e, hint);
@@ -786,7 +783,7 @@ impl Compiler<'_> {
         if matches!(func, StrFn::Len | StrFn::Find) {
             let d = f.temp();
             f.emit(Op::StrCall { d, a, f: func });
-            return Val::Slot(d, TypeTable::elem(ElemType::Dint));
+            return Val::Slot(d, TypeTable::elem(ElemType::Int));
         }
         let max = max.clamp(1, 65535);
         let d = self.string_temp(f, max, wide);

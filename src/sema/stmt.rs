@@ -263,6 +263,16 @@ impl Compiler<'_> {
             );
             return;
         }
+        if let super::emit::Place::Frame(s) = p.place
+            && f.for_vars.contains(&s)
+        {
+            self.diags.error(
+                "E401",
+                target.span,
+                "cannot assign to this variable: it is the control variable of an enclosing FOR loop",
+            );
+            return;
+        }
         if p.input_image {
             self.diags.warning(
                 "W202",
@@ -615,7 +625,9 @@ impl Compiler<'_> {
         };
         let body_at = f.here();
         f.loops.push(LoopCtx::default());
+        f.for_vars.push(i);
         self.stmts(f, body);
+        f.for_vars.pop();
         let cont = f.here();
         f.span = span;
         let shift = super::typeck::shift_of(e);

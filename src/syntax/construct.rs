@@ -30,6 +30,9 @@ pub struct State<'t> {
     depth_reported: Cell<bool>,
     last_error_line: Cell<Option<usize>>,
     suppressed: Cell<usize>,
+    /// Lines holding an unsupported construct (E110): other syntax errors
+    /// there are its consequence and are not reported.
+    quiet_lines: RefCell<Vec<usize>>,
 }
 
 impl<'t> State<'t> {
@@ -45,6 +48,7 @@ impl<'t> State<'t> {
             depth_reported: Cell::new(false),
             last_error_line: Cell::new(None),
             suppressed: Cell::new(0),
+            quiet_lines: RefCell::new(Vec::new()),
         }
     }
 
@@ -77,6 +81,14 @@ impl<'t> State<'t> {
             Ok(l) => l,
             Err(l) => l.saturating_sub(1),
         };
+        if d.code == "E110" {
+            if self.quiet_lines.borrow().contains(&line) {
+                return;
+            }
+            self.quiet_lines.borrow_mut().push(line);
+        } else if self.quiet_lines.borrow().contains(&line) {
+            return;
+        }
         if self.last_error_line.get() == Some(line) {
             return;
         }

@@ -48,6 +48,19 @@ pub fn parse_tokens(
     tokens: Vec<Spanned>,
     diags: &mut Diagnostics,
 ) -> CompilationUnit {
+    // Name unsupported constructs wherever they stand (e.g. `REF_TO INT`,
+    // where the grammar would only see an unexpected `INT`).
+    for (l, tok, r) in &tokens {
+        if let Tok::Ident(word) = tok
+            && UNSUPPORTED.contains(&word.to_ascii_uppercase().as_str())
+        {
+            st.syntax_error(Diagnostic::error(
+                "E110",
+                Span::new(st.file(), *l, *r),
+                format!("`{word}` is not supported by plcrun"),
+            ));
+        }
+    }
     let parser = grammar::UnitParser::new();
     let result = parser.parse(&st, tokens.into_iter().map(Ok::<Spanned, ()>));
     let unit = match result {
