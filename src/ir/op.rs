@@ -500,6 +500,20 @@ pub enum Op {
         t: Target,
     },
 
+    /// Jump if the BOOL array element `frame[desc][idx]` is FALSE (checked index).
+    JzElem { idx: Slot, desc: u32, t: Target },
+    /// Jump if the BOOL array element is TRUE.
+    JnzElem { idx: Slot, desc: u32, t: Target },
+    /// `d := d + b` (signed, wrapped), then jump to `t` if `d cmp imm`
+    /// (a WHILE loop stepping its variable just before its test).
+    AddBr {
+        d: Slot,
+        b: Slot,
+        imm: i16,
+        t: u16,
+        cmp: Cmp,
+        shift: u8,
+    },
     /// Jump if `a cmp b` is FALSE on REAL values (NaN compares FALSE, so it jumps).
     JnCmpF32 {
         a: Slot,

@@ -116,6 +116,11 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
         StrConst { d, .. } => f(d),
         Jz { c, .. } | Jnz { c, .. } => f(c),
         JnCmpSI { a, .. } => f(a),
+        JzElem { idx, .. } | JnzElem { idx, .. } => f(idx),
+        AddBr { d, b, .. } => {
+            f(d);
+            f(b);
+        }
         JnCmpS { a, b, .. } | JnCmpF32 { a, b, .. } | JnCmpF64 { a, b, .. } => {
             f(a);
             f(b);
@@ -151,6 +156,8 @@ pub fn target_mut(op: &mut Op) -> Option<&mut u32> {
         | Op::Jz { t, .. }
         | Op::Jnz { t, .. }
         | Op::JnCmpSI { t, .. }
+        | Op::JzElem { t, .. }
+        | Op::JnzElem { t, .. }
         | Op::JnCmpS { t, .. }
         | Op::JnCmpF32 { t, .. }
         | Op::JnCmpF64 { t, .. }

@@ -62,12 +62,13 @@ pub fn verify(image: &Image) -> Result<(), String> {
                 return fail(pc, "jump target outside the block");
             }
             let ok = match op {
-                Op::LoadElem { desc, .. } | Op::StoreElem { desc, .. } => {
-                    image.arrays.get(desc as usize).is_some_and(|d| {
-                        d.stride >= 1
-                            && d.offset as u64 + d.len.saturating_mul(d.stride as u64) <= size
-                    })
-                }
+                Op::AddBr { t, .. } => (t as usize) < c.ops.len(),
+                Op::LoadElem { desc, .. }
+                | Op::StoreElem { desc, .. }
+                | Op::JzElem { desc, .. }
+                | Op::JnzElem { desc, .. } => image.arrays.get(desc as usize).is_some_and(|d| {
+                    d.stride >= 1 && d.offset as u64 + d.len.saturating_mul(d.stride as u64) <= size
+                }),
                 Op::ElemRef { desc, .. } => image.arrays.get(desc as usize).is_some_and(|d| {
                     d.offset as u64 + d.len.saturating_mul(d.stride as u64) <= size
                 }),

@@ -249,6 +249,8 @@ impl Fcx {
             | Op::Jz { t, .. }
             | Op::Jnz { t, .. }
             | Op::JnCmpSI { t, .. }
+            | Op::JzElem { t, .. }
+            | Op::JnzElem { t, .. }
             | Op::JnCmpS { t, .. }
             | Op::JnCmpF32 { t, .. }
             | Op::JnCmpF64 { t, .. }

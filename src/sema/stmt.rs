@@ -22,6 +22,41 @@ pub fn negate(c: Cmp) -> Cmp {
     }
 }
 
+/// `v := v + x` right before a WHILE test `v cmp K` becomes one `AddBr`
+/// that steps and branches back; the test stays in place for the loop
+/// entry and for CONTINUE, and runs once more only when the loop ends.
+fn fuse_step_and_test(f: &mut Fcx, cond_at: usize, top: u32) {
+    if cond_at == 0 || cond_at + 1 != f.ops.len() {
+        return;
+    }
+    let (
+        Op::AddS { d, a, b, shift },
+        Op::JnCmpSI {
+            a: tested,
+            imm,
+            cmp,
+            t,
+        },
+    ) = (f.ops[cond_at - 1], f.ops[cond_at])
+    else {
+        return;
+    };
+    let (Ok(imm), Ok(target)) = (i16::try_from(imm), u16::try_from(top)) else {
+        return;
+    };
+    if a != d || tested != d || t != top || b == d {
+        return;
+    }
+    f.ops[cond_at - 1] = Op::AddBr {
+        d,
+        b,
+        imm,
+        t: target,
+        cmp: negate(cmp),
+        shift,
+    };
+}
+
 impl Compiler<'_> {
     /// Emits a statement list.
     pub(super) fn stmts(&mut self, f: &mut Fcx, list: &[Stmt]) {
@@ -83,6 +118,7 @@ impl Compiler<'_> {
                 f.patch(to_cond, cont);
                 f.span = cond.span;
                 self.cond_branch_to(f, cond, true, top);
+                fuse_step_and_test(f, cont as usize, top);
                 let lp = f.loops.pop().unwrap_or_default();
                 let end = f.here();
                 for j in lp.exits {
@@ -181,6 +217,19 @@ impl Compiler<'_> {
             && at + 1 == f.ops.len()
         {
             let fused = match f.ops[at] {
+                Op::LoadElem { idx, desc, .. } => Some(if when {
+                    Op::JnzElem {
+                        idx,
+                        desc,
+                        t: target,
+                    }
+                } else {
+                    Op::JzElem {
+                        idx,
+                        desc,
+                        t: target,
+                    }
+                }),
                 Op::CmpSI { a, imm, cmp, .. } => Some(Op::JnCmpSI {
                     a,
                     imm,

@@ -511,6 +511,32 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 }
             }
 
+            Op::JzElem { idx, desc, t } | Op::JnzElem { idx, desc, t } => {
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
+                if i >= ad.len {
+                    fault!(index_fault(r!(idx), ad));
+                }
+                let set = r!(ad.offset as u64 + i * ad.stride as u64) != 0;
+                if set == matches!(*op, Op::JnzElem { .. }) {
+                    jump!(t)
+                }
+            }
+            Op::AddBr {
+                d,
+                b,
+                imm,
+                t,
+                cmp,
+                shift,
+            } => {
+                let v = wrap_s(r!(d).wrapping_add(r!(b)), shift);
+                w!(d, v);
+                if cmp.test((v as i64).cmp(&(imm as i64))) {
+                    jump!(t)
+                }
+            }
             Op::JnCmpF32 { a, b, cmp, t } => {
                 if cmp_f(f32_of(r!(a)), f32_of(r!(b)), cmp) == 0 {
                     jump!(t)
