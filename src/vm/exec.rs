@@ -192,13 +192,21 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
         m.strings[id].set(&img.str_consts[k as usize]);
     }
     let ops = &block.ops[..];
-    let mut pc: usize = 0;
+    // The instruction pointer; `pc()` recovers the index for faults and jumps.
+    let start: *const Op = ops.as_ptr();
+    let mut ip: *const Op = start;
+    macro_rules! pc {
+        () => {
+            // SAFETY: ip always points into `ops` (or one past an executed op).
+            unsafe { ip.offset_from(start) as usize }
+        };
+    }
     macro_rules! fault {
         ($kind:expr) => {
             return Err(Fault {
                 kind: $kind,
                 code,
-                pc: (pc - 1) as u32,
+                pc: (pc!() - 1) as u32,
             })
         };
     }
@@ -230,17 +238,20 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
     macro_rules! jump {
         ($t:expr) => {{
             let t = $t as usize;
-            if t < pc && m.watchdog_expired() {
+            if t < pc!() && m.watchdog_expired() {
                 fault!(FaultKind::Watchdog);
             }
-            pc = t;
+            // SAFETY: jump targets are inside the block (verified).
+            ip = unsafe { start.add(t) };
         }};
     }
     loop {
         // SAFETY: blocks end with Ret and jump targets are inside the block
-        // (verified), so pc never leaves `ops`.
-        let op = unsafe { ops.get_unchecked(pc) };
-        pc += 1;
+        // (verified), so ip never leaves `ops`.
+        let op = unsafe { &*ip };
+        // SAFETY: the block ends with Ret, so the next position is in `ops`
+        // or one past an instruction that returns or jumps.
+        ip = unsafe { ip.add(1) };
         match *op {
             Op::Nop => {}
             Op::LoadK { d, k } => w!(d, img.consts[k as usize]),
