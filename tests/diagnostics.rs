@@ -562,3 +562,38 @@ fn mutated_programs_do_not_panic() {
 fn ref_to_is_reported_as_unsupported() {
     check_error("E110", &prog("p : REF_TO INT;", ""), "3:5");
 }
+
+/// Every code the sources can emit has its section in docs/diagnostics.md.
+#[test]
+fn every_emitted_code_is_documented() {
+    fn scan(dir: &std::path::Path, codes: &mut std::collections::BTreeSet<String>) {
+        for entry in std::fs::read_dir(dir).expect("read src") {
+            let path = entry.expect("entry").path();
+            if path.is_dir() {
+                scan(&path, codes);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let text = std::fs::read_to_string(&path).expect("read file");
+                for (i, _) in text.match_indices('"') {
+                    let code = text.get(i + 1..i + 5).unwrap_or("");
+                    let quoted = text.get(i + 5..i + 6) == Some("\"");
+                    let shaped = code.len() == 4
+                        && matches!(code.as_bytes()[0], b'E' | b'W')
+                        && code[1..].bytes().all(|b| b.is_ascii_digit());
+                    if quoted && shaped {
+                        codes.insert(code.to_string());
+                    }
+                }
+            }
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut codes = std::collections::BTreeSet::new();
+    scan(&root.join("src"), &mut codes);
+    let docs = std::fs::read_to_string(root.join("docs/diagnostics.md")).expect("docs");
+    let missing: Vec<&String> = codes
+        .iter()
+        .filter(|c| !docs.contains(&format!("## {c}\n")))
+        .collect();
+    assert!(codes.len() > 50, "found only {} codes", codes.len());
+    assert!(missing.is_empty(), "undocumented codes: {missing:?}");
+}
