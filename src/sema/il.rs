@@ -24,6 +24,8 @@ struct Deferred {
     negate: bool,
     saved: u32,
     saved_ty: Option<TypeId>,
+    /// The saved CR when it was an untyped literal.
+    saved_lit: Option<Val>,
     span: Span,
 }
 
@@ -196,6 +198,28 @@ impl Compiler<'_> {
         );
     }
 
+    /// The CR as a call argument: the literal itself while the CR is an
+    /// untyped literal (so it takes the parameter's type), else the CR slot.
+    fn cr_arg(st: &IlState, span: Span) -> Expr {
+        use crate::sema::consts::Const;
+        use crate::syntax::ast::{Literal, LiteralValue};
+        let value = match &st.cr_lit {
+            Some(Val::Const(Const::Int(v), _)) => Some(LiteralValue::Int(*v)),
+            Some(Val::Const(Const::Real(v), _)) => Some(LiteralValue::Real(*v)),
+            _ => None,
+        };
+        match value {
+            Some(value) => Expr {
+                kind: ExprKind::Literal(Literal {
+                    value,
+                    type_prefix: None,
+                }),
+                span,
+            },
+            None => Self::cr_expr(span),
+        }
+    }
+
     fn cr_expr(span: Span) -> Expr {
         Expr {
             kind: ExprKind::Name(Ident {
@@ -337,6 +361,7 @@ impl Compiler<'_> {
                     negate: *negate,
                     saved,
                     saved_ty: st.cr_ty,
+                    saved_lit: st.cr_lit.clone(),
                     span,
                 });
                 st.cr_ty = None;
@@ -361,7 +386,9 @@ impl Compiler<'_> {
                     inner
                 };
                 let Some(bop) = binary_of(d.op) else { return };
-                let saved = Val::Slot(d.saved, d.saved_ty.unwrap_or(TypeTable::error()));
+                let saved = d
+                    .saved_lit
+                    .unwrap_or(Val::Slot(d.saved, d.saved_ty.unwrap_or(TypeTable::error())));
                 let r = self.binary_vals(f, bop, saved, inner, span);
                 self.set_cr(f, st, r);
             }
@@ -452,7 +479,7 @@ impl Compiler<'_> {
                     );
                     return;
                 }
-                let mut all = vec![Arg::Positional(Self::cr_expr(span))];
+                let mut all = vec![Arg::Positional(Self::cr_arg(st, span))];
                 all.extend(args.iter().cloned());
                 let call = Call {
                     callee: Box::new(Expr {
@@ -478,7 +505,7 @@ impl Compiler<'_> {
                 if let Some(inst) = self.place(f, instance) {
                     let arg = Arg::Input {
                         name: pin.clone(),
-                        value: Self::cr_expr(span),
+                        value: Self::cr_arg(st, span),
                     };
                     self.fb_call(f, &inst, &[arg], span);
                 }
@@ -535,6 +562,10 @@ impl Compiler<'_> {
         let name = op_name(op);
         match op {
             IlOperator::Ld => {
+                // `LD ctd`: the LD input of a down counter (IEC Table 53).
+                if !negate && self.fb_pin_operator(f, st, operand, "LD", span) {
+                    return;
+                }
                 if let Some(v) = self.operand(f, operand, negate, span, name) {
                     self.set_cr(f, st, v);
                 }
@@ -555,6 +586,10 @@ impl Compiler<'_> {
                 self.store_value(f, target, cur);
             }
             IlOperator::S | IlOperator::R => {
+                // `S rs` / `R ctu`: the S or R input of a function block.
+                if !negate && self.fb_pin_operator(f, st, operand, name, span) {
+                    return;
+                }
                 let Some(target) = operand else {
                     self.diags
                         .error("E504", span, format!("{name} needs an operand"));
@@ -599,6 +634,64 @@ impl Compiler<'_> {
                 self.set_cr(f, st, r);
             }
         }
+    }
+
+    /// When `operand` names a function block instance with an input called
+    /// `pin`, stores the CR into that input and calls the instance (the FB
+    /// input operators of IEC Table 53 that share a name with an IL
+    /// operator: `LD`, `S`, `R`). Returns false when it is not such a case.
+    fn fb_pin_operator(
+        &mut self,
+        f: &mut Fcx,
+        st: &IlState,
+        operand: Option<&Expr>,
+        pin: &str,
+        span: Span,
+    ) -> bool {
+        let Some(e) = operand else { return false };
+        let key = match &e.kind {
+            ExprKind::Name(id) => id.key(),
+            _ => return false,
+        };
+        let Some(var) = self.lookup_var(f, &key) else {
+            return false;
+        };
+        let has_pin = match &self.types.get(var.ty).kind {
+            crate::ir::types::TypeKind::NativeFb(fb) => {
+                crate::stdlib::interface(*fb).iter().any(|p| {
+                    p.dir == crate::stdlib::ParamDir::Input
+                        && (p.name.eq_ignore_ascii_case(pin)
+                            || p.aliases.iter().any(|a| a.eq_ignore_ascii_case(pin)))
+                })
+            }
+            crate::ir::types::TypeKind::Pou { members, .. } => members
+                .iter()
+                .any(|m| m.kind == MemberKind::Input && m.name.eq_ignore_ascii_case(pin)),
+            _ => false,
+        };
+        if !has_pin {
+            return false;
+        }
+        if st.cr_ty.is_none() {
+            self.diags.error(
+                "E505",
+                span,
+                format!("{pin} needs a current result: load one first"),
+            );
+            return true;
+        }
+        self.expose_cr(f, st);
+        if let Some(inst) = self.place(f, e) {
+            let arg = Arg::Input {
+                name: Ident {
+                    name: pin.to_string(),
+                    span,
+                },
+                value: Self::cr_arg(st, span),
+            };
+            self.fb_call(f, &inst, &[arg], span);
+        }
+        true
     }
 
     /// Stores a value into the place `target` (ST, S, R).
