@@ -15,24 +15,9 @@
 
 use std::fmt::Write as _;
 
-/// Deterministic xorshift generator, so generated sources are reproducible.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.0 = x;
-        x
-    }
-
-    /// A value in `0..n`.
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-}
+#[path = "../tests/support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 /// Variables of each kind declared by [`large_program`].
 pub const LARGE_DINTS: usize = 1000;

@@ -368,21 +368,9 @@ fn check_of_a_missing_file_is_a_usage_error() {
 
 // ---------------------------------------------------------------- robustness
 
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.0 = x;
-        x
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 /// Parses and compiles `text`; must not panic, whatever it is.
 fn must_not_panic(text: &str) {

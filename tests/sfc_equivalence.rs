@@ -7,19 +7,9 @@ mod sfc_run;
 
 use sfc_run::{plcrun, repo, rows, write_temp};
 
-/// Deterministic xorshift generator (fixed seed: reproducible stimulus).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.0 = x;
-        x
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 /// A stimulus with one row per cycle: each input flips with probability
 /// 1/`flip` at every cycle.

@@ -428,26 +428,9 @@ fn a_timer_that_is_not_called_does_not_change() {
 
 // ---------------------------------------------------------------- side by side
 
-/// xorshift64: a tiny deterministic PRNG.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.0 = x;
-        x
-    }
-    /// TRUE with probability `num / 100`.
-    fn chance(&mut self, num: u64) -> bool {
-        self.next() % 100 < num
-    }
-    fn pick<'a>(&mut self, items: &[&'a str]) -> &'a str {
-        items[(self.next() % items.len() as u64) as usize]
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 /// How to drive one kind of block.
 struct Kind {

@@ -43,6 +43,32 @@ pub enum MathFn {
     Atan,
 }
 
+macro_rules! math_fn_apply {
+    ($name:ident, $t:ty) => {
+        /// Applies the function to a value of this width.
+        pub fn $name(self, x: $t) -> $t {
+            match self {
+                MathFn::Abs => x.abs(),
+                MathFn::Sqrt => x.sqrt(),
+                MathFn::Ln => x.ln(),
+                MathFn::Log => x.log10(),
+                MathFn::Exp => x.exp(),
+                MathFn::Sin => x.sin(),
+                MathFn::Cos => x.cos(),
+                MathFn::Tan => x.tan(),
+                MathFn::Asin => x.asin(),
+                MathFn::Acos => x.acos(),
+                MathFn::Atan => x.atan(),
+            }
+        }
+    };
+}
+
+impl MathFn {
+    math_fn_apply!(apply_f32, f32);
+    math_fn_apply!(apply_f64, f64);
+}
+
 /// Comparison predicates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Cmp {

@@ -244,19 +244,8 @@ impl Fcx {
 
     /// Points the jump at `at` to `target`.
     pub fn patch(&mut self, at: usize, target: u32) {
-        match &mut self.ops[at] {
-            Op::Jmp { t }
-            | Op::Jz { t, .. }
-            | Op::Jnz { t, .. }
-            | Op::JnCmpSI { t, .. }
-            | Op::JzElem { t, .. }
-            | Op::JnzElem { t, .. }
-            | Op::JnCmpS { t, .. }
-            | Op::JnCmpF32 { t, .. }
-            | Op::JnCmpF64 { t, .. }
-            | Op::ForNext { t, .. }
-            | Op::ForNextS { t, .. } => *t = target,
-            _ => {}
+        if let Some(t) = crate::ir::operands::target_mut(&mut self.ops[at]) {
+            *t = target;
         }
     }
 
@@ -359,72 +348,19 @@ impl Fcx {
 
 /// The destination slot an instruction writes, if it writes exactly one.
 fn dest_of(op: &Op) -> Option<Slot> {
-    use Op::*;
-    Some(match *op {
-        LoadK { d, .. }
-        | LoadI { d, .. }
-        | Mov { d, .. }
-        | LoadAbs { d, .. }
-        | LoadInd { d, .. }
-        | LoadElem { d, .. }
-        | AddS { d, .. }
-        | AddU { d, .. }
-        | AddSI { d, .. }
-        | SubS { d, .. }
-        | SubU { d, .. }
-        | MulS { d, .. }
-        | MulU { d, .. }
-        | DivS { d, .. }
-        | DivU { d, .. }
-        | ModS { d, .. }
-        | ModU { d, .. }
-        | ModSI { d, .. }
-        | NegS { d, .. }
-        | PowS { d, .. }
-        | AbsS { d, .. }
-        | AddF32 { d, .. }
-        | SubF32 { d, .. }
-        | MulF32 { d, .. }
-        | DivF32 { d, .. }
-        | NegF32 { d, .. }
-        | PowF32 { d, .. }
-        | MathF32 { d, .. }
-        | AddF64 { d, .. }
-        | SubF64 { d, .. }
-        | MulF64 { d, .. }
-        | DivF64 { d, .. }
-        | NegF64 { d, .. }
-        | PowF64 { d, .. }
-        | MathF64 { d, .. }
-        | And { d, .. }
-        | Or { d, .. }
-        | Xor { d, .. }
-        | NotB { d, .. }
-        | NotW { d, .. }
-        | AndN { d, .. }
-        | OrN { d, .. }
-        | Shift { d, .. }
-        | CmpS { d, .. }
-        | CmpU { d, .. }
-        | CmpF32 { d, .. }
-        | CmpF64 { d, .. }
-        | CmpSI { d, .. }
-        | CmpStr { d, .. }
-        | Convert { d, .. }
-        | CMov { d, .. }
-        | MinMaxS { d, .. }
-        | MinMaxU { d, .. }
-        | MinMaxF32 { d, .. }
-        | MinMaxF64 { d, .. }
-        | Mux { d, .. }
-        | MulTimeF64 { d, .. }
-        | DivTimeF64 { d, .. }
-        | Clock { d } => d,
-        _ => return None,
-    })
+    let mut copy = *op;
+    dest_mut(&mut copy).map(|d| *d)
 }
 
+/// Points the instruction's destination at `new`.
 fn set_dest(op: &mut Op, new: Slot) {
+    if let Some(d) = dest_mut(op) {
+        *d = new;
+    }
+}
+
+/// The destination operand of an instruction that writes exactly one slot.
+fn dest_mut(op: &mut Op) -> Option<&mut Slot> {
     use Op::*;
     match op {
         LoadK { d, .. }
@@ -485,8 +421,8 @@ fn set_dest(op: &mut Op, new: Slot) {
         | Mux { d, .. }
         | MulTimeF64 { d, .. }
         | DivTimeF64 { d, .. }
-        | Clock { d } => *d = new,
-        _ => {}
+        | Clock { d } => Some(d),
+        _ => None,
     }
 }
 

@@ -373,7 +373,7 @@ impl Compiler<'_> {
                         Const::Real(r) => *r,
                         _ => 0.0,
                     };
-                    return Val::Const(Const::Real(math(m, x)), Ty::AnyReal);
+                    return Val::Const(Const::Real(m.apply_f64(x)), Ty::AnyReal);
                 }
                 let t = v.ty().id().unwrap_or(TypeTable::error());
                 let e = self.scalar(t);
@@ -954,21 +954,5 @@ impl Compiler<'_> {
             },
             Some(c) => self.apply_conv(f, v, c, to, span),
         }
-    }
-}
-
-fn math(m: MathFn, x: f64) -> f64 {
-    match m {
-        MathFn::Abs => x.abs(),
-        MathFn::Sqrt => x.sqrt(),
-        MathFn::Ln => x.ln(),
-        MathFn::Log => x.log10(),
-        MathFn::Exp => x.exp(),
-        MathFn::Sin => x.sin(),
-        MathFn::Cos => x.cos(),
-        MathFn::Tan => x.tan(),
-        MathFn::Asin => x.asin(),
-        MathFn::Acos => x.acos(),
-        MathFn::Atan => x.atan(),
     }
 }

@@ -2,7 +2,7 @@
 
 use super::{Fault, FaultKind, Machine, convert, strings};
 use crate::ir::image::Image;
-use crate::ir::op::{Cmp, MathFn, Op, ShiftKind, wrap_s, wrap_u};
+use crate::ir::op::{Cmp, Op, ShiftKind, wrap_s, wrap_u};
 use crate::stdlib;
 
 #[inline(always)]
@@ -40,38 +40,6 @@ fn cmp_f<T: PartialOrd>(a: T, b: T, c: Cmp) -> u64 {
         Cmp::Gt => a > b,
         Cmp::Ge => a >= b,
     }) as u64
-}
-
-fn math32(f: MathFn, x: f32) -> f32 {
-    match f {
-        MathFn::Abs => x.abs(),
-        MathFn::Sqrt => x.sqrt(),
-        MathFn::Ln => x.ln(),
-        MathFn::Log => x.log10(),
-        MathFn::Exp => x.exp(),
-        MathFn::Sin => x.sin(),
-        MathFn::Cos => x.cos(),
-        MathFn::Tan => x.tan(),
-        MathFn::Asin => x.asin(),
-        MathFn::Acos => x.acos(),
-        MathFn::Atan => x.atan(),
-    }
-}
-
-fn math64(f: MathFn, x: f64) -> f64 {
-    match f {
-        MathFn::Abs => x.abs(),
-        MathFn::Sqrt => x.sqrt(),
-        MathFn::Ln => x.ln(),
-        MathFn::Log => x.log10(),
-        MathFn::Exp => x.exp(),
-        MathFn::Sin => x.sin(),
-        MathFn::Cos => x.cos(),
-        MathFn::Tan => x.tan(),
-        MathFn::Asin => x.asin(),
-        MathFn::Acos => x.acos(),
-        MathFn::Atan => x.atan(),
-    }
 }
 
 fn shift(x: u64, n: u64, kind: ShiftKind, bits: u8) -> u64 {
@@ -371,14 +339,14 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::DivF32 { d, a, b } => w!(d, of_f32(f32_of(r!(a)) / f32_of(r!(b)))),
             Op::NegF32 { d, a } => w!(d, of_f32(-f32_of(r!(a)))),
             Op::PowF32 { d, a, b } => w!(d, of_f32(f32_of(r!(a)).powf(f32_of(r!(b))))),
-            Op::MathF32 { d, a, f } => w!(d, of_f32(math32(f, f32_of(r!(a))))),
+            Op::MathF32 { d, a, f } => w!(d, of_f32(f.apply_f32(f32_of(r!(a))))),
             Op::AddF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)) + f64_of(r!(b)))),
             Op::SubF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)) - f64_of(r!(b)))),
             Op::MulF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)) * f64_of(r!(b)))),
             Op::DivF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)) / f64_of(r!(b)))),
             Op::NegF64 { d, a } => w!(d, of_f64(-f64_of(r!(a)))),
             Op::PowF64 { d, a, b } => w!(d, of_f64(f64_of(r!(a)).powf(f64_of(r!(b))))),
-            Op::MathF64 { d, a, f } => w!(d, of_f64(math64(f, f64_of(r!(a))))),
+            Op::MathF64 { d, a, f } => w!(d, of_f64(f.apply_f64(f64_of(r!(a))))),
 
             Op::And { d, a, b } => w!(d, r!(a) & r!(b)),
             Op::Or { d, a, b } => w!(d, r!(a) | r!(b)),
