@@ -699,18 +699,8 @@ impl Compiler<'_> {
         let Some(p) = self.place(f, target) else {
             return;
         };
-        if !p.writable {
-            let why = p.readonly_reason.unwrap_or("it is read-only");
-            self.diags
-                .error("E401", target.span, format!("cannot store here: {why}"));
+        if !self.check_writable(f, &p, target.span) {
             return;
-        }
-        if p.input_image {
-            self.diags.warning(
-                "W202",
-                target.span,
-                "the program writes a %I input; the next stimulus value will overwrite it",
-            );
         }
         let v = self.coerce(f, v, p.ty, target.span, "ST");
         if v.is_error() {

@@ -303,31 +303,8 @@ impl Compiler<'_> {
             self.expr(f, value, None);
             return;
         };
-        if !p.writable {
-            let why = p.readonly_reason.unwrap_or("it is read-only");
-            self.diags.error(
-                "E401",
-                target.span,
-                format!("cannot assign to this variable: {why}"),
-            );
+        if !self.check_writable(f, &p, target.span) {
             return;
-        }
-        if let super::emit::Place::Frame(s) = p.place
-            && f.for_vars.contains(&s)
-        {
-            self.diags.error(
-                "E401",
-                target.span,
-                "cannot assign to this variable: it is the control variable of an enclosing FOR loop",
-            );
-            return;
-        }
-        if p.input_image {
-            self.diags.warning(
-                "W202",
-                target.span,
-                "the program writes a %I input; the next stimulus value will overwrite it",
-            );
         }
         let kind = self.types.get(p.ty).kind.clone();
         match kind {
@@ -358,6 +335,44 @@ impl Compiler<'_> {
                 self.write_place(f, &p, s);
             }
         }
+    }
+
+    /// Reports why `p` cannot be written here (E401: read-only, or the
+    /// control variable of an enclosing FOR), and warns when a program
+    /// writes a `%I` input (W202). Returns whether the write may proceed.
+    pub(super) fn check_writable(
+        &mut self,
+        f: &Fcx,
+        p: &super::emit::PlaceRef,
+        span: Span,
+    ) -> bool {
+        if !p.writable {
+            let why = p.readonly_reason.unwrap_or("it is read-only");
+            self.diags.error(
+                "E401",
+                span,
+                format!("cannot assign to this variable: {why}"),
+            );
+            return false;
+        }
+        if let super::emit::Place::Frame(s) = p.place
+            && f.for_vars.contains(&s)
+        {
+            self.diags.error(
+                "E401",
+                span,
+                "cannot assign to this variable: it is the control variable of an enclosing FOR loop",
+            );
+            return false;
+        }
+        if p.input_image {
+            self.diags.warning(
+                "W202",
+                span,
+                "the program writes a %I input; the next stimulus value will overwrite it",
+            );
+        }
+        true
     }
 
     /// Copies an array or structure by value.
