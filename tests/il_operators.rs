@@ -143,3 +143,24 @@ fn the_current_result_is_typed_and_mismatches_are_reported_at_the_operator() {
     // program(): line 1 prelude, 2 PROGRAM, 3 VAR, 4 decls, 5 END_VAR, 6 LD, 7 AND.
     assert_eq!(err.sources.location(d.span), "il.st:7:1");
 }
+
+#[test]
+fn formal_function_calls_name_every_input() {
+    // LIMIT(MN, IN, MX) = 5 for IN = 7; the CR (here 1) is not an argument.
+    // (A body is recognised as IL by its first instruction, an IL operator.)
+    check(
+        "",
+        "a : INT := 7; r : INT;",
+        "LD 1\nLIMIT(MN := 0, IN := a, MX := 5)\nST r",
+        1,
+        &[("r", "5")],
+    );
+    // Over several lines, with the CR loaded before (and replaced).
+    check(
+        "",
+        "a : INT := -3; r : INT;",
+        "LD 100\nLIMIT(\n  MN := 0,\n  IN := a,\n  MX := 5\n)\nST r",
+        1,
+        &[("r", "0")],
+    );
+}

@@ -468,7 +468,9 @@ impl Compiler<'_> {
             }
             IlInstrKind::FunctionCall { name, args } => {
                 self.expose_cr(f, st);
-                if st.cr_ty.is_none() {
+                // Formal calls name every input; informal ones take the CR first.
+                let formal = args.iter().any(|a| matches!(a, Arg::Input { .. }));
+                if st.cr_ty.is_none() && !formal {
                     self.diags.error(
                         "E505",
                         span,
@@ -479,7 +481,10 @@ impl Compiler<'_> {
                     );
                     return;
                 }
-                let mut all = vec![Arg::Positional(Self::cr_arg(st, span))];
+                let mut all = Vec::new();
+                if !formal {
+                    all.push(Arg::Positional(Self::cr_arg(st, span)));
+                }
                 all.extend(args.iter().cloned());
                 let call = Call {
                     callee: Box::new(Expr {
