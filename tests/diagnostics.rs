@@ -140,7 +140,7 @@ const INC: &str =
 // ---- E4xx: statements and calls
 #[case("E401", "PROGRAM P\nVAR CONSTANT c : INT := 1; END_VAR\nc := 2;\nEND_PROGRAM\n".to_string(), "3:1")]
 #[case("E401", "PROGRAM P\nVAR CONSTANT c : INT := 1; END_VAR\nFOR c := 1 TO 3 DO END_FOR;\nEND_PROGRAM\n".to_string(), "3:5")]
-#[case("E402", prog("w : WORD;", "w.3 := TRUE;"), "5:1")]
+#[case("E402", prog("x : INT;", "LD 1\nST 5"), "6:4")]
 #[case("E403", prog("t : TON;", "t(IN := TRUE, FOO := 1);"), "5:15")]
 #[case("E404", prog_after(F1, "x : INT;", "x := F(1, 2);"), "6:6")]
 #[case("E405", prog("x : INT;", "EXIT;"), "5:1")]

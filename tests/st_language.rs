@@ -932,3 +932,27 @@ fn bit_string_and_duration_operators(
     let decls = "w : WORD := 16#F0F0; y : BYTE; b : BOOL; t : TIME; d : TIME := T#200ms;";
     assert_eq!(eval(decls, body, var), expected);
 }
+
+#[rstest]
+// Setting bit 3 of 16#00F0 gives 16#00F8; clearing bit 4 gives 16#00E0.
+#[case("w : WORD := 16#00F0;", "w.3 := TRUE;", "w", "16#F8")]
+#[case("w : WORD := 16#00F0;", "w.4 := FALSE;", "w", "16#E0")]
+// The top bit of a BYTE, from a BOOL variable.
+#[case("b : BYTE; one : BOOL := TRUE;", "b.7 := one;", "b", "16#80")]
+// IL: ST into a bit.
+#[case(
+    "d : DWORD := 16#FFFFFFFF; f : BOOL;",
+    "LD f\nST d.31",
+    "d",
+    "16#7FFFFFFF"
+)]
+fn single_bits_of_bit_strings_can_be_assigned(
+    #[case] decls: &str,
+    #[case] body: &str,
+    #[case] var: &str,
+    #[case] expected: &str,
+) {
+    let mut plc = compile(&program("", decls, body));
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, var), expected);
+}

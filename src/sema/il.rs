@@ -699,8 +699,12 @@ impl Compiler<'_> {
         true
     }
 
-    /// Stores a value into the place `target` (ST, S, R).
+    /// Stores a value into the place `target` (ST, S, R); `w.3` stores one bit.
     fn store_value(&mut self, f: &mut Fcx, target: &Expr, v: Val) {
+        if let ExprKind::BitAccess(base, bit) = &target.kind {
+            self.store_bit(f, base, *bit, v, target.span, target.span);
+            return;
+        }
         let Some(p) = self.place(f, target) else {
             return;
         };

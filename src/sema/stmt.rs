@@ -290,12 +290,9 @@ impl Compiler<'_> {
     }
 
     fn assign(&mut self, f: &mut Fcx, target: &Expr, value: &Expr, span: Span) {
-        if let ExprKind::BitAccess(..) = target.kind {
-            self.diags.error(
-                "E402",
-                target.span,
-                "assigning a single bit of a bit string is not supported; use AND/OR masks",
-            );
+        if let ExprKind::BitAccess(base, bit) = &target.kind {
+            let v = self.expr(f, value, Some(TypeTable::elem(ElemType::Bool)));
+            self.store_bit(f, base, *bit, v, target.span, value.span);
             return;
         }
         let Some(p) = self.place(f, target) else {
@@ -335,6 +332,84 @@ impl Compiler<'_> {
                 self.write_place(f, &p, s);
             }
         }
+    }
+
+    /// `w.n := v`: replaces bit `n` of the bit string `w` by the BOOL `v`
+    /// (read, clear the bit, OR in the new one, write back).
+    pub(super) fn store_bit(
+        &mut self,
+        f: &mut Fcx,
+        base: &Expr,
+        bit: u32,
+        v: Val,
+        span: Span,
+        value_span: Span,
+    ) {
+        let Some(p) = self.place(f, base) else { return };
+        let Some(e) = self
+            .scalar(p.ty)
+            .filter(|e| e.family() == crate::types::Family::Bits && !self.is_enum(p.ty))
+        else {
+            if p.ty != TypeTable::error() {
+                let n = self.types.name(p.ty).to_string();
+                self.diags.error(
+                    "E302",
+                    span,
+                    format!("bit access needs a bit string (BYTE..LWORD), found {n}"),
+                );
+            }
+            return;
+        };
+        if bit >= e.bits() {
+            self.diags
+                .error("E304", span, format!("bit {bit} does not exist in a {e}"));
+            return;
+        }
+        if !self.check_writable(f, &p, span) {
+            return;
+        }
+        let v = self.coerce(
+            f,
+            v,
+            TypeTable::elem(ElemType::Bool),
+            value_span,
+            "bit assignment",
+        );
+        if v.is_error() {
+            return;
+        }
+        let s = self.materialize(f, &v);
+        let Val::Slot(cur, _) = self.read_place(f, &p) else {
+            return;
+        };
+        let width = if e.bits() == 64 {
+            u64::MAX
+        } else {
+            (1u64 << e.bits()) - 1
+        };
+        let keep = f.const_slot(!(1u64 << bit) & width);
+        let n = f.const_slot(bit as u64);
+        let cleared = f.temp();
+        f.emit(Op::And {
+            d: cleared,
+            a: cur,
+            b: keep,
+        });
+        let moved = f.temp();
+        f.emit(Op::Shift {
+            d: moved,
+            a: s,
+            b: n,
+            kind: crate::ir::op::ShiftKind::Shl,
+            bits: e.bits() as u8,
+        });
+        let out = f.temp();
+        f.emit(Op::Or {
+            d: out,
+            a: cleared,
+            b: moved,
+        });
+        self.write_place(f, &p, out);
     }
 
     /// Reports why `p` cannot be written here (E401: read-only, or the
