@@ -164,6 +164,12 @@ impl Diagnostics {
         self.items.iter()
     }
 
+    /// Drops the diagnostics reported after the first `n` (used when a
+    /// speculative check is abandoned and the real one reports again).
+    pub fn truncate(&mut self, n: usize) {
+        self.items.truncate(n);
+    }
+
     /// Number of diagnostics.
     pub fn len(&self) -> usize {
         self.items.len()

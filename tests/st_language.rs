@@ -956,3 +956,45 @@ fn single_bits_of_bit_strings_can_be_assigned(
     run(&mut plc, 1);
     assert_eq!(lit(&plc, var), expected);
 }
+
+#[rstest]
+// Lower bound 1, filling 2..4 only; i ends one past the limit.
+#[case("a : ARRAY[1..5] OF INT; i : INT;", "FOR i := 2 TO 4 DO a[i] := 7; END_FOR;", &[("a[1]", "0"), ("a[2]", "7"), ("a[4]", "7"), ("a[5]", "0"), ("i", "5")])]
+// Empty range: nothing written, i keeps its start value.
+#[case("a : ARRAY[0..3] OF INT; i : INT;", "FOR i := 5 TO 2 DO a[i] := 7; END_FOR;", &[("a[0]", "0"), ("a[3]", "0"), ("i", "5")])]
+// A variable as the value.
+#[case("a : ARRAY[0..3] OF INT; i : INT; v : INT := 3;", "FOR i := 0 TO 3 DO a[i] := v; END_FOR;", &[("a[0]", "3"), ("a[3]", "3"), ("i", "4")])]
+// Up to the type's maximum: the loop ends and i wraps past it.
+#[case("a : ARRAY[120..127] OF SINT; i : SINT;", "FOR i := 120 TO 127 DO a[i] := 1; END_FOR;", &[("a[120]", "1"), ("a[127]", "1"), ("i", "-128")])]
+fn for_loops_that_fill_arrays(
+    #[case] decls: &str,
+    #[case] body: &str,
+    #[case] expect: &[(&str, &str)],
+) {
+    let mut plc = compile(&program("", decls, body));
+    run(&mut plc, 1);
+    for (name, value) in expect {
+        assert_eq!(lit(&plc, name), *value, "{name}");
+    }
+}
+
+#[test]
+fn a_fill_loop_running_off_the_array_writes_up_to_the_bad_index_then_faults() {
+    let src = program(
+        "",
+        "a : ARRAY[0..3] OF INT; i : INT;",
+        "FOR i := 2 TO 5 DO a[i] := 9; END_FOR;",
+    );
+    let mut plc = compile(&src);
+    let fault = plc.run_cycle().expect_err("index 4 is out of bounds");
+    assert!(
+        fault
+            .to_string()
+            .contains("array index 4 out of bounds [0..3]"),
+        "{fault}"
+    );
+    assert_eq!(lit(&plc, "a[1]"), "0");
+    assert_eq!(lit(&plc, "a[2]"), "9");
+    assert_eq!(lit(&plc, "a[3]"), "9");
+    assert_eq!(lit(&plc, "i"), "4");
+}

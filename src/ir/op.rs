@@ -526,6 +526,18 @@ pub enum Op {
         t: Target,
     },
 
+    /// Array fill (`FOR i := start TO lim DO arr[i] := v; END_FOR` with
+    /// `i` already set to start): when every index is inside the array and
+    /// `lim + 1` fits the type, stores `v` in all elements and sets
+    /// `i := lim + 1`; otherwise does nothing (the loop that follows runs as
+    /// written and faults where it would).
+    FillElems {
+        i: Slot,
+        v: Slot,
+        lim: i32,
+        desc: u16,
+        shift: u8,
+    },
     /// Jump if the BOOL array element `frame[desc][idx]` is FALSE (checked index).
     JzElem { idx: Slot, desc: u32, t: Target },
     /// Jump if the BOOL array element is TRUE.

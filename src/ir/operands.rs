@@ -117,6 +117,10 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
         Jz { c, .. } | Jnz { c, .. } => f(c),
         JnCmpSI { a, .. } => f(a),
         JzElem { idx, .. } | JnzElem { idx, .. } => f(idx),
+        FillElems { i, v, .. } => {
+            f(i);
+            f(v);
+        }
         AddBr { d, b, .. } => {
             f(d);
             f(b);

@@ -63,6 +63,10 @@ pub fn verify(image: &Image) -> Result<(), String> {
             }
             let ok = match op {
                 Op::AddBr { t, .. } => (t as usize) < c.ops.len(),
+                Op::FillElems { desc, .. } => image
+                    .arrays
+                    .get(desc as usize)
+                    .is_some_and(|d| d.stride == 1 && d.offset as u64 + d.len <= size),
                 Op::LoadElem { desc, .. }
                 | Op::StoreElem { desc, .. }
                 | Op::JzElem { desc, .. }

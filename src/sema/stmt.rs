@@ -734,6 +734,12 @@ impl Compiler<'_> {
             None
         };
         let signed = super::typeck::compares_signed(e);
+        if step_const == Some(1)
+            && e.is_signed_int()
+            && let Some(lim) = lim_imm
+        {
+            self.fill_idiom(f, var, body, i, lim, super::typeck::shift_of(e));
+        }
         // Test at the top: continue while i <= lim (step > 0) or i >= lim (step < 0).
         let test_at = f.here();
         let exit_jumps: Vec<usize> = match step_const {
@@ -867,6 +873,98 @@ impl Compiler<'_> {
         for j in lp.continues {
             f.patch(j, cont);
         }
+    }
+
+    /// Loop idiom: a FOR body that only stores one loop-invariant value into
+    /// `arr[i]` of a frame array gets a `FillElems` ahead of the loop, which
+    /// does the whole loop at once when every index is in range (else the
+    /// loop runs as written). The value is a constant or a plain variable,
+    /// which the body cannot change.
+    fn fill_idiom(
+        &mut self,
+        f: &mut Fcx,
+        var: &crate::syntax::ast::Ident,
+        body: &[Stmt],
+        i: u32,
+        lim: i32,
+        shift: u8,
+    ) {
+        let [
+            Stmt {
+                kind: StmtKind::Assign { target, value },
+                ..
+            },
+        ] = body
+        else {
+            return;
+        };
+        let ExprKind::Index(base, idx) = &target.kind else {
+            return;
+        };
+        let [
+            Expr {
+                kind: ExprKind::Name(iv),
+                ..
+            },
+        ] = idx.as_slice()
+        else {
+            return;
+        };
+        let (ExprKind::Name(arr), true) = (&base.kind, iv.key() == var.key()) else {
+            return;
+        };
+        let value_ok = match &value.kind {
+            ExprKind::Literal(_) => true,
+            ExprKind::Name(n) => n.key() != arr.key() && n.key() != var.key(),
+            _ => false,
+        };
+        if !value_ok {
+            return;
+        }
+        // Only for arrays whose element stores are plain slot writes. (A
+        // name resolves without emitting code.)
+        let mark = self.diags.len();
+        let Some(p) = self.place(f, base) else {
+            self.diags.truncate(mark);
+            return;
+        };
+        let (super::emit::Place::Frame(o), TypeKind::Array { dims, elem }) =
+            (p.place, self.types.get(p.ty).kind.clone())
+        else {
+            return;
+        };
+        let scalar =
+            self.scalar(elem).is_some_and(|e| !e.is_string()) && !self.contains_strings(elem);
+        if dims.len() != 1 || !scalar || self.types.size(elem) != 1 || !p.writable || p.input_image
+        {
+            return;
+        }
+        let v = self.expr(f, value, Some(elem));
+        let v = self.coerce(f, v, elem, value.span, "assignment");
+        if v.is_error() || self.diags.len() != mark {
+            // The loop body reports the problem itself.
+            self.diags.truncate(mark);
+            return;
+        }
+        let v = self.materialize(f, &v);
+        let desc = self.arrays.len();
+        let Ok(desc) = u16::try_from(desc) else {
+            return;
+        };
+        self.arrays.push(crate::ir::image::ArrayDesc {
+            offset: o,
+            lo: dims[0].lo,
+            len: dims[0].len(),
+            stride: 1,
+            span: target.span,
+        });
+        f.emit(Op::FillElems {
+            i,
+            v,
+            lim,
+            desc,
+            shift,
+        });
     }
 
     /// Emits a jump taken when `(i cmp lim) == when`; returns it for patching.

@@ -203,14 +203,24 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             unsafe { *mem.add(a) = v }
         }};
     }
+    // Backward jumps left before the next look at the watchdog; kept per
+    // block so it lives in a register (an endless loop is always a
+    // backward jump repeating in one block).
+    let mut budget: u32 = super::WATCHDOG_STRIDE;
     macro_rules! jump {
         ($t:expr) => {{
-            let t = $t as usize;
-            if t < pc!() && m.watchdog_expired() {
-                fault!(FaultKind::Watchdog);
-            }
             // SAFETY: jump targets are inside the block (verified).
-            ip = unsafe { start.add(t) };
+            let target = unsafe { start.add($t as usize) };
+            if target < ip {
+                budget -= 1;
+                if budget == 0 {
+                    budget = super::WATCHDOG_STRIDE;
+                    if m.watchdog_expired() {
+                        fault!(FaultKind::Watchdog);
+                    }
+                }
+            }
+            ip = target;
         }};
     }
     loop {
@@ -490,6 +500,28 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 }
             }
 
+            Op::FillElems {
+                i,
+                v,
+                lim,
+                desc,
+                shift,
+            } => {
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let (start, last) = (r!(i) as i64, lim as i64);
+                let after = wrap_s((last + 1) as u64, shift);
+                let (a, b) = (start.wrapping_sub(ad.lo), last.wrapping_sub(ad.lo));
+                if start <= last && after as i64 == last + 1 && a >= 0 && (b as u64) < ad.len {
+                    let value = r!(v);
+                    let first = ad.offset as usize + a as usize;
+                    let count = (b - a) as usize + 1;
+                    // SAFETY: offset + len <= frame_size (verified) and
+                    // a <= b < len, so the range lies inside this frame.
+                    unsafe { std::slice::from_raw_parts_mut(fp.add(first), count) }.fill(value);
+                    w!(i, after);
+                }
+            }
             Op::JzElem { idx, desc, t } | Op::JnzElem { idx, desc, t } => {
                 // SAFETY: descriptor indexes are verified at link time.
                 let ad = unsafe { img.arrays.get_unchecked(desc as usize) };

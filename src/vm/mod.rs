@@ -24,7 +24,7 @@ use crate::ir::image::Image;
 use std::time::{Duration, Instant};
 
 /// How many backward jumps run between two looks at the wall clock.
-const WATCHDOG_STRIDE: u32 = 4096;
+pub(crate) const WATCHDOG_STRIDE: u32 = 4096;
 
 /// The mutable state of a running PLC: memory, strings, clock, watchdog.
 #[derive(Debug, Clone)]
@@ -37,7 +37,6 @@ pub struct Machine {
     pub now: i64,
     watchdog: Option<Duration>,
     deadline: Option<Instant>,
-    budget: u32,
 }
 
 impl Machine {
@@ -53,7 +52,6 @@ impl Machine {
             now: 0,
             watchdog: None,
             deadline: None,
-            budget: WATCHDOG_STRIDE,
         }
     }
 
@@ -68,7 +66,6 @@ impl Machine {
     /// reading it; straight-line code always terminates.
     pub fn start_cycle(&mut self) {
         self.deadline = None;
-        self.budget = WATCHDOG_STRIDE;
     }
 
     /// Runs code block `code` with frame base `base`.
@@ -76,14 +73,10 @@ impl Machine {
         exec::run(self, image, code, base as usize)
     }
 
-    /// Called on backward jumps: true when the cycle has run out of time.
-    #[inline]
+    /// Called every `WATCHDOG_STRIDE` backward jumps of one block: true
+    /// when the cycle has run out of time.
+    #[cold]
     fn watchdog_expired(&mut self) -> bool {
-        self.budget -= 1;
-        if self.budget != 0 {
-            return false;
-        }
-        self.budget = WATCHDOG_STRIDE;
         let Some(limit) = self.watchdog else {
             return false;
         };
