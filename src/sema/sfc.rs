@@ -54,10 +54,12 @@ fn names(elems: &[SfcElement]) -> Names<'_> {
             SfcElement::Statement(s) => n.statements.push(s.clone()),
         }
     }
+    let action_keys: std::collections::HashSet<String> =
+        n.actions.iter().map(|a| a.name.key()).collect();
     for s in &n.steps {
         for a in &s.actions {
             let key = a.action.key();
-            if !n.actions.iter().any(|x| x.name.key() == key) {
+            if !action_keys.contains(&key) {
                 n.var_actions
                     .entry(key)
                     .or_insert((a.action.clone(), a.span));
