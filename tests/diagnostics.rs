@@ -585,3 +585,17 @@ fn every_emitted_code_is_documented() {
     assert!(codes.len() > 50, "found only {} codes", codes.len());
     assert!(missing.is_empty(), "undocumented codes: {missing:?}");
 }
+
+/// Declarations too large for PLC memory are errors, not crashes.
+#[test]
+fn oversized_declarations_are_reported() {
+    let src = prog(
+        "x : ARRAY[-9223372036854775808..9223372036854775807] OF BOOL;\n\
+         y : ARRAY[0..60000000, 0..60000000] OF BOOL;\n\
+         a, b : ARRAY[0..60000000] OF LINT;",
+        "",
+    );
+    let codes: Vec<String> = diagnostics(&src).into_iter().map(|d| d.0).collect();
+    assert!(codes.len() >= 3, "{codes:?}");
+    assert!(codes.iter().all(|c| c == "E206"), "{codes:?}");
+}

@@ -133,17 +133,14 @@ impl Compiler<'_> {
             }
         }
         // Types that clash with POU names.
-        let clashes: Vec<(String, Span)> = self
-            .type_decls
-            .iter()
-            .filter(|(k, _)| self.pou_index.contains_key(*k))
-            .map(|(k, &(u, i, d))| {
-                let Item::Types(decls) = &units[u].items[i] else {
-                    unreachable_span()
-                };
-                (k.clone(), decls[d].name.span)
-            })
-            .collect();
+        let mut clashes: Vec<(String, Span)> = Vec::new();
+        for (k, &(u, i, d)) in &self.type_decls {
+            if let (true, Item::Types(decls)) = (self.pou_index.contains_key(k), &units[u].items[i])
+            {
+                clashes.push((k.clone(), decls[d].name.span));
+            }
+        }
+        clashes.sort_by_key(|(_, span)| (span.file, span.start));
         for (k, span) in clashes {
             self.diags.error(
                 "E202",
@@ -472,14 +469,28 @@ impl Compiler<'_> {
                         );
                         return TypeTable::error();
                     }
+                    let too_large = h - l + 1 > super::MAX_FRAME_SLOTS as i128
+                        || i64::try_from(l).is_err()
+                        || i64::try_from(h).is_err();
+                    if too_large {
+                        self.diags.error(
+                            "E206",
+                            lo.span.to(hi.span),
+                            format!("array bounds [{l}..{h}] give too many elements"),
+                        );
+                        return TypeTable::error();
+                    }
                     dims.push(Dim {
                         lo: l as i64,
                         hi: h as i64,
                     });
                 }
-                let count: u64 = dims.iter().map(|d| d.len()).product();
+                let count = dims
+                    .iter()
+                    .try_fold(1u64, |acc, d| acc.checked_mul(d.len()))
+                    .unwrap_or(u64::MAX);
                 let size = count.saturating_mul(self.types.size(elem_ty) as u64);
-                if size > 64 * 1024 * 1024 {
+                if size > super::MAX_FRAME_SLOTS as u64 {
                     self.diags
                         .error("E206", *span, "array too large (more than 64 Mi slots)");
                     return TypeTable::error();
@@ -618,7 +629,7 @@ impl Compiler<'_> {
                             kind: MemberKind::Field,
                             constant: false,
                         });
-                        offset += self.types.size(fty);
+                        offset = self.grow(offset, self.types.size(fty), name.span);
                     }
                 }
                 let id = self.types.add(TypeDef {
@@ -976,6 +987,25 @@ impl Compiler<'_> {
         }
     }
 
+    /// `offset + size`, reporting E206 (once per call site) when an
+    /// instance or structure would exceed [`super::MAX_FRAME_SLOTS`].
+    fn grow(&mut self, offset: u32, size: u32, span: Span) -> u32 {
+        match offset.checked_add(size) {
+            Some(end) if end <= super::MAX_FRAME_SLOTS => end,
+            _ => {
+                self.diags.error(
+                    "E206",
+                    span,
+                    format!(
+                        "this declaration makes the POU or structure larger than {} Mi slots",
+                        super::MAX_FRAME_SLOTS >> 20
+                    ),
+                );
+                offset
+            }
+        }
+    }
+
     /// Lays out the variables of POU `p` (idempotent).
     pub(super) fn layout_pou(&mut self, p: usize) {
         match self.pou_state[p] {
@@ -1147,7 +1177,7 @@ impl Compiler<'_> {
                         (s, None)
                     } else {
                         let s = Storage::Frame(offset);
-                        offset += self.types.size(ty);
+                        offset = self.grow(offset, self.types.size(ty), name.span);
                         (s, None)
                     };
                     let value = if block.constant {
@@ -1247,11 +1277,6 @@ fn init_const(ci: &ConstInit) -> Option<Const> {
         ConstInit::Str(s) => Some(Const::Str(s.clone())),
         _ => None,
     }
-}
-
-#[allow(clippy::diverging_sub_expression)]
-fn unreachable_span() -> ! {
-    panic!("type declaration index points at a non-type item")
 }
 
 impl TypeKind {

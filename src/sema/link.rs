@@ -100,7 +100,8 @@ impl Compiler<'_> {
         };
         match &self.types.get(ty).kind {
             TypeKind::Elem(_) | TypeKind::Enum { .. } | TypeKind::Subrange { .. } => {
-                buf[at] = match init {
+                let Some(slot) = buf.get_mut(at) else { return };
+                *slot = match init {
                     Some(ConstInit::Scalar(b)) => *b,
                     _ => match self.default_init(ty) {
                         ConstInit::Scalar(b) => b,
@@ -153,7 +154,9 @@ impl Compiler<'_> {
             }
             TypeKind::NativeFb(fb) => {
                 for (k, p) in crate::stdlib::interface(*fb).iter().enumerate() {
-                    buf[at + k] = p.init;
+                    if let Some(slot) = buf.get_mut(at + k) {
+                        *slot = p.init;
+                    }
                 }
             }
             TypeKind::Pou { code, .. } => {
@@ -166,7 +169,9 @@ impl Compiler<'_> {
                     }
                 }
                 for &(slot, value) in &self.pous[p].consts {
-                    buf[at + slot as usize] = value;
+                    if let Some(s) = buf.get_mut(at + slot as usize) {
+                        *s = value;
+                    }
                 }
             }
             TypeKind::Step | TypeKind::Void | TypeKind::Error => {}
@@ -179,7 +184,9 @@ impl Compiler<'_> {
         let mut buf = std::mem::take(&mut self.memory);
         self.write_init(&mut buf, addr as usize, ty, init, &mut strs);
         for (slot, s) in strs {
-            buf[slot] = self.strings.len() as u64;
+            if let Some(s) = buf.get_mut(slot) {
+                *s = self.strings.len() as u64;
+            }
             self.strings.push(s);
         }
         self.memory = buf;
@@ -224,6 +231,13 @@ impl Compiler<'_> {
 
     /// Places everything in memory and builds the image.
     pub(super) fn link(&mut self, options: &CompileOptions) -> Option<Image> {
+        if self.diags.has_errors() {
+            // Still report call cycles and configuration problems, but do
+            // not build memory for a program that cannot run.
+            self.check_recursion();
+            self.schedule(options);
+            return None;
+        }
         // Function frames.
         for p in 0..self.pous.len() {
             if self.pous[p].kind != PouKind::Function || self.emit_state[p] != LayoutState::Done {

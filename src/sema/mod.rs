@@ -51,6 +51,12 @@ pub fn compile(
     if c.diags.has_errors() { None } else { image }
 }
 
+/// Upper bound of the whole PLC memory, in 8-byte slots (2 GiB).
+pub const MAX_MEMORY_SLOTS: usize = 256 << 20;
+
+/// Upper bound of one POU instance or structure, in slots.
+pub const MAX_FRAME_SLOTS: u32 = 64 << 20;
+
 /// State of one compilation.
 pub(crate) struct Compiler<'a> {
     units: &'a [CompilationUnit],
@@ -79,6 +85,8 @@ pub(crate) struct Compiler<'a> {
     emit_state: Vec<LayoutState>,
     /// Function-frame relocations: (code block, instruction, callee POU).
     fixups: Vec<(u32, usize, usize)>,
+    /// Memory exhaustion has been reported.
+    memory_exhausted: bool,
     /// Step tables of chart bodies.
     charts: Vec<crate::ir::chart::Chart>,
     /// SFC blocks of the POU being emitted whose constant and pinned slots
@@ -114,6 +122,7 @@ impl<'a> Compiler<'a> {
             calls: Vec::new(),
             emit_state: Vec::new(),
             fixups: Vec::new(),
+            memory_exhausted: false,
             charts: Vec::new(),
             pending_blocks: Vec::new(),
             owned_blocks: Vec::new(),
@@ -122,9 +131,24 @@ impl<'a> Compiler<'a> {
 
     /// Reserves `size` slots of absolute memory.
     fn alloc_abs(&mut self, size: u32) -> u32 {
-        let at = self.memory.len() as u32;
-        self.memory.resize(self.memory.len() + size as usize, 0);
-        at
+        let at = self.memory.len();
+        if at + size as usize > MAX_MEMORY_SLOTS {
+            if !self.memory_exhausted {
+                self.memory_exhausted = true;
+                self.diags.error(
+                    "E206",
+                    Span::default(),
+                    format!(
+                        "the program needs more than {} MiB of PLC memory",
+                        (MAX_MEMORY_SLOTS * 8) >> 20
+                    ),
+                );
+            }
+            // Nothing is allocated; the program will not link.
+            return at as u32;
+        }
+        self.memory.resize(at + size as usize, 0);
+        at as u32
     }
 
     /// Interns a 64-bit constant.
