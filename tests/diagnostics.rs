@@ -184,8 +184,8 @@ const INC: &str =
 )]
 #[case(
     "E703",
-    "PROGRAM P\nVAR_INPUT x : INT; END_VAR\nEND_PROGRAM\nCONFIGURATION A\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\nPROGRAM i WITH T : P(x := 1);\nEND_RESOURCE\nEND_CONFIGURATION\n".to_string(),
-    "7:1"
+    "PROGRAM P\nVAR_INPUT x : INT; END_VAR\nEND_PROGRAM\nCONFIGURATION A\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\nPROGRAM i WITH T : P(z := 1);\nEND_RESOURCE\nEND_CONFIGURATION\n".to_string(),
+    "7:22"
 )]
 fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     check_error(code, &src, at);

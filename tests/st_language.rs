@@ -998,3 +998,30 @@ fn a_fill_loop_running_off_the_array_writes_up_to_the_bad_index_then_faults() {
     assert_eq!(lit(&plc, "a[3]"), "9");
     assert_eq!(lit(&plc, "i"), "4");
 }
+
+#[test]
+fn configuration_connects_program_parameters_to_globals() {
+    // Each run: x is copied in from `source` (or the constant 5), y copied
+    // out to `sink` after the program ran.
+    let src = "
+PROGRAM Doubler
+VAR_INPUT x : INT; k : INT; END_VAR
+VAR_OUTPUT y : INT; END_VAR
+y := x * 2 + k;
+END_PROGRAM
+CONFIGURATION Cell
+  VAR_GLOBAL source : INT := 20; sink : INT; END_VAR
+  RESOURCE R ON PLC
+    TASK Fast (INTERVAL := T#10ms, PRIORITY := 1);
+    PROGRAM d WITH Fast : Doubler (x := source, k := 5, y => sink);
+  END_RESOURCE
+END_CONFIGURATION
+";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "sink"), "45");
+    plc.write("source", "1").expect("write source");
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "sink"), "7");
+    assert_eq!(lit(&plc, "d.y"), "7");
+}

@@ -96,6 +96,10 @@ pub struct ProgramInstance {
     pub ty: TypeId,
     /// Task it runs under (index into `tasks`).
     pub task: usize,
+    /// Copied before each run: `(from, to)` absolute slots (connected inputs).
+    pub inputs: Vec<(u32, u32)>,
+    /// Copied after each run: `(from, to)` absolute slots (connected outputs).
+    pub outputs: Vec<(u32, u32)>,
 }
 
 /// A cyclic (or event) task.

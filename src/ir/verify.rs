@@ -114,6 +114,13 @@ pub fn verify(image: &Image) -> Result<(), String> {
         if p.base as u64 + c.frame_size as u64 > mem {
             return Err(format!("program instance `{}` outside memory", p.name));
         }
+        let connections = p.inputs.iter().chain(&p.outputs);
+        if connections
+            .into_iter()
+            .any(|&(a, b)| a as u64 >= mem || b as u64 >= mem)
+        {
+            return Err(format!("a connection of `{}` is outside memory", p.name));
+        }
     }
     Ok(())
 }

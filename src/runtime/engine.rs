@@ -246,8 +246,15 @@ impl Plc {
                 continue;
             }
             let (code, base) = (inst.code, inst.base);
+            for &(from, to) in &inst.inputs {
+                self.machine.mem[to as usize] = self.machine.mem[from as usize];
+            }
             if let Err(fault) = self.machine.run(&self.image, code, base) {
                 return Err(self.locate(fault));
+            }
+            let inst = &self.image.programs[self.order[k]];
+            for &(from, to) in &inst.outputs {
+                self.machine.mem[to as usize] = self.machine.mem[from as usize];
             }
         }
         self.cycle += 1;

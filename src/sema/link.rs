@@ -11,6 +11,21 @@ use crate::source::Span;
 use crate::syntax::ast::{Body, ExprKind, Item, LiteralValue, PouKind};
 use crate::types::ElemType;
 
+/// A program instance chosen to run: (instance name, POU, task, connections).
+type Scheduled = (String, usize, usize, Vec<Connection>);
+
+/// One connection of a program instance's parameter to a global (or a
+/// constant, held in a slot of its own).
+struct Connection {
+    /// Copy the global into the program before it runs (VAR_INPUT), or the
+    /// program's output into the global after it ran (VAR_OUTPUT).
+    input: bool,
+    /// Slot offset of the parameter in the program instance.
+    offset: u32,
+    /// Absolute address of the global or constant.
+    global: u32,
+}
+
 /// Slots and strings a code block resets on entry: `(slot, value)` and
 /// `(slot, constant string)`.
 type EntryResets = (Vec<(u32, u64)>, Vec<(u32, u32)>);
@@ -289,11 +304,19 @@ impl Compiler<'_> {
         }
         let (tasks, programs) = self.schedule(options)?;
         let mut instances = Vec::new();
-        for (name, p, task) in programs {
+        for (name, p, task, conns) in programs {
             let ty = self.pous[p].ty;
             let size = self.types.size(ty).max(1);
             let base = self.alloc_abs(size);
             self.instantiate(base, ty, None);
+            let (mut inputs, mut outputs) = (Vec::new(), Vec::new());
+            for c in conns {
+                if c.input {
+                    inputs.push((c.global, base + c.offset));
+                } else {
+                    outputs.push((base + c.offset, c.global));
+                }
+            }
             instances.push(ProgramInstance {
                 name,
                 type_name: self.pous[p].name.clone(),
@@ -301,6 +324,8 @@ impl Compiler<'_> {
                 base,
                 ty,
                 task,
+                inputs,
+                outputs,
             });
         }
         let mut roots: Vec<RootVar> = globals
@@ -422,10 +447,7 @@ impl Compiler<'_> {
 
     /// Tasks and the program instances to run: (instance name, POU, task index).
     #[allow(clippy::type_complexity)]
-    fn schedule(
-        &mut self,
-        options: &CompileOptions,
-    ) -> Option<(Vec<Task>, Vec<(String, usize, usize)>)> {
+    fn schedule(&mut self, options: &CompileOptions) -> Option<(Vec<Task>, Vec<Scheduled>)> {
         let implicit = Task {
             name: "default".into(),
             interval: options.cycle_time,
@@ -531,13 +553,11 @@ impl Compiler<'_> {
                         );
                         continue;
                     }
-                    if !pi.args.is_empty() {
-                        self.diags.error(
-                            "E703",
-                            pi.span,
-                            "connecting program parameters in a configuration is not supported yet; use VAR_EXTERNAL",
-                        );
-                    }
+                    let conns: Vec<Connection> = pi
+                        .args
+                        .iter()
+                        .filter_map(|a| self.connection(p, a))
+                        .collect();
                     let task = match &pi.task {
                         Some(t) => match tasks
                             .iter()
@@ -563,9 +583,10 @@ impl Compiler<'_> {
                                 .unwrap_or(0)
                         }
                     };
-                    if progs.iter().any(|(n, _, _): &(String, usize, usize)| {
-                        n.eq_ignore_ascii_case(&pi.name.name)
-                    }) {
+                    if progs
+                        .iter()
+                        .any(|(n, ..): &Scheduled| n.eq_ignore_ascii_case(&pi.name.name))
+                    {
                         self.diags.error(
                             "E202",
                             pi.name.span,
@@ -573,7 +594,7 @@ impl Compiler<'_> {
                         );
                         continue;
                     }
-                    progs.push((pi.name.name.clone(), p, task));
+                    progs.push((pi.name.name.clone(), p, task, conns));
                 }
             }
             if progs.is_empty() && !options.check_only {
@@ -610,7 +631,10 @@ impl Compiler<'_> {
             },
         };
         match chosen {
-            Some(p) => Some((vec![implicit], vec![(self.pous[p].name.clone(), p, 0)])),
+            Some(p) => Some((
+                vec![implicit],
+                vec![(self.pous[p].name.clone(), p, 0, Vec::new())],
+            )),
             None if options.check_only => Some((vec![implicit], Vec::new())),
             // After other errors the missing PROGRAM is usually their
             // consequence (a POU dropped by syntax recovery): say nothing.
@@ -638,6 +662,127 @@ impl Compiler<'_> {
                 None
             }
         }
+    }
+
+    /// Checks one `x := global`, `x := constant` or `y => global` argument
+    /// of a program instance in a configuration.
+    fn connection(&mut self, p: usize, arg: &crate::syntax::ast::Arg) -> Option<Connection> {
+        use crate::syntax::ast::Arg;
+        let (name, expr, input) = match arg {
+            Arg::Input { name, value } => (name, value, true),
+            Arg::Output {
+                name,
+                negated: false,
+                target,
+            } => (name, target, false),
+            Arg::Output { name, .. } => {
+                self.diags.error(
+                    "E703",
+                    name.span,
+                    "`NOT ... =>` cannot connect a program output",
+                );
+                return None;
+            }
+            Arg::Positional(e) => {
+                self.diags.error(
+                    "E703",
+                    e.span,
+                    "program parameters are connected by name: `PROGRAM p WITH t : P(x := g)`",
+                );
+                return None;
+            }
+        };
+        let program = self.pous[p].name.clone();
+        let wanted = if input {
+            MemberKind::Input
+        } else {
+            MemberKind::Output
+        };
+        let Some(var) = self.pous[p]
+            .vars
+            .get(&name.key())
+            .filter(|v| v.kind == wanted)
+            .cloned()
+        else {
+            let what = if input { "VAR_INPUT" } else { "VAR_OUTPUT" };
+            self.diags.error(
+                "E703",
+                name.span,
+                format!("PROGRAM {program} has no {what} `{}`", name.name),
+            );
+            return None;
+        };
+        let Storage::Frame(offset) = var.storage else {
+            return None;
+        };
+        let Some(elem) = self.types.scalar(var.ty).filter(|e| !e.is_string()) else {
+            self.diags.error(
+                "E703",
+                name.span,
+                format!(
+                    "only elementary parameters (not {}) can be connected",
+                    self.types.name(var.ty)
+                ),
+            );
+            return None;
+        };
+        // The other side: a global of the same type, or (for inputs) a constant.
+        if let ExprKind::Name(g) = &expr.kind
+            && let Some(global) = self.globals.get(&g.key()).cloned()
+        {
+            let Storage::Abs(addr) = global.storage else {
+                return None;
+            };
+            if global.ty != var.ty && self.types.scalar(global.ty) != Some(elem) {
+                self.diags.error(
+                    "E703",
+                    expr.span,
+                    format!(
+                        "`{}` is {} but `{}` is {}: connections need the same type",
+                        g.name,
+                        self.types.name(global.ty),
+                        name.name,
+                        self.types.name(var.ty)
+                    ),
+                );
+                return None;
+            }
+            if !input && global.constant {
+                self.diags.error(
+                    "E401",
+                    expr.span,
+                    format!("global `{}` is CONSTANT", g.name),
+                );
+                return None;
+            }
+            return Some(Connection {
+                input,
+                offset,
+                global: addr,
+            });
+        }
+        if input
+            && let Some(crate::sema::consts::Const::Bits(bits)) =
+                self.const_value(expr, var.ty, None)
+        {
+            let addr = self.alloc_abs(1);
+            if let Some(slot) = self.memory.get_mut(addr as usize) {
+                *slot = bits;
+            }
+            return Some(Connection {
+                input,
+                offset,
+                global: addr,
+            });
+        }
+        if !input {
+            self.diags.error(
+                "E703",
+                expr.span,
+                "a program output connects to a VAR_GLOBAL variable",
+            );
+        }
+        None
     }
 
     fn program_names(&self, programs: &[usize]) -> String {
