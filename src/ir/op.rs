@@ -452,6 +452,14 @@ pub enum Op {
 
     /// Conversion.
     Convert { d: Slot, a: Slot, conv: Conv },
+    /// `d := a * b + c` on REAL (each operation rounded as written, no
+    /// fused rounding); `c` is in the `Operand` word that follows.
+    MulAddF32 { d: Slot, a: Slot, b: Slot },
+    /// `d := a * b + c` on LREAL; `c` is in the following `Operand` word.
+    MulAddF64 { d: Slot, a: Slot, b: Slot },
+    /// The extra operand of the instruction before it (never executed on
+    /// its own: the instruction before it consumes it).
+    Operand { s: Slot },
     /// Conditional move: `if c { d := s }` (SEL).
     CMov { d: Slot, c: Slot, s: Slot },
     /// Signed MIN/MAX: `d := if (a < b) == min { a } else { b }`.

@@ -80,7 +80,9 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
         | MinMaxF32 { d, a, b, .. }
         | MinMaxF64 { d, a, b, .. }
         | MulTimeF64 { d, a, b }
-        | DivTimeF64 { d, a, b } => {
+        | DivTimeF64 { d, a, b }
+        | MulAddF32 { d, a, b }
+        | MulAddF64 { d, a, b } => {
             f(d);
             f(a);
             f(b);
@@ -114,6 +116,7 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
             f(first);
         }
         StrConst { d, .. } => f(d),
+        Operand { s } => f(s),
         Jz { c, .. } | Jnz { c, .. } => f(c),
         JnCmpSI { a, .. } => f(a),
         JzElem { idx, .. } | JnzElem { idx, .. } => f(idx),

@@ -57,12 +57,20 @@ pub fn verify(image: &Image) -> Result<(), String> {
                 return fail(pc, "frame operand outside the frame");
             }
             if let Some(t) = target_mut(&mut op)
-                && *t as usize >= c.ops.len()
+                && (*t as usize >= c.ops.len() || matches!(c.ops[*t as usize], Op::Operand { .. }))
             {
-                return fail(pc, "jump target outside the block");
+                return fail(pc, "jump target outside the block or onto an operand word");
+            }
+            if matches!(op, Op::MulAddF32 { .. } | Op::MulAddF64 { .. })
+                && !matches!(c.ops.get(pc + 1), Some(Op::Operand { .. }))
+            {
+                return fail(pc, "two-word instruction without its operand word");
             }
             let ok = match op {
-                Op::AddBr { t, .. } => (t as usize) < c.ops.len(),
+                Op::AddBr { t, .. } => c
+                    .ops
+                    .get(t as usize)
+                    .is_some_and(|o| !matches!(o, Op::Operand { .. })),
                 Op::FillElems { desc, .. } => image
                     .arrays
                     .get(desc as usize)

@@ -333,10 +333,16 @@ impl Fcx {
         if d == s {
             return;
         }
+        // The defining instruction must be the last one (or be followed
+        // only by its operand word).
+        let last = |at: usize| {
+            at + 1 == self.ops.len()
+                || (at + 2 == self.ops.len() && matches!(self.ops[at + 1], Op::Operand { .. }))
+        };
         if let Some((at, def)) = self.last_def
             && def == s
             && self.is_temp(s)
-            && at + 1 == self.ops.len()
+            && last(at)
         {
             set_dest(&mut self.ops[at], d);
             self.last_def = Some((at, d));
@@ -420,6 +426,8 @@ fn dest_mut(op: &mut Op) -> Option<&mut Slot> {
         | MinMaxF64 { d, .. }
         | Mux { d, .. }
         | MulTimeF64 { d, .. }
+        | MulAddF32 { d, .. }
+        | MulAddF64 { d, .. }
         | DivTimeF64 { d, .. }
         | Clock { d } => Some(d),
         _ => None,

@@ -913,6 +913,30 @@ impl Compiler<'_> {
             });
             return Val::Slot(d, ct);
         }
+        // `x * y + c` (or `c + x * y`) on REAL/LREAL right after the product:
+        // one multiply-add with `c` in the operand word that follows.
+        if op == BinaryOp::Add
+            && e.is_real()
+            && let Some((at, def)) = f.last_def
+            && at + 1 == f.ops.len()
+            && f.is_temp(def)
+            && (def == a || def == b)
+            && a != b
+            && let Op::MulF32 { a: x, b: y, .. } | Op::MulF64 { a: x, b: y, .. } = f.ops[at]
+        {
+            let other = if def == a { b } else { a };
+            f.ops.pop();
+            f.spans.pop();
+            let d = f.temp();
+            let at = f.emit(if e == ElemType::Real {
+                Op::MulAddF32 { d, a: x, b: y }
+            } else {
+                Op::MulAddF64 { d, a: x, b: y }
+            });
+            f.emit(Op::Operand { s: other });
+            f.last_def = Some((at, d));
+            return Val::Slot(d, ct);
+        }
         let d = f.temp();
         let s = shift_of(e);
         let signed = e.is_signed_int();

@@ -388,6 +388,20 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 Ok(v) => w!(d, v),
                 Err(kind) => fault!(kind),
             },
+            Op::MulAddF32 { d, a, b } | Op::MulAddF64 { d, a, b } => {
+                // SAFETY: the verifier checked that an Operand word follows.
+                let Op::Operand { s: c } = (unsafe { *ip }) else {
+                    fault!(FaultKind::BadAddress);
+                };
+                // SAFETY: the Operand word is inside the block.
+                ip = unsafe { ip.add(1) };
+                if matches!(*op, Op::MulAddF32 { .. }) {
+                    w!(d, of_f32(f32_of(r!(a)) * f32_of(r!(b)) + f32_of(r!(c))));
+                } else {
+                    w!(d, of_f64(f64_of(r!(a)) * f64_of(r!(b)) + f64_of(r!(c))));
+                }
+            }
+            Op::Operand { .. } => {}
             Op::CMov { d, c, s } => {
                 if r!(c) != 0 {
                     w!(d, r!(s))
