@@ -84,6 +84,17 @@ fn shift(x: u64, n: u64, kind: ShiftKind, bits: u8) -> u64 {
     }
 }
 
+/// The slot of the `Operand` word at `ip` (verified to be there).
+#[inline(always)]
+fn operand_word(ip: *const Op) -> u32 {
+    // SAFETY: the verifier guarantees an Operand word after a two-word
+    // instruction, inside the block.
+    match unsafe { *ip } {
+        Op::Operand { s } => s,
+        _ => 0,
+    }
+}
+
 /// Advances a FOR variable: the new (wrapped) value and whether the loop
 /// goes on. The comparison uses the exact sum, so a sum past the type's
 /// range ends the loop instead of wrapping around.
@@ -388,18 +399,19 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 Ok(v) => w!(d, v),
                 Err(kind) => fault!(kind),
             },
-            Op::MulAddF32 { d, a, b } | Op::MulAddF64 { d, a, b } => {
-                // SAFETY: the verifier checked that an Operand word follows.
-                let Op::Operand { s: c } = (unsafe { *ip }) else {
-                    fault!(FaultKind::BadAddress);
-                };
-                // SAFETY: the Operand word is inside the block.
-                ip = unsafe { ip.add(1) };
-                if matches!(*op, Op::MulAddF32 { .. }) {
-                    w!(d, of_f32(f32_of(r!(a)) * f32_of(r!(b)) + f32_of(r!(c))));
-                } else {
-                    w!(d, of_f64(f64_of(r!(a)) * f64_of(r!(b)) + f64_of(r!(c))));
-                }
+            Op::MulAddF32 { d, a, b } => {
+                let here: *const Op = op;
+                // SAFETY: the verifier checked that the operand word follows.
+                let c = operand_word(unsafe { here.add(1) });
+                ip = unsafe { here.add(2) };
+                w!(d, of_f32(f32_of(r!(a)) * f32_of(r!(b)) + f32_of(r!(c))));
+            }
+            Op::MulAddF64 { d, a, b } => {
+                let here: *const Op = op;
+                // SAFETY: as above.
+                let c = operand_word(unsafe { here.add(1) });
+                ip = unsafe { here.add(2) };
+                w!(d, of_f64(f64_of(r!(a)) * f64_of(r!(b)) + f64_of(r!(c))));
             }
             Op::Operand { .. } => {}
             Op::CMov { d, c, s } => {
