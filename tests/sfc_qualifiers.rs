@@ -10,27 +10,7 @@
 mod sfc_run;
 
 use rstest::rstest;
-use sfc_run::{bits, trace_src};
-
-/// A stimulus CSV with one row per cycle from per-input bit strings.
-fn stimulus(inputs: &[(&str, &str)]) -> String {
-    let n = inputs.iter().map(|(_, b)| b.len()).max().unwrap_or(0);
-    let mut s = String::from("cycle");
-    for (name, _) in inputs {
-        s.push(',');
-        s.push_str(name);
-    }
-    s.push('\n');
-    for k in 0..n {
-        s.push_str(&k.to_string());
-        for (_, b) in inputs {
-            let v = b.as_bytes().get(k).copied().unwrap_or(b'0');
-            s.push_str(if v == b'1' { ",TRUE" } else { ",FALSE" });
-        }
-        s.push('\n');
-    }
-    s
-}
+use sfc_run::{bits, stimulus, trace_src};
 
 /// S0 -go1-> S1 -go2-> S2 -go3-> S0, with `out(<assoc>)` on S1.
 fn sequence(assoc: &str) -> String {

@@ -144,32 +144,8 @@ impl Compiler<'_> {
                     f.patch(j, cont);
                 }
             }
-            StmtKind::Exit => match f.loops.last_mut() {
-                Some(_) => {
-                    let j = f.emit(Op::Jmp { t: 0 });
-                    if let Some(lp) = f.loops.last_mut() {
-                        lp.exits.push(j);
-                    }
-                }
-                None => self.diags.error(
-                    "E405",
-                    s.span,
-                    "EXIT outside of a FOR, WHILE or REPEAT loop",
-                ),
-            },
-            StmtKind::Continue => match f.loops.last_mut() {
-                Some(_) => {
-                    let j = f.emit(Op::Jmp { t: 0 });
-                    if let Some(lp) = f.loops.last_mut() {
-                        lp.continues.push(j);
-                    }
-                }
-                None => self.diags.error(
-                    "E405",
-                    s.span,
-                    "CONTINUE outside of a FOR, WHILE or REPEAT loop",
-                ),
-            },
+            StmtKind::Exit => self.loop_jump(f, true, s.span),
+            StmtKind::Continue => self.loop_jump(f, false, s.span),
             StmtKind::Return => {
                 let j = f.emit(Op::Jmp { t: 0 });
                 f.returns.push(j);
@@ -177,6 +153,27 @@ impl Compiler<'_> {
             StmtKind::Empty => {}
         }
         f.temp_next = mark;
+    }
+
+    /// EXIT (`exit`) or CONTINUE: a jump patched when the innermost loop ends.
+    fn loop_jump(&mut self, f: &mut Fcx, exit: bool, span: Span) {
+        if f.loops.is_empty() {
+            let word = if exit { "EXIT" } else { "CONTINUE" };
+            self.diags.error(
+                "E405",
+                span,
+                format!("{word} outside of a FOR, WHILE or REPEAT loop"),
+            );
+            return;
+        }
+        let j = f.emit(Op::Jmp { t: 0 });
+        if let Some(lp) = f.loops.last_mut() {
+            if exit {
+                lp.exits.push(j);
+            } else {
+                lp.continues.push(j);
+            }
+        }
     }
 
     /// Checks a condition and emits a jump taken when it equals `when`;

@@ -114,3 +114,24 @@ pub fn bits(csv: &str, name: &str) -> String {
         })
         .collect()
 }
+
+/// A cycle-keyed stimulus CSV with one row per cycle, from per-input bit
+/// strings (`"0011"`: FALSE in cycles 0-1, TRUE in 2-3; missing cycles FALSE).
+pub fn stimulus(inputs: &[(&str, &str)]) -> String {
+    let n = inputs.iter().map(|(_, b)| b.len()).max().unwrap_or(0);
+    let mut s = String::from("cycle");
+    for (name, _) in inputs {
+        s.push(',');
+        s.push_str(name);
+    }
+    s.push('\n');
+    for k in 0..n {
+        s.push_str(&k.to_string());
+        for (_, b) in inputs {
+            let v = b.as_bytes().get(k).copied().unwrap_or(b'0');
+            s.push_str(if v == b'1' { ",TRUE" } else { ",FALSE" });
+        }
+        s.push('\n');
+    }
+    s
+}
