@@ -338,3 +338,26 @@ END_PROGRAM";
     assert_eq!(lit(&p, "x"), "1");
     assert_eq!(lit(&p, "b"), "16#F");
 }
+
+#[rstest]
+// Functional forms of the operator words in ST (extensible AND/OR/XOR).
+#[case(
+    "a, b, c, y : BOOL; ",
+    "a := TRUE; b := TRUE; c := FALSE; y := AND(a, b, c);",
+    "y",
+    "FALSE"
+)]
+#[case("a, b, c, y : BOOL;", "c := TRUE; y := OR(a, b, c);", "y", "TRUE")]
+#[case("y : BOOL;", "y := XOR(TRUE, TRUE, TRUE);", "y", "TRUE")]
+#[case("w : WORD;", "w := AND(WORD#16#0FF0, WORD#16#00FF);", "w", "16#F0")]
+#[case("i : INT;", "i := MOD(17, 5);", "i", "2")]
+fn operator_words_called_as_functions(
+    #[case] decls: &str,
+    #[case] body: &str,
+    #[case] var: &str,
+    #[case] expected: &str,
+) {
+    let mut plc = compile(&program("", decls, body));
+    plc.run_cycle().expect("cycle");
+    assert_eq!(lit(&plc, var), expected);
+}
