@@ -4,6 +4,8 @@
 //! checked, lowered into one typed IR and executed by one interpreter under a
 //! cyclic scheduler on a virtual clock.
 
+#![warn(missing_docs)]
+
 pub mod diagnostics;
 pub mod ir;
 pub mod runtime;

@@ -249,6 +249,17 @@ pub enum CounterRange {
 }
 
 /// One IR instruction.
+///
+/// Operand fields follow one naming convention (documented here rather than
+/// on each of the ~300 fields): `d` destination slot; `a`, `b`, `s`, `c`
+/// source slots (`c` a condition for jumps and `CMov`); `p` a slot holding an
+/// absolute address; `off` a static slot offset; `abs` an absolute address;
+/// `k` an index into the constant tables; `imm` an immediate integer; `t` a
+/// jump target (instruction index); `shift` the wrap shift `64 - bits`;
+/// `desc` an index into the array descriptors; `inst` the frame slot where a
+/// function block instance starts; `code` a code-block index; `i` and `lim`
+/// a FOR variable and its limit.
+#[allow(missing_docs)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Op {
     /// No operation (left where an instruction was removed).
