@@ -150,11 +150,11 @@ pub enum Conv {
     ToBcd(u8),
     /// BCD to binary; faults on an invalid nibble.
     FromBcd,
-    /// Nanoseconds to whole milliseconds (TIME_TO_<int>), then wrap as signed.
+    /// Nanoseconds to whole milliseconds (`TIME_TO_<int>`), then wrap as signed.
     NsToMsS(u8),
     /// Nanoseconds to whole milliseconds, then wrap as unsigned.
     NsToMsU(u8),
-    /// Milliseconds (signed) to nanoseconds (<int>_TO_TIME).
+    /// Milliseconds (signed) to nanoseconds (`<int>_TO_TIME`).
     MsToNsS,
     /// Milliseconds (unsigned) to nanoseconds.
     MsToNsU,

@@ -3,7 +3,7 @@
 //! `docs/semantics.md` §4 defines them.
 //!
 //! Each block works on its instance memory: a slice of slots whose layout
-//! (the pin order) is given by [`layout`]. Inputs are written by the caller
+//! (the pin order) is given by [`interface`]. Inputs are written by the caller
 //! before the call and outputs read after it, so a call copies nothing.
 
 mod bistable;
