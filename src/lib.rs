@@ -3,6 +3,33 @@
 //! Instruction List, Structured Text and textual SFC are parsed into one AST,
 //! checked, lowered into one typed IR and executed by one interpreter under a
 //! cyclic scheduler on a virtual clock.
+//!
+//! Embedding it as a soft-PLC core:
+//!
+//! ```
+//! use plcrun::{Options, Plc};
+//!
+//! let source = "
+//! PROGRAM Blink
+//! VAR_INPUT start : BOOL; END_VAR
+//! VAR_OUTPUT lamp : BOOL; END_VAR
+//! VAR t : TON; END_VAR
+//! t(IN := start AND NOT t.Q, PT := T#30ms);
+//! lamp := start AND NOT t.Q;
+//! END_PROGRAM
+//! ";
+//! let mut plc = Plc::compile_files(&[("blink.st", source)], &Options::default())?;
+//! plc.write("start", "TRUE")?; // any variable, named as with --trace
+//! let mut trace = String::new();
+//! for _ in 0..5 {
+//!     plc.run_cycle()?; // one 10 ms cycle on the virtual clock
+//!     trace.push_str(&plc.read("lamp")?.to_literal());
+//!     trace.push(' ');
+//! }
+//! // TON with PT = 30 ms: Q in the 4th call after IN rose, which drops IN.
+//! assert_eq!(trace, "TRUE TRUE TRUE FALSE TRUE ");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 #![warn(missing_docs)]
 
