@@ -43,8 +43,7 @@ impl Compiler<'_> {
         if let ExprKind::Name(id) = &call.callee.kind
             && self.lookup_var(f, &id.key()).is_none()
         {
-            let v = self.call_function(f, call, None, false);
-            let _ = v;
+            self.call_function(f, call, None, false);
             return;
         }
         let Some(inst) = self.place(f, &call.callee) else {

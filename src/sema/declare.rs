@@ -384,22 +384,6 @@ impl Compiler<'_> {
                 }
                 if let Some(fb) = stdlib::lookup_native(&id.name) {
                     let params = stdlib::interface(fb);
-                    let members = params
-                        .iter()
-                        .enumerate()
-                        .map(|(i, p)| Member {
-                            name: p.name.to_string(),
-                            ty: TypeTable::elem(p.ty),
-                            offset: i as u32,
-                            kind: match p.dir {
-                                stdlib::ParamDir::Input => MemberKind::Input,
-                                stdlib::ParamDir::Output => MemberKind::Output,
-                                stdlib::ParamDir::Hidden => MemberKind::Hidden,
-                            },
-                            constant: false,
-                        })
-                        .collect::<Vec<_>>();
-                    let _ = members;
                     return self.types.intern(TypeDef {
                         name: stdlib::native_name(fb),
                         kind: TypeKind::NativeFb(fb),
@@ -409,7 +393,7 @@ impl Compiler<'_> {
                 if let Some(&p) = self.pou_index.get(&key) {
                     return match self.pous[p].kind {
                         PouKind::FunctionBlock => {
-                            self.ensure_emitted(p, id.span);
+                            self.ensure_emitted(p);
                             self.pous[p].ty
                         }
                         PouKind::Program => {

@@ -34,14 +34,12 @@ impl Compiler<'_> {
     /// Emits the body of every POU.
     pub(super) fn emit_all(&mut self) {
         for p in 0..self.pous.len() {
-            let span = self.pous[p].span;
-            self.ensure_emitted(p, span);
+            self.ensure_emitted(p);
         }
     }
 
     /// Emits POU `p` (after laying it out) unless already done.
-    pub(super) fn ensure_emitted(&mut self, p: usize, span: Span) {
-        let _ = span;
+    pub(super) fn ensure_emitted(&mut self, p: usize) {
         self.layout_pou(p);
         if self.pou_state[p] != LayoutState::Done || self.emit_state[p] != LayoutState::Pending {
             return;

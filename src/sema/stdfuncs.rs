@@ -608,7 +608,7 @@ impl Compiler<'_> {
             }
             Std::BcdTo(to) => {
                 let (v, s) = vals.remove(0);
-                let Some(t) = v
+                let Some(_bits) = v
                     .ty()
                     .id()
                     .filter(|t| self.scalar(*t).is_some_and(|e| e.family() == Family::Bits))
@@ -620,7 +620,6 @@ impl Compiler<'_> {
                     );
                     return Val::error();
                 };
-                let _ = t;
                 let x = self.apply_conv(f, v, Conv::FromBcd, ElemType::Ulint, s);
                 self.convert(f, x, ElemType::Ulint, to, s, fname)
             }
