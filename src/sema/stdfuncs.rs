@@ -608,18 +608,19 @@ impl Compiler<'_> {
             }
             Std::BcdTo(to) => {
                 let (v, s) = vals.remove(0);
-                let Some(_bits) = v
+                let is_bits = v
                     .ty()
                     .id()
-                    .filter(|t| self.scalar(*t).is_some_and(|e| e.family() == Family::Bits))
-                else {
+                    .and_then(|t| self.scalar(t))
+                    .is_some_and(|e| e.family() == Family::Bits);
+                if !is_bits {
                     self.diags.error(
                         "E302",
                         s,
                         format!("{fname} needs a bit string (BYTE, WORD, ...)"),
                     );
                     return Val::error();
-                };
+                }
                 let x = self.apply_conv(f, v, Conv::FromBcd, ElemType::Ulint, s);
                 self.convert(f, x, ElemType::Ulint, to, s, fname)
             }
