@@ -249,6 +249,19 @@ impl Fcx {
         }
     }
 
+    /// Closes the innermost loop at the current position: its EXITs and
+    /// `exits` jump here, its CONTINUEs to `cont`.
+    pub fn end_loop(&mut self, cont: u32, exits: Vec<usize>) {
+        let lp = self.loops.pop().unwrap_or_default();
+        let end = self.here();
+        for j in exits.into_iter().chain(lp.exits) {
+            self.patch(j, end);
+        }
+        for j in lp.continues {
+            self.patch(j, cont);
+        }
+    }
+
     /// A fresh temporary slot.
     pub fn temp(&mut self) -> Slot {
         let t = self.temp_next;

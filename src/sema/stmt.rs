@@ -119,14 +119,7 @@ impl Compiler<'_> {
                 f.span = cond.span;
                 self.cond_branch_to(f, cond, true, top);
                 fuse_step_and_test(f, cont as usize, top);
-                let lp = f.loops.pop().unwrap_or_default();
-                let end = f.here();
-                for j in lp.exits {
-                    f.patch(j, end);
-                }
-                for j in lp.continues {
-                    f.patch(j, cont);
-                }
+                f.end_loop(cont, Vec::new());
             }
             StmtKind::Repeat { body, until } => {
                 let top = f.here();
@@ -135,14 +128,7 @@ impl Compiler<'_> {
                 let cont = f.here();
                 f.span = until.span;
                 self.cond_branch_to(f, until, false, top);
-                let lp = f.loops.pop().unwrap_or_default();
-                let end = f.here();
-                for j in lp.exits {
-                    f.patch(j, end);
-                }
-                for j in lp.continues {
-                    f.patch(j, cont);
-                }
+                f.end_loop(cont, Vec::new());
             }
             StmtKind::Exit => self.loop_jump(f, true, s.span),
             StmtKind::Continue => self.loop_jump(f, false, s.span),
@@ -795,14 +781,7 @@ impl Compiler<'_> {
                 },
                 (None, None) => Op::Nop,
             });
-            let lp = f.loops.pop().unwrap_or_default();
-            let end = f.here();
-            for j in exit_jumps.into_iter().chain(lp.exits) {
-                f.patch(j, end);
-            }
-            for j in lp.continues {
-                f.patch(j, cont);
-            }
+            f.end_loop(cont, exit_jumps);
             return;
         }
         match (step_const, step_slot) {
@@ -862,14 +841,7 @@ impl Compiler<'_> {
                 f.emit(Op::Jmp { t: test_at });
             }
         }
-        let lp = f.loops.pop().unwrap_or_default();
-        let end = f.here();
-        for j in exit_jumps.into_iter().chain(lp.exits) {
-            f.patch(j, end);
-        }
-        for j in lp.continues {
-            f.patch(j, cont);
-        }
+        f.end_loop(cont, exit_jumps);
     }
 
     /// Loop idiom: a FOR body that only stores one loop-invariant value into
