@@ -604,6 +604,28 @@ pub enum Op {
         shift: u8,
     },
 
+    /// Loop superinstruction: a `StoreElem` whose next instruction is an
+    /// `AddBr` stepping `idx` and jumping back here (a WHILE loop whose
+    /// body is one element store, such as striking multiples in a sieve).
+    /// Runs the pair until the `AddBr` test fails, then continues after
+    /// it, in one dispatch; the `AddBr` stays in place as the second word.
+    StoreStep { idx: Slot, s: Slot, desc: u32 },
+    /// Loop superinstruction: a `ForNext` whose target `t` is a
+    /// `JzElem` (`when` TRUE) or `JnzElem` (`when` FALSE) on `i` that jumps
+    /// back here (a FOR loop whose body is guarded by `IF arr[i] THEN`).
+    /// Steps `i` over every iteration the element test would skip, then
+    /// continues at `t + 1` (the body), at `t` (the index is out of range:
+    /// the test faults there) or after the loop.
+    ForScan {
+        i: Slot,
+        lim: i32,
+        t: u16,
+        desc: u16,
+        step: i8,
+        shift: u8,
+        when: bool,
+    },
+
     /// Call a user FB body (code block `code`) on the instance at frame slot `inst`.
     CallFb { code: u32, inst: Slot },
     /// Call a user FB on the instance whose absolute address is in slot `p`.

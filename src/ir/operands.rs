@@ -35,7 +35,7 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
             f(d);
             f(idx);
         }
-        StoreElem { idx, s, .. } => {
+        StoreElem { idx, s, .. } | StoreStep { idx, s, .. } => {
             f(idx);
             f(s);
         }
@@ -132,7 +132,7 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
             f(a);
             f(b);
         }
-        ForNext { i, .. } => f(i),
+        ForNext { i, .. } | ForScan { i, .. } => f(i),
         ForNextS { i, lim, .. } => {
             f(i);
             f(lim);

@@ -34,6 +34,13 @@ pub fn verify(image: &Image) -> Result<(), String> {
                 return fail(0, "entry string reset out of range");
             }
         }
+        // An array the executor indexes with a checked index but unchecked
+        // element access: every element lies inside the frame.
+        let elements_in_frame = |desc: u32| {
+            image.arrays.get(desc as usize).is_some_and(|d| {
+                d.stride >= 1 && d.offset as u64 + d.len.saturating_mul(d.stride as u64) <= size
+            })
+        };
         for (pc, op) in c.ops.iter().enumerate() {
             let mut op = *op;
             let mut bad = false;
@@ -66,6 +73,9 @@ pub fn verify(image: &Image) -> Result<(), String> {
             {
                 return fail(pc, "two-word instruction without its operand word");
             }
+            if !super::fuse::partner_ok(&c.ops, pc) {
+                return fail(pc, "loop superinstruction without its partner instruction");
+            }
             let ok = match op {
                 Op::AddBr { t, .. } => c
                     .ops
@@ -75,12 +85,12 @@ pub fn verify(image: &Image) -> Result<(), String> {
                     .arrays
                     .get(desc as usize)
                     .is_some_and(|d| d.stride == 1 && d.offset as u64 + d.len <= size),
+                Op::ForScan { desc, .. } => elements_in_frame(desc as u32),
                 Op::LoadElem { desc, .. }
                 | Op::StoreElem { desc, .. }
+                | Op::StoreStep { desc, .. }
                 | Op::JzElem { desc, .. }
-                | Op::JnzElem { desc, .. } => image.arrays.get(desc as usize).is_some_and(|d| {
-                    d.stride >= 1 && d.offset as u64 + d.len.saturating_mul(d.stride as u64) <= size
-                }),
+                | Op::JnzElem { desc, .. } => elements_in_frame(desc),
                 Op::ElemRef { desc, .. } => image.arrays.get(desc as usize).is_some_and(|d| {
                     d.offset as u64 + d.len.saturating_mul(d.stride as u64) <= size
                 }),

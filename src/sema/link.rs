@@ -367,6 +367,9 @@ impl Compiler<'_> {
                 }
             }
         }
+        for c in &mut self.codes {
+            crate::ir::fuse::fuse_loops(&mut c.ops);
+        }
         let image = Image {
             codes: std::mem::take(&mut self.codes),
             consts: std::mem::take(&mut self.consts),

@@ -22,24 +22,36 @@ pub fn negate(c: Cmp) -> Cmp {
     }
 }
 
-/// `v := v + x` right before a WHILE test `v cmp K` becomes one `AddBr`
+/// A condition `NOT c` branches on `c` the other way round (so that
+/// `IF NOT f[i]` and `IF NOT (a < b)` keep their fused branches).
+fn strip_not(cond: &Expr, when: bool) -> (&Expr, bool) {
+    match &cond.kind {
+        ExprKind::Unary(crate::syntax::ast::UnaryOp::Not, inner) => strip_not(inner, !when),
+        _ => (cond, when),
+    }
+}
+
+/// `v := v + x` (or `v + 3`) right before a WHILE test `v cmp K` becomes one `AddBr`
 /// that steps and branches back; the test stays in place for the loop
 /// entry and for CONTINUE, and runs once more only when the loop ends.
 fn fuse_step_and_test(f: &mut Fcx, cond_at: usize, top: u32) {
     if cond_at == 0 || cond_at + 1 != f.ops.len() {
         return;
     }
-    let (
-        Op::AddS { d, a, b, shift },
-        Op::JnCmpSI {
-            a: tested,
-            imm,
-            cmp,
-            t,
-        },
-    ) = (f.ops[cond_at - 1], f.ops[cond_at])
+    let Op::JnCmpSI {
+        a: tested,
+        imm,
+        cmp,
+        t,
+    } = f.ops[cond_at]
     else {
         return;
+    };
+    let (d, a, b, shift) = match f.ops[cond_at - 1] {
+        Op::AddS { d, a, b, shift } => (d, a, b, shift),
+        // A constant step is read from a constant slot.
+        Op::AddSI { d, a, imm, shift } => (d, a, f.const_slot(imm as i64 as u64), shift),
+        _ => return,
     };
     let (Ok(imm), Ok(target)) = (i16::try_from(imm), u16::try_from(top)) else {
         return;
@@ -166,7 +178,8 @@ impl Compiler<'_> {
     /// returns the jump to patch (None if the condition was invalid or is
     /// a constant that never jumps).
     pub(super) fn cond_jump(&mut self, f: &mut Fcx, cond: &Expr, when: bool) -> Option<usize> {
-        let v = self.bool_expr(f, cond)?;
+        let (test, when) = strip_not(cond, when);
+        let v = self.bool_expr(f, test, cond.span)?;
         if let Val::Const(Const::Bits(b), _) = v {
             if (b != 0) == when {
                 return Some(f.emit(Op::Jmp { t: 0 }));
@@ -179,7 +192,8 @@ impl Compiler<'_> {
 
     /// Emits a jump to `target` taken when `cond` equals `when`.
     fn cond_branch_to(&mut self, f: &mut Fcx, cond: &Expr, when: bool, target: u32) {
-        let Some(v) = self.bool_expr(f, cond) else {
+        let (test, when) = strip_not(cond, when);
+        let Some(v) = self.bool_expr(f, test, cond.span) else {
             return;
         };
         if let Val::Const(Const::Bits(b), _) = v {
@@ -254,8 +268,9 @@ impl Compiler<'_> {
         }
     }
 
-    /// A condition: must be BOOL (E303).
-    fn bool_expr(&mut self, f: &mut Fcx, cond: &Expr) -> Option<Val> {
+    /// A condition: must be BOOL (E303, reported at `whole`, the condition
+    /// as written, of which `cond` may be the operand of leading NOTs).
+    fn bool_expr(&mut self, f: &mut Fcx, cond: &Expr, whole: Span) -> Option<Val> {
         let v = self.expr(f, cond, Some(TypeTable::elem(ElemType::Bool)));
         if v.is_error() {
             return None;
@@ -264,7 +279,7 @@ impl Compiler<'_> {
             let name = self.ty_name(v.ty());
             self.diags.error(
                 "E303",
-                cond.span,
+                whole,
                 format!("condition must be BOOL, found {name}"),
             );
             return None;

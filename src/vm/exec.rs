@@ -218,18 +218,25 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
     // block so it lives in a register (an endless loop is always a
     // backward jump repeating in one block).
     let mut budget: u32 = super::WATCHDOG_STRIDE;
+    // One backward jump: counts down the budget, looks at the clock when
+    // it runs out.
+    macro_rules! tick {
+        () => {{
+            budget -= 1;
+            if budget == 0 {
+                budget = super::WATCHDOG_STRIDE;
+                if m.watchdog_expired() {
+                    fault!(FaultKind::Watchdog);
+                }
+            }
+        }};
+    }
     macro_rules! jump {
         ($t:expr) => {{
             // SAFETY: jump targets are inside the block (verified).
             let target = unsafe { start.add($t as usize) };
             if target < ip {
-                budget -= 1;
-                if budget == 0 {
-                    budget = super::WATCHDOG_STRIDE;
-                    if m.watchdog_expired() {
-                        fault!(FaultKind::Watchdog);
-                    }
-                }
+                tick!();
             }
             ip = target;
         }};
@@ -608,6 +615,76 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 w!(i, v);
                 if go {
                     jump!(t)
+                }
+            }
+            Op::StoreStep { idx, s, desc } => {
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                // SAFETY: the verifier checked that the AddBr stepping `idx`
+                // back to this instruction follows it.
+                let (b, imm, cmp, shift) = match unsafe { *ip } {
+                    Op::AddBr {
+                        b, imm, cmp, shift, ..
+                    } => (b, imm, cmp, shift),
+                    // Excluded by the verifier.
+                    _ => fault!(FaultKind::BadAddress),
+                };
+                let mut j = r!(idx);
+                loop {
+                    let i = (j as i64).wrapping_sub(ad.lo) as u64;
+                    if i >= ad.len {
+                        fault!(index_fault(j, ad));
+                    }
+                    let at = ad.offset as u64 + i * ad.stride as u64;
+                    w!(at, r!(s));
+                    if at == idx as u64 {
+                        // The element stored is the loop variable itself.
+                        j = r!(idx);
+                    }
+                    j = wrap_s(j.wrapping_add(r!(b)), shift);
+                    w!(idx, j);
+                    if !cmp.test((j as i64).cmp(&(imm as i64))) {
+                        break;
+                    }
+                    // The AddBr's jump back: a watchdog fault names it.
+                    ip = unsafe { ip.add(1) };
+                    tick!();
+                    ip = unsafe { ip.sub(1) };
+                }
+                // SAFETY: the AddBr is not the block's last instruction (Ret is).
+                ip = unsafe { ip.add(1) };
+            }
+            Op::ForScan {
+                i,
+                lim,
+                t,
+                desc,
+                step,
+                shift,
+                when,
+            } => {
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let mut v = r!(i);
+                loop {
+                    let go;
+                    (v, go) = for_next(v, step as i16, lim as i64, shift);
+                    w!(i, v);
+                    if !go {
+                        break;
+                    }
+                    tick!();
+                    let k = (v as i64).wrapping_sub(ad.lo) as u64;
+                    // SAFETY: t + 1 < block length (verified with the partner test).
+                    if k >= ad.len {
+                        // The element test at `t` reports the bad index.
+                        ip = unsafe { start.add(t as usize) };
+                        break;
+                    }
+                    if (r!(ad.offset as u64 + k * ad.stride as u64) != 0) == when {
+                        ip = unsafe { start.add(t as usize + 1) };
+                        break;
+                    }
                 }
             }
             Op::CallFb { code: c, inst } => run(m, img, c, base + inst as usize)?,
