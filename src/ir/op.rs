@@ -604,6 +604,14 @@ pub enum Op {
         shift: u8,
     },
 
+    /// `d := frame[idx + bias]`: an element of a one-slot-per-element frame
+    /// array whose index the compiler proved in range (the control
+    /// variable of an enclosing FOR loop over a constant range inside the
+    /// array bounds, never written in the loop body). The array check is
+    /// gone; the executor still keeps the access inside the frame.
+    LoadElemU { d: Slot, idx: Slot, bias: i32 },
+    /// `frame[idx + bias] := s`, proved in range as for `LoadElemU`.
+    StoreElemU { idx: Slot, s: Slot, bias: i32 },
     /// Loop superinstruction: a `StoreElem` whose next instruction is an
     /// `AddBr` stepping `idx` and jumping back here (a WHILE loop whose
     /// body is one element store, such as striking multiples in a sieve).

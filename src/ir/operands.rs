@@ -31,11 +31,14 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
             f(d);
             f(off);
         }
-        LoadElem { d, idx, .. } | ElemAddr { d, idx, .. } | ElemRef { d, idx, .. } => {
+        LoadElem { d, idx, .. }
+        | ElemAddr { d, idx, .. }
+        | ElemRef { d, idx, .. }
+        | LoadElemU { d, idx, .. } => {
             f(d);
             f(idx);
         }
-        StoreElem { idx, s, .. } | StoreStep { idx, s, .. } => {
+        StoreElem { idx, s, .. } | StoreStep { idx, s, .. } | StoreElemU { idx, s, .. } => {
             f(idx);
             f(s);
         }
@@ -172,4 +175,122 @@ pub fn target_mut(op: &mut Op) -> Option<&mut u32> {
         | Op::ForNextS { t, .. } => Some(t),
         _ => None,
     }
+}
+
+/// What an instruction may write besides its named destination slots.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SideWrites {
+    /// Nothing else.
+    None,
+    /// Array elements of the frame (through a checked index), or the
+    /// slot an index proves in range.
+    Elements,
+    /// Memory reached through an address (pointer, absolute address,
+    /// called code, string table).
+    Memory,
+}
+
+/// Calls `f` on every frame slot `op` writes by name, and says what else it
+/// may write. The match lists every instruction, so a new one must say
+/// what it writes.
+pub fn for_each_written_slot(op: &Op, f: &mut impl FnMut(u32)) -> SideWrites {
+    use Op::*;
+    match *op {
+        Nop | Jmp { .. } | Jz { .. } | Jnz { .. } | JnCmpSI { .. } | JnCmpS { .. } => {}
+        JnCmpF32 { .. } | JnCmpF64 { .. } | JzElem { .. } | JnzElem { .. } | Ret => {}
+        Operand { .. } => {}
+        LoadK { d, .. }
+        | LoadI { d, .. }
+        | Mov { d, .. }
+        | LoadAbs { d, .. }
+        | LoadInd { d, .. }
+        | AddrOf { d, .. }
+        | AddrAdd { d, .. }
+        | LoadElem { d, .. }
+        | LoadElemU { d, .. }
+        | ElemAddr { d, .. }
+        | ElemRef { d, .. }
+        | AddS { d, .. }
+        | AddU { d, .. }
+        | AddSI { d, .. }
+        | SubS { d, .. }
+        | SubU { d, .. }
+        | MulS { d, .. }
+        | MulU { d, .. }
+        | DivS { d, .. }
+        | DivU { d, .. }
+        | ModS { d, .. }
+        | ModU { d, .. }
+        | ModSI { d, .. }
+        | NegS { d, .. }
+        | PowS { d, .. }
+        | AbsS { d, .. }
+        | AddF32 { d, .. }
+        | SubF32 { d, .. }
+        | MulF32 { d, .. }
+        | DivF32 { d, .. }
+        | NegF32 { d, .. }
+        | PowF32 { d, .. }
+        | MathF32 { d, .. }
+        | AddF64 { d, .. }
+        | SubF64 { d, .. }
+        | MulF64 { d, .. }
+        | DivF64 { d, .. }
+        | NegF64 { d, .. }
+        | PowF64 { d, .. }
+        | MathF64 { d, .. }
+        | And { d, .. }
+        | Or { d, .. }
+        | Xor { d, .. }
+        | NotB { d, .. }
+        | NotW { d, .. }
+        | AndN { d, .. }
+        | OrN { d, .. }
+        | Shift { d, .. }
+        | CmpS { d, .. }
+        | CmpU { d, .. }
+        | CmpF32 { d, .. }
+        | CmpF64 { d, .. }
+        | CmpSI { d, .. }
+        | CmpStr { d, .. }
+        | Convert { d, .. }
+        | MulAddF32 { d, .. }
+        | MulAddF64 { d, .. }
+        | CMov { d, .. }
+        | MinMaxS { d, .. }
+        | MinMaxU { d, .. }
+        | MinMaxF32 { d, .. }
+        | MinMaxF64 { d, .. }
+        | Mux { d, .. }
+        | MulTimeF64 { d, .. }
+        | DivTimeF64 { d, .. }
+        | FromStr { d, .. }
+        | Clock { d }
+        | AddBr { d, .. } => f(d),
+        IndexStep { acc, .. } => f(acc),
+        ForNext { i, .. } | ForNextS { i, .. } | ForScan { i, .. } => f(i),
+        FillElems { i, .. } => {
+            f(i);
+            return SideWrites::Elements;
+        }
+        StoreStep { idx, .. } => {
+            f(idx);
+            return SideWrites::Elements;
+        }
+        StoreElem { .. } | StoreElemU { .. } => return SideWrites::Elements,
+        // The result slot of a string function may be written (LEN, FIND).
+        StrCall { d, .. } => {
+            f(d);
+            return SideWrites::Memory;
+        }
+        StoreAbs { .. } | StoreInd { .. } | MemCopy { .. } | StrMov { .. } => {
+            return SideWrites::Memory;
+        }
+        StrConst { .. } | ToStr { .. } | Sfc { .. } => return SideWrites::Memory,
+        CallFb { .. } | CallFbInd { .. } | CallNative { .. } | CallNativeInd { .. } => {
+            return SideWrites::Memory;
+        }
+        CallFn { .. } => return SideWrites::Memory,
+    }
+    SideWrites::None
 }

@@ -3,6 +3,7 @@
 //! typed IR for each POU body in the same walk. All diagnostics are
 //! collected; nothing stops at the first error.
 
+mod bounds;
 mod calls;
 pub mod consts;
 mod declare;

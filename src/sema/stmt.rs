@@ -772,6 +772,21 @@ impl Compiler<'_> {
         self.stmts(f, body);
         f.for_vars.pop();
         let cont = f.here();
+        // With a constant start, limit and step the back edge is a ForNext
+        // (below): the body sees only start..=limit.
+        if let (Some(st), Some(l), Val::Const(Const::Bits(b0), _)) = (step_const, lim_imm, &v0)
+            && e.is_signed_int()
+            && i16::try_from(st).is_ok()
+            && let Ok(s0) = i64::try_from(super::consts::slot_to_int(*b0, e))
+        {
+            super::bounds::drop_proven_checks(
+                &mut f.ops[body_at as usize..cont as usize],
+                &self.arrays,
+                i,
+                s0.min(l as i64),
+                s0.max(l as i64),
+            );
+        }
         f.span = span;
         let shift = super::typeck::shift_of(e);
         if let Some(st) = step_const

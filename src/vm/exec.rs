@@ -274,6 +274,22 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 }
                 w!(d, r!(ad.offset as u64 + i * ad.stride as u64));
             }
+            Op::LoadElemU { d, idx, bias } => {
+                // The index is proved in range; staying inside the frame is
+                // still checked, so memory safety never rests on the proof.
+                let at = (r!(idx) as i64).wrapping_add(bias as i64) as u64;
+                if at >= block.frame_size as u64 {
+                    fault!(FaultKind::BadAddress);
+                }
+                w!(d, r!(at));
+            }
+            Op::StoreElemU { idx, s, bias } => {
+                let at = (r!(idx) as i64).wrapping_add(bias as i64) as u64;
+                if at >= block.frame_size as u64 {
+                    fault!(FaultKind::BadAddress);
+                }
+                w!(at, r!(s));
+            }
             Op::StoreElem { idx, s, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
                 let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
@@ -647,9 +663,17 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                         break;
                     }
                     // The AddBr's jump back: a watchdog fault names it.
-                    ip = unsafe { ip.add(1) };
-                    tick!();
-                    ip = unsafe { ip.sub(1) };
+                    budget -= 1;
+                    if budget == 0 {
+                        budget = super::WATCHDOG_STRIDE;
+                        if m.watchdog_expired() {
+                            return Err(Fault {
+                                kind: FaultKind::Watchdog,
+                                code,
+                                pc: pc!() as u32,
+                            });
+                        }
+                    }
                 }
                 // SAFETY: the AddBr is not the block's last instruction (Ret is).
                 ip = unsafe { ip.add(1) };

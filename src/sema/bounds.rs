@@ -1,0 +1,149 @@
+//! Index range proofs. Inside `FOR i := a TO b BY k` with constant `a`,
+//! `b` and `k`, the body only ever sees `a <= i <= b` (the loop's back
+//! edge tests the exact sum, so `i` never wraps into the body). When that
+//! range lies inside an array's bounds and nothing in the body can write
+//! `i`, the element accesses `arr[i]` cannot fail their bounds check: they
+//! become `LoadElemU` / `StoreElemU`, which skip it.
+
+use crate::ir::image::ArrayDesc;
+use crate::ir::op::{Op, Slot};
+use crate::ir::operands::for_each_written_slot;
+
+/// Rewrites the element accesses of `body` indexed by `i` whose array
+/// covers `lo..=hi`, if the body provably leaves `i` alone.
+pub(super) fn drop_proven_checks(body: &mut [Op], arrays: &[ArrayDesc], i: Slot, lo: i64, hi: i64) {
+    if !body.iter().all(|op| leaves_alone(op, i)) {
+        return;
+    }
+    let bias_of = |desc: u32| {
+        let a = arrays.get(desc as usize)?;
+        let inside =
+            a.stride == 1 && a.lo <= lo && hi < a.lo.checked_add(i64::try_from(a.len).ok()?)?;
+        inside.then(|| i32::try_from(a.offset as i64 - a.lo).ok())?
+    };
+    for op in body.iter_mut() {
+        *op = match *op {
+            Op::LoadElem { d, idx, desc } if idx == i => match bias_of(desc) {
+                Some(bias) => Op::LoadElemU { d, idx, bias },
+                None => continue,
+            },
+            Op::StoreElem { idx, s, desc } if idx == i => match bias_of(desc) {
+                Some(bias) => Op::StoreElemU { idx, s, bias },
+                None => continue,
+            },
+            _ => continue,
+        };
+    }
+}
+
+/// Whether `op` certainly does not change slot `i`, a plain variable of the
+/// frame (never an array element or a member of an instance): it does not
+/// write it by name, does not take its address (a function could write
+/// through a VAR_IN_OUT), and is not a call of a user FB (whose instance
+/// may keep a VAR_IN_OUT address from an earlier call).
+fn leaves_alone(op: &Op, i: Slot) -> bool {
+    let mut writes_i = false;
+    for_each_written_slot(op, &mut |s| writes_i |= s == i);
+    let escapes = matches!(*op, Op::AddrOf { off, .. } if off == i);
+    let user_call = matches!(
+        op,
+        Op::CallFb { .. } | Op::CallFbInd { .. } | Op::Sfc { .. }
+    );
+    !writes_i && !escapes && !user_call
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::source::Span;
+
+    fn array(offset: u32, lo: i64, len: u64) -> ArrayDesc {
+        ArrayDesc {
+            offset,
+            lo,
+            len,
+            stride: 1,
+            span: Span::default(),
+        }
+    }
+
+    fn load(desc: u32) -> Op {
+        Op::LoadElem { d: 9, idx: 2, desc }
+    }
+
+    #[test]
+    fn accesses_inside_the_bounds_lose_their_check() {
+        // a: [0..9] at slot 20, b: [1..5] at slot 40.
+        let arrays = [array(20, 0, 10), array(40, 1, 5)];
+        let mut body = [
+            load(0),
+            Op::StoreElem {
+                idx: 2,
+                s: 9,
+                desc: 0,
+            },
+            load(1),
+        ];
+        drop_proven_checks(&mut body, &arrays, 2, 0, 9);
+        assert!(matches!(
+            body[0],
+            Op::LoadElemU {
+                d: 9,
+                idx: 2,
+                bias: 20
+            }
+        ));
+        assert!(matches!(
+            body[1],
+            Op::StoreElemU {
+                idx: 2,
+                s: 9,
+                bias: 20
+            }
+        ));
+        // 0..=9 is not inside b's 1..=5: still checked.
+        assert!(matches!(body[2], Op::LoadElem { .. }));
+        let mut body = [load(1)];
+        drop_proven_checks(&mut body, &arrays, 2, 1, 5);
+        assert!(matches!(body[0], Op::LoadElemU { bias: 39, .. }));
+    }
+
+    #[test]
+    fn a_body_that_may_change_the_index_keeps_every_check() {
+        let arrays = [array(20, 0, 10)];
+        let changes = [
+            Op::AddSI {
+                d: 2,
+                a: 2,
+                imm: 1,
+                shift: 32,
+            },
+            Op::AddrOf { d: 7, off: 2 },
+            Op::CallFb { code: 1, inst: 30 },
+            Op::ForNext {
+                i: 2,
+                lim: 3,
+                t: 0,
+                step: 1,
+                shift: 32,
+            },
+        ];
+        for change in changes {
+            let mut body = [load(0), change];
+            drop_proven_checks(&mut body, &arrays, 2, 0, 9);
+            assert!(matches!(body[0], Op::LoadElem { .. }), "{change:?}");
+        }
+    }
+
+    #[test]
+    fn other_indexes_keep_their_check() {
+        let arrays = [array(20, 0, 10)];
+        let mut body = [Op::LoadElem {
+            d: 9,
+            idx: 3,
+            desc: 0,
+        }];
+        drop_proven_checks(&mut body, &arrays, 2, 0, 9);
+        assert!(matches!(body[0], Op::LoadElem { .. }));
+    }
+}
