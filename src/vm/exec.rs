@@ -1,6 +1,6 @@
 //! The dispatch loop.
 
-use super::{Fault, FaultKind, Machine, convert, strings};
+use super::{Fault, FaultKind, Machine, convert, string_ops};
 use crate::ir::image::Image;
 use crate::ir::op::{Cmp, Op, ShiftKind, wrap_s, wrap_u};
 use crate::stdlib;
@@ -412,11 +412,6 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::CmpF32 { d, a, b, cmp } => w!(d, cmp_f(f32_of(r!(a)), f32_of(r!(b)), cmp)),
             Op::CmpF64 { d, a, b, cmp } => w!(d, cmp_f(f64_of(r!(a)), f64_of(r!(b)), cmp)),
             Op::CmpSI { d, a, imm, cmp } => w!(d, cmp_s(r!(a), imm as i64 as u64, cmp)),
-            Op::CmpStr { d, a, b, cmp } => {
-                let x = &m.strings[r!(a) as usize];
-                let y = &m.strings[r!(b) as usize];
-                w!(d, cmp.test(x.as_str().cmp(y.as_str())) as u64);
-            }
 
             Op::Convert { d, a, conv } => match convert::convert(conv, r!(a)) {
                 Ok(v) => w!(d, v),
@@ -487,43 +482,16 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 }
             }
 
-            Op::StrMov { d, s } => {
-                let (di, si) = (r!(d) as usize, r!(s) as usize);
-                if di != si {
-                    let text = std::mem::take(&mut m.strings[si].text);
-                    m.strings[di].set(&text);
-                    m.strings[si].text = text;
-                }
-            }
-            Op::StrConst { d, k } => {
-                let di = r!(d) as usize;
-                m.strings[di].set(&img.str_consts[k as usize]);
-            }
-            Op::StrCall { d, a, f } => {
-                let args = [
-                    r!(a),
-                    r!(a as usize + 1),
-                    r!(a as usize + 2),
-                    r!(a as usize + 3),
-                ];
-                let dst = r!(d);
-                match strings::call(&mut m.strings, f, dst, &args) {
-                    Ok(Some(v)) => w!(d, v),
-                    Ok(None) => {}
-                    Err(kind) => fault!(kind),
-                }
-            }
-            Op::ToStr { d, a, ty } => {
-                let text =
-                    crate::runtime::format::format_value(img.scalar_types[ty as usize], r!(a));
-                let di = r!(d) as usize;
-                m.strings[di].set(&text);
-            }
-            Op::FromStr { d, a, ty } => {
-                let text = m.strings[r!(a) as usize].as_str();
-                match crate::sema::consts::parse_scalar(text, img.scalar_types[ty as usize]) {
-                    Some(v) => w!(d, v),
-                    None => fault!(FaultKind::ConversionOverflow),
+            Op::CmpStr { .. }
+            | Op::StrMov { .. }
+            | Op::StrConst { .. }
+            | Op::StrCall { .. }
+            | Op::ToStr { .. }
+            | Op::FromStr { .. } => {
+                // SAFETY: the instruction's frame operands lie inside the
+                // frame at fp (verified at link time).
+                if let Err(kind) = unsafe { string_ops::run(m, img, fp, op) } {
+                    fault!(kind);
                 }
             }
 

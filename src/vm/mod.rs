@@ -10,6 +10,7 @@ mod chart;
 mod convert;
 mod exec;
 mod fault;
+mod string_ops;
 mod strings;
 
 pub use fault::{Fault, FaultKind};
