@@ -177,39 +177,32 @@ pub fn target_mut(op: &mut Op) -> Option<&mut u32> {
     }
 }
 
-/// What an instruction may write besides its named destination slots.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SideWrites {
-    /// Nothing else.
-    None,
-    /// Array elements of the frame (through a checked index), or the
-    /// slot an index proves in range.
-    Elements,
-    /// Memory reached through an address (pointer, absolute address,
-    /// called code, string table).
-    Memory,
+/// The frame slot an instruction writes by name. (Array elements, memory
+/// reached through addresses and called code are not named slots.)
+pub struct Writes<'a> {
+    /// The frame slot written by name, if any.
+    pub slot: Option<&'a mut u32>,
+    /// Whether that slot only receives the instruction's result, so the
+    /// emitter may point it elsewhere (false for accumulators, loop
+    /// variables and slots written beside other effects).
+    pub result: bool,
 }
 
-/// Calls `f` on every frame slot `op` writes by name, and says what else it
-/// may write. The match lists every instruction, so a new one must say
-/// what it writes.
-pub fn for_each_written_slot(op: &Op, f: &mut impl FnMut(u32)) -> SideWrites {
+/// What `op` writes. The match lists every instruction, so a new one must
+/// say what it writes.
+pub fn writes(op: &mut Op) -> Writes<'_> {
     use Op::*;
-    match *op {
-        Nop | Jmp { .. } | Jz { .. } | Jnz { .. } | JnCmpSI { .. } | JnCmpS { .. } => {}
-        JnCmpF32 { .. } | JnCmpF64 { .. } | JzElem { .. } | JnzElem { .. } | Ret => {}
-        Operand { .. } => {}
+    let (slot, result) = match op {
+        Nop | Jmp { .. } | Jz { .. } | Jnz { .. } | JnCmpSI { .. } | JnCmpS { .. } => (None, false),
+        JnCmpF32 { .. } | JnCmpF64 { .. } | JzElem { .. } | JnzElem { .. } | Ret => (None, false),
+        Operand { .. } => (None, false),
         LoadK { d, .. }
         | LoadI { d, .. }
         | Mov { d, .. }
         | LoadAbs { d, .. }
         | LoadInd { d, .. }
-        | AddrOf { d, .. }
-        | AddrAdd { d, .. }
         | LoadElem { d, .. }
         | LoadElemU { d, .. }
-        | ElemAddr { d, .. }
-        | ElemRef { d, .. }
         | AddS { d, .. }
         | AddU { d, .. }
         | AddSI { d, .. }
@@ -254,8 +247,6 @@ pub fn for_each_written_slot(op: &Op, f: &mut impl FnMut(u32)) -> SideWrites {
         | CmpSI { d, .. }
         | CmpStr { d, .. }
         | Convert { d, .. }
-        | MulAddF32 { d, .. }
-        | MulAddF64 { d, .. }
         | CMov { d, .. }
         | MinMaxS { d, .. }
         | MinMaxU { d, .. }
@@ -263,34 +254,40 @@ pub fn for_each_written_slot(op: &Op, f: &mut impl FnMut(u32)) -> SideWrites {
         | MinMaxF64 { d, .. }
         | Mux { d, .. }
         | MulTimeF64 { d, .. }
+        | MulAddF32 { d, .. }
+        | MulAddF64 { d, .. }
         | DivTimeF64 { d, .. }
+        | Clock { d } => (Some(d), true),
+        AddrOf { d, .. }
+        | AddrAdd { d, .. }
+        | ElemAddr { d, .. }
+        | ElemRef { d, .. }
         | FromStr { d, .. }
-        | Clock { d }
-        | AddBr { d, .. } => f(d),
-        IndexStep { acc, .. } => f(acc),
-        ForNext { i, .. } | ForNextS { i, .. } | ForScan { i, .. } => f(i),
-        FillElems { i, .. } => {
-            f(i);
-            return SideWrites::Elements;
-        }
-        StoreStep { idx, .. } => {
-            f(idx);
-            return SideWrites::Elements;
-        }
-        StoreElem { .. } | StoreElemU { .. } => return SideWrites::Elements,
+        | AddBr { d, .. } => (Some(d), false),
+        IndexStep { acc: d, .. }
+        | ForNext { i: d, .. }
+        | ForNextS { i: d, .. }
+        | ForScan { i: d, .. }
+        | FillElems { i: d, .. }
+        | StoreStep { idx: d, .. }
         // The result slot of a string function may be written (LEN, FIND).
-        StrCall { d, .. } => {
-            f(d);
-            return SideWrites::Memory;
-        }
-        StoreAbs { .. } | StoreInd { .. } | MemCopy { .. } | StrMov { .. } => {
-            return SideWrites::Memory;
-        }
-        StrConst { .. } | ToStr { .. } | Sfc { .. } => return SideWrites::Memory,
-        CallFb { .. } | CallFbInd { .. } | CallNative { .. } | CallNativeInd { .. } => {
-            return SideWrites::Memory;
-        }
-        CallFn { .. } => return SideWrites::Memory,
-    }
-    SideWrites::None
+        | StrCall { d, .. } => (Some(d), false),
+        // Array elements, memory reached through addresses, strings and
+        // called code are not named slots.
+        StoreElem { .. }
+        | StoreElemU { .. }
+        | StoreAbs { .. }
+        | StoreInd { .. }
+        | MemCopy { .. }
+        | StrMov { .. }
+        | StrConst { .. }
+        | ToStr { .. }
+        | Sfc { .. }
+        | CallFb { .. }
+        | CallFbInd { .. }
+        | CallNative { .. }
+        | CallNativeInd { .. }
+        | CallFn { .. } => (None, false),
+    };
+    Writes { slot, result }
 }

@@ -7,7 +7,7 @@
 
 use crate::ir::image::ArrayDesc;
 use crate::ir::op::{Op, Slot};
-use crate::ir::operands::for_each_written_slot;
+use crate::ir::operands::writes;
 
 /// Rewrites the element accesses of `body` indexed by `i` whose array
 /// covers `lo..=hi`, if the body provably leaves `i` alone.
@@ -42,8 +42,8 @@ pub(super) fn drop_proven_checks(body: &mut [Op], arrays: &[ArrayDesc], i: Slot,
 /// through a VAR_IN_OUT), and is not a call of a user FB (whose instance
 /// may keep a VAR_IN_OUT address from an earlier call).
 fn leaves_alone(op: &Op, i: Slot) -> bool {
-    let mut writes_i = false;
-    for_each_written_slot(op, &mut |s| writes_i |= s == i);
+    let mut copy = *op;
+    let writes_i = writes(&mut copy).slot.is_some_and(|s| *s == i);
     let escapes = matches!(*op, Op::AddrOf { off, .. } if off == i);
     let user_call = matches!(
         op,

@@ -378,73 +378,11 @@ fn set_dest(op: &mut Op, new: Slot) {
     }
 }
 
-/// The destination operand of an instruction that writes exactly one slot.
+/// The destination operand of an instruction that computes one value
+/// into one slot.
 fn dest_mut(op: &mut Op) -> Option<&mut Slot> {
-    use Op::*;
-    match op {
-        LoadK { d, .. }
-        | LoadI { d, .. }
-        | Mov { d, .. }
-        | LoadAbs { d, .. }
-        | LoadInd { d, .. }
-        | LoadElem { d, .. }
-        | AddS { d, .. }
-        | AddU { d, .. }
-        | AddSI { d, .. }
-        | SubS { d, .. }
-        | SubU { d, .. }
-        | MulS { d, .. }
-        | MulU { d, .. }
-        | DivS { d, .. }
-        | DivU { d, .. }
-        | ModS { d, .. }
-        | ModU { d, .. }
-        | ModSI { d, .. }
-        | NegS { d, .. }
-        | PowS { d, .. }
-        | AbsS { d, .. }
-        | AddF32 { d, .. }
-        | SubF32 { d, .. }
-        | MulF32 { d, .. }
-        | DivF32 { d, .. }
-        | NegF32 { d, .. }
-        | PowF32 { d, .. }
-        | MathF32 { d, .. }
-        | AddF64 { d, .. }
-        | SubF64 { d, .. }
-        | MulF64 { d, .. }
-        | DivF64 { d, .. }
-        | NegF64 { d, .. }
-        | PowF64 { d, .. }
-        | MathF64 { d, .. }
-        | And { d, .. }
-        | Or { d, .. }
-        | Xor { d, .. }
-        | NotB { d, .. }
-        | NotW { d, .. }
-        | AndN { d, .. }
-        | OrN { d, .. }
-        | Shift { d, .. }
-        | CmpS { d, .. }
-        | CmpU { d, .. }
-        | CmpF32 { d, .. }
-        | CmpF64 { d, .. }
-        | CmpSI { d, .. }
-        | CmpStr { d, .. }
-        | Convert { d, .. }
-        | CMov { d, .. }
-        | MinMaxS { d, .. }
-        | MinMaxU { d, .. }
-        | MinMaxF32 { d, .. }
-        | MinMaxF64 { d, .. }
-        | Mux { d, .. }
-        | MulTimeF64 { d, .. }
-        | MulAddF32 { d, .. }
-        | MulAddF64 { d, .. }
-        | DivTimeF64 { d, .. }
-        | Clock { d } => Some(d),
-        _ => None,
-    }
+    let w = crate::ir::operands::writes(op);
+    if w.result { w.slot } else { None }
 }
 
 impl Compiler<'_> {
