@@ -219,14 +219,22 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
     // backward jump repeating in one block).
     let mut budget: u32 = super::WATCHDOG_STRIDE;
     // One backward jump: counts down the budget, looks at the clock when
-    // it runs out.
+    // it runs out. A watchdog fault names the instruction at `$pc`
+    // (by default the one running).
     macro_rules! tick {
-        () => {{
+        () => {
+            tick!(pc!() - 1)
+        };
+        ($pc:expr) => {{
             budget -= 1;
             if budget == 0 {
                 budget = super::WATCHDOG_STRIDE;
                 if m.watchdog_expired() {
-                    fault!(FaultKind::Watchdog);
+                    return Err(Fault {
+                        kind: FaultKind::Watchdog,
+                        code,
+                        pc: $pc as u32,
+                    });
                 }
             }
         }};
@@ -631,17 +639,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                         break;
                     }
                     // The AddBr's jump back: a watchdog fault names it.
-                    budget -= 1;
-                    if budget == 0 {
-                        budget = super::WATCHDOG_STRIDE;
-                        if m.watchdog_expired() {
-                            return Err(Fault {
-                                kind: FaultKind::Watchdog,
-                                code,
-                                pc: pc!() as u32,
-                            });
-                        }
-                    }
+                    tick!(pc!());
                 }
                 // SAFETY: the AddBr is not the block's last instruction (Ret is).
                 ip = unsafe { ip.add(1) };
@@ -667,13 +665,14 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                     }
                     tick!();
                     let k = (v as i64).wrapping_sub(ad.lo) as u64;
-                    // SAFETY: t + 1 < block length (verified with the partner test).
                     if k >= ad.len {
                         // The element test at `t` reports the bad index.
+                        // SAFETY: t + 1 < block length (verified with the partner test).
                         ip = unsafe { start.add(t as usize) };
                         break;
                     }
                     if (r!(ad.offset as u64 + k * ad.stride as u64) != 0) == when {
+                        // SAFETY: as above.
                         ip = unsafe { start.add(t as usize + 1) };
                         break;
                     }
