@@ -40,11 +40,7 @@ fn fused(ops: &[Op], at: usize) -> Option<Op> {
             step,
             shift,
         } => {
-            let (idx, desc, back, when) = match *ops.get(t as usize)? {
-                Op::JzElem { idx, desc, t } => (idx, desc, t, true),
-                Op::JnzElem { idx, desc, t } => (idx, desc, t, false),
-                _ => return None,
-            };
+            let (idx, desc, back, when) = element_test(ops.get(t as usize)?)?;
             if idx != i || back as usize != at {
                 return None;
             }
@@ -62,6 +58,16 @@ fn fused(ops: &[Op], at: usize) -> Option<Op> {
     }
 }
 
+/// A branch on a BOOL array element as (index slot, descriptor, target,
+/// value of the element for which it falls through).
+fn element_test(op: &Op) -> Option<(u32, u32, u32, bool)> {
+    match *op {
+        Op::JzElem { idx, desc, t } => Some((idx, desc, t, true)),
+        Op::JnzElem { idx, desc, t } => Some((idx, desc, t, false)),
+        _ => None,
+    }
+}
+
 /// Whether `ops[at]`, a fused instruction, still has the partner it was
 /// fused with (checked by the verifier: the executor relies on it).
 pub fn partner_ok(ops: &[Op], at: usize) -> bool {
@@ -73,12 +79,8 @@ pub fn partner_ok(ops: &[Op], at: usize) -> bool {
         Op::ForScan {
             i, t, desc, when, ..
         } => {
-            let test = match ops.get(t as usize) {
-                Some(Op::JzElem { idx, desc, t }) => (*idx, *desc, *t, true),
-                Some(Op::JnzElem { idx, desc, t }) => (*idx, *desc, *t, false),
-                _ => return false,
-            };
-            test == (i, desc as u32, at as u32, when) && (t as usize) + 1 < ops.len()
+            ops.get(t as usize).and_then(element_test) == Some((i, desc as u32, at as u32, when))
+                && (t as usize) + 1 < ops.len()
         }
         _ => true,
     }
