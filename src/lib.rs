@@ -33,14 +33,35 @@
 
 #![warn(missing_docs)]
 
-pub mod diagnostics;
+// The stages, in pipeline order. Only what the re-exports below name is
+// the library's API; the stages themselves stay inside the crate.
+mod diagnostics;
+mod driver;
+#[doc(hidden)]
 pub mod ir;
-pub mod runtime;
-pub mod sema;
-pub mod source;
+mod runtime;
+mod sema;
+mod source;
+#[doc(hidden)]
 pub mod stdlib;
+#[doc(hidden)]
 pub mod syntax;
-pub mod types;
+mod types;
+mod value;
+#[doc(hidden)]
 pub mod vm;
 
+pub use diagnostics::{Diagnostic, Diagnostics, Severity};
+pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault, Value};
+pub use runtime::names::VarRef;
+pub use runtime::session::{Pacing, RunError, Session, StimulusBindError};
+pub use runtime::stimulus::{
+    Stimulus, StimulusCursor, StimulusError, StimulusKey, StimulusRow, parse_stimulus,
+};
+pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter};
+pub use runtime::var_error::{PathProblem, ValueProblem, VarError};
+pub use source::{FileId, SourceFile, SourceMap, Span};
+pub use types::ElemType;
+pub use value::literal::{LiteralError, format_duration, parse_time_literal};
+pub use vm::{Fault, FaultKind};

@@ -9,8 +9,7 @@
 #[path = "support/plc.rs"]
 mod plc;
 
-use plcrun::diagnostics::{Diagnostics, Severity};
-use plcrun::source::FileId;
+use plcrun::{Diagnostics, FileId, Severity};
 use plcrun::{Options, Plc};
 use rstest::rstest;
 use std::process::Command;
@@ -29,7 +28,7 @@ fn prog_after(prelude: &str, decls: &str, body: &str) -> String {
 
 /// Every diagnostic as (code, severity, `line:col`, message).
 fn diagnostics(src: &str) -> Vec<(String, Severity, String, String)> {
-    let collect = |diags: &Diagnostics, sources: &plcrun::source::SourceMap| {
+    let collect = |diags: &Diagnostics, sources: &plcrun::SourceMap| {
         diags
             .iter()
             .map(|d| {

@@ -13,7 +13,7 @@ mod plc;
 
 use plc::{compile, compile_files, lit, program};
 use plcrun::Plc;
-use plcrun::runtime::names::VarRef;
+use plcrun::VarRef;
 use rstest::rstest;
 
 /// Runs `cycles` cycles of `src`; before cycle `k`, writes `inputs(k)`;

@@ -1,23 +1,49 @@
-//! Command-line options.
+//! Command-line options, declared with clap.
+//!
+//! `plcrun FILES... --cycles N` runs a program (the `run` subcommand is
+//! implied when the first argument is not a subcommand's name);
+//! `plcrun check FILES...` only checks.
 
-use clap::Parser;
+use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
-/// `plcrun FILES... --cycles N [options]`: run a program and print a trace.
+/// The whole command line.
 #[derive(Debug, Parser)]
 #[command(
     name = "plcrun",
     version,
     about = "Run IEC 61131-3 programs (IL, ST, SFC) on a virtual clock and print a trace",
-    after_help = "Check sources without running them: plcrun check FILES...\nExit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault."
+    after_help = "Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.",
+    args_conflicts_with_subcommands = true,
+    subcommand_negates_reqs = true
 )]
+pub struct Cli {
+    /// A subcommand; without one, the arguments are those of `run`.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// `plcrun FILES... --cycles N` (same as `plcrun run ...`).
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run a program and print a trace (the default command).
+    Run(RunArgs),
+    /// Parse and check sources; exit 0 iff there is no error.
+    Check(CheckArgs),
+}
+
+/// `plcrun [run] FILES... --cycles N [options]`.
+#[derive(Debug, Args)]
 pub struct RunArgs {
     /// Source files (IL, ST and SFC may be mixed; the language is recognised from the content).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// Number of cycles to run.
-    #[arg(long)]
-    pub cycles: u64,
+    #[arg(long, required = true)]
+    pub cycles: Option<u64>,
     /// Cycle time of the implicit task (e.g. 10ms, T#100ms).
     #[arg(long, default_value = "10ms")]
     pub cycle_time: String,
@@ -51,11 +77,7 @@ pub struct RunArgs {
 }
 
 /// `plcrun check FILES...`: parse and check only.
-#[derive(Debug, Parser)]
-#[command(
-    name = "plcrun check",
-    about = "Parse and check IEC 61131-3 sources; exit 0 iff there is no error"
-)]
+#[derive(Debug, Args)]
 pub struct CheckArgs {
     /// Source files.
     #[arg(required = true)]

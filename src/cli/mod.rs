@@ -1,8 +1,7 @@
-//! Command-line front end. Exit status: 0 ok, 1 compile errors, 2 usage
-//! errors, 3 runtime fault.
+//! Command-line front end: a thin driver over the library's public API.
+//! Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.
 
 mod args;
-mod load;
 mod run;
 
 use clap::Parser;
@@ -18,20 +17,13 @@ pub const EXIT_FAULT: i32 = 3;
 
 /// Parses the command line and runs the chosen command.
 pub fn main() -> i32 {
-    let argv: Vec<std::ffi::OsString> = std::env::args_os().collect();
-    let is_check = argv.get(1).is_some_and(|a| a == "check");
-    if is_check {
-        let mut rest = vec![argv[0].clone()];
-        rest.extend(argv[2..].iter().cloned());
-        match args::CheckArgs::try_parse_from(rest) {
-            Ok(a) => run::check(&a),
-            Err(e) => usage(e),
-        }
-    } else {
-        match args::RunArgs::try_parse_from(argv) {
-            Ok(a) => run::run(&a),
-            Err(e) => usage(e),
-        }
+    match args::Cli::try_parse() {
+        Ok(cli) => match cli.command {
+            Some(args::Command::Check(a)) => run::check(&a),
+            Some(args::Command::Run(a)) => run::run(&a),
+            None => run::run(&cli.run),
+        },
+        Err(e) => usage(e),
     }
 }
 

@@ -1,49 +1,34 @@
-//! The `run` and `check` commands.
+//! The `run` and `check` commands, over the library's public API.
 
 use super::args::{CheckArgs, RunArgs};
 use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
-use plcrun::diagnostics::Diagnostics;
-use plcrun::runtime::engine::{Options, Plc, Value, check_sources};
-use plcrun::runtime::names::VarRef;
-use plcrun::runtime::stimulus::{StimulusCursor, parse_stimulus};
-use plcrun::runtime::trace::{TraceCell, TraceFormat, TraceWriter};
-use plcrun::syntax::literal::parse_duration_body;
+use plcrun::{
+    CheckOptions, Diagnostics, Options, Pacing, Plc, RunError, Session, TraceFormat, TraceWriter,
+    check as check_sources, load_files, parse_stimulus, parse_time_literal,
+};
 use std::io::Write;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 fn usage_error(msg: impl std::fmt::Display) -> i32 {
     eprintln!("error: {msg}");
     EXIT_USAGE
 }
 
-/// Parses `10ms`, `T#10ms`, `TIME#1s`.
-fn duration(text: &str) -> Result<i64, String> {
-    let t = text.trim();
-    let upper = t.to_ascii_uppercase();
-    let body = if let Some(r) = upper.strip_prefix("TIME#") {
-        &t[t.len() - r.len()..]
-    } else if let Some(r) = upper.strip_prefix("T#") {
-        &t[t.len() - r.len()..]
-    } else {
-        t
-    };
-    parse_duration_body(body)
-}
-
 /// `plcrun check FILES...`
 pub fn check(args: &CheckArgs) -> i32 {
     let mut diags = Diagnostics::new();
-    let sources = match super::load::load(&args.files, &mut diags) {
+    let sources = match load_files(&args.files, &mut diags) {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
-    let options = Options {
+    let options = CheckOptions {
         program: args.program.clone(),
-        ..Options::default()
+        ir_listing: args.dump_ir,
     };
-    let image = check_sources(&sources, &options, !args.dump_ir, &mut diags);
-    if let (true, Some(image)) = (args.dump_ir, &image) {
-        print!("{}", image.dump());
+    let report = check_sources(&sources, &options);
+    diags.extend(report.diagnostics);
+    if let Some(listing) = &report.ir_listing {
+        print!("{listing}");
     }
     eprint!("{}", diags.render(&sources));
     if diags.has_errors() {
@@ -55,102 +40,58 @@ pub fn check(args: &CheckArgs) -> i32 {
     }
 }
 
-/// `plcrun FILES... --cycles N ...`
-pub fn run(args: &RunArgs) -> i32 {
-    let cycle_time = match duration(&args.cycle_time) {
+/// The options that do not depend on the program.
+fn options(args: &RunArgs) -> Result<Options, String> {
+    let cycle_time = match parse_time_literal(&args.cycle_time) {
         Ok(ns) if ns > 0 => ns,
-        Ok(_) => return usage_error("--cycle-time must be positive"),
-        Err(e) => return usage_error(format!("--cycle-time: {e}")),
+        Ok(_) => return Err("--cycle-time must be positive".into()),
+        Err(e) => return Err(format!("--cycle-time: {e}")),
     };
-    let watchdog = match duration(&args.watchdog) {
+    let watchdog = match parse_time_literal(&args.watchdog) {
         Ok(0) => None,
         Ok(ns) if ns > 0 => Some(Duration::from_nanos(ns as u64)),
-        Ok(_) => return usage_error("--watchdog must not be negative"),
-        Err(e) => return usage_error(format!("--watchdog: {e}")),
+        Ok(_) => return Err("--watchdog must not be negative".into()),
+        Err(e) => return Err(format!("--watchdog: {e}")),
     };
-    let format: TraceFormat = match args.format.parse() {
-        Ok(f) => f,
-        Err(e) => return usage_error(e),
-    };
-    let mut diags = Diagnostics::new();
-    let sources = match super::load::load(&args.files, &mut diags) {
-        Ok(s) => s,
-        Err(e) => return usage_error(e),
-    };
-    let options = Options {
+    Ok(Options {
         cycle_time,
         program: args.program.clone(),
         watchdog,
-    };
+    })
+}
+
+/// Compiles the files; on failure, the exit status after printing why.
+fn compile(args: &RunArgs, options: &Options) -> Result<Plc, i32> {
+    let mut diags = Diagnostics::new();
+    let sources = load_files(&args.files, &mut diags).map_err(usage_error)?;
     if diags.has_errors() {
         eprint!("{}", diags.render(&sources));
-        return EXIT_COMPILE;
+        return Err(EXIT_COMPILE);
     }
-    let mut plc = match Plc::compile(sources, &options) {
-        Ok(p) => p,
-        Err(e) => {
-            eprint!("{e}");
-            // Only "which program?" problems: the user must pick one.
-            if e.diagnostics.iter().all(|d| d.code == "E208") {
-                return EXIT_USAGE;
-            }
-            return EXIT_COMPILE;
+    let plc = Plc::compile(sources, options).map_err(|e| {
+        eprint!("{e}");
+        // Only "which program?": the user must pick one.
+        if e.needs_program_choice() {
+            EXIT_USAGE
+        } else {
+            EXIT_COMPILE
         }
-    };
+    })?;
     if !plc.warnings().is_empty() {
         eprint!("{}", plc.warnings().render(plc.sources()));
     }
-    // --set
+    Ok(plc)
+}
+
+/// Builds the session: `--set`, the stimulus, the traced names.
+fn session(args: &RunArgs, mut plc: Plc) -> Result<Session, String> {
     for item in &args.set {
         let Some((name, value)) = item.split_once('=') else {
-            return usage_error(format!("--set `{item}`: expected NAME=VALUE"));
+            return Err(format!("--set `{item}`: expected NAME=VALUE"));
         };
-        if let Err(e) = plc.write(name.trim(), value) {
-            return usage_error(format!("--set {item}: {e}"));
-        }
+        plc.write(name.trim(), value)
+            .map_err(|e| format!("--set {item}: {e}"))?;
     }
-    // Stimulus: resolve columns and decode every cell before running.
-    let mut stimulus = None;
-    if let Some(path) = &args.stimulus {
-        let text = match std::fs::read_to_string(path) {
-            Ok(t) => t,
-            Err(e) => {
-                return usage_error(format!("cannot read stimulus `{}`: {e}", path.display()));
-            }
-        };
-        let stim = match parse_stimulus(&text) {
-            Ok(s) => s,
-            Err(e) => return usage_error(format!("{}: {e}", path.display())),
-        };
-        let mut columns: Vec<VarRef> = Vec::new();
-        for c in &stim.columns {
-            match plc.resolve(c) {
-                Ok(r) => columns.push(r),
-                Err(e) => return usage_error(format!("{}: column `{c}`: {e}", path.display())),
-            }
-        }
-        let mut rows: Vec<(i64, Vec<(usize, Value)>)> = Vec::new();
-        for row in &stim.rows {
-            let mut cells = Vec::new();
-            for (i, cell) in row.cells.iter().enumerate() {
-                let Some(text) = cell else { continue };
-                match plc.parse_value(&columns[i], text) {
-                    Ok(v) => cells.push((i, v)),
-                    Err(e) => {
-                        return usage_error(format!(
-                            "{}: line {}: column `{}`: {e}",
-                            path.display(),
-                            row.line,
-                            stim.columns[i]
-                        ));
-                    }
-                }
-            }
-            rows.push((row.at, cells));
-        }
-        stimulus = Some((stim, columns, rows));
-    }
-    // Trace names.
     let names: Vec<String> = if args.trace.is_empty() {
         plc.default_trace()
     } else {
@@ -160,13 +101,45 @@ pub fn run(args: &RunArgs) -> i32 {
             .filter(|s| !s.is_empty())
             .collect()
     };
-    let mut traced: Vec<VarRef> = Vec::new();
-    for n in &names {
-        match plc.resolve(n) {
-            Ok(r) => traced.push(r),
-            Err(e) => return usage_error(format!("--trace: {e}")),
-        }
+    let mut session = Session::new(plc);
+    if let Some(path) = &args.stimulus {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("cannot read stimulus `{}`: {e}", path.display()))?;
+        let stimulus = parse_stimulus(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        session
+            .bind_stimulus(stimulus)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
     }
+    session
+        .set_trace(&names)
+        .map_err(|e| format!("--trace: {e}"))?;
+    if args.realtime {
+        session.set_pacing(Pacing::WallClock);
+    }
+    Ok(session)
+}
+
+/// `plcrun FILES... --cycles N ...`
+pub fn run(args: &RunArgs) -> i32 {
+    let Some(cycles) = args.cycles else {
+        return usage_error("--cycles is required");
+    };
+    let format: TraceFormat = match args.format.parse() {
+        Ok(f) => f,
+        Err(e) => return usage_error(e),
+    };
+    let options = match options(args) {
+        Ok(o) => o,
+        Err(e) => return usage_error(e),
+    };
+    let plc = match compile(args, &options) {
+        Ok(plc) => plc,
+        Err(status) => return status,
+    };
+    let mut session = match session(args, plc) {
+        Ok(s) => s,
+        Err(e) => return usage_error(e),
+    };
     let out: Box<dyn Write> = match &args.output {
         Some(p) => match std::fs::File::create(p) {
             Ok(f) => Box::new(std::io::BufWriter::new(f)),
@@ -174,57 +147,19 @@ pub fn run(args: &RunArgs) -> i32 {
         },
         None => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
     };
+    let names = session.trace_names().to_vec();
     let mut writer = TraceWriter::new(out, format, names, args.changes_only);
-    let mut cells: Vec<TraceCell> = traced
-        .iter()
-        .map(|_| TraceCell::from_string("", false))
-        .collect();
-    let mut cursor = StimulusCursor::new();
-    let mut applied = 0usize;
-    let started = Instant::now();
-    let mut status = EXIT_OK;
-    for _ in 0..args.cycles {
-        let cycle = plc.cycle();
-        let time = plc.time();
-        if args.realtime {
-            let due = started + Duration::from_nanos(time.max(0) as u64);
-            let now = Instant::now();
-            if due > now {
-                std::thread::sleep(due - now);
-            }
-        }
-        if let Some((stim, columns, rows)) = &stimulus {
-            // The cursor hands out the due rows as the next contiguous run.
-            let due = cursor.due(stim, cycle, time).len();
-            for (_, cells) in &rows[applied..applied + due] {
-                for (col, v) in cells {
-                    plc.set(&columns[*col], v);
-                }
-            }
-            applied += due;
-        }
-        if let Err(fault) = plc.run_cycle() {
+    let status = match session.run(cycles, &mut writer) {
+        Ok(()) => EXIT_OK,
+        Err(RunError::Fault(fault)) => {
             eprintln!("error: {fault}");
-            status = EXIT_FAULT;
-            break;
+            EXIT_FAULT
         }
-        for (cell, r) in cells.iter_mut().zip(&traced) {
-            match plc.get(r) {
-                Value::Scalar(t, raw) => cell.set_value(t, raw),
-                Value::String(s, wide) => *cell = TraceCell::from_string(&s, wide),
-                Value::Enum(name, v) => {
-                    *cell = TraceCell {
-                        text: name,
-                        json: serde_json::Value::from(v),
-                    }
-                }
-            }
-        }
-        if let Err(e) = writer.row(cycle, time, &cells) {
-            eprintln!("error: cannot write the trace: {e}");
+        Err(e @ RunError::Trace(_)) => {
+            eprintln!("error: {e}");
             return EXIT_USAGE;
         }
-    }
+    };
     match writer.finish() {
         Ok(mut w) => {
             let _ = w.flush();

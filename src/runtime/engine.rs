@@ -2,10 +2,12 @@
 //! clock, read and write variables by name.
 
 use super::names::{self, VarRef};
-use crate::diagnostics::{Diagnostic, Diagnostics};
+use super::var_error::{ValueProblem, VarError};
+use crate::diagnostics::Diagnostics;
+use crate::driver::{self, Build};
 use crate::ir::image::Image;
 use crate::ir::types::TypeKind;
-use crate::sema::{self, CompileOptions};
+use crate::sema;
 use crate::source::{SourceMap, Span};
 use crate::types::ElemType;
 use crate::vm::{Fault, Machine};
@@ -49,6 +51,17 @@ impl fmt::Display for CompileError {
 }
 
 impl std::error::Error for CompileError {}
+
+impl CompileError {
+    /// True when the only errors say that the sources hold several
+    /// PROGRAMs and none was chosen ([`Options::program`] picks one): a
+    /// usage problem rather than a fault of the sources.
+    pub fn needs_program_choice(&self) -> bool {
+        self.diagnostics
+            .iter()
+            .all(|d| d.code == driver::AMBIGUOUS_PROGRAM)
+    }
+}
 
 /// A runtime fault with its place in the source and the cycle it happened in.
 #[derive(Debug, Clone, PartialEq)]
@@ -96,8 +109,8 @@ impl Value {
     /// The value as an IEC literal (`TRUE`, `42`, `T#1s`, `'x'`).
     pub fn to_literal(&self) -> String {
         match self {
-            Value::Scalar(t, raw) => super::format::format_value(*t, *raw),
-            Value::String(s, wide) => super::format::format_string(s, *wide),
+            Value::Scalar(t, raw) => crate::value::format::format_value(*t, *raw),
+            Value::String(s, wide) => crate::value::format::format_string(s, *wide),
             Value::Enum(name, _) => name.clone(),
         }
     }
@@ -148,7 +161,12 @@ impl Plc {
     /// Compiles every file of `sources`.
     pub fn compile(sources: SourceMap, options: &Options) -> Result<Plc, CompileError> {
         let mut diags = Diagnostics::new();
-        let image = check_sources(&sources, options, false, &mut diags);
+        let build = Build {
+            program: options.program.clone(),
+            cycle_time: options.cycle_time,
+            check_only: false,
+        };
+        let image = driver::compile(&sources, &build, &mut diags);
         match image {
             Some(image) if !diags.has_errors() => {
                 Ok(Plc::from_image(image, sources, diags, options))
@@ -280,17 +298,17 @@ impl Plc {
     }
 
     /// Resolves a variable name (see `docs/cli.md` for the syntax).
-    pub fn resolve(&self, name: &str) -> Result<VarRef, String> {
+    pub fn resolve(&self, name: &str) -> Result<VarRef, VarError> {
         let r = names::resolve(&self.image, name)?;
         match &self.image.types.get(r.ty).kind {
             TypeKind::Elem(_)
             | TypeKind::Str { .. }
             | TypeKind::Enum { .. }
             | TypeKind::Subrange { .. } => Ok(r),
-            _ => Err(format!(
-                "`{name}` is a {}, not a single value",
-                self.image.types.name(r.ty)
-            )),
+            _ => Err(VarError::NotAValue {
+                path: name.to_string(),
+                ty: self.image.types.name(r.ty).to_string(),
+            }),
         }
     }
 
@@ -321,54 +339,56 @@ impl Plc {
     }
 
     /// Reads a variable by name.
-    pub fn read(&self, name: &str) -> Result<Value, String> {
+    pub fn read(&self, name: &str) -> Result<Value, VarError> {
         Ok(self.get(&self.resolve(name)?))
     }
 
     /// Reads an integer variable by name.
-    pub fn read_i64(&self, name: &str) -> Result<i64, String> {
+    pub fn read_i64(&self, name: &str) -> Result<i64, VarError> {
         self.read(name)?
             .as_i64()
-            .ok_or_else(|| format!("`{name}` is not an integer"))
+            .ok_or_else(|| VarError::NotAnInteger {
+                path: name.to_string(),
+            })
     }
 
     /// Decodes an IEC literal for the type of `r` (checks it fits).
-    pub fn parse_value(&self, r: &VarRef, text: &str) -> Result<Value, String> {
+    pub fn parse_value(&self, r: &VarRef, text: &str) -> Result<Value, VarError> {
         let t = text.trim();
+        let bad = |problem| VarError::BadValue {
+            literal: t.to_string(),
+            ty: self.image.types.name(r.ty).to_string(),
+            problem,
+        };
         match &self.image.types.get(r.ty).kind {
-            TypeKind::Str { wide, .. } => {
-                let lit = crate::syntax::parse_literal(t)?;
-                match lit.value {
-                    crate::syntax::ast::LiteralValue::String { value, .. } => {
-                        Ok(Value::String(value, *wide))
-                    }
-                    _ => Err(format!("`{t}` is not a string literal (write 'text')")),
-                }
-            }
+            TypeKind::Str { wide, .. } => match crate::syntax::parse_literal(t) {
+                Ok(crate::syntax::ast::Literal {
+                    value: crate::syntax::ast::LiteralValue::String { value, .. },
+                    ..
+                }) => Ok(Value::String(value, *wide)),
+                _ => Err(bad(ValueProblem::NotAString)),
+            },
             TypeKind::Enum { values, .. } => {
                 let name = t.rsplit('#').next().unwrap_or(t);
                 values
                     .iter()
                     .find(|(n, _)| n.eq_ignore_ascii_case(name))
                     .map(|(n, v)| Value::Enum(n.clone(), *v))
-                    .ok_or_else(|| {
-                        format!("`{t}` is not a value of {}", self.image.types.name(r.ty))
-                    })
+                    .ok_or_else(|| bad(ValueProblem::NotAnEnumValue))
             }
             TypeKind::Subrange { base, lo, hi } => {
-                let raw = sema::consts::parse_scalar(t, *base).ok_or_else(|| {
-                    format!("`{t}` is not a valid {}", self.image.types.name(r.ty))
-                })?;
+                let raw = sema::consts::parse_scalar(t, *base)
+                    .ok_or_else(|| bad(ValueProblem::Invalid))?;
                 let v = raw as i64;
                 if v < *lo || v > *hi {
-                    return Err(format!("{v} is outside {}", self.image.types.name(r.ty)));
+                    return Err(bad(ValueProblem::OutsideSubrange(v)));
                 }
                 Ok(Value::Scalar(*base, raw))
             }
             _ => {
                 let e = self.image.types.scalar(r.ty).unwrap_or(ElemType::Lint);
-                let raw = sema::consts::parse_scalar(t, e)
-                    .ok_or_else(|| format!("`{t}` is not a valid {e} value"))?;
+                let raw =
+                    sema::consts::parse_scalar(t, e).ok_or_else(|| bad(ValueProblem::Invalid))?;
                 Ok(Value::Scalar(e, raw))
             }
         }
@@ -389,7 +409,7 @@ impl Plc {
     }
 
     /// Writes a variable by name from an IEC literal.
-    pub fn write(&mut self, name: &str, literal: &str) -> Result<(), String> {
+    pub fn write(&mut self, name: &str, literal: &str) -> Result<(), VarError> {
         let r = self.resolve(name)?;
         let v = self.parse_value(&r, literal)?;
         self.set(&r, &v);
@@ -400,34 +420,4 @@ impl Plc {
     pub fn default_trace(&self) -> Vec<String> {
         names::default_trace(&self.image)
     }
-}
-
-/// Parses and checks `sources`; returns the image when there is no error.
-pub fn check_sources(
-    sources: &SourceMap,
-    options: &Options,
-    check_only: bool,
-    diags: &mut Diagnostics,
-) -> Option<Image> {
-    let mut units = Vec::new();
-    for (i, file) in sources.files().iter().enumerate() {
-        let id = crate::source::FileId(i as u32);
-        units.push(crate::syntax::parse(id, &file.text, diags));
-    }
-    let opts = CompileOptions {
-        program: options.program.clone(),
-        cycle_time: options.cycle_time,
-        check_only,
-    };
-    let image = sema::compile(&units, &opts, diags);
-    if diags.has_errors() { None } else { image }
-}
-
-/// A diagnostic for a file that is not valid UTF-8.
-pub fn invalid_utf8(file: crate::source::FileId, offset: usize) -> Diagnostic {
-    Diagnostic::error(
-        "E011",
-        Span::new(file, offset, offset + 1),
-        "the file is not valid UTF-8 (invalid bytes replaced by U+FFFD)",
-    )
 }

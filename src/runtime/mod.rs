@@ -1,12 +1,16 @@
 //! Runtime: everything around the executor that talks to the outside world
 //! while a program runs.
 //!
-//! - [`format`](mod@format): values as IEC literal text (and JSON) for traces and messages;
+//! - [`engine`]: the soft PLC — compile, run cycles, read and write variables;
+//! - [`session`]: a run as the command line does it — stimulus, trace;
+//! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
+//! - [`var_error`]: why such a path cannot be resolved, read or written;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
 pub mod engine;
-pub mod format;
 pub mod names;
+pub mod session;
 pub mod stimulus;
 pub mod trace;
+pub mod var_error;

@@ -2,6 +2,7 @@
 //! the embedding API): `x`, `inst.ET`, `arr[3]`, `grid[1,2]`, `S1.X`,
 //! `prog.x` for configuration instances, and located addresses `%IX0.1`.
 
+use super::var_error::{PathProblem, VarError};
 use crate::ir::image::Image;
 use crate::ir::types::{MemberKind, TypeId, TypeKind, step_layout};
 use crate::types::ElemType;
@@ -24,23 +25,27 @@ enum Seg {
     Index(Vec<i64>),
 }
 
-fn parse_path(text: &str) -> Result<(String, Vec<Seg>), String> {
+fn parse_path(text: &str) -> Result<(String, Vec<Seg>), VarError> {
     let t = text.trim();
+    let bad = |problem| VarError::BadPath {
+        path: text.to_string(),
+        problem,
+    };
     if t.is_empty() {
-        return Err("empty variable name".into());
+        return Err(bad(PathProblem::Empty));
     }
     if t.starts_with('%') {
         return Ok((t.to_string(), Vec::new()));
     }
     let bytes: Vec<char> = t.chars().collect();
     let mut i = 0;
-    let ident = |i: &mut usize| -> Result<String, String> {
+    let ident = |i: &mut usize| -> Result<String, VarError> {
         let start = *i;
         while *i < bytes.len() && (bytes[*i].is_alphanumeric() || bytes[*i] == '_') {
             *i += 1;
         }
         if start == *i {
-            return Err(format!("`{text}` is not a variable name"));
+            return Err(bad(PathProblem::NotAName));
         }
         Ok(bytes[start..*i].iter().collect())
     };
@@ -56,18 +61,18 @@ fn parse_path(text: &str) -> Result<(String, Vec<Seg>), String> {
                 let close = bytes[i..]
                     .iter()
                     .position(|c| *c == ']')
-                    .ok_or_else(|| format!("`{text}`: missing `]`"))?;
+                    .ok_or_else(|| bad(PathProblem::MissingBracket))?;
                 let inner: String = bytes[i + 1..i + close].iter().collect();
                 let mut idx = Vec::new();
                 for part in inner.split(',') {
                     idx.push(part.trim().parse::<i64>().map_err(|_| {
-                        format!("`{text}`: array index `{}` is not an integer", part.trim())
+                        bad(PathProblem::IndexNotAnInteger(part.trim().to_string()))
                     })?);
                 }
                 segs.push(Seg::Index(idx));
                 i += close + 1;
             }
-            c => return Err(format!("`{text}`: unexpected `{c}`")),
+            c => return Err(bad(PathProblem::Unexpected(c))),
         }
     }
     Ok((root, segs))
@@ -87,7 +92,7 @@ fn normalize(text: &str) -> String {
 }
 
 /// Resolves `text` against the image; the error names what is unknown.
-pub fn resolve(image: &Image, text: &str) -> Result<VarRef, String> {
+pub fn resolve(image: &Image, text: &str) -> Result<VarRef, VarError> {
     let (root, segs) = parse_path(text)?;
     let (mut addr, mut ty) = if root.starts_with('%') {
         let key = normalize(&root);
@@ -95,7 +100,9 @@ pub fn resolve(image: &Image, text: &str) -> Result<VarRef, String> {
             .globals
             .iter()
             .find(|r| r.location.as_deref() == Some(key.as_str()))
-            .ok_or_else(|| format!("no variable is located at `{root}`"))?;
+            .ok_or_else(|| VarError::NotLocated {
+                address: root.clone(),
+            })?;
         (r.addr, r.ty)
     } else {
         find_root(image, &root)?
@@ -103,33 +110,39 @@ pub fn resolve(image: &Image, text: &str) -> Result<VarRef, String> {
     for seg in segs {
         match seg {
             Seg::Member(m) => {
-                let (off, t) = member(image, ty, &m).ok_or_else(|| {
-                    format!("`{text}`: {} has no member `{m}`", image.types.name(ty))
-                })?;
+                let Some((off, t)) = member(image, ty, &m) else {
+                    return Err(VarError::NoMember {
+                        path: text.to_string(),
+                        ty: image.types.name(ty).to_string(),
+                        member: m,
+                    });
+                };
                 addr += off;
                 ty = t;
             }
             Seg::Index(idx) => {
                 let TypeKind::Array { dims, elem } = &image.types.get(ty).kind else {
-                    return Err(format!(
-                        "`{text}`: {} is not an array",
-                        image.types.name(ty)
-                    ));
+                    return Err(VarError::NotAnArray {
+                        path: text.to_string(),
+                        ty: image.types.name(ty).to_string(),
+                    });
                 };
                 if idx.len() != dims.len() {
-                    return Err(format!(
-                        "`{text}`: the array has {} dimension(s), {} index(es) given",
-                        dims.len(),
-                        idx.len()
-                    ));
+                    return Err(VarError::IndexCount {
+                        path: text.to_string(),
+                        dimensions: dims.len(),
+                        given: idx.len(),
+                    });
                 }
                 let mut linear: u64 = 0;
                 for (i, d) in idx.iter().zip(dims) {
                     if *i < d.lo || *i > d.hi {
-                        return Err(format!(
-                            "`{text}`: index {i} is outside [{}..{}]",
-                            d.lo, d.hi
-                        ));
+                        return Err(VarError::IndexOutOfBounds {
+                            path: text.to_string(),
+                            index: *i,
+                            lo: d.lo,
+                            hi: d.hi,
+                        });
                     }
                     linear = linear * d.len() + (*i - d.lo) as u64;
                 }
@@ -145,7 +158,7 @@ pub fn resolve(image: &Image, text: &str) -> Result<VarRef, String> {
     })
 }
 
-fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId), String> {
+fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId), VarError> {
     // A variable of the (single) program, then globals, then instance names.
     if image.programs.len() == 1 {
         let inst = &image.programs[0];
@@ -172,7 +185,9 @@ fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId), String> {
     {
         return Ok((inst.base, inst.ty));
     }
-    Err(format!("unknown variable `{name}`"))
+    Err(VarError::Unknown {
+        name: name.to_string(),
+    })
 }
 
 /// Offset and type of member `name` of `ty`.

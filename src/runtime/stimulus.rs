@@ -22,7 +22,7 @@
 //! character of the field). A line whose first non-blank character is `#` is a
 //! comment; a line holding only blanks and commas is skipped as well.
 
-use crate::syntax::literal::{format_duration, parse_duration_body};
+use crate::value::literal::{format_duration, parse_duration_body};
 use std::collections::HashMap;
 use std::fmt;
 

@@ -22,9 +22,9 @@
 //! least one traced cell's text differs from the previous cycle's row (the
 //! previous row given to [`TraceWriter::row`], written or not).
 
-use crate::runtime::format::{json_value, write_value};
-use crate::syntax::literal::format_duration;
 use crate::types::ElemType;
+use crate::value::format::{format_string, json_value, write_value};
+use crate::value::literal::format_duration;
 use std::fmt::Write as _;
 use std::io::{self, Write};
 use std::str::FromStr;
@@ -74,8 +74,8 @@ impl std::fmt::Display for TraceFormat {
 /// its JSON form (JSON lines).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TraceCell {
-    /// The IEC literal text, as [`crate::runtime::format::format_value`] or
-    /// [`crate::runtime::format::format_string`] print it.
+    /// The IEC literal text, as [`crate::value::format::format_value`] or
+    /// [`format_string`] print it.
     pub text: String,
     /// The value as JSON, as [`json_value`] gives it.
     pub json: serde_json::Value,
@@ -104,7 +104,7 @@ impl TraceCell {
     /// literal as text, the plain string as JSON.
     pub fn from_string(s: &str, wide: bool) -> Self {
         TraceCell {
-            text: crate::runtime::format::format_string(s, wide),
+            text: format_string(s, wide),
             json: serde_json::Value::String(s.to_string()),
         }
     }

@@ -6,11 +6,12 @@
 use crate::diagnostics::Diagnostics;
 use crate::source::{FileId, Span};
 use crate::syntax::ast::{AddrSize, Area, DirectAddress, Ident, Literal, LiteralValue};
-use crate::syntax::literal::{
-    decode_string, decode_typed_body, parse_date_body, parse_dt_body, parse_duration_body,
-    parse_int_text, parse_real_text, parse_tod_body,
-};
+use crate::syntax::literal::decode_typed_body;
 use crate::syntax::token::{Kw, PrefixKind, Raw, Tok, prefix_kind};
+use crate::value::literal::{
+    decode_string, parse_date_body, parse_dt_body, parse_duration_body, parse_int_text,
+    parse_real_text, parse_tod_body,
+};
 use logos::Logos;
 
 /// A token with its byte range, as the grammar wants it.

@@ -48,7 +48,7 @@ pub(super) unsafe fn run(
             }
         }
         Op::ToStr { d, a, ty } => {
-            let text = crate::runtime::format::format_value(img.scalar_types[ty as usize], r(a));
+            let text = crate::value::format::format_value(img.scalar_types[ty as usize], r(a));
             m.strings[r(d) as usize].set(&text);
         }
         Op::FromStr { d, a, ty } => {

@@ -53,7 +53,7 @@ pub fn error_codes(files: &[(&str, &str)]) -> Vec<(String, String)> {
         Err(e) => e
             .diagnostics
             .iter()
-            .filter(|d| d.severity == plcrun::diagnostics::Severity::Error)
+            .filter(|d| d.severity == plcrun::Severity::Error)
             .map(|d| {
                 let loc = e.sources.location(d.span);
                 // `file:line:col` -> `line:col`

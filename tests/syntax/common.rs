@@ -1,9 +1,7 @@
 //! Helpers shared by the front-end tests.
 
-use plcrun::diagnostics::Diagnostics;
-use plcrun::source::{FileId, SourceFile};
 use plcrun::syntax::ast::*;
-use plcrun::syntax::literal::format_duration;
+use plcrun::{Diagnostics, FileId, SourceFile, format_duration};
 
 /// Parses `src`, returning the unit and `(code, line, column)` of every diagnostic.
 pub fn parse_all(src: &str) -> (CompilationUnit, Vec<(String, usize, usize)>) {

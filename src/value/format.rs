@@ -26,8 +26,8 @@
 //! before 1970 print as earlier dates and a TOD slot outside one day wraps
 //! modulo 24 hours. Nothing here panics, whatever the slot holds.
 
-use crate::syntax::literal::format_duration;
 use crate::types::ElemType;
+use crate::value::literal::format_duration;
 use std::fmt::Write;
 
 const NANOS_PER_DAY: i64 = 86_400_000_000_000;

@@ -1,0 +1,279 @@
+//! A run as the command line does it, as a library type: a compiled
+//! program, the stimulus bound to its variables, the traced variables, and
+//! one trace row per cycle.
+//!
+//! ```
+//! use plcrun::{Options, Plc, Session, TraceFormat, TraceWriter};
+//!
+//! let src = "PROGRAM P VAR_INPUT go : BOOL; END_VAR VAR_OUTPUT n : INT; END_VAR
+//!            IF go THEN n := n + 1; END_IF END_PROGRAM";
+//! let plc = Plc::compile_files(&[("p.st", src)], &Options::default())?;
+//! let names = plc.default_trace(); // the VAR_OUTPUTs: ["n"]
+//! let mut session = Session::new(plc);
+//! session.set_trace(&names)?;
+//! session.bind_stimulus(plcrun::parse_stimulus("cycle,go\n1,TRUE\n")?)?;
+//! let mut out = TraceWriter::new(Vec::new(), TraceFormat::Csv, session.trace_names().to_vec(), false);
+//! session.run(3, &mut out)?;
+//! let csv = String::from_utf8(out.finish()?)?;
+//! assert_eq!(csv, "cycle,time,n\n0,T#0s,0\n1,T#10ms,1\n2,T#20ms,2\n");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use super::engine::{Plc, RuntimeFault, Value};
+use super::names::VarRef;
+use super::stimulus::{Stimulus, StimulusCursor};
+use super::trace::{TraceCell, TraceWriter};
+use super::var_error::VarError;
+use std::fmt;
+use std::io::{self, Write};
+use std::time::{Duration, Instant};
+
+/// A stimulus column or cell that does not fit the program.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StimulusBindError {
+    /// The header of the column concerned.
+    pub column: String,
+    /// The 1-based line of the stimulus file, for a cell (`None` for the
+    /// header).
+    pub line: Option<usize>,
+    /// What does not fit.
+    pub error: VarError,
+}
+
+impl fmt::Display for StimulusBindError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(line) => write!(f, "line {line}: column `{}`: {}", self.column, self.error),
+            None => write!(f, "column `{}`: {}", self.column, self.error),
+        }
+    }
+}
+
+impl std::error::Error for StimulusBindError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
+/// Why [`Session::run`] stopped before its last cycle.
+#[derive(Debug)]
+pub enum RunError {
+    /// The program faulted; the PLC is stopped.
+    Fault(RuntimeFault),
+    /// The trace could not be written.
+    Trace(io::Error),
+}
+
+impl fmt::Display for RunError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RunError::Fault(fault) => fault.fmt(f),
+            RunError::Trace(e) => write!(f, "cannot write the trace: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for RunError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            RunError::Fault(fault) => Some(fault),
+            RunError::Trace(e) => Some(e),
+        }
+    }
+}
+
+/// How cycles are paced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Pacing {
+    /// As fast as possible; the clock is virtual (the default).
+    #[default]
+    Virtual,
+    /// Each cycle starts no earlier than its clock time after the run
+    /// started, measured on the wall clock.
+    WallClock,
+}
+
+/// A stimulus whose columns are resolved and whose cells are decoded.
+struct BoundStimulus {
+    stimulus: Stimulus,
+    columns: Vec<VarRef>,
+    /// Per row, the decoded non-empty cells: `(column, value)`.
+    rows: Vec<Vec<(usize, Value)>>,
+    cursor: StimulusCursor,
+    /// Rows applied so far (the cursor hands out contiguous runs).
+    applied: usize,
+}
+
+/// A program running against a stimulus, with its traced variables.
+pub struct Session {
+    plc: Plc,
+    stimulus: Option<BoundStimulus>,
+    names: Vec<String>,
+    traced: Vec<VarRef>,
+    cells: Vec<TraceCell>,
+    pacing: Pacing,
+}
+
+impl Session {
+    /// A session over `plc` with no stimulus and nothing traced yet (see
+    /// [`Self::set_trace`]; [`Plc::default_trace`] gives the names the
+    /// command line traces by default).
+    pub fn new(plc: Plc) -> Session {
+        Session {
+            plc,
+            stimulus: None,
+            names: Vec::new(),
+            traced: Vec::new(),
+            cells: Vec::new(),
+            pacing: Pacing::Virtual,
+        }
+    }
+
+    /// The PLC (to read variables, the cycle number, the clock).
+    pub fn plc(&self) -> &Plc {
+        &self.plc
+    }
+
+    /// The PLC, mutably (to write variables between cycles).
+    pub fn plc_mut(&mut self) -> &mut Plc {
+        &mut self.plc
+    }
+
+    /// Ends the session and hands the PLC back.
+    pub fn into_plc(self) -> Plc {
+        self.plc
+    }
+
+    /// Sets how cycles are paced (virtual by default).
+    pub fn set_pacing(&mut self, pacing: Pacing) {
+        self.pacing = pacing;
+    }
+
+    /// Traces these variables, in this order; names are kept as written
+    /// (trimmed) for the trace header. Each must name a single value (not
+    /// an array, structure or FB instance). On error the previous trace
+    /// list stays.
+    pub fn set_trace<S: AsRef<str>>(&mut self, names: &[S]) -> Result<(), VarError> {
+        let names: Vec<String> = names
+            .iter()
+            .map(|n| n.as_ref().trim().to_string())
+            .collect();
+        let traced = names
+            .iter()
+            .map(|n| self.plc.resolve(n))
+            .collect::<Result<Vec<_>, _>>()?;
+        self.traced = traced;
+        self.set_names(names);
+        Ok(())
+    }
+
+    fn set_names(&mut self, names: Vec<String>) {
+        self.cells = names
+            .iter()
+            .map(|_| TraceCell::from_string("", false))
+            .collect();
+        self.names = names;
+    }
+
+    /// The traced names, in column order.
+    pub fn trace_names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Binds a stimulus: resolves every column and decodes every cell now,
+    /// so that a bad cell is reported before the first cycle runs. Replaces
+    /// any stimulus bound before.
+    pub fn bind_stimulus(&mut self, stimulus: Stimulus) -> Result<(), StimulusBindError> {
+        let mut columns = Vec::with_capacity(stimulus.columns.len());
+        for name in &stimulus.columns {
+            let r = self.plc.resolve(name).map_err(|error| StimulusBindError {
+                column: name.clone(),
+                line: None,
+                error,
+            })?;
+            columns.push(r);
+        }
+        let mut rows = Vec::with_capacity(stimulus.rows.len());
+        for row in &stimulus.rows {
+            let mut cells = Vec::new();
+            for (i, cell) in row.cells.iter().enumerate() {
+                let Some(text) = cell else { continue };
+                let value =
+                    self.plc
+                        .parse_value(&columns[i], text)
+                        .map_err(|error| StimulusBindError {
+                            column: stimulus.columns[i].clone(),
+                            line: Some(row.line),
+                            error,
+                        })?;
+                cells.push((i, value));
+            }
+            rows.push(cells);
+        }
+        self.stimulus = Some(BoundStimulus {
+            stimulus,
+            columns,
+            rows,
+            cursor: StimulusCursor::new(),
+            applied: 0,
+        });
+        Ok(())
+    }
+
+    /// Runs one cycle: applies the stimulus rows due at this cycle, runs
+    /// the tasks due, and samples the traced variables (see [`Self::cells`]).
+    pub fn step(&mut self) -> Result<(), RuntimeFault> {
+        if let Some(bound) = &mut self.stimulus {
+            let (cycle, time) = (self.plc.cycle(), self.plc.time());
+            let due = bound.cursor.due(&bound.stimulus, cycle, time).len();
+            for cells in &bound.rows[bound.applied..bound.applied + due] {
+                for (col, value) in cells {
+                    self.plc.set(&bound.columns[*col], value);
+                }
+            }
+            bound.applied += due;
+        }
+        self.plc.run_cycle()?;
+        for (cell, r) in self.cells.iter_mut().zip(&self.traced) {
+            match self.plc.get(r) {
+                Value::Scalar(t, raw) => cell.set_value(t, raw),
+                Value::String(s, wide) => *cell = TraceCell::from_string(&s, wide),
+                Value::Enum(name, v) => {
+                    *cell = TraceCell {
+                        text: name,
+                        json: serde_json::Value::from(v),
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The traced values after the last [`Self::step`], one per name.
+    pub fn cells(&self) -> &[TraceCell] {
+        &self.cells
+    }
+
+    /// Runs `cycles` cycles, writing one trace row per cycle to `out`
+    /// (whose names should be [`Self::trace_names`]). Stops at the first
+    /// runtime fault or trace write error; the rows of the cycles before
+    /// it are written.
+    pub fn run<W: Write>(&mut self, cycles: u64, out: &mut TraceWriter<W>) -> Result<(), RunError> {
+        let started = Instant::now();
+        let first_time = self.plc.time();
+        for _ in 0..cycles {
+            let (cycle, time) = (self.plc.cycle(), self.plc.time());
+            if self.pacing == Pacing::WallClock {
+                let offset = Duration::from_nanos(time.saturating_sub(first_time).max(0) as u64);
+                let due = started + offset;
+                let now = Instant::now();
+                if due > now {
+                    std::thread::sleep(due - now);
+                }
+            }
+            self.step().map_err(RunError::Fault)?;
+            out.row(cycle, time, &self.cells).map_err(RunError::Trace)?;
+        }
+        Ok(())
+    }
+}
