@@ -25,9 +25,36 @@
 use crate::types::ElemType;
 use crate::value::format::{format_string, json_value, write_value};
 use crate::value::literal::format_duration;
+use serde::Serialize;
+use serde::ser::{SerializeMap, Serializer};
 use std::fmt::Write as _;
 use std::io::{self, Write};
 use std::str::FromStr;
+
+/// One JSON-lines row: `cycle`, `time`, then each traced name in order.
+#[derive(Serialize)]
+struct JsonRow<'a> {
+    cycle: u64,
+    time: &'a str,
+    #[serde(flatten)]
+    values: NamedCells<'a>,
+}
+
+/// The traced values as a JSON object, in trace order.
+struct NamedCells<'a> {
+    names: &'a [String],
+    cells: &'a [TraceCell],
+}
+
+impl Serialize for NamedCells<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(self.names.len()))?;
+        for (name, cell) in self.names.iter().zip(self.cells) {
+            map.serialize_entry(name, &cell.json)?;
+        }
+        map.end()
+    }
+}
 
 /// How a trace is written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,8 +168,6 @@ pub struct TraceWriter<W: Write> {
     cycle_text: String,
     /// Scratch for one JSON line.
     line: Vec<u8>,
-    /// `,"NAME":` for each name, JSON-escaped once.
-    json_keys: Vec<String>,
     table: TableBuffer,
 }
 
@@ -154,16 +179,6 @@ impl<W: Write> TraceWriter<W> {
         let sink = match format {
             TraceFormat::Csv => Sink::Csv(Box::new(csv::WriterBuilder::new().from_writer(out))),
             TraceFormat::Table | TraceFormat::Jsonl => Sink::Plain(out),
-        };
-        let json_keys = match format {
-            TraceFormat::Jsonl => names
-                .iter()
-                .map(|name| {
-                    let key = serde_json::Value::String(name.clone());
-                    format!(",{key}:")
-                })
-                .collect(),
-            _ => Vec::new(),
         };
         let mut table = TableBuffer::default();
         if format == TraceFormat::Table {
@@ -183,7 +198,6 @@ impl<W: Write> TraceWriter<W> {
             has_prev: false,
             cycle_text: String::new(),
             line: Vec::new(),
-            json_keys,
             table,
         }
     }
@@ -234,15 +248,16 @@ impl<W: Write> TraceWriter<W> {
             TraceFormat::Jsonl => {
                 let line = &mut self.line;
                 line.clear();
-                line.extend_from_slice(b"{\"cycle\":");
-                line.extend_from_slice(self.cycle_text.as_bytes());
-                line.extend_from_slice(b",\"time\":");
-                serde_json::to_writer(&mut *line, time.as_str())?;
-                for (key, cell) in self.json_keys.iter().zip(cells) {
-                    line.extend_from_slice(key.as_bytes());
-                    serde_json::to_writer(&mut *line, &cell.json)?;
-                }
-                line.extend_from_slice(b"}\n");
+                let row = JsonRow {
+                    cycle,
+                    time: &time,
+                    values: NamedCells {
+                        names: &self.names,
+                        cells,
+                    },
+                };
+                serde_json::to_writer(&mut *line, &row)?;
+                line.push(b'\n');
                 match &mut self.sink {
                     Sink::Plain(out) => out.write_all(line),
                     Sink::Csv(_) => Ok(()),
