@@ -155,3 +155,183 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         ir_listing,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::types::ElemType;
+
+    /// Literal texts of every shape, including malformed ones.
+    fn corpus() -> Vec<String> {
+        let mut texts: Vec<String> = [
+            "TRUE",
+            "false",
+            "True",
+            "0",
+            "1",
+            "2",
+            "-1",
+            "+1",
+            "- 5",
+            "+ 2.5",
+            "42",
+            "-42",
+            "1_000",
+            "1__0",
+            "_1",
+            "1_",
+            "32767",
+            "32768",
+            "-32768",
+            "-32769",
+            "65535",
+            "65536",
+            "255",
+            "256",
+            "-0",
+            "16#FF",
+            "16#ff",
+            "16#",
+            "16#_F",
+            "2#1010",
+            "8#17",
+            "8#18",
+            "3#12",
+            "-16#FF",
+            "16#FFFF_FFFF_FFFF_FFFF",
+            "16#1_0000_0000_0000_0000",
+            "340282366920938463463374607431768211455",
+            "1.5",
+            "-1.5",
+            "1.",
+            ".5",
+            "1e3",
+            "1E-3",
+            "1.5e+3",
+            "1e",
+            "1.5.5",
+            "3.4e38",
+            "3.5e38",
+            "1e308",
+            "1e309",
+            "-0.0",
+            "0.1",
+            "INT#5",
+            "INT#-5",
+            "int#32768",
+            "SINT#-128",
+            "SINT#128",
+            "USINT#255",
+            "UINT#-1",
+            "DINT#16#7FFFFFFF",
+            "WORD#16#FF",
+            "WORD#-1",
+            "BYTE#256",
+            "LWORD#1",
+            "REAL#1.5",
+            "REAL#2",
+            "LREAL#1e300",
+            "REAL#1e300",
+            "BOOL#1",
+            "BOOL#0",
+            "BOOL#2",
+            "BOOL#TRUE",
+            "BOOL#yes",
+            "INT#1.5",
+            "INT#",
+            "INT#TRUE",
+            "-INT#5",
+            "MyEnum#Red",
+            "Red",
+            "Color#Red#x",
+            "STRING#'x'",
+            "INT#'x'",
+            "T#1s",
+            "t#1.5s",
+            "T#-2ms",
+            "-T#2ms",
+            "TIME#1h2m3s",
+            "T#1d_2h",
+            "T#5",
+            "T#",
+            "LT#5us",
+            "LTIME#1ns",
+            "D#2024-01-31",
+            "DATE#2024-02-30",
+            "D#1969-12-31",
+            "LD#2000-02-29",
+            "TOD#12:30:15",
+            "TOD#12:30:15.5",
+            "TIME_OF_DAY#23:59:59.999",
+            "TOD#24:00:00",
+            "LTOD#00:00:00.000000001",
+            "DT#2024-01-31-12:30:15",
+            "DATE_AND_TIME#1970-01-01-00:00:00",
+            "LDT#2024-01-31-12:30:15.25",
+            "'A'",
+            "'AB'",
+            "''",
+            "'$41'",
+            "'$'",
+            "'$''",
+            "'a",
+            "\"W\"",
+            "\"$0041\"",
+            "'x' 'y'",
+            "1 2",
+            "%IX0.1",
+            "x.y",
+            "",
+            "   ",
+            "#",
+            "INT #5",
+            "16 #FF",
+            "T# 1s",
+            "1h",
+            "abc_1",
+            "_x",
+            "TRUE1",
+            "IF",
+            "END_IF",
+            "NOT TRUE",
+            "(1)",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        // Padding with blanks changes nothing.
+        let padded: Vec<String> = texts.iter().map(|t| format!("  {t}\t")).collect();
+        texts.extend(padded);
+        texts
+    }
+
+    /// The runtime's lexer-free reading of a literal agrees with the
+    /// compiler's reading of the same text through the lexer, for every
+    /// elementary type. (One deliberate difference: a value's text holds no
+    /// comments, so `1 (* c *)` is not the number 1 at run time.)
+    #[test]
+    fn runtime_literals_read_as_the_compiler_reads_them() {
+        use crate::value::text::parse_scalar;
+        let mut differences = Vec::new();
+        let mut accepted = 0;
+        for text in corpus() {
+            for ty in ElemType::ALL {
+                if ty.is_string() {
+                    continue;
+                }
+                let by_lexer = crate::sema::consts::parse_scalar(&text, ty);
+                let without = parse_scalar(&text, ty);
+                accepted += usize::from(without.is_some());
+                if by_lexer != without {
+                    differences.push(format!(
+                        "{text:?} as {ty}: lexer {by_lexer:?}, value {without:?}"
+                    ));
+                }
+            }
+        }
+        assert!(differences.is_empty(), "{}", differences.join("\n"));
+        assert!(
+            accepted > 500,
+            "only {accepted} accepted: the corpus lost its valid literals"
+        );
+    }
+}

@@ -7,9 +7,9 @@ use crate::diagnostics::Diagnostics;
 use crate::driver::{self, Build};
 use crate::ir::image::Image;
 use crate::ir::types::TypeKind;
-use crate::sema;
 use crate::source::{SourceMap, Span};
 use crate::types::ElemType;
+use crate::value::text::{Lit, parse_literal_text, parse_scalar};
 use crate::vm::{Fault, Machine};
 use std::fmt;
 use std::time::Duration;
@@ -361,11 +361,8 @@ impl Plc {
             problem,
         };
         match &self.image.types.get(r.ty).kind {
-            TypeKind::Str { wide, .. } => match crate::syntax::parse_literal(t) {
-                Ok(crate::syntax::ast::Literal {
-                    value: crate::syntax::ast::LiteralValue::String { value, .. },
-                    ..
-                }) => Ok(Value::String(value, *wide)),
+            TypeKind::Str { wide, .. } => match parse_literal_text(t) {
+                Ok((Lit::Str { value, .. }, _)) => Ok(Value::String(value, *wide)),
                 _ => Err(bad(ValueProblem::NotAString)),
             },
             TypeKind::Enum { values, .. } => {
@@ -377,8 +374,7 @@ impl Plc {
                     .ok_or_else(|| bad(ValueProblem::NotAnEnumValue))
             }
             TypeKind::Subrange { base, lo, hi } => {
-                let raw = sema::consts::parse_scalar(t, *base)
-                    .ok_or_else(|| bad(ValueProblem::Invalid))?;
+                let raw = parse_scalar(t, *base).ok_or_else(|| bad(ValueProblem::Invalid))?;
                 let v = raw as i64;
                 if v < *lo || v > *hi {
                     return Err(bad(ValueProblem::OutsideSubrange(v)));
@@ -387,8 +383,7 @@ impl Plc {
             }
             _ => {
                 let e = self.image.types.scalar(r.ty).unwrap_or(ElemType::Lint);
-                let raw =
-                    sema::consts::parse_scalar(t, e).ok_or_else(|| bad(ValueProblem::Invalid))?;
+                let raw = parse_scalar(t, e).ok_or_else(|| bad(ValueProblem::Invalid))?;
                 Ok(Value::Scalar(e, raw))
             }
         }

@@ -5,6 +5,7 @@
 //! decodes literals, classifies keywords and reports malformed input.
 
 use crate::syntax::ast::{DirectAddress, IlOperator, Literal};
+use crate::value::text::numeric_len;
 use logos::{Lexer, Logos};
 use std::fmt;
 
@@ -188,38 +189,6 @@ fn is_word_byte(c: u8) -> bool {
 fn based_body(lex: &mut Lexer<Raw>) {
     let n = run(lex.remainder().as_bytes(), is_word_byte);
     lex.bump(n);
-}
-
-/// Consumes a numeric body: sign, digits, optional `#based`, fraction and
-/// exponent. Returns the number of bytes.
-fn numeric_len(s: &[u8]) -> usize {
-    let mut i = 0;
-    if matches!(s.first(), Some(b'+' | b'-')) {
-        i += 1;
-    }
-    if s.get(i)
-        .is_some_and(|c| c.is_ascii_alphabetic() || *c == b'_')
-    {
-        return i + run(&s[i..], is_word_byte);
-    }
-    i += run(&s[i..], |c| c.is_ascii_digit() || c == b'_');
-    if s.get(i) == Some(&b'#') {
-        i += 1;
-        return i + run(&s[i..], is_word_byte);
-    }
-    if s.get(i) == Some(&b'.') && s.get(i + 1).is_some_and(u8::is_ascii_digit) {
-        i += 1 + run(&s[i + 1..], |c| c.is_ascii_digit() || c == b'_');
-    }
-    if matches!(s.get(i), Some(b'e' | b'E')) {
-        let mut j = i + 1;
-        if matches!(s.get(j), Some(b'+' | b'-')) {
-            j += 1;
-        }
-        if s.get(j).is_some_and(u8::is_ascii_digit) {
-            i = j + run(&s[j..], |c| c.is_ascii_digit() || c == b'_');
-        }
-    }
-    i
 }
 
 /// Consumes characters from `allowed`, where the separators in `seps` are

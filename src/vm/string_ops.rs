@@ -53,7 +53,7 @@ pub(super) unsafe fn run(
         }
         Op::FromStr { d, a, ty } => {
             let text = m.strings[r(a) as usize].as_str();
-            match crate::sema::consts::parse_scalar(text, img.scalar_types[ty as usize]) {
+            match crate::value::text::parse_scalar(text, img.scalar_types[ty as usize]) {
                 Some(v) => w(d, v),
                 None => return Err(FaultKind::ConversionOverflow),
             }

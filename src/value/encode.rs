@@ -1,0 +1,33 @@
+//! Numbers encoded into the 64-bit slot of an elementary type (see
+//! [`crate::types`] for the encoding of each type).
+
+use crate::types::{ElemType, Family};
+
+/// Encodes an integer into the slot of `ty`, if it fits.
+pub fn int_to_slot(v: i128, ty: ElemType) -> Option<u64> {
+    match ty.family() {
+        Family::Real => Some(if ty == ElemType::Real {
+            (v as f32).to_bits() as u64
+        } else {
+            (v as f64).to_bits()
+        }),
+        Family::Duration | Family::DateTime => i64::try_from(v).ok().map(|x| x as u64),
+        _ => {
+            let (lo, hi) = ty.int_range()?;
+            (lo..=hi).contains(&v).then_some(v as u64)
+        }
+    }
+}
+
+/// Encodes a real into the slot of `ty` (REAL or LREAL); a finite value too
+/// large for REAL does not fit.
+pub fn real_to_slot(v: f64, ty: ElemType) -> Option<u64> {
+    match ty {
+        ElemType::Real => {
+            let f = v as f32;
+            (f.is_finite() || !v.is_finite()).then_some(f.to_bits() as u64)
+        }
+        ElemType::Lreal => Some(v.to_bits()),
+        _ => None,
+    }
+}
