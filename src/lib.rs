@@ -65,3 +65,8 @@ pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use types::ElemType;
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind};
+
+/// The examples of `docs/embedding.md`, compiled and run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/embedding.md")]
+pub struct EmbeddingGuide;
