@@ -2,6 +2,7 @@
 //! clock, read and write variables by name.
 
 use super::names::{self, VarRef};
+use super::scheduler::Scheduler;
 use super::var_error::{ValueProblem, VarError};
 use crate::diagnostics::Diagnostics;
 use crate::driver::{self, Build};
@@ -137,15 +138,7 @@ pub struct Plc {
     sources: SourceMap,
     warnings: Diagnostics,
     cycle: u64,
-    base_tick: i64,
-    single_prev: Vec<bool>,
-    order: Vec<usize>,
-    due: Vec<bool>,
-}
-
-/// Greatest common divisor.
-fn gcd(a: i64, b: i64) -> i64 {
-    if b == 0 { a.abs() } else { gcd(b, a % b) }
+    scheduler: Scheduler,
 }
 
 impl Plc {
@@ -186,28 +179,14 @@ impl Plc {
     ) -> Plc {
         let mut machine = Machine::new(&image);
         machine.set_watchdog(options.watchdog);
-        let base_tick = image
-            .tasks
-            .iter()
-            .filter(|t| t.interval > 0)
-            .map(|t| t.interval)
-            .reduce(gcd)
-            .unwrap_or(options.cycle_time)
-            .max(1);
-        // Program instances ordered by task priority, then declaration.
-        let mut order: Vec<usize> = (0..image.programs.len()).collect();
-        order.sort_by_key(|&i| (image.tasks[image.programs[i].task].priority, i));
-        let single_prev = vec![false; image.tasks.len()];
+        let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
         Plc {
             image,
             machine,
             sources,
             warnings,
             cycle: 0,
-            base_tick,
-            due: vec![false; single_prev.len()],
-            single_prev,
-            order,
+            scheduler,
         }
     }
 
@@ -233,12 +212,12 @@ impl Plc {
 
     /// Duration of one base tick (the cycle time) in nanoseconds.
     pub fn cycle_time(&self) -> i64 {
-        self.base_tick
+        self.scheduler.base_tick()
     }
 
     /// The clock value of the next cycle, in nanoseconds.
     pub fn time(&self) -> i64 {
-        (self.cycle as i64).saturating_mul(self.base_tick)
+        (self.cycle as i64).saturating_mul(self.scheduler.base_tick())
     }
 
     /// Runs one cycle: every task due at this tick runs its programs.
@@ -246,23 +225,13 @@ impl Plc {
         let now = self.time();
         self.machine.now = now;
         self.machine.start_cycle();
-        // SINGLE tasks run on the rising edge of their trigger.
-        for (i, t) in self.image.tasks.iter().enumerate() {
-            self.due[i] = match t.single {
-                Some(addr) => {
-                    let v = self.machine.mem[addr as usize] != 0;
-                    let rising = v && !self.single_prev[i];
-                    self.single_prev[i] = v;
-                    rising
-                }
-                None => t.interval > 0 && now % t.interval == 0,
-            };
-        }
-        for k in 0..self.order.len() {
-            let inst = &self.image.programs[self.order[k]];
-            if !self.due[inst.task] {
+        self.scheduler
+            .start_tick(&self.image.tasks, now, &self.machine.mem);
+        for k in 0..self.scheduler.len() {
+            let Some(p) = self.scheduler.due_program(k, &self.image.programs) else {
                 continue;
-            }
+            };
+            let inst = &self.image.programs[p];
             let (code, base) = (inst.code, inst.base);
             for &(from, to) in &inst.inputs {
                 self.machine.mem[to as usize] = self.machine.mem[from as usize];
@@ -270,7 +239,7 @@ impl Plc {
             if let Err(fault) = self.machine.run(&self.image, code, base) {
                 return Err(self.locate(fault));
             }
-            let inst = &self.image.programs[self.order[k]];
+            let inst = &self.image.programs[p];
             for &(from, to) in &inst.outputs {
                 self.machine.mem[to as usize] = self.machine.mem[from as usize];
             }

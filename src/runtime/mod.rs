@@ -3,6 +3,7 @@
 //!
 //! - [`engine`]: the soft PLC — compile, run cycles, read and write variables;
 //! - [`session`]: a run as the command line does it — stimulus, trace;
+//! - [`scheduler`]: which program instances run at a tick, in which order;
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
 //! - [`var_error`]: why such a path cannot be resolved, read or written;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
@@ -10,6 +11,7 @@
 
 pub mod engine;
 pub mod names;
+pub mod scheduler;
 pub mod session;
 pub mod stimulus;
 pub mod trace;
