@@ -129,6 +129,43 @@ impl Value {
             _ => None,
         }
     }
+
+    /// The value of a BOOL.
+    pub fn as_bool(&self) -> Option<bool> {
+        match self {
+            Value::Scalar(ElemType::Bool, raw) => Some(*raw != 0),
+            _ => None,
+        }
+    }
+
+    /// The value of a REAL or LREAL (a REAL widened exactly), or of an
+    /// integer that an f64 holds exactly.
+    pub fn as_f64(&self) -> Option<f64> {
+        match self {
+            Value::Scalar(ElemType::Real, raw) => Some(f32::from_bits(*raw as u32) as f64),
+            Value::Scalar(ElemType::Lreal, raw) => Some(f64::from_bits(*raw)),
+            _ => {
+                let v = self.as_i64()?;
+                let exact = v.unsigned_abs() <= 1 << f64::MANTISSA_DIGITS;
+                exact.then_some(v as f64)
+            }
+        }
+    }
+
+    /// The text of a STRING or WSTRING.
+    pub fn as_str(&self) -> Option<&str> {
+        match self {
+            Value::String(s, _) => Some(s),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Value {
+    /// The IEC literal, as [`Value::to_literal`].
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.to_literal())
+    }
 }
 
 /// A compiled program with its running state.
