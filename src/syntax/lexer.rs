@@ -1,6 +1,6 @@
 //! The lexer: runs the `logos` scanner, decodes literals, classifies
 //! keywords, and reports malformed input as `E0xx` diagnostics (then keeps
-//! going). Line breaks become [`Tok::Eol`]; [`crate::syntax::layout`] decides
+//! going). Line breaks become [`Tok::Eol`]; [`crate::syntax::il_lines`] decides
 //! where they matter.
 
 use crate::diagnostics::Diagnostics;

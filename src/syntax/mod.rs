@@ -1,12 +1,12 @@
 //! Front-end: lexing and parsing of IL, ST and SFC source into the AST.
 //!
-//! Pipeline: [`lexer`] (logos scanner + literal decoding) → [`layout`] (IL
+//! Pipeline: [`lexer`] (logos scanner + literal decoding) → [`il_lines`] (IL
 //! line orientation) → [`parser`] (lalrpop grammar, error recovery) → [`ast`].
 
 pub mod ast;
 pub mod construct;
 pub mod depth;
-pub mod layout;
+pub mod il_lines;
 pub mod lexer;
 pub mod literal;
 pub mod parser;
@@ -20,7 +20,7 @@ use token::Tok;
 /// Parses one file. Never panics, on any input. Reports every syntax error it can (recover, don't stop at the first).
 pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> ast::CompilationUnit {
     let tokens = lexer::lex(file, text, diags);
-    let tokens = layout::layout(tokens);
+    let tokens = il_lines::keep_il_lines(tokens);
     parser::parse_tokens(construct::State::new(file, text), tokens, diags)
 }
 

@@ -42,7 +42,8 @@ const UNSUPPORTED: [&str; 16] = [
     "OVERLAP",
 ];
 
-/// Parses a laid-out token stream (see [`crate::syntax::layout`]) of `text`.
+/// Parses a token stream whose line breaks were kept or dropped by
+/// [`crate::syntax::il_lines`] (`text` is the source it came from).
 pub fn parse_tokens(
     st: State<'_>,
     tokens: Vec<Spanned>,

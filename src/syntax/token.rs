@@ -461,7 +461,7 @@ pub struct IlOpCode {
 }
 
 /// A decoded token, as handed to the grammar. `Il*` variants only appear
-/// inside Instruction List bodies, where [`crate::syntax::layout`] retags the
+/// inside Instruction List bodies, where [`crate::syntax::il_lines`] retags the
 /// first word of each line.
 #[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq)]

@@ -18,7 +18,7 @@ use crate::syntax::token::{IlOpCode, Kw, Tok};
 
 /// Keeps or drops line breaks and retags IL operator words; see the module
 /// documentation.
-pub fn layout(tokens: Vec<Spanned>) -> Vec<Spanned> {
+pub fn keep_il_lines(tokens: Vec<Spanned>) -> Vec<Spanned> {
     let regions = il_regions(&tokens);
     let mut out = Vec::with_capacity(tokens.len());
     let mut next_region = regions.iter().peekable();
@@ -360,7 +360,7 @@ mod tests {
     use crate::syntax::lexer::lex;
 
     fn kinds(src: &str) -> Vec<String> {
-        let toks = layout(lex(FileId(0), src, &mut Diagnostics::new()));
+        let toks = keep_il_lines(lex(FileId(0), src, &mut Diagnostics::new()));
         toks.into_iter()
             .map(|(_, t, _)| match t {
                 Tok::Eol => "EOL".to_string(),
