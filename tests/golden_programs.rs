@@ -117,7 +117,7 @@ const ALG01_S1: [&str; 9] = [
 
 /// The binary prints the expected trace on standard output, twice the same.
 #[test]
-fn the_binary_prints_the_expected_trace() {
+fn alg01_s1_through_the_binary_prints_the_expected_trace() {
     let first = plcrun_ok(&ALG01_S1);
     assert_trace(&first, "programs/alg01_s1.expected.csv");
     let second = plcrun_ok(&ALG01_S1);
