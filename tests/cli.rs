@@ -1,38 +1,10 @@
 //! The `plcrun` command line (docs/cli.md): options, stimulus files, trace
 //! formats, names, exit statuses.
 
-use std::process::Command;
+#[path = "support/cli.rs"]
+mod cli;
 
-fn plcrun(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_plcrun"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-/// Runs and expects success; returns standard output.
-fn ok(args: &[&str]) -> String {
-    let (code, out, err) = plcrun(args);
-    assert_eq!(code, 0, "plcrun {args:?}\n{err}");
-    out
-}
-
-/// Writes a fresh temporary file (unique per call: tests run in parallel).
-fn temp(name: &str, text: &str) -> String {
-    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("plcrun-cli-{}-{n}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_string_lossy().into_owned()
-}
+use cli::{plcrun, plcrun_ok, temp_file};
 
 /// n counts executions; b is TRUE every 5th; y := x * 2; t is the clock.
 const COUNTER: &str = "PROGRAM Count
@@ -43,12 +15,12 @@ END_PROGRAM
 ";
 
 fn counter() -> String {
-    temp("count.st", COUNTER)
+    temp_file("count.st", COUNTER)
 }
 
 #[test]
 fn default_trace_is_the_outputs_and_csv_rows_end_with_newline() {
-    let out = ok(&[&counter(), "--cycles", "3", "--format", "csv"]);
+    let out = plcrun_ok(&[&counter(), "--cycles", "3", "--format", "csv"]);
     assert_eq!(
         out,
         "cycle,time,n,b\n0,T#0s,1,FALSE\n1,T#10ms,2,FALSE\n2,T#20ms,3,FALSE\n"
@@ -58,15 +30,15 @@ fn default_trace_is_the_outputs_and_csv_rows_end_with_newline() {
 #[test]
 fn default_format_is_csv() {
     let p = counter();
-    let default = ok(&[&p, "--cycles", "2"]);
-    let csv = ok(&[&p, "--cycles", "2", "--format", "csv"]);
+    let default = plcrun_ok(&[&p, "--cycles", "2"]);
+    let csv = plcrun_ok(&[&p, "--cycles", "2", "--format", "csv"]);
     assert_eq!(default, csv);
     assert!(default.starts_with("cycle,time,"), "{default}");
 }
 
 #[test]
 fn set_gives_initial_values() {
-    let out = ok(&[
+    let out = plcrun_ok(&[
         &counter(),
         "--cycles",
         "2",
@@ -106,7 +78,7 @@ fn set_with_unknown_name_or_bad_value_is_a_usage_error() {
 #[test]
 fn changes_only_keeps_the_first_row_and_the_changes() {
     // b is TRUE when n = 5, 10 (cycles 4, 9): rows 0, 4, 5, 9, 10
-    let out = ok(&[
+    let out = plcrun_ok(&[
         &counter(),
         "--cycles",
         "12",
@@ -124,7 +96,7 @@ fn changes_only_keeps_the_first_row_and_the_changes() {
 
 #[test]
 fn table_format_aligns_the_same_values() {
-    let out = ok(&[
+    let out = plcrun_ok(&[
         &counter(),
         "--cycles",
         "11",
@@ -154,7 +126,7 @@ fn table_format_aligns_the_same_values() {
 
 #[test]
 fn jsonl_has_one_object_per_cycle_in_trace_order() {
-    let out = ok(&[
+    let out = plcrun_ok(&[
         &counter(),
         "--cycles",
         "3",
@@ -191,7 +163,7 @@ fn jsonl_has_one_object_per_cycle_in_trace_order() {
 
 #[test]
 fn output_writes_the_trace_to_a_file() {
-    let dest = temp("out.csv", "");
+    let dest = temp_file("out.csv", "");
     let (code, out, err) = plcrun(&[
         &counter(),
         "--cycles",
@@ -212,7 +184,7 @@ fn output_writes_the_trace_to_a_file() {
 #[test]
 fn cycle_time_sets_the_clock_step() {
     for (opt, t3) in [("5ms", "T#15ms"), ("T#100ms", "T#300ms"), ("1s", "T#3s")] {
-        let out = ok(&[
+        let out = plcrun_ok(&[
             &counter(),
             "--cycles",
             "4",
@@ -248,7 +220,7 @@ fn bad_option_values_are_usage_errors() {
 
 #[test]
 fn compile_errors_exit_1() {
-    let p = temp("broken.st", "PROGRAM P\nx := 1;\nEND_PROGRAM\n");
+    let p = temp_file("broken.st", "PROGRAM P\nx := 1;\nEND_PROGRAM\n");
     let (code, out, err) = plcrun(&[&p, "--cycles", "1"]);
     assert_eq!(code, 1);
     assert_eq!(out, "");
@@ -270,16 +242,16 @@ END_PROGRAM
 
 #[test]
 fn program_chooses_among_several() {
-    let p = temp("two.st", TWO);
-    let out = ok(&[&p, "--cycles", "2", "--format", "csv", "--program", "b"]);
+    let p = temp_file("two.st", TWO);
+    let out = plcrun_ok(&[&p, "--cycles", "2", "--format", "csv", "--program", "b"]);
     assert_eq!(out, "cycle,time,y\n0,T#0s,2\n1,T#10ms,4\n");
-    let out = ok(&[&p, "--cycles", "1", "--format", "csv", "--program", "A"]);
+    let out = plcrun_ok(&[&p, "--cycles", "1", "--format", "csv", "--program", "A"]);
     assert_eq!(out, "cycle,time,x\n0,T#0s,1\n");
 }
 
 #[test]
 fn ambiguous_or_unknown_program_is_a_usage_error() {
-    let p = temp("two.st", TWO);
+    let p = temp_file("two.st", TWO);
     let (code, _, err) = plcrun(&[&p, "--cycles", "1"]);
     assert_eq!(code, 2, "{err}");
     let (code, _, err) = plcrun(&[&p, "--cycles", "1", "--program", "zz"]);
@@ -300,7 +272,7 @@ fn unknown_trace_name_is_a_usage_error_naming_it() {
 
 #[test]
 fn trace_names_paths_elements_and_any_case() {
-    let out = ok(&[
+    let out = plcrun_ok(&[
         "programs/cmd_monitor.st",
         "--cycles",
         "50",
@@ -324,7 +296,7 @@ fn trace_names_paths_elements_and_any_case() {
     // Q and the alarm (no feedback) at cycle 10
     assert_eq!(lines[1 + 9], "9,T#45ms,TRUE,T#45ms,FALSE,FALSE");
     assert_eq!(lines[1 + 10], "10,T#50ms,TRUE,T#50ms,TRUE,TRUE");
-    let out = ok(&[
+    let out = plcrun_ok(&[
         "programs/comparator.st",
         "--cycles",
         "6",
@@ -341,8 +313,8 @@ fn trace_names_paths_elements_and_any_case() {
 
 #[test]
 fn stimulus_keyed_by_time() {
-    let stim = temp("time.csv", "time,x\n0ms,1\n155ms,5\nT#0.3s,7\n");
-    let out = ok(&[
+    let stim = temp_file("time.csv", "time,x\n0ms,1\n155ms,5\nT#0.3s,7\n");
+    let out = plcrun_ok(&[
         &counter(),
         "--cycles",
         "32",
@@ -364,19 +336,19 @@ fn stimulus_keyed_by_time() {
 
 #[test]
 fn stimulus_keyed_by_cycle_with_empty_cells_and_same_cycle_rows() {
-    let stim = temp(
+    let stim = temp_file(
         "cycle.csv",
         "cycle, x , s\n0, 1, 'a'\n2,,'b'\n2, 3,\n4, -4, 'c,d'\n",
     );
     // (the last cell is not CSV-quoted: 'c,d' splits into two cells)
     let (code, _, _) = plcrun(&[&counter(), "--cycles", "1", "--stimulus", &stim]);
     assert_eq!(code, 2, "a row with too many cells is rejected");
-    let stim = temp(
+    let stim = temp_file(
         "cycle.csv",
         "cycle, x , s\n0, 1, 'a'\n2,,'b'\n2, 3,\n4, -4,\"'c,d'\"\n",
     );
     // the trace is CSV too: a value containing a comma is quoted
-    let out = ok(&[
+    let out = plcrun_ok(&[
         &counter(),
         "--cycles",
         "6",
@@ -405,7 +377,7 @@ fn bad_stimulus_files_are_usage_errors() {
         ("negative.csv", "cycle,x\n-1,1\n", "-1"),
         ("badtime.csv", "time,x\n10parsecs,1\n", "10parsecs"),
     ] {
-        let stim = temp(name, text);
+        let stim = temp_file(name, text);
         let (code, out, err) = plcrun(&[&p, "--cycles", "5", "--stimulus", &stim]);
         assert_eq!(code, 2, "{name}: {err}");
         assert!(err.contains(needle), "{name}: {err}");
@@ -420,11 +392,11 @@ fn located_addresses_in_stimulus_and_trace() {
     // ALG01: SW1 is %I0.0.0.0.0, L1 is %Q0.0.0.1.7. Pressing SW1 at 100 ms
     // (cycle 10) activates step 1 and L1 in that cycle (docs/programs.md,
     // scenario s1); step 0 falls one cycle later.
-    let stim = temp(
+    let stim = temp_file(
         "alg.csv",
         "time,%I0.0.0.0.0\n0ms,FALSE\n100ms,TRUE\n150ms,FALSE\n",
     );
-    let out = ok(&[
+    let out = plcrun_ok(&[
         "programs/alg01.il",
         "--cycles",
         "20",

@@ -12,7 +12,6 @@ mod plc;
 use plcrun::{Diagnostics, FileId, Severity};
 use plcrun::{Options, Plc};
 use rstest::rstest;
-use std::process::Command;
 
 /// `PROGRAM P` with `decls` on line 3 and `body` on line 5.
 fn prog(decls: &str, body: &str) -> String {
@@ -307,41 +306,24 @@ fn errors_in_several_files_name_their_file() {
 
 // ---------------------------------------------------------------- plcrun check
 
-fn plcrun_check(files: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_plcrun"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .arg("check")
-        .args(files)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn temp_file(name: &str, text: &[u8]) -> String {
-    let dir = std::env::temp_dir().join(format!("plcrun-diag-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_string_lossy().into_owned()
-}
+#[path = "support/cli.rs"]
+mod cli;
+use cli::{plcrun, temp_file};
 
 #[test]
 fn check_exits_0_on_good_sources_even_with_warnings() {
-    let (code, err) = plcrun_check(&["programs/comparator.st", "programs/cmd_monitor.st"]);
+    let (code, _, err) = plcrun(&["check", "programs/comparator.st", "programs/cmd_monitor.st"]);
     assert_eq!(code, 0, "{err}");
-    let warn = temp_file("warn.st", prog("x : INT;", "{ pragma } x := 1;").as_bytes());
-    let (code, err) = plcrun_check(&[&warn]);
+    let warn = temp_file("warn.st", prog("x : INT;", "{ pragma } x := 1;"));
+    let (code, _, err) = plcrun(&["check", &warn]);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("W001"), "{err}");
 }
 
 #[test]
 fn check_exits_1_and_prints_every_error_with_its_place() {
-    let bad = temp_file("bad.st", prog("x : INT;", "y := 1; x := TRUE;").as_bytes());
-    let (code, err) = plcrun_check(&[&bad]);
+    let bad = temp_file("bad.st", prog("x : INT;", "y := 1; x := TRUE;"));
+    let (code, _, err) = plcrun(&["check", &bad]);
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("error[E201]"), "{err}");
     assert!(err.contains("bad.st:5:1"), "{err}");
@@ -349,19 +331,24 @@ fn check_exits_1_and_prints_every_error_with_its_place() {
     assert!(err.contains("bad.st:5:14"), "{err}");
 }
 
+/// Through the library calls `plcrun check` makes: read the files, check
+/// them, render what was found.
 #[test]
 fn check_reports_invalid_utf8() {
     let mut bytes = prog("x : INT;", "x := 1;").into_bytes();
     bytes.extend_from_slice(b"(* \xff\xfe *)\n");
-    let f = temp_file("latin.st", &bytes);
-    let (code, err) = plcrun_check(&[&f]);
-    assert_eq!(code, 1, "{err}");
+    let f = temp_file("latin.st", bytes);
+    let mut diags = Diagnostics::new();
+    let sources = plcrun::load_files(&[&f], &mut diags).expect("the file is readable");
+    diags.extend(plcrun::check(&sources, &plcrun::CheckOptions::default()).diagnostics);
+    let err = diags.render(&sources);
+    assert!(diags.has_errors(), "{err}");
     assert!(err.contains("E011"), "{err}");
 }
 
 #[test]
 fn check_of_a_missing_file_is_a_usage_error() {
-    let (code, _) = plcrun_check(&["no/such/file.st"]);
+    let (code, _, _) = plcrun(&["check", "no/such/file.st"]);
     assert_eq!(code, 2);
 }
 

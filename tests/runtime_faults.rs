@@ -1,6 +1,7 @@
 //! Runtime faults (docs/semantics.md §3, docs/cli.md "Exit status"): the PLC
 //! stops, and the fault names its kind, `file:line:col` and the cycle --
-//! through the embedding API and through the `plcrun` binary (exit 3).
+//! through the embedding API, through a `Session` writing a trace, and
+//! through the `plcrun` binary (exit 3).
 
 #[path = "support/plc.rs"]
 mod plc;
@@ -9,7 +10,6 @@ use plc::{compile, program};
 use plcrun::vm::FaultKind;
 use plcrun::{Options, Plc};
 use rstest::rstest;
-use std::process::Command;
 use std::time::{Duration, Instant};
 
 /// Body line 6 (after the empty prelude line) runs `stmt` when the cycle counter `c` reaches 3 (cycle 2).
@@ -174,27 +174,19 @@ fn watchdog_stops_an_endless_loop() {
     assert_eq!(line_col(&f.location).0, 6, "{}", f.location);
 }
 
-// ---------------------------------------------------------------- CLI
+// ---------------------------------------------------------------- session and CLI
 
-fn write_temp(name: &str, text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("plcrun-faults-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_string_lossy().into_owned()
-}
+#[path = "support/cli.rs"]
+mod cli;
+#[path = "support/library.rs"]
+mod library;
 
-fn plcrun(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_plcrun"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use cli::{plcrun, temp_file};
+use library::{TraceRequest, run_csv};
+use plcrun::RunError;
+
+/// The trace of the cycles before the fault, which a run still writes.
+const ROWS_BEFORE_THE_FAULT: &str = "cycle,time,c\n0,T#0s,1\n1,T#10ms,2\n";
 
 #[rstest]
 #[case("div.st", "a : INT := 7; z : INT;", "a := a / z;", "division by zero")]
@@ -210,28 +202,47 @@ fn plcrun(args: &[&str]) -> (i32, String, String) {
     "v[i] := 1;",
     "out of bounds"
 )]
-fn cli_exits_3_naming_the_place_and_the_cycle(
+fn a_session_stops_naming_the_place_and_the_cycle(
     #[case] file: &str,
     #[case] decls: &str,
     #[case] stmt: &str,
     #[case] message: &str,
 ) {
-    let path = write_temp(file, &faulty(decls, stmt));
+    let request = TraceRequest {
+        cycles: 10,
+        trace: Some("c"),
+        ..TraceRequest::default()
+    };
+    let (csv, outcome) = run_csv(&[(file, faulty(decls, stmt))], &request);
+    let Err(RunError::Fault(fault)) = outcome else {
+        panic!("expected a runtime fault, got {outcome:?}");
+    };
+    // What the command line prints after `error: `.
+    let shown = fault.to_string();
+    assert!(shown.contains(&format!("{file}:6:")), "{shown}");
+    assert!(shown.contains("cycle 2"), "{shown}");
+    assert!(shown.contains(message), "{shown}");
+    // The rows of the cycles before the fault are written.
+    assert_eq!(csv, ROWS_BEFORE_THE_FAULT);
+}
+
+#[test]
+fn cli_exits_3_naming_the_place_and_the_cycle() {
+    let path = temp_file("div.st", faulty("a : INT := 7; z : INT;", "a := a / z;"));
     let (code, stdout, stderr) =
         plcrun(&[&path, "--cycles", "10", "--trace", "c", "--format", "csv"]);
     assert_eq!(code, 3, "{stderr}");
     assert!(stderr.contains(&format!("{path}:6:")), "{stderr}");
     assert!(stderr.contains("cycle 2"), "{stderr}");
-    assert!(stderr.contains(message), "{stderr}");
-    // The rows of the cycles before the fault are written.
-    assert_eq!(stdout, "cycle,time,c\n0,T#0s,1\n1,T#10ms,2\n");
+    assert!(stderr.contains("division by zero"), "{stderr}");
+    assert_eq!(stdout, ROWS_BEFORE_THE_FAULT);
 }
 
 #[test]
 fn cli_watchdog_stops_an_endless_loop_with_exit_3() {
-    let path = write_temp(
+    let path = temp_file(
         "loop.st",
-        &program("", "x : INT;", "WHILE TRUE DO x := x + 1; END_WHILE;"),
+        program("", "x : INT;", "WHILE TRUE DO x := x + 1; END_WHILE;"),
     );
     let start = Instant::now();
     let (code, _, stderr) = plcrun(&[&path, "--cycles", "5", "--watchdog", "100ms"]);

@@ -1,5 +1,6 @@
-//! CHARIOT (programs/chariot.sfc) run through the real binary against the
-//! hand-derived trace in programs/chariot.expected.csv.
+//! CHARIOT (programs/chariot.sfc) against the hand-derived trace in
+//! programs/chariot.expected.csv, through the real binary (end to end, byte
+//! for byte); the step time through the library.
 //!
 //! Derivation (10 ms cycles, cycle k at k × 10 ms; semantics §5):
 //! - cycle 0: first call, INIT active; `dcy & fcA` is FALSE; no action is
@@ -16,52 +17,47 @@
 //! - cycle 60150: FcB FALSE (left B). cycle 60300: FcA TRUE: AR → INIT, KMAR
 //!   FALSE, VOM TRUE. cycle 60310: Dcy again: INIT → AV, KMAV TRUE.
 
+#[path = "support/cli.rs"]
+mod cli;
 #[path = "support/sfc_run.rs"]
 mod sfc_run;
 
-use sfc_run::{column, plcrun, repo};
+use cli::plcrun_ok;
+use sfc_run::column;
+use sfc_run::library::{TraceRequest, csv_trace, repo_files, repo_text};
 
 const TRACE: &str = "Dcy,FcA,FcB,INIT.X,AV.X,ATT.X,AR.X,KMAV,KMAR,VOM";
 
 #[test]
 fn chariot_matches_hand_derived_trace() {
-    let src = repo("programs/chariot.sfc");
-    let stim = repo("programs/chariot.csv");
-    let r = plcrun(&[
-        src.to_str().unwrap(),
+    let args = [
+        "programs/chariot.sfc",
         "--cycles",
         "60320",
         "--stimulus",
-        stim.to_str().unwrap(),
+        "programs/chariot.csv",
         "--trace",
         TRACE,
         "--format",
         "csv",
         "--changes-only",
-    ]);
-    assert_eq!(r.code, 0, "{}", r.stderr);
-    let want = std::fs::read_to_string(repo("programs/chariot.expected.csv")).unwrap();
-    assert_eq!(r.stdout, want);
+    ];
+    let printed = plcrun_ok(&args);
+    let want = repo_text("programs/chariot.expected.csv");
+    assert_eq!(printed, want);
 }
 
 #[test]
 fn chariot_waiting_step_time() {
-    let src = repo("programs/chariot.sfc");
-    let stim = repo("programs/chariot.csv");
-    let r = plcrun(&[
-        src.to_str().unwrap(),
-        "--cycles",
-        "60210",
-        "--stimulus",
-        stim.to_str().unwrap(),
-        "--trace",
-        "ATT.X,ATT.T",
-        "--format",
-        "csv",
-    ]);
-    assert_eq!(r.code, 0, "{}", r.stderr);
-    let t = column(&r.stdout, "ATT.T");
-    let x = column(&r.stdout, "ATT.X");
+    let request = TraceRequest {
+        cycles: 60210,
+        stimulus: Some(&repo_text("programs/chariot.csv")),
+        trace: Some("ATT.X,ATT.T"),
+        changes_only: false,
+    };
+    let trace = csv_trace(&repo_files(&["programs/chariot.sfc"]), &request);
+    let t = column(&trace, "ATT.T");
+    let x = column(&trace, "ATT.X");
     // Never active before cycle 100: T stays at its initial T#0s.
     assert_eq!((x[99].as_str(), t[99].as_str()), ("FALSE", "T#0s"));
     // Activated in cycle 100: T#0s, then 10 ms more each cycle.

@@ -1,11 +1,12 @@
 //! The same grafcet written as a chart and by hand (ST/IL), driven with the
-//! same stimulus through the real binary; the cycles where they differ are
-//! reported (and checked against what the methods predict).
+//! same stimulus through the library's `Session`; the cycles where they
+//! differ are reported (and checked against what the methods predict).
 
 #[path = "support/sfc_run.rs"]
 mod sfc_run;
 
-use sfc_run::{plcrun, repo, rows, write_temp};
+use sfc_run::library::{TraceRequest, csv_trace, repo_files, repo_text};
+use sfc_run::rows;
 
 #[path = "support/rng.rs"]
 mod rng;
@@ -32,27 +33,17 @@ fn random_stimulus(names: &[&str], cycles: usize, flip: u64, seed: u64) -> Strin
     s
 }
 
-/// Runs a repository program and returns its trace rows (cells after
-/// `cycle,time`).
-fn run(program: &str, stimulus_file: &str, cycles: usize, trace: &str) -> Vec<Vec<String>> {
-    let src = repo(program);
-    let n = cycles.to_string();
-    let r = plcrun(&[
-        src.to_str().unwrap(),
-        "--cycles",
-        &n,
-        "--stimulus",
-        stimulus_file,
-        "--trace",
-        trace,
-        "--format",
-        "csv",
-    ]);
-    assert_eq!(r.code, 0, "{program}: {}", r.stderr);
-    rows(&r.stdout)
-        .into_iter()
-        .map(|r| r[2..].to_vec())
-        .collect()
+/// Runs a repository program against a stimulus text and returns its
+/// trace rows (cells after `cycle,time`).
+fn run(program: &str, stimulus: &str, cycles: usize, trace: &str) -> Vec<Vec<String>> {
+    let request = TraceRequest {
+        cycles: cycles as u64,
+        stimulus: Some(stimulus),
+        trace: Some(trace),
+        changes_only: false,
+    };
+    let csv = csv_trace(&repo_files(&[program]), &request);
+    rows(&csv).into_iter().map(|r| r[2..].to_vec()).collect()
 }
 
 /// Cycles at which the two traces differ in the given columns.
@@ -75,22 +66,21 @@ fn graf1_chart_sync_and_async() {
         6,
         0x9E37_79B9_7F4A_7C15,
     );
-    let file = write_temp("graf1.csv", &stim);
     let chart = run(
         "programs/graf1_sfc.sfc",
-        &file,
+        &stim,
         GRAF1_CYCLES,
         "S10,S20,S30,X0.X,X1.X,X2.X,X3.X,X4.X",
     );
     let sync = run(
         "programs/graf1_sync.st",
-        &file,
+        &stim,
         GRAF1_CYCLES,
         "S10,S20,S30,X0,X1,X2,X3,X4",
     );
     let asyn = run(
         "programs/graf1_async.st",
-        &file,
+        &stim,
         GRAF1_CYCLES,
         "S10,S20,S30,X0,X1,X2,X3,X4",
     );
@@ -183,16 +173,15 @@ fn transfer_station_chart_and_b_ft_il() {
         5,
         0x2545_F491_4F6C_DD1D,
     );
-    let file = write_temp("transfer.csv", &stim);
     let chart = run(
         "programs/transfer_station.sfc",
-        &file,
+        &stim,
         cycles,
         "O0_0,O0_1,O0_2,O0_3,X1.X,X2.X,X3.X,X4.X",
     );
     let il = run(
         "programs/transfer_station.il",
-        &file,
+        &stim,
         cycles,
         "O0_0,O0_1,O0_2,O0_3,B_X1,B_X2,B_X3,B_X4",
     );
@@ -232,8 +221,8 @@ fn alg01_chart_against_il() {
         ("sw1_held", &[10, 30, 530, 1030, 1031]),
     ];
     for (scenario, want_steps) in cases {
-        let stim = repo(&format!("programs/alg01_{scenario}.csv"));
-        let stim = stim.to_str().unwrap();
+        let stim = repo_text(&format!("programs/alg01_{scenario}.csv"));
+        let stim = stim.as_str();
         let chart = run(
             "programs/alg01.sfc",
             stim,

@@ -1,88 +1,31 @@
-//! Runs the real `plcrun` binary on a source text (written to a temporary
-//! file) or a repository file, and returns its CSV trace or its diagnostics.
+//! Helpers of the SFC tests: run a source text through the library and get
+//! its CSV trace or its diagnostics, and read the trace's columns.
 
 #![allow(dead_code)]
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::sync::atomic::{AtomicUsize, Ordering};
+#[path = "library.rs"]
+pub mod library;
 
-static COUNTER: AtomicUsize = AtomicUsize::new(0);
+use library::{TraceRequest, check_rendered, csv_trace};
 
-/// A fresh temporary directory for one test's files.
-pub fn scratch_dir() -> PathBuf {
-    let n = COUNTER.fetch_add(1, Ordering::SeqCst);
-    let dir = std::env::temp_dir().join(format!("plcrun-sfc-{}-{n}", std::process::id()));
-    let _ = std::fs::create_dir_all(&dir);
-    dir
-}
-
-/// Path of a repository file.
-pub fn repo(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
-}
-
-/// Output of one run.
-pub struct Run {
-    /// Exit status code.
-    pub code: i32,
-    /// Standard output.
-    pub stdout: String,
-    /// Standard error.
-    pub stderr: String,
-}
-
-/// Runs plcrun with `args`.
-pub fn plcrun(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_plcrun"))
-        .args(args)
-        .output()
-        .expect("plcrun binary runs");
-    Run {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
-}
-
-/// Writes `text` to a temporary file named `name` and returns its path.
-pub fn write_temp(name: &str, text: &str) -> String {
-    let path = scratch_dir().join(name);
-    std::fs::write(&path, text).expect("temp file");
-    path.to_string_lossy().into_owned()
-}
-
-/// Runs a source text for `cycles` cycles with an optional stimulus text,
-/// tracing `trace`; returns the CSV trace (panics with the diagnostics if
-/// the run fails).
+/// Runs a source text (file name `prog.st`) for `cycles` cycles with an
+/// optional stimulus text, tracing `trace`; returns the CSV trace, as
+/// `plcrun prog.st --cycles N --trace T --format csv [--stimulus S]` prints
+/// it (panics with the diagnostics if the run fails).
 pub fn trace_src(src: &str, stimulus: Option<&str>, cycles: u64, trace: &str) -> String {
-    let file = write_temp("prog.st", src);
-    let stim = stimulus.map(|s| write_temp("stim.csv", s));
-    let n = cycles.to_string();
-    let mut args = vec![
-        file.as_str(),
-        "--cycles",
-        &n,
-        "--trace",
-        trace,
-        "--format",
-        "csv",
-    ];
-    if let Some(s) = &stim {
-        args.push("--stimulus");
-        args.push(s);
-    }
-    let r = plcrun(&args);
-    assert_eq!(r.code, 0, "plcrun failed:\n{}\n{}", r.stderr, r.stdout);
-    r.stdout
+    let request = TraceRequest {
+        cycles,
+        stimulus,
+        trace: Some(trace),
+        changes_only: false,
+    };
+    csv_trace(&[("prog.st", src)], &request)
 }
 
-/// Checks a source text (`plcrun check`) and returns the exit code and
-/// everything printed (the diagnostics).
-pub fn diagnostics(src: &str) -> (i32, String) {
-    let file = write_temp("prog.st", src);
-    let r = plcrun(&["check", file.as_str()]);
-    (r.code, format!("{}{}", r.stderr, r.stdout))
+/// Checks a source text (file name `prog.st`) as `plcrun check` does;
+/// returns whether it has no error and the diagnostics as printed.
+pub fn diagnostics(src: &str) -> (bool, String) {
+    check_rendered(&[("prog.st", src)])
 }
 
 /// The rows of a CSV trace without the header, each split into cells.
