@@ -34,13 +34,14 @@
 #![warn(missing_docs)]
 
 pub mod diagnostics;
-pub mod ir;
+pub(crate) mod ir;
 pub mod runtime;
 pub mod sema;
 pub mod source;
 pub mod stdlib;
 pub mod syntax;
 pub mod types;
-pub mod vm;
+pub(crate) mod vm;
 
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault, Value};
+pub use vm::{Fault, FaultKind};

@@ -5,6 +5,7 @@ use super::names::{self, VarRef};
 use crate::diagnostics::{Diagnostic, Diagnostics};
 use crate::ir::image::Image;
 use crate::ir::types::TypeKind;
+use crate::ir::verify::VerifiedImage;
 use crate::sema::{self, CompileOptions};
 use crate::source::{SourceMap, Span};
 use crate::types::ElemType;
@@ -119,7 +120,7 @@ impl Value {
 
 /// A compiled program with its running state.
 pub struct Plc {
-    image: Image,
+    image: VerifiedImage,
     machine: Machine,
     sources: SourceMap,
     warnings: Diagnostics,
@@ -161,7 +162,7 @@ impl Plc {
     }
 
     fn from_image(
-        image: Image,
+        image: VerifiedImage,
         sources: SourceMap,
         warnings: Diagnostics,
         options: &Options,
@@ -408,7 +409,7 @@ pub fn check_sources(
     options: &Options,
     check_only: bool,
     diags: &mut Diagnostics,
-) -> Option<Image> {
+) -> Option<VerifiedImage> {
     let mut units = Vec::new();
     for (i, file) in sources.files().iter().enumerate() {
         let id = crate::source::FileId(i as u32);
