@@ -403,3 +403,6 @@ fn check_programs(image: &Image) -> Result<(), VerifyError> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests;
