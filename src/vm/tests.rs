@@ -28,7 +28,15 @@ fn block(kind: CodeKind, ops: Vec<Op>, frame_size: u32) -> CodeBlock {
 /// A program of `ops` on a 4-slot frame at address 0, plus an FB body of
 /// three slots (code 1) that counts its calls in its first slot.
 fn program(ops: Vec<Op>) -> VerifiedImage {
-    let fb = vec![Op::AddSI { d: 0, a: 0, imm: 1, shift: 0 }, Op::Ret];
+    let fb = vec![
+        Op::AddSI {
+            d: 0,
+            a: 0,
+            imm: 1,
+            shift: 0,
+        },
+        Op::Ret,
+    ];
     let image = Image {
         codes: vec![
             block(CodeKind::Program, ops, 4),
@@ -82,13 +90,23 @@ fn copies_run_inside_memory_and_fault_outside_it() {
     assert_eq!(m.run(&img, 0, 0), Ok(()));
     assert_eq!(m.mem[8..12], [1, 2, 3, 4]);
     for (to, from) in [(13, 0), (0, 13), (u64::MAX - 1, 0), (0, u64::MAX - 1)] {
-        assert_eq!(run(&img, to, from).0, Err(FaultKind::BadAddress), "{to} {from}");
+        assert_eq!(
+            run(&img, to, from).0,
+            Err(FaultKind::BadAddress),
+            "{to} {from}"
+        );
     }
 }
 
 #[test]
 fn native_instances_behind_pointers_are_checked() {
-    let img = program(vec![Op::CallNativeInd { fb: NativeFb::RTrig, p: 0 }, Op::Ret]);
+    let img = program(vec![
+        Op::CallNativeInd {
+            fb: NativeFb::RTrig,
+            p: 0,
+        },
+        Op::Ret,
+    ]);
     // R_TRIG at 8: CLK = 1 gives Q = 1.
     let mut m = Machine::new(&img);
     m.mem[0] = 8;
