@@ -145,11 +145,8 @@ fn int_pow(base: i64, exp: i64) -> Option<u64> {
 pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Result<(), Fault> {
     let block = &img.codes[code as usize];
     let len = m.mem.len();
-    // `base` may come from a pointer slot: no overflow on the way.
-    if base
-        .checked_add(block.frame_size as usize)
-        .is_none_or(|end| end > len)
-    {
+    // `base` may come from a pointer slot: compared without overflow.
+    if base > len || block.frame_size as usize > len - base {
         return Err(Fault {
             kind: FaultKind::BadAddress,
             code,
@@ -703,7 +700,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::CallNativeInd { fb, p } => {
                 let n = fb.instance_slots() as usize;
                 let start = r!(p) as usize;
-                if start.checked_add(n).is_none_or(|end| end > len) {
+                if start > len || n > len - start {
                     fault!(FaultKind::BadAddress);
                 }
                 // SAFETY: start + n <= len was checked above (without overflow).
@@ -716,8 +713,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::Clock { d } => w!(d, m.now as u64),
             Op::MemCopy { d, s, n } => {
                 let (to, from, n) = (r!(d) as usize, r!(s) as usize, n as usize);
-                let outside = |at: usize| at.checked_add(n).is_none_or(|end| end > len);
-                if outside(to) || outside(from) {
+                if to > len || from > len || n > len - to || n > len - from {
                     fault!(FaultKind::BadAddress);
                 }
                 // SAFETY: both ranges lie inside memory (checked above);
