@@ -39,7 +39,7 @@ pub struct CompileOptions {
     pub check_only: bool,
 }
 
-/// Checks and lowers parsed files into a verified image ([`VerifiedImage`]). Returns `None` when
+/// Checks and lowers parsed files into a verified image. Returns `None` when
 /// there were errors (all of them are in `diags`).
 pub fn compile(
     units: &[CompilationUnit],
