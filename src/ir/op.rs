@@ -266,7 +266,7 @@ pub enum CounterRange {
 macro_rules! define_op {
     ($(
         $(#[$meta:meta])*
-        $name:ident $({ $($field:ident : $ty:ty => $role:ident $(($($arg:tt)*))?),* $(,)? })?
+        $name:ident $({ $($field:ident : $ty:ident => $role:ident $(($($arg:tt)*))?),* $(,)? })?
         $(@ $shape:ident $(($partner:path))?)?;
     )*) => {
         /// One IR instruction.

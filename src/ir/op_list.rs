@@ -28,6 +28,10 @@
 //! | `Abs` | an absolute memory address | inside memory |
 //! | `Data` | an immediate, a shift, a predicate, a static offset | nothing to check |
 //!
+//! Field types are single names; a `Slot` field must have a slot role
+//! (`Out` to `NativeInstance`) and a `Target` field the `Target` role, and
+//! no other type may take those roles: a mismatch does not compile.
+//!
 //! After the fields an instruction may name its *shape* (how it relates to
 //! its neighbours; [`super::operands::Shape`]): `@ TakesOperandWord` (the
 //! next instruction is its `Operand` word), `@ OperandWord` (it is such a

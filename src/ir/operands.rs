@@ -152,6 +152,41 @@ macro_rules! role {
     };
 }
 
+/// Refuses, at compile time, a field whose declared type and role disagree:
+/// `Slot` and `Target` are `u32` underneath, so a slot declared as `Data`
+/// or a table index declared as `In` would otherwise compile, and the
+/// verifier would check the wrong thing.
+macro_rules! type_fits_role {
+    (Slot, Out) => {};
+    (Slot, Def) => {};
+    (Slot, InOut) => {};
+    (Slot, In) => {};
+    (Slot, Run) => {};
+    (Slot, FbInstance) => {};
+    (Slot, NativeInstance) => {};
+    (Slot, $role:ident) => {
+        compile_error!(concat!("a `Slot` field declared `", stringify!($role), "`"));
+    };
+    ($ty:ident, Out) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, Def) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, InOut) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, In) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, Run) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, FbInstance) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, NativeInstance) => { type_fits_role!(@slot_role $ty) };
+    (@slot_role $ty:ident) => {
+        compile_error!(concat!("a slot role on a `", stringify!($ty), "` field"));
+    };
+    (Target, Target) => {};
+    (Target, $role:ident) => {
+        compile_error!(concat!("a `Target` field declared `", stringify!($role), "`"));
+    };
+    ($ty:ident, Target) => {
+        compile_error!(concat!("a `Target` role on a `", stringify!($ty), "` field"));
+    };
+    ($ty:ident, $role:ident) => {};
+}
+
 /// The shape an instruction declares (none: it stands alone).
 macro_rules! shape {
     () => {
@@ -172,7 +207,7 @@ macro_rules! shape {
 macro_rules! define_operands {
     ($(
         $(#[$meta:meta])*
-        $name:ident $({ $($field:ident : $ty:ty => $role:ident $(($($arg:tt)*))?),* $(,)? })?
+        $name:ident $({ $($field:ident : $ty:ident => $role:ident $(($($arg:tt)*))?),* $(,)? })?
         $(@ $shape:ident $(($partner:path))?)?;
     )*) => {
         /// Calls `f` on every operand of `op` that is not plain data, in
@@ -180,7 +215,10 @@ macro_rules! define_operands {
         pub fn operands<'a>(op: &'a mut Op, f: &mut impl FnMut(Operand<'a>)) {
             match op {
                 $( Op::$name $({ $($field),* })? => {
-                    $($( role!(f, $field, $role $(($($arg)*))?); )*)?
+                    $($(
+                        type_fits_role!($ty, $role);
+                        role!(f, $field, $role $(($($arg)*))?);
+                    )*)?
                 } )*
             }
         }
