@@ -4,7 +4,7 @@
 //! instead of assembling the stages themselves.
 
 use crate::diagnostics::{Diagnostic, Diagnostics};
-use crate::ir::image::Image;
+use crate::ir::verify::VerifiedImage;
 use crate::sema::{self, CompileOptions};
 use crate::source::{FileId, SourceMap, Span};
 use std::fmt;
@@ -94,7 +94,7 @@ pub(crate) fn compile(
     sources: &SourceMap,
     build: &Build,
     diags: &mut Diagnostics,
-) -> Option<Image> {
+) -> Option<VerifiedImage> {
     let mut units = Vec::with_capacity(sources.files().len());
     for (i, file) in sources.files().iter().enumerate() {
         units.push(crate::syntax::parse(FileId(i as u32), &file.text, diags));

@@ -37,19 +37,16 @@
 // the library's API; the stages themselves stay inside the crate.
 mod diagnostics;
 mod driver;
-#[doc(hidden)]
-pub mod ir;
+pub(crate) mod ir;
 mod runtime;
 mod sema;
 mod source;
-#[doc(hidden)]
-pub mod stdlib;
+pub(crate) mod stdlib;
 #[doc(hidden)]
 pub mod syntax;
 mod types;
 mod value;
-#[doc(hidden)]
-pub mod vm;
+pub(crate) mod vm;
 
 pub use diagnostics::{Diagnostic, Diagnostics, Severity};
 pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};

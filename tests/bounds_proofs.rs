@@ -8,17 +8,19 @@ mod plc;
 
 use plc::{compile, lit, program, run};
 use plcrun::Plc;
-use plcrun::ir::op::Op;
 
 /// How many element accesses of each kind the program's blocks hold:
 /// (checked, proved in range).
 fn accesses(plc: &Plc) -> (usize, usize) {
-    let ops = plc.image().codes.iter().flat_map(|c| c.ops.iter());
-    ops.fold((0, 0), |(checked, proved), op| match op {
-        Op::LoadElem { .. } | Op::StoreElem { .. } => (checked + 1, proved),
-        Op::LoadElemU { .. } | Op::StoreElemU { .. } => (checked, proved + 1),
-        _ => (checked, proved),
-    })
+    let count = |name| {
+        plc.image()
+            .instruction_count(name)
+            .expect("an instruction name")
+    };
+    (
+        count("LoadElem") + count("StoreElem"),
+        count("LoadElemU") + count("StoreElemU"),
+    )
 }
 
 #[test]

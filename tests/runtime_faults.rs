@@ -7,7 +7,7 @@
 mod plc;
 
 use plc::{compile, program};
-use plcrun::vm::FaultKind;
+use plcrun::FaultKind;
 use plcrun::{Options, Plc};
 use rstest::rstest;
 use std::time::{Duration, Instant};

@@ -68,22 +68,30 @@ fn element_test(op: &Op) -> Option<(u32, u32, u32, bool)> {
     }
 }
 
-/// Whether `ops[at]`, a fused instruction, still has the partner it was
-/// fused with (checked by the verifier: the executor relies on it).
-pub fn partner_ok(ops: &[Op], at: usize) -> bool {
-    match ops[at] {
-        Op::StoreStep { idx, .. } => matches!(
-            ops.get(at + 1),
-            Some(Op::AddBr { d, t, .. }) if *d == idx && *t as usize == at
-        ),
-        Op::ForScan {
-            i, t, desc, when, ..
-        } => {
-            ops.get(t as usize).and_then(element_test) == Some((i, desc as u32, at as u32, when))
-                && (t as usize) + 1 < ops.len()
-        }
-        _ => true,
-    }
+/// Whether the `StoreStep` at `ops[at]` is still followed by the `AddBr`
+/// stepping its index back to it (named by the instruction list as its
+/// partner check; the verifier runs it, the executor relies on it).
+pub fn store_step_partner(ops: &[Op], at: usize) -> bool {
+    let Some(Op::StoreStep { idx, .. }) = ops.get(at) else {
+        return false;
+    };
+    matches!(
+        ops.get(at + 1),
+        Some(Op::AddBr { d, t, .. }) if d == idx && *t as usize == at
+    )
+}
+
+/// Whether the `ForScan` at `ops[at]` still targets the element test on its
+/// variable that jumps back to it, with the loop body after that test.
+pub fn for_scan_partner(ops: &[Op], at: usize) -> bool {
+    let Some(&Op::ForScan {
+        i, t, desc, when, ..
+    }) = ops.get(at)
+    else {
+        return false;
+    };
+    ops.get(t as usize).and_then(element_test) == Some((i, desc as u32, at as u32, when))
+        && (t as usize) + 1 < ops.len()
 }
 
 #[cfg(test)]
@@ -134,7 +142,7 @@ mod tests {
             }
         ));
         assert!(matches!(ops[2], Op::AddBr { .. }));
-        assert!(partner_ok(&ops, 1));
+        assert!(store_step_partner(&ops, 1));
     }
 
     #[test]
@@ -191,7 +199,7 @@ mod tests {
                 ..
             }
         ));
-        assert!(partner_ok(&ops, 2) && partner_ok(&ops, 5));
+        assert!(for_scan_partner(&ops, 2) && for_scan_partner(&ops, 5));
     }
 
     #[test]
@@ -214,6 +222,7 @@ mod tests {
             },
             Op::Ret,
         ];
-        assert!(!partner_ok(&ops, 0));
+        assert!(!store_step_partner(&ops, 0));
+        assert!(!for_scan_partner(&ops, 0));
     }
 }

@@ -145,6 +145,18 @@ pub struct Image {
 }
 
 impl Image {
+    /// How many instructions named `name` (an `Op` variant name, e.g.
+    /// `"StoreStep"`) the code blocks hold; `None` when no instruction has
+    /// that name. For tests outside the crate that check what the compiler
+    /// emitted, without access to the instruction set itself.
+    #[doc(hidden)]
+    pub fn instruction_count(&self, name: &str) -> Option<usize> {
+        Op::NAMES.contains(&name).then(|| {
+            let ops = self.codes.iter().flat_map(|c| &c.ops);
+            ops.filter(|op| op.name() == name).count()
+        })
+    }
+
     /// A readable listing of every code block (for `plcrun check --dump-ir`).
     pub fn dump(&self) -> String {
         use std::fmt::Write;

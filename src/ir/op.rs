@@ -233,6 +233,20 @@ pub enum NativeFb {
     Tp,
 }
 
+impl NativeFb {
+    /// How many slots an instance occupies (its pins and hidden state, in
+    /// the order `stdlib::interface` lists them). The verifier keeps a
+    /// native instance inside its frame with it.
+    pub fn instance_slots(self) -> u32 {
+        match self {
+            NativeFb::RTrig | NativeFb::FTrig | NativeFb::Sr | NativeFb::Rs => 3,
+            NativeFb::Ctu(_) | NativeFb::Ctd(_) => 6,
+            NativeFb::Ctud(_) => 10,
+            NativeFb::Ton | NativeFb::Tof | NativeFb::Tp => 7,
+        }
+    }
+}
+
 /// Value range of a counter's PV/CV.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum CounterRange {
@@ -248,412 +262,46 @@ pub enum CounterRange {
     Ulint,
 }
 
-/// One IR instruction.
-///
-/// Operand fields follow one naming convention (documented here rather than
-/// on each of the ~300 fields): `d` destination slot; `a`, `b`, `s`, `c`
-/// source slots (`c` a condition for jumps and `CMov`); `p` a slot holding an
-/// absolute address; `off` a static slot offset; `abs` an absolute address;
-/// `k` an index into the constant tables; `imm` an immediate integer; `t` a
-/// jump target (instruction index); `shift` the wrap shift `64 - bits`;
-/// `desc` an index into the array descriptors; `inst` the frame slot where a
-/// function block instance starts; `code` a code-block index; `i` and `lim`
-/// a FOR variable and its limit.
-#[allow(missing_docs)]
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Op {
-    /// No operation (left where an instruction was removed).
-    Nop,
-    /// `d := constants[k]`.
-    LoadK { d: Slot, k: u32 },
-    /// `d := imm` (sign-extended 32-bit immediate).
-    LoadI { d: Slot, imm: i32 },
-    /// `d := s`.
-    Mov { d: Slot, s: Slot },
-    /// `d := mem[abs]`.
-    LoadAbs { d: Slot, abs: u32 },
-    /// `mem[abs] := s`.
-    StoreAbs { abs: u32, s: Slot },
-    /// `d := mem[mem[p] + off]`.
-    LoadInd { d: Slot, p: Slot, off: u32 },
-    /// `mem[mem[p] + off] := s`.
-    StoreInd { p: Slot, off: u32, s: Slot },
-    /// `d := base + off` (absolute address of a frame slot).
-    AddrOf { d: Slot, off: Slot },
-    /// `d := mem[p] + off` (address arithmetic on a pointer).
-    AddrAdd { d: Slot, p: Slot, off: u32 },
-    /// Checked 1-D element load: `d := frame[arr + (idx - lo) * stride]` using array descriptor `desc`.
-    LoadElem { d: Slot, idx: Slot, desc: u32 },
-    /// Checked 1-D element store.
-    StoreElem { idx: Slot, s: Slot, desc: u32 },
-    /// Element address: `d := d + offset + checked(idx - lo) * stride` where
-    /// `d` holds the array's absolute address on entry (descriptor `desc`).
-    ElemAddr { d: Slot, idx: Slot, desc: u32 },
-    /// Element address in the current frame:
-    /// `d := base + offset + checked(idx - lo) * stride` (descriptor `desc`).
-    ElemRef { d: Slot, idx: Slot, desc: u32 },
-    /// Linearised multi-dimensional index step: `acc := acc * len + checked(idx - lo)`.
-    IndexStep { acc: Slot, idx: Slot, desc: u32 },
+/// Generates [`Op`] and its names from the list in [`super::op_list`].
+macro_rules! define_op {
+    ($(
+        $(#[$meta:meta])*
+        $name:ident $({ $($field:ident : $ty:ident => $role:ident $(($($arg:tt)*))?),* $(,)? })?
+        $(@ $shape:ident $(($partner:path))?)?;
+    )*) => {
+        /// One IR instruction.
+        ///
+        /// Operand fields follow one naming convention (documented here rather than
+        /// on each of the ~300 fields): `d` destination slot; `a`, `b`, `s`, `c`
+        /// source slots (`c` a condition for jumps and `CMov`); `p` a slot holding an
+        /// absolute address; `off` a static slot offset; `abs` an absolute address;
+        /// `k` an index into the constant tables; `imm` an immediate integer; `t` a
+        /// jump target (instruction index); `shift` the wrap shift `64 - bits`;
+        /// `desc` an index into the array descriptors; `inst` the frame slot where a
+        /// function block instance starts; `code` a code-block index; `i` and `lim`
+        /// a FOR variable and its limit. The role of every field is declared in
+        /// [`super::op_list`].
+        #[allow(missing_docs)]
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum Op {
+            $( $(#[$meta])* $name $({ $($field: $ty),* })?, )*
+        }
 
-    /// Signed add wrapped at `64 - shift` bits.
-    AddS {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Unsigned add wrapped at `64 - shift` bits.
-    AddU {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Signed add of an immediate.
-    AddSI {
-        d: Slot,
-        a: Slot,
-        imm: i32,
-        shift: u8,
-    },
-    /// Signed subtract.
-    SubS {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Unsigned subtract.
-    SubU {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Signed multiply.
-    MulS {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Unsigned multiply.
-    MulU {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Signed divide (truncating); faults on zero.
-    DivS {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Unsigned divide; faults on zero.
-    DivU {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Signed MOD (sign of the dividend); faults on zero.
-    ModS {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Unsigned MOD; faults on zero.
-    ModU {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Signed MOD by a non-zero immediate.
-    ModSI {
-        d: Slot,
-        a: Slot,
-        imm: i32,
-        shift: u8,
-    },
-    /// Signed negation.
-    NegS { d: Slot, a: Slot, shift: u8 },
-    /// Integer power `a ** b` (b >= 0), wrapping.
-    PowS {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        shift: u8,
-    },
-    /// Signed ABS, wrapping.
-    AbsS { d: Slot, a: Slot, shift: u8 },
+        impl Op {
+            /// The name of every instruction, in declaration order.
+            pub const NAMES: &'static [&'static str] = &[$(stringify!($name)),*];
 
-    /// REAL add.
-    AddF32 { d: Slot, a: Slot, b: Slot },
-    /// REAL subtract.
-    SubF32 { d: Slot, a: Slot, b: Slot },
-    /// REAL multiply.
-    MulF32 { d: Slot, a: Slot, b: Slot },
-    /// REAL divide (IEEE: x/0 gives an infinity or NaN).
-    DivF32 { d: Slot, a: Slot, b: Slot },
-    /// REAL negation.
-    NegF32 { d: Slot, a: Slot },
-    /// REAL power.
-    PowF32 { d: Slot, a: Slot, b: Slot },
-    /// REAL math function.
-    MathF32 { d: Slot, a: Slot, f: MathFn },
-    /// LREAL add.
-    AddF64 { d: Slot, a: Slot, b: Slot },
-    /// LREAL subtract.
-    SubF64 { d: Slot, a: Slot, b: Slot },
-    /// LREAL multiply.
-    MulF64 { d: Slot, a: Slot, b: Slot },
-    /// LREAL divide.
-    DivF64 { d: Slot, a: Slot, b: Slot },
-    /// LREAL negation.
-    NegF64 { d: Slot, a: Slot },
-    /// LREAL power.
-    PowF64 { d: Slot, a: Slot, b: Slot },
-    /// LREAL math function.
-    MathF64 { d: Slot, a: Slot, f: MathFn },
-
-    /// Bitwise AND (also BOOL AND).
-    And { d: Slot, a: Slot, b: Slot },
-    /// Bitwise OR.
-    Or { d: Slot, a: Slot, b: Slot },
-    /// Bitwise XOR.
-    Xor { d: Slot, a: Slot, b: Slot },
-    /// BOOL NOT.
-    NotB { d: Slot, a: Slot },
-    /// Bit-string NOT masked to `64 - shift` bits.
-    NotW { d: Slot, a: Slot, shift: u8 },
-    /// `d := a AND NOT b` (BOOL).
-    AndN { d: Slot, a: Slot, b: Slot },
-    /// `d := a OR NOT b` (BOOL).
-    OrN { d: Slot, a: Slot, b: Slot },
-    /// Shifts/rotations of a `bits`-wide bit string by `n` (slot `b`).
-    Shift {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        kind: ShiftKind,
-        bits: u8,
-    },
-
-    /// Signed comparison (also for unsigned up to 32 bits, TIME, dates).
-    CmpS { d: Slot, a: Slot, b: Slot, cmp: Cmp },
-    /// Unsigned 64-bit comparison.
-    CmpU { d: Slot, a: Slot, b: Slot, cmp: Cmp },
-    /// REAL comparison.
-    CmpF32 { d: Slot, a: Slot, b: Slot, cmp: Cmp },
-    /// LREAL comparison.
-    CmpF64 { d: Slot, a: Slot, b: Slot, cmp: Cmp },
-    /// Signed comparison with an immediate.
-    CmpSI {
-        d: Slot,
-        a: Slot,
-        imm: i32,
-        cmp: Cmp,
-    },
-    /// String comparison.
-    CmpStr { d: Slot, a: Slot, b: Slot, cmp: Cmp },
-
-    /// Conversion.
-    Convert { d: Slot, a: Slot, conv: Conv },
-    /// `d := a * b + c` on REAL (each operation rounded as written, no
-    /// fused rounding); `c` is in the `Operand` word that follows.
-    MulAddF32 { d: Slot, a: Slot, b: Slot },
-    /// `d := a * b + c` on LREAL; `c` is in the following `Operand` word.
-    MulAddF64 { d: Slot, a: Slot, b: Slot },
-    /// The extra operand of the instruction before it (never executed on
-    /// its own: the instruction before it consumes it).
-    Operand { s: Slot },
-    /// Conditional move: `if c { d := s }` (SEL).
-    CMov { d: Slot, c: Slot, s: Slot },
-    /// Signed MIN/MAX: `d := if (a < b) == min { a } else { b }`.
-    MinMaxS {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        max: bool,
-    },
-    /// Unsigned 64-bit MIN/MAX.
-    MinMaxU {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        max: bool,
-    },
-    /// REAL MIN/MAX.
-    MinMaxF32 {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        max: bool,
-    },
-    /// LREAL MIN/MAX.
-    MinMaxF64 {
-        d: Slot,
-        a: Slot,
-        b: Slot,
-        max: bool,
-    },
-    /// MUX: `d := slots[first + k]` for k = value of `k`, faulting if `k >= n`.
-    Mux {
-        d: Slot,
-        k: Slot,
-        first: Slot,
-        n: u16,
-    },
-    /// Duration times REAL/LREAL factor (TIME * REAL), rounding to ns.
-    MulTimeF64 { d: Slot, a: Slot, b: Slot },
-    /// Duration divided by LREAL.
-    DivTimeF64 { d: Slot, a: Slot, b: Slot },
-
-    /// String copy (truncated to the destination's capacity).
-    StrMov { d: Slot, s: Slot },
-    /// String function, arguments in consecutive slots from `a`.
-    StrCall { d: Slot, a: Slot, f: StrFn },
-    /// Set string `d` to the constant string `k`.
-    StrConst { d: Slot, k: u32 },
-    /// Convert a scalar of type `ty` (index into the type list) to its literal text.
-    ToStr { d: Slot, a: Slot, ty: u8 },
-    /// Parse string `a` as a value of type `ty`.
-    FromStr { d: Slot, a: Slot, ty: u8 },
-
-    /// Unconditional jump.
-    Jmp { t: Target },
-    /// Jump if the BOOL slot is FALSE.
-    Jz { c: Slot, t: Target },
-    /// Jump if the BOOL slot is TRUE.
-    Jnz { c: Slot, t: Target },
-    /// Jump if `a cmp imm` is FALSE (fused compare and branch on signed values).
-    JnCmpSI {
-        a: Slot,
-        imm: i32,
-        cmp: Cmp,
-        t: Target,
-    },
-    /// Jump if `a cmp b` is FALSE (signed).
-    JnCmpS {
-        a: Slot,
-        b: Slot,
-        cmp: Cmp,
-        t: Target,
-    },
-
-    /// Array fill (`FOR i := start TO lim DO arr[i] := v; END_FOR` with
-    /// `i` already set to start): when every index is inside the array and
-    /// `lim + 1` fits the type, stores `v` in all elements and sets
-    /// `i := lim + 1`; otherwise does nothing (the loop that follows runs as
-    /// written and faults where it would).
-    FillElems {
-        i: Slot,
-        v: Slot,
-        lim: i32,
-        desc: u16,
-        shift: u8,
-    },
-    /// Jump if the BOOL array element `frame[desc][idx]` is FALSE (checked index).
-    JzElem { idx: Slot, desc: u32, t: Target },
-    /// Jump if the BOOL array element is TRUE.
-    JnzElem { idx: Slot, desc: u32, t: Target },
-    /// `d := d + b` (signed, wrapped), then jump to `t` if `d cmp imm`
-    /// (a WHILE loop stepping its variable just before its test).
-    AddBr {
-        d: Slot,
-        b: Slot,
-        imm: i16,
-        t: u16,
-        cmp: Cmp,
-        shift: u8,
-    },
-    /// Jump if `a cmp b` is FALSE on REAL values (NaN compares FALSE, so it jumps).
-    JnCmpF32 {
-        a: Slot,
-        b: Slot,
-        cmp: Cmp,
-        t: Target,
-    },
-    /// Jump if `a cmp b` is FALSE on LREAL values.
-    JnCmpF64 {
-        a: Slot,
-        b: Slot,
-        cmp: Cmp,
-        t: Target,
-    },
-    /// FOR back edge: `i := i + step`, then jump to `t` while
-    /// `i <= lim` (`step > 0`) or `i >= lim` (`step < 0`). The test uses the
-    /// exact sum, so a loop up to its type's largest value ends.
-    ForNext {
-        i: Slot,
-        lim: i32,
-        t: Target,
-        step: i16,
-        shift: u8,
-    },
-    /// As `ForNext` with the limit in a slot.
-    ForNextS {
-        i: Slot,
-        lim: Slot,
-        t: Target,
-        step: i16,
-        shift: u8,
-    },
-
-    /// `d := frame[idx + bias]`: an element of a one-slot-per-element frame
-    /// array whose index the compiler proved in range (the control
-    /// variable of an enclosing FOR loop over a constant range inside the
-    /// array bounds, never written in the loop body). The array check is
-    /// gone; the executor still keeps the access inside the frame.
-    LoadElemU { d: Slot, idx: Slot, bias: i32 },
-    /// `frame[idx + bias] := s`, proved in range as for `LoadElemU`.
-    StoreElemU { idx: Slot, s: Slot, bias: i32 },
-    /// Loop superinstruction: a `StoreElem` whose next instruction is an
-    /// `AddBr` stepping `idx` and jumping back here (a WHILE loop whose
-    /// body is one element store, such as striking multiples in a sieve).
-    /// Runs the pair until the `AddBr` test fails, then continues after
-    /// it, in one dispatch; the `AddBr` stays in place as the second word.
-    StoreStep { idx: Slot, s: Slot, desc: u32 },
-    /// Loop superinstruction: a `ForNext` whose target `t` is a
-    /// `JzElem` (`when` TRUE) or `JnzElem` (`when` FALSE) on `i` that jumps
-    /// back here (a FOR loop whose body is guarded by `IF arr[i] THEN`).
-    /// Steps `i` over every iteration the element test would skip, then
-    /// continues at `t + 1` (the body), at `t` (the index is out of range:
-    /// the test faults there) or after the loop.
-    ForScan {
-        i: Slot,
-        lim: i32,
-        t: u16,
-        desc: u16,
-        step: i8,
-        shift: u8,
-        when: bool,
-    },
-
-    /// Call a user FB body (code block `code`) on the instance at frame slot `inst`.
-    CallFb { code: u32, inst: Slot },
-    /// Call a user FB on the instance whose absolute address is in slot `p`.
-    CallFbInd { code: u32, p: Slot },
-    /// Call a native FB on the instance at frame slot `inst`.
-    CallNative { fb: NativeFb, inst: Slot },
-    /// Call a native FB on the instance whose address is in slot `p`.
-    CallNativeInd { fb: NativeFb, p: Slot },
-    /// Call a function: reset its static frame, run its code at its frame base.
-    CallFn { code: u32 },
-    /// Copies `n` slots from address `mem[s]` to address `mem[d]` (aggregates by value).
-    MemCopy { d: Slot, s: Slot, n: u32 },
-    /// `d := current clock value` (PLC_CLOCK).
-    Clock { d: Slot },
-    /// Return from the current code block.
-    Ret,
-    /// One call of the SFC chart `chart` (index into `Image::charts`) on
-    /// the current instance: evolution, then action control.
-    Sfc { chart: u32 },
+            /// The instruction's name (its variant name).
+            pub fn name(&self) -> &'static str {
+                match self {
+                    $( Op::$name { .. } => stringify!($name), )*
+                }
+            }
+        }
+    };
 }
+
+super::op_list::for_each_op!(define_op);
 
 /// Sign-extends or zero-extends `x` from `64 - shift` bits.
 #[inline(always)]

@@ -1,180 +1,281 @@
-//! Enumerates the frame-slot operands of an instruction, for relocation
-//! (constant slots are numbered after emission) and for the link-time
-//! verifier that lets the executor skip per-operand bounds checks.
+//! The operands of an instruction, as the one instruction list
+//! ([`super::op_list`]) declares them: each field with its role. Relocation
+//! (constant slots are numbered after emission), the emitter (jump
+//! patching, retargeting a result), the fusion pass and the link-time
+//! verifier that lets the executor skip per-operand bounds checks all read
+//! operands through [`operands`] and [`shape`], which are generated from
+//! that list; nothing here lists instructions by hand.
+//!
+//! [`Operand`] is the closed set of roles. Its users match it without a
+//! wildcard, so a new role cannot be added without every user (above all
+//! the verifier) saying what it does with it.
 
-use super::op::Op;
+use super::image::CodeKind;
+use super::op::{NativeFb, Op, Slot, Target};
+
+/// How an instruction uses a single frame slot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Access {
+    /// Read.
+    In,
+    /// Written with the instruction's result only (the emitter may point it
+    /// at another slot).
+    Out,
+    /// Written beside other effects, or holding more than a plain result.
+    Def,
+    /// Read and written (accumulators, loop variables).
+    InOut,
+}
+
+/// What a code block called with an instance slot is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Callee {
+    /// A user FB body (code-block index): its instance is its frame.
+    Fb(u32),
+    /// A native FB: its instance is its pins.
+    Native(NativeFb),
+}
+
+/// How an instruction uses an array descriptor, which says how much of it
+/// must lie inside the frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArrayUse {
+    /// Only address arithmetic (the address is checked where it is used).
+    Any,
+    /// The whole array (`offset + len * stride`) lies in the frame.
+    Span,
+    /// Elements are read or written in the frame without a bounds check:
+    /// the whole array lies in the frame and `stride >= 1`.
+    Elems,
+    /// As `Elems` with one slot per element (filled as one range).
+    Dense,
+}
+
+/// One operand of an instruction, by role.
+#[derive(Debug, PartialEq, Eq)]
+pub enum Operand<'a> {
+    /// A frame slot.
+    Slot(&'a mut Slot, Access),
+    /// The first of a run of consecutive frame slots read, and its length.
+    Run(&'a mut Slot, u32),
+    /// The frame slot where a callee's instance starts.
+    Instance(&'a mut Slot, Callee),
+    /// A jump target.
+    Target(&'a mut Target),
+    /// A 16-bit jump target (not patched by the emitter).
+    ShortTarget(&'a mut u16),
+    /// An index into `Image::consts`.
+    Const(u32),
+    /// An index into `Image::str_consts`.
+    StrConst(u32),
+    /// An index into `Image::arrays`.
+    Array(u32, ArrayUse),
+    /// An index into `Image::scalar_types`.
+    ScalarType(u8),
+    /// A code-block index that must be of the given kind.
+    Code(u32, CodeKind),
+    /// An index into `Image::charts`.
+    Chart(u32),
+    /// An absolute memory address.
+    Abs(u32),
+}
+
+/// How an instruction relates to its neighbours.
+#[derive(Debug, Clone, Copy)]
+pub enum Shape {
+    /// It stands alone.
+    Single,
+    /// The next instruction is its `Operand` word, consumed with it.
+    TakesOperandWord,
+    /// It is the operand word of the instruction before it (never a jump target).
+    OperandWord,
+    /// A loop superinstruction; the check says whether its partner
+    /// instruction is still in place at `ops[at]` (the executor relies on it).
+    Fused(fn(&[Op], usize) -> bool),
+}
+
+/// Turns one field of the list into the visitor call its role asks for.
+macro_rules! role {
+    ($f:ident, $x:ident, Out) => {
+        $f(Operand::Slot($x, Access::Out))
+    };
+    ($f:ident, $x:ident, Def) => {
+        $f(Operand::Slot($x, Access::Def))
+    };
+    ($f:ident, $x:ident, InOut) => {
+        $f(Operand::Slot($x, Access::InOut))
+    };
+    ($f:ident, $x:ident, In) => {
+        $f(Operand::Slot($x, Access::In))
+    };
+    ($f:ident, $x:ident, Run($len:ident)) => {
+        $f(Operand::Run($x, u32::from(*$len)))
+    };
+    ($f:ident, $x:ident, Run($len:literal)) => {
+        $f(Operand::Run($x, $len))
+    };
+    ($f:ident, $x:ident, FbInstance($code:ident)) => {
+        $f(Operand::Instance($x, Callee::Fb(*$code)))
+    };
+    ($f:ident, $x:ident, NativeInstance($fb:ident)) => {
+        $f(Operand::Instance($x, Callee::Native(*$fb)))
+    };
+    ($f:ident, $x:ident, Target) => {
+        $f(Operand::Target($x))
+    };
+    ($f:ident, $x:ident, ShortTarget) => {
+        $f(Operand::ShortTarget($x))
+    };
+    ($f:ident, $x:ident, Const) => {
+        $f(Operand::Const(*$x))
+    };
+    ($f:ident, $x:ident, StrConst) => {
+        $f(Operand::StrConst(*$x))
+    };
+    ($f:ident, $x:ident, Array($use:ident)) => {
+        $f(Operand::Array(u32::from(*$x), ArrayUse::$use))
+    };
+    ($f:ident, $x:ident, ScalarType) => {
+        $f(Operand::ScalarType(*$x))
+    };
+    ($f:ident, $x:ident, Code($kind:ident)) => {
+        $f(Operand::Code(*$x, CodeKind::$kind))
+    };
+    ($f:ident, $x:ident, Chart) => {
+        $f(Operand::Chart(*$x))
+    };
+    ($f:ident, $x:ident, Abs) => {
+        $f(Operand::Abs(*$x))
+    };
+    ($f:ident, $x:ident, Data) => {
+        let _ = $x;
+    };
+}
+
+/// Refuses, at compile time, a field whose declared type and role disagree:
+/// `Slot` and `Target` are `u32` underneath, so a slot declared as `Data`
+/// or a table index declared as `In` would otherwise compile, and the
+/// verifier would check the wrong thing.
+macro_rules! type_fits_role {
+    (Slot, Out) => {};
+    (Slot, Def) => {};
+    (Slot, InOut) => {};
+    (Slot, In) => {};
+    (Slot, Run) => {};
+    (Slot, FbInstance) => {};
+    (Slot, NativeInstance) => {};
+    (Slot, $role:ident) => {
+        compile_error!(concat!("a `Slot` field declared `", stringify!($role), "`"));
+    };
+    ($ty:ident, Out) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, Def) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, InOut) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, In) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, Run) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, FbInstance) => { type_fits_role!(@slot_role $ty) };
+    ($ty:ident, NativeInstance) => { type_fits_role!(@slot_role $ty) };
+    (@slot_role $ty:ident) => {
+        compile_error!(concat!("a slot role on a `", stringify!($ty), "` field"));
+    };
+    (Target, Target) => {};
+    (Target, $role:ident) => {
+        compile_error!(concat!("a `Target` field declared `", stringify!($role), "`"));
+    };
+    ($ty:ident, Target) => {
+        compile_error!(concat!("a `Target` role on a `", stringify!($ty), "` field"));
+    };
+    ($ty:ident, $role:ident) => {};
+}
+
+/// The shape an instruction declares (none: it stands alone).
+macro_rules! shape {
+    () => {
+        Shape::Single
+    };
+    (TakesOperandWord) => {
+        Shape::TakesOperandWord
+    };
+    (OperandWord) => {
+        Shape::OperandWord
+    };
+    (Fused($check:path)) => {
+        Shape::Fused($check)
+    };
+}
+
+/// Generates [`operands`] and [`shape`] from the instruction list.
+macro_rules! define_operands {
+    ($(
+        $(#[$meta:meta])*
+        $name:ident $({ $($field:ident : $ty:ident => $role:ident $(($($arg:tt)*))?),* $(,)? })?
+        $(@ $shape:ident $(($partner:path))?)?;
+    )*) => {
+        /// Calls `f` on every operand of `op` that is not plain data, in
+        /// field order, with its role.
+        pub fn operands<'a>(op: &'a mut Op, f: &mut impl FnMut(Operand<'a>)) {
+            match op {
+                $( Op::$name $({ $($field),* })? => {
+                    $($(
+                        type_fits_role!($ty, $role);
+                        role!(f, $field, $role $(($($arg)*))?);
+                    )*)?
+                } )*
+            }
+        }
+
+        /// How `op` relates to its neighbours.
+        pub fn shape(op: &Op) -> Shape {
+            match op {
+                $( Op::$name { .. } => shape!($($shape $(($partner))?)?), )*
+            }
+        }
+
+        /// One instance of every instruction, each field a different small
+        /// value (slot fields distinct), for tests that must cover them all.
+        #[cfg(test)]
+        pub fn examples() -> Vec<Op> {
+            vec![$({
+                let mut next = 0u8;
+                let mut _value = || {
+                    next += 1;
+                    next
+                };
+                Op::$name $({ $($field: example::Example::example(_value())),* })?
+            }),*]
+        }
+    };
+}
+
+super::op_list::for_each_op!(define_operands);
 
 /// Calls `f` on every frame-relative slot operand of `op` (destinations,
-/// sources, pointer slots, instance bases). Absolute addresses, jump
-/// targets and table indexes are not slots and are not visited. Operands
-/// that start a run of consecutive slots are visited once; see
-/// [`slot_span`] for the run length.
+/// sources, pointer slots, run starts, instance bases). Absolute addresses,
+/// jump targets and table indexes are not slots and are not visited.
 pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
-    use Op::*;
-    match op {
-        Nop | Jmp { .. } | CallFn { .. } | Ret | Sfc { .. } => {}
-        LoadK { d, .. } | LoadI { d, .. } | LoadAbs { d, .. } | Clock { d } => f(d),
-        StoreAbs { s, .. } => f(s),
-        Mov { d, s } | StrMov { d, s } => {
-            f(d);
-            f(s);
-        }
-        LoadInd { d, p, .. } | AddrAdd { d, p, .. } => {
-            f(d);
-            f(p);
-        }
-        StoreInd { p, s, .. } => {
-            f(p);
-            f(s);
-        }
-        AddrOf { d, off } => {
-            f(d);
-            f(off);
-        }
-        LoadElem { d, idx, .. }
-        | ElemAddr { d, idx, .. }
-        | ElemRef { d, idx, .. }
-        | LoadElemU { d, idx, .. } => {
-            f(d);
-            f(idx);
-        }
-        StoreElem { idx, s, .. } | StoreStep { idx, s, .. } | StoreElemU { idx, s, .. } => {
-            f(idx);
-            f(s);
-        }
-        IndexStep { acc, idx, .. } => {
-            f(acc);
-            f(idx);
-        }
-        AddS { d, a, b, .. }
-        | AddU { d, a, b, .. }
-        | SubS { d, a, b, .. }
-        | SubU { d, a, b, .. }
-        | MulS { d, a, b, .. }
-        | MulU { d, a, b, .. }
-        | DivS { d, a, b, .. }
-        | DivU { d, a, b, .. }
-        | ModS { d, a, b, .. }
-        | ModU { d, a, b, .. }
-        | PowS { d, a, b, .. }
-        | AddF32 { d, a, b }
-        | SubF32 { d, a, b }
-        | MulF32 { d, a, b }
-        | DivF32 { d, a, b }
-        | PowF32 { d, a, b }
-        | AddF64 { d, a, b }
-        | SubF64 { d, a, b }
-        | MulF64 { d, a, b }
-        | DivF64 { d, a, b }
-        | PowF64 { d, a, b }
-        | And { d, a, b }
-        | Or { d, a, b }
-        | Xor { d, a, b }
-        | AndN { d, a, b }
-        | OrN { d, a, b }
-        | Shift { d, a, b, .. }
-        | CmpS { d, a, b, .. }
-        | CmpU { d, a, b, .. }
-        | CmpF32 { d, a, b, .. }
-        | CmpF64 { d, a, b, .. }
-        | CmpStr { d, a, b, .. }
-        | MinMaxS { d, a, b, .. }
-        | MinMaxU { d, a, b, .. }
-        | MinMaxF32 { d, a, b, .. }
-        | MinMaxF64 { d, a, b, .. }
-        | MulTimeF64 { d, a, b }
-        | DivTimeF64 { d, a, b }
-        | MulAddF32 { d, a, b }
-        | MulAddF64 { d, a, b } => {
-            f(d);
-            f(a);
-            f(b);
-        }
-        AddSI { d, a, .. }
-        | ModSI { d, a, .. }
-        | NegS { d, a, .. }
-        | AbsS { d, a, .. }
-        | NegF32 { d, a }
-        | NegF64 { d, a }
-        | MathF32 { d, a, .. }
-        | MathF64 { d, a, .. }
-        | NotB { d, a }
-        | NotW { d, a, .. }
-        | CmpSI { d, a, .. }
-        | Convert { d, a, .. }
-        | ToStr { d, a, .. }
-        | FromStr { d, a, .. }
-        | StrCall { d, a, .. } => {
-            f(d);
-            f(a);
-        }
-        CMov { d, c, s } => {
-            f(d);
-            f(c);
-            f(s);
-        }
-        Mux { d, k, first, .. } => {
-            f(d);
-            f(k);
-            f(first);
-        }
-        StrConst { d, .. } => f(d),
-        Operand { s } => f(s),
-        Jz { c, .. } | Jnz { c, .. } => f(c),
-        JnCmpSI { a, .. } => f(a),
-        JzElem { idx, .. } | JnzElem { idx, .. } => f(idx),
-        FillElems { i, v, .. } => {
-            f(i);
-            f(v);
-        }
-        AddBr { d, b, .. } => {
-            f(d);
-            f(b);
-        }
-        JnCmpS { a, b, .. } | JnCmpF32 { a, b, .. } | JnCmpF64 { a, b, .. } => {
-            f(a);
-            f(b);
-        }
-        ForNext { i, .. } | ForScan { i, .. } => f(i),
-        ForNextS { i, lim, .. } => {
-            f(i);
-            f(lim);
-        }
-        CallFb { inst, .. } | CallNative { inst, .. } => f(inst),
-        CallFbInd { p, .. } | CallNativeInd { p, .. } => f(p),
-        MemCopy { d, s, .. } => {
-            f(d);
-            f(s);
-        }
-    }
+    operands(op, &mut |o| match o {
+        Operand::Slot(s, _) | Operand::Run(s, _) | Operand::Instance(s, _) => f(s),
+        Operand::Target(_)
+        | Operand::ShortTarget(_)
+        | Operand::Const(_)
+        | Operand::StrConst(_)
+        | Operand::Array(..)
+        | Operand::ScalarType(_)
+        | Operand::Code(..)
+        | Operand::Chart(_)
+        | Operand::Abs(_) => {}
+    });
 }
 
-/// How many consecutive slots an instruction reads starting at its run
-/// operand (`Mux::first`, `StrCall::a`); 1 for everything else.
-pub fn slot_span(op: &Op) -> u32 {
-    match op {
-        Op::Mux { n, .. } => *n as u32,
-        Op::StrCall { .. } => 4,
-        _ => 1,
-    }
-}
-
-/// The jump target of a branch instruction.
+/// The jump target of a branch instruction (the 32-bit targets the
+/// emitter patches).
 pub fn target_mut(op: &mut Op) -> Option<&mut u32> {
-    match op {
-        Op::Jmp { t }
-        | Op::Jz { t, .. }
-        | Op::Jnz { t, .. }
-        | Op::JnCmpSI { t, .. }
-        | Op::JzElem { t, .. }
-        | Op::JnzElem { t, .. }
-        | Op::JnCmpS { t, .. }
-        | Op::JnCmpF32 { t, .. }
-        | Op::JnCmpF64 { t, .. }
-        | Op::ForNext { t, .. }
-        | Op::ForNextS { t, .. } => Some(t),
-        _ => None,
-    }
+    let mut found = None;
+    operands(op, &mut |o| {
+        if let Operand::Target(t) = o {
+            found = Some(t);
+        }
+    });
+    found
 }
 
 /// The frame slot an instruction writes by name. (Array elements, memory
@@ -188,106 +289,144 @@ pub struct Writes<'a> {
     pub result: bool,
 }
 
-/// What `op` writes. The match lists every instruction, so a new one must
-/// say what it writes.
+/// What `op` writes, from the roles of its fields (`Out`: a result;
+/// `Def`, `InOut`: written, not a plain result).
 pub fn writes(op: &mut Op) -> Writes<'_> {
-    use Op::*;
-    let (slot, result) = match op {
-        Nop | Jmp { .. } | Jz { .. } | Jnz { .. } | JnCmpSI { .. } | JnCmpS { .. } => (None, false),
-        JnCmpF32 { .. } | JnCmpF64 { .. } | JzElem { .. } | JnzElem { .. } | Ret => (None, false),
-        Operand { .. } => (None, false),
-        LoadK { d, .. }
-        | LoadI { d, .. }
-        | Mov { d, .. }
-        | LoadAbs { d, .. }
-        | LoadInd { d, .. }
-        | LoadElem { d, .. }
-        | LoadElemU { d, .. }
-        | AddS { d, .. }
-        | AddU { d, .. }
-        | AddSI { d, .. }
-        | SubS { d, .. }
-        | SubU { d, .. }
-        | MulS { d, .. }
-        | MulU { d, .. }
-        | DivS { d, .. }
-        | DivU { d, .. }
-        | ModS { d, .. }
-        | ModU { d, .. }
-        | ModSI { d, .. }
-        | NegS { d, .. }
-        | PowS { d, .. }
-        | AbsS { d, .. }
-        | AddF32 { d, .. }
-        | SubF32 { d, .. }
-        | MulF32 { d, .. }
-        | DivF32 { d, .. }
-        | NegF32 { d, .. }
-        | PowF32 { d, .. }
-        | MathF32 { d, .. }
-        | AddF64 { d, .. }
-        | SubF64 { d, .. }
-        | MulF64 { d, .. }
-        | DivF64 { d, .. }
-        | NegF64 { d, .. }
-        | PowF64 { d, .. }
-        | MathF64 { d, .. }
-        | And { d, .. }
-        | Or { d, .. }
-        | Xor { d, .. }
-        | NotB { d, .. }
-        | NotW { d, .. }
-        | AndN { d, .. }
-        | OrN { d, .. }
-        | Shift { d, .. }
-        | CmpS { d, .. }
-        | CmpU { d, .. }
-        | CmpF32 { d, .. }
-        | CmpF64 { d, .. }
-        | CmpSI { d, .. }
-        | CmpStr { d, .. }
-        | Convert { d, .. }
-        | CMov { d, .. }
-        | MinMaxS { d, .. }
-        | MinMaxU { d, .. }
-        | MinMaxF32 { d, .. }
-        | MinMaxF64 { d, .. }
-        | Mux { d, .. }
-        | MulTimeF64 { d, .. }
-        | MulAddF32 { d, .. }
-        | MulAddF64 { d, .. }
-        | DivTimeF64 { d, .. }
-        | Clock { d } => (Some(d), true),
-        AddrOf { d, .. }
-        | AddrAdd { d, .. }
-        | ElemAddr { d, .. }
-        | ElemRef { d, .. }
-        | FromStr { d, .. }
-        | AddBr { d, .. } => (Some(d), false),
-        IndexStep { acc: d, .. }
-        | ForNext { i: d, .. }
-        | ForNextS { i: d, .. }
-        | ForScan { i: d, .. }
-        | FillElems { i: d, .. }
-        | StoreStep { idx: d, .. }
-        // The result slot of a string function may be written (LEN, FIND).
-        | StrCall { d, .. } => (Some(d), false),
-        // Array elements, memory reached through addresses, strings and
-        // called code are not named slots.
-        StoreElem { .. }
-        | StoreElemU { .. }
-        | StoreAbs { .. }
-        | StoreInd { .. }
-        | MemCopy { .. }
-        | StrMov { .. }
-        | StrConst { .. }
-        | ToStr { .. }
-        | Sfc { .. }
-        | CallFb { .. }
-        | CallFbInd { .. }
-        | CallNative { .. }
-        | CallNativeInd { .. }
-        | CallFn { .. } => (None, false),
+    let mut w = Writes {
+        slot: None,
+        result: false,
     };
-    Writes { slot, result }
+    operands(op, &mut |o| {
+        if let Operand::Slot(s, access) = o {
+            let result = match access {
+                Access::In => return,
+                Access::Out => true,
+                Access::Def | Access::InOut => false,
+            };
+            w = Writes {
+                slot: Some(s),
+                result,
+            };
+        }
+    });
+    w
+}
+
+/// Field values for [`examples`].
+#[cfg(test)]
+mod example {
+    use crate::ir::op::{Cmp, Conv, MathFn, NativeFb, ShiftKind, StrFn};
+
+    /// A value of a field type made from a small number.
+    pub trait Example {
+        fn example(n: u8) -> Self;
+    }
+
+    macro_rules! from_number {
+        ($($t:ty),*) => { $(impl Example for $t {
+            fn example(n: u8) -> Self {
+                n.into()
+            }
+        })* };
+    }
+    from_number!(u16, u32, i16, i32);
+
+    impl Example for u8 {
+        fn example(n: u8) -> Self {
+            n
+        }
+    }
+    impl Example for i8 {
+        fn example(n: u8) -> Self {
+            n as i8
+        }
+    }
+    impl Example for bool {
+        fn example(n: u8) -> Self {
+            n % 2 == 1
+        }
+    }
+    impl Example for Cmp {
+        fn example(_: u8) -> Self {
+            Cmp::Le
+        }
+    }
+    impl Example for Conv {
+        fn example(_: u8) -> Self {
+            Conv::ToBool
+        }
+    }
+    impl Example for MathFn {
+        fn example(_: u8) -> Self {
+            MathFn::Sqrt
+        }
+    }
+    impl Example for ShiftKind {
+        fn example(_: u8) -> Self {
+            ShiftKind::Rol
+        }
+    }
+    impl Example for StrFn {
+        fn example(_: u8) -> Self {
+            StrFn::Concat
+        }
+    }
+    impl Example for NativeFb {
+        fn example(_: u8) -> Self {
+            NativeFb::Ton
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_instruction_has_an_example_and_a_name() {
+        let all = examples();
+        assert_eq!(all.len(), Op::NAMES.len());
+        for (op, name) in all.iter().zip(Op::NAMES) {
+            assert_eq!(op.name(), *name);
+        }
+    }
+
+    #[test]
+    fn an_instruction_writes_at_most_one_named_slot() {
+        for mut op in examples() {
+            let mut written = 0;
+            operands(&mut op, &mut |o| {
+                if matches!(o, Operand::Slot(_, a) if a != Access::In) {
+                    written += 1;
+                }
+            });
+            assert!(written <= 1, "{op:?}");
+        }
+    }
+
+    #[test]
+    fn relocation_reaches_every_slot_field() {
+        // Every example's fields differ, so moving all slots by 100 changes
+        // exactly the slot fields; the verifier sees the same ones.
+        for op in examples() {
+            let mut moved = op;
+            let mut n = 0;
+            for_each_slot(&mut moved, &mut |s| {
+                *s += 100;
+                n += 1;
+            });
+            assert_eq!(n > 0, moved != op, "{op:?}");
+        }
+    }
+
+    #[test]
+    fn branches_expose_their_target() {
+        let mut jz = Op::Jz { c: 1, t: 7 };
+        *target_mut(&mut jz).expect("a branch") = 9;
+        assert_eq!(jz, Op::Jz { c: 1, t: 9 });
+        assert!(target_mut(&mut Op::Ret).is_none());
+        let mut load = Op::LoadK { d: 3, k: 4 };
+        let w = writes(&mut load);
+        assert!(w.result && w.slot.is_some_and(|s| *s == 3));
+    }
 }

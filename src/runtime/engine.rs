@@ -8,6 +8,7 @@ use crate::diagnostics::Diagnostics;
 use crate::driver::{self, Build};
 use crate::ir::image::Image;
 use crate::ir::types::TypeKind;
+use crate::ir::verify::VerifiedImage;
 use crate::source::{SourceMap, Span};
 use crate::types::ElemType;
 use crate::value::text::{Lit, parse_literal_text, parse_scalar};
@@ -170,7 +171,7 @@ impl fmt::Display for Value {
 
 /// A compiled program with its running state.
 pub struct Plc {
-    image: Image,
+    image: VerifiedImage,
     machine: Machine,
     sources: SourceMap,
     warnings: Diagnostics,
@@ -209,7 +210,7 @@ impl Plc {
     }
 
     fn from_image(
-        image: Image,
+        image: VerifiedImage,
         sources: SourceMap,
         warnings: Diagnostics,
         options: &Options,

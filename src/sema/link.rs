@@ -7,6 +7,7 @@ use super::{CompileOptions, Compiler};
 use crate::ir::image::{Image, ProgramInstance, RootVar, StringInit, Task};
 use crate::ir::op::Op;
 use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind};
+use crate::ir::verify::VerifiedImage;
 use crate::source::Span;
 use crate::syntax::ast::{Body, ExprKind, Item, LiteralValue, PouKind};
 use crate::types::ElemType;
@@ -243,7 +244,7 @@ impl Compiler<'_> {
     }
 
     /// Places everything in memory and builds the image.
-    pub(super) fn link(&mut self, options: &CompileOptions) -> Option<Image> {
+    pub(super) fn link(&mut self, options: &CompileOptions) -> Option<VerifiedImage> {
         if self.diags.has_errors() {
             // Still report call cycles and configuration problems, but do
             // not build memory for a program that cannot run.
@@ -387,15 +388,19 @@ impl Compiler<'_> {
         if self.diags.has_errors() {
             return None;
         }
-        if let Err(e) = crate::ir::verify::verify(&image) {
-            self.diags.error(
-                "E999",
-                Span::default(),
-                format!("internal compiler error: the generated code failed verification ({e})"),
-            );
-            return None;
+        match crate::ir::verify::verify(image) {
+            Ok(verified) => Some(verified),
+            Err(e) => {
+                self.diags.error(
+                    "E999",
+                    Span::default(),
+                    format!(
+                        "internal compiler error: the generated code failed verification ({e})"
+                    ),
+                );
+                None
+            }
         }
-        Some(image)
     }
 
     /// Reports calls that form a cycle (IEC forbids recursion).

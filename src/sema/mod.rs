@@ -18,8 +18,9 @@ mod stmt;
 mod typeck;
 
 use crate::diagnostics::Diagnostics;
-use crate::ir::image::{ArrayDesc, CodeBlock, Image, StringInit};
+use crate::ir::image::{ArrayDesc, CodeBlock, StringInit};
 use crate::ir::types::{TypeId, TypeTable};
+use crate::ir::verify::VerifiedImage;
 use crate::source::Span;
 use crate::syntax::ast::CompilationUnit;
 use crate::types::ElemType;
@@ -38,13 +39,13 @@ pub struct CompileOptions {
     pub check_only: bool,
 }
 
-/// Checks and lowers parsed files into an [`Image`]. Returns `None` when
+/// Checks and lowers parsed files into a verified image. Returns `None` when
 /// there were errors (all of them are in `diags`).
 pub fn compile(
     units: &[CompilationUnit],
     options: &CompileOptions,
     diags: &mut Diagnostics,
-) -> Option<Image> {
+) -> Option<VerifiedImage> {
     let mut c = Compiler::new(units, diags);
     c.declare_all();
     c.emit_all();

@@ -216,3 +216,39 @@ pub fn native_name(fb: NativeFb) -> String {
         NativeFb::Ctud(r) => format!("CTUD{}", suffix(r)),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_ir_knows_every_instance_size() {
+        // The verifier keeps native instances in their frame with the IR's
+        // size; `call_raw` builds slices of the interface's length.
+        use CounterRange as C;
+        let mut all = vec![
+            NativeFb::RTrig,
+            NativeFb::FTrig,
+            NativeFb::Sr,
+            NativeFb::Rs,
+            NativeFb::Ton,
+            NativeFb::Tof,
+            NativeFb::Tp,
+        ];
+        for r in [C::Int, C::Dint, C::Lint, C::Udint, C::Ulint] {
+            all.extend([NativeFb::Ctu(r), NativeFb::Ctd(r), NativeFb::Ctud(r)]);
+        }
+        for fb in all {
+            assert_eq!(interface(fb).len(), fb.instance_slots() as usize, "{fb:?}");
+        }
+    }
+
+    #[test]
+    fn standard_instances_are_small() {
+        // Bytes per instance: 8 per slot (pins and hidden state).
+        let bytes = |name: &str| lookup_native(name).map(|fb| interface(fb).len() * 8);
+        assert_eq!(bytes("R_TRIG"), Some(24));
+        assert_eq!(bytes("CTU"), Some(48));
+        assert_eq!(bytes("TON"), Some(56));
+    }
+}

@@ -12,15 +12,15 @@ mod edges;
 mod layout;
 mod timers;
 
-pub use layout::{NativeParam, ParamDir, interface, lookup_native, native_name};
+pub use layout::{ParamDir, interface, lookup_native, native_name};
 
 use crate::ir::op::NativeFb;
 
 /// Runs one call of `fb` on the instance whose first slot is at `p`.
 ///
 /// # Safety
-/// `p` must point to at least `interface(fb).len()` valid, writable slots
-/// that nothing else references during the call.
+/// `p` must point to at least `fb.instance_slots()` (= `interface(fb).len()`)
+/// valid, writable slots that nothing else references during the call.
 #[inline(always)]
 pub(crate) unsafe fn call_raw(fb: NativeFb, p: *mut u64, now: i64) {
     // Each arm builds a slice of the block's fixed size, so the compiler

@@ -137,10 +137,16 @@ fn int_pow(base: i64, exp: i64) -> Option<u64> {
 /// with `Vec::as_mut_ptr`, which stays valid across nested calls because no
 /// reference to the buffer is created while a block runs; addresses computed
 /// at run time (pointers, absolute addresses) are checked against the length.
+///
+/// # Soundness
+/// `img` must have passed [`crate::ir::verify::verify`] (callers hold a
+/// `VerifiedImage`); `m` may hold any memory, since every frame is checked
+/// against it on entry.
 pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Result<(), Fault> {
     let block = &img.codes[code as usize];
     let len = m.mem.len();
-    if base + block.frame_size as usize > len {
+    // `base` may come from a pointer slot: compared without overflow.
+    if base > len || block.frame_size as usize > len - base {
         return Err(Fault {
             kind: FaultKind::BadAddress,
             code,
@@ -264,15 +270,15 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::LoadAbs { d, abs } => w!(d, mload!(abs)),
             Op::StoreAbs { abs, s } => mstore!(abs, r!(s)),
             Op::LoadInd { d, p, off } => {
-                let a = r!(p) as usize + off as usize;
+                let a = (r!(p) as usize).wrapping_add(off as usize);
                 w!(d, mload!(a));
             }
             Op::StoreInd { p, off, s } => {
-                let a = r!(p) as usize + off as usize;
+                let a = (r!(p) as usize).wrapping_add(off as usize);
                 mstore!(a, r!(s));
             }
             Op::AddrOf { d, off } => w!(d, (base + off as usize) as u64),
-            Op::AddrAdd { d, p, off } => w!(d, r!(p) + off as u64),
+            Op::AddrAdd { d, p, off } => w!(d, r!(p).wrapping_add(off as u64)),
             Op::LoadElem { d, idx, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
                 let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
@@ -314,7 +320,10 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
                 }
-                w!(d, r!(d) + ad.offset as u64 + i * ad.stride as u64);
+                w!(
+                    d,
+                    r!(d).wrapping_add(ad.offset as u64 + i * ad.stride as u64)
+                );
             }
             Op::ElemRef { d, idx, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
@@ -689,12 +698,12 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 unsafe { stdlib::call_raw(fb, fp.add(inst as usize), m.now) }
             }
             Op::CallNativeInd { fb, p } => {
-                let n = stdlib::interface(fb).len();
+                let n = fb.instance_slots() as usize;
                 let start = r!(p) as usize;
-                if start + n > len {
+                if start > len || n > len - start {
                     fault!(FaultKind::BadAddress);
                 }
-                // SAFETY: start + n <= len was checked above.
+                // SAFETY: start + n <= len was checked above (without overflow).
                 unsafe { stdlib::call_raw(fb, mem.add(start), m.now) }
             }
             Op::CallFn { code: c } => {
@@ -704,7 +713,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::Clock { d } => w!(d, m.now as u64),
             Op::MemCopy { d, s, n } => {
                 let (to, from, n) = (r!(d) as usize, r!(s) as usize, n as usize);
-                if to + n > len || from + n > len {
+                if to > len || from > len || n > len - to || n > len - from {
                     fault!(FaultKind::BadAddress);
                 }
                 // SAFETY: both ranges lie inside memory (checked above);

@@ -5,6 +5,10 @@
 //! (division by zero, index out of range, conversion overflow, watchdog)
 //! stop execution and report the code block and instruction, which the
 //! runtime maps back to a source location.
+//!
+//! Only a [`VerifiedImage`] can be run: the executor's unchecked frame
+//! accesses are sound because `ir::verify` accepted every instruction
+//! (docs/adr/0004-verified-then-unchecked-execution.md).
 
 mod chart;
 mod convert;
@@ -21,7 +25,7 @@ pub fn convert_value(c: crate::ir::op::Conv, x: u64) -> Result<u64, FaultKind> {
     convert::convert(c, x)
 }
 
-use crate::ir::image::Image;
+use crate::ir::verify::VerifiedImage;
 use std::time::{Duration, Instant};
 
 /// How many backward jumps run between two looks at the wall clock.
@@ -31,18 +35,18 @@ pub(crate) const WATCHDOG_STRIDE: u32 = 4096;
 #[derive(Debug, Clone)]
 pub struct Machine {
     /// All slots (globals, program instances, FB instances, function frames).
-    pub mem: Vec<u64>,
+    pub(crate) mem: Vec<u64>,
     /// String variables, indexed by the string id a slot holds.
-    pub strings: Vec<PlcString>,
+    pub(crate) strings: Vec<PlcString>,
     /// The current cycle's clock value in nanoseconds.
-    pub now: i64,
+    pub(crate) now: i64,
     watchdog: Option<Duration>,
     deadline: Option<Instant>,
 }
 
 impl Machine {
     /// A machine holding the image's initial memory.
-    pub fn new(image: &Image) -> Machine {
+    pub fn new(image: &VerifiedImage) -> Machine {
         Machine {
             mem: image.memory.clone(),
             strings: image
@@ -69,9 +73,10 @@ impl Machine {
         self.deadline = None;
     }
 
-    /// Runs code block `code` with frame base `base`.
-    pub fn run(&mut self, image: &Image, code: u32, base: u32) -> Result<(), Fault> {
-        exec::run(self, image, code, base as usize)
+    /// Runs code block `code` with frame base `base` (a frame outside
+    /// memory faults with `BadAddress`).
+    pub fn run(&mut self, image: &VerifiedImage, code: u32, base: u32) -> Result<(), Fault> {
+        exec::run(self, image.image(), code, base as usize)
     }
 
     /// Called every `WATCHDOG_STRIDE` backward jumps of one block: true
@@ -91,3 +96,6 @@ impl Machine {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;
