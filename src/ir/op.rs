@@ -11,6 +11,9 @@
 //! `shift = 64 - bits`; signed kinds sign-extend, unsigned kinds zero-extend.
 //! Every instruction fits in 16 bytes.
 
+pub use crate::value::convert::Conv;
+pub use crate::value::encode::{wrap_s, wrap_u};
+
 /// A frame-relative slot index.
 pub type Slot = u32;
 /// An index into the instruction vector of a code block.
@@ -100,76 +103,6 @@ impl Cmp {
             Cmp::Ge => ord != Less,
         }
     }
-}
-
-/// Conversions between slot encodings. `S`/`U` = signed/unsigned integer,
-/// `F32`/`F64` = REAL/LREAL. Integer targets carry a shift (`64 - bits`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Conv {
-    /// Integer to signed integer, wrapping (e.g. DINT_TO_INT).
-    WrapS(u8),
-    /// Integer to unsigned integer or bit string, wrapping.
-    WrapU(u8),
-    /// Signed integer to REAL.
-    SToF32,
-    /// Unsigned integer to REAL.
-    UToF32,
-    /// Signed integer to LREAL.
-    SToF64,
-    /// Unsigned integer to LREAL.
-    UToF64,
-    /// REAL to LREAL.
-    F32ToF64,
-    /// LREAL to REAL.
-    F64ToF32,
-    /// REAL to signed integer, rounding half away from zero; out of range faults.
-    F32ToS(u8),
-    /// REAL to unsigned integer, rounding; out of range faults.
-    F32ToU(u8),
-    /// LREAL to signed integer, rounding; out of range faults.
-    F64ToS(u8),
-    /// LREAL to unsigned integer, rounding; out of range faults.
-    F64ToU(u8),
-    /// TRUNC of REAL to signed integer; out of range faults.
-    TruncF32ToS(u8),
-    /// TRUNC of LREAL to signed integer; out of range faults.
-    TruncF64ToS(u8),
-    /// TRUNC of REAL to unsigned integer.
-    TruncF32ToU(u8),
-    /// TRUNC of LREAL to unsigned integer.
-    TruncF64ToU(u8),
-    /// Integer to BOOL (non-zero is TRUE).
-    ToBool,
-    /// Signed integer checked into a signed range (faults when it does not fit).
-    CheckS(u8),
-    /// Integer checked into an unsigned range.
-    CheckU(u8),
-    /// Signed integer checked into an unsigned range (negative values fault).
-    CheckSToU(u8),
-    /// Binary to BCD (value of `bits` width); faults if it does not fit.
-    ToBcd(u8),
-    /// BCD to binary; faults on an invalid nibble.
-    FromBcd,
-    /// Nanoseconds to whole milliseconds (`TIME_TO_<int>`), then wrap as signed.
-    NsToMsS(u8),
-    /// Nanoseconds to whole milliseconds, then wrap as unsigned.
-    NsToMsU(u8),
-    /// Milliseconds (signed) to nanoseconds (`<int>_TO_TIME`).
-    MsToNsS,
-    /// Milliseconds (unsigned) to nanoseconds.
-    MsToNsU,
-    /// TIME to REAL milliseconds.
-    NsToMsF32,
-    /// TIME to LREAL milliseconds.
-    NsToMsF64,
-    /// REAL milliseconds to TIME.
-    MsF32ToNs,
-    /// LREAL milliseconds to TIME.
-    MsF64ToNs,
-    /// DT to DATE (drop the time of day).
-    DtToDate,
-    /// DT to TOD (keep the time of day).
-    DtToTod,
 }
 
 /// Bit-string shifts and rotations.
@@ -302,18 +235,6 @@ macro_rules! define_op {
 }
 
 super::op_list::for_each_op!(define_op);
-
-/// Sign-extends or zero-extends `x` from `64 - shift` bits.
-#[inline(always)]
-pub fn wrap_s(x: u64, shift: u8) -> u64 {
-    (((x << shift) as i64) >> shift) as u64
-}
-
-/// Zero-extends `x` from `64 - shift` bits.
-#[inline(always)]
-pub fn wrap_u(x: u64, shift: u8) -> u64 {
-    (x << shift) >> shift
-}
 
 #[cfg(test)]
 mod tests {

@@ -800,7 +800,7 @@ impl Compiler<'_> {
     fn apply_conv(&mut self, f: &mut Fcx, v: Val, conv: Conv, to: ElemType, span: Span) -> Val {
         let rt = TypeTable::elem(to);
         if let Val::Const(Const::Bits(b), _) = v {
-            return match crate::vm::convert_value(conv, b) {
+            return match crate::value::convert::convert(conv, b) {
                 Ok(r) => Val::Const(Const::Bits(r), Ty::T(rt)),
                 Err(k) => {
                     self.diags

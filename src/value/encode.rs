@@ -31,3 +31,15 @@ pub fn real_to_slot(v: f64, ty: ElemType) -> Option<u64> {
         _ => None,
     }
 }
+
+/// Sign-extends or zero-extends `x` from `64 - shift` bits.
+#[inline(always)]
+pub fn wrap_s(x: u64, shift: u8) -> u64 {
+    (((x << shift) as i64) >> shift) as u64
+}
+
+/// Zero-extends `x` from `64 - shift` bits.
+#[inline(always)]
+pub fn wrap_u(x: u64, shift: u8) -> u64 {
+    (x << shift) >> shift
+}

@@ -4,6 +4,7 @@
 //! lexer, the checker, the executor and the runtime all use these, and
 //! this module uses none of them.
 
+pub mod convert;
 pub mod encode;
 pub mod format;
 pub mod literal;

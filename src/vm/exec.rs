@@ -1,9 +1,10 @@
 //! The dispatch loop.
 
-use super::{Fault, FaultKind, Machine, convert, string_ops};
+use super::{Fault, FaultKind, Machine, string_ops};
 use crate::ir::image::Image;
 use crate::ir::op::{Cmp, Op, ShiftKind, wrap_s, wrap_u};
 use crate::stdlib;
+use crate::value::convert;
 
 #[inline(always)]
 fn f32_of(x: u64) -> f32 {
@@ -432,7 +433,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
 
             Op::Convert { d, a, conv } => match convert::convert(conv, r!(a)) {
                 Ok(v) => w!(d, v),
-                Err(kind) => fault!(kind),
+                Err(e) => fault!(FaultKind::from(e)),
             },
             Op::MulAddF32 { d, a, b } => {
                 let here: *const Op = op;

@@ -1,5 +1,6 @@
 //! Runtime faults: conditions that stop the PLC.
 
+use crate::value::convert::ConvError;
 use std::fmt;
 
 /// Why execution stopped.
@@ -42,6 +43,15 @@ pub enum FaultKind {
     Watchdog,
     /// A computed address fell outside memory (an internal error).
     BadAddress,
+}
+
+impl From<ConvError> for FaultKind {
+    fn from(e: ConvError) -> Self {
+        match e {
+            ConvError::Overflow => FaultKind::ConversionOverflow,
+            ConvError::InvalidBcd => FaultKind::InvalidBcd,
+        }
+    }
 }
 
 impl fmt::Display for FaultKind {

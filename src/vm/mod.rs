@@ -11,7 +11,6 @@
 //! (docs/adr/0004-verified-then-unchecked-execution.md).
 
 mod chart;
-mod convert;
 mod exec;
 mod fault;
 mod string_ops;
@@ -19,11 +18,6 @@ mod strings;
 
 pub use fault::{Fault, FaultKind};
 pub use strings::PlcString;
-
-/// Applies a conversion to a slot value (also used for constant folding).
-pub fn convert_value(c: crate::ir::op::Conv, x: u64) -> Result<u64, FaultKind> {
-    convert::convert(c, x)
-}
 
 use crate::ir::verify::VerifiedImage;
 use std::time::{Duration, Instant};
