@@ -50,8 +50,9 @@ pub(crate) mod vm;
 
 pub use diagnostics::{Diagnostic, Diagnostics, Severity};
 pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
-pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault, Value};
+pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
 pub use runtime::names::VarRef;
+pub use runtime::plc_value::Value;
 pub use runtime::session::{Pacing, RunError, Session, StimulusBindError};
 pub use runtime::stimulus::{
     Stimulus, StimulusCursor, StimulusError, StimulusKey, StimulusRow, parse_stimulus,

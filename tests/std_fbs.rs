@@ -608,7 +608,7 @@ fn native_block_matches_its_st_reference(
             if rng.chance(*p) {
                 state[i] = !state[i];
             }
-            plc.set(r, if state[i] { &tru } else { &fls });
+            plc.set(r, if state[i] { &tru } else { &fls }).unwrap();
         }
         if let Some((name, vals)) = &value_ref
             && (cycle == 0 || rng.chance(2))
@@ -617,12 +617,13 @@ fn native_block_matches_its_st_reference(
             plc.write(name, v).unwrap();
         }
         // Skip the calls in about 5 % of the cycles.
-        plc.set(&call, if rng.chance(95) { &tru } else { &fls });
+        plc.set(&call, if rng.chance(95) { &tru } else { &fls })
+            .unwrap();
         plc.run_cycle()
             .unwrap_or_else(|f| panic!("{fb}: fault in cycle {cycle}: {f}"));
         for (i, (o, n, r)) in outs.iter().enumerate() {
-            let native = plc.get(n).to_literal();
-            let refv = plc.get(r).to_literal();
+            let native = plc.get(n).unwrap().to_literal();
+            let refv = plc.get(r).unwrap().to_literal();
             assert_eq!(
                 native, refv,
                 "{fb}.{o} differs from REF_{fb}.{o} in cycle {cycle}"

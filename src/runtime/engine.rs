@@ -1,19 +1,16 @@
 //! The embeddable soft-PLC: compile sources, run cycles on the virtual
 //! clock, read and write variables by name.
 
-use super::names::{self, VarRef};
+use super::names;
 use super::scheduler::Scheduler;
-use super::var_error::{ValueProblem, VarError};
 use crate::diagnostics::Diagnostics;
 use crate::driver::{self, Build};
 use crate::ir::image::Image;
-use crate::ir::types::TypeKind;
 use crate::ir::verify::VerifiedImage;
 use crate::source::{SourceMap, Span};
-use crate::types::ElemType;
-use crate::value::text::{Lit, parse_literal_text, parse_scalar};
 use crate::vm::{Fault, Machine};
 use std::fmt;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
 /// How to build and run a program.
@@ -96,88 +93,20 @@ impl fmt::Display for RuntimeFault {
 
 impl std::error::Error for RuntimeFault {}
 
-/// A value read from the PLC.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Value {
-    /// An elementary value in its slot encoding.
-    Scalar(ElemType, u64),
-    /// A string.
-    String(String, bool),
-    /// An enumeration value.
-    Enum(String, i64),
-}
-
-impl Value {
-    /// The value as an IEC literal (`TRUE`, `42`, `T#1s`, `'x'`).
-    pub fn to_literal(&self) -> String {
-        match self {
-            Value::Scalar(t, raw) => crate::value::format::format_value(*t, *raw),
-            Value::String(s, wide) => crate::value::format::format_string(s, *wide),
-            Value::Enum(name, _) => name.clone(),
-        }
-    }
-
-    /// The value as a signed integer, if it is an integer-like scalar.
-    pub fn as_i64(&self) -> Option<i64> {
-        match self {
-            Value::Scalar(t, raw)
-                if t.is_signed_int() || t.family() == crate::types::Family::Duration =>
-            {
-                Some(*raw as i64)
-            }
-            Value::Scalar(t, raw) if t.is_int() || t.is_bit() => i64::try_from(*raw).ok(),
-            Value::Enum(_, v) => Some(*v),
-            _ => None,
-        }
-    }
-
-    /// The value of a BOOL.
-    pub fn as_bool(&self) -> Option<bool> {
-        match self {
-            Value::Scalar(ElemType::Bool, raw) => Some(*raw != 0),
-            _ => None,
-        }
-    }
-
-    /// The value of a REAL or LREAL (a REAL widened exactly), or of an
-    /// integer that an f64 holds exactly.
-    pub fn as_f64(&self) -> Option<f64> {
-        match self {
-            Value::Scalar(ElemType::Real, raw) => Some(f32::from_bits(*raw as u32) as f64),
-            Value::Scalar(ElemType::Lreal, raw) => Some(f64::from_bits(*raw)),
-            _ => {
-                let v = self.as_i64()?;
-                let exact = v.unsigned_abs() <= 1 << f64::MANTISSA_DIGITS;
-                exact.then_some(v as f64)
-            }
-        }
-    }
-
-    /// The text of a STRING or WSTRING.
-    pub fn as_str(&self) -> Option<&str> {
-        match self {
-            Value::String(s, _) => Some(s),
-            _ => None,
-        }
-    }
-}
-
-impl fmt::Display for Value {
-    /// The IEC literal, as [`Value::to_literal`].
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.to_literal())
-    }
-}
-
 /// A compiled program with its running state.
 pub struct Plc {
-    image: VerifiedImage,
-    machine: Machine,
+    pub(super) image: VerifiedImage,
+    pub(super) machine: Machine,
     sources: SourceMap,
     warnings: Diagnostics,
     cycle: u64,
     scheduler: Scheduler,
+    /// Tells this PLC's variable handles from another's.
+    pub(super) id: u64,
 }
+
+/// The next PLC identity (handles resolved by one PLC are refused by another).
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
 impl Plc {
     /// Compiles named source texts (`(file name, text)`).
@@ -225,6 +154,7 @@ impl Plc {
             warnings,
             cycle: 0,
             scheduler,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
         }
     }
 
@@ -302,120 +232,6 @@ impl Plc {
             cycle: self.cycle,
             fault,
         }
-    }
-
-    /// Resolves a variable name (see `docs/cli.md` for the syntax).
-    pub fn resolve(&self, name: &str) -> Result<VarRef, VarError> {
-        let r = names::resolve(&self.image, name)?;
-        match &self.image.types.get(r.ty).kind {
-            TypeKind::Elem(_)
-            | TypeKind::Str { .. }
-            | TypeKind::Enum { .. }
-            | TypeKind::Subrange { .. } => Ok(r),
-            _ => Err(VarError::NotAValue {
-                path: name.to_string(),
-                ty: self.image.types.name(r.ty).to_string(),
-            }),
-        }
-    }
-
-    /// Reads a resolved variable.
-    pub fn get(&self, r: &VarRef) -> Value {
-        let raw = self.machine.mem[r.addr as usize];
-        match &self.image.types.get(r.ty).kind {
-            TypeKind::Str { wide, .. } => {
-                let s = self
-                    .machine
-                    .strings
-                    .get(raw as usize)
-                    .map(|s| s.text.clone())
-                    .unwrap_or_default();
-                Value::String(s, *wide)
-            }
-            TypeKind::Enum { values, .. } => {
-                let v = raw as i64;
-                let name = values
-                    .iter()
-                    .find(|(_, x)| *x == v)
-                    .map(|(n, _)| n.clone())
-                    .unwrap_or_else(|| v.to_string());
-                Value::Enum(name, v)
-            }
-            _ => Value::Scalar(self.image.types.scalar(r.ty).unwrap_or(ElemType::Lint), raw),
-        }
-    }
-
-    /// Reads a variable by name.
-    pub fn read(&self, name: &str) -> Result<Value, VarError> {
-        Ok(self.get(&self.resolve(name)?))
-    }
-
-    /// Reads an integer variable by name.
-    pub fn read_i64(&self, name: &str) -> Result<i64, VarError> {
-        self.read(name)?
-            .as_i64()
-            .ok_or_else(|| VarError::NotAnInteger {
-                path: name.to_string(),
-            })
-    }
-
-    /// Decodes an IEC literal for the type of `r` (checks it fits).
-    pub fn parse_value(&self, r: &VarRef, text: &str) -> Result<Value, VarError> {
-        let t = text.trim();
-        let bad = |problem| VarError::BadValue {
-            literal: t.to_string(),
-            ty: self.image.types.name(r.ty).to_string(),
-            problem,
-        };
-        match &self.image.types.get(r.ty).kind {
-            TypeKind::Str { wide, .. } => match parse_literal_text(t) {
-                Ok((Lit::Str { value, .. }, _)) => Ok(Value::String(value, *wide)),
-                _ => Err(bad(ValueProblem::NotAString)),
-            },
-            TypeKind::Enum { values, .. } => {
-                let name = t.rsplit('#').next().unwrap_or(t);
-                values
-                    .iter()
-                    .find(|(n, _)| n.eq_ignore_ascii_case(name))
-                    .map(|(n, v)| Value::Enum(n.clone(), *v))
-                    .ok_or_else(|| bad(ValueProblem::NotAnEnumValue))
-            }
-            TypeKind::Subrange { base, lo, hi } => {
-                let raw = parse_scalar(t, *base).ok_or_else(|| bad(ValueProblem::Invalid))?;
-                let v = raw as i64;
-                if v < *lo || v > *hi {
-                    return Err(bad(ValueProblem::OutsideSubrange(v)));
-                }
-                Ok(Value::Scalar(*base, raw))
-            }
-            _ => {
-                let e = self.image.types.scalar(r.ty).unwrap_or(ElemType::Lint);
-                let raw = parse_scalar(t, e).ok_or_else(|| bad(ValueProblem::Invalid))?;
-                Ok(Value::Scalar(e, raw))
-            }
-        }
-    }
-
-    /// Writes a value into a resolved variable.
-    pub fn set(&mut self, r: &VarRef, v: &Value) {
-        match v {
-            Value::Scalar(_, raw) => self.machine.mem[r.addr as usize] = *raw,
-            Value::Enum(_, x) => self.machine.mem[r.addr as usize] = *x as u64,
-            Value::String(s, _) => {
-                let id = self.machine.mem[r.addr as usize] as usize;
-                if let Some(slot) = self.machine.strings.get_mut(id) {
-                    slot.set(s);
-                }
-            }
-        }
-    }
-
-    /// Writes a variable by name from an IEC literal.
-    pub fn write(&mut self, name: &str, literal: &str) -> Result<(), VarError> {
-        let r = self.resolve(name)?;
-        let v = self.parse_value(&r, literal)?;
-        self.set(&r, &v);
-        Ok(())
     }
 
     /// The names traced by default (VAR_OUTPUTs and `%Q` variables).

@@ -2,6 +2,8 @@
 //! while a program runs.
 //!
 //! - [`engine`]: the soft PLC — compile, run cycles, read and write variables;
+//! - [`access`]: reading and writing variables by name or handle;
+//! - [`plc_value`]: the values read and written;
 //! - [`session`]: a run as the command line does it — stimulus, trace;
 //! - [`scheduler`]: which program instances run at a tick, in which order;
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
@@ -9,8 +11,10 @@
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
+pub mod access;
 pub mod engine;
 pub mod names;
+pub mod plc_value;
 pub mod scheduler;
 pub mod session;
 pub mod stimulus;

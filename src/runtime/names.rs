@@ -7,15 +7,26 @@ use crate::ir::image::Image;
 use crate::ir::types::{MemberKind, TypeId, TypeKind, step_layout};
 use crate::types::ElemType;
 
-/// A resolved variable: where it is and what it holds.
+/// A resolved variable: a handle for repeated access without looking the
+/// name up again. Only [`crate::Plc::resolve`] makes one, and only the PLC
+/// that made it accepts it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VarRef {
     /// The name as the user wrote it.
-    pub name: String,
+    pub(crate) name: String,
     /// Absolute slot address.
-    pub addr: u32,
+    pub(crate) addr: u32,
     /// Type.
-    pub ty: TypeId,
+    pub(crate) ty: TypeId,
+    /// The identity of the PLC that resolved it.
+    pub(crate) owner: u64,
+}
+
+impl VarRef {
+    /// The name as it was given to `resolve` (trimmed).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
 }
 
 /// One step of a path.
@@ -91,8 +102,9 @@ fn normalize(text: &str) -> String {
     }
 }
 
-/// Resolves `text` against the image; the error names what is unknown.
-pub fn resolve(image: &Image, text: &str) -> Result<VarRef, VarError> {
+/// Resolves `text` against the image, for the PLC `owner`; the error names
+/// what is unknown.
+pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError> {
     let (root, segs) = parse_path(text)?;
     let (mut addr, mut ty) = if root.starts_with('%') {
         let key = normalize(&root);
@@ -155,6 +167,7 @@ pub fn resolve(image: &Image, text: &str) -> Result<VarRef, VarError> {
         name: text.trim().to_string(),
         addr,
         ty,
+        owner,
     })
 }
 

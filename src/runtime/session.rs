@@ -19,8 +19,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::engine::{Plc, RuntimeFault, Value};
+use super::engine::{Plc, RuntimeFault};
 use super::names::VarRef;
+use super::plc_value::Value;
 use super::stimulus::{Stimulus, StimulusCursor};
 use super::trace::{TraceCell, TraceWriter};
 use super::var_error::VarError;
@@ -228,14 +229,15 @@ impl Session {
             let due = bound.cursor.due(&bound.stimulus, cycle, time).len();
             for cells in &bound.rows[bound.applied..bound.applied + due] {
                 for (col, value) in cells {
-                    self.plc.set(&bound.columns[*col], value);
+                    // Decoded for these handles by this PLC in `bind_stimulus`.
+                    self.plc.store(&bound.columns[*col], value);
                 }
             }
             bound.applied += due;
         }
         self.plc.run_cycle()?;
         for (cell, r) in self.cells.iter_mut().zip(&self.traced) {
-            match self.plc.get(r) {
+            match self.plc.value_at(r) {
                 Value::Scalar(t, raw) => cell.set_value(t, raw),
                 Value::String(s, wide) => *cell = TraceCell::from_string(&s, wide),
                 Value::Enum(name, v) => {

@@ -85,6 +85,21 @@ pub enum VarError {
         /// The path.
         path: String,
     },
+    /// A handle resolved by another PLC.
+    ForeignHandle {
+        /// The handle's path.
+        path: String,
+    },
+    /// A value of another type (or outside the type's range) given to
+    /// `set`.
+    WrongValue {
+        /// The variable's path.
+        path: String,
+        /// Its type.
+        ty: String,
+        /// The value given, as a literal.
+        value: String,
+    },
 }
 
 /// What is wrong with a variable path's text.
@@ -167,6 +182,12 @@ impl fmt::Display for VarError {
                 ValueProblem::OutsideSubrange(v) => write!(f, "{v} is outside {ty}"),
             },
             VarError::NotAnInteger { path } => write!(f, "`{path}` is not an integer"),
+            VarError::ForeignHandle { path } => {
+                write!(f, "`{path}` was resolved by another PLC")
+            }
+            VarError::WrongValue { path, ty, value } => {
+                write!(f, "`{path}` is of type {ty} and cannot hold {value}")
+            }
         }
     }
 }

@@ -19,6 +19,25 @@ pub fn int_to_slot(v: i128, ty: ElemType) -> Option<u64> {
     }
 }
 
+/// Whether `raw` is a slot value of `ty` as the executor keeps it: BOOL 0
+/// or 1, integers and bit strings sign- or zero-extended from their width,
+/// REAL in the low 32 bits. (Every 64-bit pattern is an LREAL, a duration
+/// or a date.)
+pub fn is_canonical(ty: ElemType, raw: u64) -> bool {
+    match ty.int_range() {
+        Some((lo, hi)) => {
+            let v = if ty.is_signed_int() {
+                i128::from(raw as i64)
+            } else {
+                i128::from(raw)
+            };
+            (lo..=hi).contains(&v)
+        }
+        None if ty == ElemType::Real => raw <= u64::from(u32::MAX),
+        None => true,
+    }
+}
+
 /// Encodes a real into the slot of `ty` (REAL or LREAL); a finite value too
 /// large for REAL does not fit.
 pub fn real_to_slot(v: f64, ty: ElemType) -> Option<u64> {
