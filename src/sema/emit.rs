@@ -8,6 +8,7 @@ use crate::ir::op::{Op, Slot};
 use crate::ir::types::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::types::ElemType;
+use indexmap::IndexSet;
 
 /// The type of an expression: a known type, or an untyped literal that
 /// adapts to its context.
@@ -137,7 +138,7 @@ pub struct Fcx {
     pub fixups: Vec<(usize, usize)>,
     /// Constant values that live in frame slots (numbered with
     /// [`CONST_TAG`] until the frame size is known).
-    pub consts: Vec<u64>,
+    pub consts: IndexSet<u64>,
     /// Number of pinned slots (numbered with [`PIN_TAG`] until placed).
     pub pins: u32,
     /// Element addresses computed in the current basic block.
@@ -182,7 +183,7 @@ impl Fcx {
             returns: Vec::new(),
             last_def: None,
             fixups: Vec::new(),
-            consts: Vec::new(),
+            consts: IndexSet::new(),
             pins: 0,
             elem_cache: Vec::new(),
             vars_size: temp_base,
@@ -285,14 +286,7 @@ impl Fcx {
 
     /// A read-only frame slot holding `bits`, initialised once per instance.
     pub fn const_slot(&mut self, bits: u64) -> Slot {
-        let k = match self.consts.iter().position(|c| *c == bits) {
-            Some(k) => k,
-            None => {
-                self.consts.push(bits);
-                self.consts.len() - 1
-            }
-        };
-        CONST_TAG | k as u32
+        CONST_TAG | self.consts.insert_full(bits).0 as u32
     }
 
     /// Gives this body's constant and pinned slots their final numbers
@@ -308,7 +302,7 @@ impl Fcx {
 /// of the region and the constants' `(slot, value)` list.
 pub fn place_tagged(
     ops: &mut [Op],
-    consts: &[u64],
+    consts: &IndexSet<u64>,
     pins: u32,
     first: u32,
 ) -> (u32, Vec<(u32, u64)>) {
@@ -333,7 +327,7 @@ pub fn place_tagged(
 impl Fcx {
     /// Hands over the provisional constants and pin count (for blocks
     /// relocated later together with their owner).
-    pub fn take_tagged(&mut self) -> (Vec<u64>, u32) {
+    pub fn take_tagged(&mut self) -> (IndexSet<u64>, u32) {
         (
             std::mem::take(&mut self.consts),
             std::mem::replace(&mut self.pins, 0),

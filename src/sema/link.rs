@@ -372,13 +372,13 @@ impl Compiler<'_> {
         }
         let image = Image {
             codes: std::mem::take(&mut self.codes),
-            consts: std::mem::take(&mut self.consts),
-            str_consts: std::mem::take(&mut self.str_consts),
+            consts: std::mem::take(&mut self.consts).into_iter().collect(),
+            str_consts: std::mem::take(&mut self.str_consts).into_iter().collect(),
             arrays: std::mem::take(&mut self.arrays),
             memory: std::mem::take(&mut self.memory),
             strings: std::mem::take(&mut self.strings),
             types: self.types.clone(),
-            scalar_types: std::mem::take(&mut self.scalar_types),
+            scalar_types: std::mem::take(&mut self.scalar_types).into_iter().collect(),
             globals: roots,
             programs: instances,
             tasks,

@@ -23,7 +23,7 @@ use crate::ir::types::{TypeId, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::CompilationUnit;
 use crate::types::ElemType;
-use indexmap::IndexMap;
+use indexmap::{IndexMap, IndexSet};
 use model::{ConstInit, LayoutState, PouInfo, VarInfo};
 use std::collections::HashMap;
 
@@ -76,10 +76,10 @@ pub(crate) struct Compiler<'a> {
     memory: Vec<u64>,
     strings: Vec<StringInit>,
     codes: Vec<CodeBlock>,
-    consts: Vec<u64>,
-    str_consts: Vec<String>,
+    consts: IndexSet<u64>,
+    str_consts: IndexSet<String>,
     arrays: Vec<ArrayDesc>,
-    scalar_types: Vec<ElemType>,
+    scalar_types: IndexSet<ElemType>,
     /// Call graph edges between code blocks (for recursion detection).
     calls: Vec<(u32, u32, Span)>,
     /// Emission state of each POU body.
@@ -92,7 +92,7 @@ pub(crate) struct Compiler<'a> {
     charts: Vec<crate::ir::chart::Chart>,
     /// SFC blocks of the POU being emitted whose constant and pinned slots
     /// still need placing: (code block, constants, pin count).
-    pending_blocks: Vec<(u32, Vec<u64>, u32)>,
+    pending_blocks: Vec<(u32, IndexSet<u64>, u32)>,
     /// SFC blocks of the POU being emitted (they share its frame size).
     owned_blocks: Vec<u32>,
 }
@@ -116,10 +116,10 @@ impl<'a> Compiler<'a> {
             memory: Vec::new(),
             strings: Vec::new(),
             codes: Vec::new(),
-            consts: Vec::new(),
-            str_consts: Vec::new(),
+            consts: IndexSet::new(),
+            str_consts: IndexSet::new(),
             arrays: Vec::new(),
-            scalar_types: Vec::new(),
+            scalar_types: IndexSet::new(),
             calls: Vec::new(),
             emit_state: Vec::new(),
             fixups: Vec::new(),
@@ -154,28 +154,19 @@ impl<'a> Compiler<'a> {
 
     /// Interns a 64-bit constant.
     fn konst(&mut self, v: u64) -> u32 {
-        if let Some(i) = self.consts.iter().position(|c| *c == v) {
-            return i as u32;
-        }
-        self.consts.push(v);
-        self.consts.len() as u32 - 1
+        self.consts.insert_full(v).0 as u32
     }
 
     /// Interns a constant string.
     fn str_const(&mut self, s: &str) -> u32 {
-        if let Some(i) = self.str_consts.iter().position(|c| c == s) {
-            return i as u32;
+        match self.str_consts.get_index_of(s) {
+            Some(i) => i as u32,
+            None => self.str_consts.insert_full(s.to_string()).0 as u32,
         }
-        self.str_consts.push(s.to_string());
-        self.str_consts.len() as u32 - 1
     }
 
     /// Index of an elementary type in the `ToStr`/`FromStr` list.
     fn scalar_index(&mut self, e: ElemType) -> u8 {
-        if let Some(i) = self.scalar_types.iter().position(|c| *c == e) {
-            return i as u8;
-        }
-        self.scalar_types.push(e);
-        self.scalar_types.len() as u8 - 1
+        self.scalar_types.insert_full(e).0 as u8
     }
 }
