@@ -1,7 +1,7 @@
 //! Calls: FB invocations (native and user), user function calls, EN/ENO,
 //! formal and non-formal arguments, `=>` outputs.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
 use super::model::{ConstInit, Storage};
 use crate::ir::op::Op;
@@ -37,7 +37,7 @@ struct Bound<'e> {
     eno: Option<&'e Expr>,
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// A call used as a statement.
     pub(super) fn call_stmt(&mut self, f: &mut Fcx, call: &Call) {
         if let ExprKind::Name(id) = &call.callee.kind
@@ -78,15 +78,15 @@ impl Compiler<'_> {
             return Val::error();
         };
         let key = id.key();
-        if let Some(&p) = self.pou_index.get(&key) {
-            if self.pous[p].kind != PouKind::Function {
+        if let Some(&p) = self.model.pou_index.get(&key) {
+            if self.model.pous[p].kind != PouKind::Function {
                 self.diags.error(
                     "E406",
                     id.span,
                     format!(
                         "`{}` is a {}: declare an instance and call the instance",
                         id.name,
-                        if self.pous[p].kind == PouKind::Program {
+                        if self.model.pous[p].kind == PouKind::Program {
                             "PROGRAM"
                         } else {
                             "FUNCTION_BLOCK"
@@ -369,16 +369,16 @@ impl Compiler<'_> {
                 f.emit(Op::CallNativeInd { fb: *fb, p });
             }
             (TypeKind::Pou { code, .. }, Some(o), _) => {
-                let caller = self.pous[f.pou].code;
-                self.calls.push((caller, *code, span));
+                let caller = self.model.pous[f.pou].code;
+                self.out.calls.push((caller, *code, span));
                 f.emit(Op::CallFb {
                     code: *code,
                     inst: o,
                 });
             }
             (TypeKind::Pou { code, .. }, None, Some(p)) => {
-                let caller = self.pous[f.pou].code;
-                self.calls.push((caller, *code, span));
+                let caller = self.model.pous[f.pou].code;
+                self.out.calls.push((caller, *code, span));
                 f.emit(Op::CallFbInd { code: *code, p });
             }
             _ => {}
@@ -501,7 +501,7 @@ impl Compiler<'_> {
 
     /// Calls a user FUNCTION through its static frame.
     fn user_function_call(&mut self, f: &mut Fcx, p: usize, call: &Call, want: bool) -> Val {
-        let callee = self.pous[p].clone();
+        let callee = self.model.pous[p].clone();
         let params: Vec<Param> = callee
             .params
             .iter()
@@ -626,7 +626,7 @@ impl Compiler<'_> {
                     let init = prm
                         .default
                         .clone()
-                        .unwrap_or_else(|| self.default_init(prm.ty));
+                        .unwrap_or_else(|| self.model.default_init(self.types, prm.ty));
                     let v = match init {
                         ConstInit::Scalar(bits) => {
                             Val::Const(super::consts::Const::Bits(bits), Ty::T(prm.ty))
@@ -683,8 +683,8 @@ impl Compiler<'_> {
                 }
             }
         }
-        let caller = self.pous[f.pou].code;
-        self.calls.push((caller, callee.code, call.span));
+        let caller = self.model.pous[f.pou].code;
+        self.out.calls.push((caller, callee.code, call.span));
         f.emit(Op::CallFn { code: callee.code });
         let mut result = Val::None(TypeTable::void());
         if callee.ret != TypeTable::void() {

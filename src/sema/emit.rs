@@ -1,8 +1,9 @@
 //! The per-body emission context: instruction buffer, temporaries, loop
 //! targets, and the value/place vocabulary the expression checker uses.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::Const;
+use super::model::VarInfo;
 use crate::ir::image::StringInit;
 use crate::ir::op::{Op, Slot};
 use crate::ir::types::{TypeId, TypeKind, TypeTable};
@@ -147,6 +148,9 @@ pub struct Fcx {
     pub vars_size: u32,
     /// Control variables of the FOR loops being emitted (read-only inside).
     pub for_vars: Vec<Slot>,
+    /// The IL current result while it is visible as a hidden variable
+    /// (to call arguments built from it).
+    pub il_cr: Option<VarInfo>,
 }
 
 /// A cached element address: the element of the frame array described by
@@ -188,6 +192,7 @@ impl Fcx {
             elem_cache: Vec::new(),
             vars_size: temp_base,
             for_vars: Vec::new(),
+            il_cr: None,
         }
     }
 
@@ -379,17 +384,17 @@ fn dest_mut(op: &mut Op) -> Option<&mut Slot> {
     if w.result { w.slot } else { None }
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// A string temporary of capacity `max`: a fresh string id (private to
     /// this POU, safe because IEC forbids recursion) loaded into a temporary.
     pub(super) fn string_temp(&mut self, f: &mut Fcx, max: u32, wide: bool) -> Slot {
-        self.strings.push(StringInit {
+        self.out.strings.push(StringInit {
             max,
             wide,
             init: String::new(),
         });
         // The slot only holds the string's id, which never changes.
-        f.const_slot(self.strings.len() as u64 - 1)
+        f.const_slot(self.out.strings.len() as u64 - 1)
     }
 
     /// Puts a value into a slot (constants are loaded into a temporary).
@@ -408,7 +413,7 @@ impl Compiler<'_> {
                             _ => (254, false),
                         };
                         let t = self.string_temp(f, max.max(s.chars().count() as u32), wide);
-                        let k = self.str_const(s);
+                        let k = self.out.str_const(s);
                         f.emit(Op::StrConst { d: t, k });
                         f.last_def = None;
                         return t;
@@ -479,7 +484,7 @@ impl Compiler<'_> {
                 f.emit(Op::AddrOf { d: t, off: s });
             }
             Place::Abs(abs) => {
-                let k = self.konst(abs as u64);
+                let k = self.out.konst(abs as u64);
                 f.emit(Op::LoadK { d: t, k });
             }
             Place::Ind { p: ptr, off } => {

@@ -1,7 +1,7 @@
 //! Expressions: name resolution, places (lvalues), operators with constant
 //! folding, and emission of typed instructions.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::{Const, literal_to_slot, literal_type, slot_to_int, slot_to_real};
 use super::declare::{address_type, normalize_address};
 use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
@@ -14,7 +14,7 @@ use crate::source::Span;
 use crate::syntax::ast::{BinaryOp, Expr, ExprKind, Literal, LiteralValue, UnaryOp};
 use crate::types::{ElemType, Family};
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// Checks and emits an expression used as a value.
     pub(super) fn expr(&mut self, f: &mut Fcx, e: &Expr, expect: Option<TypeId>) -> Val {
         let saved = f.span;
@@ -116,7 +116,7 @@ impl Compiler<'_> {
             }
             // `Color#Red`
             let key = prefix.key();
-            if let Some(t) = self.user_type(&key, prefix.span)
+            if let Some(t) = self.model.type_ids.get(&key).copied()
                 && let TypeKind::Enum { values, .. } = &self.types.get(t).kind
             {
                 let name = match &l.value {
@@ -171,7 +171,7 @@ impl Compiler<'_> {
 
     /// An unqualified enumeration value, disambiguated by the expected type.
     fn enum_value(&self, key: &str, expect: Option<TypeId>) -> Option<Val> {
-        let candidates = self.enum_values.get(key)?;
+        let candidates = self.model.enum_values.get(key)?;
         let pick = expect
             .and_then(|t| candidates.iter().find(|(id, _)| *id == t))
             .or_else(|| candidates.first())?;
@@ -179,11 +179,21 @@ impl Compiler<'_> {
     }
 
     /// Finds a variable visible in the current body.
-    pub(super) fn lookup_var(&self, f: &Fcx, key: &str) -> Option<&super::model::VarInfo> {
-        self.pous
+    pub(super) fn lookup_var<'s>(
+        &'s self,
+        f: &'s Fcx,
+        key: &str,
+    ) -> Option<&'s super::model::VarInfo> {
+        if let Some(cr) = &f.il_cr
+            && key == super::il::CR_KEY
+        {
+            return Some(cr);
+        }
+        self.model
+            .pous
             .get(f.pou)
             .and_then(|p| p.vars.get(key))
-            .or_else(|| self.globals.get(key))
+            .or_else(|| self.model.globals.get(key))
     }
 
     fn place_value(&mut self, f: &mut Fcx, e: &Expr) -> Val {
@@ -210,7 +220,7 @@ impl Compiler<'_> {
             ExprKind::Name(id) => {
                 let key = id.key();
                 let Some(var) = self.lookup_var(f, &key).cloned() else {
-                    let what = if self.pou_index.contains_key(&key) {
+                    let what = if self.model.pou_index.contains_key(&key) {
                         format!("`{}` is a POU, not a variable", id.name)
                     } else {
                         format!("undeclared variable `{}`", id.name)
@@ -223,7 +233,7 @@ impl Compiler<'_> {
                     Storage::Abs(a) => Place::Abs(a),
                     Storage::Ref(o) => Place::Ind { p: o, off: 0 },
                 };
-                let function_input = self.pous.get(f.pou).is_some_and(|p| {
+                let function_input = self.model.pous.get(f.pou).is_some_and(|p| {
                     p.kind == crate::syntax::ast::PouKind::Function && var.kind == MemberKind::Input
                 });
                 let reason = if var.constant {
@@ -247,11 +257,11 @@ impl Compiler<'_> {
             }
             ExprKind::Direct(a) => {
                 let key = normalize_address(a);
-                let (addr, ty) = match self.located.get(&key) {
+                let (addr, ty) = match self.out.located.get(&key) {
                     Some(&(addr, ty)) => (addr, ty),
                     None => {
                         let ty = TypeTable::elem(address_type(a));
-                        (self.located_slot(a, ty)?, ty)
+                        (self.out.located_slot(self.types, self.diags, a, ty)?, ty)
                     }
                 };
                 Some(PlaceRef {
@@ -482,7 +492,7 @@ impl Compiler<'_> {
                     f.emit(Op::LoadI { d: acc, imm: 0 });
                     for ((v, span), d) in vals.iter().zip(&dims) {
                         let s = self.materialize(f, v);
-                        let desc = self.array_desc(ArrayDesc {
+                        let desc = self.out.array_desc(ArrayDesc {
                             offset: 0,
                             lo: d.lo,
                             len: d.len(),
@@ -497,7 +507,7 @@ impl Compiler<'_> {
                 let scalar_elem = self.types.scalar(elem).is_some();
                 match b.place {
                     Place::Frame(o) if scalar_elem => {
-                        let desc = self.array_desc(ArrayDesc {
+                        let desc = self.out.array_desc(ArrayDesc {
                             offset: o,
                             lo,
                             len: total,
@@ -523,7 +533,7 @@ impl Compiler<'_> {
                         let p = match cached {
                             Some(p) => p,
                             None => {
-                                let desc = self.array_desc(ArrayDesc {
+                                let desc = self.out.array_desc(ArrayDesc {
                                     offset: o,
                                     lo,
                                     len: total,
@@ -554,7 +564,7 @@ impl Compiler<'_> {
                             s: base_ptr,
                         });
                         let base_ptr = fresh;
-                        let desc = self.array_desc(ArrayDesc {
+                        let desc = self.out.array_desc(ArrayDesc {
                             offset: 0,
                             lo,
                             len: total,
@@ -578,11 +588,6 @@ impl Compiler<'_> {
                 None
             }
         }
-    }
-
-    fn array_desc(&mut self, d: ArrayDesc) -> u32 {
-        self.arrays.push(d);
-        self.arrays.len() as u32 - 1
     }
 
     /// `place + offset`, turning element places into pointers when needed.
@@ -981,7 +986,7 @@ impl Compiler<'_> {
         vb: &Val,
         span: Span,
     ) -> Option<Val> {
-        let fam = |c: &Compiler, v: &Val| v.ty().id().and_then(|t| c.scalar(t));
+        let fam = |c: &BodyBuilder, v: &Val| v.ty().id().and_then(|t| c.scalar(t));
         let (ea, eb) = (fam(self, va), fam(self, vb));
         let is_dur = |e: Option<ElemType>| e.is_some_and(|e| e.family() == Family::Duration);
         let is_date = |e: Option<ElemType>| e.is_some_and(|e| e.family() == Family::DateTime);
@@ -1123,7 +1128,7 @@ impl Compiler<'_> {
             R(f64),
             S(String),
         }
-        let to_n = |c: &Const, t: Ty, s: &Compiler| -> Option<N> {
+        let to_n = |c: &Const, t: Ty, s: &BodyBuilder| -> Option<N> {
             Some(match (c, t) {
                 (Const::Int(i), _) => N::I(*i),
                 (Const::Real(r), _) => N::R(*r),

@@ -3,7 +3,7 @@
 //! operations `OP(` save CR in their own slot; jumps and labels become IR
 //! jumps. IL therefore runs on the same executor as ST.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::emit::{Fcx, Ty, Val};
 use super::model::{Storage, VarInfo};
 use crate::ir::op::Op;
@@ -16,7 +16,7 @@ use crate::types::ElemType;
 use std::collections::HashMap;
 
 /// Name under which the CR slot is visible to the expression checker.
-const CR_KEY: &str = "\u{0}CR";
+pub(super) const CR_KEY: &str = "\u{0}CR";
 
 /// A pending deferred operation.
 struct Deferred {
@@ -85,7 +85,7 @@ struct IlState {
     pending: Vec<(usize, Ident, Option<TypeId>)>,
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// Lowers an IL body. Returns the CR slot and its final type (used for
     /// IL transition conditions).
     pub(super) fn il_body(&mut self, f: &mut Fcx, lines: &[IlLine]) -> (u32, Option<TypeId>) {
@@ -158,7 +158,7 @@ impl Compiler<'_> {
                 ),
             }
         }
-        self.pous[f.pou].vars.shift_remove(CR_KEY);
+        f.il_cr = None;
         (st.cr, st.cr_ty)
     }
 
@@ -180,22 +180,19 @@ impl Compiler<'_> {
     }
 
     /// Makes the CR readable as a hidden variable for call arguments.
-    fn expose_cr(&mut self, f: &Fcx, st: &IlState) {
+    fn expose_cr(&mut self, f: &mut Fcx, st: &IlState) {
         let ty = st.cr_ty.unwrap_or(TypeTable::error());
-        self.pous[f.pou].vars.insert(
-            CR_KEY.to_string(),
-            VarInfo {
-                name: "current result".into(),
-                ty,
-                kind: MemberKind::Temp,
-                storage: Storage::Frame(st.cr),
-                constant: false,
-                value: None,
-                init: None,
-                location: None,
-                span: Span::default(),
-            },
-        );
+        f.il_cr = Some(VarInfo {
+            name: "current result".into(),
+            ty,
+            kind: MemberKind::Temp,
+            storage: Storage::Frame(st.cr),
+            constant: false,
+            value: None,
+            init: None,
+            location: None,
+            span: Span::default(),
+        });
     }
 
     /// The CR as a call argument: the literal itself while the CR is an

@@ -1,15 +1,56 @@
-//! Linking: emits every body, places function frames and program
-//! instances in memory, writes initial values, and builds the [`Image`].
+//! The link stage: after every body is emitted, places function frames
+//! and program instances in memory, writes initial values, relocates
+//! function-frame addresses, checks for recursion, builds the tasks and
+//! the [`Image`]. Reads the declarations; consumes the output tables.
 
-use super::emit::Fcx;
-use super::model::{ConstInit, LayoutState, Storage};
-use super::{CompileOptions, Compiler};
+use super::CompileOptions;
+use super::decl_consts::DeclConsts;
+use super::declare::Declared;
+use super::model::{ConstInit, Model, Storage};
+use super::program::Program;
+use crate::diagnostics::Diagnostics;
 use crate::ir::image::{Image, ProgramInstance, RootVar, StringInit, Task};
 use crate::ir::op::Op;
-use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind};
+use crate::ir::types::{MemberKind, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
-use crate::syntax::ast::{Body, ExprKind, Item, LiteralValue, PouKind};
+use crate::syntax::ast::{CompilationUnit, ExprKind, Item, LiteralValue, PouKind};
 use crate::types::ElemType;
+
+/// Links the declared and emitted program (or, after errors, only reports
+/// call cycles and configuration problems).
+pub(super) fn link(
+    units: &[CompilationUnit],
+    declared: Declared,
+    options: &CompileOptions,
+    diags: &mut Diagnostics,
+) -> Option<Image> {
+    let frame_abs = vec![0; declared.model.pous.len()];
+    let mut linker = Linker {
+        units,
+        diags,
+        model: &declared.model,
+        types: &declared.types,
+        out: declared.out,
+        frame_abs,
+    };
+    linker.link(options)
+}
+
+/// State of the link stage.
+struct Linker<'a> {
+    /// The parsed files (for configurations).
+    units: &'a [CompilationUnit],
+    /// Where errors go.
+    diags: &'a mut Diagnostics,
+    /// The declarations (read-only).
+    model: &'a Model,
+    /// All types.
+    types: &'a TypeTable,
+    /// The output tables, completed here.
+    out: Program,
+    /// Absolute address of each function's static frame.
+    frame_abs: Vec<u32>,
+}
 
 /// A program instance chosen to run: (instance name, POU, task, connections).
 type Scheduled = (String, usize, usize, Vec<Connection>);
@@ -30,68 +71,14 @@ struct Connection {
 /// `(slot, constant string)`.
 type EntryResets = (Vec<(u32, u64)>, Vec<(u32, u32)>);
 
-impl Compiler<'_> {
-    /// Emits the body of every POU.
-    pub(super) fn emit_all(&mut self) {
-        for p in 0..self.pous.len() {
-            self.ensure_emitted(p);
+impl Linker<'_> {
+    /// The folder of declaration constants (for constant connections).
+    fn consts(&mut self) -> DeclConsts<'_> {
+        DeclConsts {
+            types: self.types,
+            model: self.model,
+            diags: self.diags,
         }
-    }
-
-    /// Emits POU `p` (after laying it out) unless already done.
-    pub(super) fn ensure_emitted(&mut self, p: usize) {
-        self.layout_pou(p);
-        if self.pou_state[p] != LayoutState::Done || self.emit_state[p] != LayoutState::Pending {
-            return;
-        }
-        self.emit_state[p] = LayoutState::InProgress;
-        let (u, i) = self.pous[p].ast;
-        let units = self.units;
-        let Item::Pou(pou) = &units[u].items[i] else {
-            return;
-        };
-        let mut f = Fcx::new(p, self.pous[p].vars_size);
-        match &pou.body {
-            Body::St(stmts) => self.stmts(&mut f, stmts),
-            Body::Il(lines) => {
-                self.il_body(&mut f, lines);
-            }
-            Body::Sfc(elems) => self.emit_chart(&mut f, pou, elems),
-        }
-        let end = f.here();
-        for j in std::mem::take(&mut f.returns) {
-            f.patch(j, end);
-        }
-        f.span = pou.span;
-        f.emit(Op::Ret);
-        let code = self.pous[p].code;
-        // The body and its SFC blocks share the frame: temporaries first
-        // (each block's start at the same base), then one region of
-        // constants and pinned slots per block.
-        let first = f.temp_max;
-        let (mut frame_size, mut consts) = f.place_consts(first);
-        for (block, block_consts, pins) in std::mem::take(&mut self.pending_blocks) {
-            let ops = &mut self.codes[block as usize].ops;
-            let (end, list) = super::emit::place_tagged(ops, &block_consts, pins, frame_size);
-            consts.extend(list);
-            frame_size = end;
-        }
-        for c in std::mem::take(&mut self.owned_blocks) {
-            self.codes[c as usize].frame_size = frame_size;
-        }
-        self.pous[p].consts = consts;
-        for (at, callee) in std::mem::take(&mut f.fixups) {
-            self.fixups.push((code, at, callee));
-        }
-        let block = &mut self.codes[code as usize];
-        block.ops = f.ops;
-        block.spans = f.spans;
-        block.frame_size = frame_size;
-        let ty = self.pous[p].ty;
-        let mut def: TypeDef = self.types.get(ty).clone();
-        def.size = frame_size;
-        self.types.set(ty, def);
-        self.emit_state[p] = LayoutState::Done;
     }
 
     /// Writes the initial value of a `ty` at `at` in `buf`, collecting string slots.
@@ -107,7 +94,7 @@ impl Compiler<'_> {
         let init = match init {
             Some(i) => Some(i),
             None => {
-                default = self.type_inits.get(&ty).cloned();
+                default = self.model.type_inits.get(&ty).cloned();
                 default.as_ref()
             }
         };
@@ -116,7 +103,7 @@ impl Compiler<'_> {
                 let Some(slot) = buf.get_mut(at) else { return };
                 *slot = match init {
                     Some(ConstInit::Scalar(b)) => *b,
-                    _ => match self.default_init(ty) {
+                    _ => match self.model.default_init(self.types, ty) {
                         ConstInit::Scalar(b) => b,
                         _ => 0,
                     },
@@ -152,7 +139,7 @@ impl Compiler<'_> {
                     Some(ConstInit::Struct(v)) => v.as_slice(),
                     _ => &[],
                 };
-                let type_defaults = match self.type_inits.get(&ty) {
+                let type_defaults = match self.model.type_inits.get(&ty) {
                     Some(ConstInit::Struct(v)) => v.clone(),
                     _ => Vec::new(),
                 };
@@ -173,15 +160,15 @@ impl Compiler<'_> {
                 }
             }
             TypeKind::Pou { code, .. } => {
-                let Some(p) = self.pous.iter().position(|p| p.code == *code) else {
+                let Some(p) = self.model.pous.iter().position(|p| p.code == *code) else {
                     return;
                 };
-                for var in self.pous[p].vars.values() {
+                for var in self.model.pous[p].vars.values() {
                     if let Storage::Frame(o) = var.storage {
                         self.write_init(buf, at + o as usize, var.ty, var.init.as_ref(), strs);
                     }
                 }
-                for &(slot, value) in &self.pous[p].consts {
+                for &(slot, value) in &self.model.pous[p].consts {
                     if let Some(s) = buf.get_mut(at + slot as usize) {
                         *s = value;
                     }
@@ -194,26 +181,26 @@ impl Compiler<'_> {
     /// Writes initial values into absolute memory and allocates string ids.
     fn instantiate(&mut self, addr: u32, ty: TypeId, init: Option<&ConstInit>) {
         let mut strs = Vec::new();
-        let mut buf = std::mem::take(&mut self.memory);
+        let mut buf = std::mem::take(&mut self.out.memory);
         self.write_init(&mut buf, addr as usize, ty, init, &mut strs);
         for (slot, s) in strs {
             if let Some(s) = buf.get_mut(slot) {
-                *s = self.strings.len() as u64;
+                *s = self.out.strings.len() as u64;
             }
-            self.strings.push(s);
+            self.out.strings.push(s);
         }
-        self.memory = buf;
+        self.out.memory = buf;
     }
 
     /// Entry resets of a POU's VAR_TEMP (FBs, programs) or of all its
     /// non-input variables (functions).
     fn entry_resets(&mut self, p: usize) -> EntryResets {
-        let kind = self.pous[p].kind;
-        let size = self.pous[p].vars_size as usize;
+        let kind = self.model.pous[p].kind;
+        let size = self.model.pous[p].vars_size as usize;
         let mut buf = vec![0u64; size];
         let mut strs = Vec::new();
         let mut slots = Vec::new();
-        let vars: Vec<_> = self.pous[p].vars.values().cloned().collect();
+        let vars: Vec<_> = self.model.pous[p].vars.values().cloned().collect();
         for var in vars {
             let reset = match kind {
                 PouKind::Function => !matches!(var.kind, MemberKind::Input | MemberKind::InOut),
@@ -237,7 +224,7 @@ impl Compiler<'_> {
         }
         let strings = strs
             .into_iter()
-            .map(|(slot, s)| (slot as u32, self.str_const(&s.init)))
+            .map(|(slot, s)| (slot as u32, self.out.str_const(&s.init)))
             .collect();
         (slots, strings)
     }
@@ -252,30 +239,30 @@ impl Compiler<'_> {
             return None;
         }
         // Function frames.
-        for p in 0..self.pous.len() {
-            if self.pous[p].kind != PouKind::Function || self.emit_state[p] != LayoutState::Done {
+        for p in 0..self.model.pous.len() {
+            if self.model.pous[p].kind != PouKind::Function || !self.model.emitted[p] {
                 continue;
             }
-            let code = self.pous[p].code as usize;
-            let size = self.codes[code].frame_size.max(1);
-            let at = self.alloc_abs(size);
-            self.pous[p].frame_abs = at;
-            self.codes[code].frame = at;
-            let ty = self.pous[p].ty;
+            let code = self.model.pous[p].code as usize;
+            let size = self.out.codes[code].frame_size.max(1);
+            let at = self.out.alloc_abs(self.diags, size);
+            self.frame_abs[p] = at;
+            self.out.codes[code].frame = at;
+            let ty = self.model.pous[p].ty;
             self.instantiate(at, ty, None);
         }
-        for p in 0..self.pous.len() {
-            if self.emit_state[p] != LayoutState::Done {
+        for p in 0..self.model.pous.len() {
+            if !self.model.emitted[p] {
                 continue;
             }
             let (init, strings) = self.entry_resets(p);
-            let code = self.pous[p].code as usize;
-            self.codes[code].entry_init = init;
-            self.codes[code].entry_strings = strings;
+            let code = self.model.pous[p].code as usize;
+            self.out.codes[code].entry_init = init;
+            self.out.codes[code].entry_strings = strings;
         }
-        for (code, at, callee) in std::mem::take(&mut self.fixups) {
-            let base = self.pous[callee].frame_abs;
-            match &mut self.codes[code as usize].ops[at] {
+        for (code, at, callee) in std::mem::take(&mut self.out.fixups) {
+            let base = self.frame_abs[callee];
+            match &mut self.out.codes[code as usize].ops[at] {
                 Op::StoreAbs { abs, .. } | Op::LoadAbs { abs, .. } => *abs += base,
                 Op::LoadI { imm, .. } => *imm += base as i32,
                 _ => {}
@@ -283,17 +270,17 @@ impl Compiler<'_> {
         }
         self.check_recursion();
         // Globals and located variables with initial values.
-        let globals: Vec<_> = self.globals.values().cloned().collect();
+        let globals: Vec<_> = self.model.globals.values().cloned().collect();
         for g in &globals {
             if let Storage::Abs(a) = g.storage {
                 self.instantiate(a, g.ty, g.init.as_ref());
             }
         }
-        for p in 0..self.pous.len() {
-            if self.pous[p].kind != PouKind::Program {
+        for p in 0..self.model.pous.len() {
+            if self.model.pous[p].kind != PouKind::Program {
                 continue;
             }
-            let vars: Vec<_> = self.pous[p].vars.values().cloned().collect();
+            let vars: Vec<_> = self.model.pous[p].vars.values().cloned().collect();
             for v in vars {
                 if let (Storage::Abs(a), Some(_), Some(init)) = (v.storage, &v.location, &v.init) {
                     self.instantiate(a, v.ty, Some(init));
@@ -303,9 +290,9 @@ impl Compiler<'_> {
         let (tasks, programs) = self.schedule(options)?;
         let mut instances = Vec::new();
         for (name, p, task, conns) in programs {
-            let ty = self.pous[p].ty;
+            let ty = self.model.pous[p].ty;
             let size = self.types.size(ty).max(1);
-            let base = self.alloc_abs(size);
+            let base = self.out.alloc_abs(self.diags, size);
             self.instantiate(base, ty, None);
             let (mut inputs, mut outputs) = (Vec::new(), Vec::new());
             for c in conns {
@@ -317,8 +304,8 @@ impl Compiler<'_> {
             }
             instances.push(ProgramInstance {
                 name,
-                type_name: self.pous[p].name.clone(),
-                code: self.pous[p].code,
+                type_name: self.model.pous[p].name.clone(),
+                code: self.model.pous[p].code,
                 base,
                 ty,
                 task,
@@ -339,7 +326,7 @@ impl Compiler<'_> {
                 _ => None,
             })
             .collect();
-        let mut located: Vec<(&String, &(u32, TypeId))> = self.located.iter().collect();
+        let mut located: Vec<(&String, &(u32, TypeId))> = self.out.located.iter().collect();
         located.sort_by_key(|(_, (a, _))| *a);
         for (text, (addr, ty)) in located {
             if !roots.iter().any(|r| r.addr == *addr) {
@@ -354,8 +341,8 @@ impl Compiler<'_> {
         }
         // Located variables declared inside programs are named by the program.
         for inst in &instances {
-            let p = self.pous.iter().position(|x| x.code == inst.code)?;
-            for v in self.pous[p].vars.values() {
+            let p = self.model.pous.iter().position(|x| x.code == inst.code)?;
+            for v in self.model.pous[p].vars.values() {
                 if let (Storage::Abs(a), Some(loc)) = (v.storage, &v.location) {
                     roots.push(RootVar {
                         name: v.name.clone(),
@@ -367,22 +354,26 @@ impl Compiler<'_> {
                 }
             }
         }
-        for c in &mut self.codes {
+        for c in &mut self.out.codes {
             crate::ir::fuse::fuse_loops(&mut c.ops);
         }
         let image = Image {
-            codes: std::mem::take(&mut self.codes),
-            consts: std::mem::take(&mut self.consts).into_iter().collect(),
-            str_consts: std::mem::take(&mut self.str_consts).into_iter().collect(),
-            arrays: std::mem::take(&mut self.arrays),
-            memory: std::mem::take(&mut self.memory),
-            strings: std::mem::take(&mut self.strings),
+            codes: std::mem::take(&mut self.out.codes),
+            consts: std::mem::take(&mut self.out.consts).into_iter().collect(),
+            str_consts: std::mem::take(&mut self.out.str_consts)
+                .into_iter()
+                .collect(),
+            arrays: std::mem::take(&mut self.out.arrays),
+            memory: std::mem::take(&mut self.out.memory),
+            strings: std::mem::take(&mut self.out.strings),
             types: self.types.clone(),
-            scalar_types: std::mem::take(&mut self.scalar_types).into_iter().collect(),
+            scalar_types: std::mem::take(&mut self.out.scalar_types)
+                .into_iter()
+                .collect(),
             globals: roots,
             programs: instances,
             tasks,
-            charts: std::mem::take(&mut self.charts),
+            charts: std::mem::take(&mut self.out.charts),
         };
         if self.diags.has_errors() {
             return None;
@@ -400,9 +391,9 @@ impl Compiler<'_> {
 
     /// Reports calls that form a cycle (IEC forbids recursion).
     fn check_recursion(&mut self) {
-        let n = self.codes.len();
+        let n = self.out.codes.len();
         let mut adj: Vec<Vec<(u32, Span)>> = vec![Vec::new(); n];
-        for &(a, b, s) in &self.calls {
+        for &(a, b, s) in &self.out.calls {
             if (a as usize) < n {
                 adj[a as usize].push((b, s));
             }
@@ -427,7 +418,7 @@ impl Compiler<'_> {
                         }
                         1 if !reported => {
                             reported = true;
-                            let name = self.codes[to as usize].name.clone();
+                            let name = self.out.codes[to as usize].name.clone();
                             self.diags.error(
                                 "E409",
                                 span,
@@ -507,18 +498,20 @@ impl Compiler<'_> {
                                     "PRIORITY must be a non-negative integer",
                                 ),
                             },
-                            ("SINGLE", ExprKind::Name(id)) => match self.globals.get(&id.key()) {
-                                Some(g) if self.types.scalar(g.ty) == Some(ElemType::Bool) => {
-                                    if let Storage::Abs(a) = g.storage {
-                                        task.single = Some(a);
+                            ("SINGLE", ExprKind::Name(id)) => {
+                                match self.model.globals.get(&id.key()) {
+                                    Some(g) if self.types.scalar(g.ty) == Some(ElemType::Bool) => {
+                                        if let Storage::Abs(a) = g.storage {
+                                            task.single = Some(a);
+                                        }
                                     }
+                                    _ => self.diags.error(
+                                        "E702",
+                                        v.span,
+                                        "SINGLE must name a global BOOL variable",
+                                    ),
                                 }
-                                _ => self.diags.error(
-                                    "E702",
-                                    v.span,
-                                    "SINGLE must name a global BOOL variable",
-                                ),
-                            },
+                            }
                             _ => self.diags.error(
                                 "E702",
                                 k.span,
@@ -538,7 +531,7 @@ impl Compiler<'_> {
             }
             for res in &cfg.resources {
                 for pi in &res.programs {
-                    let Some(&p) = self.pou_index.get(&pi.type_name.key()) else {
+                    let Some(&p) = self.model.pou_index.get(&pi.type_name.key()) else {
                         self.diags.error(
                             "E208",
                             pi.type_name.span,
@@ -546,7 +539,7 @@ impl Compiler<'_> {
                         );
                         continue;
                     };
-                    if self.pous[p].kind != PouKind::Program {
+                    if self.model.pous[p].kind != PouKind::Program {
                         self.diags.error(
                             "E208",
                             pi.type_name.span,
@@ -604,13 +597,13 @@ impl Compiler<'_> {
             }
             return Some((tasks, progs));
         }
-        let programs: Vec<usize> = (0..self.pous.len())
-            .filter(|&p| self.pous[p].kind == PouKind::Program)
+        let programs: Vec<usize> = (0..self.model.pous.len())
+            .filter(|&p| self.model.pous[p].kind == PouKind::Program)
             .collect();
         let chosen = match &options.program {
             Some(name) => match programs
                 .iter()
-                .find(|&&p| self.pous[p].name.eq_ignore_ascii_case(name))
+                .find(|&&p| self.model.pous[p].name.eq_ignore_ascii_case(name))
             {
                 Some(&p) => Some(p),
                 None => {
@@ -634,7 +627,7 @@ impl Compiler<'_> {
         match chosen {
             Some(p) => Some((
                 vec![implicit],
-                vec![(self.pous[p].name.clone(), p, 0, Vec::new())],
+                vec![(self.model.pous[p].name.clone(), p, 0, Vec::new())],
             )),
             None if options.check_only => Some((vec![implicit], Vec::new())),
             // After other errors the missing PROGRAM is usually their
@@ -693,13 +686,13 @@ impl Compiler<'_> {
                 return None;
             }
         };
-        let program = self.pous[p].name.clone();
+        let program = self.model.pous[p].name.clone();
         let wanted = if input {
             MemberKind::Input
         } else {
             MemberKind::Output
         };
-        let Some(var) = self.pous[p]
+        let Some(var) = self.model.pous[p]
             .vars
             .get(&name.key())
             .filter(|v| v.kind == wanted)
@@ -729,7 +722,7 @@ impl Compiler<'_> {
         };
         // The other side: a global of the same type, or (for inputs) a constant.
         if let ExprKind::Name(g) = &expr.kind
-            && let Some(global) = self.globals.get(&g.key()).cloned()
+            && let Some(global) = self.model.globals.get(&g.key()).cloned()
         {
             let Storage::Abs(addr) = global.storage else {
                 return None;
@@ -764,10 +757,10 @@ impl Compiler<'_> {
         }
         if input
             && let Some(crate::sema::consts::Const::Bits(bits)) =
-                self.const_value(expr, var.ty, None)
+                self.consts().const_value(expr, var.ty, None)
         {
-            let addr = self.alloc_abs(1);
-            if let Some(slot) = self.memory.get_mut(addr as usize) {
+            let addr = self.out.alloc_abs(self.diags, 1);
+            if let Some(slot) = self.out.memory.get_mut(addr as usize) {
                 *slot = bits;
             }
             return Some(Connection {
@@ -789,7 +782,7 @@ impl Compiler<'_> {
     fn program_names(&self, programs: &[usize]) -> String {
         programs
             .iter()
-            .map(|&p| self.pous[p].name.clone())
+            .map(|&p| self.model.pous[p].name.clone())
             .collect::<Vec<_>>()
             .join(", ")
     }

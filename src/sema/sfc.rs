@@ -7,8 +7,9 @@
 //! chart, builds the table, and emits `Op::Sfc` followed by the body's
 //! plain statements.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::Const;
+use super::declare::Declarer;
 use super::emit::{Fcx, Ty, Val};
 use super::model::{Storage, VarInfo};
 use crate::ir::chart::{
@@ -96,7 +97,7 @@ fn hidden_layout(steps: u32, actions: u32, transitions: u32, var_actions: u32) -
     }
 }
 
-impl Compiler<'_> {
+impl Declarer<'_> {
     /// Adds the chart members of POU `pou` (steps, actions, hidden state)
     /// after its variables.
     pub(super) fn layout_chart(
@@ -139,7 +140,7 @@ impl Compiler<'_> {
             },
             size: action_layout::SIZE,
         });
-        let mut add = |c: &mut Compiler, id: &Ident, ty, kind: MemberKind, what: &str| {
+        let mut add = |c: &mut Declarer, id: &Ident, ty, kind: MemberKind, what: &str| {
             let key = id.key();
             if let Some(prev) = vars.get(&key) {
                 let code = if kind == MemberKind::Step {
@@ -219,12 +220,14 @@ impl Compiler<'_> {
         );
         *offset += h.size;
     }
+}
 
+impl BodyBuilder<'_> {
     /// Checks a chart body, builds its table, and emits `Op::Sfc` followed
     /// by the plain statements into `f`.
     pub(super) fn emit_chart(&mut self, f: &mut Fcx, pou: &Pou, elems: &[SfcElement]) {
         let p = f.pou;
-        let Some(hidden) = self.pous[p].vars.get(HIDDEN).map(|v| v.storage) else {
+        let Some(hidden) = self.model.pous[p].vars.get(HIDDEN).map(|v| v.storage) else {
             // A FUNCTION (already reported).
             return;
         };
@@ -238,7 +241,7 @@ impl Compiler<'_> {
             n.transitions.len() as u32,
             n.var_actions.len() as u32,
         );
-        let temp_base = self.pous[p].vars_size;
+        let temp_base = self.model.pous[p].vars_size;
         let mut temp_max = f.temp_max;
 
         // Steps: the first declaration of a name wins (duplicates reported).
@@ -254,7 +257,7 @@ impl Compiler<'_> {
                 storage: Storage::Frame(rec),
                 kind: MemberKind::Step,
                 ..
-            }) = self.pous[p].vars.get(&key).cloned()
+            }) = self.model.pous[p].vars.get(&key).cloned()
             else {
                 continue;
             };
@@ -298,7 +301,7 @@ impl Compiler<'_> {
                     storage: Storage::Frame(rec),
                     kind: MemberKind::Action,
                     ..
-                }) = self.pous[p].vars.get(&key).cloned()
+                }) = self.model.pous[p].vars.get(&key).cloned()
                 else {
                     continue;
                 };
@@ -458,7 +461,7 @@ impl Compiler<'_> {
                     format!("transition `{}` is declared twice", name.name),
                 );
             }
-            let resolve = |c: &mut Compiler, ids: &[Ident]| -> Option<Vec<u32>> {
+            let resolve = |c: &mut BodyBuilder, ids: &[Ident]| -> Option<Vec<u32>> {
                 let mut out = Vec::new();
                 let mut ok = true;
                 for id in ids {
@@ -524,8 +527,8 @@ impl Compiler<'_> {
             transitions,
             actions,
         };
-        let index = self.charts.len() as u32;
-        self.charts.push(chart);
+        let index = self.out.charts.len() as u32;
+        self.out.charts.push(chart);
         f.span = pou.name.span;
         f.emit(Op::Sfc { chart: index });
         f.temp_max = f.temp_max.max(temp_max);
@@ -691,7 +694,7 @@ impl Compiler<'_> {
         name: String,
         span: Span,
         temp_base: u32,
-        build: impl FnOnce(&mut Compiler, &mut Fcx),
+        build: impl FnOnce(&mut BodyBuilder, &mut Fcx),
     ) -> (u32, u32) {
         let mut sub = Fcx::new(p, temp_base);
         sub.span = span;
@@ -702,14 +705,14 @@ impl Compiler<'_> {
         }
         sub.span = span;
         sub.emit(Op::Ret);
-        let code = self.codes.len() as u32;
+        let code = self.out.codes.len() as u32;
         for (at, callee) in std::mem::take(&mut sub.fixups) {
-            self.fixups.push((code, at, callee));
+            self.out.fixups.push((code, at, callee));
         }
         let (consts, pins) = sub.take_tagged();
         self.pending_blocks.push((code, consts, pins));
         self.owned_blocks.push(code);
-        self.codes.push(CodeBlock {
+        self.out.codes.push(CodeBlock {
             name,
             kind: CodeKind::Block,
             ops: sub.ops,

@@ -2,7 +2,7 @@
 //! strings, type conversions, time arithmetic and strings. They lower to
 //! typed instructions directly (no call overhead).
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Fcx, Ty, Val};
 use crate::ir::op::{Conv, MathFn, Op, ShiftKind, StrFn};
@@ -167,7 +167,7 @@ fn param_names(std: Std, n: usize) -> Vec<String> {
     }
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// Checks and emits a call of a standard function; `None` if `id` is not one.
     pub(super) fn std_call(
         &mut self,
@@ -739,7 +739,7 @@ impl Compiler<'_> {
 
     /// A string function with arguments in consecutive slots.
     fn string_fn(&mut self, f: &mut Fcx, func: StrFn, vals: Vec<(Val, Span)>, fname: &str) -> Val {
-        let is_str = |c: &Compiler, v: &Val| {
+        let is_str = |c: &BodyBuilder, v: &Val| {
             v.ty()
                 .id()
                 .and_then(|t| c.scalar(t))
@@ -850,14 +850,14 @@ impl Compiler<'_> {
                 return Val::Slot(d, rt);
             }
             let a = self.materialize(f, &v);
-            let idx = self.scalar_index(from);
+            let idx = self.out.scalar_index(from);
             let d = self.string_temp(f, 254, to == E::WString);
             f.emit(Op::ToStr { d, a, ty: idx });
             return Val::Slot(d, rt);
         }
         if from.is_string() {
             let a = self.materialize(f, &v);
-            let idx = self.scalar_index(to);
+            let idx = self.out.scalar_index(to);
             let d = f.temp();
             f.emit(Op::FromStr { d, a, ty: idx });
             return Val::Slot(d, rt);

@@ -1,7 +1,7 @@
 //! Statements: assignment, calls, IF, CASE, FOR, WHILE, REPEAT, EXIT,
 //! CONTINUE, RETURN — lowered to typed instructions and jumps.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Fcx, LoopCtx, Ty, Val};
 use crate::ir::op::{Cmp, Op};
@@ -69,7 +69,7 @@ fn fuse_step_and_test(f: &mut Fcx, cond_at: usize, top: u32) {
     };
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// Emits a statement list.
     pub(super) fn stmts(&mut self, f: &mut Fcx, list: &[Stmt]) {
         for s in list {
@@ -542,7 +542,8 @@ impl Compiler<'_> {
                 }
                 seen.push((lo, hi));
                 let signed = super::typeck::compares_signed(e);
-                let k = |_: &mut Compiler, f: &mut Fcx, v: i128| -> u32 { f.const_slot(v as u64) };
+                let k =
+                    |_: &mut BodyBuilder, f: &mut Fcx, v: i128| -> u32 { f.const_slot(v as u64) };
                 if lo == hi {
                     let c = k(self, f, lo);
                     let d = f.temp();
@@ -781,7 +782,7 @@ impl Compiler<'_> {
         {
             super::bounds::drop_proven_checks(
                 &mut f.ops[body_at as usize..cont as usize],
-                &self.arrays,
+                &self.out.arrays,
                 i,
                 s0.min(l as i64),
                 s0.max(l as i64),
@@ -946,11 +947,11 @@ impl Compiler<'_> {
             return;
         }
         let v = self.materialize(f, &v);
-        let desc = self.arrays.len();
+        let desc = self.out.arrays.len();
         let Ok(desc) = u16::try_from(desc) else {
             return;
         };
-        self.arrays.push(crate::ir::image::ArrayDesc {
+        self.out.arrays.push(crate::ir::image::ArrayDesc {
             offset: o,
             lo: dims[0].lo,
             len: dims[0].len(),

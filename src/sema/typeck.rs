@@ -2,7 +2,7 @@
 //! converting values between types, and choosing the typed instruction for
 //! an operator.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::{Const, int_to_slot, real_to_slot, slot_to_int, slot_to_real};
 use super::emit::{Fcx, Ty, Val};
 use crate::ir::op::{Cmp, Conv, Op};
@@ -25,7 +25,7 @@ pub fn compares_signed(e: ElemType) -> bool {
     !matches!(e, ElemType::Ulint | ElemType::Lword) && !e.is_real() && !e.is_string()
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// The common type of two operands, or `None` if they do not mix.
     pub(super) fn unify(&self, a: Ty, b: Ty) -> Option<Ty> {
         match (a, b) {
@@ -249,8 +249,8 @@ impl Compiler<'_> {
         let TypeKind::Subrange { lo, hi, .. } = self.types.get(to).kind else {
             return s;
         };
-        let desc = self.arrays.len() as u32;
-        self.arrays.push(crate::ir::image::ArrayDesc {
+        let desc = self.out.arrays.len() as u32;
+        self.out.arrays.push(crate::ir::image::ArrayDesc {
             offset: 0,
             lo,
             len: (hi - lo + 1) as u64,
