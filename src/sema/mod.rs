@@ -3,14 +3,14 @@
 //! typed IR. All diagnostics are collected; nothing stops at the first error.
 //!
 //! Three phases, each the only owner of what it builds:
-//! 1. declarations ([`declare`], [`type_decl`], [`layout`], [`decl_consts`])
-//!    build the [`model::Model`]: types, POU interfaces and layouts, globals,
+//! 1. declarations (`declare`, `type_decl`, `layout`, `decl_consts`)
+//!    build the `Model`: types, POU interfaces and layouts, globals,
 //!    constants, enumeration values;
-//! 2. bodies ([`body`] and the expression, statement, call, IL and SFC
-//!    files) — one [`body::BodyBuilder`] per POU reads the model without
+//! 2. bodies (`body` and the expression, statement, call, IL and SFC
+//!    files) — one `BodyBuilder` per POU reads the model without
 //!    changing it and appends code to the shared output tables
-//!    ([`program::Program`]);
-//! 3. linking ([`link`]) places memory, relocates and builds the image.
+//!    (`Program`);
+//! 3. linking (`link`) places memory, relocates and builds the image.
 //!
 //! A function block's instance size includes its temporaries, so the
 //! declaration phase has an FB's body emitted as soon as an instance of it
@@ -30,6 +30,9 @@ mod link;
 pub mod model;
 mod program;
 mod sfc;
+mod std_convert;
+mod std_numeric;
+mod std_strings;
 mod stdfuncs;
 mod stmt;
 mod type_decl;
