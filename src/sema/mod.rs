@@ -28,6 +28,7 @@ mod il;
 mod layout;
 mod link;
 pub mod model;
+mod place;
 mod program;
 mod sfc;
 mod std_convert;

@@ -125,7 +125,7 @@ impl BodyBuilder<'_> {
     }
 
     /// `FROM_TO_TO` conversion of a value already of type `from`.
-    pub(super) fn convert(
+    fn convert(
         &mut self,
         f: &mut Fcx,
         v: Val,

@@ -423,7 +423,7 @@ impl BodyBuilder<'_> {
 
     /// The common type of the arguments; untyped literals alone take the
     /// type the context expects (`i := MAX(1, 2)` with `i : INT` is INT).
-    pub(super) fn unify_all(
+    fn unify_all(
         &mut self,
         tys: &[Ty],
         span: Span,
@@ -450,7 +450,7 @@ impl BodyBuilder<'_> {
         Some(self.default_type(acc, None))
     }
 
-    pub(super) fn minmax(
+    fn minmax(
         &mut self,
         f: &mut Fcx,
         t: crate::ir::types::TypeId,
