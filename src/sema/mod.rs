@@ -16,6 +16,7 @@
 //! declaration phase has an FB's body emitted as soon as an instance of it
 //! is laid out, and then records the frame size in the model.
 
+mod binary;
 mod body;
 mod bounds;
 mod calls;
