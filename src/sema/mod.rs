@@ -32,6 +32,7 @@ pub mod model;
 mod place;
 mod program;
 mod sfc;
+mod sfc_emit;
 mod std_convert;
 mod std_numeric;
 mod std_strings;
