@@ -3,7 +3,7 @@
 
 use super::body::BodyBuilder;
 use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
-use super::model::{ConstInit, Storage};
+use super::model::ConstInit;
 use crate::ir::op::Op;
 use crate::ir::types::{MemberKind, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
@@ -13,28 +13,28 @@ use crate::types::ElemType;
 
 /// One formal parameter of a callee.
 #[derive(Debug, Clone)]
-struct Param {
-    name: String,
-    aliases: &'static [&'static str],
-    kind: MemberKind,
-    ty: TypeId,
-    offset: u32,
-    default: Option<ConstInit>,
+pub(super) struct Param {
+    pub(super) name: String,
+    pub(super) aliases: &'static [&'static str],
+    pub(super) kind: MemberKind,
+    pub(super) ty: TypeId,
+    pub(super) offset: u32,
+    pub(super) default: Option<ConstInit>,
 }
 
 impl Param {
-    fn matches(&self, name: &str) -> bool {
+    pub(super) fn matches(&self, name: &str) -> bool {
         self.name.eq_ignore_ascii_case(name)
             || self.aliases.iter().any(|a| a.eq_ignore_ascii_case(name))
     }
 }
 
 /// Arguments sorted by parameter after matching.
-struct Bound<'e> {
-    inputs: Vec<(usize, &'e Expr)>,
-    outputs: Vec<(usize, bool, &'e Expr)>,
-    en: Option<&'e Expr>,
-    eno: Option<&'e Expr>,
+pub(super) struct Bound<'e> {
+    pub(super) inputs: Vec<(usize, &'e Expr)>,
+    pub(super) outputs: Vec<(usize, bool, &'e Expr)>,
+    pub(super) en: Option<&'e Expr>,
+    pub(super) eno: Option<&'e Expr>,
 }
 
 impl BodyBuilder<'_> {
@@ -117,7 +117,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Matches arguments to parameters (formal by name, or non-formal in order).
-    fn bind<'e>(
+    pub(super) fn bind<'e>(
         &mut self,
         params: &[Param],
         args: &'e [Arg],
@@ -423,7 +423,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Copies an output parameter to the `=>` target.
-    fn store_output(
+    pub(super) fn store_output(
         &mut self,
         f: &mut Fcx,
         src: &PlaceRef,
@@ -466,7 +466,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Closes an EN-guarded call: ENO := TRUE on the called path, FALSE when skipped.
-    fn finish_en(&mut self, f: &mut Fcx, skip: Option<usize>, eno: Option<&Expr>) {
+    pub(super) fn finish_en(&mut self, f: &mut Fcx, skip: Option<usize>, eno: Option<&Expr>) {
         let Some(eno) = eno else {
             if let Some(j) = skip {
                 let end = f.here();
@@ -497,238 +497,5 @@ impl BodyBuilder<'_> {
             let end = f.here();
             f.patch(over, end);
         }
-    }
-
-    /// Calls a user FUNCTION through its static frame.
-    fn user_function_call(&mut self, f: &mut Fcx, p: usize, call: &Call, want: bool) -> Val {
-        let callee = self.model.pous[p].clone();
-        let params: Vec<Param> = callee
-            .params
-            .iter()
-            .filter_map(|k| callee.vars.get(k))
-            .map(|v| Param {
-                name: v.name.clone(),
-                aliases: &[],
-                kind: v.kind,
-                ty: v.ty,
-                offset: match v.storage {
-                    Storage::Frame(o) | Storage::Ref(o) => o,
-                    Storage::Abs(a) => a,
-                },
-                default: v.init.clone(),
-            })
-            .collect();
-        let Some(b) = self.bind(&params, &call.args, &callee.name, call.span) else {
-            return Val::error();
-        };
-        if want && callee.ret == TypeTable::void() {
-            self.diags.error(
-                "E301",
-                call.span,
-                format!("`{}` returns no value", callee.name),
-            );
-            return Val::error();
-        }
-        let skip = match b.en {
-            Some(en) => self.cond_jump(f, en, false),
-            None => None,
-        };
-        // Evaluate every argument before touching the callee's frame, so
-        // nested calls of the same function cannot clobber it.
-        enum Ready {
-            Scalar(u32),
-            Pointer(u32),
-            Aggregate(u32, u32),
-        }
-        let mut ready: Vec<(usize, Ready)> = Vec::new();
-        for (i, prm) in params.iter().enumerate() {
-            if !matches!(prm.kind, MemberKind::Input | MemberKind::InOut) {
-                continue;
-            }
-            let given = b.inputs.iter().find(|(j, _)| *j == i).map(|(_, e)| *e);
-            let what = format!("argument `{}`", prm.name);
-            match (prm.kind, given) {
-                (MemberKind::InOut, Some(e)) => {
-                    let Some(arg) = self.place(f, e) else {
-                        continue;
-                    };
-                    if arg.ty != prm.ty {
-                        self.mismatch(e.span, Ty::T(arg.ty), prm.ty, &what);
-                        continue;
-                    }
-                    if !arg.writable {
-                        self.diags.error(
-                            "E412",
-                            e.span,
-                            format!("VAR_IN_OUT `{}` needs a writable variable", prm.name),
-                        );
-                        continue;
-                    }
-                    let a = self.address_of(f, &arg);
-                    ready.push((i, Ready::Pointer(a)));
-                }
-                (MemberKind::InOut, None) => {
-                    self.diags.error(
-                        "E404",
-                        call.span,
-                        format!(
-                            "VAR_IN_OUT `{}` of `{}` must be connected",
-                            prm.name, callee.name
-                        ),
-                    );
-                }
-                (_, Some(e)) => match self.types.get(prm.ty).kind {
-                    TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                        let Some(src) = self.place(f, e) else {
-                            continue;
-                        };
-                        if !self.assignable(src.ty, prm.ty) {
-                            self.mismatch(e.span, Ty::T(src.ty), prm.ty, &what);
-                            continue;
-                        }
-                        if self.contains_strings(prm.ty) {
-                            self.diags.error(
-                                "E302",
-                                e.span,
-                                "passing arrays or structures that contain strings by value is not supported yet",
-                            );
-                            continue;
-                        }
-                        let a = self.address_of(f, &src);
-                        ready.push((i, Ready::Aggregate(a, self.types.size(prm.ty))));
-                    }
-                    _ => {
-                        let v = self.expr(f, e, Some(prm.ty));
-                        let v = self.coerce(f, v, prm.ty, e.span, &what);
-                        if v.is_error() {
-                            continue;
-                        }
-                        let s = self.materialize(f, &v);
-                        // Keep the value in a temporary the next argument cannot overwrite.
-                        let t = f.temp();
-                        if self.types.scalar(prm.ty).is_some_and(|e| e.is_string()) {
-                            let (max, wide) = match self.types.get(prm.ty).kind {
-                                TypeKind::Str { max, wide } => (max, wide),
-                                _ => (254, false),
-                            };
-                            let st = self.string_temp(f, max, wide);
-                            f.emit(Op::StrMov { d: st, s });
-                            f.emit(Op::Mov { d: t, s: st });
-                        } else {
-                            f.emit(Op::Mov { d: t, s });
-                        }
-                        f.last_def = None;
-                        ready.push((i, Ready::Scalar(t)));
-                    }
-                },
-                (_, None) => {
-                    // Missing input: its declared initial value.
-                    let init = prm
-                        .default
-                        .clone()
-                        .unwrap_or_else(|| self.model.default_init(self.types, prm.ty));
-                    let v = match init {
-                        ConstInit::Scalar(bits) => {
-                            Val::Const(super::consts::Const::Bits(bits), Ty::T(prm.ty))
-                        }
-                        ConstInit::Str(s) => {
-                            Val::Const(super::consts::Const::Str(s), Ty::T(prm.ty))
-                        }
-                        _ => {
-                            self.diags.error(
-                                "E404",
-                                call.span,
-                                format!("input `{}` of `{}` must be given", prm.name, callee.name),
-                            );
-                            continue;
-                        }
-                    };
-                    let s = self.materialize(f, &v);
-                    ready.push((i, Ready::Scalar(s)));
-                }
-            }
-        }
-        for (i, r) in ready {
-            let prm = &params[i];
-            match r {
-                Ready::Scalar(s) => {
-                    if self.types.scalar(prm.ty).is_some_and(|e| e.is_string()) {
-                        let id = f.temp();
-                        let at = f.emit(Op::LoadAbs {
-                            d: id,
-                            abs: prm.offset,
-                        });
-                        f.fixups.push((at, p));
-                        f.emit(Op::StrMov { d: id, s });
-                    } else {
-                        let at = f.emit(Op::StoreAbs { abs: prm.offset, s });
-                        f.fixups.push((at, p));
-                    }
-                }
-                Ready::Pointer(a) => {
-                    let at = f.emit(Op::StoreAbs {
-                        abs: prm.offset,
-                        s: a,
-                    });
-                    f.fixups.push((at, p));
-                }
-                Ready::Aggregate(a, n) => {
-                    let d = f.temp();
-                    let at = f.emit(Op::LoadI {
-                        d,
-                        imm: prm.offset as i32,
-                    });
-                    f.fixups.push((at, p));
-                    f.emit(Op::MemCopy { d, s: a, n });
-                }
-            }
-        }
-        let caller = self.model.pous[f.pou].code;
-        self.out.calls.push((caller, callee.code, call.span));
-        f.emit(Op::CallFn { code: callee.code });
-        let mut result = Val::None(TypeTable::void());
-        if callee.ret != TypeTable::void() {
-            let t = f.temp();
-            let at = f.emit(Op::LoadAbs { d: t, abs: 0 });
-            f.fixups.push((at, p));
-            result = if let TypeKind::Str { max, wide } = self.types.get(callee.ret).kind {
-                let st = self.string_temp(f, max, wide);
-                f.emit(Op::StrMov { d: st, s: t });
-                Val::Slot(st, callee.ret)
-            } else if self.types.scalar(callee.ret).is_some() {
-                Val::Slot(t, callee.ret)
-            } else {
-                self.diags.error(
-                    "E302",
-                    call.span,
-                    "functions returning arrays or structures are not supported yet",
-                );
-                Val::error()
-            };
-        }
-        for &(i, negated, target) in &b.outputs {
-            let prm = &params[i];
-            let t = f.temp();
-            let at = f.emit(Op::LoadAbs {
-                d: t,
-                abs: prm.offset,
-            });
-            f.fixups.push((at, p));
-            let src = PlaceRef {
-                place: Place::Frame(t),
-                ty: prm.ty,
-                writable: false,
-                readonly_reason: None,
-                input_image: false,
-            };
-            self.store_output(f, &src, negated, target, &prm.name);
-        }
-        if skip.is_some() || b.eno.is_some() {
-            self.finish_en(f, skip, b.eno);
-        }
-        if !want {
-            return Val::None(TypeTable::void());
-        }
-        result
     }
 }

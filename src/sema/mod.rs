@@ -25,6 +25,7 @@ mod decl_consts;
 mod declare;
 mod emit;
 mod expr;
+mod fn_call;
 mod for_loop;
 mod il;
 mod layout;
