@@ -5,7 +5,7 @@ use super::body::BodyBuilder;
 use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
 use super::model::ConstInit;
 use crate::ir::op::Op;
-use crate::ir::types::{MemberKind, TypeId, TypeKind, TypeTable};
+use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib::{self, ParamDir};
 use crate::syntax::ast::{Arg, Call, Expr, ExprKind, PouKind};
@@ -35,6 +35,25 @@ pub(super) struct Bound<'e> {
     pub(super) outputs: Vec<(usize, bool, &'e Expr)>,
     pub(super) en: Option<&'e Expr>,
     pub(super) eno: Option<&'e Expr>,
+}
+
+/// Where an FB instance being called is.
+#[derive(Clone, Copy)]
+enum InstanceAt {
+    /// At a slot of the current frame.
+    Frame(u32),
+    /// At the address held in a slot.
+    Ptr(u32),
+}
+
+impl InstanceAt {
+    /// The place of the instance's member at `off`.
+    fn member(self, off: u32) -> Place {
+        match self {
+            InstanceAt::Frame(o) => Place::Frame(o + off),
+            InstanceAt::Ptr(p) => Place::Ind { p, off },
+        }
+    }
 }
 
 impl BodyBuilder<'_> {
@@ -238,61 +257,13 @@ impl BodyBuilder<'_> {
         ok.then_some(b)
     }
 
-    /// Invokes an FB instance.
+    /// Checks and emits a call of the FB instance at `inst`.
     pub(super) fn fb_call(&mut self, f: &mut Fcx, inst: &PlaceRef, args: &[Arg], span: Span) {
         let def = self.types.get(inst.ty).clone();
-        let (params, callee): (Vec<Param>, String) = match &def.kind {
-            TypeKind::NativeFb(fb) => (
-                stdlib::interface(*fb)
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, p)| p.dir != ParamDir::Hidden)
-                    .map(|(i, p)| Param {
-                        name: p.name.to_string(),
-                        aliases: p.aliases,
-                        kind: if p.dir == ParamDir::Input {
-                            MemberKind::Input
-                        } else {
-                            MemberKind::Output
-                        },
-                        ty: TypeTable::elem(p.ty),
-                        offset: i as u32,
-                        default: None,
-                    })
-                    .collect(),
-                def.name.clone(),
-            ),
-            TypeKind::Pou {
-                members,
-                program: false,
-                ..
-            } => (
-                members
-                    .iter()
-                    .filter(|m| {
-                        matches!(
-                            m.kind,
-                            MemberKind::Input | MemberKind::Output | MemberKind::InOut
-                        )
-                    })
-                    .map(|m| Param {
-                        name: m.name.clone(),
-                        aliases: &[],
-                        kind: m.kind,
-                        ty: m.ty,
-                        offset: m.offset,
-                        default: None,
-                    })
-                    .collect(),
-                def.name.clone(),
-            ),
-            TypeKind::Error => return,
-            _ => {
-                self.diags
-                    .error("E406", span, format!("a {} cannot be called", def.name));
-                return;
-            }
+        let Some(params) = self.fb_params(&def, span) else {
+            return;
         };
+        let callee = def.name.clone();
         let Some(b) = self.bind(&params, args, &callee, span) else {
             return;
         };
@@ -310,84 +281,31 @@ impl BodyBuilder<'_> {
             None => None,
         };
         // Where the instance is: a frame slot, or an address in a slot.
-        let (frame_base, ptr) = match inst.place {
-            Place::Frame(o) => (Some(o), None),
-            _ => (None, Some(self.address_of(f, inst))),
-        };
-        let member = |off: u32| -> Place {
-            match (frame_base, ptr) {
-                (Some(o), _) => Place::Frame(o + off),
-                (_, Some(p)) => Place::Ind { p, off },
-                _ => Place::Frame(off),
-            }
+        let at = match inst.place {
+            Place::Frame(o) => InstanceAt::Frame(o),
+            _ => InstanceAt::Ptr(self.address_of(f, inst)),
         };
         for &(i, e) in &b.inputs {
             let p = &params[i];
             let slot_place = PlaceRef {
-                place: member(p.offset),
+                place: at.member(p.offset),
                 ty: p.ty,
                 writable: true,
                 readonly_reason: None,
                 input_image: false,
             };
             if p.kind == MemberKind::InOut {
-                let Some(arg) = self.place(f, e) else {
-                    continue;
-                };
-                if arg.ty != p.ty && arg.ty != TypeTable::error() {
-                    self.mismatch(
-                        e.span,
-                        Ty::T(arg.ty),
-                        p.ty,
-                        &format!("VAR_IN_OUT `{}`", p.name),
-                    );
-                    continue;
-                }
-                if !arg.writable {
-                    self.diags.error(
-                        "E412",
-                        e.span,
-                        format!("VAR_IN_OUT `{}` needs a writable variable", p.name),
-                    );
-                    continue;
-                }
-                let a = self.address_of(f, &arg);
-                let ptr_place = PlaceRef {
-                    ty: TypeTable::elem(ElemType::Ulint),
-                    ..slot_place
-                };
-                self.write_place(f, &ptr_place, a);
+                self.connect_in_out(f, p, &slot_place, e);
                 continue;
             }
             self.store_arg(f, &slot_place, e, &p.name);
         }
-        match (&def.kind, frame_base, ptr) {
-            (TypeKind::NativeFb(fb), Some(o), _) => {
-                f.emit(Op::CallNative { fb: *fb, inst: o });
-            }
-            (TypeKind::NativeFb(fb), None, Some(p)) => {
-                f.emit(Op::CallNativeInd { fb: *fb, p });
-            }
-            (TypeKind::Pou { code, .. }, Some(o), _) => {
-                let caller = self.model.pous[f.pou].code;
-                self.out.calls.push((caller, *code, span));
-                f.emit(Op::CallFb {
-                    code: *code,
-                    inst: o,
-                });
-            }
-            (TypeKind::Pou { code, .. }, None, Some(p)) => {
-                let caller = self.model.pous[f.pou].code;
-                self.out.calls.push((caller, *code, span));
-                f.emit(Op::CallFbInd { code: *code, p });
-            }
-            _ => {}
-        }
+        self.invoke_fb(f, &def.kind, at, span);
         f.last_def = None;
         for &(i, negated, target) in &b.outputs {
             let p = &params[i];
             let src = PlaceRef {
-                place: member(p.offset),
+                place: at.member(p.offset),
                 ty: p.ty,
                 writable: false,
                 readonly_reason: None,
@@ -396,6 +314,117 @@ impl BodyBuilder<'_> {
             self.store_output(f, &src, negated, target, &p.name);
         }
         self.finish_en(f, skip, b.eno);
+    }
+
+    /// The call interface of an FB type (`None` for what cannot be called).
+    fn fb_params(&mut self, def: &TypeDef, span: Span) -> Option<Vec<Param>> {
+        match &def.kind {
+            TypeKind::NativeFb(fb) => Some(
+                stdlib::interface(*fb)
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, p)| p.dir != ParamDir::Hidden)
+                    .map(|(i, p)| Param {
+                        name: p.name.to_string(),
+                        aliases: p.aliases,
+                        kind: if p.dir == ParamDir::Input {
+                            MemberKind::Input
+                        } else {
+                            MemberKind::Output
+                        },
+                        ty: TypeTable::elem(p.ty),
+                        offset: i as u32,
+                        default: None,
+                    })
+                    .collect(),
+            ),
+            TypeKind::Pou {
+                members,
+                program: false,
+                ..
+            } => Some(
+                members
+                    .iter()
+                    .filter(|m| {
+                        matches!(
+                            m.kind,
+                            MemberKind::Input | MemberKind::Output | MemberKind::InOut
+                        )
+                    })
+                    .map(|m| Param {
+                        name: m.name.clone(),
+                        aliases: &[],
+                        kind: m.kind,
+                        ty: m.ty,
+                        offset: m.offset,
+                        default: None,
+                    })
+                    .collect(),
+            ),
+            TypeKind::Error => None,
+            _ => {
+                self.diags
+                    .error("E406", span, format!("a {} cannot be called", def.name));
+                None
+            }
+        }
+    }
+
+    /// Connects VAR_IN_OUT `p` of an FB instance to the variable `e`: the
+    /// variable's address goes into the pointer slot `slot_place`.
+    fn connect_in_out(&mut self, f: &mut Fcx, p: &Param, slot_place: &PlaceRef, e: &Expr) {
+        let Some(arg) = self.place(f, e) else {
+            return;
+        };
+        if arg.ty != p.ty && arg.ty != TypeTable::error() {
+            self.mismatch(
+                e.span,
+                Ty::T(arg.ty),
+                p.ty,
+                &format!("VAR_IN_OUT `{}`", p.name),
+            );
+            return;
+        }
+        if !arg.writable {
+            self.diags.error(
+                "E412",
+                e.span,
+                format!("VAR_IN_OUT `{}` needs a writable variable", p.name),
+            );
+            return;
+        }
+        let a = self.address_of(f, &arg);
+        let ptr_place = PlaceRef {
+            ty: TypeTable::elem(ElemType::Ulint),
+            ..*slot_place
+        };
+        self.write_place(f, &ptr_place, a);
+    }
+
+    /// The call instruction of an FB instance.
+    fn invoke_fb(&mut self, f: &mut Fcx, kind: &TypeKind, at: InstanceAt, span: Span) {
+        match (kind, at) {
+            (TypeKind::NativeFb(fb), InstanceAt::Frame(o)) => {
+                f.emit(Op::CallNative { fb: *fb, inst: o });
+            }
+            (TypeKind::NativeFb(fb), InstanceAt::Ptr(p)) => {
+                f.emit(Op::CallNativeInd { fb: *fb, p });
+            }
+            (TypeKind::Pou { code, .. }, InstanceAt::Frame(o)) => {
+                let caller = self.model.pous[f.pou].code;
+                self.out.calls.push((caller, *code, span));
+                f.emit(Op::CallFb {
+                    code: *code,
+                    inst: o,
+                });
+            }
+            (TypeKind::Pou { code, .. }, InstanceAt::Ptr(p)) => {
+                let caller = self.model.pous[f.pou].code;
+                self.out.calls.push((caller, *code, span));
+                f.emit(Op::CallFbInd { code: *code, p });
+            }
+            _ => {}
+        }
     }
 
     /// Evaluates an input argument into a parameter place.
