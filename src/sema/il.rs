@@ -11,6 +11,7 @@ use crate::ir::types::{MemberKind, TypeId, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{
     Arg, BinaryOp, Call, Expr, ExprKind, Ident, IlInstr, IlInstrKind, IlLine, IlOperator,
+    IlOutputCopy,
 };
 use crate::types::ElemType;
 use std::collections::HashMap;
@@ -317,6 +318,7 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// Lowers one IL instruction.
     fn il_instr(&mut self, f: &mut Fcx, st: &mut IlState, instr: &IlInstr) {
         let span = instr.span;
         match &instr.kind {
@@ -329,103 +331,10 @@ impl BodyBuilder<'_> {
                 op,
                 negate,
                 operand,
-            } => {
-                if matches!(
-                    op,
-                    IlOperator::Ld
-                        | IlOperator::St
-                        | IlOperator::S
-                        | IlOperator::R
-                        | IlOperator::Not
-                ) {
-                    self.diags.error(
-                        "E504",
-                        span,
-                        format!("{} cannot be deferred with `(`", op_name(*op)),
-                    );
-                    return;
-                }
-                let Some(cur) = self.cr_val(st, span, op_name(*op)) else {
-                    return;
-                };
-                let saved = f.temp();
-                f.temp_base = f.temp_next;
-                let s = self.materialize(f, &cur);
-                f.emit(Op::Mov { d: saved, s });
-                f.last_def = None;
-                st.stack.push(Deferred {
-                    op: *op,
-                    negate: *negate,
-                    saved,
-                    saved_ty: st.cr_ty,
-                    saved_lit: st.cr_lit.clone(),
-                    span,
-                });
-                st.cr_ty = None;
-                st.cr_lit = None;
-                if let Some(e) = operand {
-                    let v = self.expr(f, e, None);
-                    self.set_cr(f, st, v);
-                }
-            }
-            IlInstrKind::Close => {
-                let Some(d) = st.stack.pop() else {
-                    self.diags
-                        .error("E501", span, "`)` without a matching `OP(`");
-                    return;
-                };
-                let Some(inner) = self.cr_val(st, span, "`)`") else {
-                    return;
-                };
-                let inner = if d.negate {
-                    self.negate_val(f, inner, span, op_name(d.op))
-                } else {
-                    inner
-                };
-                let Some(bop) = binary_of(d.op) else { return };
-                let saved = d
-                    .saved_lit
-                    .unwrap_or(Val::Slot(d.saved, d.saved_ty.unwrap_or(TypeTable::error())));
-                let r = self.binary_vals(f, bop, saved, inner, span);
-                self.set_cr(f, st, r);
-            }
-            IlInstrKind::Jump { cond, label } => {
-                let at = match cond {
-                    None => f.emit(Op::Jmp { t: 0 }),
-                    Some(when) => {
-                        if !self.cr_is_bool(st, span, "JMPC") {
-                            return;
-                        }
-                        if *when {
-                            f.emit(Op::Jnz { c: st.cr, t: 0 })
-                        } else {
-                            f.emit(Op::Jz { c: st.cr, t: 0 })
-                        }
-                    }
-                };
-                f.last_def = None;
-                st.pending.push((at, label.clone(), st.cr_ty));
-                if cond.is_none() {
-                    st.cr_ty = None;
-                    st.cr_lit = None;
-                }
-            }
-            IlInstrKind::Return { cond } => {
-                let at = match cond {
-                    None => f.emit(Op::Jmp { t: 0 }),
-                    Some(when) => {
-                        if !self.cr_is_bool(st, span, "RETC") {
-                            return;
-                        }
-                        if *when {
-                            f.emit(Op::Jnz { c: st.cr, t: 0 })
-                        } else {
-                            f.emit(Op::Jz { c: st.cr, t: 0 })
-                        }
-                    }
-                };
-                f.returns.push(at);
-            }
+            } => self.il_deferred(f, st, *op, *negate, operand.as_ref(), span),
+            IlInstrKind::Close => self.il_close(f, st, span),
+            IlInstrKind::Jump { cond, label } => self.il_jump(f, st, *cond, label, span),
+            IlInstrKind::Return { cond } => self.il_return(f, st, *cond, span),
             IlInstrKind::Call {
                 cond,
                 instance,
@@ -445,73 +354,224 @@ impl BodyBuilder<'_> {
                         })
                     }
                 };
-                self.expose_cr(f, st);
-                if let Some(inst) = self.place(f, instance) {
-                    self.fb_call(f, &inst, args, span);
-                    for out in outputs {
-                        let Some(dest) = &out.dest else { continue };
-                        let member = Expr {
-                            kind: ExprKind::Member(Box::new(instance.clone()), out.output.clone()),
-                            span: out.span,
-                        };
-                        f.span = out.span;
-                        self.assign_il(f, dest, &member);
-                    }
-                }
+                self.il_fb_call(f, st, instance, args, outputs, span);
                 if let Some(j) = skip {
                     let end = f.here();
                     f.patch(j, end);
                 }
             }
             IlInstrKind::FunctionCall { name, args } => {
-                self.expose_cr(f, st);
-                // Formal calls name every input; informal ones take the CR first.
-                let formal = args.iter().any(|a| matches!(a, Arg::Input { .. }));
-                if st.cr_ty.is_none() && !formal {
-                    self.diags.error(
-                        "E505",
-                        span,
-                        format!(
-                            "{} needs a current result as first argument: load one first",
-                            name.name
-                        ),
-                    );
+                self.il_function_call(f, st, name, args, span)
+            }
+            IlInstrKind::FbInput { pin, instance } => self.il_fb_input(f, st, pin, instance, span),
+        }
+    }
+
+    /// `OP(`: the CR saved, the operator deferred until `)`.
+    fn il_deferred(
+        &mut self,
+        f: &mut Fcx,
+        st: &mut IlState,
+        op: IlOperator,
+        negate: bool,
+        operand: Option<&Expr>,
+        span: Span,
+    ) {
+        if matches!(
+            op,
+            IlOperator::Ld | IlOperator::St | IlOperator::S | IlOperator::R | IlOperator::Not
+        ) {
+            self.diags.error(
+                "E504",
+                span,
+                format!("{} cannot be deferred with `(`", op_name(op)),
+            );
+            return;
+        }
+        let Some(cur) = self.cr_val(st, span, op_name(op)) else {
+            return;
+        };
+        let saved = f.temp();
+        f.temp_base = f.temp_next;
+        let s = self.materialize(f, &cur);
+        f.emit(Op::Mov { d: saved, s });
+        f.last_def = None;
+        st.stack.push(Deferred {
+            op,
+            negate,
+            saved,
+            saved_ty: st.cr_ty,
+            saved_lit: st.cr_lit.clone(),
+            span,
+        });
+        st.cr_ty = None;
+        st.cr_lit = None;
+        if let Some(e) = operand {
+            let v = self.expr(f, e, None);
+            self.set_cr(f, st, v);
+        }
+    }
+
+    /// `)`: the deferred operator applied to the saved CR and the inner CR.
+    fn il_close(&mut self, f: &mut Fcx, st: &mut IlState, span: Span) {
+        let Some(d) = st.stack.pop() else {
+            self.diags
+                .error("E501", span, "`)` without a matching `OP(`");
+            return;
+        };
+        let Some(inner) = self.cr_val(st, span, "`)`") else {
+            return;
+        };
+        let inner = if d.negate {
+            self.negate_val(f, inner, span, op_name(d.op))
+        } else {
+            inner
+        };
+        let Some(bop) = binary_of(d.op) else { return };
+        let saved = d
+            .saved_lit
+            .unwrap_or(Val::Slot(d.saved, d.saved_ty.unwrap_or(TypeTable::error())));
+        let r = self.binary_vals(f, bop, saved, inner, span);
+        self.set_cr(f, st, r);
+    }
+
+    /// `JMP`, `JMPC`, `JMPCN`: patched when the labels are known.
+    fn il_jump(
+        &mut self,
+        f: &mut Fcx,
+        st: &mut IlState,
+        cond: Option<bool>,
+        label: &Ident,
+        span: Span,
+    ) {
+        let at = match cond {
+            None => f.emit(Op::Jmp { t: 0 }),
+            Some(when) => {
+                if !self.cr_is_bool(st, span, "JMPC") {
                     return;
                 }
-                let mut all = Vec::new();
-                if !formal {
-                    all.push(Arg::Positional(Self::cr_arg(st, span)));
+                if when {
+                    f.emit(Op::Jnz { c: st.cr, t: 0 })
+                } else {
+                    f.emit(Op::Jz { c: st.cr, t: 0 })
                 }
-                all.extend(args.iter().cloned());
-                let call = Call {
-                    callee: Box::new(Expr {
-                        kind: ExprKind::Name(name.clone()),
-                        span: name.span,
-                    }),
-                    args: all,
-                    span,
+            }
+        };
+        f.last_def = None;
+        st.pending.push((at, label.clone(), st.cr_ty));
+        if cond.is_none() {
+            st.cr_ty = None;
+            st.cr_lit = None;
+        }
+    }
+
+    /// `RET`, `RETC`, `RETCN`.
+    fn il_return(&mut self, f: &mut Fcx, st: &mut IlState, cond: Option<bool>, span: Span) {
+        let at = match cond {
+            None => f.emit(Op::Jmp { t: 0 }),
+            Some(when) => {
+                if !self.cr_is_bool(st, span, "RETC") {
+                    return;
+                }
+                if when {
+                    f.emit(Op::Jnz { c: st.cr, t: 0 })
+                } else {
+                    f.emit(Op::Jz { c: st.cr, t: 0 })
+                }
+            }
+        };
+        f.returns.push(at);
+    }
+
+    /// `CAL inst(...)` and its `=>` output copies (the condition is the caller's).
+    fn il_fb_call(
+        &mut self,
+        f: &mut Fcx,
+        st: &mut IlState,
+        instance: &Expr,
+        args: &[Arg],
+        outputs: &[IlOutputCopy],
+        span: Span,
+    ) {
+        self.expose_cr(f, st);
+        if let Some(inst) = self.place(f, instance) {
+            self.fb_call(f, &inst, args, span);
+            for out in outputs {
+                let Some(dest) = &out.dest else { continue };
+                let member = Expr {
+                    kind: ExprKind::Member(Box::new(instance.clone()), out.output.clone()),
+                    span: out.span,
                 };
-                let v = self.call_expr(f, &call, None);
-                self.set_cr(f, st, v);
+                f.span = out.span;
+                self.assign_il(f, dest, &member);
             }
-            IlInstrKind::FbInput { pin, instance } => {
-                if st.cr_ty.is_none() {
-                    self.diags.error(
-                        "E505",
-                        span,
-                        format!("{} needs a current result: load one first", pin.name),
-                    );
-                    return;
-                }
-                self.expose_cr(f, st);
-                if let Some(inst) = self.place(f, instance) {
-                    let arg = Arg::Input {
-                        name: pin.clone(),
-                        value: Self::cr_arg(st, span),
-                    };
-                    self.fb_call(f, &inst, &[arg], span);
-                }
-            }
+        }
+    }
+
+    /// A function call in IL: the CR is the first argument of an informal call.
+    fn il_function_call(
+        &mut self,
+        f: &mut Fcx,
+        st: &mut IlState,
+        name: &Ident,
+        args: &[Arg],
+        span: Span,
+    ) {
+        self.expose_cr(f, st);
+        // Formal calls name every input; informal ones take the CR first.
+        let formal = args.iter().any(|a| matches!(a, Arg::Input { .. }));
+        if st.cr_ty.is_none() && !formal {
+            self.diags.error(
+                "E505",
+                span,
+                format!(
+                    "{} needs a current result as first argument: load one first",
+                    name.name
+                ),
+            );
+            return;
+        }
+        let mut all = Vec::new();
+        if !formal {
+            all.push(Arg::Positional(Self::cr_arg(st, span)));
+        }
+        all.extend(args.iter().cloned());
+        let call = Call {
+            callee: Box::new(Expr {
+                kind: ExprKind::Name(name.clone()),
+                span: name.span,
+            }),
+            args: all,
+            span,
+        };
+        let v = self.call_expr(f, &call, None);
+        self.set_cr(f, st, v);
+    }
+
+    /// `S1 inst`, `IN inst`, ...: the CR to one input of an FB instance, and the call.
+    fn il_fb_input(
+        &mut self,
+        f: &mut Fcx,
+        st: &mut IlState,
+        pin: &Ident,
+        instance: &Expr,
+        span: Span,
+    ) {
+        if st.cr_ty.is_none() {
+            self.diags.error(
+                "E505",
+                span,
+                format!("{} needs a current result: load one first", pin.name),
+            );
+            return;
+        }
+        self.expose_cr(f, st);
+        if let Some(inst) = self.place(f, instance) {
+            let arg = Arg::Input {
+                name: pin.clone(),
+                value: Self::cr_arg(st, span),
+            };
+            self.fb_call(f, &inst, &[arg], span);
         }
     }
 
