@@ -13,7 +13,10 @@ use crate::ir::image::{Image, ProgramInstance, RootVar, StringInit, Task};
 use crate::ir::op::Op;
 use crate::ir::types::{MemberKind, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
-use crate::syntax::ast::{CompilationUnit, ExprKind, Item, LiteralValue, PouKind};
+use crate::syntax::ast::ProgramInstance as ProgramDecl;
+use crate::syntax::ast::{
+    CompilationUnit, Configuration, ExprKind, Item, LiteralValue, PouKind, TaskDecl,
+};
 use crate::types::ElemType;
 
 /// Links the declared and emitted program (or, after errors, only reports
@@ -446,7 +449,7 @@ impl Linker<'_> {
             priority: 0,
             single: None,
         };
-        let configs: Vec<&crate::syntax::ast::Configuration> = self
+        let configs: Vec<&Configuration> = self
             .units
             .iter()
             .flat_map(|u| u.items.iter())
@@ -468,135 +471,167 @@ impl Linker<'_> {
             .copied()
             .filter(|_| options.program.is_none())
         {
-            let mut tasks: Vec<Task> = Vec::new();
-            let mut progs = Vec::new();
-            for res in &cfg.resources {
-                for t in &res.tasks {
-                    let mut task = Task {
-                        name: t.name.name.clone(),
-                        interval: 0,
-                        priority: 0,
-                        single: None,
-                    };
-                    for (k, v) in &t.settings {
-                        match (k.key().as_str(), &v.kind) {
-                            ("INTERVAL", ExprKind::Literal(l)) => match l.value {
-                                LiteralValue::Duration { nanos, .. } if nanos > 0 => {
-                                    task.interval = nanos
-                                }
-                                _ => self.diags.error(
-                                    "E702",
-                                    v.span,
-                                    "INTERVAL must be a positive duration literal",
-                                ),
-                            },
-                            ("PRIORITY", ExprKind::Literal(l)) => match l.value {
-                                LiteralValue::Int(n) if n >= 0 => task.priority = n as i64,
-                                _ => self.diags.error(
-                                    "E702",
-                                    v.span,
-                                    "PRIORITY must be a non-negative integer",
-                                ),
-                            },
-                            ("SINGLE", ExprKind::Name(id)) => {
-                                match self.model.globals.get(&id.key()) {
-                                    Some(g) if self.types.scalar(g.ty) == Some(ElemType::Bool) => {
-                                        if let Storage::Abs(a) = g.storage {
-                                            task.single = Some(a);
-                                        }
-                                    }
-                                    _ => self.diags.error(
-                                        "E702",
-                                        v.span,
-                                        "SINGLE must name a global BOOL variable",
-                                    ),
-                                }
-                            }
-                            _ => self.diags.error(
-                                "E702",
-                                k.span,
-                                format!("unknown or invalid task setting `{}`", k.name),
-                            ),
-                        }
-                    }
-                    if task.interval == 0 && task.single.is_none() {
-                        self.diags.error(
-                            "E702",
-                            t.name.span,
-                            "a TASK needs an INTERVAL or a SINGLE trigger",
-                        );
-                    }
-                    tasks.push(task);
-                }
-            }
-            for res in &cfg.resources {
-                for pi in &res.programs {
-                    let Some(&p) = self.model.pou_index.get(&pi.type_name.key()) else {
-                        self.diags.error(
-                            "E208",
-                            pi.type_name.span,
-                            format!("unknown PROGRAM `{}`", pi.type_name.name),
-                        );
-                        continue;
-                    };
-                    if self.model.pous[p].kind != PouKind::Program {
-                        self.diags.error(
-                            "E208",
-                            pi.type_name.span,
-                            format!("`{}` is not a PROGRAM", pi.type_name.name),
-                        );
-                        continue;
-                    }
-                    let conns: Vec<Connection> = pi
-                        .args
-                        .iter()
-                        .filter_map(|a| self.connection(p, a))
-                        .collect();
-                    let task = match &pi.task {
-                        Some(t) => match tasks
-                            .iter()
-                            .position(|x| x.name.eq_ignore_ascii_case(&t.name))
-                        {
-                            Some(i) => i,
-                            None => {
-                                self.diags.error(
-                                    "E702",
-                                    t.span,
-                                    format!("unknown TASK `{}`", t.name),
-                                );
-                                continue;
-                            }
-                        },
-                        None => {
-                            if !tasks.iter().any(|t| t.name == implicit.name) {
-                                tasks.push(implicit.clone());
-                            }
-                            tasks
-                                .iter()
-                                .position(|t| t.name == implicit.name)
-                                .unwrap_or(0)
-                        }
-                    };
-                    if progs
-                        .iter()
-                        .any(|(n, ..): &Scheduled| n.eq_ignore_ascii_case(&pi.name.name))
-                    {
-                        self.diags.error(
-                            "E202",
-                            pi.name.span,
-                            format!("program instance `{}` is declared twice", pi.name.name),
-                        );
-                        continue;
-                    }
-                    progs.push((pi.name.name.clone(), p, task, conns));
-                }
-            }
-            if progs.is_empty() && !options.check_only {
-                self.diags
-                    .error("E208", cfg.name.span, "the CONFIGURATION runs no PROGRAM");
-            }
-            return Some((tasks, progs));
+            return Some(self.configured_schedule(cfg, options, implicit));
         }
+        self.implicit_schedule(options, implicit)
+    }
+
+    /// The tasks and program instances of the CONFIGURATION (the implicit
+    /// task added for instances without one).
+    fn configured_schedule(
+        &mut self,
+        cfg: &Configuration,
+        options: &CompileOptions,
+        implicit: Task,
+    ) -> (Vec<Task>, Vec<Scheduled>) {
+        let mut tasks: Vec<Task> = Vec::new();
+        for res in &cfg.resources {
+            for t in &res.tasks {
+                let task = self.configured_task(t);
+                tasks.push(task);
+            }
+        }
+        let mut progs = Vec::new();
+        for res in &cfg.resources {
+            for pi in &res.programs {
+                if let Some(s) = self.configured_program(pi, &mut tasks, &progs, &implicit) {
+                    progs.push(s);
+                }
+            }
+        }
+        if progs.is_empty() && !options.check_only {
+            self.diags
+                .error("E208", cfg.name.span, "the CONFIGURATION runs no PROGRAM");
+        }
+        (tasks, progs)
+    }
+
+    /// A TASK with its settings checked.
+    fn configured_task(&mut self, t: &TaskDecl) -> Task {
+        let mut task = Task {
+            name: t.name.name.clone(),
+            interval: 0,
+            priority: 0,
+            single: None,
+        };
+        for (k, v) in &t.settings {
+            match (k.key().as_str(), &v.kind) {
+                ("INTERVAL", ExprKind::Literal(l)) => match l.value {
+                    LiteralValue::Duration { nanos, .. } if nanos > 0 => task.interval = nanos,
+                    _ => self.diags.error(
+                        "E702",
+                        v.span,
+                        "INTERVAL must be a positive duration literal",
+                    ),
+                },
+                ("PRIORITY", ExprKind::Literal(l)) => match l.value {
+                    LiteralValue::Int(n) if n >= 0 => task.priority = n as i64,
+                    _ => {
+                        self.diags
+                            .error("E702", v.span, "PRIORITY must be a non-negative integer")
+                    }
+                },
+                ("SINGLE", ExprKind::Name(id)) => match self.model.globals.get(&id.key()) {
+                    Some(g) if self.types.scalar(g.ty) == Some(ElemType::Bool) => {
+                        if let Storage::Abs(a) = g.storage {
+                            task.single = Some(a);
+                        }
+                    }
+                    _ => {
+                        self.diags
+                            .error("E702", v.span, "SINGLE must name a global BOOL variable")
+                    }
+                },
+                _ => self.diags.error(
+                    "E702",
+                    k.span,
+                    format!("unknown or invalid task setting `{}`", k.name),
+                ),
+            }
+        }
+        if task.interval == 0 && task.single.is_none() {
+            self.diags.error(
+                "E702",
+                t.name.span,
+                "a TASK needs an INTERVAL or a SINGLE trigger",
+            );
+        }
+        task
+    }
+
+    /// A program instance of the CONFIGURATION: its PROGRAM, connections
+    /// and task.
+    fn configured_program(
+        &mut self,
+        pi: &ProgramDecl,
+        tasks: &mut Vec<Task>,
+        progs: &[Scheduled],
+        implicit: &Task,
+    ) -> Option<Scheduled> {
+        let Some(&p) = self.model.pou_index.get(&pi.type_name.key()) else {
+            self.diags.error(
+                "E208",
+                pi.type_name.span,
+                format!("unknown PROGRAM `{}`", pi.type_name.name),
+            );
+            return None;
+        };
+        if self.model.pous[p].kind != PouKind::Program {
+            self.diags.error(
+                "E208",
+                pi.type_name.span,
+                format!("`{}` is not a PROGRAM", pi.type_name.name),
+            );
+            return None;
+        }
+        let conns: Vec<Connection> = pi
+            .args
+            .iter()
+            .filter_map(|a| self.connection(p, a))
+            .collect();
+        let task = match &pi.task {
+            Some(t) => match tasks
+                .iter()
+                .position(|x| x.name.eq_ignore_ascii_case(&t.name))
+            {
+                Some(i) => i,
+                None => {
+                    self.diags
+                        .error("E702", t.span, format!("unknown TASK `{}`", t.name));
+                    return None;
+                }
+            },
+            None => {
+                if !tasks.iter().any(|t| t.name == implicit.name) {
+                    tasks.push(implicit.clone());
+                }
+                tasks
+                    .iter()
+                    .position(|t| t.name == implicit.name)
+                    .unwrap_or(0)
+            }
+        };
+        if progs
+            .iter()
+            .any(|(n, ..): &Scheduled| n.eq_ignore_ascii_case(&pi.name.name))
+        {
+            self.diags.error(
+                "E202",
+                pi.name.span,
+                format!("program instance `{}` is declared twice", pi.name.name),
+            );
+            return None;
+        }
+        Some((pi.name.name.clone(), p, task, conns))
+    }
+
+    /// Without a CONFIGURATION (or with `--program`): the one PROGRAM (or
+    /// the one named) on the implicit task.
+    fn implicit_schedule(
+        &mut self,
+        options: &CompileOptions,
+        implicit: Task,
+    ) -> Option<(Vec<Task>, Vec<Scheduled>)> {
         let programs: Vec<usize> = (0..self.model.pous.len())
             .filter(|&p| self.model.pous[p].kind == PouKind::Program)
             .collect();
