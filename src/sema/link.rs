@@ -241,122 +241,14 @@ impl Linker<'_> {
             self.schedule(options);
             return None;
         }
-        // Function frames.
-        for p in 0..self.model.pous.len() {
-            if self.model.pous[p].kind != PouKind::Function || !self.model.emitted[p] {
-                continue;
-            }
-            let code = self.model.pous[p].code as usize;
-            let size = self.out.codes[code].frame_size.max(1);
-            let at = self.out.alloc_abs(self.diags, size);
-            self.frame_abs[p] = at;
-            self.out.codes[code].frame = at;
-            let ty = self.model.pous[p].ty;
-            self.instantiate(at, ty, None);
-        }
-        for p in 0..self.model.pous.len() {
-            if !self.model.emitted[p] {
-                continue;
-            }
-            let (init, strings) = self.entry_resets(p);
-            let code = self.model.pous[p].code as usize;
-            self.out.codes[code].entry_init = init;
-            self.out.codes[code].entry_strings = strings;
-        }
-        for (code, at, callee) in std::mem::take(&mut self.out.fixups) {
-            let base = self.frame_abs[callee];
-            match &mut self.out.codes[code as usize].ops[at] {
-                Op::StoreAbs { abs, .. } | Op::LoadAbs { abs, .. } => *abs += base,
-                Op::LoadI { imm, .. } => *imm += base as i32,
-                _ => {}
-            }
-        }
+        self.place_function_frames();
+        self.set_entry_resets();
+        self.relocate_frame_addresses();
         self.check_recursion();
-        // Globals and located variables with initial values.
-        let globals: Vec<_> = self.model.globals.values().cloned().collect();
-        for g in &globals {
-            if let Storage::Abs(a) = g.storage {
-                self.instantiate(a, g.ty, g.init.as_ref());
-            }
-        }
-        for p in 0..self.model.pous.len() {
-            if self.model.pous[p].kind != PouKind::Program {
-                continue;
-            }
-            let vars: Vec<_> = self.model.pous[p].vars.values().cloned().collect();
-            for v in vars {
-                if let (Storage::Abs(a), Some(_), Some(init)) = (v.storage, &v.location, &v.init) {
-                    self.instantiate(a, v.ty, Some(init));
-                }
-            }
-        }
+        self.initialise_globals();
         let (tasks, programs) = self.schedule(options)?;
-        let mut instances = Vec::new();
-        for (name, p, task, conns) in programs {
-            let ty = self.model.pous[p].ty;
-            let size = self.types.size(ty).max(1);
-            let base = self.out.alloc_abs(self.diags, size);
-            self.instantiate(base, ty, None);
-            let (mut inputs, mut outputs) = (Vec::new(), Vec::new());
-            for c in conns {
-                if c.input {
-                    inputs.push((c.global, base + c.offset));
-                } else {
-                    outputs.push((base + c.offset, c.global));
-                }
-            }
-            instances.push(ProgramInstance {
-                name,
-                type_name: self.model.pous[p].name.clone(),
-                code: self.model.pous[p].code,
-                base,
-                ty,
-                task,
-                inputs,
-                outputs,
-            });
-        }
-        let mut roots: Vec<RootVar> = globals
-            .iter()
-            .filter_map(|g| match g.storage {
-                Storage::Abs(a) => Some(RootVar {
-                    name: g.name.clone(),
-                    ty: g.ty,
-                    addr: a,
-                    kind: MemberKind::Local,
-                    location: g.location.clone(),
-                }),
-                _ => None,
-            })
-            .collect();
-        let mut located: Vec<(&String, &(u32, TypeId))> = self.out.located.iter().collect();
-        located.sort_by_key(|(_, (a, _))| *a);
-        for (text, (addr, ty)) in located {
-            if !roots.iter().any(|r| r.addr == *addr) {
-                roots.push(RootVar {
-                    name: text.clone(),
-                    ty: *ty,
-                    addr: *addr,
-                    kind: MemberKind::Local,
-                    location: Some(text.clone()),
-                });
-            }
-        }
-        // Located variables declared inside programs are named by the program.
-        for inst in &instances {
-            let p = self.model.pous.iter().position(|x| x.code == inst.code)?;
-            for v in self.model.pous[p].vars.values() {
-                if let (Storage::Abs(a), Some(loc)) = (v.storage, &v.location) {
-                    roots.push(RootVar {
-                        name: v.name.clone(),
-                        ty: v.ty,
-                        addr: a,
-                        kind: v.kind,
-                        location: Some(loc.clone()),
-                    });
-                }
-            }
-        }
+        let instances = self.instantiate_programs(programs);
+        let roots = self.root_vars(&instances)?;
         for c in &mut self.out.codes {
             crate::ir::fuse::fuse_loops(&mut c.ops);
         }
@@ -390,6 +282,148 @@ impl Linker<'_> {
             return None;
         }
         Some(image)
+    }
+
+    /// Gives every emitted function its static frame, initialised.
+    fn place_function_frames(&mut self) {
+        for p in 0..self.model.pous.len() {
+            if self.model.pous[p].kind != PouKind::Function || !self.model.emitted[p] {
+                continue;
+            }
+            let code = self.model.pous[p].code as usize;
+            let size = self.out.codes[code].frame_size.max(1);
+            let at = self.out.alloc_abs(self.diags, size);
+            self.frame_abs[p] = at;
+            self.out.codes[code].frame = at;
+            let ty = self.model.pous[p].ty;
+            self.instantiate(at, ty, None);
+        }
+    }
+
+    /// What each code block resets on entry.
+    fn set_entry_resets(&mut self) {
+        for p in 0..self.model.pous.len() {
+            if !self.model.emitted[p] {
+                continue;
+            }
+            let (init, strings) = self.entry_resets(p);
+            let code = self.model.pous[p].code as usize;
+            self.out.codes[code].entry_init = init;
+            self.out.codes[code].entry_strings = strings;
+        }
+    }
+
+    /// Adds the callee's frame address to instructions addressing a
+    /// function's frame.
+    fn relocate_frame_addresses(&mut self) {
+        for (code, at, callee) in std::mem::take(&mut self.out.fixups) {
+            let base = self.frame_abs[callee];
+            match &mut self.out.codes[code as usize].ops[at] {
+                Op::StoreAbs { abs, .. } | Op::LoadAbs { abs, .. } => *abs += base,
+                Op::LoadI { imm, .. } => *imm += base as i32,
+                _ => {}
+            }
+        }
+    }
+
+    /// Initial values of globals and of located variables of programs.
+    fn initialise_globals(&mut self) {
+        let globals: Vec<_> = self.model.globals.values().cloned().collect();
+        for g in &globals {
+            if let Storage::Abs(a) = g.storage {
+                self.instantiate(a, g.ty, g.init.as_ref());
+            }
+        }
+        for p in 0..self.model.pous.len() {
+            if self.model.pous[p].kind != PouKind::Program {
+                continue;
+            }
+            let vars: Vec<_> = self.model.pous[p].vars.values().cloned().collect();
+            for v in vars {
+                if let (Storage::Abs(a), Some(_), Some(init)) = (v.storage, &v.location, &v.init) {
+                    self.instantiate(a, v.ty, Some(init));
+                }
+            }
+        }
+    }
+
+    /// Places and initialises each scheduled program instance.
+    fn instantiate_programs(&mut self, programs: Vec<Scheduled>) -> Vec<ProgramInstance> {
+        let mut instances = Vec::new();
+        for (name, p, task, conns) in programs {
+            let ty = self.model.pous[p].ty;
+            let size = self.types.size(ty).max(1);
+            let base = self.out.alloc_abs(self.diags, size);
+            self.instantiate(base, ty, None);
+            let (mut inputs, mut outputs) = (Vec::new(), Vec::new());
+            for c in conns {
+                if c.input {
+                    inputs.push((c.global, base + c.offset));
+                } else {
+                    outputs.push((base + c.offset, c.global));
+                }
+            }
+            instances.push(ProgramInstance {
+                name,
+                type_name: self.model.pous[p].name.clone(),
+                code: self.model.pous[p].code,
+                base,
+                ty,
+                task,
+                inputs,
+                outputs,
+            });
+        }
+        instances
+    }
+
+    /// The variables visible from outside: globals, located addresses,
+    /// and located variables of the program instances (named by them).
+    fn root_vars(&self, instances: &[ProgramInstance]) -> Option<Vec<RootVar>> {
+        let mut roots: Vec<RootVar> = self
+            .model
+            .globals
+            .values()
+            .filter_map(|g| match g.storage {
+                Storage::Abs(a) => Some(RootVar {
+                    name: g.name.clone(),
+                    ty: g.ty,
+                    addr: a,
+                    kind: MemberKind::Local,
+                    location: g.location.clone(),
+                }),
+                _ => None,
+            })
+            .collect();
+        let mut located: Vec<(&String, &(u32, TypeId))> = self.out.located.iter().collect();
+        located.sort_by_key(|(_, (a, _))| *a);
+        for (text, (addr, ty)) in located {
+            if !roots.iter().any(|r| r.addr == *addr) {
+                roots.push(RootVar {
+                    name: text.clone(),
+                    ty: *ty,
+                    addr: *addr,
+                    kind: MemberKind::Local,
+                    location: Some(text.clone()),
+                });
+            }
+        }
+        // Located variables declared inside programs are named by the program.
+        for inst in instances {
+            let p = self.model.pous.iter().position(|x| x.code == inst.code)?;
+            for v in self.model.pous[p].vars.values() {
+                if let (Storage::Abs(a), Some(loc)) = (v.storage, &v.location) {
+                    roots.push(RootVar {
+                        name: v.name.clone(),
+                        ty: v.ty,
+                        addr: a,
+                        kind: v.kind,
+                        location: Some(loc.clone()),
+                    });
+                }
+            }
+        }
+        Some(roots)
     }
 
     /// Reports calls that form a cycle (IEC forbids recursion).
