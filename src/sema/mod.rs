@@ -16,32 +16,39 @@
 //! declaration phase has an FB's body emitted as soon as an instance of it
 //! is laid out, and then records the frame size in the model.
 
+// Shared by the phases.
+pub mod consts;
+pub mod model;
+mod program;
+
+// Phase 1: declarations.
+mod decl_consts;
+mod declare;
+mod layout;
+mod sfc;
+mod type_decl;
+
+// Phase 2: one body builder per POU.
 mod binary;
 mod body;
 mod bounds;
 mod calls;
-pub mod consts;
-mod decl_consts;
-mod declare;
 mod emit;
 mod expr;
 mod fn_call;
 mod for_loop;
 mod il;
-mod layout;
-mod link;
-pub mod model;
 mod place;
-mod program;
-mod sfc;
 mod sfc_emit;
 mod std_convert;
 mod std_numeric;
 mod std_strings;
 mod stdfuncs;
 mod stmt;
-mod type_decl;
 mod typeck;
+
+// Phase 3: linking.
+mod link;
 
 use crate::diagnostics::Diagnostics;
 use crate::ir::image::Image;
