@@ -13,7 +13,9 @@ use crate::diagnostics::Diagnostics;
 use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib;
-use crate::syntax::ast::{AddrSize, Area, CompilationUnit, DirectAddress, Item, VarBlock};
+use crate::syntax::ast::{
+    AddrSize, Area, CompilationUnit, DirectAddress, Item, TypeSpec, VarBlock,
+};
 use crate::types::ElemType;
 use indexmap::IndexMap;
 use std::collections::HashMap;
@@ -38,6 +40,9 @@ pub(super) struct Declarer<'a> {
     pub(super) type_decls: HashMap<String, (usize, usize, usize)>,
     /// Resolution progress of each user type.
     pub(super) type_state: HashMap<String, LayoutState>,
+    /// Enumeration TYPEs, in resolution order, while TYPE declarations are
+    /// being resolved (empty afterwards).
+    pub(super) pending_enums: Vec<String>,
 }
 
 /// What the declaration phase hands to the linker.
@@ -92,6 +97,7 @@ impl<'a> Declarer<'a> {
             emit_state: Vec::new(),
             type_decls: HashMap::new(),
             type_state: HashMap::new(),
+            pending_enums: Vec::new(),
         }
     }
 
@@ -129,6 +135,7 @@ impl<'a> Declarer<'a> {
             return;
         }
         self.emit_state[p] = LayoutState::InProgress;
+        self.resolve_pending_enums();
         let (u, i) = self.model.pous[p].ast;
         let units = self.units;
         let Item::Pou(pou) = &units[u].items[i] else {
@@ -146,6 +153,21 @@ impl<'a> Declarer<'a> {
 }
 
 impl Declarer<'_> {
+    /// Resolves the enumeration TYPEs not resolved yet, for a body emitted
+    /// while TYPE declarations are still being resolved (an FB instance in
+    /// a structure): the body reads types from the model and cannot resolve
+    /// one on demand, and an enumeration's resolution lays out and emits
+    /// nothing.
+    fn resolve_pending_enums(&mut self) {
+        for k in std::mem::take(&mut self.pending_enums) {
+            if !self.model.type_ids.contains_key(&k) {
+                let span = self.type_decl_span(&k);
+                self.user_type(&k, span);
+            }
+            self.pending_enums.push(k);
+        }
+    }
+
     /// Collects every declaration and lays out all POUs.
     pub(super) fn declare_all(&mut self) {
         let units = self.units;
@@ -243,10 +265,19 @@ impl Declarer<'_> {
             .map(|(k, &(u, i, d))| (u, i, d, k.clone()))
             .collect();
         keys.sort();
+        self.pending_enums = keys
+            .iter()
+            .filter(|(u, i, d, _)| {
+                matches!(&units[*u].items[*i], Item::Types(decls)
+                    if matches!(decls[*d].ty, TypeSpec::Enum { .. }))
+            })
+            .map(|(_, _, _, k)| k.clone())
+            .collect();
         for (_, _, _, k) in keys {
             let span = self.type_decl_span(&k);
             self.user_type(&k, span);
         }
+        self.pending_enums.clear();
         // Globals: top-level lists, then configurations and resources.
         for unit in units {
             for item in &unit.items {
@@ -358,5 +389,43 @@ impl TypeKind {
             self,
             TypeKind::NativeFb(_) | TypeKind::Pou { .. } | TypeKind::Step
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::diagnostics::Diagnostics;
+    use crate::sema::{CompileOptions, compile};
+    use crate::source::FileId;
+
+    /// Compiles one ST source; returns the diagnostic codes.
+    fn codes(src: &str) -> Vec<String> {
+        let mut diags = Diagnostics::new();
+        let unit = crate::syntax::parse(FileId(0), src, &mut diags);
+        let options = CompileOptions {
+            check_only: true,
+            ..CompileOptions::default()
+        };
+        compile(&[unit], &options, &mut diags);
+        diags.iter().map(|d| d.code.to_string()).collect()
+    }
+
+    #[test]
+    fn an_fb_body_emitted_while_types_are_resolved_sees_later_enumerations() {
+        // `S` holds an instance of `Blk`, so `Blk`'s body is emitted while
+        // `S` is resolved, before `Color` would be.
+        let src = "
+TYPE S : STRUCT b : Blk; END_STRUCT; END_TYPE
+TYPE Color : (Red, Green); END_TYPE
+FUNCTION_BLOCK Blk
+VAR x : BOOL; END_VAR
+x := Color#Green = Color#Red;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR s : S; END_VAR
+s.b();
+END_PROGRAM
+";
+        assert_eq!(codes(src), Vec::<String>::new());
     }
 }
