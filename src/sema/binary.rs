@@ -15,7 +15,6 @@ use crate::types::{ElemType, Family};
 impl BodyBuilder<'_> {
     pub(super) fn binary(
         &mut self,
-        f: &mut Fcx,
         op: BinaryOp,
         a: &Expr,
         b: &Expr,
@@ -31,26 +30,19 @@ impl BodyBuilder<'_> {
             | BinaryOp::Ge => None,
             _ => expect,
         };
-        let va = self.expr(f, a, hint);
-        let vb = self.expr(f, b, hint.or(va.ty().id()));
-        self.binary_vals(f, op, va, vb, span)
+        let va = self.expr(a, hint);
+        let vb = self.expr(b, hint.or(va.ty().id()));
+        self.binary_vals(op, va, vb, span)
     }
 
     /// Applies a binary operator to two checked values.
-    pub(super) fn binary_vals(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        va: Val,
-        vb: Val,
-        span: Span,
-    ) -> Val {
+    pub(super) fn binary_vals(&mut self, op: BinaryOp, va: Val, vb: Val, span: Span) -> Val {
         if va.is_error() || vb.is_error() {
             return Val::error();
         }
         let op_name = binary_name(op);
         // Time and date arithmetic has its own typing rules.
-        if let Some(v) = self.time_arith(f, op, &va, &vb, span) {
+        if let Some(v) = self.time_arith(op, &va, &vb, span) {
             return v;
         }
         let Some(common) = self.unify(va.ty(), vb.ty()) else {
@@ -89,31 +81,31 @@ impl BodyBuilder<'_> {
             other => self.default_type(other, None),
         };
         let e = self.scalar(ct).unwrap_or(ElemType::Dint);
-        let xa = self.coerce(f, va, ct, span, "operand");
-        let a = self.materialize(f, &xa);
+        let xa = self.coerce(va, ct, span, "operand");
+        let a = self.materialize(&xa);
         if is_cmp {
-            return self.compare(f, op, a, vb, ct, span);
+            return self.compare(op, a, vb, ct, span);
         }
         // Immediate forms for small constants on signed integers.
         if let Some(imm) = self.immediate_operand(&vb, ct, e)
             && e.is_signed_int()
-            && let Some(v) = self.immediate_arith(f, op, a, imm, ct)
+            && let Some(v) = self.immediate_arith(op, a, imm, ct)
         {
             return v;
         }
-        let xb = self.coerce(f, vb, ct, span, "operand");
-        let b = self.materialize(f, &xb);
-        if let Some(v) = fuse_not_operand(f, op, a, b, ct, e) {
+        let xb = self.coerce(vb, ct, span, "operand");
+        let b = self.materialize(&xb);
+        if let Some(v) = fuse_not_operand(&mut self.block, op, a, b, ct, e) {
             return v;
         }
-        if let Some(v) = fuse_mul_add(f, op, a, b, ct, e) {
+        if let Some(v) = fuse_mul_add(&mut self.block, op, a, b, ct, e) {
             return v;
         }
-        let d = f.temp();
+        let d = self.block.temp();
         let Some(o) = arith_op(op, e, d, a, b) else {
             return Val::error();
         };
-        f.emit(o);
+        self.block.emit(o);
         Val::Slot(d, ct)
     }
 
@@ -160,47 +152,32 @@ impl BodyBuilder<'_> {
     }
 
     /// A comparison of `a` (already in a slot) with `vb`.
-    fn compare(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        a: Slot,
-        vb: Val,
-        ct: TypeId,
-        span: Span,
-    ) -> Val {
+    fn compare(&mut self, op: BinaryOp, a: Slot, vb: Val, ct: TypeId, span: Span) -> Val {
         let e = self.scalar(ct).unwrap_or(ElemType::Dint);
         let cmp = cmp_of(op);
         if let Some(imm) = self.immediate_operand(&vb, ct, e)
             && super::typeck::compares_signed(e)
         {
-            let d = f.temp();
-            f.emit(Op::CmpSI { d, a, imm, cmp });
+            let d = self.block.temp();
+            self.block.emit(Op::CmpSI { d, a, imm, cmp });
             return Val::Slot(d, TypeTable::elem(ElemType::Bool));
         }
-        let xb = self.coerce(f, vb, ct, span, "operand");
-        let b = self.materialize(f, &xb);
-        let d = self.emit_cmp(f, e, a, b, cmp);
+        let xb = self.coerce(vb, ct, span, "operand");
+        let b = self.materialize(&xb);
+        let d = self.emit_cmp(e, a, b, cmp);
         Val::Slot(d, TypeTable::elem(ElemType::Bool))
     }
 
     /// `a + imm`, `a - imm`, `a MOD imm` on signed integers with the
     /// immediate forms; `None` for the other operators.
-    fn immediate_arith(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        a: Slot,
-        imm: i32,
-        ct: TypeId,
-    ) -> Option<Val> {
+    fn immediate_arith(&mut self, op: BinaryOp, a: Slot, imm: i32, ct: TypeId) -> Option<Val> {
         let e = self.scalar(ct).unwrap_or(ElemType::Dint);
         match op {
             // x + 0 and x - 0 are x (already of the common type).
             BinaryOp::Add | BinaryOp::Sub if imm == 0 => Some(Val::Slot(a, ct)),
             BinaryOp::Add => {
-                let d = f.temp();
-                f.emit(Op::AddSI {
+                let d = self.block.temp();
+                self.block.emit(Op::AddSI {
                     d,
                     a,
                     imm,
@@ -209,8 +186,8 @@ impl BodyBuilder<'_> {
                 Some(Val::Slot(d, ct))
             }
             BinaryOp::Sub if imm != i32::MIN => {
-                let d = f.temp();
-                f.emit(Op::AddSI {
+                let d = self.block.temp();
+                self.block.emit(Op::AddSI {
                     d,
                     a,
                     imm: -imm,
@@ -219,8 +196,8 @@ impl BodyBuilder<'_> {
                 Some(Val::Slot(d, ct))
             }
             BinaryOp::Mod if imm != 0 => {
-                let d = f.temp();
-                f.emit(Op::ModSI {
+                let d = self.block.temp();
+                self.block.emit(Op::ModSI {
                     d,
                     a,
                     imm,
@@ -234,14 +211,7 @@ impl BodyBuilder<'_> {
 
     /// TIME/DATE arithmetic: `TIME ± TIME`, `TOD ± TIME`, `DT ± TIME`,
     /// `DATE - DATE`, `TOD - TOD`, `DT - DT`, `TIME * num`, `TIME / num`.
-    fn time_arith(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        va: &Val,
-        vb: &Val,
-        span: Span,
-    ) -> Option<Val> {
+    fn time_arith(&mut self, op: BinaryOp, va: &Val, vb: &Val, span: Span) -> Option<Val> {
         let fam = |c: &BodyBuilder, v: &Val| v.ty().id().and_then(|t| c.scalar(t));
         let (ea, eb) = (fam(self, va), fam(self, vb));
         let is_dur = |e: Option<ElemType>| e.is_some_and(|e| e.family() == Family::Duration);
@@ -276,10 +246,10 @@ impl BodyBuilder<'_> {
             }
             (BinaryOp::Sub, Some(a), Some(b)) if is_date(Some(a)) && a == b => time,
             (BinaryOp::Mul | BinaryOp::Div, a, _) if is_dur(a) && self.is_numeric(vb.ty()) => {
-                return Some(self.time_scale(f, op, va, vb, time, span));
+                return Some(self.time_scale(op, va, vb, time, span));
             }
             (BinaryOp::Mul, _, b) if is_dur(b) && self.is_numeric(va.ty()) => {
-                return Some(self.time_scale(f, op, vb, va, time, span));
+                return Some(self.time_scale(op, vb, va, time, span));
             }
             _ => {
                 let (x, y) = (self.ty_name(va.ty()), self.ty_name(vb.ty()));
@@ -306,10 +276,10 @@ impl BodyBuilder<'_> {
                 }
             });
         }
-        let a = self.materialize(f, va);
-        let b = self.materialize(f, vb);
-        let d = f.temp();
-        f.emit(if op == BinaryOp::Add {
+        let a = self.materialize(va);
+        let b = self.materialize(vb);
+        let d = self.block.temp();
+        self.block.emit(if op == BinaryOp::Add {
             Op::AddS { d, a, b, shift: 0 }
         } else {
             Op::SubS { d, a, b, shift: 0 }
@@ -317,28 +287,20 @@ impl BodyBuilder<'_> {
         Some(Val::Slot(d, result))
     }
 
-    fn time_scale(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        t: &Val,
-        n: &Val,
-        time: TypeId,
-        span: Span,
-    ) -> Val {
-        let a = self.materialize(f, t);
+    fn time_scale(&mut self, op: BinaryOp, t: &Val, n: &Val, time: TypeId, span: Span) -> Val {
+        let a = self.materialize(t);
         let ne = match n.ty() {
             Ty::AnyInt => ElemType::Lint,
             Ty::AnyReal => ElemType::Lreal,
             Ty::T(x) => self.scalar(x).unwrap_or(ElemType::Lint),
         };
-        let nv = self.coerce(f, n.clone(), TypeTable::elem(ne), span, "time factor");
-        let b = self.materialize(f, &nv);
-        let d = f.temp();
+        let nv = self.coerce(n.clone(), TypeTable::elem(ne), span, "time factor");
+        let b = self.materialize(&nv);
+        let d = self.block.temp();
         if ne.is_real() {
             let b = if ne == ElemType::Real {
-                let x = f.temp();
-                f.emit(Op::Convert {
+                let x = self.block.temp();
+                self.block.emit(Op::Convert {
                     d: x,
                     a: b,
                     conv: crate::ir::op::Conv::F32ToF64,
@@ -347,13 +309,13 @@ impl BodyBuilder<'_> {
             } else {
                 b
             };
-            f.emit(if op == BinaryOp::Mul {
+            self.block.emit(if op == BinaryOp::Mul {
                 Op::MulTimeF64 { d, a, b }
             } else {
                 Op::DivTimeF64 { d, a, b }
             });
         } else {
-            f.emit(if op == BinaryOp::Mul {
+            self.block.emit(if op == BinaryOp::Mul {
                 Op::MulS { d, a, b, shift: 0 }
             } else {
                 Op::DivS { d, a, b, shift: 0 }

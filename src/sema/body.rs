@@ -1,9 +1,11 @@
 //! The body phase: one [`BodyBuilder`] per POU emits its body (ST, IL or
 //! SFC) into code blocks. It reads the declarations ([`Model`]) without
 //! changing them, appends to the program's shared tables ([`Program`]), and
-//! owns everything that only this body needs: the emission context of each
-//! of its code blocks ([`Fcx`]) and the SFC blocks waiting for their
-//! constant slots.
+//! owns everything that only this body needs: the emission context of the
+//! code block being emitted ([`Fcx`]: instructions, temporaries, constant
+//! and pinned slots, fixups; an SFC condition or action swaps in a fresh
+//! one for its own block) and the SFC blocks waiting for their constant
+//! slots.
 
 use super::emit::{Fcx, place_tagged};
 use super::model::Model;
@@ -24,6 +26,8 @@ pub(super) struct BodyBuilder<'a> {
     pub(super) out: &'a mut Program,
     /// Where errors go.
     pub(super) diags: &'a mut Diagnostics,
+    /// The code block being emitted: the body, or one of its SFC blocks.
+    pub(super) block: Fcx,
     /// SFC blocks of this POU whose constant and pinned slots still need
     /// placing: (code block, constants, pin count).
     pub(super) pending_blocks: Vec<(u32, IndexSet<u64>, u32)>,
@@ -40,33 +44,36 @@ pub(super) struct BuiltBody {
 }
 
 impl<'a> BodyBuilder<'a> {
-    /// A builder over the model as it stands.
+    /// A builder of POU `p`'s body over the model as it stands.
     pub(super) fn new(
         model: &'a Model,
         types: &'a mut TypeTable,
         out: &'a mut Program,
         diags: &'a mut Diagnostics,
+        p: usize,
     ) -> BodyBuilder<'a> {
         BodyBuilder {
             model,
             types,
             out,
             diags,
+            block: Fcx::new(p, model.pous[p].vars_size),
             pending_blocks: Vec::new(),
             owned_blocks: Vec::new(),
         }
     }
 
-    /// Emits the body of POU `p` into its code block (and SFC blocks).
-    pub(super) fn build(&mut self, p: usize, pou: &Pou) -> BuiltBody {
-        let mut f = Fcx::new(p, self.model.pous[p].vars_size);
+    /// Emits the body of the POU into its code block (and SFC blocks).
+    pub(super) fn build(mut self, pou: &Pou) -> BuiltBody {
+        let p = self.block.pou;
         match &pou.body {
-            Body::St(stmts) => self.stmts(&mut f, stmts),
+            Body::St(stmts) => self.stmts(stmts),
             Body::Il(lines) => {
-                self.il_body(&mut f, lines);
+                self.il_body(lines);
             }
-            Body::Sfc(elems) => self.emit_chart(&mut f, pou, elems),
+            Body::Sfc(elems) => self.emit_chart(pou, elems),
         }
+        let mut f = std::mem::replace(&mut self.block, Fcx::new(p, 0));
         let end = f.here();
         for j in std::mem::take(&mut f.returns) {
             f.patch(j, end);

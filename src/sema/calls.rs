@@ -2,7 +2,7 @@
 //! formal and non-formal arguments, `=>` outputs.
 
 use super::body::BodyBuilder;
-use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
+use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::ConstInit;
 use crate::ir::op::Op;
 use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
@@ -58,25 +58,25 @@ impl InstanceAt {
 
 impl BodyBuilder<'_> {
     /// A call used as a statement.
-    pub(super) fn call_stmt(&mut self, f: &mut Fcx, call: &Call) {
+    pub(super) fn call_stmt(&mut self, call: &Call) {
         if let ExprKind::Name(id) = &call.callee.kind
-            && self.lookup_var(f, &id.key()).is_none()
+            && self.lookup_var(&id.key()).is_none()
         {
-            self.call_function(f, call, None, false);
+            self.call_function(call, None, false);
             return;
         }
-        let Some(inst) = self.place(f, &call.callee) else {
+        let Some(inst) = self.place(&call.callee) else {
             return;
         };
-        self.fb_call(f, &inst, &call.args, call.span);
+        self.fb_call(&inst, &call.args, call.span);
     }
 
     /// A call used in an expression: must be a function.
-    pub(super) fn call_expr(&mut self, f: &mut Fcx, call: &Call, expect: Option<TypeId>) -> Val {
+    pub(super) fn call_expr(&mut self, call: &Call, expect: Option<TypeId>) -> Val {
         if let ExprKind::Name(id) = &call.callee.kind
-            && self.lookup_var(f, &id.key()).is_none()
+            && self.lookup_var(&id.key()).is_none()
         {
-            return self.call_function(f, call, expect, true);
+            return self.call_function(call, expect, true);
         }
         self.diags.error(
             "E406",
@@ -86,13 +86,7 @@ impl BodyBuilder<'_> {
         Val::error()
     }
 
-    fn call_function(
-        &mut self,
-        f: &mut Fcx,
-        call: &Call,
-        expect: Option<TypeId>,
-        want: bool,
-    ) -> Val {
+    fn call_function(&mut self, call: &Call, expect: Option<TypeId>, want: bool) -> Val {
         let ExprKind::Name(id) = &call.callee.kind else {
             return Val::error();
         };
@@ -114,9 +108,9 @@ impl BodyBuilder<'_> {
                 );
                 return Val::error();
             }
-            return self.user_function_call(f, p, call, want);
+            return self.user_function_call(p, call, want);
         }
-        if let Some(v) = self.std_call(f, id, &call.args, call.span, expect) {
+        if let Some(v) = self.std_call(id, &call.args, call.span, expect) {
             return v;
         }
         if stdlib::lookup_native(&id.name).is_some() {
@@ -258,7 +252,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Checks and emits a call of the FB instance at `inst`.
-    pub(super) fn fb_call(&mut self, f: &mut Fcx, inst: &PlaceRef, args: &[Arg], span: Span) {
+    pub(super) fn fb_call(&mut self, inst: &PlaceRef, args: &[Arg], span: Span) {
         let def = self.types.get(inst.ty).clone();
         let Some(params) = self.fb_params(&def, span) else {
             return;
@@ -277,13 +271,13 @@ impl BodyBuilder<'_> {
             }
         }
         let skip = match b.en {
-            Some(en) => self.cond_jump(f, en, false),
+            Some(en) => self.cond_jump(en, false),
             None => None,
         };
         // Where the instance is: a frame slot, or an address in a slot.
         let at = match inst.place {
             Place::Frame(o) => InstanceAt::Frame(o),
-            _ => InstanceAt::Ptr(self.address_of(f, inst)),
+            _ => InstanceAt::Ptr(self.address_of(inst)),
         };
         for &(i, e) in &b.inputs {
             let p = &params[i];
@@ -295,13 +289,13 @@ impl BodyBuilder<'_> {
                 input_image: false,
             };
             if p.kind == MemberKind::InOut {
-                self.connect_in_out(f, p, &slot_place, e);
+                self.connect_in_out(p, &slot_place, e);
                 continue;
             }
-            self.store_arg(f, &slot_place, e, &p.name);
+            self.store_arg(&slot_place, e, &p.name);
         }
-        self.invoke_fb(f, &def.kind, at, span);
-        f.last_def = None;
+        self.invoke_fb(&def.kind, at, span);
+        self.block.last_def = None;
         for &(i, negated, target) in &b.outputs {
             let p = &params[i];
             let src = PlaceRef {
@@ -311,9 +305,9 @@ impl BodyBuilder<'_> {
                 readonly_reason: None,
                 input_image: false,
             };
-            self.store_output(f, &src, negated, target, &p.name);
+            self.store_output(&src, negated, target, &p.name);
         }
-        self.finish_en(f, skip, b.eno);
+        self.finish_en(skip, b.eno);
     }
 
     /// The call interface of an FB type (`None` for what cannot be called).
@@ -372,8 +366,8 @@ impl BodyBuilder<'_> {
 
     /// Connects VAR_IN_OUT `p` of an FB instance to the variable `e`: the
     /// variable's address goes into the pointer slot `slot_place`.
-    fn connect_in_out(&mut self, f: &mut Fcx, p: &Param, slot_place: &PlaceRef, e: &Expr) {
-        let Some(arg) = self.place(f, e) else {
+    fn connect_in_out(&mut self, p: &Param, slot_place: &PlaceRef, e: &Expr) {
+        let Some(arg) = self.place(e) else {
             return;
         };
         if arg.ty != p.ty && arg.ty != TypeTable::error() {
@@ -393,60 +387,60 @@ impl BodyBuilder<'_> {
             );
             return;
         }
-        let a = self.address_of(f, &arg);
+        let a = self.address_of(&arg);
         let ptr_place = PlaceRef {
             ty: TypeTable::elem(ElemType::Ulint),
             ..*slot_place
         };
-        self.write_place(f, &ptr_place, a);
+        self.write_place(&ptr_place, a);
     }
 
     /// The call instruction of an FB instance.
-    fn invoke_fb(&mut self, f: &mut Fcx, kind: &TypeKind, at: InstanceAt, span: Span) {
+    fn invoke_fb(&mut self, kind: &TypeKind, at: InstanceAt, span: Span) {
         match (kind, at) {
             (TypeKind::NativeFb(fb), InstanceAt::Frame(o)) => {
-                f.emit(Op::CallNative { fb: *fb, inst: o });
+                self.block.emit(Op::CallNative { fb: *fb, inst: o });
             }
             (TypeKind::NativeFb(fb), InstanceAt::Ptr(p)) => {
-                f.emit(Op::CallNativeInd { fb: *fb, p });
+                self.block.emit(Op::CallNativeInd { fb: *fb, p });
             }
             (TypeKind::Pou { code, .. }, InstanceAt::Frame(o)) => {
-                let caller = self.model.pous[f.pou].code;
+                let caller = self.model.pous[self.block.pou].code;
                 self.out.calls.push((caller, *code, span));
-                f.emit(Op::CallFb {
+                self.block.emit(Op::CallFb {
                     code: *code,
                     inst: o,
                 });
             }
             (TypeKind::Pou { code, .. }, InstanceAt::Ptr(p)) => {
-                let caller = self.model.pous[f.pou].code;
+                let caller = self.model.pous[self.block.pou].code;
                 self.out.calls.push((caller, *code, span));
-                f.emit(Op::CallFbInd { code: *code, p });
+                self.block.emit(Op::CallFbInd { code: *code, p });
             }
             _ => {}
         }
     }
 
     /// Evaluates an input argument into a parameter place.
-    fn store_arg(&mut self, f: &mut Fcx, dst: &PlaceRef, e: &Expr, name: &str) {
+    fn store_arg(&mut self, dst: &PlaceRef, e: &Expr, name: &str) {
         let what = format!("argument `{name}`");
         match self.types.get(dst.ty).kind {
             TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                let Some(src) = self.place(f, e) else { return };
+                let Some(src) = self.place(e) else { return };
                 if !self.assignable(src.ty, dst.ty) {
                     self.mismatch(e.span, Ty::T(src.ty), dst.ty, &what);
                     return;
                 }
-                self.copy_aggregate(f, dst, &src, e.span);
+                self.copy_aggregate(dst, &src, e.span);
             }
             _ => {
-                let v = self.expr(f, e, Some(dst.ty));
-                let v = self.coerce(f, v, dst.ty, e.span, &what);
+                let v = self.expr(e, Some(dst.ty));
+                let v = self.coerce(v, dst.ty, e.span, &what);
                 if v.is_error() {
                     return;
                 }
-                let s = self.materialize(f, &v);
-                self.write_place(f, dst, s);
+                let s = self.materialize(&v);
+                self.write_place(dst, s);
             }
         }
     }
@@ -454,13 +448,12 @@ impl BodyBuilder<'_> {
     /// Copies an output parameter to the `=>` target.
     pub(super) fn store_output(
         &mut self,
-        f: &mut Fcx,
         src: &PlaceRef,
         negated: bool,
         target: &Expr,
         name: &str,
     ) {
-        let Some(t) = self.place(f, target) else {
+        let Some(t) = self.place(target) else {
             return;
         };
         if !t.writable {
@@ -472,38 +465,38 @@ impl BodyBuilder<'_> {
             );
             return;
         }
-        let v = self.read_place(f, src);
+        let v = self.read_place(src);
         let v = if negated {
             if src.ty != TypeTable::elem(ElemType::Bool) {
                 self.diags
                     .error("E302", target.span, "`NOT ... =>` needs a BOOL output");
                 return;
             }
-            let s = self.materialize(f, &v);
-            let d = f.temp();
-            f.emit(Op::NotB { d, a: s });
+            let s = self.materialize(&v);
+            let d = self.block.temp();
+            self.block.emit(Op::NotB { d, a: s });
             Val::Slot(d, src.ty)
         } else {
             v
         };
-        let v = self.coerce(f, v, t.ty, target.span, &format!("output `{name}`"));
+        let v = self.coerce(v, t.ty, target.span, &format!("output `{name}`"));
         if v.is_error() {
             return;
         }
-        let s = self.materialize(f, &v);
-        self.write_place(f, &t, s);
+        let s = self.materialize(&v);
+        self.write_place(&t, s);
     }
 
     /// Closes an EN-guarded call: ENO := TRUE on the called path, FALSE when skipped.
-    pub(super) fn finish_en(&mut self, f: &mut Fcx, skip: Option<usize>, eno: Option<&Expr>) {
+    pub(super) fn finish_en(&mut self, skip: Option<usize>, eno: Option<&Expr>) {
         let Some(eno) = eno else {
             if let Some(j) = skip {
-                let end = f.here();
-                f.patch(j, end);
+                let end = self.block.here();
+                self.block.patch(j, end);
             }
             return;
         };
-        let Some(t) = self.place(f, eno) else { return };
+        let Some(t) = self.place(eno) else { return };
         if t.ty != TypeTable::elem(ElemType::Bool) {
             self.mismatch(
                 eno.span,
@@ -513,18 +506,18 @@ impl BodyBuilder<'_> {
             );
             return;
         }
-        let one = f.temp();
-        f.emit(Op::LoadI { d: one, imm: 1 });
-        self.write_place(f, &t, one);
+        let one = self.block.temp();
+        self.block.emit(Op::LoadI { d: one, imm: 1 });
+        self.write_place(&t, one);
         if let Some(j) = skip {
-            let over = f.emit(Op::Jmp { t: 0 });
-            let at = f.here();
-            f.patch(j, at);
-            let zero = f.temp();
-            f.emit(Op::LoadI { d: zero, imm: 0 });
-            self.write_place(f, &t, zero);
-            let end = f.here();
-            f.patch(over, end);
+            let over = self.block.emit(Op::Jmp { t: 0 });
+            let at = self.block.here();
+            self.block.patch(j, at);
+            let zero = self.block.temp();
+            self.block.emit(Op::LoadI { d: zero, imm: 0 });
+            self.write_place(&t, zero);
+            let end = self.block.here();
+            self.block.patch(over, end);
         }
     }
 }

@@ -141,8 +141,8 @@ impl<'a> Declarer<'a> {
         let Item::Pou(pou) = &units[u].items[i] else {
             return;
         };
-        let mut builder = BodyBuilder::new(&self.model, &mut self.types, &mut self.out, self.diags);
-        let built = builder.build(p, pou);
+        let builder = BodyBuilder::new(&self.model, &mut self.types, &mut self.out, self.diags, p);
+        let built = builder.build(pou);
         self.model.pous[p].consts = built.consts;
         let ty = self.model.pous[p].ty;
         let mut def: TypeDef = self.types.get(ty).clone();

@@ -3,7 +3,7 @@
 
 use super::body::BodyBuilder;
 use super::consts::{Const, literal_to_slot, literal_type, slot_to_int, slot_to_real};
-use super::emit::{Fcx, Ty, Val};
+use super::emit::{Ty, Val};
 use super::typeck::shift_of;
 use crate::ir::op::{Op, ShiftKind};
 use crate::ir::types::{TypeId, TypeKind, TypeTable};
@@ -13,39 +13,37 @@ use crate::types::{ElemType, Family};
 
 impl BodyBuilder<'_> {
     /// Checks and emits an expression used as a value.
-    pub(super) fn expr(&mut self, f: &mut Fcx, e: &Expr, expect: Option<TypeId>) -> Val {
-        let saved = f.span;
-        f.span = e.span;
-        let v = self.expr_inner(f, e, expect);
-        f.span = saved;
+    pub(super) fn expr(&mut self, e: &Expr, expect: Option<TypeId>) -> Val {
+        let saved = self.block.span;
+        self.block.span = e.span;
+        let v = self.expr_inner(e, expect);
+        self.block.span = saved;
         v
     }
 
-    fn expr_inner(&mut self, f: &mut Fcx, e: &Expr, expect: Option<TypeId>) -> Val {
+    fn expr_inner(&mut self, e: &Expr, expect: Option<TypeId>) -> Val {
         match &e.kind {
             ExprKind::Literal(l) => self.literal(l, e.span, expect),
-            ExprKind::Paren(x) => self.expr(f, x, expect),
+            ExprKind::Paren(x) => self.expr(x, expect),
             ExprKind::Name(id) => {
                 // Enumeration value names come after variables.
                 let key = id.key();
-                if self.lookup_var(f, &key).is_none()
+                if self.lookup_var(&key).is_none()
                     && let Some(v) = self.enum_value(&key, expect)
                 {
                     return v;
                 }
-                if let Some(var) = self.lookup_var(f, &key)
+                if let Some(var) = self.lookup_var(&key)
                     && var.constant
                     && let Some(c) = var.value.clone()
                 {
                     return Val::Const(c, Ty::T(var.ty));
                 }
-                self.place_value(f, e)
+                self.place_value(e)
             }
-            ExprKind::Member(..) | ExprKind::Index(..) | ExprKind::Direct(_) => {
-                self.place_value(f, e)
-            }
+            ExprKind::Member(..) | ExprKind::Index(..) | ExprKind::Direct(_) => self.place_value(e),
             ExprKind::BitAccess(base, bit) => {
-                let v = self.expr(f, base, None);
+                let v = self.expr(base, None);
                 let Some(t) = v.ty().id() else {
                     return Val::error();
                 };
@@ -73,29 +71,29 @@ impl BodyBuilder<'_> {
                     );
                     return Val::error();
                 }
-                let a = self.materialize(f, &v);
-                let n = f.temp();
-                f.emit(Op::LoadI {
+                let a = self.materialize(&v);
+                let n = self.block.temp();
+                self.block.emit(Op::LoadI {
                     d: n,
                     imm: *bit as i32,
                 });
-                let d = f.temp();
-                f.emit(Op::Shift {
+                let d = self.block.temp();
+                self.block.emit(Op::Shift {
                     d,
                     a,
                     b: n,
                     kind: ShiftKind::Shr,
                     bits: el.bits() as u8,
                 });
-                let one = f.temp();
-                f.emit(Op::LoadI { d: one, imm: 1 });
-                let r = f.temp();
-                f.emit(Op::And { d: r, a: d, b: one });
+                let one = self.block.temp();
+                self.block.emit(Op::LoadI { d: one, imm: 1 });
+                let r = self.block.temp();
+                self.block.emit(Op::And { d: r, a: d, b: one });
                 Val::Slot(r, TypeTable::elem(ElemType::Bool))
             }
-            ExprKind::Unary(op, x) => self.unary(f, *op, x, e.span, expect),
-            ExprKind::Binary(op, a, b) => self.binary(f, *op, a, b, e.span, expect),
-            ExprKind::Call(call) => self.call_expr(f, call, expect),
+            ExprKind::Unary(op, x) => self.unary(*op, x, e.span, expect),
+            ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e.span, expect),
+            ExprKind::Call(call) => self.call_expr(call, expect),
         }
     }
 
@@ -176,32 +174,21 @@ impl BodyBuilder<'_> {
     }
 
     /// Finds a variable visible in the current body.
-    pub(super) fn lookup_var<'s>(
-        &'s self,
-        f: &'s Fcx,
-        key: &str,
-    ) -> Option<&'s super::model::VarInfo> {
-        if let Some(cr) = &f.il_cr
+    pub(super) fn lookup_var(&self, key: &str) -> Option<&super::model::VarInfo> {
+        if let Some(cr) = &self.block.il_cr
             && key == super::il::CR_KEY
         {
             return Some(cr);
         }
         self.model
             .pous
-            .get(f.pou)
+            .get(self.block.pou)
             .and_then(|p| p.vars.get(key))
             .or_else(|| self.model.globals.get(key))
     }
 
-    fn unary(
-        &mut self,
-        f: &mut Fcx,
-        op: UnaryOp,
-        x: &Expr,
-        span: Span,
-        expect: Option<TypeId>,
-    ) -> Val {
-        let v = self.expr(f, x, expect);
+    fn unary(&mut self, op: UnaryOp, x: &Expr, span: Span, expect: Option<TypeId>) -> Val {
+        let v = self.expr(x, expect);
         if v.is_error() {
             return v;
         }
@@ -250,8 +237,8 @@ impl BodyBuilder<'_> {
                     }
                     Val::Slot(s, t) => {
                         let e = self.scalar(t).unwrap_or(ElemType::Lint);
-                        let d = f.temp();
-                        f.emit(match e {
+                        let d = self.block.temp();
+                        self.block.emit(match e {
                             ElemType::Real => Op::NegF32 { d, a: s },
                             ElemType::Lreal => Op::NegF64 { d, a: s },
                             _ => Op::NegS {
@@ -282,8 +269,8 @@ impl BodyBuilder<'_> {
                     }
                     Val::Slot(s, t) if self.scalar(t).is_some_and(|e| e.is_bit()) => {
                         let e = self.scalar(t).unwrap_or(ElemType::Bool);
-                        let d = f.temp();
-                        f.emit(if e == ElemType::Bool {
+                        let d = self.block.temp();
+                        self.block.emit(if e == ElemType::Bool {
                             Op::NotB { d, a: s }
                         } else {
                             Op::NotW {

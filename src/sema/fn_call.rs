@@ -7,7 +7,7 @@
 use super::body::BodyBuilder;
 use super::calls::{Bound, Param};
 use super::consts::Const;
-use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
+use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::{ConstInit, PouInfo, Storage};
 use crate::ir::op::{Op, Slot};
 use crate::ir::types::{MemberKind, TypeKind, TypeTable};
@@ -46,13 +46,7 @@ fn function_params(callee: &PouInfo) -> Vec<Param> {
 
 impl BodyBuilder<'_> {
     /// A call of user function `p`; `want` when its value is used.
-    pub(super) fn user_function_call(
-        &mut self,
-        f: &mut Fcx,
-        p: usize,
-        call: &Call,
-        want: bool,
-    ) -> Val {
+    pub(super) fn user_function_call(&mut self, p: usize, call: &Call, want: bool) -> Val {
         let callee = &self.model.pous[p];
         let params = function_params(callee);
         let Some(b) = self.bind(&params, &call.args, &callee.name, call.span) else {
@@ -67,7 +61,7 @@ impl BodyBuilder<'_> {
             return Val::error();
         }
         let skip = match b.en {
-            Some(en) => self.cond_jump(f, en, false),
+            Some(en) => self.cond_jump(en, false),
             None => None,
         };
         // Evaluate every argument before touching the callee's frame, so
@@ -78,21 +72,21 @@ impl BodyBuilder<'_> {
                 continue;
             }
             let given = b.inputs.iter().find(|(j, _)| *j == i).map(|(_, e)| *e);
-            if let Some(r) = self.ready_argument(f, p, prm, given, call.span) {
+            if let Some(r) = self.ready_argument(p, prm, given, call.span) {
                 ready.push((i, r));
             }
         }
         for (i, r) in ready {
-            self.store_argument(f, p, &params[i], r);
+            self.store_argument(p, &params[i], r);
         }
         let callee = &self.model.pous[p];
-        let caller = self.model.pous[f.pou].code;
+        let caller = self.model.pous[self.block.pou].code;
         self.out.calls.push((caller, callee.code, call.span));
-        f.emit(Op::CallFn { code: callee.code });
-        let result = self.function_result(f, p, call.span);
-        self.read_function_outputs(f, p, &params, &b);
+        self.block.emit(Op::CallFn { code: callee.code });
+        let result = self.function_result(p, call.span);
+        self.read_function_outputs(p, &params, &b);
         if skip.is_some() || b.eno.is_some() {
-            self.finish_en(f, skip, b.eno);
+            self.finish_en(skip, b.eno);
         }
         if !want {
             return Val::None(TypeTable::void());
@@ -104,7 +98,6 @@ impl BodyBuilder<'_> {
     /// (`None` after an error).
     fn ready_argument(
         &mut self,
-        f: &mut Fcx,
         p: usize,
         prm: &Param,
         given: Option<&Expr>,
@@ -113,7 +106,7 @@ impl BodyBuilder<'_> {
         let what = format!("argument `{}`", prm.name);
         match (prm.kind, given) {
             (MemberKind::InOut, Some(e)) => {
-                let arg = self.place(f, e)?;
+                let arg = self.place(e)?;
                 if arg.ty != prm.ty {
                     self.mismatch(e.span, Ty::T(arg.ty), prm.ty, &what);
                     return None;
@@ -126,7 +119,7 @@ impl BodyBuilder<'_> {
                     );
                     return None;
                 }
-                Some(Ready::Pointer(self.address_of(f, &arg)))
+                Some(Ready::Pointer(self.address_of(&arg)))
             }
             (MemberKind::InOut, None) => {
                 self.diags.error(
@@ -141,23 +134,17 @@ impl BodyBuilder<'_> {
             }
             (_, Some(e)) => match self.types.get(prm.ty).kind {
                 TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                    self.aggregate_argument(f, prm, e, &what)
+                    self.aggregate_argument(prm, e, &what)
                 }
-                _ => self.scalar_argument(f, prm, e, &what),
+                _ => self.scalar_argument(prm, e, &what),
             },
-            (_, None) => self.default_argument(f, p, prm, call_span),
+            (_, None) => self.default_argument(p, prm, call_span),
         }
     }
 
     /// An array or structure passed by value: its address (copied later).
-    fn aggregate_argument(
-        &mut self,
-        f: &mut Fcx,
-        prm: &Param,
-        e: &Expr,
-        what: &str,
-    ) -> Option<Ready> {
-        let src = self.place(f, e)?;
+    fn aggregate_argument(&mut self, prm: &Param, e: &Expr, what: &str) -> Option<Ready> {
+        let src = self.place(e)?;
         if !self.assignable(src.ty, prm.ty) {
             self.mismatch(e.span, Ty::T(src.ty), prm.ty, what);
             return None;
@@ -170,44 +157,38 @@ impl BodyBuilder<'_> {
             );
             return None;
         }
-        let a = self.address_of(f, &src);
+        let a = self.address_of(&src);
         Some(Ready::Aggregate(a, self.types.size(prm.ty)))
     }
 
     /// A scalar or string argument, kept in a temporary the next argument
     /// cannot overwrite (strings in a string temporary of their own).
-    fn scalar_argument(&mut self, f: &mut Fcx, prm: &Param, e: &Expr, what: &str) -> Option<Ready> {
-        let v = self.expr(f, e, Some(prm.ty));
-        let v = self.coerce(f, v, prm.ty, e.span, what);
+    fn scalar_argument(&mut self, prm: &Param, e: &Expr, what: &str) -> Option<Ready> {
+        let v = self.expr(e, Some(prm.ty));
+        let v = self.coerce(v, prm.ty, e.span, what);
         if v.is_error() {
             return None;
         }
-        let s = self.materialize(f, &v);
-        let t = f.temp();
+        let s = self.materialize(&v);
+        let t = self.block.temp();
         if self.types.scalar(prm.ty).is_some_and(|e| e.is_string()) {
             let (max, wide) = match self.types.get(prm.ty).kind {
                 TypeKind::Str { max, wide } => (max, wide),
                 _ => (254, false),
             };
-            let st = self.string_temp(f, max, wide);
-            f.emit(Op::StrMov { d: st, s });
-            f.emit(Op::Mov { d: t, s: st });
+            let st = self.string_temp(max, wide);
+            self.block.emit(Op::StrMov { d: st, s });
+            self.block.emit(Op::Mov { d: t, s: st });
         } else {
-            f.emit(Op::Mov { d: t, s });
+            self.block.emit(Op::Mov { d: t, s });
         }
-        f.last_def = None;
+        self.block.last_def = None;
         Some(Ready::Scalar(t))
     }
 
     /// A missing input: its declared initial value (required for arrays
     /// and structures).
-    fn default_argument(
-        &mut self,
-        f: &mut Fcx,
-        p: usize,
-        prm: &Param,
-        call_span: Span,
-    ) -> Option<Ready> {
+    fn default_argument(&mut self, p: usize, prm: &Param, call_span: Span) -> Option<Ready> {
         let init = prm
             .default
             .clone()
@@ -227,57 +208,57 @@ impl BodyBuilder<'_> {
                 return None;
             }
         };
-        Some(Ready::Scalar(self.materialize(f, &v)))
+        Some(Ready::Scalar(self.materialize(&v)))
     }
 
     /// Stores a ready argument into function `p`'s frame (relocated later).
-    fn store_argument(&mut self, f: &mut Fcx, p: usize, prm: &Param, r: Ready) {
+    fn store_argument(&mut self, p: usize, prm: &Param, r: Ready) {
         match r {
             Ready::Scalar(s) => {
                 if self.types.scalar(prm.ty).is_some_and(|e| e.is_string()) {
-                    let id = f.temp();
-                    let at = f.emit(Op::LoadAbs {
+                    let id = self.block.temp();
+                    let at = self.block.emit(Op::LoadAbs {
                         d: id,
                         abs: prm.offset,
                     });
-                    f.fixups.push((at, p));
-                    f.emit(Op::StrMov { d: id, s });
+                    self.block.fixups.push((at, p));
+                    self.block.emit(Op::StrMov { d: id, s });
                 } else {
-                    let at = f.emit(Op::StoreAbs { abs: prm.offset, s });
-                    f.fixups.push((at, p));
+                    let at = self.block.emit(Op::StoreAbs { abs: prm.offset, s });
+                    self.block.fixups.push((at, p));
                 }
             }
             Ready::Pointer(a) => {
-                let at = f.emit(Op::StoreAbs {
+                let at = self.block.emit(Op::StoreAbs {
                     abs: prm.offset,
                     s: a,
                 });
-                f.fixups.push((at, p));
+                self.block.fixups.push((at, p));
             }
             Ready::Aggregate(a, n) => {
-                let d = f.temp();
-                let at = f.emit(Op::LoadI {
+                let d = self.block.temp();
+                let at = self.block.emit(Op::LoadI {
                     d,
                     imm: prm.offset as i32,
                 });
-                f.fixups.push((at, p));
-                f.emit(Op::MemCopy { d, s: a, n });
+                self.block.fixups.push((at, p));
+                self.block.emit(Op::MemCopy { d, s: a, n });
             }
         }
     }
 
     /// The result of function `p`, read from slot 0 of its frame.
-    fn function_result(&mut self, f: &mut Fcx, p: usize, span: Span) -> Val {
+    fn function_result(&mut self, p: usize, span: Span) -> Val {
         let ret = self.model.pous[p].ret;
         if ret == TypeTable::void() {
             return Val::None(TypeTable::void());
         }
-        let t = f.temp();
-        let at = f.emit(Op::LoadAbs { d: t, abs: 0 });
-        f.fixups.push((at, p));
+        let t = self.block.temp();
+        let at = self.block.emit(Op::LoadAbs { d: t, abs: 0 });
+        self.block.fixups.push((at, p));
         if let TypeKind::Str { max, wide } = self.types.get(ret).kind {
-            let st = self.string_temp(f, max, wide);
-            f.emit(Op::StrMov { d: st, s: t });
+            let st = self.string_temp(max, wide);
+            self.block.emit(Op::StrMov { d: st, s: t });
             Val::Slot(st, ret)
         } else if self.types.scalar(ret).is_some() {
             Val::Slot(t, ret)
@@ -292,15 +273,15 @@ impl BodyBuilder<'_> {
     }
 
     /// The `=>` outputs of the call, read from function `p`'s frame.
-    fn read_function_outputs(&mut self, f: &mut Fcx, p: usize, params: &[Param], b: &Bound) {
+    fn read_function_outputs(&mut self, p: usize, params: &[Param], b: &Bound) {
         for &(i, negated, target) in &b.outputs {
             let prm = &params[i];
-            let t = f.temp();
-            let at = f.emit(Op::LoadAbs {
+            let t = self.block.temp();
+            let at = self.block.emit(Op::LoadAbs {
                 d: t,
                 abs: prm.offset,
             });
-            f.fixups.push((at, p));
+            self.block.fixups.push((at, p));
             let src = PlaceRef {
                 place: Place::Frame(t),
                 ty: prm.ty,
@@ -308,7 +289,7 @@ impl BodyBuilder<'_> {
                 readonly_reason: None,
                 input_image: false,
             };
-            self.store_output(f, &src, negated, target, &prm.name);
+            self.store_output(&src, negated, target, &prm.name);
         }
     }
 }

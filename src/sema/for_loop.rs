@@ -5,7 +5,7 @@
 use super::body::BodyBuilder;
 use super::consts::Const;
 use super::consts::slot_to_int;
-use super::emit::{Fcx, LoopCtx, Ty, Val};
+use super::emit::{LoopCtx, Ty, Val};
 use super::stmt::negate;
 use super::typeck::shift_of;
 use crate::ir::op::Slot;
@@ -43,7 +43,6 @@ impl BodyBuilder<'_> {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn for_loop(
         &mut self,
-        f: &mut Fcx,
         var: &Ident,
         from: &Expr,
         to: &Expr,
@@ -51,25 +50,25 @@ impl BodyBuilder<'_> {
         body: &[Stmt],
         span: Span,
     ) {
-        let Some((i, e, vt)) = self.for_control(f, var) else {
+        let Some((i, e, vt)) = self.for_control(var) else {
             return;
         };
-        let v0 = self.expr(f, from, Some(vt));
-        let v0 = self.coerce(f, v0, vt, from.span, "FOR start");
-        let vlim = self.expr(f, to, Some(vt));
-        let vlim = self.coerce(f, vlim, vt, to.span, "FOR end");
+        let v0 = self.expr(from, Some(vt));
+        let v0 = self.coerce(v0, vt, from.span, "FOR start");
+        let vlim = self.expr(to, Some(vt));
+        let vlim = self.coerce(vlim, vt, to.span, "FOR end");
         let vstep = match by {
             Some(b) => {
-                let v = self.expr(f, b, Some(vt));
-                self.coerce(f, v, vt, b.span, "FOR step")
+                let v = self.expr(b, Some(vt));
+                self.coerce(v, vt, b.span, "FOR step")
             }
             None => Val::Const(Const::Bits(1), Ty::T(vt)),
         };
         if v0.is_error() || vlim.is_error() || vstep.is_error() {
             return;
         }
-        let start = self.materialize(f, &v0);
-        f.mov(i, start);
+        let start = self.materialize(&v0);
+        self.block.mov(i, start);
         let step_const = match &vstep {
             Val::Const(Const::Bits(b), _) => Some(slot_to_int(*b, e)),
             _ => None,
@@ -78,22 +77,22 @@ impl BodyBuilder<'_> {
             self.diags.error("E407", span, "FOR step must not be zero");
             return;
         }
-        let fl = self.for_bounds(f, i, e, &vlim, &vstep, step_const);
+        let fl = self.for_bounds(i, e, &vlim, &vstep, step_const);
         if step_const == Some(1)
             && e.is_signed_int()
             && let Some(lim) = fl.lim_imm
         {
-            self.fill_idiom(f, var, body, i, lim, shift_of(e));
+            self.fill_idiom(var, body, i, lim, shift_of(e));
         }
         // Test at the top: continue while i <= lim (step > 0) or i >= lim (step < 0).
-        let test_at = f.here();
-        let exit_jumps = self.for_entry_test(f, &fl);
-        let body_at = f.here();
-        f.loops.push(LoopCtx::default());
-        f.for_vars.push(i);
-        self.stmts(f, body);
-        f.for_vars.pop();
-        let cont = f.here();
+        let test_at = self.block.here();
+        let exit_jumps = self.for_entry_test(&fl);
+        let body_at = self.block.here();
+        self.block.loops.push(LoopCtx::default());
+        self.block.for_vars.push(i);
+        self.stmts(body);
+        self.block.for_vars.pop();
+        let cont = self.block.here();
         // With a constant start, limit and step the back edge is a ForNext
         // (below): the body sees only start..=limit.
         if let (Some(st), Some(l), Val::Const(Const::Bits(b0), _)) = (step_const, fl.lim_imm, &v0)
@@ -102,26 +101,26 @@ impl BodyBuilder<'_> {
             && let Ok(s0) = i64::try_from(slot_to_int(*b0, e))
         {
             super::bounds::drop_proven_checks(
-                &mut f.ops[body_at as usize..cont as usize],
+                &mut self.block.ops[body_at as usize..cont as usize],
                 &self.out.arrays,
                 i,
                 s0.min(l as i64),
                 s0.max(l as i64),
             );
         }
-        f.span = span;
-        self.for_back_edge(f, &fl, body_at, test_at);
-        f.end_loop(cont, exit_jumps);
+        self.block.span = span;
+        self.for_back_edge(&fl, body_at, test_at);
+        self.block.end_loop(cont, exit_jumps);
     }
 
     /// The FOR control variable: a writable local integer of this POU.
     /// Returns its slot, elementary type and type.
-    fn for_control(&mut self, f: &mut Fcx, var: &Ident) -> Option<(Slot, ElemType, TypeId)> {
+    fn for_control(&mut self, var: &Ident) -> Option<(Slot, ElemType, TypeId)> {
         let var_expr = Expr {
             kind: ExprKind::Name(var.clone()),
             span: var.span,
         };
-        let p = self.place(f, &var_expr)?;
+        let p = self.place(&var_expr)?;
         let super::emit::Place::Frame(i) = p.place else {
             self.diags.error(
                 "E407",
@@ -151,7 +150,6 @@ impl BodyBuilder<'_> {
     /// copied into temporaries (evaluated once, before the loop).
     fn for_bounds(
         &mut self,
-        f: &mut Fcx,
         i: Slot,
         e: ElemType,
         vlim: &Val,
@@ -165,17 +163,17 @@ impl BodyBuilder<'_> {
             _ => None,
         };
         let lim = if lim_imm.is_none() {
-            let t = f.temp();
-            let s = self.materialize(f, vlim);
-            f.emit(Op::Mov { d: t, s });
+            let t = self.block.temp();
+            let s = self.materialize(vlim);
+            self.block.emit(Op::Mov { d: t, s });
             Some(t)
         } else {
             None
         };
         let step_slot = if step_const.is_none() {
-            let t = f.temp();
-            let s = self.materialize(f, vstep);
-            f.emit(Op::Mov { d: t, s });
+            let t = self.block.temp();
+            let s = self.materialize(vstep);
+            self.block.emit(Op::Mov { d: t, s });
             Some(t)
         } else {
             None
@@ -192,30 +190,30 @@ impl BodyBuilder<'_> {
     }
 
     /// The exit test at the top of the loop; returns the exit jumps.
-    fn for_entry_test(&mut self, f: &mut Fcx, fl: &ForLoop) -> Vec<usize> {
+    fn for_entry_test(&mut self, fl: &ForLoop) -> Vec<usize> {
         match fl.step_const {
             Some(st) => {
                 let cmp = if st > 0 { Cmp::Le } else { Cmp::Ge };
-                vec![self.loop_test(f, fl, cmp, false)]
+                vec![self.loop_test(fl, cmp, false)]
             }
             None => {
                 // Runtime sign: positive steps test `<=`, negative `>=`.
                 let sp = fl.step_slot.unwrap_or(fl.i);
-                let neg = f.temp();
-                f.emit(Op::CmpSI {
+                let neg = self.block.temp();
+                self.block.emit(Op::CmpSI {
                     d: neg,
                     a: sp,
                     imm: 0,
                     cmp: Cmp::Lt,
                 });
-                let to_neg = f.emit(Op::Jnz { c: neg, t: 0 });
-                let up = self.loop_test(f, fl, Cmp::Le, false);
-                let to_body = f.emit(Op::Jmp { t: 0 });
-                let neg_at = f.here();
-                f.patch(to_neg, neg_at);
-                let down = self.loop_test(f, fl, Cmp::Ge, false);
-                let body_at = f.here();
-                f.patch(to_body, body_at);
+                let to_neg = self.block.emit(Op::Jnz { c: neg, t: 0 });
+                let up = self.loop_test(fl, Cmp::Le, false);
+                let to_body = self.block.emit(Op::Jmp { t: 0 });
+                let neg_at = self.block.here();
+                self.block.patch(to_neg, neg_at);
+                let down = self.loop_test(fl, Cmp::Ge, false);
+                let body_at = self.block.here();
+                self.block.patch(to_body, body_at);
                 vec![up, down]
             }
         }
@@ -223,7 +221,7 @@ impl BodyBuilder<'_> {
 
     /// The back edge: a fused `ForNext` when the step is a small constant,
     /// else the increment and the test again (rotated) or a jump to the test.
-    fn for_back_edge(&mut self, f: &mut Fcx, fl: &ForLoop, body_at: u32, test_at: u32) {
+    fn for_back_edge(&mut self, fl: &ForLoop, body_at: u32, test_at: u32) {
         let (i, e) = (fl.i, fl.e);
         let shift = shift_of(e);
         if let Some(st) = fl.step_const
@@ -231,7 +229,7 @@ impl BodyBuilder<'_> {
             && let Ok(step) = i16::try_from(st)
             && (fl.lim_imm.is_some() || fl.lim.is_some())
         {
-            f.emit(match (fl.lim_imm, fl.lim) {
+            self.block.emit(match (fl.lim_imm, fl.lim) {
                 (Some(lim), _) => Op::ForNext {
                     i,
                     lim,
@@ -250,22 +248,22 @@ impl BodyBuilder<'_> {
             });
             return;
         }
-        self.for_increment(f, fl);
+        self.for_increment(fl);
         match fl.step_const {
             // Rotated loop: test again at the bottom and jump back to the body.
             Some(st) => {
                 let cmp = if st > 0 { Cmp::Le } else { Cmp::Ge };
-                let back = self.loop_test(f, fl, cmp, true);
-                f.patch(back, body_at);
+                let back = self.loop_test(fl, cmp, true);
+                self.block.patch(back, body_at);
             }
             None => {
-                f.emit(Op::Jmp { t: test_at });
+                self.block.emit(Op::Jmp { t: test_at });
             }
         }
     }
 
     /// `i := i + step`.
-    fn for_increment(&mut self, f: &mut Fcx, fl: &ForLoop) {
+    fn for_increment(&mut self, fl: &ForLoop) {
         let (i, e) = (fl.i, fl.e);
         let shift = shift_of(e);
         let add = |b: Slot| {
@@ -287,7 +285,7 @@ impl BodyBuilder<'_> {
         };
         match (fl.step_const, fl.step_slot) {
             (Some(st), _) if i32::try_from(st).is_ok() && e.is_signed_int() => {
-                f.emit(Op::AddSI {
+                self.block.emit(Op::AddSI {
                     d: i,
                     a: i,
                     imm: st as i32,
@@ -295,53 +293,53 @@ impl BodyBuilder<'_> {
                 });
             }
             (Some(st), _) => {
-                let t = f.const_slot(st as u64);
-                f.emit(add(t));
+                let t = self.block.const_slot(st as u64);
+                self.block.emit(add(t));
             }
             (None, Some(sp)) => {
-                f.emit(add(sp));
+                self.block.emit(add(sp));
             }
             (None, None) => {}
         }
     }
 
     /// Emits a jump taken when `(i cmp lim) == when`; returns it for patching.
-    fn loop_test(&mut self, f: &mut Fcx, fl: &ForLoop, cmp: Cmp, when: bool) -> usize {
+    fn loop_test(&mut self, fl: &ForLoop, cmp: Cmp, when: bool) -> usize {
         let (i, signed) = (fl.i, fl.signed);
         // The fused branches jump when the comparison is FALSE.
         let jcmp = if when { negate(cmp) } else { cmp };
-        let branch = |f: &mut Fcx, d: u32| {
+        let branch = |d: u32| {
             if when {
-                f.emit(Op::Jnz { c: d, t: 0 })
+                Op::Jnz { c: d, t: 0 }
             } else {
-                f.emit(Op::Jz { c: d, t: 0 })
+                Op::Jz { c: d, t: 0 }
             }
         };
         match (fl.lim_imm, fl.lim) {
-            (Some(imm), _) if signed => f.emit(Op::JnCmpSI {
+            (Some(imm), _) if signed => self.block.emit(Op::JnCmpSI {
                 a: i,
                 imm,
                 cmp: jcmp,
                 t: 0,
             }),
             (Some(imm), _) => {
-                let t = f.const_slot(imm as i64 as u64);
-                let d = f.temp();
-                f.emit(Op::CmpU { d, a: i, b: t, cmp });
-                branch(f, d)
+                let t = self.block.const_slot(imm as i64 as u64);
+                let d = self.block.temp();
+                self.block.emit(Op::CmpU { d, a: i, b: t, cmp });
+                self.block.emit(branch(d))
             }
-            (None, Some(l)) if signed => f.emit(Op::JnCmpS {
+            (None, Some(l)) if signed => self.block.emit(Op::JnCmpS {
                 a: i,
                 b: l,
                 cmp: jcmp,
                 t: 0,
             }),
             (None, Some(l)) => {
-                let d = f.temp();
-                f.emit(Op::CmpU { d, a: i, b: l, cmp });
-                branch(f, d)
+                let d = self.block.temp();
+                self.block.emit(Op::CmpU { d, a: i, b: l, cmp });
+                self.block.emit(branch(d))
             }
-            (None, None) => f.emit(Op::Jmp { t: 0 }),
+            (None, None) => self.block.emit(Op::Jmp { t: 0 }),
         }
     }
 
@@ -352,7 +350,6 @@ impl BodyBuilder<'_> {
     /// which the body cannot change.
     fn fill_idiom(
         &mut self,
-        f: &mut Fcx,
         var: &crate::syntax::ast::Ident,
         body: &[Stmt],
         i: u32,
@@ -394,7 +391,7 @@ impl BodyBuilder<'_> {
         // Only for arrays whose element stores are plain slot writes. (A
         // name resolves without emitting code.)
         let mark = self.diags.len();
-        let Some(p) = self.place(f, base) else {
+        let Some(p) = self.place(base) else {
             self.diags.truncate(mark);
             return;
         };
@@ -409,14 +406,14 @@ impl BodyBuilder<'_> {
         {
             return;
         }
-        let v = self.expr(f, value, Some(elem));
-        let v = self.coerce(f, v, elem, value.span, "assignment");
+        let v = self.expr(value, Some(elem));
+        let v = self.coerce(v, elem, value.span, "assignment");
         if v.is_error() || self.diags.len() != mark {
             // The loop body reports the problem itself.
             self.diags.truncate(mark);
             return;
         }
-        let v = self.materialize(f, &v);
+        let v = self.materialize(&v);
         let desc = self.out.arrays.len();
         let Ok(desc) = u16::try_from(desc) else {
             return;
@@ -428,7 +425,7 @@ impl BodyBuilder<'_> {
             stride: 1,
             span: target.span,
         });
-        f.emit(Op::FillElems {
+        self.block.emit(Op::FillElems {
             i,
             v,
             lim,

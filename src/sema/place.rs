@@ -5,7 +5,7 @@
 use super::body::BodyBuilder;
 use super::consts::{Const, slot_to_int};
 use super::declare::{address_type, normalize_address};
-use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
+use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::Storage;
 use crate::ir::image::ArrayDesc;
 use crate::ir::op::NativeFb;
@@ -31,8 +31,8 @@ struct ElemShape {
 }
 
 impl BodyBuilder<'_> {
-    pub(super) fn place_value(&mut self, f: &mut Fcx, e: &Expr) -> Val {
-        let Some(p) = self.place(f, e) else {
+    pub(super) fn place_value(&mut self, e: &Expr) -> Val {
+        let Some(p) = self.place(e) else {
             return Val::error();
         };
         if !self.types.get(p.ty).kind.is_value_type() || self.types.scalar(p.ty).is_none() {
@@ -45,17 +45,17 @@ impl BodyBuilder<'_> {
             }
             return Val::error();
         }
-        self.read_place(f, &p)
+        self.read_place(&p)
     }
 
     /// Resolves an expression that denotes a storage location.
-    pub(super) fn place(&mut self, f: &mut Fcx, e: &Expr) -> Option<PlaceRef> {
+    pub(super) fn place(&mut self, e: &Expr) -> Option<PlaceRef> {
         match &e.kind {
-            ExprKind::Paren(x) => self.place(f, x),
-            ExprKind::Name(id) => self.place_name(f, id),
+            ExprKind::Paren(x) => self.place(x),
+            ExprKind::Name(id) => self.place_name(id),
             ExprKind::Direct(a) => self.place_direct(a),
-            ExprKind::Member(base, name) => self.place_member(f, base, name),
-            ExprKind::Index(base, indexes) => self.place_index(f, e, base, indexes),
+            ExprKind::Member(base, name) => self.place_member(base, name),
+            ExprKind::Index(base, indexes) => self.place_index(e, base, indexes),
             _ => {
                 self.diags
                     .error("E402", e.span, "this expression is not a variable");
@@ -65,9 +65,9 @@ impl BodyBuilder<'_> {
     }
 
     /// A declared variable (or the IL current result).
-    fn place_name(&mut self, f: &mut Fcx, id: &Ident) -> Option<PlaceRef> {
+    fn place_name(&mut self, id: &Ident) -> Option<PlaceRef> {
         let key = id.key();
-        let Some(var) = self.lookup_var(f, &key).cloned() else {
+        let Some(var) = self.lookup_var(&key).cloned() else {
             let what = if self.model.pou_index.contains_key(&key) {
                 format!("`{}` is a POU, not a variable", id.name)
             } else {
@@ -81,7 +81,7 @@ impl BodyBuilder<'_> {
             Storage::Abs(a) => Place::Abs(a),
             Storage::Ref(o) => Place::Ind { p: o, off: 0 },
         };
-        let function_input = self.model.pous.get(f.pou).is_some_and(|p| {
+        let function_input = self.model.pous.get(self.block.pou).is_some_and(|p| {
             p.kind == crate::syntax::ast::PouKind::Function && var.kind == MemberKind::Input
         });
         let reason = if var.constant {
@@ -124,8 +124,8 @@ impl BodyBuilder<'_> {
     }
 
     /// A member of a structure or an instance: `base.name`.
-    fn place_member(&mut self, f: &mut Fcx, base: &Expr, name: &Ident) -> Option<PlaceRef> {
-        let b = self.place(f, base)?;
+    fn place_member(&mut self, base: &Expr, name: &Ident) -> Option<PlaceRef> {
+        let b = self.place(base)?;
         let def = self.types.get(b.ty).clone();
         let (offset, ty, writable, reason) = match &def.kind {
             TypeKind::Struct { fields } => self.struct_field(&def, fields, name, &b)?,
@@ -153,7 +153,7 @@ impl BodyBuilder<'_> {
                 return None;
             }
         };
-        let place = self.offset_place(f, b.place, offset);
+        let place = self.offset_place(b.place, offset);
         Some(PlaceRef {
             place,
             ty,
@@ -277,14 +277,8 @@ impl BodyBuilder<'_> {
     }
 
     /// An array element: `base[i, j, ...]`.
-    fn place_index(
-        &mut self,
-        f: &mut Fcx,
-        e: &Expr,
-        base: &Expr,
-        indexes: &[Expr],
-    ) -> Option<PlaceRef> {
-        let b = self.place(f, base)?;
+    fn place_index(&mut self, e: &Expr, base: &Expr, indexes: &[Expr]) -> Option<PlaceRef> {
+        let b = self.place(base)?;
         let TypeKind::Array { dims, elem } = self.types.get(b.ty).kind.clone() else {
             if b.ty != TypeTable::error() {
                 self.diags.error(
@@ -308,11 +302,11 @@ impl BodyBuilder<'_> {
             return None;
         }
         let elem_size = self.types.size(elem);
-        let vals = self.index_values(f, indexes)?;
+        let vals = self.index_values(indexes)?;
         // All indexes constant: a static offset, checked now.
         if vals.iter().all(|(v, _)| matches!(v, Val::Const(..))) {
             let linear = self.constant_index(&vals, &dims)?;
-            let place = self.offset_place(f, b.place, (linear * elem_size as u64) as u32);
+            let place = self.offset_place(b.place, (linear * elem_size as u64) as u32);
             return Some(PlaceRef {
                 place,
                 ty: elem,
@@ -321,7 +315,7 @@ impl BodyBuilder<'_> {
         }
         // Dynamic: linearise with checked steps.
         let total: u64 = dims.iter().map(|d| d.len()).product();
-        let idx = self.dynamic_index(f, &vals, &dims);
+        let idx = self.dynamic_index(&vals, &dims);
         let lo = if dims.len() == 1 { dims[0].lo } else { 0 };
         let shape = ElemShape {
             lo,
@@ -329,14 +323,14 @@ impl BodyBuilder<'_> {
             stride: elem_size,
             one_dim: dims.len() == 1,
         };
-        self.element_place(f, e, b, idx, elem, shape)
+        self.element_place(e, b, idx, elem, shape)
     }
 
     /// Evaluates array indexes (integers, not enumerations).
-    fn index_values(&mut self, f: &mut Fcx, indexes: &[Expr]) -> Option<Vec<(Val, Span)>> {
+    fn index_values(&mut self, indexes: &[Expr]) -> Option<Vec<(Val, Span)>> {
         let mut vals = Vec::new();
         for ix in indexes {
-            let v = self.expr(f, ix, None);
+            let v = self.expr(ix, None);
             let ok = match v.ty() {
                 Ty::AnyInt => true,
                 Ty::T(t) => self.scalar(t).is_some_and(|e| e.is_int()) && !self.is_enum(t),
@@ -386,15 +380,15 @@ impl BodyBuilder<'_> {
 
     /// The element number of dynamic indexes in a slot: the index itself for
     /// one dimension, else a linearisation checked per dimension.
-    fn dynamic_index(&mut self, f: &mut Fcx, vals: &[(Val, Span)], dims: &[Dim]) -> Slot {
+    fn dynamic_index(&mut self, vals: &[(Val, Span)], dims: &[Dim]) -> Slot {
         if dims.len() == 1 {
             let v = vals[0].0.clone();
-            self.materialize(f, &v)
+            self.materialize(&v)
         } else {
-            let acc = f.temp();
-            f.emit(Op::LoadI { d: acc, imm: 0 });
+            let acc = self.block.temp();
+            self.block.emit(Op::LoadI { d: acc, imm: 0 });
             for ((v, span), d) in vals.iter().zip(dims) {
-                let s = self.materialize(f, v);
+                let s = self.materialize(v);
                 let desc = self.out.array_desc(ArrayDesc {
                     offset: 0,
                     lo: d.lo,
@@ -402,7 +396,7 @@ impl BodyBuilder<'_> {
                     stride: 1,
                     span: *span,
                 });
-                f.emit(Op::IndexStep { acc, idx: s, desc });
+                self.block.emit(Op::IndexStep { acc, idx: s, desc });
             }
             acc
         }
@@ -413,7 +407,6 @@ impl BodyBuilder<'_> {
     /// basic block for arrays of the frame).
     fn element_place(
         &mut self,
-        f: &mut Fcx,
         e: &Expr,
         b: PlaceRef,
         idx: Slot,
@@ -440,8 +433,9 @@ impl BodyBuilder<'_> {
                 // Arrays of FBs or structures in this frame: the
                 // element address, reused within the basic block.
                 let key = (o, shape.lo, shape.total, shape.stride);
-                let cacheable = idx < f.vars_size && shape.one_dim;
-                let cached = f
+                let cacheable = idx < self.block.vars_size && shape.one_dim;
+                let cached = self
+                    .block
                     .elem_cache
                     .iter()
                     .find(|c| cacheable && c.key == key && c.idx == idx)
@@ -456,11 +450,16 @@ impl BodyBuilder<'_> {
                             stride: shape.stride,
                             span: e.span,
                         });
-                        let p = if cacheable { f.pin() } else { f.temp() };
-                        f.emit(Op::ElemRef { d: p, idx, desc });
-                        f.last_def = None;
+                        let p = if cacheable {
+                            self.block.pin()
+                        } else {
+                            self.block.temp()
+                        };
+                        self.block.emit(Op::ElemRef { d: p, idx, desc });
+                        self.block.last_def = None;
                         if cacheable {
-                            f.elem_cache
+                            self.block
+                                .elem_cache
                                 .push(super::emit::ElemEntry { key, idx, ptr: p });
                         }
                         p
@@ -473,9 +472,9 @@ impl BodyBuilder<'_> {
                 })
             }
             _ => {
-                let base_ptr = self.address_of(f, &b);
-                let fresh = f.temp();
-                f.emit(Op::Mov {
+                let base_ptr = self.address_of(&b);
+                let fresh = self.block.temp();
+                self.block.emit(Op::Mov {
                     d: fresh,
                     s: base_ptr,
                 });
@@ -488,8 +487,8 @@ impl BodyBuilder<'_> {
                     span: e.span,
                 });
                 let p = base_ptr;
-                f.emit(Op::ElemAddr { d: p, idx, desc });
-                f.last_def = None;
+                self.block.emit(Op::ElemAddr { d: p, idx, desc });
+                self.block.last_def = None;
                 Some(PlaceRef {
                     place: Place::Ind { p, off: 0 },
                     ty: elem,
@@ -500,15 +499,15 @@ impl BodyBuilder<'_> {
     }
 
     /// `place + offset`, turning element places into pointers when needed.
-    fn offset_place(&mut self, f: &mut Fcx, place: Place, off: u32) -> Place {
+    fn offset_place(&mut self, place: Place, off: u32) -> Place {
         match place {
             Place::Frame(o) => Place::Frame(o + off),
             Place::Abs(a) => Place::Abs(a + off),
             Place::Ind { p, off: o } => Place::Ind { p, off: o + off },
             Place::Elem { idx, desc } => {
-                let p = f.temp();
-                f.emit(Op::ElemRef { d: p, idx, desc });
-                f.last_def = None;
+                let p = self.block.temp();
+                self.block.emit(Op::ElemRef { d: p, idx, desc });
+                self.block.last_def = None;
                 Place::Ind { p, off }
             }
         }

@@ -38,9 +38,9 @@ struct ChartFrame<'a> {
 
 impl BodyBuilder<'_> {
     /// Checks a chart body, builds its table, and emits `Op::Sfc` followed
-    /// by the plain statements into `f`.
-    pub(super) fn emit_chart(&mut self, f: &mut Fcx, pou: &Pou, elems: &[SfcElement]) {
-        let p = f.pou;
+    /// by the plain statements into the current code block.
+    pub(super) fn emit_chart(&mut self, pou: &Pou, elems: &[SfcElement]) {
+        let p = self.block.pou;
         let Some(hidden) = self.model.pous[p].vars.get(HIDDEN).map(|v| v.storage) else {
             // A FUNCTION (already reported).
             return;
@@ -61,7 +61,7 @@ impl BodyBuilder<'_> {
             hbase,
             lay,
             temp_base: self.model.pous[p].vars_size,
-            temp_max: f.temp_max,
+            temp_max: self.block.temp_max,
         };
         let (step_index, mut steps, step_src) = self.chart_steps(&cf, &n);
         let initial: Vec<u32> = step_src
@@ -70,16 +70,16 @@ impl BodyBuilder<'_> {
             .filter(|(_, s)| s.initial)
             .map(|(i, _)| i as u32)
             .collect();
-        let (action_index, actions) = self.chart_actions(f, &mut cf, &n);
-        self.chart_associations(f, &n, &step_src, &action_index, &mut steps);
-        let transitions = self.chart_transitions(f, &mut cf, &n, &step_index, &mut steps);
+        let (action_index, actions) = self.chart_actions(&mut cf, &n);
+        self.chart_associations(&n, &step_src, &action_index, &mut steps);
+        let transitions = self.chart_transitions(&mut cf, &n, &step_index, &mut steps);
         let temp_max = cf.temp_max;
         self.chart_structure(pou, &step_src, &transitions, &initial);
 
         if self.diags.has_errors() {
             // Keep going for more diagnostics, but emit nothing runnable.
-            f.temp_max = temp_max;
-            self.stmts(f, &n.statements);
+            self.block.temp_max = temp_max;
+            self.stmts(&n.statements);
             return;
         }
         let chart = Chart {
@@ -95,10 +95,10 @@ impl BodyBuilder<'_> {
         };
         let index = self.out.charts.len() as u32;
         self.out.charts.push(chart);
-        f.span = pou.name.span;
-        f.emit(Op::Sfc { chart: index });
-        f.temp_max = f.temp_max.max(temp_max);
-        self.stmts(f, &n.statements);
+        self.block.span = pou.name.span;
+        self.block.emit(Op::Sfc { chart: index });
+        self.block.temp_max = self.block.temp_max.max(temp_max);
+        self.stmts(&n.statements);
     }
 
     /// The steps of the chart (the first declaration of a name wins;
@@ -148,7 +148,6 @@ impl BodyBuilder<'_> {
     /// bodies become code blocks.
     fn chart_actions(
         &mut self,
-        f: &mut Fcx,
         cf: &mut ChartFrame,
         n: &Names,
     ) -> (HashMap<String, u32>, Vec<Action>) {
@@ -169,7 +168,7 @@ impl BodyBuilder<'_> {
             let found = if declared {
                 self.declared_action(cf, n, k)
             } else {
-                self.variable_action(f, cf, n, k)
+                self.variable_action(cf, n, k)
             };
             if let Some((key, action)) = found {
                 action_index.insert(key, actions.len() as u32);
@@ -198,10 +197,10 @@ impl BodyBuilder<'_> {
             return None;
         };
         let name = format!("{}.{}", pou.name.name, a.name.name);
-        let (code, max) = self.sub_block(p, name, a.span, temp_base, |c, sub| match &a.body {
-            Body::St(stmts) => c.stmts(sub, stmts),
+        let (code, max) = self.sub_block(p, name, a.span, temp_base, |c| match &a.body {
+            Body::St(stmts) => c.stmts(stmts),
             Body::Il(lines) => {
-                c.il_body(sub, lines);
+                c.il_body(lines);
             }
             Body::Sfc(_) => {}
         });
@@ -217,7 +216,6 @@ impl BodyBuilder<'_> {
     /// A BOOL variable used as action `k` of the chart's variable actions.
     fn variable_action(
         &mut self,
-        f: &mut Fcx,
         cf: &ChartFrame,
         n: &Names,
         k: usize,
@@ -225,7 +223,7 @@ impl BodyBuilder<'_> {
         let hbase = cf.hbase;
         let (key, (id, _)) = n.var_actions.get_index(k)?;
         let rec = hbase + cf.lay.records + k as u32 * action_layout::SIZE;
-        let kind = match self.lookup_var(f, key).cloned() {
+        let kind = match self.lookup_var(key).cloned() {
             None => {
                 self.diags.error(
                     "E610",
@@ -271,7 +269,6 @@ impl BodyBuilder<'_> {
     /// reported with the actions), and a warning for unused ACTIONs.
     fn chart_associations(
         &mut self,
-        f: &mut Fcx,
         n: &Names,
         step_src: &[&crate::syntax::ast::Step],
         action_index: &HashMap<String, u32>,
@@ -284,7 +281,7 @@ impl BodyBuilder<'_> {
                 let Some(&action) = action_index.get(&a.action.key()) else {
                     continue;
                 };
-                if let Some(assoc) = self.association(f, a, action) {
+                if let Some(assoc) = self.association(a, action) {
                     steps[i].assocs.push(assoc);
                 }
             }
@@ -304,7 +301,6 @@ impl BodyBuilder<'_> {
     /// only), its indicator variables.
     fn association(
         &mut self,
-        f: &mut Fcx,
         a: &crate::syntax::ast::ActionAssociation,
         action: u32,
     ) -> Option<Association> {
@@ -337,7 +333,7 @@ impl BodyBuilder<'_> {
                 );
                 return None;
             }
-            (Some(e), true) => self.duration(f, e)?,
+            (Some(e), true) => self.duration(e)?,
             (Some(e), false) => {
                 self.diags.error(
                     "E608",
@@ -349,7 +345,7 @@ impl BodyBuilder<'_> {
             (None, false) => Duration::None,
         };
         for ind in &a.indicators {
-            if self.lookup_var(f, &ind.key()).is_none() {
+            if self.lookup_var(&ind.key()).is_none() {
                 self.diags.error(
                     "E613",
                     ind.span,
@@ -368,7 +364,6 @@ impl BodyBuilder<'_> {
     /// step's outgoing transitions ordered by priority.
     fn chart_transitions(
         &mut self,
-        f: &mut Fcx,
         cf: &mut ChartFrame,
         n: &Names,
         step_index: &HashMap<String, u32>,
@@ -415,7 +410,7 @@ impl BodyBuilder<'_> {
             let to = resolve(self, &t.to);
             let rank = match &t.priority {
                 None => u64::MAX,
-                Some(e) => self.priority(f, e),
+                Some(e) => self.priority(e),
             };
             let label = match &t.name {
                 Some(nm) => format!("{}.{}", pou.name.name, nm.name),
@@ -525,10 +520,10 @@ impl BodyBuilder<'_> {
     ) -> Condition {
         let bool_ty = TypeTable::elem(ElemType::Bool);
         let mut folded: Option<Condition> = None;
-        let (code, max) = self.sub_block(p, label, t.span, temp_base, |c, sub| {
+        let (code, max) = self.sub_block(p, label, t.span, temp_base, |c| {
             let (slot, ty, span) = match &t.condition {
                 TransitionCondition::Expr(e) => {
-                    let v = c.expr(sub, e, Some(bool_ty));
+                    let v = c.expr(e, Some(bool_ty));
                     if v.is_error() {
                         return;
                     }
@@ -546,20 +541,20 @@ impl BodyBuilder<'_> {
                             folded = Some(Condition::Const(b != 0));
                             return;
                         }
-                        Val::Slot(s, _) if sub.ops.is_empty() => {
+                        Val::Slot(s, _) if c.block.ops.is_empty() => {
                             folded = Some(Condition::Frame(s));
                             return;
                         }
                         _ => {}
                     }
-                    let s = c.materialize(sub, &v);
+                    let s = c.materialize(&v);
                     (s, Some(bool_ty), e.span)
                 }
                 TransitionCondition::Il(lines) => {
-                    let (cr, ty) = c.il_body(sub, lines);
-                    let end = sub.here();
-                    for j in std::mem::take(&mut sub.returns) {
-                        sub.patch(j, end);
+                    let (cr, ty) = c.il_body(lines);
+                    let end = c.block.here();
+                    for j in std::mem::take(&mut c.block.returns) {
+                        c.block.patch(j, end);
                     }
                     (cr, ty, t.span)
                 }
@@ -575,7 +570,7 @@ impl BodyBuilder<'_> {
                 );
                 return;
             }
-            sub.mov(cond_slot, slot);
+            c.block.mov(cond_slot, slot);
         });
         match folded {
             Some(c) => {
@@ -597,11 +592,13 @@ impl BodyBuilder<'_> {
         name: String,
         span: Span,
         temp_base: u32,
-        build: impl FnOnce(&mut BodyBuilder, &mut Fcx),
+        build: impl FnOnce(&mut BodyBuilder),
     ) -> (u32, u32) {
         let mut sub = Fcx::new(p, temp_base);
         sub.span = span;
-        build(self, &mut sub);
+        let outer = std::mem::replace(&mut self.block, sub);
+        build(self);
+        let mut sub = std::mem::replace(&mut self.block, outer);
         let end = sub.here();
         for j in std::mem::take(&mut sub.returns) {
             sub.patch(j, end);
@@ -628,11 +625,25 @@ impl BodyBuilder<'_> {
         (code, sub.temp_max)
     }
 
+    /// Checks `e` in a scratch code block whose instructions are discarded
+    /// (only a constant or a plain variable is accepted); returns its value
+    /// and those instructions.
+    fn scratch_expr(
+        &mut self,
+        e: &Expr,
+        expect: Option<crate::ir::types::TypeId>,
+    ) -> (Val, Vec<Op>) {
+        let scratch = Fcx::new(self.block.pou, self.block.temp_base);
+        let outer = std::mem::replace(&mut self.block, scratch);
+        let v = self.expr(e, expect);
+        let scratch = std::mem::replace(&mut self.block, outer);
+        (v, scratch.ops)
+    }
+
     /// A duration: a constant TIME expression or a TIME variable.
-    fn duration(&mut self, f: &Fcx, e: &Expr) -> Option<Duration> {
+    fn duration(&mut self, e: &Expr) -> Option<Duration> {
         let time = TypeTable::elem(ElemType::Time);
-        let mut scratch = Fcx::new(f.pou, f.temp_base);
-        let v = self.expr(&mut scratch, e, Some(time));
+        let (v, ops) = self.scratch_expr(e, Some(time));
         if v.is_error() {
             return None;
         }
@@ -645,7 +656,7 @@ impl BodyBuilder<'_> {
             );
             return None;
         }
-        match (&v, scratch.ops.as_slice()) {
+        match (&v, ops.as_slice()) {
             (Val::Const(Const::Bits(b), _), _) => Some(Duration::Const(*b as i64)),
             (Val::Slot(s, _), []) => Some(Duration::Frame(*s)),
             (Val::Slot(s, _), [Op::LoadAbs { d, abs }]) if d == s => Some(Duration::Abs(*abs)),
@@ -661,9 +672,8 @@ impl BodyBuilder<'_> {
     }
 
     /// A transition priority: a non-negative constant integer.
-    fn priority(&mut self, f: &Fcx, e: &Expr) -> u64 {
-        let mut scratch = Fcx::new(f.pou, f.temp_base);
-        let v = self.expr(&mut scratch, e, None);
+    fn priority(&mut self, e: &Expr) -> u64 {
+        let (v, _) = self.scratch_expr(e, None);
         match v {
             Val::Const(Const::Int(i), _) if (0..i64::MAX as i128).contains(&i) => i as u64,
             Val::Const(Const::Bits(b), Ty::T(t))

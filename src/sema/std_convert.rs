@@ -3,7 +3,7 @@
 
 use super::body::BodyBuilder;
 use super::consts::Const;
-use super::emit::{Fcx, Ty, Val};
+use super::emit::{Ty, Val};
 use crate::ir::op::{Conv, Op};
 use crate::ir::types::TypeTable;
 use crate::source::Span;
@@ -13,7 +13,6 @@ impl BodyBuilder<'_> {
     /// `*_TO_*` conversions (the source type from the name or the argument).
     pub(super) fn std_convert(
         &mut self,
-        f: &mut Fcx,
         from: Option<ElemType>,
         to: ElemType,
         mut vals: Vec<(Val, Span)>,
@@ -31,17 +30,16 @@ impl BodyBuilder<'_> {
             return Val::error();
         };
         let from = from.unwrap_or(actual);
-        let v = self.coerce(f, v, TypeTable::elem(from), s, fname);
+        let v = self.coerce(v, TypeTable::elem(from), s, fname);
         if v.is_error() {
             return v;
         }
-        self.convert(f, v, from, to, s, fname)
+        self.convert(v, from, to, s, fname)
     }
 
     /// `BCD_TO_*`: a BCD bit string to an integer.
     pub(super) fn std_bcd_to(
         &mut self,
-        f: &mut Fcx,
         to: ElemType,
         mut vals: Vec<(Val, Span)>,
         fname: &str,
@@ -60,14 +58,13 @@ impl BodyBuilder<'_> {
             );
             return Val::error();
         }
-        let x = self.apply_conv(f, v, Conv::FromBcd, ElemType::Ulint, s);
-        self.convert(f, x, ElemType::Ulint, to, s, fname)
+        let x = self.apply_conv(v, Conv::FromBcd, ElemType::Ulint, s);
+        self.convert(x, ElemType::Ulint, to, s, fname)
     }
 
     /// `*_TO_BCD`: an integer to a BCD bit string.
     pub(super) fn std_to_bcd(
         &mut self,
-        f: &mut Fcx,
         to: Option<ElemType>,
         mut vals: Vec<(Val, Span)>,
         fname: &str,
@@ -94,19 +91,12 @@ impl BodyBuilder<'_> {
             32 => ElemType::Dword,
             _ => ElemType::Lword,
         });
-        let v = self.coerce(f, v, TypeTable::elem(from), s, fname);
-        self.apply_conv(f, v, Conv::ToBcd(to.bits() as u8), to, s)
+        let v = self.coerce(v, TypeTable::elem(from), s, fname);
+        self.apply_conv(v, Conv::ToBcd(to.bits() as u8), to, s)
     }
 
     /// Applies a conversion instruction (folding constants at compile time).
-    pub(super) fn apply_conv(
-        &mut self,
-        f: &mut Fcx,
-        v: Val,
-        conv: Conv,
-        to: ElemType,
-        span: Span,
-    ) -> Val {
+    pub(super) fn apply_conv(&mut self, v: Val, conv: Conv, to: ElemType, span: Span) -> Val {
         let rt = TypeTable::elem(to);
         if let Val::Const(Const::Bits(b), _) = v {
             return match crate::vm::convert_value(conv, b) {
@@ -118,22 +108,14 @@ impl BodyBuilder<'_> {
                 }
             };
         }
-        let a = self.materialize(f, &v);
-        let d = f.temp();
-        f.emit(Op::Convert { d, a, conv });
+        let a = self.materialize(&v);
+        let d = self.block.temp();
+        self.block.emit(Op::Convert { d, a, conv });
         Val::Slot(d, rt)
     }
 
     /// `FROM_TO_TO` conversion of a value already of type `from`.
-    fn convert(
-        &mut self,
-        f: &mut Fcx,
-        v: Val,
-        from: ElemType,
-        to: ElemType,
-        span: Span,
-        fname: &str,
-    ) -> Val {
+    fn convert(&mut self, v: Val, from: ElemType, to: ElemType, span: Span, fname: &str) -> Val {
         use ElemType as E;
         let rt = TypeTable::elem(to);
         let shift = super::typeck::shift_of(to);
@@ -153,22 +135,22 @@ impl BodyBuilder<'_> {
         }
         if to.is_string() {
             if from.is_string() {
-                let s = self.materialize(f, &v);
-                let d = self.string_temp(f, 254, to == E::WString);
-                f.emit(Op::StrMov { d, s });
+                let s = self.materialize(&v);
+                let d = self.string_temp(254, to == E::WString);
+                self.block.emit(Op::StrMov { d, s });
                 return Val::Slot(d, rt);
             }
-            let a = self.materialize(f, &v);
+            let a = self.materialize(&v);
             let idx = self.out.scalar_index(from);
-            let d = self.string_temp(f, 254, to == E::WString);
-            f.emit(Op::ToStr { d, a, ty: idx });
+            let d = self.string_temp(254, to == E::WString);
+            self.block.emit(Op::ToStr { d, a, ty: idx });
             return Val::Slot(d, rt);
         }
         if from.is_string() {
-            let a = self.materialize(f, &v);
+            let a = self.materialize(&v);
             let idx = self.out.scalar_index(to);
-            let d = f.temp();
-            f.emit(Op::FromStr { d, a, ty: idx });
+            let d = self.block.temp();
+            self.block.emit(Op::FromStr { d, a, ty: idx });
             return Val::Slot(d, rt);
         }
         let conv = match (ff, tf) {
@@ -261,7 +243,7 @@ impl BodyBuilder<'_> {
                 Val::Slot(s, _) => Val::Slot(s, rt),
                 other => other,
             },
-            Some(c) => self.apply_conv(f, v, c, to, span),
+            Some(c) => self.apply_conv(v, c, to, span),
         }
     }
 }

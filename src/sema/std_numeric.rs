@@ -3,7 +3,7 @@
 
 use super::body::BodyBuilder;
 use super::consts::Const;
-use super::emit::{Fcx, Ty, Val};
+use super::emit::{Ty, Val};
 use crate::ir::op::{Conv, MathFn, Op, ShiftKind};
 use crate::ir::types::TypeTable;
 use crate::source::Span;
@@ -14,7 +14,6 @@ impl BodyBuilder<'_> {
     /// ADD, MUL, ... and the time functions: the operator folded over the inputs.
     pub(super) fn std_fold_binary(
         &mut self,
-        f: &mut Fcx,
         op: BinaryOp,
         vals: Vec<(Val, Span)>,
         span: Span,
@@ -24,13 +23,13 @@ impl BodyBuilder<'_> {
             return Val::error();
         };
         for (v, _) in it {
-            acc = self.binary_vals(f, op, acc, v, span);
+            acc = self.binary_vals(op, acc, v, span);
         }
         acc
     }
 
     /// NOT of a BOOL or bit string.
-    pub(super) fn std_not(&mut self, f: &mut Fcx, mut vals: Vec<(Val, Span)>) -> Val {
+    pub(super) fn std_not(&mut self, mut vals: Vec<(Val, Span)>) -> Val {
         let bool_t = TypeTable::elem(ElemType::Bool);
         let (v, s) = vals.remove(0);
         let expr_ty = v.ty();
@@ -48,9 +47,9 @@ impl BodyBuilder<'_> {
                     return Val::error();
                 };
                 let e = self.scalar(t).unwrap_or(ElemType::Bool);
-                let a = self.materialize(f, &v);
-                let d = f.temp();
-                f.emit(if e == ElemType::Bool {
+                let a = self.materialize(&v);
+                let d = self.block.temp();
+                self.block.emit(if e == ElemType::Bool {
                     Op::NotB { d, a }
                 } else {
                     Op::NotW {
@@ -65,7 +64,7 @@ impl BodyBuilder<'_> {
     }
 
     /// ABS of a number (unsigned integers are their own absolute value).
-    pub(super) fn std_abs(&mut self, f: &mut Fcx, mut vals: Vec<(Val, Span)>) -> Val {
+    pub(super) fn std_abs(&mut self, mut vals: Vec<(Val, Span)>) -> Val {
         let (v, s) = vals.remove(0);
         match v {
             Val::Const(Const::Int(i), t) => Val::Const(Const::Int(i.abs()), t),
@@ -78,9 +77,9 @@ impl BodyBuilder<'_> {
                     self.diags.error("E302", s, "ABS needs a number");
                     return Val::error();
                 };
-                let a = self.materialize(f, &v);
-                let d = f.temp();
-                f.emit(match e {
+                let a = self.materialize(&v);
+                let d = self.block.temp();
+                self.block.emit(match e {
                     ElemType::Real => Op::MathF32 {
                         d,
                         a,
@@ -104,13 +103,7 @@ impl BodyBuilder<'_> {
     }
 
     /// SQRT, SIN, EXP, ...: REAL or LREAL (integers widen to the smallest that holds them).
-    pub(super) fn std_math(
-        &mut self,
-        f: &mut Fcx,
-        m: MathFn,
-        mut vals: Vec<(Val, Span)>,
-        fname: &str,
-    ) -> Val {
+    pub(super) fn std_math(&mut self, m: MathFn, mut vals: Vec<(Val, Span)>, fname: &str) -> Val {
         let (v, s) = vals.remove(0);
         if let Val::Const(c, Ty::AnyInt | Ty::AnyReal) = &v {
             let x = match c {
@@ -138,10 +131,10 @@ impl BodyBuilder<'_> {
             }
         };
         let rt = TypeTable::elem(target);
-        let v = self.coerce(f, v, rt, s, fname);
-        let a = self.materialize(f, &v);
-        let d = f.temp();
-        f.emit(if target == ElemType::Real {
+        let v = self.coerce(v, rt, s, fname);
+        let a = self.materialize(&v);
+        let d = self.block.temp();
+        self.block.emit(if target == ElemType::Real {
             Op::MathF32 { d, a, f: m }
         } else {
             Op::MathF64 { d, a, f: m }
@@ -152,7 +145,6 @@ impl BodyBuilder<'_> {
     /// TRUNC (and `*_TRUNC_*`): a real to an integer, toward zero.
     pub(super) fn std_trunc(
         &mut self,
-        f: &mut Fcx,
         to: Option<ElemType>,
         mut vals: Vec<(Val, Span)>,
         expect: Option<crate::ir::types::TypeId>,
@@ -169,20 +161,19 @@ impl BodyBuilder<'_> {
             self.diags.error("E302", s, "TRUNC needs a REAL or LREAL");
             return Val::error();
         }
-        let v = self.coerce(f, v, TypeTable::elem(from), s, "TRUNC");
+        let v = self.coerce(v, TypeTable::elem(from), s, "TRUNC");
         let conv = match (from, to.is_signed_int()) {
             (ElemType::Real, true) => Conv::TruncF32ToS(super::typeck::shift_of(to)),
             (ElemType::Real, false) => Conv::TruncF32ToU(super::typeck::shift_of(to)),
             (_, true) => Conv::TruncF64ToS(super::typeck::shift_of(to)),
             (_, false) => Conv::TruncF64ToU(super::typeck::shift_of(to)),
         };
-        self.apply_conv(f, v, conv, to, s)
+        self.apply_conv(v, conv, to, s)
     }
 
     /// SEL(G, IN0, IN1): a conditional move (folded when G is constant).
     pub(super) fn std_sel(
         &mut self,
-        f: &mut Fcx,
         mut vals: Vec<(Val, Span)>,
         fname: &str,
         span: Span,
@@ -201,27 +192,26 @@ impl BodyBuilder<'_> {
         };
         if let Val::Const(Const::Bits(c), _) = g {
             let pick = if c != 0 { b } else { a };
-            return self.coerce(f, pick, t, span, fname);
+            return self.coerce(pick, t, span, fname);
         }
-        let gs_slot = self.materialize(f, &g);
-        let a = self.coerce(f, a, t, span, fname);
-        let b = self.coerce(f, b, t, span, fname);
-        let (sa, sb) = (self.materialize(f, &a), self.materialize(f, &b));
-        let d = f.temp();
-        f.emit(Op::Mov { d, s: sa });
-        f.emit(Op::CMov {
+        let gs_slot = self.materialize(&g);
+        let a = self.coerce(a, t, span, fname);
+        let b = self.coerce(b, t, span, fname);
+        let (sa, sb) = (self.materialize(&a), self.materialize(&b));
+        let d = self.block.temp();
+        self.block.emit(Op::Mov { d, s: sa });
+        self.block.emit(Op::CMov {
             d,
             c: gs_slot,
             s: sb,
         });
-        f.last_def = None;
+        self.block.last_def = None;
         Val::Slot(d, t)
     }
 
     /// MIN or MAX over two or more inputs of one type.
     pub(super) fn std_min_max(
         &mut self,
-        f: &mut Fcx,
         max: bool,
         vals: Vec<(Val, Span)>,
         fname: &str,
@@ -234,11 +224,11 @@ impl BodyBuilder<'_> {
         };
         let mut acc: Option<u32> = None;
         for (v, s) in vals {
-            let v = self.coerce(f, v, t, s, fname);
-            let x = self.materialize(f, &v);
+            let v = self.coerce(v, t, s, fname);
+            let x = self.materialize(&v);
             acc = Some(match acc {
                 None => x,
-                Some(a) => self.minmax(f, t, a, x, max),
+                Some(a) => self.minmax(t, a, x, max),
             });
         }
         Val::Slot(acc.unwrap_or(0), t)
@@ -247,7 +237,6 @@ impl BodyBuilder<'_> {
     /// LIMIT(MN, IN, MX) as MIN(MAX(IN, MN), MX).
     pub(super) fn std_limit(
         &mut self,
-        f: &mut Fcx,
         vals: Vec<(Val, Span)>,
         fname: &str,
         span: Span,
@@ -259,18 +248,17 @@ impl BodyBuilder<'_> {
         };
         let mut slots = Vec::new();
         for (v, s) in vals {
-            let v = self.coerce(f, v, t, s, fname);
-            slots.push(self.materialize(f, &v));
+            let v = self.coerce(v, t, s, fname);
+            slots.push(self.materialize(&v));
         }
-        let lo = self.minmax(f, t, slots[1], slots[0], true);
-        let r = self.minmax(f, t, lo, slots[2], false);
+        let lo = self.minmax(t, slots[1], slots[0], true);
+        let r = self.minmax(t, lo, slots[2], false);
         Val::Slot(r, t)
     }
 
     /// MUX(K, IN0, ...): the inputs copied to consecutive slots, K selects.
     pub(super) fn std_mux(
         &mut self,
-        f: &mut Fcx,
         mut vals: Vec<(Val, Span)>,
         fname: &str,
         span: Span,
@@ -290,7 +278,7 @@ impl BodyBuilder<'_> {
         let Some(t) = self.unify_all(&tys, span, fname, expect) else {
             return Val::error();
         };
-        let ksl = self.materialize(f, &k);
+        let ksl = self.materialize(&k);
         let Ok(n) = u16::try_from(vals.len()) else {
             self.diags
                 .error("E404", span, "MUX takes at most 65535 inputs");
@@ -298,18 +286,18 @@ impl BodyBuilder<'_> {
         };
         let mut slots = Vec::new();
         for (v, s) in vals {
-            let v = self.coerce(f, v, t, s, fname);
-            slots.push(self.materialize(f, &v));
+            let v = self.coerce(v, t, s, fname);
+            slots.push(self.materialize(&v));
         }
-        let first = f.temps(n as u32);
+        let first = self.block.temps(n as u32);
         for (i, s) in slots.into_iter().enumerate() {
-            f.emit(Op::Mov {
+            self.block.emit(Op::Mov {
                 d: first + i as u32,
                 s,
             });
         }
-        let d = f.temp();
-        f.emit(Op::Mux {
+        let d = self.block.temp();
+        self.block.emit(Op::Mux {
             d,
             k: ksl,
             first,
@@ -319,19 +307,13 @@ impl BodyBuilder<'_> {
     }
 
     /// GT, EQ, ... over a chain of inputs: the pairwise comparisons ANDed.
-    pub(super) fn std_compare(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        vals: Vec<(Val, Span)>,
-        span: Span,
-    ) -> Val {
+    pub(super) fn std_compare(&mut self, op: BinaryOp, vals: Vec<(Val, Span)>, span: Span) -> Val {
         let mut result: Option<Val> = None;
         for w in vals.windows(2) {
-            let c = self.binary_vals(f, op, w[0].0.clone(), w[1].0.clone(), span);
+            let c = self.binary_vals(op, w[0].0.clone(), w[1].0.clone(), span);
             result = Some(match result {
                 None => c,
-                Some(r) => self.binary_vals(f, BinaryOp::And, r, c, span),
+                Some(r) => self.binary_vals(BinaryOp::And, r, c, span),
             });
         }
         result.unwrap_or_else(Val::error)
@@ -340,7 +322,6 @@ impl BodyBuilder<'_> {
     /// SHL, SHR, ROL, ROR of a bit string by N.
     pub(super) fn std_shift(
         &mut self,
-        f: &mut Fcx,
         kind: ShiftKind,
         mut vals: Vec<(Val, Span)>,
         fname: &str,
@@ -374,10 +355,10 @@ impl BodyBuilder<'_> {
                 .error("E301", ns, format!("{fname}: N must be an integer"));
             return Val::error();
         }
-        let a = self.materialize(f, &v);
-        let b = self.materialize(f, &n);
-        let d = f.temp();
-        f.emit(Op::Shift {
+        let a = self.materialize(&v);
+        let b = self.materialize(&n);
+        let d = self.block.temp();
+        self.block.emit(Op::Shift {
             d,
             a,
             b,
@@ -385,8 +366,8 @@ impl BodyBuilder<'_> {
             bits: e.bits() as u8,
         });
         if e.is_signed_int() {
-            let w = f.temp();
-            f.emit(Op::Convert {
+            let w = self.block.temp();
+            self.block.emit(Op::Convert {
                 d: w,
                 a: d,
                 conv: Conv::WrapS(super::typeck::shift_of(e)),
@@ -399,7 +380,6 @@ impl BodyBuilder<'_> {
     /// CONCAT_DATE_TOD: a DATE and a TIME_OF_DAY added into a DT.
     pub(super) fn std_concat_date_tod(
         &mut self,
-        f: &mut Fcx,
         mut vals: Vec<(Val, Span)>,
         fname: &str,
         span: Span,
@@ -408,11 +388,11 @@ impl BodyBuilder<'_> {
         let (d, ds) = vals.pop().unwrap_or((Val::error(), span));
         let dt = TypeTable::elem(ElemType::Date);
         let tt = TypeTable::elem(ElemType::Tod);
-        let d = self.coerce(f, d, dt, ds, fname);
-        let t = self.coerce(f, t, tt, ds, fname);
-        let (a, b) = (self.materialize(f, &d), self.materialize(f, &t));
-        let r = f.temp();
-        f.emit(Op::AddS {
+        let d = self.coerce(d, dt, ds, fname);
+        let t = self.coerce(t, tt, ds, fname);
+        let (a, b) = (self.materialize(&d), self.materialize(&t));
+        let r = self.block.temp();
+        self.block.emit(Op::AddS {
             d: r,
             a,
             b,
@@ -450,17 +430,10 @@ impl BodyBuilder<'_> {
         Some(self.default_type(acc, None))
     }
 
-    fn minmax(
-        &mut self,
-        f: &mut Fcx,
-        t: crate::ir::types::TypeId,
-        a: u32,
-        b: u32,
-        max: bool,
-    ) -> u32 {
+    fn minmax(&mut self, t: crate::ir::types::TypeId, a: u32, b: u32, max: bool) -> u32 {
         let e = self.scalar(t).unwrap_or(ElemType::Dint);
-        let d = f.temp();
-        f.emit(match e {
+        let d = self.block.temp();
+        self.block.emit(match e {
             ElemType::Real => Op::MinMaxF32 { d, a, b, max },
             ElemType::Lreal => Op::MinMaxF64 { d, a, b, max },
             _ if super::typeck::compares_signed(e) => Op::MinMaxS { d, a, b, max },

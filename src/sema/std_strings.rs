@@ -2,7 +2,7 @@
 //! `StrCall` with a result of the capacity the arguments need.
 
 use super::body::BodyBuilder;
-use super::emit::{Fcx, Val};
+use super::emit::Val;
 use crate::ir::op::{Op, StrFn};
 use crate::ir::types::{TypeKind, TypeTable};
 use crate::source::Span;
@@ -10,13 +10,13 @@ use crate::types::ElemType;
 
 impl BodyBuilder<'_> {
     /// CONCAT of two or more strings, left to right.
-    pub(super) fn std_concat(&mut self, f: &mut Fcx, vals: Vec<(Val, Span)>, fname: &str) -> Val {
+    pub(super) fn std_concat(&mut self, vals: Vec<(Val, Span)>, fname: &str) -> Val {
         let mut acc: Option<(Val, Span)> = None;
         for (v, s) in vals {
             acc = Some(match acc {
                 None => (v, s),
                 Some((a, _)) => (
-                    self.string_fn(f, StrFn::Concat, vec![(a, s), (v, s)], fname),
+                    self.string_fn(StrFn::Concat, vec![(a, s), (v, s)], fname),
                     s,
                 ),
             });
@@ -25,13 +25,7 @@ impl BodyBuilder<'_> {
     }
 
     /// A string function with arguments in consecutive slots.
-    pub(super) fn string_fn(
-        &mut self,
-        f: &mut Fcx,
-        func: StrFn,
-        vals: Vec<(Val, Span)>,
-        fname: &str,
-    ) -> Val {
+    pub(super) fn string_fn(&mut self, func: StrFn, vals: Vec<(Val, Span)>, fname: &str) -> Val {
         let is_str = |c: &BodyBuilder, v: &Val| {
             v.ty()
                 .id()
@@ -60,27 +54,27 @@ impl BodyBuilder<'_> {
                     max = max.saturating_add(m);
                     wide |= w;
                 }
-                slots.push(self.materialize(f, &v));
+                slots.push(self.materialize(&v));
             } else {
-                let v = self.coerce(f, v, TypeTable::elem(ElemType::Dint), s, fname);
+                let v = self.coerce(v, TypeTable::elem(ElemType::Dint), s, fname);
                 if v.is_error() {
                     return v;
                 }
-                slots.push(self.materialize(f, &v));
+                slots.push(self.materialize(&v));
             }
         }
-        let a = f.temps(4);
+        let a = self.block.temps(4);
         for (i, s) in slots.into_iter().enumerate() {
-            f.emit(Op::Mov { d: a + i as u32, s });
+            self.block.emit(Op::Mov { d: a + i as u32, s });
         }
         if matches!(func, StrFn::Len | StrFn::Find) {
-            let d = f.temp();
-            f.emit(Op::StrCall { d, a, f: func });
+            let d = self.block.temp();
+            self.block.emit(Op::StrCall { d, a, f: func });
             return Val::Slot(d, TypeTable::elem(ElemType::Int));
         }
         let max = max.clamp(1, 65535);
-        let d = self.string_temp(f, max, wide);
-        f.emit(Op::StrCall { d, a, f: func });
+        let d = self.string_temp(max, wide);
+        self.block.emit(Op::StrCall { d, a, f: func });
         let t = self.types.intern(crate::ir::types::TypeDef {
             name: format!("{}[{max}]", if wide { "WSTRING" } else { "STRING" }),
             kind: TypeKind::Str { wide, max },

@@ -3,7 +3,7 @@
 //! typed instructions directly (no call overhead).
 
 use super::body::BodyBuilder;
-use super::emit::{Fcx, Val};
+use super::emit::Val;
 use crate::ir::op::{MathFn, Op, ShiftKind, StrFn};
 use crate::ir::types::TypeTable;
 use crate::source::Span;
@@ -170,7 +170,6 @@ impl BodyBuilder<'_> {
     /// Checks and emits a call of a standard function; `None` if `id` is not one.
     pub(super) fn std_call(
         &mut self,
-        f: &mut Fcx,
         id: &Ident,
         args: &[Arg],
         span: Span,
@@ -264,18 +263,17 @@ impl BodyBuilder<'_> {
                 }
                 _ => None,
             };
-            let v = self.expr(f, e, hint);
+            let v = self.expr(e, hint);
             if v.is_error() {
                 return Some(Val::error());
             }
             vals.push((v, e.span));
         }
-        Some(self.std_emit(f, std, &fname, vals, span, expect))
+        Some(self.std_emit(std, &fname, vals, span, expect))
     }
 
     fn std_emit(
         &mut self,
-        f: &mut Fcx,
         std: Std,
         fname: &str,
         mut vals: Vec<(Val, Span)>,
@@ -283,29 +281,29 @@ impl BodyBuilder<'_> {
         expect: Option<crate::ir::types::TypeId>,
     ) -> Val {
         match std {
-            Std::Binary(op, _) | Std::Time(op) => self.std_fold_binary(f, op, vals, span),
+            Std::Binary(op, _) | Std::Time(op) => self.std_fold_binary(op, vals, span),
             Std::Move => vals.remove(0).0,
-            Std::Not => self.std_not(f, vals),
-            Std::Abs => self.std_abs(f, vals),
-            Std::Math(m) => self.std_math(f, m, vals, fname),
-            Std::Trunc(to) => self.std_trunc(f, to, vals, expect),
-            Std::Sel => self.std_sel(f, vals, fname, span, expect),
-            Std::MinMax(max) => self.std_min_max(f, max, vals, fname, span, expect),
-            Std::Limit => self.std_limit(f, vals, fname, span, expect),
-            Std::Mux => self.std_mux(f, vals, fname, span, expect),
-            Std::Compare(op) => self.std_compare(f, op, vals, span),
-            Std::Shift(kind) => self.std_shift(f, kind, vals, fname, span),
-            Std::Convert(from, to) => self.std_convert(f, from, to, vals, fname),
-            Std::BcdTo(to) => self.std_bcd_to(f, to, vals, fname),
-            Std::ToBcd(to) => self.std_to_bcd(f, to, vals, fname),
-            Std::ConcatDateTod => self.std_concat_date_tod(f, vals, fname, span),
+            Std::Not => self.std_not(vals),
+            Std::Abs => self.std_abs(vals),
+            Std::Math(m) => self.std_math(m, vals, fname),
+            Std::Trunc(to) => self.std_trunc(to, vals, expect),
+            Std::Sel => self.std_sel(vals, fname, span, expect),
+            Std::MinMax(max) => self.std_min_max(max, vals, fname, span, expect),
+            Std::Limit => self.std_limit(vals, fname, span, expect),
+            Std::Mux => self.std_mux(vals, fname, span, expect),
+            Std::Compare(op) => self.std_compare(op, vals, span),
+            Std::Shift(kind) => self.std_shift(kind, vals, fname, span),
+            Std::Convert(from, to) => self.std_convert(from, to, vals, fname),
+            Std::BcdTo(to) => self.std_bcd_to(to, vals, fname),
+            Std::ToBcd(to) => self.std_to_bcd(to, vals, fname),
+            Std::ConcatDateTod => self.std_concat_date_tod(vals, fname, span),
             Std::Clock => {
-                let d = f.temp();
-                f.emit(Op::Clock { d });
+                let d = self.block.temp();
+                self.block.emit(Op::Clock { d });
                 Val::Slot(d, TypeTable::elem(ElemType::Time))
             }
-            Std::Concat => self.std_concat(f, vals, fname),
-            Std::Str(func) => self.string_fn(f, func, vals, fname),
+            Std::Concat => self.std_concat(vals, fname),
+            Std::Str(func) => self.string_fn(func, vals, fname),
         }
     }
 }

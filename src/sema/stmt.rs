@@ -71,91 +71,91 @@ fn fuse_step_and_test(f: &mut Fcx, cond_at: usize, top: u32) {
 
 impl BodyBuilder<'_> {
     /// Emits a statement list.
-    pub(super) fn stmts(&mut self, f: &mut Fcx, list: &[Stmt]) {
+    pub(super) fn stmts(&mut self, list: &[Stmt]) {
         for s in list {
-            self.stmt(f, s);
+            self.stmt(s);
         }
     }
 
-    fn stmt(&mut self, f: &mut Fcx, s: &Stmt) {
-        let mark = f.temp_next;
-        f.span = s.span;
+    fn stmt(&mut self, s: &Stmt) {
+        let mark = self.block.temp_next;
+        self.block.span = s.span;
         match &s.kind {
-            StmtKind::Assign { target, value } => self.assign(f, target, value, s.span),
-            StmtKind::Call(call) => self.call_stmt(f, call),
+            StmtKind::Assign { target, value } => self.assign(target, value, s.span),
+            StmtKind::Call(call) => self.call_stmt(call),
             StmtKind::If {
                 branches,
                 else_branch,
             } => {
                 let mut ends = Vec::new();
                 for (k, (cond, body)) in branches.iter().enumerate() {
-                    let skip = self.cond_jump(f, cond, false);
-                    f.temp_next = mark;
-                    self.stmts(f, body);
+                    let skip = self.cond_jump(cond, false);
+                    self.block.temp_next = mark;
+                    self.stmts(body);
                     let last = k + 1 == branches.len() && else_branch.is_none();
                     if !last {
-                        ends.push(f.emit(Op::Jmp { t: 0 }));
+                        ends.push(self.block.emit(Op::Jmp { t: 0 }));
                     }
-                    let next = f.here();
+                    let next = self.block.here();
                     if let Some(j) = skip {
-                        f.patch(j, next);
+                        self.block.patch(j, next);
                     }
                 }
                 if let Some(body) = else_branch {
-                    self.stmts(f, body);
+                    self.stmts(body);
                 }
-                let end = f.here();
+                let end = self.block.here();
                 for j in ends {
-                    f.patch(j, end);
+                    self.block.patch(j, end);
                 }
             }
             StmtKind::Case {
                 selector,
                 arms,
                 else_branch,
-            } => self.case(f, selector, arms, else_branch.as_deref()),
+            } => self.case(selector, arms, else_branch.as_deref()),
             StmtKind::For {
                 var,
                 from,
                 to,
                 by,
                 body,
-            } => self.for_loop(f, var, from, to, by.as_ref(), body, s.span),
+            } => self.for_loop(var, from, to, by.as_ref(), body, s.span),
             StmtKind::While { cond, body } => {
-                let to_cond = f.emit(Op::Jmp { t: 0 });
-                let top = f.here();
-                f.loops.push(LoopCtx::default());
-                self.stmts(f, body);
-                let cont = f.here();
-                f.patch(to_cond, cont);
-                f.span = cond.span;
-                self.cond_branch_to(f, cond, true, top);
-                fuse_step_and_test(f, cont as usize, top);
-                f.end_loop(cont, Vec::new());
+                let to_cond = self.block.emit(Op::Jmp { t: 0 });
+                let top = self.block.here();
+                self.block.loops.push(LoopCtx::default());
+                self.stmts(body);
+                let cont = self.block.here();
+                self.block.patch(to_cond, cont);
+                self.block.span = cond.span;
+                self.cond_branch_to(cond, true, top);
+                fuse_step_and_test(&mut self.block, cont as usize, top);
+                self.block.end_loop(cont, Vec::new());
             }
             StmtKind::Repeat { body, until } => {
-                let top = f.here();
-                f.loops.push(LoopCtx::default());
-                self.stmts(f, body);
-                let cont = f.here();
-                f.span = until.span;
-                self.cond_branch_to(f, until, false, top);
-                f.end_loop(cont, Vec::new());
+                let top = self.block.here();
+                self.block.loops.push(LoopCtx::default());
+                self.stmts(body);
+                let cont = self.block.here();
+                self.block.span = until.span;
+                self.cond_branch_to(until, false, top);
+                self.block.end_loop(cont, Vec::new());
             }
-            StmtKind::Exit => self.loop_jump(f, true, s.span),
-            StmtKind::Continue => self.loop_jump(f, false, s.span),
+            StmtKind::Exit => self.loop_jump(true, s.span),
+            StmtKind::Continue => self.loop_jump(false, s.span),
             StmtKind::Return => {
-                let j = f.emit(Op::Jmp { t: 0 });
-                f.returns.push(j);
+                let j = self.block.emit(Op::Jmp { t: 0 });
+                self.block.returns.push(j);
             }
             StmtKind::Empty => {}
         }
-        f.temp_next = mark;
+        self.block.temp_next = mark;
     }
 
     /// EXIT (`exit`) or CONTINUE: a jump patched when the innermost loop ends.
-    fn loop_jump(&mut self, f: &mut Fcx, exit: bool, span: Span) {
-        if f.loops.is_empty() {
+    fn loop_jump(&mut self, exit: bool, span: Span) {
+        if self.block.loops.is_empty() {
             let word = if exit { "EXIT" } else { "CONTINUE" };
             self.diags.error(
                 "E405",
@@ -164,8 +164,8 @@ impl BodyBuilder<'_> {
             );
             return;
         }
-        let j = f.emit(Op::Jmp { t: 0 });
-        if let Some(lp) = f.loops.last_mut() {
+        let j = self.block.emit(Op::Jmp { t: 0 });
+        if let Some(lp) = self.block.loops.last_mut() {
             if exit {
                 lp.exits.push(j);
             } else {
@@ -177,43 +177,43 @@ impl BodyBuilder<'_> {
     /// Checks a condition and emits a jump taken when it equals `when`;
     /// returns the jump to patch (None if the condition was invalid or is
     /// a constant that never jumps).
-    pub(super) fn cond_jump(&mut self, f: &mut Fcx, cond: &Expr, when: bool) -> Option<usize> {
+    pub(super) fn cond_jump(&mut self, cond: &Expr, when: bool) -> Option<usize> {
         let (test, when) = strip_not(cond, when);
-        let v = self.bool_expr(f, test, cond.span)?;
+        let v = self.bool_expr(test, cond.span)?;
         if let Val::Const(Const::Bits(b), _) = v {
             if (b != 0) == when {
-                return Some(f.emit(Op::Jmp { t: 0 }));
+                return Some(self.block.emit(Op::Jmp { t: 0 }));
             }
             return None;
         }
-        let s = self.materialize(f, &v);
-        Some(self.branch_on_slot(f, s, when, 0))
+        let s = self.materialize(&v);
+        Some(self.branch_on_slot(s, when, 0))
     }
 
     /// Emits a jump to `target` taken when `cond` equals `when`.
-    fn cond_branch_to(&mut self, f: &mut Fcx, cond: &Expr, when: bool, target: u32) {
+    fn cond_branch_to(&mut self, cond: &Expr, when: bool, target: u32) {
         let (test, when) = strip_not(cond, when);
-        let Some(v) = self.bool_expr(f, test, cond.span) else {
+        let Some(v) = self.bool_expr(test, cond.span) else {
             return;
         };
         if let Val::Const(Const::Bits(b), _) = v {
             if (b != 0) == when {
-                f.emit(Op::Jmp { t: target });
+                self.block.emit(Op::Jmp { t: target });
             }
             return;
         }
-        let s = self.materialize(f, &v);
-        self.branch_on_slot(f, s, when, target);
+        let s = self.materialize(&v);
+        self.branch_on_slot(s, when, target);
     }
 
     /// Jump on a BOOL slot, fusing a just-computed integer comparison.
-    fn branch_on_slot(&mut self, f: &mut Fcx, s: u32, when: bool, target: u32) -> usize {
-        if let Some((at, d)) = f.last_def
+    fn branch_on_slot(&mut self, s: u32, when: bool, target: u32) -> usize {
+        if let Some((at, d)) = self.block.last_def
             && d == s
-            && f.is_temp(s)
-            && at + 1 == f.ops.len()
+            && self.block.is_temp(s)
+            && at + 1 == self.block.ops.len()
         {
-            let fused = match f.ops[at] {
+            let fused = match self.block.ops[at] {
                 Op::LoadElem { idx, desc, .. } => Some(if when {
                     Op::JnzElem {
                         idx,
@@ -256,22 +256,22 @@ impl BodyBuilder<'_> {
                 _ => None,
             };
             if let Some(op) = fused {
-                f.ops[at] = op;
-                f.last_def = None;
+                self.block.ops[at] = op;
+                self.block.last_def = None;
                 return at;
             }
         }
         if when {
-            f.emit(Op::Jnz { c: s, t: target })
+            self.block.emit(Op::Jnz { c: s, t: target })
         } else {
-            f.emit(Op::Jz { c: s, t: target })
+            self.block.emit(Op::Jz { c: s, t: target })
         }
     }
 
     /// A condition: must be BOOL (E303, reported at `whole`, the condition
     /// as written, of which `cond` may be the operand of leading NOTs).
-    fn bool_expr(&mut self, f: &mut Fcx, cond: &Expr, whole: Span) -> Option<Val> {
-        let v = self.expr(f, cond, Some(TypeTable::elem(ElemType::Bool)));
+    fn bool_expr(&mut self, cond: &Expr, whole: Span) -> Option<Val> {
+        let v = self.expr(cond, Some(TypeTable::elem(ElemType::Bool)));
         if v.is_error() {
             return None;
         }
@@ -287,31 +287,31 @@ impl BodyBuilder<'_> {
         Some(v)
     }
 
-    fn assign(&mut self, f: &mut Fcx, target: &Expr, value: &Expr, span: Span) {
+    fn assign(&mut self, target: &Expr, value: &Expr, span: Span) {
         if let ExprKind::BitAccess(base, bit) = &target.kind {
-            let v = self.expr(f, value, Some(TypeTable::elem(ElemType::Bool)));
-            self.store_bit(f, base, *bit, v, target.span, value.span);
+            let v = self.expr(value, Some(TypeTable::elem(ElemType::Bool)));
+            self.store_bit(base, *bit, v, target.span, value.span);
             return;
         }
-        let Some(p) = self.place(f, target) else {
+        let Some(p) = self.place(target) else {
             // Still check the right-hand side for its own errors.
-            self.expr(f, value, None);
+            self.expr(value, None);
             return;
         };
-        if !self.check_writable(f, &p, target.span) {
+        if !self.check_writable(&p, target.span) {
             return;
         }
         let kind = self.types.get(p.ty).kind.clone();
         match kind {
             TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                let Some(src) = self.place(f, value) else {
+                let Some(src) = self.place(value) else {
                     return;
                 };
                 if !self.assignable(src.ty, p.ty) {
                     self.mismatch(value.span, Ty::T(src.ty), p.ty, "assignment");
                     return;
                 }
-                self.copy_aggregate(f, &p, &src, span);
+                self.copy_aggregate(&p, &src, span);
             }
             TypeKind::NativeFb(_) | TypeKind::Pou { .. } | TypeKind::Step => {
                 self.diags.error(
@@ -321,13 +321,13 @@ impl BodyBuilder<'_> {
                 );
             }
             _ => {
-                let v = self.expr(f, value, Some(p.ty));
-                let v = self.coerce(f, v, p.ty, value.span, "assignment");
+                let v = self.expr(value, Some(p.ty));
+                let v = self.coerce(v, p.ty, value.span, "assignment");
                 if v.is_error() {
                     return;
                 }
-                let s = self.materialize(f, &v);
-                self.write_place(f, &p, s);
+                let s = self.materialize(&v);
+                self.write_place(&p, s);
             }
         }
     }
@@ -336,14 +336,13 @@ impl BodyBuilder<'_> {
     /// (read, clear the bit, OR in the new one, write back).
     pub(super) fn store_bit(
         &mut self,
-        f: &mut Fcx,
         base: &Expr,
         bit: u32,
         v: Val,
         span: Span,
         value_span: Span,
     ) {
-        let Some(p) = self.place(f, base) else { return };
+        let Some(p) = self.place(base) else { return };
         let Some(e) = self
             .scalar(p.ty)
             .filter(|e| e.family() == crate::types::Family::Bits && !self.is_enum(p.ty))
@@ -363,11 +362,10 @@ impl BodyBuilder<'_> {
                 .error("E304", span, format!("bit {bit} does not exist in a {e}"));
             return;
         }
-        if !self.check_writable(f, &p, span) {
+        if !self.check_writable(&p, span) {
             return;
         }
         let v = self.coerce(
-            f,
             v,
             TypeTable::elem(ElemType::Bool),
             value_span,
@@ -376,8 +374,8 @@ impl BodyBuilder<'_> {
         if v.is_error() {
             return;
         }
-        let s = self.materialize(f, &v);
-        let Val::Slot(cur, _) = self.read_place(f, &p) else {
+        let s = self.materialize(&v);
+        let Val::Slot(cur, _) = self.read_place(&p) else {
             return;
         };
         let width = if e.bits() == 64 {
@@ -385,40 +383,35 @@ impl BodyBuilder<'_> {
         } else {
             (1u64 << e.bits()) - 1
         };
-        let keep = f.const_slot(!(1u64 << bit) & width);
-        let n = f.const_slot(bit as u64);
-        let cleared = f.temp();
-        f.emit(Op::And {
+        let keep = self.block.const_slot(!(1u64 << bit) & width);
+        let n = self.block.const_slot(bit as u64);
+        let cleared = self.block.temp();
+        self.block.emit(Op::And {
             d: cleared,
             a: cur,
             b: keep,
         });
-        let moved = f.temp();
-        f.emit(Op::Shift {
+        let moved = self.block.temp();
+        self.block.emit(Op::Shift {
             d: moved,
             a: s,
             b: n,
             kind: crate::ir::op::ShiftKind::Shl,
             bits: e.bits() as u8,
         });
-        let out = f.temp();
-        f.emit(Op::Or {
+        let out = self.block.temp();
+        self.block.emit(Op::Or {
             d: out,
             a: cleared,
             b: moved,
         });
-        self.write_place(f, &p, out);
+        self.write_place(&p, out);
     }
 
     /// Reports why `p` cannot be written here (E401: read-only, or the
     /// control variable of an enclosing FOR), and warns when a program
     /// writes a `%I` input (W202). Returns whether the write may proceed.
-    pub(super) fn check_writable(
-        &mut self,
-        f: &Fcx,
-        p: &super::emit::PlaceRef,
-        span: Span,
-    ) -> bool {
+    pub(super) fn check_writable(&mut self, p: &super::emit::PlaceRef, span: Span) -> bool {
         if !p.writable {
             let why = p.readonly_reason.unwrap_or("it is read-only");
             self.diags.error(
@@ -429,7 +422,7 @@ impl BodyBuilder<'_> {
             return false;
         }
         if let super::emit::Place::Frame(s) = p.place
-            && f.for_vars.contains(&s)
+            && self.block.for_vars.contains(&s)
         {
             self.diags.error(
                 "E401",
@@ -451,7 +444,6 @@ impl BodyBuilder<'_> {
     /// Copies an array or structure by value.
     pub(super) fn copy_aggregate(
         &mut self,
-        f: &mut Fcx,
         dst: &super::emit::PlaceRef,
         src: &super::emit::PlaceRef,
         span: Span,
@@ -465,9 +457,9 @@ impl BodyBuilder<'_> {
             return;
         }
         let n = self.types.size(dst.ty);
-        let d = self.address_of(f, dst);
-        let s = self.address_of(f, src);
-        f.emit(Op::MemCopy { d, s, n });
+        let d = self.address_of(dst);
+        let s = self.address_of(src);
+        self.block.emit(Op::MemCopy { d, s, n });
     }
 
     /// True if a value of `t` holds string slots.
@@ -482,12 +474,11 @@ impl BodyBuilder<'_> {
 
     fn case(
         &mut self,
-        f: &mut Fcx,
         selector: &Expr,
         arms: &[crate::syntax::ast::CaseArm],
         else_branch: Option<&[Stmt]>,
     ) {
-        let sv = self.expr(f, selector, None);
+        let sv = self.expr(selector, None);
         if sv.is_error() {
             return;
         }
@@ -507,8 +498,8 @@ impl BodyBuilder<'_> {
             );
             return;
         };
-        let sv = self.coerce(f, sv, st, selector.span, "CASE selector");
-        let sel = self.materialize(f, &sv);
+        let sv = self.coerce(sv, st, selector.span, "CASE selector");
+        let sel = self.materialize(&sv);
         let mut seen: Vec<(i128, i128)> = Vec::new();
         let mut to_body: Vec<Vec<usize>> = Vec::new();
         for arm in arms {
@@ -516,14 +507,13 @@ impl BodyBuilder<'_> {
             for label in &arm.labels {
                 let (lo, hi, lspan) = match label {
                     CaseLabel::Value(x) => {
-                        let Some(v) = self.case_label(f, x, st) else {
+                        let Some(v) = self.case_label(x, st) else {
                             continue;
                         };
                         (v, v, x.span)
                     }
                     CaseLabel::Range(a, b) => {
-                        let (Some(x), Some(y)) =
-                            (self.case_label(f, a, st), self.case_label(f, b, st))
+                        let (Some(x), Some(y)) = (self.case_label(a, st), self.case_label(b, st))
                         else {
                             continue;
                         };
@@ -542,12 +532,10 @@ impl BodyBuilder<'_> {
                 }
                 seen.push((lo, hi));
                 let signed = super::typeck::compares_signed(e);
-                let k =
-                    |_: &mut BodyBuilder, f: &mut Fcx, v: i128| -> u32 { f.const_slot(v as u64) };
                 if lo == hi {
-                    let c = k(self, f, lo);
-                    let d = f.temp();
-                    f.emit(if signed {
+                    let c = self.block.const_slot(lo as u64);
+                    let d = self.block.temp();
+                    self.block.emit(if signed {
                         Op::CmpS {
                             d,
                             a: sel,
@@ -562,67 +550,70 @@ impl BodyBuilder<'_> {
                             cmp: Cmp::Eq,
                         }
                     });
-                    jumps.push(self.branch_on_slot(f, d, true, 0));
+                    jumps.push(self.branch_on_slot(d, true, 0));
                 } else {
-                    let (cl, ch) = (k(self, f, lo), k(self, f, hi));
-                    let (d1, d2, d) = (f.temp(), f.temp(), f.temp());
+                    let (cl, ch) = (
+                        self.block.const_slot(lo as u64),
+                        self.block.const_slot(hi as u64),
+                    );
+                    let (d1, d2, d) = (self.block.temp(), self.block.temp(), self.block.temp());
                     if signed {
-                        f.emit(Op::CmpS {
+                        self.block.emit(Op::CmpS {
                             d: d1,
                             a: sel,
                             b: cl,
                             cmp: Cmp::Ge,
                         });
-                        f.emit(Op::CmpS {
+                        self.block.emit(Op::CmpS {
                             d: d2,
                             a: sel,
                             b: ch,
                             cmp: Cmp::Le,
                         });
                     } else {
-                        f.emit(Op::CmpU {
+                        self.block.emit(Op::CmpU {
                             d: d1,
                             a: sel,
                             b: cl,
                             cmp: Cmp::Ge,
                         });
-                        f.emit(Op::CmpU {
+                        self.block.emit(Op::CmpU {
                             d: d2,
                             a: sel,
                             b: ch,
                             cmp: Cmp::Le,
                         });
                     }
-                    f.emit(Op::And { d, a: d1, b: d2 });
-                    jumps.push(f.emit(Op::Jnz { c: d, t: 0 }));
+                    self.block.emit(Op::And { d, a: d1, b: d2 });
+                    jumps.push(self.block.emit(Op::Jnz { c: d, t: 0 }));
                 }
             }
             to_body.push(jumps);
         }
-        let to_else = f.emit(Op::Jmp { t: 0 });
+        let to_else = self.block.emit(Op::Jmp { t: 0 });
         let mut ends = Vec::new();
         for (arm, jumps) in arms.iter().zip(to_body) {
-            let start = f.here();
+            let start = self.block.here();
             for j in jumps {
-                f.patch(j, start);
+                self.block.patch(j, start);
             }
-            self.stmts(f, &arm.body);
-            ends.push(f.emit(Op::Jmp { t: 0 }));
+            self.stmts(&arm.body);
+            ends.push(self.block.emit(Op::Jmp { t: 0 }));
         }
-        let else_at = f.here();
-        f.patch(to_else, else_at);
+        let else_at = self.block.here();
+        self.block.patch(to_else, else_at);
         if let Some(body) = else_branch {
-            self.stmts(f, body);
+            self.stmts(body);
         }
-        let end = f.here();
+        let end = self.block.here();
         for j in ends {
-            f.patch(j, end);
+            self.block.patch(j, end);
         }
     }
 
     /// A CASE label's constant value in the selector's type.
-    fn case_label(&mut self, f: &mut Fcx, x: &Expr, st: crate::ir::types::TypeId) -> Option<i128> {
-        let v = self.expr(f, x, Some(st));
+    fn case_label(&mut self, x: &Expr, st: crate::ir::types::TypeId) -> Option<i128> {
+        let v = self.expr(x, Some(st));
         let Val::Const(c, t) = &v else {
             if !v.is_error() {
                 self.diags
