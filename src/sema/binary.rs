@@ -13,6 +13,7 @@ use crate::syntax::ast::{BinaryOp, Expr};
 use crate::types::{ElemType, Family};
 
 impl BodyBuilder<'_> {
+    /// Checks and emits `a op b`.
     pub(super) fn binary(
         &mut self,
         op: BinaryOp,

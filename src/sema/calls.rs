@@ -23,6 +23,7 @@ pub(super) struct Param {
 }
 
 impl Param {
+    /// True if `name` is this parameter (or one of its aliases).
     pub(super) fn matches(&self, name: &str) -> bool {
         self.name.eq_ignore_ascii_case(name)
             || self.aliases.iter().any(|a| a.eq_ignore_ascii_case(name))

@@ -302,6 +302,7 @@ impl Declarer<'_> {
         }
     }
 
+    /// The span of TYPE declaration `key`.
     fn type_decl_span(&self, key: &str) -> Span {
         let Some(&(u, i, d)) = self.type_decls.get(key) else {
             return Span::default();
@@ -312,6 +313,7 @@ impl Declarer<'_> {
         }
     }
 
+    /// Declares the globals of one VAR_GLOBAL block: storage, initial value.
     fn declare_globals(&mut self, block: &VarBlock) {
         for decl in &block.decls {
             let ty = self.resolve_type(&decl.ty, None);
@@ -374,6 +376,7 @@ impl Declarer<'_> {
         }
     }
 
+    /// True for arrays and structures (their CONSTANT needs no folded value).
     pub(super) fn is_aggregate(&self, ty: TypeId) -> bool {
         matches!(
             self.types.get(ty).kind,

@@ -290,6 +290,7 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// True for integer and real types (not enumerations).
     pub(super) fn is_numeric(&self, t: Ty) -> bool {
         match t {
             Ty::AnyInt | Ty::AnyReal => true,
@@ -297,6 +298,7 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// Reports an operand type an operator does not accept.
     pub(super) fn bad_operand(&mut self, span: Span, op: &str, t: Ty) {
         let name = self.ty_name(t);
         self.diags.error(

@@ -31,6 +31,7 @@ struct ElemShape {
 }
 
 impl BodyBuilder<'_> {
+    /// Reads the place `e` denotes as a scalar value.
     pub(super) fn place_value(&mut self, e: &Expr) -> Val {
         let Some(p) = self.place(e) else {
             return Val::error();

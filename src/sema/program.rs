@@ -83,6 +83,7 @@ impl Program {
         self.scalar_types.insert_full(e).0 as u8
     }
 
+    /// Adds an array descriptor (one per access site: it carries the span).
     pub(super) fn array_desc(&mut self, d: ArrayDesc) -> u32 {
         self.arrays.push(d);
         self.arrays.len() as u32 - 1

@@ -29,6 +29,7 @@ pub(super) struct Names<'a> {
     pub(super) var_actions: IndexMap<String, (Ident, Span)>,
 }
 
+/// Sorts the elements of a chart body by kind.
 pub(super) fn names(elems: &[SfcElement]) -> Names<'_> {
     let mut n = Names {
         steps: Vec::new(),
@@ -70,6 +71,7 @@ pub(super) struct Hidden {
     pub(super) size: u32,
 }
 
+/// Lays out the hidden chart-state region.
 pub(super) fn hidden_layout(
     steps: u32,
     actions: u32,

@@ -272,6 +272,7 @@ impl BodyBuilder<'_> {
         Some(self.std_emit(std, &fname, vals, span, expect))
     }
 
+    /// Emits standard function `std` on its evaluated arguments.
     fn std_emit(
         &mut self,
         std: Std,
