@@ -14,7 +14,7 @@ use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib;
 use crate::syntax::ast::{
-    AddrSize, Area, CompilationUnit, DirectAddress, Item, TypeSpec, VarBlock,
+    AddrSize, Area, CompilationUnit, DirectAddress, Item, Pou, TypeDecl, TypeSpec, VarBlock,
 };
 use crate::types::ElemType;
 use indexmap::IndexMap;
@@ -174,110 +174,14 @@ impl Declarer<'_> {
         for (u, unit) in units.iter().enumerate() {
             for (i, item) in unit.items.iter().enumerate() {
                 match item {
-                    Item::Pou(p) => {
-                        let key = p.name.key();
-                        if let Some(&prev) = self.model.pou_index.get(&key) {
-                            let prev_span = self.model.pous[prev].span;
-                            let loc = prev_span;
-                            self.diags.push(
-                                crate::diagnostics::Diagnostic::error(
-                                    "E202",
-                                    p.name.span,
-                                    format!("`{}` is declared twice", p.name.name),
-                                )
-                                .with_note(format!(
-                                    "the first declaration is at byte {} of the same or another file",
-                                    loc.start
-                                )),
-                            );
-                            continue;
-                        }
-                        if stdlib::lookup_native(&p.name.name).is_some()
-                            || super::stdfuncs::is_standard_function(&p.name.name)
-                        {
-                            self.diags.error(
-                                "E202",
-                                p.name.span,
-                                format!(
-                                    "`{}` is the name of a standard function or function block",
-                                    p.name.name
-                                ),
-                            );
-                            continue;
-                        }
-                        self.model.pou_index.insert(key, self.model.pous.len());
-                        self.model.pous.push(PouInfo {
-                            name: p.name.name.clone(),
-                            kind: p.kind,
-                            ast: (u, i),
-                            ty: TypeTable::error(),
-                            ret: TypeTable::void(),
-                            vars: IndexMap::new(),
-                            params: Vec::new(),
-                            code: u32::MAX,
-                            vars_size: 0,
-                            consts: Vec::new(),
-                            span: p.name.span,
-                        });
-                        self.pou_state.push(LayoutState::Pending);
-                        self.emit_state.push(LayoutState::Pending);
-                    }
-                    Item::Types(decls) => {
-                        for (d, decl) in decls.iter().enumerate() {
-                            let key = decl.name.key();
-                            if self.type_decls.contains_key(&key)
-                                || ElemType::from_name(&key).is_some()
-                            {
-                                self.diags.error(
-                                    "E202",
-                                    decl.name.span,
-                                    format!("type `{}` is declared twice", decl.name.name),
-                                );
-                                continue;
-                            }
-                            self.type_decls.insert(key, (u, i, d));
-                        }
-                    }
+                    Item::Pou(p) => self.register_pou(p, (u, i)),
+                    Item::Types(decls) => self.register_types(decls, u, i),
                     Item::Configuration(_) | Item::Globals(_) => {}
                 }
             }
         }
-        // Types that clash with POU names.
-        let mut clashes: Vec<(String, Span)> = Vec::new();
-        for (k, &(u, i, d)) in &self.type_decls {
-            if let (true, Item::Types(decls)) =
-                (self.model.pou_index.contains_key(k), &units[u].items[i])
-            {
-                clashes.push((k.clone(), decls[d].name.span));
-            }
-        }
-        clashes.sort_by_key(|(_, span)| (span.file, span.start));
-        for (k, span) in clashes {
-            self.diags.error(
-                "E202",
-                span,
-                format!("`{k}` is declared both as a type and as a POU"),
-            );
-        }
-        let mut keys: Vec<(usize, usize, usize, String)> = self
-            .type_decls
-            .iter()
-            .map(|(k, &(u, i, d))| (u, i, d, k.clone()))
-            .collect();
-        keys.sort();
-        self.pending_enums = keys
-            .iter()
-            .filter(|(u, i, d, _)| {
-                matches!(&units[*u].items[*i], Item::Types(decls)
-                    if matches!(decls[*d].ty, TypeSpec::Enum { .. }))
-            })
-            .map(|(_, _, _, k)| k.clone())
-            .collect();
-        for (_, _, _, k) in keys {
-            let span = self.type_decl_span(&k);
-            self.user_type(&k, span);
-        }
-        self.pending_enums.clear();
+        self.report_type_pou_clashes();
+        self.resolve_types();
         // Globals: top-level lists, then configurations and resources.
         for unit in units {
             for item in &unit.items {
@@ -300,6 +204,119 @@ impl Declarer<'_> {
         for p in 0..self.model.pous.len() {
             self.layout_pou(p);
         }
+    }
+
+    /// Registers POU `p` at `ast` (unit, item), unless its name is taken.
+    fn register_pou(&mut self, p: &Pou, ast: (usize, usize)) {
+        let (u, i) = ast;
+        let key = p.name.key();
+        if let Some(&prev) = self.model.pou_index.get(&key) {
+            let prev_span = self.model.pous[prev].span;
+            let loc = prev_span;
+            self.diags.push(
+                crate::diagnostics::Diagnostic::error(
+                    "E202",
+                    p.name.span,
+                    format!("`{}` is declared twice", p.name.name),
+                )
+                .with_note(format!(
+                    "the first declaration is at byte {} of the same or another file",
+                    loc.start
+                )),
+            );
+            return;
+        }
+        if stdlib::lookup_native(&p.name.name).is_some()
+            || super::stdfuncs::is_standard_function(&p.name.name)
+        {
+            self.diags.error(
+                "E202",
+                p.name.span,
+                format!(
+                    "`{}` is the name of a standard function or function block",
+                    p.name.name
+                ),
+            );
+            return;
+        }
+        self.model.pou_index.insert(key, self.model.pous.len());
+        self.model.pous.push(PouInfo {
+            name: p.name.name.clone(),
+            kind: p.kind,
+            ast: (u, i),
+            ty: TypeTable::error(),
+            ret: TypeTable::void(),
+            vars: IndexMap::new(),
+            params: Vec::new(),
+            code: u32::MAX,
+            vars_size: 0,
+            consts: Vec::new(),
+            span: p.name.span,
+        });
+        self.pou_state.push(LayoutState::Pending);
+        self.emit_state.push(LayoutState::Pending);
+    }
+
+    /// Registers the TYPE declarations of item `i` of unit `u`.
+    fn register_types(&mut self, decls: &[TypeDecl], u: usize, i: usize) {
+        for (d, decl) in decls.iter().enumerate() {
+            let key = decl.name.key();
+            if self.type_decls.contains_key(&key) || ElemType::from_name(&key).is_some() {
+                self.diags.error(
+                    "E202",
+                    decl.name.span,
+                    format!("type `{}` is declared twice", decl.name.name),
+                );
+                continue;
+            }
+            self.type_decls.insert(key, (u, i, d));
+        }
+    }
+
+    /// Reports names declared both as a type and as a POU.
+    fn report_type_pou_clashes(&mut self) {
+        let units = self.units;
+        // Types that clash with POU names.
+        let mut clashes: Vec<(String, Span)> = Vec::new();
+        for (k, &(u, i, d)) in &self.type_decls {
+            if let (true, Item::Types(decls)) =
+                (self.model.pou_index.contains_key(k), &units[u].items[i])
+            {
+                clashes.push((k.clone(), decls[d].name.span));
+            }
+        }
+        clashes.sort_by_key(|(_, span)| (span.file, span.start));
+        for (k, span) in clashes {
+            self.diags.error(
+                "E202",
+                span,
+                format!("`{k}` is declared both as a type and as a POU"),
+            );
+        }
+    }
+
+    /// Resolves every TYPE declaration, in source order.
+    fn resolve_types(&mut self) {
+        let units = self.units;
+        let mut keys: Vec<(usize, usize, usize, String)> = self
+            .type_decls
+            .iter()
+            .map(|(k, &(u, i, d))| (u, i, d, k.clone()))
+            .collect();
+        keys.sort();
+        self.pending_enums = keys
+            .iter()
+            .filter(|(u, i, d, _)| {
+                matches!(&units[*u].items[*i], Item::Types(decls)
+                    if matches!(decls[*d].ty, TypeSpec::Enum { .. }))
+            })
+            .map(|(_, _, _, k)| k.clone())
+            .collect();
+        for (_, _, _, k) in keys {
+            let span = self.type_decl_span(&k);
+            self.user_type(&k, span);
+        }
+        self.pending_enums.clear();
     }
 
     /// The span of TYPE declaration `key`.
