@@ -4,8 +4,8 @@
 use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Fcx, LoopCtx, Ty, Val};
-use crate::ir::op::{Cmp, Op};
-use crate::ir::types::{TypeKind, TypeTable};
+use crate::ir::op::{Cmp, Op, Slot};
+use crate::ir::types::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{CaseLabel, Expr, ExprKind, Stmt, StmtKind};
 use crate::types::ElemType;
@@ -505,25 +505,8 @@ impl BodyBuilder<'_> {
         for arm in arms {
             let mut jumps = Vec::new();
             for label in &arm.labels {
-                let (lo, hi, lspan) = match label {
-                    CaseLabel::Value(x) => {
-                        let Some(v) = self.case_label(x, st) else {
-                            continue;
-                        };
-                        (v, v, x.span)
-                    }
-                    CaseLabel::Range(a, b) => {
-                        let (Some(x), Some(y)) = (self.case_label(a, st), self.case_label(b, st))
-                        else {
-                            continue;
-                        };
-                        if y < x {
-                            self.diags
-                                .error("E408", a.span.to(b.span), "empty CASE range");
-                            continue;
-                        }
-                        (x, y, a.span.to(b.span))
-                    }
+                let Some((lo, hi, lspan)) = self.case_label_range(label, st) else {
+                    continue;
                 };
                 if seen.iter().any(|&(a, b)| lo <= b && a <= hi) {
                     self.diags
@@ -532,61 +515,7 @@ impl BodyBuilder<'_> {
                 }
                 seen.push((lo, hi));
                 let signed = super::typeck::compares_signed(e);
-                if lo == hi {
-                    let c = self.block.const_slot(lo as u64);
-                    let d = self.block.temp();
-                    self.block.emit(if signed {
-                        Op::CmpS {
-                            d,
-                            a: sel,
-                            b: c,
-                            cmp: Cmp::Eq,
-                        }
-                    } else {
-                        Op::CmpU {
-                            d,
-                            a: sel,
-                            b: c,
-                            cmp: Cmp::Eq,
-                        }
-                    });
-                    jumps.push(self.branch_on_slot(d, true, 0));
-                } else {
-                    let (cl, ch) = (
-                        self.block.const_slot(lo as u64),
-                        self.block.const_slot(hi as u64),
-                    );
-                    let (d1, d2, d) = (self.block.temp(), self.block.temp(), self.block.temp());
-                    if signed {
-                        self.block.emit(Op::CmpS {
-                            d: d1,
-                            a: sel,
-                            b: cl,
-                            cmp: Cmp::Ge,
-                        });
-                        self.block.emit(Op::CmpS {
-                            d: d2,
-                            a: sel,
-                            b: ch,
-                            cmp: Cmp::Le,
-                        });
-                    } else {
-                        self.block.emit(Op::CmpU {
-                            d: d1,
-                            a: sel,
-                            b: cl,
-                            cmp: Cmp::Ge,
-                        });
-                        self.block.emit(Op::CmpU {
-                            d: d2,
-                            a: sel,
-                            b: ch,
-                            cmp: Cmp::Le,
-                        });
-                    }
-                    self.block.emit(Op::And { d, a: d1, b: d2 });
-                    jumps.push(self.block.emit(Op::Jnz { c: d, t: 0 }));
-                }
+                jumps.push(self.case_test(sel, lo, hi, signed));
             }
             to_body.push(jumps);
         }
@@ -608,6 +537,86 @@ impl BodyBuilder<'_> {
         let end = self.block.here();
         for j in ends {
             self.block.patch(j, end);
+        }
+    }
+
+    /// The values of one CASE label (a value or a range), checked.
+    fn case_label_range(&mut self, label: &CaseLabel, st: TypeId) -> Option<(i128, i128, Span)> {
+        Some(match label {
+            CaseLabel::Value(x) => {
+                let v = self.case_label(x, st)?;
+                (v, v, x.span)
+            }
+            CaseLabel::Range(a, b) => {
+                let (Some(x), Some(y)) = (self.case_label(a, st), self.case_label(b, st)) else {
+                    return None;
+                };
+                if y < x {
+                    self.diags
+                        .error("E408", a.span.to(b.span), "empty CASE range");
+                    return None;
+                }
+                (x, y, a.span.to(b.span))
+            }
+        })
+    }
+
+    /// A jump taken when the selector in `sel` lies in `lo..=hi`.
+    fn case_test(&mut self, sel: Slot, lo: i128, hi: i128, signed: bool) -> usize {
+        if lo == hi {
+            let c = self.block.const_slot(lo as u64);
+            let d = self.block.temp();
+            self.block.emit(if signed {
+                Op::CmpS {
+                    d,
+                    a: sel,
+                    b: c,
+                    cmp: Cmp::Eq,
+                }
+            } else {
+                Op::CmpU {
+                    d,
+                    a: sel,
+                    b: c,
+                    cmp: Cmp::Eq,
+                }
+            });
+            self.branch_on_slot(d, true, 0)
+        } else {
+            let (cl, ch) = (
+                self.block.const_slot(lo as u64),
+                self.block.const_slot(hi as u64),
+            );
+            let (d1, d2, d) = (self.block.temp(), self.block.temp(), self.block.temp());
+            if signed {
+                self.block.emit(Op::CmpS {
+                    d: d1,
+                    a: sel,
+                    b: cl,
+                    cmp: Cmp::Ge,
+                });
+                self.block.emit(Op::CmpS {
+                    d: d2,
+                    a: sel,
+                    b: ch,
+                    cmp: Cmp::Le,
+                });
+            } else {
+                self.block.emit(Op::CmpU {
+                    d: d1,
+                    a: sel,
+                    b: cl,
+                    cmp: Cmp::Ge,
+                });
+                self.block.emit(Op::CmpU {
+                    d: d2,
+                    a: sel,
+                    b: ch,
+                    cmp: Cmp::Le,
+                });
+            }
+            self.block.emit(Op::And { d, a: d1, b: d2 });
+            self.block.emit(Op::Jnz { c: d, t: 0 })
         }
     }
 
