@@ -1,11 +1,11 @@
 //! Calls: FB invocations (native and user), user function calls, EN/ENO,
 //! formal and non-formal arguments, `=>` outputs.
 
-use super::Compiler;
-use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
-use super::model::{ConstInit, Storage};
+use super::body::BodyBuilder;
+use super::emit::{Place, PlaceRef, Ty, Val};
+use super::model::ConstInit;
 use crate::ir::op::Op;
-use crate::ir::types::{MemberKind, TypeId, TypeKind, TypeTable};
+use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib::{self, ParamDir};
 use crate::syntax::ast::{Arg, Call, Expr, ExprKind, PouKind};
@@ -13,51 +13,71 @@ use crate::types::ElemType;
 
 /// One formal parameter of a callee.
 #[derive(Debug, Clone)]
-struct Param {
-    name: String,
-    aliases: &'static [&'static str],
-    kind: MemberKind,
-    ty: TypeId,
-    offset: u32,
-    default: Option<ConstInit>,
+pub(super) struct Param {
+    pub(super) name: String,
+    pub(super) aliases: &'static [&'static str],
+    pub(super) kind: MemberKind,
+    pub(super) ty: TypeId,
+    pub(super) offset: u32,
+    pub(super) default: Option<ConstInit>,
 }
 
 impl Param {
-    fn matches(&self, name: &str) -> bool {
+    /// True if `name` is this parameter (or one of its aliases).
+    pub(super) fn matches(&self, name: &str) -> bool {
         self.name.eq_ignore_ascii_case(name)
             || self.aliases.iter().any(|a| a.eq_ignore_ascii_case(name))
     }
 }
 
 /// Arguments sorted by parameter after matching.
-struct Bound<'e> {
-    inputs: Vec<(usize, &'e Expr)>,
-    outputs: Vec<(usize, bool, &'e Expr)>,
-    en: Option<&'e Expr>,
-    eno: Option<&'e Expr>,
+pub(super) struct Bound<'e> {
+    pub(super) inputs: Vec<(usize, &'e Expr)>,
+    pub(super) outputs: Vec<(usize, bool, &'e Expr)>,
+    pub(super) en: Option<&'e Expr>,
+    pub(super) eno: Option<&'e Expr>,
 }
 
-impl Compiler<'_> {
+/// Where an FB instance being called is.
+#[derive(Clone, Copy)]
+enum InstanceAt {
+    /// At a slot of the current frame.
+    Frame(u32),
+    /// At the address held in a slot.
+    Ptr(u32),
+}
+
+impl InstanceAt {
+    /// The place of the instance's member at `off`.
+    fn member(self, off: u32) -> Place {
+        match self {
+            InstanceAt::Frame(o) => Place::Frame(o + off),
+            InstanceAt::Ptr(p) => Place::Ind { p, off },
+        }
+    }
+}
+
+impl BodyBuilder<'_> {
     /// A call used as a statement.
-    pub(super) fn call_stmt(&mut self, f: &mut Fcx, call: &Call) {
+    pub(super) fn call_stmt(&mut self, call: &Call) {
         if let ExprKind::Name(id) = &call.callee.kind
-            && self.lookup_var(f, &id.key()).is_none()
+            && self.lookup_var(&id.key()).is_none()
         {
-            self.call_function(f, call, None, false);
+            self.call_function(call, None, false);
             return;
         }
-        let Some(inst) = self.place(f, &call.callee) else {
+        let Some(inst) = self.place(&call.callee) else {
             return;
         };
-        self.fb_call(f, &inst, &call.args, call.span);
+        self.fb_call(&inst, &call.args, call.span);
     }
 
     /// A call used in an expression: must be a function.
-    pub(super) fn call_expr(&mut self, f: &mut Fcx, call: &Call, expect: Option<TypeId>) -> Val {
+    pub(super) fn call_expr(&mut self, call: &Call, expect: Option<TypeId>) -> Val {
         if let ExprKind::Name(id) = &call.callee.kind
-            && self.lookup_var(f, &id.key()).is_none()
+            && self.lookup_var(&id.key()).is_none()
         {
-            return self.call_function(f, call, expect, true);
+            return self.call_function(call, expect, true);
         }
         self.diags.error(
             "E406",
@@ -67,26 +87,20 @@ impl Compiler<'_> {
         Val::error()
     }
 
-    fn call_function(
-        &mut self,
-        f: &mut Fcx,
-        call: &Call,
-        expect: Option<TypeId>,
-        want: bool,
-    ) -> Val {
+    fn call_function(&mut self, call: &Call, expect: Option<TypeId>, want: bool) -> Val {
         let ExprKind::Name(id) = &call.callee.kind else {
             return Val::error();
         };
         let key = id.key();
-        if let Some(&p) = self.pou_index.get(&key) {
-            if self.pous[p].kind != PouKind::Function {
+        if let Some(&p) = self.model.pou_index.get(&key) {
+            if self.model.pous[p].kind != PouKind::Function {
                 self.diags.error(
                     "E406",
                     id.span,
                     format!(
                         "`{}` is a {}: declare an instance and call the instance",
                         id.name,
-                        if self.pous[p].kind == PouKind::Program {
+                        if self.model.pous[p].kind == PouKind::Program {
                             "PROGRAM"
                         } else {
                             "FUNCTION_BLOCK"
@@ -95,9 +109,9 @@ impl Compiler<'_> {
                 );
                 return Val::error();
             }
-            return self.user_function_call(f, p, call, want);
+            return self.user_function_call(p, call, want);
         }
-        if let Some(v) = self.std_call(f, id, &call.args, call.span, expect) {
+        if let Some(v) = self.std_call(id, &call.args, call.span, expect) {
             return v;
         }
         if stdlib::lookup_native(&id.name).is_some() {
@@ -117,7 +131,7 @@ impl Compiler<'_> {
     }
 
     /// Matches arguments to parameters (formal by name, or non-formal in order).
-    fn bind<'e>(
+    pub(super) fn bind<'e>(
         &mut self,
         params: &[Param],
         args: &'e [Arg],
@@ -238,11 +252,69 @@ impl Compiler<'_> {
         ok.then_some(b)
     }
 
-    /// Invokes an FB instance.
-    pub(super) fn fb_call(&mut self, f: &mut Fcx, inst: &PlaceRef, args: &[Arg], span: Span) {
+    /// Checks and emits a call of the FB instance at `inst`.
+    pub(super) fn fb_call(&mut self, inst: &PlaceRef, args: &[Arg], span: Span) {
         let def = self.types.get(inst.ty).clone();
-        let (params, callee): (Vec<Param>, String) = match &def.kind {
-            TypeKind::NativeFb(fb) => (
+        let Some(params) = self.fb_params(&def, span) else {
+            return;
+        };
+        let callee = def.name.clone();
+        let Some(b) = self.bind(&params, args, &callee, span) else {
+            return;
+        };
+        for (i, p) in params.iter().enumerate() {
+            if p.kind == MemberKind::InOut && !b.inputs.iter().any(|(j, _)| *j == i) {
+                self.diags.error(
+                    "E404",
+                    span,
+                    format!("VAR_IN_OUT `{}` of `{callee}` must be connected", p.name),
+                );
+            }
+        }
+        let skip = match b.en {
+            Some(en) => self.cond_jump(en, false),
+            None => None,
+        };
+        // Where the instance is: a frame slot, or an address in a slot.
+        let at = match inst.place {
+            Place::Frame(o) => InstanceAt::Frame(o),
+            _ => InstanceAt::Ptr(self.address_of(inst)),
+        };
+        for &(i, e) in &b.inputs {
+            let p = &params[i];
+            let slot_place = PlaceRef {
+                place: at.member(p.offset),
+                ty: p.ty,
+                writable: true,
+                readonly_reason: None,
+                input_image: false,
+            };
+            if p.kind == MemberKind::InOut {
+                self.connect_in_out(p, &slot_place, e);
+                continue;
+            }
+            self.store_arg(&slot_place, e, &p.name);
+        }
+        self.invoke_fb(&def.kind, at, span);
+        self.block.last_def = None;
+        for &(i, negated, target) in &b.outputs {
+            let p = &params[i];
+            let src = PlaceRef {
+                place: at.member(p.offset),
+                ty: p.ty,
+                writable: false,
+                readonly_reason: None,
+                input_image: false,
+            };
+            self.store_output(&src, negated, target, &p.name);
+        }
+        self.finish_en(skip, b.eno);
+    }
+
+    /// The call interface of an FB type (`None` for what cannot be called).
+    fn fb_params(&mut self, def: &TypeDef, span: Span) -> Option<Vec<Param>> {
+        match &def.kind {
+            TypeKind::NativeFb(fb) => Some(
                 stdlib::interface(*fb)
                     .iter()
                     .enumerate()
@@ -260,13 +332,12 @@ impl Compiler<'_> {
                         default: None,
                     })
                     .collect(),
-                def.name.clone(),
             ),
             TypeKind::Pou {
                 members,
                 program: false,
                 ..
-            } => (
+            } => Some(
                 members
                     .iter()
                     .filter(|m| {
@@ -284,154 +355,106 @@ impl Compiler<'_> {
                         default: None,
                     })
                     .collect(),
-                def.name.clone(),
             ),
-            TypeKind::Error => return,
+            TypeKind::Error => None,
             _ => {
                 self.diags
                     .error("E406", span, format!("a {} cannot be called", def.name));
-                return;
+                None
             }
-        };
-        let Some(b) = self.bind(&params, args, &callee, span) else {
+        }
+    }
+
+    /// Connects VAR_IN_OUT `p` of an FB instance to the variable `e`: the
+    /// variable's address goes into the pointer slot `slot_place`.
+    fn connect_in_out(&mut self, p: &Param, slot_place: &PlaceRef, e: &Expr) {
+        let Some(arg) = self.place(e) else {
             return;
         };
-        for (i, p) in params.iter().enumerate() {
-            if p.kind == MemberKind::InOut && !b.inputs.iter().any(|(j, _)| *j == i) {
-                self.diags.error(
-                    "E404",
-                    span,
-                    format!("VAR_IN_OUT `{}` of `{callee}` must be connected", p.name),
-                );
-            }
+        if arg.ty != p.ty && arg.ty != TypeTable::error() {
+            self.mismatch(
+                e.span,
+                Ty::T(arg.ty),
+                p.ty,
+                &format!("VAR_IN_OUT `{}`", p.name),
+            );
+            return;
         }
-        let skip = match b.en {
-            Some(en) => self.cond_jump(f, en, false),
-            None => None,
-        };
-        // Where the instance is: a frame slot, or an address in a slot.
-        let (frame_base, ptr) = match inst.place {
-            Place::Frame(o) => (Some(o), None),
-            _ => (None, Some(self.address_of(f, inst))),
-        };
-        let member = |off: u32| -> Place {
-            match (frame_base, ptr) {
-                (Some(o), _) => Place::Frame(o + off),
-                (_, Some(p)) => Place::Ind { p, off },
-                _ => Place::Frame(off),
-            }
-        };
-        for &(i, e) in &b.inputs {
-            let p = &params[i];
-            let slot_place = PlaceRef {
-                place: member(p.offset),
-                ty: p.ty,
-                writable: true,
-                readonly_reason: None,
-                input_image: false,
-            };
-            if p.kind == MemberKind::InOut {
-                let Some(arg) = self.place(f, e) else {
-                    continue;
-                };
-                if arg.ty != p.ty && arg.ty != TypeTable::error() {
-                    self.mismatch(
-                        e.span,
-                        Ty::T(arg.ty),
-                        p.ty,
-                        &format!("VAR_IN_OUT `{}`", p.name),
-                    );
-                    continue;
-                }
-                if !arg.writable {
-                    self.diags.error(
-                        "E412",
-                        e.span,
-                        format!("VAR_IN_OUT `{}` needs a writable variable", p.name),
-                    );
-                    continue;
-                }
-                let a = self.address_of(f, &arg);
-                let ptr_place = PlaceRef {
-                    ty: TypeTable::elem(ElemType::Ulint),
-                    ..slot_place
-                };
-                self.write_place(f, &ptr_place, a);
-                continue;
-            }
-            self.store_arg(f, &slot_place, e, &p.name);
+        if !arg.writable {
+            self.diags.error(
+                "E412",
+                e.span,
+                format!("VAR_IN_OUT `{}` needs a writable variable", p.name),
+            );
+            return;
         }
-        match (&def.kind, frame_base, ptr) {
-            (TypeKind::NativeFb(fb), Some(o), _) => {
-                f.emit(Op::CallNative { fb: *fb, inst: o });
+        let a = self.address_of(&arg);
+        let ptr_place = PlaceRef {
+            ty: TypeTable::elem(ElemType::Ulint),
+            ..*slot_place
+        };
+        self.write_place(&ptr_place, a);
+    }
+
+    /// The call instruction of an FB instance.
+    fn invoke_fb(&mut self, kind: &TypeKind, at: InstanceAt, span: Span) {
+        match (kind, at) {
+            (TypeKind::NativeFb(fb), InstanceAt::Frame(o)) => {
+                self.block.emit(Op::CallNative { fb: *fb, inst: o });
             }
-            (TypeKind::NativeFb(fb), None, Some(p)) => {
-                f.emit(Op::CallNativeInd { fb: *fb, p });
+            (TypeKind::NativeFb(fb), InstanceAt::Ptr(p)) => {
+                self.block.emit(Op::CallNativeInd { fb: *fb, p });
             }
-            (TypeKind::Pou { code, .. }, Some(o), _) => {
-                let caller = self.pous[f.pou].code;
-                self.calls.push((caller, *code, span));
-                f.emit(Op::CallFb {
+            (TypeKind::Pou { code, .. }, InstanceAt::Frame(o)) => {
+                let caller = self.model.pous[self.block.pou].code;
+                self.out.calls.push((caller, *code, span));
+                self.block.emit(Op::CallFb {
                     code: *code,
                     inst: o,
                 });
             }
-            (TypeKind::Pou { code, .. }, None, Some(p)) => {
-                let caller = self.pous[f.pou].code;
-                self.calls.push((caller, *code, span));
-                f.emit(Op::CallFbInd { code: *code, p });
+            (TypeKind::Pou { code, .. }, InstanceAt::Ptr(p)) => {
+                let caller = self.model.pous[self.block.pou].code;
+                self.out.calls.push((caller, *code, span));
+                self.block.emit(Op::CallFbInd { code: *code, p });
             }
             _ => {}
         }
-        f.last_def = None;
-        for &(i, negated, target) in &b.outputs {
-            let p = &params[i];
-            let src = PlaceRef {
-                place: member(p.offset),
-                ty: p.ty,
-                writable: false,
-                readonly_reason: None,
-                input_image: false,
-            };
-            self.store_output(f, &src, negated, target, &p.name);
-        }
-        self.finish_en(f, skip, b.eno);
     }
 
     /// Evaluates an input argument into a parameter place.
-    fn store_arg(&mut self, f: &mut Fcx, dst: &PlaceRef, e: &Expr, name: &str) {
+    fn store_arg(&mut self, dst: &PlaceRef, e: &Expr, name: &str) {
         let what = format!("argument `{name}`");
         match self.types.get(dst.ty).kind {
             TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                let Some(src) = self.place(f, e) else { return };
+                let Some(src) = self.place(e) else { return };
                 if !self.assignable(src.ty, dst.ty) {
                     self.mismatch(e.span, Ty::T(src.ty), dst.ty, &what);
                     return;
                 }
-                self.copy_aggregate(f, dst, &src, e.span);
+                self.copy_aggregate(dst, &src, e.span);
             }
             _ => {
-                let v = self.expr(f, e, Some(dst.ty));
-                let v = self.coerce(f, v, dst.ty, e.span, &what);
+                let v = self.expr(e, Some(dst.ty));
+                let v = self.coerce(v, dst.ty, e.span, &what);
                 if v.is_error() {
                     return;
                 }
-                let s = self.materialize(f, &v);
-                self.write_place(f, dst, s);
+                let s = self.materialize(&v);
+                self.write_place(dst, s);
             }
         }
     }
 
     /// Copies an output parameter to the `=>` target.
-    fn store_output(
+    pub(super) fn store_output(
         &mut self,
-        f: &mut Fcx,
         src: &PlaceRef,
         negated: bool,
         target: &Expr,
         name: &str,
     ) {
-        let Some(t) = self.place(f, target) else {
+        let Some(t) = self.place(target) else {
             return;
         };
         if !t.writable {
@@ -443,38 +466,38 @@ impl Compiler<'_> {
             );
             return;
         }
-        let v = self.read_place(f, src);
+        let v = self.read_place(src);
         let v = if negated {
             if src.ty != TypeTable::elem(ElemType::Bool) {
                 self.diags
                     .error("E302", target.span, "`NOT ... =>` needs a BOOL output");
                 return;
             }
-            let s = self.materialize(f, &v);
-            let d = f.temp();
-            f.emit(Op::NotB { d, a: s });
+            let s = self.materialize(&v);
+            let d = self.block.temp();
+            self.block.emit(Op::NotB { d, a: s });
             Val::Slot(d, src.ty)
         } else {
             v
         };
-        let v = self.coerce(f, v, t.ty, target.span, &format!("output `{name}`"));
+        let v = self.coerce(v, t.ty, target.span, &format!("output `{name}`"));
         if v.is_error() {
             return;
         }
-        let s = self.materialize(f, &v);
-        self.write_place(f, &t, s);
+        let s = self.materialize(&v);
+        self.write_place(&t, s);
     }
 
     /// Closes an EN-guarded call: ENO := TRUE on the called path, FALSE when skipped.
-    fn finish_en(&mut self, f: &mut Fcx, skip: Option<usize>, eno: Option<&Expr>) {
+    pub(super) fn finish_en(&mut self, skip: Option<usize>, eno: Option<&Expr>) {
         let Some(eno) = eno else {
             if let Some(j) = skip {
-                let end = f.here();
-                f.patch(j, end);
+                let end = self.block.here();
+                self.block.patch(j, end);
             }
             return;
         };
-        let Some(t) = self.place(f, eno) else { return };
+        let Some(t) = self.place(eno) else { return };
         if t.ty != TypeTable::elem(ElemType::Bool) {
             self.mismatch(
                 eno.span,
@@ -484,251 +507,18 @@ impl Compiler<'_> {
             );
             return;
         }
-        let one = f.temp();
-        f.emit(Op::LoadI { d: one, imm: 1 });
-        self.write_place(f, &t, one);
+        let one = self.block.temp();
+        self.block.emit(Op::LoadI { d: one, imm: 1 });
+        self.write_place(&t, one);
         if let Some(j) = skip {
-            let over = f.emit(Op::Jmp { t: 0 });
-            let at = f.here();
-            f.patch(j, at);
-            let zero = f.temp();
-            f.emit(Op::LoadI { d: zero, imm: 0 });
-            self.write_place(f, &t, zero);
-            let end = f.here();
-            f.patch(over, end);
+            let over = self.block.emit(Op::Jmp { t: 0 });
+            let at = self.block.here();
+            self.block.patch(j, at);
+            let zero = self.block.temp();
+            self.block.emit(Op::LoadI { d: zero, imm: 0 });
+            self.write_place(&t, zero);
+            let end = self.block.here();
+            self.block.patch(over, end);
         }
-    }
-
-    /// Calls a user FUNCTION through its static frame.
-    fn user_function_call(&mut self, f: &mut Fcx, p: usize, call: &Call, want: bool) -> Val {
-        let callee = self.pous[p].clone();
-        let params: Vec<Param> = callee
-            .params
-            .iter()
-            .filter_map(|k| callee.vars.get(k))
-            .map(|v| Param {
-                name: v.name.clone(),
-                aliases: &[],
-                kind: v.kind,
-                ty: v.ty,
-                offset: match v.storage {
-                    Storage::Frame(o) | Storage::Ref(o) => o,
-                    Storage::Abs(a) => a,
-                },
-                default: v.init.clone(),
-            })
-            .collect();
-        let Some(b) = self.bind(&params, &call.args, &callee.name, call.span) else {
-            return Val::error();
-        };
-        if want && callee.ret == TypeTable::void() {
-            self.diags.error(
-                "E301",
-                call.span,
-                format!("`{}` returns no value", callee.name),
-            );
-            return Val::error();
-        }
-        let skip = match b.en {
-            Some(en) => self.cond_jump(f, en, false),
-            None => None,
-        };
-        // Evaluate every argument before touching the callee's frame, so
-        // nested calls of the same function cannot clobber it.
-        enum Ready {
-            Scalar(u32),
-            Pointer(u32),
-            Aggregate(u32, u32),
-        }
-        let mut ready: Vec<(usize, Ready)> = Vec::new();
-        for (i, prm) in params.iter().enumerate() {
-            if !matches!(prm.kind, MemberKind::Input | MemberKind::InOut) {
-                continue;
-            }
-            let given = b.inputs.iter().find(|(j, _)| *j == i).map(|(_, e)| *e);
-            let what = format!("argument `{}`", prm.name);
-            match (prm.kind, given) {
-                (MemberKind::InOut, Some(e)) => {
-                    let Some(arg) = self.place(f, e) else {
-                        continue;
-                    };
-                    if arg.ty != prm.ty {
-                        self.mismatch(e.span, Ty::T(arg.ty), prm.ty, &what);
-                        continue;
-                    }
-                    if !arg.writable {
-                        self.diags.error(
-                            "E412",
-                            e.span,
-                            format!("VAR_IN_OUT `{}` needs a writable variable", prm.name),
-                        );
-                        continue;
-                    }
-                    let a = self.address_of(f, &arg);
-                    ready.push((i, Ready::Pointer(a)));
-                }
-                (MemberKind::InOut, None) => {
-                    self.diags.error(
-                        "E404",
-                        call.span,
-                        format!(
-                            "VAR_IN_OUT `{}` of `{}` must be connected",
-                            prm.name, callee.name
-                        ),
-                    );
-                }
-                (_, Some(e)) => match self.types.get(prm.ty).kind {
-                    TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                        let Some(src) = self.place(f, e) else {
-                            continue;
-                        };
-                        if !self.assignable(src.ty, prm.ty) {
-                            self.mismatch(e.span, Ty::T(src.ty), prm.ty, &what);
-                            continue;
-                        }
-                        if self.contains_strings(prm.ty) {
-                            self.diags.error(
-                                "E302",
-                                e.span,
-                                "passing arrays or structures that contain strings by value is not supported yet",
-                            );
-                            continue;
-                        }
-                        let a = self.address_of(f, &src);
-                        ready.push((i, Ready::Aggregate(a, self.types.size(prm.ty))));
-                    }
-                    _ => {
-                        let v = self.expr(f, e, Some(prm.ty));
-                        let v = self.coerce(f, v, prm.ty, e.span, &what);
-                        if v.is_error() {
-                            continue;
-                        }
-                        let s = self.materialize(f, &v);
-                        // Keep the value in a temporary the next argument cannot overwrite.
-                        let t = f.temp();
-                        if self.types.scalar(prm.ty).is_some_and(|e| e.is_string()) {
-                            let (max, wide) = match self.types.get(prm.ty).kind {
-                                TypeKind::Str { max, wide } => (max, wide),
-                                _ => (254, false),
-                            };
-                            let st = self.string_temp(f, max, wide);
-                            f.emit(Op::StrMov { d: st, s });
-                            f.emit(Op::Mov { d: t, s: st });
-                        } else {
-                            f.emit(Op::Mov { d: t, s });
-                        }
-                        f.last_def = None;
-                        ready.push((i, Ready::Scalar(t)));
-                    }
-                },
-                (_, None) => {
-                    // Missing input: its declared initial value.
-                    let init = prm
-                        .default
-                        .clone()
-                        .unwrap_or_else(|| self.default_init(prm.ty));
-                    let v = match init {
-                        ConstInit::Scalar(bits) => {
-                            Val::Const(super::consts::Const::Bits(bits), Ty::T(prm.ty))
-                        }
-                        ConstInit::Str(s) => {
-                            Val::Const(super::consts::Const::Str(s), Ty::T(prm.ty))
-                        }
-                        _ => {
-                            self.diags.error(
-                                "E404",
-                                call.span,
-                                format!("input `{}` of `{}` must be given", prm.name, callee.name),
-                            );
-                            continue;
-                        }
-                    };
-                    let s = self.materialize(f, &v);
-                    ready.push((i, Ready::Scalar(s)));
-                }
-            }
-        }
-        for (i, r) in ready {
-            let prm = &params[i];
-            match r {
-                Ready::Scalar(s) => {
-                    if self.types.scalar(prm.ty).is_some_and(|e| e.is_string()) {
-                        let id = f.temp();
-                        let at = f.emit(Op::LoadAbs {
-                            d: id,
-                            abs: prm.offset,
-                        });
-                        f.fixups.push((at, p));
-                        f.emit(Op::StrMov { d: id, s });
-                    } else {
-                        let at = f.emit(Op::StoreAbs { abs: prm.offset, s });
-                        f.fixups.push((at, p));
-                    }
-                }
-                Ready::Pointer(a) => {
-                    let at = f.emit(Op::StoreAbs {
-                        abs: prm.offset,
-                        s: a,
-                    });
-                    f.fixups.push((at, p));
-                }
-                Ready::Aggregate(a, n) => {
-                    let d = f.temp();
-                    let at = f.emit(Op::LoadI {
-                        d,
-                        imm: prm.offset as i32,
-                    });
-                    f.fixups.push((at, p));
-                    f.emit(Op::MemCopy { d, s: a, n });
-                }
-            }
-        }
-        let caller = self.pous[f.pou].code;
-        self.calls.push((caller, callee.code, call.span));
-        f.emit(Op::CallFn { code: callee.code });
-        let mut result = Val::None(TypeTable::void());
-        if callee.ret != TypeTable::void() {
-            let t = f.temp();
-            let at = f.emit(Op::LoadAbs { d: t, abs: 0 });
-            f.fixups.push((at, p));
-            result = if let TypeKind::Str { max, wide } = self.types.get(callee.ret).kind {
-                let st = self.string_temp(f, max, wide);
-                f.emit(Op::StrMov { d: st, s: t });
-                Val::Slot(st, callee.ret)
-            } else if self.types.scalar(callee.ret).is_some() {
-                Val::Slot(t, callee.ret)
-            } else {
-                self.diags.error(
-                    "E302",
-                    call.span,
-                    "functions returning arrays or structures are not supported yet",
-                );
-                Val::error()
-            };
-        }
-        for &(i, negated, target) in &b.outputs {
-            let prm = &params[i];
-            let t = f.temp();
-            let at = f.emit(Op::LoadAbs {
-                d: t,
-                abs: prm.offset,
-            });
-            f.fixups.push((at, p));
-            let src = PlaceRef {
-                place: Place::Frame(t),
-                ty: prm.ty,
-                writable: false,
-                readonly_reason: None,
-                input_image: false,
-            };
-            self.store_output(f, &src, negated, target, &prm.name);
-        }
-        if skip.is_some() || b.eno.is_some() {
-            self.finish_en(f, skip, b.eno);
-        }
-        if !want {
-            return Val::None(TypeTable::void());
-        }
-        result
     }
 }

@@ -1,13 +1,16 @@
-//! The per-body emission context: instruction buffer, temporaries, loop
-//! targets, and the value/place vocabulary the expression checker uses.
+//! The emission context of one code block (instruction buffer,
+//! temporaries, loop targets, constant and pinned slots), and the
+//! value/place vocabulary the expression checker uses.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::Const;
+use super::model::VarInfo;
 use crate::ir::image::StringInit;
 use crate::ir::op::{Op, Slot};
 use crate::ir::types::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::types::ElemType;
+use indexmap::IndexSet;
 
 /// The type of an expression: a known type, or an untyped literal that
 /// adapts to its context.
@@ -109,7 +112,8 @@ pub struct LoopCtx {
     pub continues: Vec<usize>,
 }
 
-/// Emission state of one body.
+/// Emission state of one code block (a POU body or one of its SFC blocks),
+/// owned by the body builder while the block is emitted.
 #[derive(Debug)]
 pub struct Fcx {
     /// POU index.
@@ -137,7 +141,7 @@ pub struct Fcx {
     pub fixups: Vec<(usize, usize)>,
     /// Constant values that live in frame slots (numbered with
     /// [`CONST_TAG`] until the frame size is known).
-    pub consts: Vec<u64>,
+    pub consts: IndexSet<u64>,
     /// Number of pinned slots (numbered with [`PIN_TAG`] until placed).
     pub pins: u32,
     /// Element addresses computed in the current basic block.
@@ -146,6 +150,9 @@ pub struct Fcx {
     pub vars_size: u32,
     /// Control variables of the FOR loops being emitted (read-only inside).
     pub for_vars: Vec<Slot>,
+    /// The IL current result while it is visible as a hidden variable
+    /// (to call arguments built from it).
+    pub il_cr: Option<VarInfo>,
 }
 
 /// A cached element address: the element of the frame array described by
@@ -182,11 +189,12 @@ impl Fcx {
             returns: Vec::new(),
             last_def: None,
             fixups: Vec::new(),
-            consts: Vec::new(),
+            consts: IndexSet::new(),
             pins: 0,
             elem_cache: Vec::new(),
             vars_size: temp_base,
             for_vars: Vec::new(),
+            il_cr: None,
         }
     }
 
@@ -285,14 +293,7 @@ impl Fcx {
 
     /// A read-only frame slot holding `bits`, initialised once per instance.
     pub fn const_slot(&mut self, bits: u64) -> Slot {
-        let k = match self.consts.iter().position(|c| *c == bits) {
-            Some(k) => k,
-            None => {
-                self.consts.push(bits);
-                self.consts.len() - 1
-            }
-        };
-        CONST_TAG | k as u32
+        CONST_TAG | self.consts.insert_full(bits).0 as u32
     }
 
     /// Gives this body's constant and pinned slots their final numbers
@@ -308,7 +309,7 @@ impl Fcx {
 /// of the region and the constants' `(slot, value)` list.
 pub fn place_tagged(
     ops: &mut [Op],
-    consts: &[u64],
+    consts: &IndexSet<u64>,
     pins: u32,
     first: u32,
 ) -> (u32, Vec<(u32, u64)>) {
@@ -333,7 +334,7 @@ pub fn place_tagged(
 impl Fcx {
     /// Hands over the provisional constants and pin count (for blocks
     /// relocated later together with their owner).
-    pub fn take_tagged(&mut self) -> (Vec<u64>, u32) {
+    pub fn take_tagged(&mut self) -> (IndexSet<u64>, u32) {
         (
             std::mem::take(&mut self.consts),
             std::mem::replace(&mut self.pins, 0),
@@ -385,24 +386,24 @@ fn dest_mut(op: &mut Op) -> Option<&mut Slot> {
     if w.result { w.slot } else { None }
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// A string temporary of capacity `max`: a fresh string id (private to
     /// this POU, safe because IEC forbids recursion) loaded into a temporary.
-    pub(super) fn string_temp(&mut self, f: &mut Fcx, max: u32, wide: bool) -> Slot {
-        self.strings.push(StringInit {
+    pub(super) fn string_temp(&mut self, max: u32, wide: bool) -> Slot {
+        self.out.strings.push(StringInit {
             max,
             wide,
             init: String::new(),
         });
         // The slot only holds the string's id, which never changes.
-        f.const_slot(self.strings.len() as u64 - 1)
+        self.block.const_slot(self.out.strings.len() as u64 - 1)
     }
 
     /// Puts a value into a slot (constants are loaded into a temporary).
-    pub(super) fn materialize(&mut self, f: &mut Fcx, v: &Val) -> Slot {
+    pub(super) fn materialize(&mut self, v: &Val) -> Slot {
         match v {
             Val::Slot(s, _) => *s,
-            Val::None(_) => f.temp(),
+            Val::None(_) => self.block.temp(),
             Val::Const(c, ty) => {
                 let bits = match c {
                     Const::Bits(b) => *b,
@@ -413,35 +414,35 @@ impl Compiler<'_> {
                             Some(TypeKind::Str { max, wide }) => (*max, *wide),
                             _ => (254, false),
                         };
-                        let t = self.string_temp(f, max.max(s.chars().count() as u32), wide);
-                        let k = self.str_const(s);
-                        f.emit(Op::StrConst { d: t, k });
-                        f.last_def = None;
+                        let t = self.string_temp(max.max(s.chars().count() as u32), wide);
+                        let k = self.out.str_const(s);
+                        self.block.emit(Op::StrConst { d: t, k });
+                        self.block.last_def = None;
                         return t;
                     }
                 };
-                f.const_slot(bits)
+                self.block.const_slot(bits)
             }
         }
     }
 
     /// Reads a place into a slot.
-    pub(super) fn read_place(&mut self, f: &mut Fcx, p: &PlaceRef) -> Val {
+    pub(super) fn read_place(&mut self, p: &PlaceRef) -> Val {
         let slot = match p.place {
             Place::Frame(s) => s,
             Place::Abs(abs) => {
-                let t = f.temp();
-                f.emit(Op::LoadAbs { d: t, abs });
+                let t = self.block.temp();
+                self.block.emit(Op::LoadAbs { d: t, abs });
                 t
             }
             Place::Ind { p: ptr, off } => {
-                let t = f.temp();
-                f.emit(Op::LoadInd { d: t, p: ptr, off });
+                let t = self.block.temp();
+                self.block.emit(Op::LoadInd { d: t, p: ptr, off });
                 t
             }
             Place::Elem { idx, desc } => {
-                let t = f.temp();
-                f.emit(Op::LoadElem { d: t, idx, desc });
+                let t = self.block.temp();
+                self.block.emit(Op::LoadElem { d: t, idx, desc });
                 t
             }
         };
@@ -449,53 +450,53 @@ impl Compiler<'_> {
     }
 
     /// Stores slot `s` into a scalar place.
-    pub(super) fn write_place(&mut self, f: &mut Fcx, p: &PlaceRef, s: Slot) {
+    pub(super) fn write_place(&mut self, p: &PlaceRef, s: Slot) {
         let is_string = matches!(self.types.get(p.ty).kind, TypeKind::Str { .. });
         if is_string {
             // Strings are copied by content; the place holds the target's string id.
-            let target = match self.read_place(f, p) {
+            let target = match self.read_place(p) {
                 Val::Slot(t, _) => t,
                 _ => return,
             };
-            f.emit(Op::StrMov { d: target, s });
+            self.block.emit(Op::StrMov { d: target, s });
             return;
         }
         match p.place {
-            Place::Frame(d) => f.mov(d, s),
+            Place::Frame(d) => self.block.mov(d, s),
             Place::Abs(abs) => {
-                f.emit(Op::StoreAbs { abs, s });
+                self.block.emit(Op::StoreAbs { abs, s });
             }
             Place::Ind { p: ptr, off } => {
-                f.emit(Op::StoreInd { p: ptr, off, s });
+                self.block.emit(Op::StoreInd { p: ptr, off, s });
             }
             Place::Elem { idx, desc } => {
-                f.emit(Op::StoreElem { idx, s, desc });
+                self.block.emit(Op::StoreElem { idx, s, desc });
             }
         }
     }
 
     /// An absolute-address pointer to a place, in a slot.
-    pub(super) fn address_of(&mut self, f: &mut Fcx, p: &PlaceRef) -> Slot {
+    pub(super) fn address_of(&mut self, p: &PlaceRef) -> Slot {
         if let Place::Ind { p: ptr, off: 0 } = p.place {
             return ptr;
         }
-        let t = f.temp();
+        let t = self.block.temp();
         match p.place {
             Place::Frame(s) => {
-                f.emit(Op::AddrOf { d: t, off: s });
+                self.block.emit(Op::AddrOf { d: t, off: s });
             }
             Place::Abs(abs) => {
-                let k = self.konst(abs as u64);
-                f.emit(Op::LoadK { d: t, k });
+                let k = self.out.konst(abs as u64);
+                self.block.emit(Op::LoadK { d: t, k });
             }
             Place::Ind { p: ptr, off } => {
-                f.emit(Op::AddrAdd { d: t, p: ptr, off });
+                self.block.emit(Op::AddrAdd { d: t, p: ptr, off });
             }
             Place::Elem { idx, desc } => {
-                f.emit(Op::ElemRef { d: t, idx, desc });
+                self.block.emit(Op::ElemRef { d: t, idx, desc });
             }
         }
-        f.last_def = None;
+        self.block.last_def = None;
         t
     }
 

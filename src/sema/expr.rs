@@ -1,54 +1,49 @@
 //! Expressions: name resolution, places (lvalues), operators with constant
 //! folding, and emission of typed instructions.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::{Const, literal_to_slot, literal_type, slot_to_int, slot_to_real};
-use super::declare::{address_type, normalize_address};
-use super::emit::{Fcx, Place, PlaceRef, Ty, Val};
-use super::model::Storage;
+use super::emit::{Ty, Val};
 use super::typeck::shift_of;
-use crate::ir::image::ArrayDesc;
-use crate::ir::op::{Cmp, Op, ShiftKind};
-use crate::ir::types::{MemberKind, TypeId, TypeKind, TypeTable, step_layout};
+use crate::ir::op::{Op, ShiftKind};
+use crate::ir::types::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
-use crate::syntax::ast::{BinaryOp, Expr, ExprKind, Literal, LiteralValue, UnaryOp};
+use crate::syntax::ast::{Expr, ExprKind, Literal, LiteralValue, UnaryOp};
 use crate::types::{ElemType, Family};
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// Checks and emits an expression used as a value.
-    pub(super) fn expr(&mut self, f: &mut Fcx, e: &Expr, expect: Option<TypeId>) -> Val {
-        let saved = f.span;
-        f.span = e.span;
-        let v = self.expr_inner(f, e, expect);
-        f.span = saved;
+    pub(super) fn expr(&mut self, e: &Expr, expect: Option<TypeId>) -> Val {
+        let saved = self.block.span;
+        self.block.span = e.span;
+        let v = self.expr_inner(e, expect);
+        self.block.span = saved;
         v
     }
 
-    fn expr_inner(&mut self, f: &mut Fcx, e: &Expr, expect: Option<TypeId>) -> Val {
+    fn expr_inner(&mut self, e: &Expr, expect: Option<TypeId>) -> Val {
         match &e.kind {
             ExprKind::Literal(l) => self.literal(l, e.span, expect),
-            ExprKind::Paren(x) => self.expr(f, x, expect),
+            ExprKind::Paren(x) => self.expr(x, expect),
             ExprKind::Name(id) => {
                 // Enumeration value names come after variables.
                 let key = id.key();
-                if self.lookup_var(f, &key).is_none()
+                if self.lookup_var(&key).is_none()
                     && let Some(v) = self.enum_value(&key, expect)
                 {
                     return v;
                 }
-                if let Some(var) = self.lookup_var(f, &key)
+                if let Some(var) = self.lookup_var(&key)
                     && var.constant
                     && let Some(c) = var.value.clone()
                 {
                     return Val::Const(c, Ty::T(var.ty));
                 }
-                self.place_value(f, e)
+                self.place_value(e)
             }
-            ExprKind::Member(..) | ExprKind::Index(..) | ExprKind::Direct(_) => {
-                self.place_value(f, e)
-            }
+            ExprKind::Member(..) | ExprKind::Index(..) | ExprKind::Direct(_) => self.place_value(e),
             ExprKind::BitAccess(base, bit) => {
-                let v = self.expr(f, base, None);
+                let v = self.expr(base, None);
                 let Some(t) = v.ty().id() else {
                     return Val::error();
                 };
@@ -76,29 +71,29 @@ impl Compiler<'_> {
                     );
                     return Val::error();
                 }
-                let a = self.materialize(f, &v);
-                let n = f.temp();
-                f.emit(Op::LoadI {
+                let a = self.materialize(&v);
+                let n = self.block.temp();
+                self.block.emit(Op::LoadI {
                     d: n,
                     imm: *bit as i32,
                 });
-                let d = f.temp();
-                f.emit(Op::Shift {
+                let d = self.block.temp();
+                self.block.emit(Op::Shift {
                     d,
                     a,
                     b: n,
                     kind: ShiftKind::Shr,
                     bits: el.bits() as u8,
                 });
-                let one = f.temp();
-                f.emit(Op::LoadI { d: one, imm: 1 });
-                let r = f.temp();
-                f.emit(Op::And { d: r, a: d, b: one });
+                let one = self.block.temp();
+                self.block.emit(Op::LoadI { d: one, imm: 1 });
+                let r = self.block.temp();
+                self.block.emit(Op::And { d: r, a: d, b: one });
                 Val::Slot(r, TypeTable::elem(ElemType::Bool))
             }
-            ExprKind::Unary(op, x) => self.unary(f, *op, x, e.span, expect),
-            ExprKind::Binary(op, a, b) => self.binary(f, *op, a, b, e.span, expect),
-            ExprKind::Call(call) => self.call_expr(f, call, expect),
+            ExprKind::Unary(op, x) => self.unary(*op, x, e.span, expect),
+            ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e.span, expect),
+            ExprKind::Call(call) => self.call_expr(call, expect),
         }
     }
 
@@ -116,7 +111,7 @@ impl Compiler<'_> {
             }
             // `Color#Red`
             let key = prefix.key();
-            if let Some(t) = self.user_type(&key, prefix.span)
+            if let Some(t) = self.model.type_ids.get(&key).copied()
                 && let TypeKind::Enum { values, .. } = &self.types.get(t).kind
             {
                 let name = match &l.value {
@@ -171,7 +166,7 @@ impl Compiler<'_> {
 
     /// An unqualified enumeration value, disambiguated by the expected type.
     fn enum_value(&self, key: &str, expect: Option<TypeId>) -> Option<Val> {
-        let candidates = self.enum_values.get(key)?;
+        let candidates = self.model.enum_values.get(key)?;
         let pick = expect
             .and_then(|t| candidates.iter().find(|(id, _)| *id == t))
             .or_else(|| candidates.first())?;
@@ -179,436 +174,21 @@ impl Compiler<'_> {
     }
 
     /// Finds a variable visible in the current body.
-    pub(super) fn lookup_var(&self, f: &Fcx, key: &str) -> Option<&super::model::VarInfo> {
-        self.pous
-            .get(f.pou)
+    pub(super) fn lookup_var(&self, key: &str) -> Option<&super::model::VarInfo> {
+        if let Some(cr) = &self.block.il_cr
+            && key == super::il::CR_KEY
+        {
+            return Some(cr);
+        }
+        self.model
+            .pous
+            .get(self.block.pou)
             .and_then(|p| p.vars.get(key))
-            .or_else(|| self.globals.get(key))
+            .or_else(|| self.model.globals.get(key))
     }
 
-    fn place_value(&mut self, f: &mut Fcx, e: &Expr) -> Val {
-        let Some(p) = self.place(f, e) else {
-            return Val::error();
-        };
-        if !self.types.get(p.ty).kind.is_value_type() || self.types.scalar(p.ty).is_none() {
-            if p.ty != TypeTable::error() {
-                self.diags.error(
-                    "E302",
-                    e.span,
-                    format!("a {} cannot be used as a value here", self.types.name(p.ty)),
-                );
-            }
-            return Val::error();
-        }
-        self.read_place(f, &p)
-    }
-
-    /// Resolves an expression that denotes a storage location.
-    pub(super) fn place(&mut self, f: &mut Fcx, e: &Expr) -> Option<PlaceRef> {
-        match &e.kind {
-            ExprKind::Paren(x) => self.place(f, x),
-            ExprKind::Name(id) => {
-                let key = id.key();
-                let Some(var) = self.lookup_var(f, &key).cloned() else {
-                    let what = if self.pou_index.contains_key(&key) {
-                        format!("`{}` is a POU, not a variable", id.name)
-                    } else {
-                        format!("undeclared variable `{}`", id.name)
-                    };
-                    self.diags.error("E201", id.span, what);
-                    return None;
-                };
-                let place = match var.storage {
-                    Storage::Frame(o) => Place::Frame(o),
-                    Storage::Abs(a) => Place::Abs(a),
-                    Storage::Ref(o) => Place::Ind { p: o, off: 0 },
-                };
-                let function_input = self.pous.get(f.pou).is_some_and(|p| {
-                    p.kind == crate::syntax::ast::PouKind::Function && var.kind == MemberKind::Input
-                });
-                let reason = if var.constant {
-                    Some("it is a CONSTANT")
-                } else if function_input {
-                    Some("it is an input of the function")
-                } else if var.kind == MemberKind::Step {
-                    Some("step flags are read-only")
-                } else if var.kind == MemberKind::Action {
-                    Some("action flags are read-only")
-                } else {
-                    None
-                };
-                Some(PlaceRef {
-                    place,
-                    ty: var.ty,
-                    writable: reason.is_none(),
-                    readonly_reason: reason,
-                    input_image: var.location.as_deref().is_some_and(|l| l.starts_with("%I")),
-                })
-            }
-            ExprKind::Direct(a) => {
-                let key = normalize_address(a);
-                let (addr, ty) = match self.located.get(&key) {
-                    Some(&(addr, ty)) => (addr, ty),
-                    None => {
-                        let ty = TypeTable::elem(address_type(a));
-                        (self.located_slot(a, ty)?, ty)
-                    }
-                };
-                Some(PlaceRef {
-                    place: Place::Abs(addr),
-                    ty,
-                    writable: true,
-                    readonly_reason: None,
-                    input_image: key.starts_with("%I"),
-                })
-            }
-            ExprKind::Member(base, name) => {
-                let b = self.place(f, base)?;
-                let def = self.types.get(b.ty).clone();
-                let (offset, ty, writable, reason) = match &def.kind {
-                    TypeKind::Struct { fields } => {
-                        let m = fields
-                            .iter()
-                            .find(|m| m.name.eq_ignore_ascii_case(&name.name));
-                        match m {
-                            Some(m) => (m.offset, m.ty, b.writable, b.readonly_reason),
-                            None => {
-                                self.diags.error(
-                                    "E201",
-                                    name.span,
-                                    format!("`{}` has no field `{}`", def.name, name.name),
-                                );
-                                return None;
-                            }
-                        }
-                    }
-                    TypeKind::NativeFb(fb) => {
-                        let params = crate::stdlib::interface(*fb);
-                        let found = params.iter().enumerate().find(|(_, p)| {
-                            p.name.eq_ignore_ascii_case(&name.name)
-                                || p.aliases.iter().any(|a| a.eq_ignore_ascii_case(&name.name))
-                        });
-                        match found {
-                            Some((i, p)) if p.dir != crate::stdlib::ParamDir::Hidden => {
-                                let is_out = p.dir == crate::stdlib::ParamDir::Output;
-                                (
-                                    i as u32,
-                                    TypeTable::elem(p.ty),
-                                    !is_out && b.writable,
-                                    if is_out {
-                                        Some(
-                                            "outputs of a function block are written only by the block",
-                                        )
-                                    } else {
-                                        b.readonly_reason
-                                    },
-                                )
-                            }
-                            _ => {
-                                self.diags.error(
-                                    "E201",
-                                    name.span,
-                                    format!("{} has no input or output `{}`", def.name, name.name),
-                                );
-                                return None;
-                            }
-                        }
-                    }
-                    TypeKind::Pou { members, .. } => {
-                        let m = members
-                            .iter()
-                            .find(|m| m.name.eq_ignore_ascii_case(&name.name));
-                        match m {
-                            Some(m)
-                                if matches!(
-                                    m.kind,
-                                    MemberKind::Input
-                                        | MemberKind::Output
-                                        | MemberKind::Step
-                                        | MemberKind::Action
-                                ) =>
-                            {
-                                let ro = match m.kind {
-                                    MemberKind::Output => Some(
-                                        "outputs of a function block are written only by the block",
-                                    ),
-                                    MemberKind::Step => Some("step flags are read-only"),
-                                    MemberKind::Action => Some("action flags are read-only"),
-                                    _ => b.readonly_reason,
-                                };
-                                (m.offset, m.ty, ro.is_none() && b.writable, ro)
-                            }
-                            Some(_) => {
-                                self.diags.error(
-                                    "E201",
-                                    name.span,
-                                    format!(
-                                        "`{}` is internal to {}: only inputs and outputs are visible from outside",
-                                        name.name, def.name
-                                    ),
-                                );
-                                return None;
-                            }
-                            None => {
-                                self.diags.error(
-                                    "E201",
-                                    name.span,
-                                    format!("{} has no member `{}`", def.name, name.name),
-                                );
-                                return None;
-                            }
-                        }
-                    }
-                    TypeKind::Step => {
-                        let (off, ty) = match name.key().as_str() {
-                            "X" => (step_layout::X, TypeTable::elem(ElemType::Bool)),
-                            "T" => (step_layout::T, TypeTable::elem(ElemType::Time)),
-                            _ => {
-                                self.diags.error(
-                                    "E201",
-                                    name.span,
-                                    format!("a step has only `.X` and `.T`, not `.{}`", name.name),
-                                );
-                                return None;
-                            }
-                        };
-                        (off, ty, false, Some("step flags are read-only"))
-                    }
-                    TypeKind::Error => return None,
-                    _ => {
-                        self.diags.error(
-                            "E302",
-                            name.span,
-                            format!("a {} has no members", def.name),
-                        );
-                        return None;
-                    }
-                };
-                let place = self.offset_place(f, b.place, offset);
-                Some(PlaceRef {
-                    place,
-                    ty,
-                    writable,
-                    readonly_reason: reason,
-                    input_image: b.input_image,
-                })
-            }
-            ExprKind::Index(base, indexes) => {
-                let b = self.place(f, base)?;
-                let TypeKind::Array { dims, elem } = self.types.get(b.ty).kind.clone() else {
-                    if b.ty != TypeTable::error() {
-                        self.diags.error(
-                            "E302",
-                            e.span,
-                            format!("`[...]` needs an array, found {}", self.types.name(b.ty)),
-                        );
-                    }
-                    return None;
-                };
-                if indexes.len() != dims.len() {
-                    self.diags.error(
-                        "E404",
-                        e.span,
-                        format!(
-                            "array has {} dimension(s), {} index(es) given",
-                            dims.len(),
-                            indexes.len()
-                        ),
-                    );
-                    return None;
-                }
-                let elem_size = self.types.size(elem);
-                let mut vals = Vec::new();
-                for ix in indexes {
-                    let v = self.expr(f, ix, None);
-                    let ok = match v.ty() {
-                        Ty::AnyInt => true,
-                        Ty::T(t) => self.scalar(t).is_some_and(|e| e.is_int()) && !self.is_enum(t),
-                        Ty::AnyReal => false,
-                    };
-                    if !ok {
-                        if !v.is_error() {
-                            self.diags.error(
-                                "E301",
-                                ix.span,
-                                format!(
-                                    "array index must be an integer, found {}",
-                                    self.ty_name(v.ty())
-                                ),
-                            );
-                        }
-                        return None;
-                    }
-                    vals.push((v, ix.span));
-                }
-                // All indexes constant: a static offset, checked now.
-                if vals.iter().all(|(v, _)| matches!(v, Val::Const(..))) {
-                    let mut linear: u64 = 0;
-                    for ((v, span), d) in vals.iter().zip(&dims) {
-                        let i = match v {
-                            Val::Const(Const::Int(i), _) => *i,
-                            Val::Const(Const::Bits(b), Ty::T(t)) => {
-                                slot_to_int(*b, self.scalar(*t).unwrap_or(ElemType::Dint))
-                            }
-                            _ => 0,
-                        };
-                        if i < d.lo as i128 || i > d.hi as i128 {
-                            self.diags.error(
-                                "E304",
-                                *span,
-                                format!(
-                                    "index {i} is outside the array bounds [{}..{}]",
-                                    d.lo, d.hi
-                                ),
-                            );
-                            return None;
-                        }
-                        linear = linear * d.len() + (i - d.lo as i128) as u64;
-                    }
-                    let place = self.offset_place(f, b.place, (linear * elem_size as u64) as u32);
-                    return Some(PlaceRef {
-                        place,
-                        ty: elem,
-                        ..b
-                    });
-                }
-                // Dynamic: linearise with checked steps.
-                let total: u64 = dims.iter().map(|d| d.len()).product();
-                let idx = if dims.len() == 1 {
-                    let v = vals[0].0.clone();
-                    self.materialize(f, &v)
-                } else {
-                    let acc = f.temp();
-                    f.emit(Op::LoadI { d: acc, imm: 0 });
-                    for ((v, span), d) in vals.iter().zip(&dims) {
-                        let s = self.materialize(f, v);
-                        let desc = self.array_desc(ArrayDesc {
-                            offset: 0,
-                            lo: d.lo,
-                            len: d.len(),
-                            stride: 1,
-                            span: *span,
-                        });
-                        f.emit(Op::IndexStep { acc, idx: s, desc });
-                    }
-                    acc
-                };
-                let lo = if dims.len() == 1 { dims[0].lo } else { 0 };
-                let scalar_elem = self.types.scalar(elem).is_some();
-                match b.place {
-                    Place::Frame(o) if scalar_elem => {
-                        let desc = self.array_desc(ArrayDesc {
-                            offset: o,
-                            lo,
-                            len: total,
-                            stride: elem_size,
-                            span: e.span,
-                        });
-                        Some(PlaceRef {
-                            place: Place::Elem { idx, desc },
-                            ty: elem,
-                            ..b
-                        })
-                    }
-                    Place::Frame(o) => {
-                        // Arrays of FBs or structures in this frame: the
-                        // element address, reused within the basic block.
-                        let key = (o, lo, total, elem_size);
-                        let cacheable = idx < f.vars_size && dims.len() == 1;
-                        let cached = f
-                            .elem_cache
-                            .iter()
-                            .find(|c| cacheable && c.key == key && c.idx == idx)
-                            .map(|c| c.ptr);
-                        let p = match cached {
-                            Some(p) => p,
-                            None => {
-                                let desc = self.array_desc(ArrayDesc {
-                                    offset: o,
-                                    lo,
-                                    len: total,
-                                    stride: elem_size,
-                                    span: e.span,
-                                });
-                                let p = if cacheable { f.pin() } else { f.temp() };
-                                f.emit(Op::ElemRef { d: p, idx, desc });
-                                f.last_def = None;
-                                if cacheable {
-                                    f.elem_cache
-                                        .push(super::emit::ElemEntry { key, idx, ptr: p });
-                                }
-                                p
-                            }
-                        };
-                        Some(PlaceRef {
-                            place: Place::Ind { p, off: 0 },
-                            ty: elem,
-                            ..b
-                        })
-                    }
-                    _ => {
-                        let base_ptr = self.address_of(f, &b);
-                        let fresh = f.temp();
-                        f.emit(Op::Mov {
-                            d: fresh,
-                            s: base_ptr,
-                        });
-                        let base_ptr = fresh;
-                        let desc = self.array_desc(ArrayDesc {
-                            offset: 0,
-                            lo,
-                            len: total,
-                            stride: elem_size,
-                            span: e.span,
-                        });
-                        let p = base_ptr;
-                        f.emit(Op::ElemAddr { d: p, idx, desc });
-                        f.last_def = None;
-                        Some(PlaceRef {
-                            place: Place::Ind { p, off: 0 },
-                            ty: elem,
-                            ..b
-                        })
-                    }
-                }
-            }
-            _ => {
-                self.diags
-                    .error("E402", e.span, "this expression is not a variable");
-                None
-            }
-        }
-    }
-
-    fn array_desc(&mut self, d: ArrayDesc) -> u32 {
-        self.arrays.push(d);
-        self.arrays.len() as u32 - 1
-    }
-
-    /// `place + offset`, turning element places into pointers when needed.
-    fn offset_place(&mut self, f: &mut Fcx, place: Place, off: u32) -> Place {
-        match place {
-            Place::Frame(o) => Place::Frame(o + off),
-            Place::Abs(a) => Place::Abs(a + off),
-            Place::Ind { p, off: o } => Place::Ind { p, off: o + off },
-            Place::Elem { idx, desc } => {
-                let p = f.temp();
-                f.emit(Op::ElemRef { d: p, idx, desc });
-                f.last_def = None;
-                Place::Ind { p, off }
-            }
-        }
-    }
-
-    fn unary(
-        &mut self,
-        f: &mut Fcx,
-        op: UnaryOp,
-        x: &Expr,
-        span: Span,
-        expect: Option<TypeId>,
-    ) -> Val {
-        let v = self.expr(f, x, expect);
+    fn unary(&mut self, op: UnaryOp, x: &Expr, span: Span, expect: Option<TypeId>) -> Val {
+        let v = self.expr(x, expect);
         if v.is_error() {
             return v;
         }
@@ -657,8 +237,8 @@ impl Compiler<'_> {
                     }
                     Val::Slot(s, t) => {
                         let e = self.scalar(t).unwrap_or(ElemType::Lint);
-                        let d = f.temp();
-                        f.emit(match e {
+                        let d = self.block.temp();
+                        self.block.emit(match e {
                             ElemType::Real => Op::NegF32 { d, a: s },
                             ElemType::Lreal => Op::NegF64 { d, a: s },
                             _ => Op::NegS {
@@ -689,8 +269,8 @@ impl Compiler<'_> {
                     }
                     Val::Slot(s, t) if self.scalar(t).is_some_and(|e| e.is_bit()) => {
                         let e = self.scalar(t).unwrap_or(ElemType::Bool);
-                        let d = f.temp();
-                        f.emit(if e == ElemType::Bool {
+                        let d = self.block.temp();
+                        self.block.emit(if e == ElemType::Bool {
                             Op::NotB { d, a: s }
                         } else {
                             Op::NotW {
@@ -710,553 +290,21 @@ impl Compiler<'_> {
         }
     }
 
-    fn is_numeric(&self, t: Ty) -> bool {
+    /// True for integer and real types (not enumerations).
+    pub(super) fn is_numeric(&self, t: Ty) -> bool {
         match t {
             Ty::AnyInt | Ty::AnyReal => true,
             Ty::T(t) => !self.is_enum(t) && self.scalar(t).is_some_and(|e| e.is_num()),
         }
     }
 
-    fn bad_operand(&mut self, span: Span, op: &str, t: Ty) {
+    /// Reports an operand type an operator does not accept.
+    pub(super) fn bad_operand(&mut self, span: Span, op: &str, t: Ty) {
         let name = self.ty_name(t);
         self.diags.error(
             "E302",
             span,
             format!("operator {op} cannot be applied to {name}"),
         );
-    }
-
-    fn binary(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        a: &Expr,
-        b: &Expr,
-        span: Span,
-        expect: Option<TypeId>,
-    ) -> Val {
-        let hint = match op {
-            BinaryOp::Eq
-            | BinaryOp::Ne
-            | BinaryOp::Lt
-            | BinaryOp::Le
-            | BinaryOp::Gt
-            | BinaryOp::Ge => None,
-            _ => expect,
-        };
-        let va = self.expr(f, a, hint);
-        let vb = self.expr(f, b, hint.or(va.ty().id()));
-        self.binary_vals(f, op, va, vb, span)
-    }
-
-    /// Applies a binary operator to two checked values.
-    pub(super) fn binary_vals(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        va: Val,
-        vb: Val,
-        span: Span,
-    ) -> Val {
-        if va.is_error() || vb.is_error() {
-            return Val::error();
-        }
-        let op_name = binary_name(op);
-        // Time and date arithmetic has its own typing rules.
-        if let Some(v) = self.time_arith(f, op, &va, &vb, span) {
-            return v;
-        }
-        let Some(common) = self.unify(va.ty(), vb.ty()) else {
-            let (x, y) = (self.ty_name(va.ty()), self.ty_name(vb.ty()));
-            self.diags.push(
-                crate::diagnostics::Diagnostic::error(
-                    "E306",
-                    span,
-                    format!("operator {op_name} cannot combine {x} and {y}"),
-                )
-                .with_note("IEC converts implicitly only without loss; use a *_TO_* conversion"),
-            );
-            return Val::error();
-        };
-        let is_cmp = matches!(
-            op,
-            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
-        );
-        let elem = match common {
-            Ty::T(t) => self.scalar(t),
-            _ => None,
-        };
-        // Operand family checks.
-        let ok = match op {
-            BinaryOp::And | BinaryOp::Or | BinaryOp::Xor => match common {
-                Ty::AnyInt => true,
-                Ty::AnyReal => false,
-                Ty::T(t) => !self.is_enum(t) && elem.is_some_and(|e| e.is_bit()),
-            },
-            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div => {
-                self.is_numeric(common)
-            }
-            BinaryOp::Mod => match common {
-                Ty::AnyInt => true,
-                Ty::T(t) => !self.is_enum(t) && elem.is_some_and(|e| e.is_int()),
-                Ty::AnyReal => false,
-            },
-            BinaryOp::Pow => self.is_numeric(common),
-            _ => match common {
-                Ty::T(t) => self.scalar(t).is_some(),
-                _ => true,
-            },
-        };
-        if !ok {
-            self.bad_operand(span, op_name, common);
-            return Val::error();
-        }
-        // Constant folding.
-        if let (Val::Const(ca, _), Val::Const(cb, _)) = (&va, &vb) {
-            match self.fold(op, ca, va.ty(), cb, vb.ty(), common) {
-                Ok(Some(v)) => return v,
-                Ok(None) => {}
-                Err(m) => {
-                    self.diags.error("E305", span, m);
-                    return Val::error();
-                }
-            }
-        }
-        let ct = match common {
-            Ty::T(t) => t,
-            other => self.default_type(other, None),
-        };
-        let e = self.scalar(ct).unwrap_or(ElemType::Dint);
-        // Immediate forms for small constants on signed integers.
-        let imm = match &vb {
-            Val::Const(c, t) => match self.const_as(c, *t, ct) {
-                Ok(Const::Bits(bits)) if e.is_signed_int() || (e.is_int() && e.bits() <= 32) => {
-                    i32::try_from(bits as i64).ok()
-                }
-                _ => None,
-            },
-            _ => None,
-        };
-        let xa = self.coerce(f, va, ct, span, "operand");
-        let a = self.materialize(f, &xa);
-        if is_cmp {
-            let cmp = cmp_of(op);
-            if let Some(imm) = imm
-                && super::typeck::compares_signed(e)
-            {
-                let d = f.temp();
-                f.emit(Op::CmpSI { d, a, imm, cmp });
-                return Val::Slot(d, TypeTable::elem(ElemType::Bool));
-            }
-            let xb = self.coerce(f, vb, ct, span, "operand");
-            let b = self.materialize(f, &xb);
-            let d = self.emit_cmp(f, e, a, b, cmp);
-            return Val::Slot(d, TypeTable::elem(ElemType::Bool));
-        }
-        if let Some(imm) = imm
-            && e.is_signed_int()
-        {
-            match op {
-                // x + 0 and x - 0 are x (already of the common type).
-                BinaryOp::Add | BinaryOp::Sub if imm == 0 => return Val::Slot(a, ct),
-                BinaryOp::Add => {
-                    let d = f.temp();
-                    f.emit(Op::AddSI {
-                        d,
-                        a,
-                        imm,
-                        shift: shift_of(e),
-                    });
-                    return Val::Slot(d, ct);
-                }
-                BinaryOp::Sub if imm != i32::MIN => {
-                    let d = f.temp();
-                    f.emit(Op::AddSI {
-                        d,
-                        a,
-                        imm: -imm,
-                        shift: shift_of(e),
-                    });
-                    return Val::Slot(d, ct);
-                }
-                BinaryOp::Mod if imm != 0 => {
-                    let d = f.temp();
-                    f.emit(Op::ModSI {
-                        d,
-                        a,
-                        imm,
-                        shift: shift_of(e),
-                    });
-                    return Val::Slot(d, ct);
-                }
-                _ => {}
-            }
-        }
-        let xb = self.coerce(f, vb, ct, span, "operand");
-        let b = self.materialize(f, &xb);
-        // `a AND NOT x` / `a OR NOT x` on BOOL: fold the NOT just computed.
-        if e == ElemType::Bool
-            && matches!(op, BinaryOp::And | BinaryOp::Or)
-            && let Some((at, def)) = f.last_def
-            && def == b
-            && f.is_temp(b)
-            && at + 1 == f.ops.len()
-            && let Op::NotB { a: x, .. } = f.ops[at]
-        {
-            f.ops.pop();
-            f.spans.pop();
-            let d = f.temp();
-            f.emit(if op == BinaryOp::And {
-                Op::AndN { d, a, b: x }
-            } else {
-                Op::OrN { d, a, b: x }
-            });
-            return Val::Slot(d, ct);
-        }
-        // `x * y + c` (or `c + x * y`) on REAL/LREAL right after the product:
-        // one multiply-add with `c` in the operand word that follows.
-        if op == BinaryOp::Add
-            && e.is_real()
-            && let Some((at, def)) = f.last_def
-            && at + 1 == f.ops.len()
-            && f.is_temp(def)
-            && (def == a || def == b)
-            && a != b
-            && let Op::MulF32 { a: x, b: y, .. } | Op::MulF64 { a: x, b: y, .. } = f.ops[at]
-        {
-            let other = if def == a { b } else { a };
-            f.ops.pop();
-            f.spans.pop();
-            let d = f.temp();
-            let at = f.emit(if e == ElemType::Real {
-                Op::MulAddF32 { d, a: x, b: y }
-            } else {
-                Op::MulAddF64 { d, a: x, b: y }
-            });
-            f.emit(Op::Operand { s: other });
-            f.last_def = Some((at, d));
-            return Val::Slot(d, ct);
-        }
-        let d = f.temp();
-        let s = shift_of(e);
-        let signed = e.is_signed_int();
-        let o = match (op, e) {
-            (BinaryOp::And, _) => Op::And { d, a, b },
-            (BinaryOp::Or, _) => Op::Or { d, a, b },
-            (BinaryOp::Xor, _) => Op::Xor { d, a, b },
-            (BinaryOp::Add, ElemType::Real) => Op::AddF32 { d, a, b },
-            (BinaryOp::Sub, ElemType::Real) => Op::SubF32 { d, a, b },
-            (BinaryOp::Mul, ElemType::Real) => Op::MulF32 { d, a, b },
-            (BinaryOp::Div, ElemType::Real) => Op::DivF32 { d, a, b },
-            (BinaryOp::Pow, ElemType::Real) => Op::PowF32 { d, a, b },
-            (BinaryOp::Add, ElemType::Lreal) => Op::AddF64 { d, a, b },
-            (BinaryOp::Sub, ElemType::Lreal) => Op::SubF64 { d, a, b },
-            (BinaryOp::Mul, ElemType::Lreal) => Op::MulF64 { d, a, b },
-            (BinaryOp::Div, ElemType::Lreal) => Op::DivF64 { d, a, b },
-            (BinaryOp::Pow, ElemType::Lreal) => Op::PowF64 { d, a, b },
-            (BinaryOp::Add, _) if signed => Op::AddS { d, a, b, shift: s },
-            (BinaryOp::Add, _) => Op::AddU { d, a, b, shift: s },
-            (BinaryOp::Sub, _) if signed => Op::SubS { d, a, b, shift: s },
-            (BinaryOp::Sub, _) => Op::SubU { d, a, b, shift: s },
-            (BinaryOp::Mul, _) if signed => Op::MulS { d, a, b, shift: s },
-            (BinaryOp::Mul, _) => Op::MulU { d, a, b, shift: s },
-            (BinaryOp::Div, _) if signed => Op::DivS { d, a, b, shift: s },
-            (BinaryOp::Div, _) => Op::DivU { d, a, b, shift: s },
-            (BinaryOp::Mod, _) if signed => Op::ModS { d, a, b, shift: s },
-            (BinaryOp::Mod, _) => Op::ModU { d, a, b, shift: s },
-            (BinaryOp::Pow, _) => Op::PowS { d, a, b, shift: s },
-            _ => return Val::error(),
-        };
-        f.emit(o);
-        Val::Slot(d, ct)
-    }
-
-    /// TIME/DATE arithmetic: `TIME ± TIME`, `TOD ± TIME`, `DT ± TIME`,
-    /// `DATE - DATE`, `TOD - TOD`, `DT - DT`, `TIME * num`, `TIME / num`.
-    fn time_arith(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        va: &Val,
-        vb: &Val,
-        span: Span,
-    ) -> Option<Val> {
-        let fam = |c: &Compiler, v: &Val| v.ty().id().and_then(|t| c.scalar(t));
-        let (ea, eb) = (fam(self, va), fam(self, vb));
-        let is_dur = |e: Option<ElemType>| e.is_some_and(|e| e.family() == Family::Duration);
-        let is_date = |e: Option<ElemType>| e.is_some_and(|e| e.family() == Family::DateTime);
-        if !(is_dur(ea) || is_date(ea) || is_dur(eb) || is_date(eb)) {
-            return None;
-        }
-        if !matches!(
-            op,
-            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div
-        ) {
-            return None;
-        }
-        let time = TypeTable::elem(
-            if ea == Some(ElemType::Ltime) || eb == Some(ElemType::Ltime) {
-                ElemType::Ltime
-            } else {
-                ElemType::Time
-            },
-        );
-        let result = match (op, ea, eb) {
-            (BinaryOp::Add | BinaryOp::Sub, a, b) if is_dur(a) && is_dur(b) => time,
-            (BinaryOp::Add | BinaryOp::Sub, Some(a), b)
-                if is_date(Some(a)) && is_dur(b) && a != ElemType::Date && a != ElemType::Ldate =>
-            {
-                TypeTable::elem(a)
-            }
-            (BinaryOp::Add, a, Some(b))
-                if is_dur(a) && is_date(Some(b)) && b != ElemType::Date && b != ElemType::Ldate =>
-            {
-                TypeTable::elem(b)
-            }
-            (BinaryOp::Sub, Some(a), Some(b)) if is_date(Some(a)) && a == b => time,
-            (BinaryOp::Mul | BinaryOp::Div, a, _) if is_dur(a) && self.is_numeric(vb.ty()) => {
-                return Some(self.time_scale(f, op, va, vb, time, span));
-            }
-            (BinaryOp::Mul, _, b) if is_dur(b) && self.is_numeric(va.ty()) => {
-                return Some(self.time_scale(f, op, vb, va, time, span));
-            }
-            _ => {
-                let (x, y) = (self.ty_name(va.ty()), self.ty_name(vb.ty()));
-                self.diags.error(
-                    "E306",
-                    span,
-                    format!("operator {} cannot combine {x} and {y}", binary_name(op)),
-                );
-                return Some(Val::error());
-            }
-        };
-        if let (Val::Const(Const::Bits(x), _), Val::Const(Const::Bits(y), _)) = (va, vb) {
-            let r = if op == BinaryOp::Add {
-                (*x as i64).checked_add(*y as i64)
-            } else {
-                (*x as i64).checked_sub(*y as i64)
-            };
-            return Some(match r {
-                Some(v) => Val::Const(Const::Bits(v as u64), Ty::T(result)),
-                None => {
-                    self.diags
-                        .error("E305", span, "constant time arithmetic overflows");
-                    Val::error()
-                }
-            });
-        }
-        let a = self.materialize(f, va);
-        let b = self.materialize(f, vb);
-        let d = f.temp();
-        f.emit(if op == BinaryOp::Add {
-            Op::AddS { d, a, b, shift: 0 }
-        } else {
-            Op::SubS { d, a, b, shift: 0 }
-        });
-        Some(Val::Slot(d, result))
-    }
-
-    fn time_scale(
-        &mut self,
-        f: &mut Fcx,
-        op: BinaryOp,
-        t: &Val,
-        n: &Val,
-        time: TypeId,
-        span: Span,
-    ) -> Val {
-        let a = self.materialize(f, t);
-        let ne = match n.ty() {
-            Ty::AnyInt => ElemType::Lint,
-            Ty::AnyReal => ElemType::Lreal,
-            Ty::T(x) => self.scalar(x).unwrap_or(ElemType::Lint),
-        };
-        let nv = self.coerce(f, n.clone(), TypeTable::elem(ne), span, "time factor");
-        let b = self.materialize(f, &nv);
-        let d = f.temp();
-        if ne.is_real() {
-            let b = if ne == ElemType::Real {
-                let x = f.temp();
-                f.emit(Op::Convert {
-                    d: x,
-                    a: b,
-                    conv: crate::ir::op::Conv::F32ToF64,
-                });
-                x
-            } else {
-                b
-            };
-            f.emit(if op == BinaryOp::Mul {
-                Op::MulTimeF64 { d, a, b }
-            } else {
-                Op::DivTimeF64 { d, a, b }
-            });
-        } else {
-            f.emit(if op == BinaryOp::Mul {
-                Op::MulS { d, a, b, shift: 0 }
-            } else {
-                Op::DivS { d, a, b, shift: 0 }
-            });
-        }
-        Val::Slot(d, time)
-    }
-
-    /// Folds a binary operator over two constants. `Ok(None)` when the
-    /// combination is not folded (left to run time).
-    fn fold(
-        &mut self,
-        op: BinaryOp,
-        ca: &Const,
-        ta: Ty,
-        cb: &Const,
-        tb: Ty,
-        common: Ty,
-    ) -> Result<Option<Val>, String> {
-        let bool_t = Ty::T(TypeTable::elem(ElemType::Bool));
-        let is_cmp = matches!(
-            op,
-            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
-        );
-        // Bring both to the common representation.
-        enum N {
-            I(i128),
-            R(f64),
-            S(String),
-        }
-        let to_n = |c: &Const, t: Ty, s: &Compiler| -> Option<N> {
-            Some(match (c, t) {
-                (Const::Int(i), _) => N::I(*i),
-                (Const::Real(r), _) => N::R(*r),
-                (Const::Str(x), _) => N::S(x.clone()),
-                (Const::Bits(b), Ty::T(t)) => {
-                    let e = s.scalar(t)?;
-                    if e.is_real() {
-                        N::R(slot_to_real(*b, e))
-                    } else {
-                        N::I(slot_to_int(*b, e))
-                    }
-                }
-                _ => return None,
-            })
-        };
-        let (Some(x), Some(y)) = (to_n(ca, ta, self), to_n(cb, tb, self)) else {
-            return Ok(None);
-        };
-        let result_ty = if is_cmp { bool_t } else { common };
-        let target_elem = match common {
-            Ty::T(t) => self.scalar(t),
-            _ => None,
-        };
-        let wants_real = matches!(common, Ty::AnyReal) || target_elem.is_some_and(|e| e.is_real());
-        let as_real = |n: &N| match n {
-            N::I(i) => *i as f64,
-            N::R(r) => *r,
-            N::S(_) => 0.0,
-        };
-        if let (N::S(a), N::S(b)) = (&x, &y) {
-            if !is_cmp {
-                return Ok(None);
-            }
-            let r = cmp_of(op).test(a.cmp(b));
-            return Ok(Some(Val::Const(Const::Bits(r as u64), bool_t)));
-        }
-        if wants_real {
-            let (a, b) = (as_real(&x), as_real(&y));
-            let value = match op {
-                BinaryOp::Add => a + b,
-                BinaryOp::Sub => a - b,
-                BinaryOp::Mul => a * b,
-                BinaryOp::Div => a / b,
-                BinaryOp::Pow => a.powf(b),
-                _ if is_cmp => {
-                    let r = match op {
-                        BinaryOp::Eq => a == b,
-                        BinaryOp::Ne => a != b,
-                        BinaryOp::Lt => a < b,
-                        BinaryOp::Le => a <= b,
-                        BinaryOp::Gt => a > b,
-                        _ => a >= b,
-                    };
-                    return Ok(Some(Val::Const(Const::Bits(r as u64), bool_t)));
-                }
-                _ => return Ok(None),
-            };
-            return Ok(Some(match (result_ty, target_elem) {
-                (Ty::T(t), Some(e)) => match super::consts::real_to_slot(value, e) {
-                    Some(b) => Val::Const(Const::Bits(b), Ty::T(t)),
-                    None => return Err(format!("constant overflows {e}")),
-                },
-                _ => Val::Const(Const::Real(value), Ty::AnyReal),
-            }));
-        }
-        let (N::I(a), N::I(b)) = (x, y) else {
-            return Ok(None);
-        };
-        let value = match op {
-            BinaryOp::Add => a.checked_add(b),
-            BinaryOp::Sub => a.checked_sub(b),
-            BinaryOp::Mul => a.checked_mul(b),
-            BinaryOp::Div | BinaryOp::Mod if b == 0 => {
-                return Err("division by zero in a constant expression".into());
-            }
-            BinaryOp::Div => a.checked_div(b),
-            BinaryOp::Mod => a.checked_rem(b),
-            BinaryOp::Pow => {
-                if b < 0 {
-                    return Ok(None);
-                }
-                u32::try_from(b).ok().and_then(|e| a.checked_pow(e))
-            }
-            BinaryOp::And => Some(a & b),
-            BinaryOp::Or => Some(a | b),
-            BinaryOp::Xor => Some(a ^ b),
-            _ => {
-                let r = cmp_of(op).test(a.cmp(&b));
-                return Ok(Some(Val::Const(Const::Bits(r as u64), bool_t)));
-            }
-        };
-        let Some(value) = value else {
-            return Err("constant expression overflows".into());
-        };
-        Ok(Some(match (result_ty, target_elem) {
-            (Ty::T(t), Some(e)) => match super::consts::int_to_slot(value, e) {
-                Some(bits) => Val::Const(Const::Bits(bits), Ty::T(t)),
-                None => return Err(format!("constant {value} overflows {e}")),
-            },
-            _ => Val::Const(Const::Int(value), Ty::AnyInt),
-        }))
-    }
-}
-
-/// The comparison an operator denotes.
-pub fn cmp_of(op: BinaryOp) -> Cmp {
-    match op {
-        BinaryOp::Eq => Cmp::Eq,
-        BinaryOp::Ne => Cmp::Ne,
-        BinaryOp::Lt => Cmp::Lt,
-        BinaryOp::Le => Cmp::Le,
-        BinaryOp::Gt => Cmp::Gt,
-        _ => Cmp::Ge,
-    }
-}
-
-/// The operator as written, for messages.
-pub fn binary_name(op: BinaryOp) -> &'static str {
-    match op {
-        BinaryOp::Pow => "`**`",
-        BinaryOp::Mul => "`*`",
-        BinaryOp::Div => "`/`",
-        BinaryOp::Mod => "MOD",
-        BinaryOp::Add => "`+`",
-        BinaryOp::Sub => "`-`",
-        BinaryOp::Lt => "`<`",
-        BinaryOp::Gt => "`>`",
-        BinaryOp::Le => "`<=`",
-        BinaryOp::Ge => "`>=`",
-        BinaryOp::Eq => "`=`",
-        BinaryOp::Ne => "`<>`",
-        BinaryOp::And => "AND",
-        BinaryOp::Xor => "XOR",
-        BinaryOp::Or => "OR",
     }
 }

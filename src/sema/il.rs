@@ -3,20 +3,21 @@
 //! operations `OP(` save CR in their own slot; jumps and labels become IR
 //! jumps. IL therefore runs on the same executor as ST.
 
-use super::Compiler;
-use super::emit::{Fcx, Ty, Val};
+use super::body::BodyBuilder;
+use super::emit::{Ty, Val};
 use super::model::{Storage, VarInfo};
 use crate::ir::op::Op;
 use crate::ir::types::{MemberKind, TypeId, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{
     Arg, BinaryOp, Call, Expr, ExprKind, Ident, IlInstr, IlInstrKind, IlLine, IlOperator,
+    IlOutputCopy,
 };
 use crate::types::ElemType;
 use std::collections::HashMap;
 
 /// Name under which the CR slot is visible to the expression checker.
-const CR_KEY: &str = "\u{0}CR";
+pub(super) const CR_KEY: &str = "\u{0}CR";
 
 /// A pending deferred operation.
 struct Deferred {
@@ -85,13 +86,13 @@ struct IlState {
     pending: Vec<(usize, Ident, Option<TypeId>)>,
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// Lowers an IL body. Returns the CR slot and its final type (used for
     /// IL transition conditions).
-    pub(super) fn il_body(&mut self, f: &mut Fcx, lines: &[IlLine]) -> (u32, Option<TypeId>) {
-        let cr = f.temp();
+    pub(super) fn il_body(&mut self, lines: &[IlLine]) -> (u32, Option<TypeId>) {
+        let cr = self.block.temp();
         // Keep the CR and deferred slots out of statement-level temp reuse.
-        f.temp_base = f.temp_next;
+        self.block.temp_base = self.block.temp_next;
         let mut st = IlState {
             cr,
             cr_ty: None,
@@ -117,7 +118,7 @@ impl Compiler<'_> {
         }
         for line in lines {
             if let Some(l) = &line.label {
-                let at = f.here();
+                let at = self.block.here();
                 // The CR type at a label: what falls through, else what jumps bring.
                 let jumped = st
                     .pending
@@ -135,10 +136,10 @@ impl Compiler<'_> {
                 }
             }
             if let Some(instr) = &line.instr {
-                let mark = f.temp_next;
-                f.span = instr.span;
-                self.il_instr(f, &mut st, instr);
-                f.temp_next = mark.max(f.temp_base);
+                let mark = self.block.temp_next;
+                self.block.span = instr.span;
+                self.il_instr(&mut st, instr);
+                self.block.temp_next = mark.max(self.block.temp_base);
             }
         }
         for d in &st.stack {
@@ -150,7 +151,7 @@ impl Compiler<'_> {
         }
         for (at, label, _) in std::mem::take(&mut st.pending) {
             match st.labels.get(&label.key()) {
-                Some(&(target, _)) => f.patch(at, target),
+                Some(&(target, _)) => self.block.patch(at, target),
                 None => self.diags.error(
                     "E502",
                     label.span,
@@ -158,7 +159,7 @@ impl Compiler<'_> {
                 ),
             }
         }
-        self.pous[f.pou].vars.shift_remove(CR_KEY);
+        self.block.il_cr = None;
         (st.cr, st.cr_ty)
     }
 
@@ -180,22 +181,18 @@ impl Compiler<'_> {
     }
 
     /// Makes the CR readable as a hidden variable for call arguments.
-    fn expose_cr(&mut self, f: &Fcx, st: &IlState) {
+    fn expose_cr(&mut self, st: &IlState) {
         let ty = st.cr_ty.unwrap_or(TypeTable::error());
-        self.pous[f.pou].vars.insert(
-            CR_KEY.to_string(),
-            VarInfo {
-                name: "current result".into(),
-                ty,
-                kind: MemberKind::Temp,
-                storage: Storage::Frame(st.cr),
-                constant: false,
-                value: None,
-                init: None,
-                location: None,
-                span: Span::default(),
-            },
-        );
+        self.block.il_cr = Some(VarInfo {
+            name: "current result".into(),
+            ty,
+            kind: MemberKind::Temp,
+            storage: Storage::Frame(st.cr),
+            constant: false,
+            value: None,
+            init: None,
+            location: None,
+        });
     }
 
     /// The CR as a call argument: the literal itself while the CR is an
@@ -231,7 +228,7 @@ impl Compiler<'_> {
     }
 
     /// Sets CR from a value.
-    fn set_cr(&mut self, f: &mut Fcx, st: &mut IlState, v: Val) {
+    fn set_cr(&mut self, st: &mut IlState, v: Val) {
         if v.is_error() {
             return;
         }
@@ -243,47 +240,40 @@ impl Compiler<'_> {
             Ty::T(t) => t,
             other => self.default_type(other, None),
         };
-        let v = self.coerce(f, v, t, f.span, "current result");
-        let s = self.materialize(f, &v);
+        let v = self.coerce(v, t, self.block.span, "current result");
+        let s = self.materialize(&v);
         if self.types.scalar(t).is_some_and(|e| e.is_string()) {
             // The CR holds the id of a string temporary owned by this body.
             let (max, wide) = match self.types.get(t).kind {
                 crate::ir::types::TypeKind::Str { max, wide } => (max, wide),
                 _ => (254, false),
             };
-            let tmp = self.string_temp(f, max, wide);
-            f.emit(Op::StrMov { d: tmp, s });
-            f.emit(Op::Mov { d: st.cr, s: tmp });
+            let tmp = self.string_temp(max, wide);
+            self.block.emit(Op::StrMov { d: tmp, s });
+            self.block.emit(Op::Mov { d: st.cr, s: tmp });
         } else {
-            f.mov(st.cr, s);
+            self.block.mov(st.cr, s);
         }
         st.cr_ty = Some(t);
     }
 
-    fn operand(
-        &mut self,
-        f: &mut Fcx,
-        e: Option<&Expr>,
-        negate: bool,
-        span: Span,
-        what: &str,
-    ) -> Option<Val> {
+    fn operand(&mut self, e: Option<&Expr>, negate: bool, span: Span, what: &str) -> Option<Val> {
         let Some(e) = e else {
             self.diags
                 .error("E504", span, format!("{what} needs an operand"));
             return None;
         };
-        let v = self.expr(f, e, None);
+        let v = self.expr(e, None);
         if v.is_error() {
             return None;
         }
         if negate {
-            return Some(self.negate_val(f, v, e.span, what));
+            return Some(self.negate_val(v, e.span, what));
         }
         Some(v)
     }
 
-    fn negate_val(&mut self, f: &mut Fcx, v: Val, span: Span, what: &str) -> Val {
+    fn negate_val(&mut self, v: Val, span: Span, what: &str) -> Val {
         let bits = v
             .ty()
             .id()
@@ -294,15 +284,15 @@ impl Compiler<'_> {
                 if let Val::Const(crate::sema::consts::Const::Bits(b), t) = v {
                     return Val::Const(crate::sema::consts::Const::Bits(b ^ 1), t);
                 }
-                let a = self.materialize(f, &v);
-                let d = f.temp();
-                f.emit(Op::NotB { d, a });
+                let a = self.materialize(&v);
+                let d = self.block.temp();
+                self.block.emit(Op::NotB { d, a });
                 Val::Slot(d, TypeTable::elem(ElemType::Bool))
             }
             Some(e) => {
-                let a = self.materialize(f, &v);
-                let d = f.temp();
-                f.emit(Op::NotW {
+                let a = self.materialize(&v);
+                let d = self.block.temp();
+                self.block.emit(Op::NotW {
                     d,
                     a,
                     shift: super::typeck::shift_of(e),
@@ -320,115 +310,23 @@ impl Compiler<'_> {
         }
     }
 
-    fn il_instr(&mut self, f: &mut Fcx, st: &mut IlState, instr: &IlInstr) {
+    /// Lowers one IL instruction.
+    fn il_instr(&mut self, st: &mut IlState, instr: &IlInstr) {
         let span = instr.span;
         match &instr.kind {
             IlInstrKind::Simple {
                 op,
                 negate,
                 operand,
-            } => self.il_simple(f, st, *op, *negate, operand.as_ref(), span),
+            } => self.il_simple(st, *op, *negate, operand.as_ref(), span),
             IlInstrKind::Deferred {
                 op,
                 negate,
                 operand,
-            } => {
-                if matches!(
-                    op,
-                    IlOperator::Ld
-                        | IlOperator::St
-                        | IlOperator::S
-                        | IlOperator::R
-                        | IlOperator::Not
-                ) {
-                    self.diags.error(
-                        "E504",
-                        span,
-                        format!("{} cannot be deferred with `(`", op_name(*op)),
-                    );
-                    return;
-                }
-                let Some(cur) = self.cr_val(st, span, op_name(*op)) else {
-                    return;
-                };
-                let saved = f.temp();
-                f.temp_base = f.temp_next;
-                let s = self.materialize(f, &cur);
-                f.emit(Op::Mov { d: saved, s });
-                f.last_def = None;
-                st.stack.push(Deferred {
-                    op: *op,
-                    negate: *negate,
-                    saved,
-                    saved_ty: st.cr_ty,
-                    saved_lit: st.cr_lit.clone(),
-                    span,
-                });
-                st.cr_ty = None;
-                st.cr_lit = None;
-                if let Some(e) = operand {
-                    let v = self.expr(f, e, None);
-                    self.set_cr(f, st, v);
-                }
-            }
-            IlInstrKind::Close => {
-                let Some(d) = st.stack.pop() else {
-                    self.diags
-                        .error("E501", span, "`)` without a matching `OP(`");
-                    return;
-                };
-                let Some(inner) = self.cr_val(st, span, "`)`") else {
-                    return;
-                };
-                let inner = if d.negate {
-                    self.negate_val(f, inner, span, op_name(d.op))
-                } else {
-                    inner
-                };
-                let Some(bop) = binary_of(d.op) else { return };
-                let saved = d
-                    .saved_lit
-                    .unwrap_or(Val::Slot(d.saved, d.saved_ty.unwrap_or(TypeTable::error())));
-                let r = self.binary_vals(f, bop, saved, inner, span);
-                self.set_cr(f, st, r);
-            }
-            IlInstrKind::Jump { cond, label } => {
-                let at = match cond {
-                    None => f.emit(Op::Jmp { t: 0 }),
-                    Some(when) => {
-                        if !self.cr_is_bool(st, span, "JMPC") {
-                            return;
-                        }
-                        if *when {
-                            f.emit(Op::Jnz { c: st.cr, t: 0 })
-                        } else {
-                            f.emit(Op::Jz { c: st.cr, t: 0 })
-                        }
-                    }
-                };
-                f.last_def = None;
-                st.pending.push((at, label.clone(), st.cr_ty));
-                if cond.is_none() {
-                    st.cr_ty = None;
-                    st.cr_lit = None;
-                }
-            }
-            IlInstrKind::Return { cond } => {
-                let at = match cond {
-                    None => f.emit(Op::Jmp { t: 0 }),
-                    Some(when) => {
-                        if !self.cr_is_bool(st, span, "RETC") {
-                            return;
-                        }
-                        if *when {
-                            f.emit(Op::Jnz { c: st.cr, t: 0 })
-                        } else {
-                            f.emit(Op::Jz { c: st.cr, t: 0 })
-                        }
-                    }
-                };
-                f.returns.push(at);
-            }
+            } => self.il_deferred(st, *op, *negate, operand.as_ref(), span),
+            IlInstrKind::Close => self.il_close(st, span),
+            IlInstrKind::Jump { cond, label } => self.il_jump(st, *cond, label, span),
+            IlInstrKind::Return { cond } => self.il_return(st, *cond, span),
             IlInstrKind::Call {
                 cond,
                 instance,
@@ -442,79 +340,205 @@ impl Compiler<'_> {
                             return;
                         }
                         Some(if *when {
-                            f.emit(Op::Jz { c: st.cr, t: 0 })
+                            self.block.emit(Op::Jz { c: st.cr, t: 0 })
                         } else {
-                            f.emit(Op::Jnz { c: st.cr, t: 0 })
+                            self.block.emit(Op::Jnz { c: st.cr, t: 0 })
                         })
                     }
                 };
-                self.expose_cr(f, st);
-                if let Some(inst) = self.place(f, instance) {
-                    self.fb_call(f, &inst, args, span);
-                    for out in outputs {
-                        let Some(dest) = &out.dest else { continue };
-                        let member = Expr {
-                            kind: ExprKind::Member(Box::new(instance.clone()), out.output.clone()),
-                            span: out.span,
-                        };
-                        f.span = out.span;
-                        self.assign_il(f, dest, &member);
-                    }
-                }
+                self.il_fb_call(st, instance, args, outputs, span);
                 if let Some(j) = skip {
-                    let end = f.here();
-                    f.patch(j, end);
+                    let end = self.block.here();
+                    self.block.patch(j, end);
                 }
             }
-            IlInstrKind::FunctionCall { name, args } => {
-                self.expose_cr(f, st);
-                // Formal calls name every input; informal ones take the CR first.
-                let formal = args.iter().any(|a| matches!(a, Arg::Input { .. }));
-                if st.cr_ty.is_none() && !formal {
-                    self.diags.error(
-                        "E505",
-                        span,
-                        format!(
-                            "{} needs a current result as first argument: load one first",
-                            name.name
-                        ),
-                    );
+            IlInstrKind::FunctionCall { name, args } => self.il_function_call(st, name, args, span),
+            IlInstrKind::FbInput { pin, instance } => self.il_fb_input(st, pin, instance, span),
+        }
+    }
+
+    /// `OP(`: the CR saved, the operator deferred until `)`.
+    fn il_deferred(
+        &mut self,
+        st: &mut IlState,
+        op: IlOperator,
+        negate: bool,
+        operand: Option<&Expr>,
+        span: Span,
+    ) {
+        if matches!(
+            op,
+            IlOperator::Ld | IlOperator::St | IlOperator::S | IlOperator::R | IlOperator::Not
+        ) {
+            self.diags.error(
+                "E504",
+                span,
+                format!("{} cannot be deferred with `(`", op_name(op)),
+            );
+            return;
+        }
+        let Some(cur) = self.cr_val(st, span, op_name(op)) else {
+            return;
+        };
+        let saved = self.block.temp();
+        self.block.temp_base = self.block.temp_next;
+        let s = self.materialize(&cur);
+        self.block.emit(Op::Mov { d: saved, s });
+        self.block.last_def = None;
+        st.stack.push(Deferred {
+            op,
+            negate,
+            saved,
+            saved_ty: st.cr_ty,
+            saved_lit: st.cr_lit.clone(),
+            span,
+        });
+        st.cr_ty = None;
+        st.cr_lit = None;
+        if let Some(e) = operand {
+            let v = self.expr(e, None);
+            self.set_cr(st, v);
+        }
+    }
+
+    /// `)`: the deferred operator applied to the saved CR and the inner CR.
+    fn il_close(&mut self, st: &mut IlState, span: Span) {
+        let Some(d) = st.stack.pop() else {
+            self.diags
+                .error("E501", span, "`)` without a matching `OP(`");
+            return;
+        };
+        let Some(inner) = self.cr_val(st, span, "`)`") else {
+            return;
+        };
+        let inner = if d.negate {
+            self.negate_val(inner, span, op_name(d.op))
+        } else {
+            inner
+        };
+        let Some(bop) = binary_of(d.op) else { return };
+        let saved = d
+            .saved_lit
+            .unwrap_or(Val::Slot(d.saved, d.saved_ty.unwrap_or(TypeTable::error())));
+        let r = self.binary_vals(bop, saved, inner, span);
+        self.set_cr(st, r);
+    }
+
+    /// `JMP`, `JMPC`, `JMPCN`: patched when the labels are known.
+    fn il_jump(&mut self, st: &mut IlState, cond: Option<bool>, label: &Ident, span: Span) {
+        let at = match cond {
+            None => self.block.emit(Op::Jmp { t: 0 }),
+            Some(when) => {
+                if !self.cr_is_bool(st, span, "JMPC") {
                     return;
                 }
-                let mut all = Vec::new();
-                if !formal {
-                    all.push(Arg::Positional(Self::cr_arg(st, span)));
+                if when {
+                    self.block.emit(Op::Jnz { c: st.cr, t: 0 })
+                } else {
+                    self.block.emit(Op::Jz { c: st.cr, t: 0 })
                 }
-                all.extend(args.iter().cloned());
-                let call = Call {
-                    callee: Box::new(Expr {
-                        kind: ExprKind::Name(name.clone()),
-                        span: name.span,
-                    }),
-                    args: all,
-                    span,
+            }
+        };
+        self.block.last_def = None;
+        st.pending.push((at, label.clone(), st.cr_ty));
+        if cond.is_none() {
+            st.cr_ty = None;
+            st.cr_lit = None;
+        }
+    }
+
+    /// `RET`, `RETC`, `RETCN`.
+    fn il_return(&mut self, st: &mut IlState, cond: Option<bool>, span: Span) {
+        let at = match cond {
+            None => self.block.emit(Op::Jmp { t: 0 }),
+            Some(when) => {
+                if !self.cr_is_bool(st, span, "RETC") {
+                    return;
+                }
+                if when {
+                    self.block.emit(Op::Jnz { c: st.cr, t: 0 })
+                } else {
+                    self.block.emit(Op::Jz { c: st.cr, t: 0 })
+                }
+            }
+        };
+        self.block.returns.push(at);
+    }
+
+    /// `CAL inst(...)` and its `=>` output copies (the condition is the caller's).
+    fn il_fb_call(
+        &mut self,
+        st: &mut IlState,
+        instance: &Expr,
+        args: &[Arg],
+        outputs: &[IlOutputCopy],
+        span: Span,
+    ) {
+        self.expose_cr(st);
+        if let Some(inst) = self.place(instance) {
+            self.fb_call(&inst, args, span);
+            for out in outputs {
+                let Some(dest) = &out.dest else { continue };
+                let member = Expr {
+                    kind: ExprKind::Member(Box::new(instance.clone()), out.output.clone()),
+                    span: out.span,
                 };
-                let v = self.call_expr(f, &call, None);
-                self.set_cr(f, st, v);
+                self.block.span = out.span;
+                self.assign_il(dest, &member);
             }
-            IlInstrKind::FbInput { pin, instance } => {
-                if st.cr_ty.is_none() {
-                    self.diags.error(
-                        "E505",
-                        span,
-                        format!("{} needs a current result: load one first", pin.name),
-                    );
-                    return;
-                }
-                self.expose_cr(f, st);
-                if let Some(inst) = self.place(f, instance) {
-                    let arg = Arg::Input {
-                        name: pin.clone(),
-                        value: Self::cr_arg(st, span),
-                    };
-                    self.fb_call(f, &inst, &[arg], span);
-                }
-            }
+        }
+    }
+
+    /// A function call in IL: the CR is the first argument of an informal call.
+    fn il_function_call(&mut self, st: &mut IlState, name: &Ident, args: &[Arg], span: Span) {
+        self.expose_cr(st);
+        // Formal calls name every input; informal ones take the CR first.
+        let formal = args.iter().any(|a| matches!(a, Arg::Input { .. }));
+        if st.cr_ty.is_none() && !formal {
+            self.diags.error(
+                "E505",
+                span,
+                format!(
+                    "{} needs a current result as first argument: load one first",
+                    name.name
+                ),
+            );
+            return;
+        }
+        let mut all = Vec::new();
+        if !formal {
+            all.push(Arg::Positional(Self::cr_arg(st, span)));
+        }
+        all.extend(args.iter().cloned());
+        let call = Call {
+            callee: Box::new(Expr {
+                kind: ExprKind::Name(name.clone()),
+                span: name.span,
+            }),
+            args: all,
+            span,
+        };
+        let v = self.call_expr(&call, None);
+        self.set_cr(st, v);
+    }
+
+    /// `S1 inst`, `IN inst`, ...: the CR to one input of an FB instance, and the call.
+    fn il_fb_input(&mut self, st: &mut IlState, pin: &Ident, instance: &Expr, span: Span) {
+        if st.cr_ty.is_none() {
+            self.diags.error(
+                "E505",
+                span,
+                format!("{} needs a current result: load one first", pin.name),
+            );
+            return;
+        }
+        self.expose_cr(st);
+        if let Some(inst) = self.place(instance) {
+            let arg = Arg::Input {
+                name: pin.clone(),
+                value: Self::cr_arg(st, span),
+            };
+            self.fb_call(&inst, &[arg], span);
         }
     }
 
@@ -542,7 +566,7 @@ impl Compiler<'_> {
     }
 
     /// `dest := source` for the Moeller output list.
-    fn assign_il(&mut self, f: &mut Fcx, dest: &Expr, source: &Expr) {
+    fn assign_il(&mut self, dest: &Expr, source: &Expr) {
         let stmt = crate::syntax::ast::Stmt {
             kind: crate::syntax::ast::StmtKind::Assign {
                 target: dest.clone(),
@@ -550,14 +574,13 @@ impl Compiler<'_> {
             },
             span: source.span,
         };
-        let mark = f.temp_next;
-        self.stmts(f, std::slice::from_ref(&stmt));
-        f.temp_next = mark;
+        let mark = self.block.temp_next;
+        self.stmts(std::slice::from_ref(&stmt));
+        self.block.temp_next = mark;
     }
 
     fn il_simple(
         &mut self,
-        f: &mut Fcx,
         st: &mut IlState,
         op: IlOperator,
         negate: bool,
@@ -568,11 +591,11 @@ impl Compiler<'_> {
         match op {
             IlOperator::Ld => {
                 // `LD ctd`: the LD input of a down counter (IEC Table 53).
-                if !negate && self.fb_pin_operator(f, st, operand, "LD", span) {
+                if !negate && self.fb_pin_operator(st, operand, "LD", span) {
                     return;
                 }
-                if let Some(v) = self.operand(f, operand, negate, span, name) {
-                    self.set_cr(f, st, v);
+                if let Some(v) = self.operand(operand, negate, span, name) {
+                    self.set_cr(st, v);
                 }
             }
             IlOperator::St => {
@@ -584,15 +607,15 @@ impl Compiler<'_> {
                     return;
                 };
                 let cur = if negate {
-                    self.negate_val(f, cur, span, name)
+                    self.negate_val(cur, span, name)
                 } else {
                     cur
                 };
-                self.store_value(f, target, cur);
+                self.store_value(target, cur);
             }
             IlOperator::S | IlOperator::R => {
                 // `S rs` / `R ctu`: the S or R input of a function block.
-                if !negate && self.fb_pin_operator(f, st, operand, name, span) {
+                if !negate && self.fb_pin_operator(st, operand, name, span) {
                     return;
                 }
                 let Some(target) = operand else {
@@ -603,14 +626,14 @@ impl Compiler<'_> {
                 if !self.cr_is_bool(st, span, name) {
                     return;
                 }
-                let skip = f.emit(Op::Jz { c: st.cr, t: 0 });
+                let skip = self.block.emit(Op::Jz { c: st.cr, t: 0 });
                 let v = Val::Const(
                     crate::sema::consts::Const::Bits((op == IlOperator::S) as u64),
                     Ty::T(TypeTable::elem(ElemType::Bool)),
                 );
-                self.store_value(f, target, v);
-                let end = f.here();
-                f.patch(skip, end);
+                self.store_value(target, v);
+                let end = self.block.here();
+                self.block.patch(skip, end);
             }
             IlOperator::Not => {
                 if operand.is_some() {
@@ -624,19 +647,19 @@ impl Compiler<'_> {
                 let Some(cur) = self.cr_val(st, span, name) else {
                     return;
                 };
-                let v = self.negate_val(f, cur, span, name);
-                self.set_cr(f, st, v);
+                let v = self.negate_val(cur, span, name);
+                self.set_cr(st, v);
             }
             _ => {
                 let Some(bop) = binary_of(op) else { return };
                 let Some(cur) = self.cr_val(st, span, name) else {
                     return;
                 };
-                let Some(v) = self.operand(f, operand, negate, span, name) else {
+                let Some(v) = self.operand(operand, negate, span, name) else {
                     return;
                 };
-                let r = self.binary_vals(f, bop, cur, v, span);
-                self.set_cr(f, st, r);
+                let r = self.binary_vals(bop, cur, v, span);
+                self.set_cr(st, r);
             }
         }
     }
@@ -647,7 +670,6 @@ impl Compiler<'_> {
     /// operator: `LD`, `S`, `R`). Returns false when it is not such a case.
     fn fb_pin_operator(
         &mut self,
-        f: &mut Fcx,
         st: &IlState,
         operand: Option<&Expr>,
         pin: &str,
@@ -658,7 +680,7 @@ impl Compiler<'_> {
             ExprKind::Name(id) => id.key(),
             _ => return false,
         };
-        let Some(var) = self.lookup_var(f, &key) else {
+        let Some(var) = self.lookup_var(&key) else {
             return false;
         };
         let has_pin = match &self.types.get(var.ty).kind {
@@ -685,8 +707,8 @@ impl Compiler<'_> {
             );
             return true;
         }
-        self.expose_cr(f, st);
-        if let Some(inst) = self.place(f, e) {
+        self.expose_cr(st);
+        if let Some(inst) = self.place(e) {
             let arg = Arg::Input {
                 name: Ident {
                     name: pin.to_string(),
@@ -694,28 +716,28 @@ impl Compiler<'_> {
                 },
                 value: Self::cr_arg(st, span),
             };
-            self.fb_call(f, &inst, &[arg], span);
+            self.fb_call(&inst, &[arg], span);
         }
         true
     }
 
     /// Stores a value into the place `target` (ST, S, R); `w.3` stores one bit.
-    fn store_value(&mut self, f: &mut Fcx, target: &Expr, v: Val) {
+    fn store_value(&mut self, target: &Expr, v: Val) {
         if let ExprKind::BitAccess(base, bit) = &target.kind {
-            self.store_bit(f, base, *bit, v, target.span, target.span);
+            self.store_bit(base, *bit, v, target.span, target.span);
             return;
         }
-        let Some(p) = self.place(f, target) else {
+        let Some(p) = self.place(target) else {
             return;
         };
-        if !self.check_writable(f, &p, target.span) {
+        if !self.check_writable(&p, target.span) {
             return;
         }
-        let v = self.coerce(f, v, p.ty, target.span, "ST");
+        let v = self.coerce(v, p.ty, target.span, "ST");
         if v.is_error() {
             return;
         }
-        let s = self.materialize(f, &v);
-        self.write_place(f, &p, s);
+        let s = self.materialize(&v);
+        self.write_place(&p, s);
     }
 }

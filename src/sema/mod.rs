@@ -1,32 +1,58 @@
 //! Semantic analysis and lowering: resolves every name, types every
 //! expression (IEC implicit widening only), folds constants, and emits the
-//! typed IR for each POU body in the same walk. All diagnostics are
-//! collected; nothing stops at the first error.
+//! typed IR. All diagnostics are collected; nothing stops at the first error.
+//!
+//! Three phases, each the only owner of what it builds:
+//! 1. declarations (`declare`, `type_decl`, `layout`, `decl_consts`)
+//!    build the `Model`: types, POU interfaces and layouts, globals,
+//!    constants, enumeration values;
+//! 2. bodies (`body` and the expression, statement, call, IL and SFC
+//!    files) — one `BodyBuilder` per POU reads the model without
+//!    changing it and appends code to the shared output tables
+//!    (`Program`);
+//! 3. linking (`link`) places memory, relocates and builds the image.
+//!
+//! A function block's instance size includes its temporaries, so the
+//! declaration phase has an FB's body emitted as soon as an instance of it
+//! is laid out, and then records the frame size in the model.
 
+// Shared by the phases.
+pub mod consts;
+pub mod model;
+mod program;
+
+// Phase 1: declarations.
+mod decl_consts;
+mod declare;
+mod layout;
+mod sfc;
+mod type_decl;
+
+// Phase 2: one body builder per POU.
+mod binary;
+mod body;
 mod bounds;
 mod calls;
-pub mod consts;
-mod declare;
 mod emit;
 mod expr;
+mod fn_call;
+mod for_loop;
 mod il;
-mod link;
-pub mod model;
-mod sfc;
+mod place;
+mod sfc_emit;
+mod std_convert;
+mod std_numeric;
+mod std_strings;
 mod stdfuncs;
 mod stmt;
 mod typeck;
 
+// Phase 3: linking.
+mod link;
+
 use crate::diagnostics::Diagnostics;
-use crate::ir::image::{ArrayDesc, CodeBlock, StringInit};
-use crate::ir::types::{TypeId, TypeTable};
 use crate::ir::verify::VerifiedImage;
-use crate::source::Span;
 use crate::syntax::ast::CompilationUnit;
-use crate::types::ElemType;
-use indexmap::IndexMap;
-use model::{ConstInit, LayoutState, PouInfo, VarInfo};
-use std::collections::HashMap;
 
 /// What to build.
 #[derive(Debug, Clone, Default)]
@@ -46,11 +72,11 @@ pub fn compile(
     options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
-    let mut c = Compiler::new(units, diags);
-    c.declare_all();
-    c.emit_all();
-    let image = c.link(options);
-    if c.diags.has_errors() { None } else { image }
+    let mut declarer = declare::Declarer::new(units, diags);
+    declarer.declare_all();
+    let declared = declarer.finish();
+    let image = link::link(units, declared, options, diags);
+    if diags.has_errors() { None } else { image }
 }
 
 /// Upper bound of the whole PLC memory, in 8-byte slots (2 GiB).
@@ -58,125 +84,3 @@ pub const MAX_MEMORY_SLOTS: usize = 256 << 20;
 
 /// Upper bound of one POU instance or structure, in slots.
 pub const MAX_FRAME_SLOTS: u32 = 64 << 20;
-
-/// State of one compilation.
-pub(crate) struct Compiler<'a> {
-    units: &'a [CompilationUnit],
-    diags: &'a mut Diagnostics,
-    types: TypeTable,
-    pous: Vec<PouInfo>,
-    pou_index: HashMap<String, usize>,
-    pou_state: Vec<LayoutState>,
-    type_decls: HashMap<String, (usize, usize, usize)>,
-    type_ids: HashMap<String, TypeId>,
-    type_state: HashMap<String, LayoutState>,
-    type_inits: HashMap<TypeId, ConstInit>,
-    enum_values: HashMap<String, Vec<(TypeId, i64)>>,
-    globals: IndexMap<String, VarInfo>,
-    located: HashMap<String, (u32, TypeId)>,
-    memory: Vec<u64>,
-    strings: Vec<StringInit>,
-    codes: Vec<CodeBlock>,
-    consts: Vec<u64>,
-    str_consts: Vec<String>,
-    arrays: Vec<ArrayDesc>,
-    scalar_types: Vec<ElemType>,
-    /// Call graph edges between code blocks (for recursion detection).
-    calls: Vec<(u32, u32, Span)>,
-    /// Emission state of each POU body.
-    emit_state: Vec<LayoutState>,
-    /// Function-frame relocations: (code block, instruction, callee POU).
-    fixups: Vec<(u32, usize, usize)>,
-    /// Memory exhaustion has been reported.
-    memory_exhausted: bool,
-    /// Step tables of chart bodies.
-    charts: Vec<crate::ir::chart::Chart>,
-    /// SFC blocks of the POU being emitted whose constant and pinned slots
-    /// still need placing: (code block, constants, pin count).
-    pending_blocks: Vec<(u32, Vec<u64>, u32)>,
-    /// SFC blocks of the POU being emitted (they share its frame size).
-    owned_blocks: Vec<u32>,
-}
-
-impl<'a> Compiler<'a> {
-    fn new(units: &'a [CompilationUnit], diags: &'a mut Diagnostics) -> Compiler<'a> {
-        Compiler {
-            units,
-            diags,
-            types: TypeTable::new(),
-            pous: Vec::new(),
-            pou_index: HashMap::new(),
-            pou_state: Vec::new(),
-            type_decls: HashMap::new(),
-            type_ids: HashMap::new(),
-            type_state: HashMap::new(),
-            type_inits: HashMap::new(),
-            enum_values: HashMap::new(),
-            globals: IndexMap::new(),
-            located: HashMap::new(),
-            memory: Vec::new(),
-            strings: Vec::new(),
-            codes: Vec::new(),
-            consts: Vec::new(),
-            str_consts: Vec::new(),
-            arrays: Vec::new(),
-            scalar_types: Vec::new(),
-            calls: Vec::new(),
-            emit_state: Vec::new(),
-            fixups: Vec::new(),
-            memory_exhausted: false,
-            charts: Vec::new(),
-            pending_blocks: Vec::new(),
-            owned_blocks: Vec::new(),
-        }
-    }
-
-    /// Reserves `size` slots of absolute memory.
-    fn alloc_abs(&mut self, size: u32) -> u32 {
-        let at = self.memory.len();
-        if at + size as usize > MAX_MEMORY_SLOTS {
-            if !self.memory_exhausted {
-                self.memory_exhausted = true;
-                self.diags.error(
-                    "E206",
-                    Span::default(),
-                    format!(
-                        "the program needs more than {} MiB of PLC memory",
-                        (MAX_MEMORY_SLOTS * 8) >> 20
-                    ),
-                );
-            }
-            // Nothing is allocated; the program will not link.
-            return at as u32;
-        }
-        self.memory.resize(at + size as usize, 0);
-        at as u32
-    }
-
-    /// Interns a 64-bit constant.
-    fn konst(&mut self, v: u64) -> u32 {
-        if let Some(i) = self.consts.iter().position(|c| *c == v) {
-            return i as u32;
-        }
-        self.consts.push(v);
-        self.consts.len() as u32 - 1
-    }
-
-    /// Interns a constant string.
-    fn str_const(&mut self, s: &str) -> u32 {
-        if let Some(i) = self.str_consts.iter().position(|c| c == s) {
-            return i as u32;
-        }
-        self.str_consts.push(s.to_string());
-        self.str_consts.len() as u32 - 1
-    }
-
-    /// Index of an elementary type in the `ToStr`/`FromStr` list.
-    fn scalar_index(&mut self, e: ElemType) -> u8 {
-        if let Some(i) = self.scalar_types.iter().position(|c| *c == e) {
-            return i as u8;
-        }
-        self.scalar_types.push(e);
-        self.scalar_types.len() as u8 - 1
-    }
-}

@@ -1,10 +1,11 @@
 //! What the checker knows about declarations: POUs, variables, globals.
 
 use super::consts::Const;
-use crate::ir::types::{MemberKind, TypeId};
+use crate::ir::types::{MemberKind, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::PouKind;
 use indexmap::IndexMap;
+use std::collections::HashMap;
 
 /// A resolved initial value.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,8 +50,6 @@ pub struct VarInfo {
     pub init: Option<ConstInit>,
     /// Normalised located address (`%IX0.1`).
     pub location: Option<String>,
-    /// Declaration span.
-    pub span: Span,
 }
 
 /// A checked POU.
@@ -74,8 +73,6 @@ pub struct PouInfo {
     pub code: u32,
     /// Frame size before temporaries.
     pub vars_size: u32,
-    /// Functions: absolute address of the static frame.
-    pub frame_abs: u32,
     /// Constant slots of the frame: `(slot, value)`.
     pub consts: Vec<(u32, u64)>,
     /// Declaration span.
@@ -91,4 +88,41 @@ pub enum LayoutState {
     InProgress,
     /// Computed.
     Done,
+}
+
+/// The declarations, resolved: what the body builders and the linker read
+/// (and never change).
+#[derive(Debug, Default)]
+pub(crate) struct Model {
+    /// Every POU, in source order.
+    pub pous: Vec<PouInfo>,
+    /// POU index by case-folded name.
+    pub pou_index: HashMap<String, usize>,
+    /// User types by case-folded name.
+    pub type_ids: HashMap<String, TypeId>,
+    /// Declared initial values of user types.
+    pub type_inits: HashMap<TypeId, ConstInit>,
+    /// Enumeration values by case-folded name: (enum type, value).
+    pub enum_values: HashMap<String, Vec<(TypeId, i64)>>,
+    /// Globals by case-folded name, in declaration order.
+    pub globals: IndexMap<String, VarInfo>,
+    /// Which POU bodies were emitted (the linker places only those).
+    pub emitted: Vec<bool>,
+}
+
+impl Model {
+    /// The default initial value of a type (zero, empty string, first enum value).
+    pub(crate) fn default_init(&self, types: &TypeTable, ty: TypeId) -> ConstInit {
+        if let Some(ci) = self.type_inits.get(&ty) {
+            return ci.clone();
+        }
+        match &types.get(ty).kind {
+            TypeKind::Enum { values, .. } => {
+                ConstInit::Scalar(values.first().map(|v| v.1 as u64).unwrap_or(0))
+            }
+            TypeKind::Subrange { lo, .. } => ConstInit::Scalar(*lo as u64),
+            TypeKind::Str { .. } => ConstInit::Str(String::new()),
+            _ => ConstInit::Scalar(0),
+        }
+    }
 }

@@ -1,11 +1,11 @@
 //! Statements: assignment, calls, IF, CASE, FOR, WHILE, REPEAT, EXIT,
 //! CONTINUE, RETURN — lowered to typed instructions and jumps.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Fcx, LoopCtx, Ty, Val};
-use crate::ir::op::{Cmp, Op};
-use crate::ir::types::{TypeKind, TypeTable};
+use crate::ir::op::{Cmp, Op, Slot};
+use crate::ir::types::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{CaseLabel, Expr, ExprKind, Stmt, StmtKind};
 use crate::types::ElemType;
@@ -69,93 +69,93 @@ fn fuse_step_and_test(f: &mut Fcx, cond_at: usize, top: u32) {
     };
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// Emits a statement list.
-    pub(super) fn stmts(&mut self, f: &mut Fcx, list: &[Stmt]) {
+    pub(super) fn stmts(&mut self, list: &[Stmt]) {
         for s in list {
-            self.stmt(f, s);
+            self.stmt(s);
         }
     }
 
-    fn stmt(&mut self, f: &mut Fcx, s: &Stmt) {
-        let mark = f.temp_next;
-        f.span = s.span;
+    fn stmt(&mut self, s: &Stmt) {
+        let mark = self.block.temp_next;
+        self.block.span = s.span;
         match &s.kind {
-            StmtKind::Assign { target, value } => self.assign(f, target, value, s.span),
-            StmtKind::Call(call) => self.call_stmt(f, call),
+            StmtKind::Assign { target, value } => self.assign(target, value, s.span),
+            StmtKind::Call(call) => self.call_stmt(call),
             StmtKind::If {
                 branches,
                 else_branch,
             } => {
                 let mut ends = Vec::new();
                 for (k, (cond, body)) in branches.iter().enumerate() {
-                    let skip = self.cond_jump(f, cond, false);
-                    f.temp_next = mark;
-                    self.stmts(f, body);
+                    let skip = self.cond_jump(cond, false);
+                    self.block.temp_next = mark;
+                    self.stmts(body);
                     let last = k + 1 == branches.len() && else_branch.is_none();
                     if !last {
-                        ends.push(f.emit(Op::Jmp { t: 0 }));
+                        ends.push(self.block.emit(Op::Jmp { t: 0 }));
                     }
-                    let next = f.here();
+                    let next = self.block.here();
                     if let Some(j) = skip {
-                        f.patch(j, next);
+                        self.block.patch(j, next);
                     }
                 }
                 if let Some(body) = else_branch {
-                    self.stmts(f, body);
+                    self.stmts(body);
                 }
-                let end = f.here();
+                let end = self.block.here();
                 for j in ends {
-                    f.patch(j, end);
+                    self.block.patch(j, end);
                 }
             }
             StmtKind::Case {
                 selector,
                 arms,
                 else_branch,
-            } => self.case(f, selector, arms, else_branch.as_deref()),
+            } => self.case(selector, arms, else_branch.as_deref()),
             StmtKind::For {
                 var,
                 from,
                 to,
                 by,
                 body,
-            } => self.for_loop(f, var, from, to, by.as_ref(), body, s.span),
+            } => self.for_loop(var, from, to, by.as_ref(), body, s.span),
             StmtKind::While { cond, body } => {
-                let to_cond = f.emit(Op::Jmp { t: 0 });
-                let top = f.here();
-                f.loops.push(LoopCtx::default());
-                self.stmts(f, body);
-                let cont = f.here();
-                f.patch(to_cond, cont);
-                f.span = cond.span;
-                self.cond_branch_to(f, cond, true, top);
-                fuse_step_and_test(f, cont as usize, top);
-                f.end_loop(cont, Vec::new());
+                let to_cond = self.block.emit(Op::Jmp { t: 0 });
+                let top = self.block.here();
+                self.block.loops.push(LoopCtx::default());
+                self.stmts(body);
+                let cont = self.block.here();
+                self.block.patch(to_cond, cont);
+                self.block.span = cond.span;
+                self.cond_branch_to(cond, true, top);
+                fuse_step_and_test(&mut self.block, cont as usize, top);
+                self.block.end_loop(cont, Vec::new());
             }
             StmtKind::Repeat { body, until } => {
-                let top = f.here();
-                f.loops.push(LoopCtx::default());
-                self.stmts(f, body);
-                let cont = f.here();
-                f.span = until.span;
-                self.cond_branch_to(f, until, false, top);
-                f.end_loop(cont, Vec::new());
+                let top = self.block.here();
+                self.block.loops.push(LoopCtx::default());
+                self.stmts(body);
+                let cont = self.block.here();
+                self.block.span = until.span;
+                self.cond_branch_to(until, false, top);
+                self.block.end_loop(cont, Vec::new());
             }
-            StmtKind::Exit => self.loop_jump(f, true, s.span),
-            StmtKind::Continue => self.loop_jump(f, false, s.span),
+            StmtKind::Exit => self.loop_jump(true, s.span),
+            StmtKind::Continue => self.loop_jump(false, s.span),
             StmtKind::Return => {
-                let j = f.emit(Op::Jmp { t: 0 });
-                f.returns.push(j);
+                let j = self.block.emit(Op::Jmp { t: 0 });
+                self.block.returns.push(j);
             }
             StmtKind::Empty => {}
         }
-        f.temp_next = mark;
+        self.block.temp_next = mark;
     }
 
     /// EXIT (`exit`) or CONTINUE: a jump patched when the innermost loop ends.
-    fn loop_jump(&mut self, f: &mut Fcx, exit: bool, span: Span) {
-        if f.loops.is_empty() {
+    fn loop_jump(&mut self, exit: bool, span: Span) {
+        if self.block.loops.is_empty() {
             let word = if exit { "EXIT" } else { "CONTINUE" };
             self.diags.error(
                 "E405",
@@ -164,8 +164,8 @@ impl Compiler<'_> {
             );
             return;
         }
-        let j = f.emit(Op::Jmp { t: 0 });
-        if let Some(lp) = f.loops.last_mut() {
+        let j = self.block.emit(Op::Jmp { t: 0 });
+        if let Some(lp) = self.block.loops.last_mut() {
             if exit {
                 lp.exits.push(j);
             } else {
@@ -177,43 +177,43 @@ impl Compiler<'_> {
     /// Checks a condition and emits a jump taken when it equals `when`;
     /// returns the jump to patch (None if the condition was invalid or is
     /// a constant that never jumps).
-    pub(super) fn cond_jump(&mut self, f: &mut Fcx, cond: &Expr, when: bool) -> Option<usize> {
+    pub(super) fn cond_jump(&mut self, cond: &Expr, when: bool) -> Option<usize> {
         let (test, when) = strip_not(cond, when);
-        let v = self.bool_expr(f, test, cond.span)?;
+        let v = self.bool_expr(test, cond.span)?;
         if let Val::Const(Const::Bits(b), _) = v {
             if (b != 0) == when {
-                return Some(f.emit(Op::Jmp { t: 0 }));
+                return Some(self.block.emit(Op::Jmp { t: 0 }));
             }
             return None;
         }
-        let s = self.materialize(f, &v);
-        Some(self.branch_on_slot(f, s, when, 0))
+        let s = self.materialize(&v);
+        Some(self.branch_on_slot(s, when, 0))
     }
 
     /// Emits a jump to `target` taken when `cond` equals `when`.
-    fn cond_branch_to(&mut self, f: &mut Fcx, cond: &Expr, when: bool, target: u32) {
+    fn cond_branch_to(&mut self, cond: &Expr, when: bool, target: u32) {
         let (test, when) = strip_not(cond, when);
-        let Some(v) = self.bool_expr(f, test, cond.span) else {
+        let Some(v) = self.bool_expr(test, cond.span) else {
             return;
         };
         if let Val::Const(Const::Bits(b), _) = v {
             if (b != 0) == when {
-                f.emit(Op::Jmp { t: target });
+                self.block.emit(Op::Jmp { t: target });
             }
             return;
         }
-        let s = self.materialize(f, &v);
-        self.branch_on_slot(f, s, when, target);
+        let s = self.materialize(&v);
+        self.branch_on_slot(s, when, target);
     }
 
     /// Jump on a BOOL slot, fusing a just-computed integer comparison.
-    fn branch_on_slot(&mut self, f: &mut Fcx, s: u32, when: bool, target: u32) -> usize {
-        if let Some((at, d)) = f.last_def
+    fn branch_on_slot(&mut self, s: u32, when: bool, target: u32) -> usize {
+        if let Some((at, d)) = self.block.last_def
             && d == s
-            && f.is_temp(s)
-            && at + 1 == f.ops.len()
+            && self.block.is_temp(s)
+            && at + 1 == self.block.ops.len()
         {
-            let fused = match f.ops[at] {
+            let fused = match self.block.ops[at] {
                 Op::LoadElem { idx, desc, .. } => Some(if when {
                     Op::JnzElem {
                         idx,
@@ -256,22 +256,22 @@ impl Compiler<'_> {
                 _ => None,
             };
             if let Some(op) = fused {
-                f.ops[at] = op;
-                f.last_def = None;
+                self.block.ops[at] = op;
+                self.block.last_def = None;
                 return at;
             }
         }
         if when {
-            f.emit(Op::Jnz { c: s, t: target })
+            self.block.emit(Op::Jnz { c: s, t: target })
         } else {
-            f.emit(Op::Jz { c: s, t: target })
+            self.block.emit(Op::Jz { c: s, t: target })
         }
     }
 
     /// A condition: must be BOOL (E303, reported at `whole`, the condition
     /// as written, of which `cond` may be the operand of leading NOTs).
-    fn bool_expr(&mut self, f: &mut Fcx, cond: &Expr, whole: Span) -> Option<Val> {
-        let v = self.expr(f, cond, Some(TypeTable::elem(ElemType::Bool)));
+    fn bool_expr(&mut self, cond: &Expr, whole: Span) -> Option<Val> {
+        let v = self.expr(cond, Some(TypeTable::elem(ElemType::Bool)));
         if v.is_error() {
             return None;
         }
@@ -287,31 +287,31 @@ impl Compiler<'_> {
         Some(v)
     }
 
-    fn assign(&mut self, f: &mut Fcx, target: &Expr, value: &Expr, span: Span) {
+    fn assign(&mut self, target: &Expr, value: &Expr, span: Span) {
         if let ExprKind::BitAccess(base, bit) = &target.kind {
-            let v = self.expr(f, value, Some(TypeTable::elem(ElemType::Bool)));
-            self.store_bit(f, base, *bit, v, target.span, value.span);
+            let v = self.expr(value, Some(TypeTable::elem(ElemType::Bool)));
+            self.store_bit(base, *bit, v, target.span, value.span);
             return;
         }
-        let Some(p) = self.place(f, target) else {
+        let Some(p) = self.place(target) else {
             // Still check the right-hand side for its own errors.
-            self.expr(f, value, None);
+            self.expr(value, None);
             return;
         };
-        if !self.check_writable(f, &p, target.span) {
+        if !self.check_writable(&p, target.span) {
             return;
         }
         let kind = self.types.get(p.ty).kind.clone();
         match kind {
             TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                let Some(src) = self.place(f, value) else {
+                let Some(src) = self.place(value) else {
                     return;
                 };
                 if !self.assignable(src.ty, p.ty) {
                     self.mismatch(value.span, Ty::T(src.ty), p.ty, "assignment");
                     return;
                 }
-                self.copy_aggregate(f, &p, &src, span);
+                self.copy_aggregate(&p, &src, span);
             }
             TypeKind::NativeFb(_) | TypeKind::Pou { .. } | TypeKind::Step => {
                 self.diags.error(
@@ -321,13 +321,13 @@ impl Compiler<'_> {
                 );
             }
             _ => {
-                let v = self.expr(f, value, Some(p.ty));
-                let v = self.coerce(f, v, p.ty, value.span, "assignment");
+                let v = self.expr(value, Some(p.ty));
+                let v = self.coerce(v, p.ty, value.span, "assignment");
                 if v.is_error() {
                     return;
                 }
-                let s = self.materialize(f, &v);
-                self.write_place(f, &p, s);
+                let s = self.materialize(&v);
+                self.write_place(&p, s);
             }
         }
     }
@@ -336,14 +336,13 @@ impl Compiler<'_> {
     /// (read, clear the bit, OR in the new one, write back).
     pub(super) fn store_bit(
         &mut self,
-        f: &mut Fcx,
         base: &Expr,
         bit: u32,
         v: Val,
         span: Span,
         value_span: Span,
     ) {
-        let Some(p) = self.place(f, base) else { return };
+        let Some(p) = self.place(base) else { return };
         let Some(e) = self
             .scalar(p.ty)
             .filter(|e| e.family() == crate::types::Family::Bits && !self.is_enum(p.ty))
@@ -363,11 +362,10 @@ impl Compiler<'_> {
                 .error("E304", span, format!("bit {bit} does not exist in a {e}"));
             return;
         }
-        if !self.check_writable(f, &p, span) {
+        if !self.check_writable(&p, span) {
             return;
         }
         let v = self.coerce(
-            f,
             v,
             TypeTable::elem(ElemType::Bool),
             value_span,
@@ -376,8 +374,8 @@ impl Compiler<'_> {
         if v.is_error() {
             return;
         }
-        let s = self.materialize(f, &v);
-        let Val::Slot(cur, _) = self.read_place(f, &p) else {
+        let s = self.materialize(&v);
+        let Val::Slot(cur, _) = self.read_place(&p) else {
             return;
         };
         let width = if e.bits() == 64 {
@@ -385,40 +383,35 @@ impl Compiler<'_> {
         } else {
             (1u64 << e.bits()) - 1
         };
-        let keep = f.const_slot(!(1u64 << bit) & width);
-        let n = f.const_slot(bit as u64);
-        let cleared = f.temp();
-        f.emit(Op::And {
+        let keep = self.block.const_slot(!(1u64 << bit) & width);
+        let n = self.block.const_slot(bit as u64);
+        let cleared = self.block.temp();
+        self.block.emit(Op::And {
             d: cleared,
             a: cur,
             b: keep,
         });
-        let moved = f.temp();
-        f.emit(Op::Shift {
+        let moved = self.block.temp();
+        self.block.emit(Op::Shift {
             d: moved,
             a: s,
             b: n,
             kind: crate::ir::op::ShiftKind::Shl,
             bits: e.bits() as u8,
         });
-        let out = f.temp();
-        f.emit(Op::Or {
+        let out = self.block.temp();
+        self.block.emit(Op::Or {
             d: out,
             a: cleared,
             b: moved,
         });
-        self.write_place(f, &p, out);
+        self.write_place(&p, out);
     }
 
     /// Reports why `p` cannot be written here (E401: read-only, or the
     /// control variable of an enclosing FOR), and warns when a program
     /// writes a `%I` input (W202). Returns whether the write may proceed.
-    pub(super) fn check_writable(
-        &mut self,
-        f: &Fcx,
-        p: &super::emit::PlaceRef,
-        span: Span,
-    ) -> bool {
+    pub(super) fn check_writable(&mut self, p: &super::emit::PlaceRef, span: Span) -> bool {
         if !p.writable {
             let why = p.readonly_reason.unwrap_or("it is read-only");
             self.diags.error(
@@ -429,7 +422,7 @@ impl Compiler<'_> {
             return false;
         }
         if let super::emit::Place::Frame(s) = p.place
-            && f.for_vars.contains(&s)
+            && self.block.for_vars.contains(&s)
         {
             self.diags.error(
                 "E401",
@@ -451,7 +444,6 @@ impl Compiler<'_> {
     /// Copies an array or structure by value.
     pub(super) fn copy_aggregate(
         &mut self,
-        f: &mut Fcx,
         dst: &super::emit::PlaceRef,
         src: &super::emit::PlaceRef,
         span: Span,
@@ -465,9 +457,9 @@ impl Compiler<'_> {
             return;
         }
         let n = self.types.size(dst.ty);
-        let d = self.address_of(f, dst);
-        let s = self.address_of(f, src);
-        f.emit(Op::MemCopy { d, s, n });
+        let d = self.address_of(dst);
+        let s = self.address_of(src);
+        self.block.emit(Op::MemCopy { d, s, n });
     }
 
     /// True if a value of `t` holds string slots.
@@ -482,12 +474,11 @@ impl Compiler<'_> {
 
     fn case(
         &mut self,
-        f: &mut Fcx,
         selector: &Expr,
         arms: &[crate::syntax::ast::CaseArm],
         else_branch: Option<&[Stmt]>,
     ) {
-        let sv = self.expr(f, selector, None);
+        let sv = self.expr(selector, None);
         if sv.is_error() {
             return;
         }
@@ -507,33 +498,15 @@ impl Compiler<'_> {
             );
             return;
         };
-        let sv = self.coerce(f, sv, st, selector.span, "CASE selector");
-        let sel = self.materialize(f, &sv);
+        let sv = self.coerce(sv, st, selector.span, "CASE selector");
+        let sel = self.materialize(&sv);
         let mut seen: Vec<(i128, i128)> = Vec::new();
         let mut to_body: Vec<Vec<usize>> = Vec::new();
         for arm in arms {
             let mut jumps = Vec::new();
             for label in &arm.labels {
-                let (lo, hi, lspan) = match label {
-                    CaseLabel::Value(x) => {
-                        let Some(v) = self.case_label(f, x, st) else {
-                            continue;
-                        };
-                        (v, v, x.span)
-                    }
-                    CaseLabel::Range(a, b) => {
-                        let (Some(x), Some(y)) =
-                            (self.case_label(f, a, st), self.case_label(f, b, st))
-                        else {
-                            continue;
-                        };
-                        if y < x {
-                            self.diags
-                                .error("E408", a.span.to(b.span), "empty CASE range");
-                            continue;
-                        }
-                        (x, y, a.span.to(b.span))
-                    }
+                let Some((lo, hi, lspan)) = self.case_label_range(label, st) else {
+                    continue;
                 };
                 if seen.iter().any(|&(a, b)| lo <= b && a <= hi) {
                     self.diags
@@ -542,86 +515,114 @@ impl Compiler<'_> {
                 }
                 seen.push((lo, hi));
                 let signed = super::typeck::compares_signed(e);
-                let k = |_: &mut Compiler, f: &mut Fcx, v: i128| -> u32 { f.const_slot(v as u64) };
-                if lo == hi {
-                    let c = k(self, f, lo);
-                    let d = f.temp();
-                    f.emit(if signed {
-                        Op::CmpS {
-                            d,
-                            a: sel,
-                            b: c,
-                            cmp: Cmp::Eq,
-                        }
-                    } else {
-                        Op::CmpU {
-                            d,
-                            a: sel,
-                            b: c,
-                            cmp: Cmp::Eq,
-                        }
-                    });
-                    jumps.push(self.branch_on_slot(f, d, true, 0));
-                } else {
-                    let (cl, ch) = (k(self, f, lo), k(self, f, hi));
-                    let (d1, d2, d) = (f.temp(), f.temp(), f.temp());
-                    if signed {
-                        f.emit(Op::CmpS {
-                            d: d1,
-                            a: sel,
-                            b: cl,
-                            cmp: Cmp::Ge,
-                        });
-                        f.emit(Op::CmpS {
-                            d: d2,
-                            a: sel,
-                            b: ch,
-                            cmp: Cmp::Le,
-                        });
-                    } else {
-                        f.emit(Op::CmpU {
-                            d: d1,
-                            a: sel,
-                            b: cl,
-                            cmp: Cmp::Ge,
-                        });
-                        f.emit(Op::CmpU {
-                            d: d2,
-                            a: sel,
-                            b: ch,
-                            cmp: Cmp::Le,
-                        });
-                    }
-                    f.emit(Op::And { d, a: d1, b: d2 });
-                    jumps.push(f.emit(Op::Jnz { c: d, t: 0 }));
-                }
+                jumps.push(self.case_test(sel, lo, hi, signed));
             }
             to_body.push(jumps);
         }
-        let to_else = f.emit(Op::Jmp { t: 0 });
+        let to_else = self.block.emit(Op::Jmp { t: 0 });
         let mut ends = Vec::new();
         for (arm, jumps) in arms.iter().zip(to_body) {
-            let start = f.here();
+            let start = self.block.here();
             for j in jumps {
-                f.patch(j, start);
+                self.block.patch(j, start);
             }
-            self.stmts(f, &arm.body);
-            ends.push(f.emit(Op::Jmp { t: 0 }));
+            self.stmts(&arm.body);
+            ends.push(self.block.emit(Op::Jmp { t: 0 }));
         }
-        let else_at = f.here();
-        f.patch(to_else, else_at);
+        let else_at = self.block.here();
+        self.block.patch(to_else, else_at);
         if let Some(body) = else_branch {
-            self.stmts(f, body);
+            self.stmts(body);
         }
-        let end = f.here();
+        let end = self.block.here();
         for j in ends {
-            f.patch(j, end);
+            self.block.patch(j, end);
+        }
+    }
+
+    /// The values of one CASE label (a value or a range), checked.
+    fn case_label_range(&mut self, label: &CaseLabel, st: TypeId) -> Option<(i128, i128, Span)> {
+        Some(match label {
+            CaseLabel::Value(x) => {
+                let v = self.case_label(x, st)?;
+                (v, v, x.span)
+            }
+            CaseLabel::Range(a, b) => {
+                let (Some(x), Some(y)) = (self.case_label(a, st), self.case_label(b, st)) else {
+                    return None;
+                };
+                if y < x {
+                    self.diags
+                        .error("E408", a.span.to(b.span), "empty CASE range");
+                    return None;
+                }
+                (x, y, a.span.to(b.span))
+            }
+        })
+    }
+
+    /// A jump taken when the selector in `sel` lies in `lo..=hi`.
+    fn case_test(&mut self, sel: Slot, lo: i128, hi: i128, signed: bool) -> usize {
+        if lo == hi {
+            let c = self.block.const_slot(lo as u64);
+            let d = self.block.temp();
+            self.block.emit(if signed {
+                Op::CmpS {
+                    d,
+                    a: sel,
+                    b: c,
+                    cmp: Cmp::Eq,
+                }
+            } else {
+                Op::CmpU {
+                    d,
+                    a: sel,
+                    b: c,
+                    cmp: Cmp::Eq,
+                }
+            });
+            self.branch_on_slot(d, true, 0)
+        } else {
+            let (cl, ch) = (
+                self.block.const_slot(lo as u64),
+                self.block.const_slot(hi as u64),
+            );
+            let (d1, d2, d) = (self.block.temp(), self.block.temp(), self.block.temp());
+            if signed {
+                self.block.emit(Op::CmpS {
+                    d: d1,
+                    a: sel,
+                    b: cl,
+                    cmp: Cmp::Ge,
+                });
+                self.block.emit(Op::CmpS {
+                    d: d2,
+                    a: sel,
+                    b: ch,
+                    cmp: Cmp::Le,
+                });
+            } else {
+                self.block.emit(Op::CmpU {
+                    d: d1,
+                    a: sel,
+                    b: cl,
+                    cmp: Cmp::Ge,
+                });
+                self.block.emit(Op::CmpU {
+                    d: d2,
+                    a: sel,
+                    b: ch,
+                    cmp: Cmp::Le,
+                });
+            }
+            self.block.emit(Op::And { d, a: d1, b: d2 });
+            self.block.emit(Op::Jnz { c: d, t: 0 })
         }
     }
 
     /// A CASE label's constant value in the selector's type.
-    fn case_label(&mut self, f: &mut Fcx, x: &Expr, st: crate::ir::types::TypeId) -> Option<i128> {
-        let v = self.expr(f, x, Some(st));
+    fn case_label(&mut self, x: &Expr, st: crate::ir::types::TypeId) -> Option<i128> {
+        let v = self.expr(x, Some(st));
         let Val::Const(c, t) = &v else {
             if !v.is_error() {
                 self.diags
@@ -638,380 +639,6 @@ impl Compiler<'_> {
                 self.mismatch(x.span, *t, st, "CASE label");
                 None
             }
-        }
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn for_loop(
-        &mut self,
-        f: &mut Fcx,
-        var: &crate::syntax::ast::Ident,
-        from: &Expr,
-        to: &Expr,
-        by: Option<&Expr>,
-        body: &[Stmt],
-        span: Span,
-    ) {
-        let var_expr = Expr {
-            kind: ExprKind::Name(var.clone()),
-            span: var.span,
-        };
-        let Some(p) = self.place(f, &var_expr) else {
-            return;
-        };
-        let super::emit::Place::Frame(i) = p.place else {
-            self.diags.error(
-                "E407",
-                var.span,
-                "the FOR control variable must be a local variable of this POU",
-            );
-            return;
-        };
-        let Some(e) = self.scalar(p.ty).filter(|e| e.is_int()) else {
-            let name = self.types.name(p.ty).to_string();
-            self.diags.error(
-                "E407",
-                var.span,
-                format!("the FOR control variable must be an integer, found {name}"),
-            );
-            return;
-        };
-        if !p.writable {
-            self.diags
-                .error("E401", var.span, "the FOR control variable is read-only");
-            return;
-        }
-        let vt = p.ty;
-        let v0 = self.expr(f, from, Some(vt));
-        let v0 = self.coerce(f, v0, vt, from.span, "FOR start");
-        let vlim = self.expr(f, to, Some(vt));
-        let vlim = self.coerce(f, vlim, vt, to.span, "FOR end");
-        let vstep = match by {
-            Some(b) => {
-                let v = self.expr(f, b, Some(vt));
-                self.coerce(f, v, vt, b.span, "FOR step")
-            }
-            None => Val::Const(Const::Bits(1), Ty::T(vt)),
-        };
-        if v0.is_error() || vlim.is_error() || vstep.is_error() {
-            return;
-        }
-        if !e.is_signed_int() && by.is_some() {
-            // Unsigned steps are positive by construction.
-        }
-        let start = self.materialize(f, &v0);
-        f.mov(i, start);
-        let step_const = match &vstep {
-            Val::Const(Const::Bits(b), _) => Some(super::consts::slot_to_int(*b, e)),
-            _ => None,
-        };
-        if step_const == Some(0) {
-            self.diags.error("E407", span, "FOR step must not be zero");
-            return;
-        }
-        let lim_imm = match &vlim {
-            Val::Const(Const::Bits(b), _) if e.is_signed_int() || e.bits() <= 32 => {
-                i32::try_from(super::consts::slot_to_int(*b, e)).ok()
-            }
-            _ => None,
-        };
-        let lim = if lim_imm.is_none() {
-            let t = f.temp();
-            let s = self.materialize(f, &vlim);
-            f.emit(Op::Mov { d: t, s });
-            Some(t)
-        } else {
-            None
-        };
-        let step_slot = if step_const.is_none() {
-            let t = f.temp();
-            let s = self.materialize(f, &vstep);
-            f.emit(Op::Mov { d: t, s });
-            Some(t)
-        } else {
-            None
-        };
-        let signed = super::typeck::compares_signed(e);
-        if step_const == Some(1)
-            && e.is_signed_int()
-            && let Some(lim) = lim_imm
-        {
-            self.fill_idiom(f, var, body, i, lim, super::typeck::shift_of(e));
-        }
-        // Test at the top: continue while i <= lim (step > 0) or i >= lim (step < 0).
-        let test_at = f.here();
-        let exit_jumps: Vec<usize> = match step_const {
-            Some(st) => {
-                let cmp = if st > 0 { Cmp::Le } else { Cmp::Ge };
-                vec![self.loop_test(f, i, lim_imm, lim, cmp, signed, false)]
-            }
-            None => {
-                // Runtime sign: positive steps test `<=`, negative `>=`.
-                let sp = step_slot.unwrap_or(i);
-                let neg = f.temp();
-                f.emit(Op::CmpSI {
-                    d: neg,
-                    a: sp,
-                    imm: 0,
-                    cmp: Cmp::Lt,
-                });
-                let to_neg = f.emit(Op::Jnz { c: neg, t: 0 });
-                let up = self.loop_test(f, i, lim_imm, lim, Cmp::Le, signed, false);
-                let to_body = f.emit(Op::Jmp { t: 0 });
-                let neg_at = f.here();
-                f.patch(to_neg, neg_at);
-                let down = self.loop_test(f, i, lim_imm, lim, Cmp::Ge, signed, false);
-                let body_at = f.here();
-                f.patch(to_body, body_at);
-                vec![up, down]
-            }
-        };
-        let body_at = f.here();
-        f.loops.push(LoopCtx::default());
-        f.for_vars.push(i);
-        self.stmts(f, body);
-        f.for_vars.pop();
-        let cont = f.here();
-        // With a constant start, limit and step the back edge is a ForNext
-        // (below): the body sees only start..=limit.
-        if let (Some(st), Some(l), Val::Const(Const::Bits(b0), _)) = (step_const, lim_imm, &v0)
-            && e.is_signed_int()
-            && i16::try_from(st).is_ok()
-            && let Ok(s0) = i64::try_from(super::consts::slot_to_int(*b0, e))
-        {
-            super::bounds::drop_proven_checks(
-                &mut f.ops[body_at as usize..cont as usize],
-                &self.arrays,
-                i,
-                s0.min(l as i64),
-                s0.max(l as i64),
-            );
-        }
-        f.span = span;
-        let shift = super::typeck::shift_of(e);
-        if let Some(st) = step_const
-            && e.is_signed_int()
-            && let Ok(step) = i16::try_from(st)
-            && (lim_imm.is_some() || lim.is_some())
-        {
-            f.emit(match (lim_imm, lim) {
-                (Some(lim), _) => Op::ForNext {
-                    i,
-                    lim,
-                    t: body_at,
-                    step,
-                    shift,
-                },
-                (None, Some(l)) => Op::ForNextS {
-                    i,
-                    lim: l,
-                    t: body_at,
-                    step,
-                    shift,
-                },
-                (None, None) => Op::Nop,
-            });
-            f.end_loop(cont, exit_jumps);
-            return;
-        }
-        match (step_const, step_slot) {
-            (Some(st), _) if i32::try_from(st).is_ok() && e.is_signed_int() => {
-                f.emit(Op::AddSI {
-                    d: i,
-                    a: i,
-                    imm: st as i32,
-                    shift,
-                });
-            }
-            (Some(st), _) => {
-                let t = f.const_slot(st as u64);
-                f.emit(if e.is_signed_int() {
-                    Op::AddS {
-                        d: i,
-                        a: i,
-                        b: t,
-                        shift,
-                    }
-                } else {
-                    Op::AddU {
-                        d: i,
-                        a: i,
-                        b: t,
-                        shift,
-                    }
-                });
-            }
-            (None, Some(sp)) => {
-                f.emit(if e.is_signed_int() {
-                    Op::AddS {
-                        d: i,
-                        a: i,
-                        b: sp,
-                        shift,
-                    }
-                } else {
-                    Op::AddU {
-                        d: i,
-                        a: i,
-                        b: sp,
-                        shift,
-                    }
-                });
-            }
-            (None, None) => {}
-        }
-        match step_const {
-            // Rotated loop: test again at the bottom and jump back to the body.
-            Some(st) => {
-                let cmp = if st > 0 { Cmp::Le } else { Cmp::Ge };
-                let back = self.loop_test(f, i, lim_imm, lim, cmp, signed, true);
-                f.patch(back, body_at);
-            }
-            None => {
-                f.emit(Op::Jmp { t: test_at });
-            }
-        }
-        f.end_loop(cont, exit_jumps);
-    }
-
-    /// Loop idiom: a FOR body that only stores one loop-invariant value into
-    /// `arr[i]` of a frame array gets a `FillElems` ahead of the loop, which
-    /// does the whole loop at once when every index is in range (else the
-    /// loop runs as written). The value is a constant or a plain variable,
-    /// which the body cannot change.
-    fn fill_idiom(
-        &mut self,
-        f: &mut Fcx,
-        var: &crate::syntax::ast::Ident,
-        body: &[Stmt],
-        i: u32,
-        lim: i32,
-        shift: u8,
-    ) {
-        let [
-            Stmt {
-                kind: StmtKind::Assign { target, value },
-                ..
-            },
-        ] = body
-        else {
-            return;
-        };
-        let ExprKind::Index(base, idx) = &target.kind else {
-            return;
-        };
-        let [
-            Expr {
-                kind: ExprKind::Name(iv),
-                ..
-            },
-        ] = idx.as_slice()
-        else {
-            return;
-        };
-        let (ExprKind::Name(arr), true) = (&base.kind, iv.key() == var.key()) else {
-            return;
-        };
-        let value_ok = match &value.kind {
-            ExprKind::Literal(_) => true,
-            ExprKind::Name(n) => n.key() != arr.key() && n.key() != var.key(),
-            _ => false,
-        };
-        if !value_ok {
-            return;
-        }
-        // Only for arrays whose element stores are plain slot writes. (A
-        // name resolves without emitting code.)
-        let mark = self.diags.len();
-        let Some(p) = self.place(f, base) else {
-            self.diags.truncate(mark);
-            return;
-        };
-        let (super::emit::Place::Frame(o), TypeKind::Array { dims, elem }) =
-            (p.place, self.types.get(p.ty).kind.clone())
-        else {
-            return;
-        };
-        let scalar =
-            self.scalar(elem).is_some_and(|e| !e.is_string()) && !self.contains_strings(elem);
-        if dims.len() != 1 || !scalar || self.types.size(elem) != 1 || !p.writable || p.input_image
-        {
-            return;
-        }
-        let v = self.expr(f, value, Some(elem));
-        let v = self.coerce(f, v, elem, value.span, "assignment");
-        if v.is_error() || self.diags.len() != mark {
-            // The loop body reports the problem itself.
-            self.diags.truncate(mark);
-            return;
-        }
-        let v = self.materialize(f, &v);
-        let desc = self.arrays.len();
-        let Ok(desc) = u16::try_from(desc) else {
-            return;
-        };
-        self.arrays.push(crate::ir::image::ArrayDesc {
-            offset: o,
-            lo: dims[0].lo,
-            len: dims[0].len(),
-            stride: 1,
-            span: target.span,
-        });
-        f.emit(Op::FillElems {
-            i,
-            v,
-            lim,
-            desc,
-            shift,
-        });
-    }
-
-    /// Emits a jump taken when `(i cmp lim) == when`; returns it for patching.
-    #[allow(clippy::too_many_arguments)]
-    fn loop_test(
-        &mut self,
-        f: &mut Fcx,
-        i: u32,
-        lim_imm: Option<i32>,
-        lim: Option<u32>,
-        cmp: Cmp,
-        signed: bool,
-        when: bool,
-    ) -> usize {
-        // The fused branches jump when the comparison is FALSE.
-        let jcmp = if when { negate(cmp) } else { cmp };
-        let branch = |f: &mut Fcx, d: u32| {
-            if when {
-                f.emit(Op::Jnz { c: d, t: 0 })
-            } else {
-                f.emit(Op::Jz { c: d, t: 0 })
-            }
-        };
-        match (lim_imm, lim) {
-            (Some(imm), _) if signed => f.emit(Op::JnCmpSI {
-                a: i,
-                imm,
-                cmp: jcmp,
-                t: 0,
-            }),
-            (Some(imm), _) => {
-                let t = f.const_slot(imm as i64 as u64);
-                let d = f.temp();
-                f.emit(Op::CmpU { d, a: i, b: t, cmp });
-                branch(f, d)
-            }
-            (None, Some(l)) if signed => f.emit(Op::JnCmpS {
-                a: i,
-                b: l,
-                cmp: jcmp,
-                t: 0,
-            }),
-            (None, Some(l)) => {
-                let d = f.temp();
-                f.emit(Op::CmpU { d, a: i, b: l, cmp });
-                branch(f, d)
-            }
-            (None, None) => f.emit(Op::Jmp { t: 0 }),
         }
     }
 }

@@ -2,9 +2,9 @@
 //! converting values between types, and choosing the typed instruction for
 //! an operator.
 
-use super::Compiler;
+use super::body::BodyBuilder;
 use super::consts::{Const, int_to_slot, real_to_slot, slot_to_int, slot_to_real};
-use super::emit::{Fcx, Ty, Val};
+use super::emit::{Ty, Val};
 use crate::ir::op::{Cmp, Conv, Op};
 use crate::ir::types::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
@@ -25,7 +25,7 @@ pub fn compares_signed(e: ElemType) -> bool {
     !matches!(e, ElemType::Ulint | ElemType::Lword) && !e.is_real() && !e.is_string()
 }
 
-impl Compiler<'_> {
+impl BodyBuilder<'_> {
     /// The common type of two operands, or `None` if they do not mix.
     pub(super) fn unify(&self, a: Ty, b: Ty) -> Option<Ty> {
         match (a, b) {
@@ -170,14 +170,7 @@ impl Compiler<'_> {
 
     /// Converts `v` to type `to` with implicit widening only; reports E301
     /// and returns an error value otherwise. `what` names the context.
-    pub(super) fn coerce(
-        &mut self,
-        f: &mut Fcx,
-        v: Val,
-        to: TypeId,
-        span: Span,
-        what: &str,
-    ) -> Val {
+    pub(super) fn coerce(&mut self, v: Val, to: TypeId, span: Span, what: &str) -> Val {
         if v.is_error() || to == TypeTable::error() {
             return Val::error();
         }
@@ -220,14 +213,14 @@ impl Compiler<'_> {
                         };
                         let slot = match conv {
                             Some(conv) => {
-                                let d = f.temp();
-                                f.emit(Op::Convert { d, a: *s, conv });
+                                let d = self.block.temp();
+                                self.block.emit(Op::Convert { d, a: *s, conv });
                                 d
                             }
                             None => *s,
                         };
                         if let TypeKind::Subrange { .. } = self.types.get(to).kind {
-                            return Val::Slot(self.check_subrange(f, slot, to), to);
+                            return Val::Slot(self.check_subrange(slot, to), to);
                         }
                         Val::Slot(slot, to)
                     }
@@ -245,23 +238,23 @@ impl Compiler<'_> {
     }
 
     /// Range check for values stored into a subrange variable.
-    fn check_subrange(&mut self, f: &mut Fcx, s: u32, to: TypeId) -> u32 {
+    fn check_subrange(&mut self, s: u32, to: TypeId) -> u32 {
         let TypeKind::Subrange { lo, hi, .. } = self.types.get(to).kind else {
             return s;
         };
-        let desc = self.arrays.len() as u32;
-        self.arrays.push(crate::ir::image::ArrayDesc {
+        let desc = self.out.arrays.len() as u32;
+        self.out.arrays.push(crate::ir::image::ArrayDesc {
             offset: 0,
             lo,
             len: (hi - lo + 1) as u64,
             stride: 0,
-            span: f.span,
+            span: self.block.span,
         });
-        let d = f.temp();
+        let d = self.block.temp();
         // An element load with stride 0 checks the range and reads slot 0 of
         // a dummy; instead use IndexStep on a zeroed accumulator.
-        f.emit(Op::LoadI { d, imm: 0 });
-        f.emit(Op::IndexStep {
+        self.block.emit(Op::LoadI { d, imm: 0 });
+        self.block.emit(Op::IndexStep {
             acc: d,
             idx: s,
             desc,
@@ -312,8 +305,8 @@ impl Compiler<'_> {
     }
 
     /// Emits a comparison of two slots of elementary type `e`.
-    pub(super) fn emit_cmp(&mut self, f: &mut Fcx, e: ElemType, a: u32, b: u32, cmp: Cmp) -> u32 {
-        let d = f.temp();
+    pub(super) fn emit_cmp(&mut self, e: ElemType, a: u32, b: u32, cmp: Cmp) -> u32 {
+        let d = self.block.temp();
         let op = if e.is_string() {
             Op::CmpStr { d, a, b, cmp }
         } else if e == ElemType::Real {
@@ -325,7 +318,7 @@ impl Compiler<'_> {
         } else {
             Op::CmpU { d, a, b, cmp }
         };
-        f.emit(op);
+        self.block.emit(op);
         d
     }
 }

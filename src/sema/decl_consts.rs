@@ -1,0 +1,364 @@
+//! Constant expressions of declarations: array bounds, string lengths and
+//! initial values, folded against the declarations known so far. Reads the
+//! model; writes only diagnostics.
+
+use super::consts::{
+    Const, int_to_slot, literal_to_slot, real_to_slot, slot_to_int, typed_literal,
+};
+use super::model::{ConstInit, Model, VarInfo};
+use crate::diagnostics::Diagnostics;
+use crate::ir::types::{TypeId, TypeKind, TypeTable};
+use crate::syntax::ast::{BinaryOp, Expr, ExprKind, Initializer, LiteralValue, UnaryOp};
+use crate::types::ElemType;
+use indexmap::IndexMap;
+
+/// Folds the constant expressions of declarations.
+pub(super) struct DeclConsts<'a> {
+    /// Types declared so far.
+    pub(super) types: &'a TypeTable,
+    /// Globals and type defaults declared so far.
+    pub(super) model: &'a Model,
+    /// Where errors go.
+    pub(super) diags: &'a mut Diagnostics,
+}
+
+impl DeclConsts<'_> {
+    /// Evaluates a constant integer expression (array bounds, lengths...).
+    pub(super) fn const_int(
+        &mut self,
+        e: &Expr,
+        local: Option<&IndexMap<String, VarInfo>>,
+    ) -> Option<i128> {
+        let r = self.const_int_inner(e, local);
+        if r.is_none() {
+            self.diags
+                .error("E205", e.span, "expected a constant integer expression");
+        }
+        r
+    }
+
+    fn const_int_inner(&self, e: &Expr, local: Option<&IndexMap<String, VarInfo>>) -> Option<i128> {
+        match &e.kind {
+            ExprKind::Literal(l) => match l.value {
+                LiteralValue::Int(v) => Some(v),
+                _ => None,
+            },
+            ExprKind::Paren(x) => self.const_int_inner(x, local),
+            ExprKind::Unary(UnaryOp::Neg, x) => self.const_int_inner(x, local).map(|v| -v),
+            ExprKind::Unary(UnaryOp::Plus, x) => self.const_int_inner(x, local),
+            ExprKind::Binary(op, a, b) => {
+                let (a, b) = (
+                    self.const_int_inner(a, local)?,
+                    self.const_int_inner(b, local)?,
+                );
+                match op {
+                    BinaryOp::Add => a.checked_add(b),
+                    BinaryOp::Sub => a.checked_sub(b),
+                    BinaryOp::Mul => a.checked_mul(b),
+                    BinaryOp::Div => a.checked_div(b),
+                    BinaryOp::Mod => a.checked_rem(b),
+                    _ => None,
+                }
+            }
+            ExprKind::Name(id) => {
+                let key = id.key();
+                let var = local
+                    .and_then(|l| l.get(&key))
+                    .or_else(|| self.model.globals.get(&key))?;
+                if !var.constant {
+                    return None;
+                }
+                let e = self.types.scalar(var.ty)?;
+                match var.value.as_ref()? {
+                    Const::Bits(b) if e.is_int() => Some(slot_to_int(*b, e)),
+                    Const::Int(v) => Some(*v),
+                    _ => None,
+                }
+            }
+            _ => None,
+        }
+    }
+
+    /// Resolves an initializer against type `ty`.
+    pub(super) fn resolve_init(
+        &mut self,
+        init: &Initializer,
+        ty: TypeId,
+        local: Option<&IndexMap<String, VarInfo>>,
+    ) -> Option<ConstInit> {
+        let def = self.types.get(ty).clone();
+        match (init, &def.kind) {
+            (_, TypeKind::Error) => None,
+            (Initializer::Array(elems, span), TypeKind::Array { dims, elem }) => {
+                let count: u64 = dims.iter().map(|d| d.len()).product();
+                let mut out = Vec::new();
+                for el in elems {
+                    let n = match &el.repeat {
+                        Some(r) => match self.const_int(r, local) {
+                            Some(n) if n >= 0 => n as u64,
+                            _ => return None,
+                        },
+                        None => 1,
+                    };
+                    let v = match &el.value {
+                        Some(v) => Some(self.resolve_init(v, *elem, local)?),
+                        None => None,
+                    };
+                    for _ in 0..n.min(count + 1) {
+                        out.push(
+                            v.clone()
+                                .unwrap_or_else(|| self.model.default_init(self.types, *elem)),
+                        );
+                    }
+                }
+                if out.len() as u64 > count {
+                    self.diags.error(
+                        "E301",
+                        *span,
+                        format!(
+                            "{} initial values for an array of {count} elements",
+                            out.len()
+                        ),
+                    );
+                    return None;
+                }
+                Some(ConstInit::Array(out))
+            }
+            (Initializer::Struct(fields, _), TypeKind::Struct { fields: members }) => {
+                let mut out = Vec::new();
+                for (name, v) in fields {
+                    match members
+                        .iter()
+                        .position(|m| m.name.eq_ignore_ascii_case(&name.name))
+                    {
+                        Some(i) => {
+                            if let Some(ci) = self.resolve_init(v, members[i].ty, local) {
+                                out.push((i, ci));
+                            }
+                        }
+                        None => self.diags.error(
+                            "E201",
+                            name.span,
+                            format!("`{}` has no field `{}`", def.name, name.name),
+                        ),
+                    }
+                }
+                Some(ConstInit::Struct(out))
+            }
+            (Initializer::Expr(e), _) => {
+                let c = self.const_value(e, ty, local)?;
+                Some(match c {
+                    Const::Str(s) => ConstInit::Str(s),
+                    Const::Bits(b) => ConstInit::Scalar(b),
+                    Const::Int(_) | Const::Real(_) => return None,
+                })
+            }
+            (Initializer::Array(_, span), _) | (Initializer::Struct(_, span), _) => {
+                self.diags.error(
+                    "E301",
+                    *span,
+                    format!("this initializer does not fit type {}", def.name),
+                );
+                None
+            }
+        }
+    }
+
+    /// Evaluates a constant scalar expression as a value of `ty`.
+    pub(super) fn const_value(
+        &mut self,
+        e: &Expr,
+        ty: TypeId,
+        local: Option<&IndexMap<String, VarInfo>>,
+    ) -> Option<Const> {
+        let def = self.types.get(ty).clone();
+        // Enumerations: a value name, optionally qualified.
+        if let TypeKind::Enum { values, .. } = &def.kind {
+            let name = match &e.kind {
+                ExprKind::Name(id) => Some(id.clone()),
+                ExprKind::Literal(l) => match &l.value {
+                    LiteralValue::EnumValue(v) => Some(v.clone()),
+                    _ => None,
+                },
+                _ => None,
+            };
+            if let Some(id) = name
+                && let Some((_, v)) = values
+                    .iter()
+                    .find(|(n, _)| n.eq_ignore_ascii_case(&id.name))
+            {
+                return Some(Const::Bits(*v as u64));
+            }
+            self.diags.error(
+                "E301",
+                e.span,
+                format!("expected a value of enumeration {}", def.name),
+            );
+            return None;
+        }
+        let Some(elem) = self.types.scalar(ty) else {
+            self.diags.error(
+                "E301",
+                e.span,
+                format!("a {} cannot be initialised with a single value", def.name),
+            );
+            return None;
+        };
+        let result = self.const_scalar(e, elem, local);
+        match result {
+            Ok(c) => {
+                if let (TypeKind::Subrange { lo, hi, .. }, Const::Bits(b)) = (&def.kind, &c) {
+                    let v = slot_to_int(*b, elem);
+                    if v < *lo as i128 || v > *hi as i128 {
+                        self.diags.error(
+                            "E304",
+                            e.span,
+                            format!("{v} is outside the subrange {}", def.name),
+                        );
+                        return None;
+                    }
+                }
+                Some(c)
+            }
+            Err((code, msg)) => {
+                self.diags.error(code, e.span, msg);
+                None
+            }
+        }
+    }
+
+    fn const_scalar(
+        &self,
+        e: &Expr,
+        elem: ElemType,
+        local: Option<&IndexMap<String, VarInfo>>,
+    ) -> Result<Const, (&'static str, String)> {
+        match &e.kind {
+            ExprKind::Paren(x) => self.const_scalar(x, elem, local),
+            ExprKind::Literal(l) => {
+                if let Some(prefix) = typed_literal(l)
+                    && prefix != elem
+                    && !prefix.widens_to(elem)
+                {
+                    return Err((
+                        "E301",
+                        format!("a {prefix} value cannot initialise a {elem}"),
+                    ));
+                }
+                literal_to_slot(&l.value, elem).map_err(|m| ("E304", m))
+            }
+            ExprKind::Unary(UnaryOp::Neg, x) => {
+                if let ExprKind::Literal(l) = &x.kind {
+                    let neg = match &l.value {
+                        LiteralValue::Int(v) => LiteralValue::Int(-v),
+                        LiteralValue::Real(v) => LiteralValue::Real(-v),
+                        LiteralValue::Duration { nanos, long } => LiteralValue::Duration {
+                            nanos: -nanos,
+                            long: *long,
+                        },
+                        other => other.clone(),
+                    };
+                    return literal_to_slot(&neg, elem).map_err(|m| ("E304", m));
+                }
+                match self.const_scalar(x, elem, local)? {
+                    Const::Bits(b) if elem.is_real() => {
+                        Ok(Const::Bits(if elem == ElemType::Real {
+                            (-(f32::from_bits(b as u32))).to_bits() as u64
+                        } else {
+                            (-f64::from_bits(b)).to_bits()
+                        }))
+                    }
+                    Const::Bits(b) => int_to_slot(-slot_to_int(b, elem), elem)
+                        .map(Const::Bits)
+                        .ok_or(("E305", format!("constant overflows {elem}"))),
+                    other => Ok(other),
+                }
+            }
+            ExprKind::Name(id) => {
+                let key = id.key();
+                let var = local
+                    .and_then(|l| l.get(&key))
+                    .or_else(|| self.model.globals.get(&key));
+                match var {
+                    Some(v) if v.constant => match (&v.value, self.types.scalar(v.ty)) {
+                        (Some(Const::Bits(b)), Some(t)) if t == elem => Ok(Const::Bits(*b)),
+                        (Some(Const::Bits(b)), Some(t)) if t.widens_to(elem) => {
+                            if t.is_int() && elem.is_real() {
+                                let v = slot_to_int(*b, t);
+                                Ok(Const::Bits(
+                                    real_to_slot(v as f64, elem).unwrap_or_default(),
+                                ))
+                            } else if t == ElemType::Real && elem == ElemType::Lreal {
+                                Ok(Const::Bits((f32::from_bits(*b as u32) as f64).to_bits()))
+                            } else {
+                                Ok(Const::Bits(*b))
+                            }
+                        }
+                        (Some(Const::Str(s)), _) if elem.is_string() => Ok(Const::Str(s.clone())),
+                        _ => Err(("E301", format!("constant `{}` is not a {elem}", id.name))),
+                    },
+                    _ => Err((
+                        "E205",
+                        format!(
+                            "`{}` is not a constant; initial values must be constant",
+                            id.name
+                        ),
+                    )),
+                }
+            }
+            ExprKind::Binary(op, a, b) if elem.is_int() => {
+                let x = self.const_scalar(a, elem, local)?;
+                let y = self.const_scalar(b, elem, local)?;
+                let (Const::Bits(x), Const::Bits(y)) = (x, y) else {
+                    return Err(("E205", "not a constant integer expression".into()));
+                };
+                let (x, y) = (slot_to_int(x, elem), slot_to_int(y, elem));
+                let r = match op {
+                    BinaryOp::Add => x.checked_add(y),
+                    BinaryOp::Sub => x.checked_sub(y),
+                    BinaryOp::Mul => x.checked_mul(y),
+                    BinaryOp::Div if y != 0 => x.checked_div(y),
+                    BinaryOp::Mod if y != 0 => x.checked_rem(y),
+                    BinaryOp::Div | BinaryOp::Mod => {
+                        return Err(("E305", "division by zero in a constant".into()));
+                    }
+                    _ => return Err(("E205", "not a constant integer expression".into())),
+                };
+                r.and_then(|v| int_to_slot(v, elem))
+                    .map(Const::Bits)
+                    .ok_or(("E305", format!("constant overflows {elem}")))
+            }
+            ExprKind::Binary(op, a, b) if elem.is_real() => {
+                let x = self.const_scalar(a, elem, local)?;
+                let y = self.const_scalar(b, elem, local)?;
+                let (Const::Bits(x), Const::Bits(y)) = (x, y) else {
+                    return Err(("E205", "not a constant expression".into()));
+                };
+                let (x, y) = (
+                    super::consts::slot_to_real(x, elem),
+                    super::consts::slot_to_real(y, elem),
+                );
+                let r = match op {
+                    BinaryOp::Add => x + y,
+                    BinaryOp::Sub => x - y,
+                    BinaryOp::Mul => x * y,
+                    BinaryOp::Div => x / y,
+                    _ => return Err(("E205", "not a constant expression".into())),
+                };
+                real_to_slot(r, elem)
+                    .map(Const::Bits)
+                    .ok_or(("E305", format!("constant overflows {elem}")))
+            }
+            _ => Err(("E205", "initial values must be constant expressions".into())),
+        }
+    }
+}
+
+/// The folded value of a scalar initializer, for CONSTANT variables.
+pub(super) fn init_const(ci: &ConstInit) -> Option<Const> {
+    match ci {
+        ConstInit::Scalar(b) => Some(Const::Bits(*b)),
+        ConstInit::Str(s) => Some(Const::Str(s.clone())),
+        _ => None,
+    }
+}

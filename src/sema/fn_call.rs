@@ -1,0 +1,295 @@
+//! Calls of user FUNCTIONs: every argument is evaluated before the
+//! callee's static frame is written (nested calls of the same function
+//! cannot clobber it), then the inputs are stored, the function called,
+//! and its result and outputs read back. Frame addresses are relative to
+//! the callee's frame until the linker places it.
+
+use super::body::BodyBuilder;
+use super::calls::{Bound, Param};
+use super::consts::Const;
+use super::emit::{Place, PlaceRef, Ty, Val};
+use super::model::{ConstInit, PouInfo, Storage};
+use crate::ir::op::{Op, Slot};
+use crate::ir::types::{MemberKind, TypeKind, TypeTable};
+use crate::source::Span;
+use crate::syntax::ast::{Call, Expr};
+
+/// An argument evaluated and ready to be stored in the callee's frame.
+enum Ready {
+    /// A scalar (or string id) in a temporary.
+    Scalar(Slot),
+    /// The address of a VAR_IN_OUT variable.
+    Pointer(Slot),
+    /// The address and size of an array or structure passed by value.
+    Aggregate(Slot, u32),
+}
+
+/// The parameters of function `callee`, in interface order.
+fn function_params(callee: &PouInfo) -> Vec<Param> {
+    callee
+        .params
+        .iter()
+        .filter_map(|k| callee.vars.get(k))
+        .map(|v| Param {
+            name: v.name.clone(),
+            aliases: &[],
+            kind: v.kind,
+            ty: v.ty,
+            offset: match v.storage {
+                Storage::Frame(o) | Storage::Ref(o) => o,
+                Storage::Abs(a) => a,
+            },
+            default: v.init.clone(),
+        })
+        .collect()
+}
+
+impl BodyBuilder<'_> {
+    /// A call of user function `p`; `want` when its value is used.
+    pub(super) fn user_function_call(&mut self, p: usize, call: &Call, want: bool) -> Val {
+        let callee = &self.model.pous[p];
+        let params = function_params(callee);
+        let Some(b) = self.bind(&params, &call.args, &callee.name, call.span) else {
+            return Val::error();
+        };
+        if want && callee.ret == TypeTable::void() {
+            self.diags.error(
+                "E301",
+                call.span,
+                format!("`{}` returns no value", callee.name),
+            );
+            return Val::error();
+        }
+        let skip = match b.en {
+            Some(en) => self.cond_jump(en, false),
+            None => None,
+        };
+        // Evaluate every argument before touching the callee's frame, so
+        // nested calls of the same function cannot clobber it.
+        let mut ready: Vec<(usize, Ready)> = Vec::new();
+        for (i, prm) in params.iter().enumerate() {
+            if !matches!(prm.kind, MemberKind::Input | MemberKind::InOut) {
+                continue;
+            }
+            let given = b.inputs.iter().find(|(j, _)| *j == i).map(|(_, e)| *e);
+            if let Some(r) = self.ready_argument(p, prm, given, call.span) {
+                ready.push((i, r));
+            }
+        }
+        for (i, r) in ready {
+            self.store_argument(p, &params[i], r);
+        }
+        let callee = &self.model.pous[p];
+        let caller = self.model.pous[self.block.pou].code;
+        self.out.calls.push((caller, callee.code, call.span));
+        self.block.emit(Op::CallFn { code: callee.code });
+        let result = self.function_result(p, call.span);
+        self.read_function_outputs(p, &params, &b);
+        if skip.is_some() || b.eno.is_some() {
+            self.finish_en(skip, b.eno);
+        }
+        if !want {
+            return Val::None(TypeTable::void());
+        }
+        result
+    }
+
+    /// Evaluates the argument of input or in-out `prm` of function `p`
+    /// (`None` after an error).
+    fn ready_argument(
+        &mut self,
+        p: usize,
+        prm: &Param,
+        given: Option<&Expr>,
+        call_span: Span,
+    ) -> Option<Ready> {
+        let what = format!("argument `{}`", prm.name);
+        match (prm.kind, given) {
+            (MemberKind::InOut, Some(e)) => {
+                let arg = self.place(e)?;
+                if arg.ty != prm.ty {
+                    self.mismatch(e.span, Ty::T(arg.ty), prm.ty, &what);
+                    return None;
+                }
+                if !arg.writable {
+                    self.diags.error(
+                        "E412",
+                        e.span,
+                        format!("VAR_IN_OUT `{}` needs a writable variable", prm.name),
+                    );
+                    return None;
+                }
+                Some(Ready::Pointer(self.address_of(&arg)))
+            }
+            (MemberKind::InOut, None) => {
+                self.diags.error(
+                    "E404",
+                    call_span,
+                    format!(
+                        "VAR_IN_OUT `{}` of `{}` must be connected",
+                        prm.name, self.model.pous[p].name
+                    ),
+                );
+                None
+            }
+            (_, Some(e)) => match self.types.get(prm.ty).kind {
+                TypeKind::Array { .. } | TypeKind::Struct { .. } => {
+                    self.aggregate_argument(prm, e, &what)
+                }
+                _ => self.scalar_argument(prm, e, &what),
+            },
+            (_, None) => self.default_argument(p, prm, call_span),
+        }
+    }
+
+    /// An array or structure passed by value: its address (copied later).
+    fn aggregate_argument(&mut self, prm: &Param, e: &Expr, what: &str) -> Option<Ready> {
+        let src = self.place(e)?;
+        if !self.assignable(src.ty, prm.ty) {
+            self.mismatch(e.span, Ty::T(src.ty), prm.ty, what);
+            return None;
+        }
+        if self.contains_strings(prm.ty) {
+            self.diags.error(
+                "E302",
+                e.span,
+                "passing arrays or structures that contain strings by value is not supported yet",
+            );
+            return None;
+        }
+        let a = self.address_of(&src);
+        Some(Ready::Aggregate(a, self.types.size(prm.ty)))
+    }
+
+    /// A scalar or string argument, kept in a temporary the next argument
+    /// cannot overwrite (strings in a string temporary of their own).
+    fn scalar_argument(&mut self, prm: &Param, e: &Expr, what: &str) -> Option<Ready> {
+        let v = self.expr(e, Some(prm.ty));
+        let v = self.coerce(v, prm.ty, e.span, what);
+        if v.is_error() {
+            return None;
+        }
+        let s = self.materialize(&v);
+        let t = self.block.temp();
+        if self.types.scalar(prm.ty).is_some_and(|e| e.is_string()) {
+            let (max, wide) = match self.types.get(prm.ty).kind {
+                TypeKind::Str { max, wide } => (max, wide),
+                _ => (254, false),
+            };
+            let st = self.string_temp(max, wide);
+            self.block.emit(Op::StrMov { d: st, s });
+            self.block.emit(Op::Mov { d: t, s: st });
+        } else {
+            self.block.emit(Op::Mov { d: t, s });
+        }
+        self.block.last_def = None;
+        Some(Ready::Scalar(t))
+    }
+
+    /// A missing input: its declared initial value (required for arrays
+    /// and structures).
+    fn default_argument(&mut self, p: usize, prm: &Param, call_span: Span) -> Option<Ready> {
+        let init = prm
+            .default
+            .clone()
+            .unwrap_or_else(|| self.model.default_init(self.types, prm.ty));
+        let v = match init {
+            ConstInit::Scalar(bits) => Val::Const(Const::Bits(bits), Ty::T(prm.ty)),
+            ConstInit::Str(s) => Val::Const(Const::Str(s), Ty::T(prm.ty)),
+            _ => {
+                self.diags.error(
+                    "E404",
+                    call_span,
+                    format!(
+                        "input `{}` of `{}` must be given",
+                        prm.name, self.model.pous[p].name
+                    ),
+                );
+                return None;
+            }
+        };
+        Some(Ready::Scalar(self.materialize(&v)))
+    }
+
+    /// Stores a ready argument into function `p`'s frame (relocated later).
+    fn store_argument(&mut self, p: usize, prm: &Param, r: Ready) {
+        match r {
+            Ready::Scalar(s) => {
+                if self.types.scalar(prm.ty).is_some_and(|e| e.is_string()) {
+                    let id = self.block.temp();
+                    let at = self.block.emit(Op::LoadAbs {
+                        d: id,
+                        abs: prm.offset,
+                    });
+                    self.block.fixups.push((at, p));
+                    self.block.emit(Op::StrMov { d: id, s });
+                } else {
+                    let at = self.block.emit(Op::StoreAbs { abs: prm.offset, s });
+                    self.block.fixups.push((at, p));
+                }
+            }
+            Ready::Pointer(a) => {
+                let at = self.block.emit(Op::StoreAbs {
+                    abs: prm.offset,
+                    s: a,
+                });
+                self.block.fixups.push((at, p));
+            }
+            Ready::Aggregate(a, n) => {
+                let d = self.block.temp();
+                let at = self.block.emit(Op::LoadI {
+                    d,
+                    imm: prm.offset as i32,
+                });
+                self.block.fixups.push((at, p));
+                self.block.emit(Op::MemCopy { d, s: a, n });
+            }
+        }
+    }
+
+    /// The result of function `p`, read from slot 0 of its frame.
+    fn function_result(&mut self, p: usize, span: Span) -> Val {
+        let ret = self.model.pous[p].ret;
+        if ret == TypeTable::void() {
+            return Val::None(TypeTable::void());
+        }
+        let t = self.block.temp();
+        let at = self.block.emit(Op::LoadAbs { d: t, abs: 0 });
+        self.block.fixups.push((at, p));
+        if let TypeKind::Str { max, wide } = self.types.get(ret).kind {
+            let st = self.string_temp(max, wide);
+            self.block.emit(Op::StrMov { d: st, s: t });
+            Val::Slot(st, ret)
+        } else if self.types.scalar(ret).is_some() {
+            Val::Slot(t, ret)
+        } else {
+            self.diags.error(
+                "E302",
+                span,
+                "functions returning arrays or structures are not supported yet",
+            );
+            Val::error()
+        }
+    }
+
+    /// The `=>` outputs of the call, read from function `p`'s frame.
+    fn read_function_outputs(&mut self, p: usize, params: &[Param], b: &Bound) {
+        for &(i, negated, target) in &b.outputs {
+            let prm = &params[i];
+            let t = self.block.temp();
+            let at = self.block.emit(Op::LoadAbs {
+                d: t,
+                abs: prm.offset,
+            });
+            self.block.fixups.push((at, p));
+            let src = PlaceRef {
+                place: Place::Frame(t),
+                ty: prm.ty,
+                writable: false,
+                readonly_reason: None,
+                input_image: false,
+            };
+            self.store_output(&src, negated, target, &prm.name);
+        }
+    }
+}

@@ -1,0 +1,376 @@
+//! Layout of POU instances in the declaration phase: every variable gets
+//! its storage (frame slot, absolute address or VAR_IN_OUT pointer), and
+//! the POU its code block and instance type.
+
+use super::decl_consts::init_const;
+use super::declare::{Declarer, normalize_address};
+use super::model::{ConstInit, LayoutState, Storage, VarInfo};
+use crate::ir::types::{Member, MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
+use crate::source::Span;
+use crate::syntax::ast::{Ident, Item, Pou, PouKind, VarBlock, VarDecl, VarKind};
+use indexmap::IndexMap;
+
+fn member_kind(k: VarKind) -> MemberKind {
+    match k {
+        VarKind::Local | VarKind::Global => MemberKind::Local,
+        VarKind::Input => MemberKind::Input,
+        VarKind::Output => MemberKind::Output,
+        VarKind::InOut => MemberKind::InOut,
+        VarKind::External => MemberKind::External,
+        VarKind::Temp => MemberKind::Temp,
+    }
+}
+
+/// A POU's frame while its declarations are laid out.
+#[derive(Default)]
+struct Frame {
+    /// Variables by case-folded name, in declaration order.
+    vars: IndexMap<String, VarInfo>,
+    /// Keys of the call interface, in order.
+    params: Vec<String>,
+    /// Next free slot.
+    offset: u32,
+    /// Members of the instance type.
+    members: Vec<Member>,
+}
+
+impl Declarer<'_> {
+    /// `offset + size`, reporting E206 (once per call site) when an
+    /// instance or structure would exceed [`super::MAX_FRAME_SLOTS`].
+    pub(super) fn grow(&mut self, offset: u32, size: u32, span: Span) -> u32 {
+        match offset.checked_add(size) {
+            Some(end) if end <= super::MAX_FRAME_SLOTS => end,
+            _ => {
+                self.diags.error(
+                    "E206",
+                    span,
+                    format!(
+                        "this declaration makes the POU or structure larger than {} Mi slots",
+                        super::MAX_FRAME_SLOTS >> 20
+                    ),
+                );
+                offset
+            }
+        }
+    }
+
+    /// Lays out the variables of POU `p` (idempotent).
+    pub(super) fn layout_pou(&mut self, p: usize) {
+        match self.pou_state[p] {
+            LayoutState::Done => return,
+            LayoutState::InProgress => {
+                let span = self.model.pous[p].span;
+                self.diags.error(
+                    "E204",
+                    span,
+                    format!(
+                        "`{}` contains an instance of itself (directly or through another block)",
+                        self.model.pous[p].name
+                    ),
+                );
+                return;
+            }
+            LayoutState::Pending => {}
+        }
+        self.pou_state[p] = LayoutState::InProgress;
+        let (u, i) = self.model.pous[p].ast;
+        let Item::Pou(pou) = &self.units[u].items[i] else {
+            return;
+        };
+        let mut frame = Frame::default();
+        if pou.kind == PouKind::Function {
+            self.layout_result(p, pou, &mut frame);
+        }
+        for block in &pou.var_blocks {
+            self.layout_block(pou, block, &mut frame);
+        }
+        if let crate::syntax::ast::Body::Sfc(elems) = &pou.body {
+            self.layout_chart(
+                pou,
+                elems,
+                &mut frame.vars,
+                &mut frame.members,
+                &mut frame.offset,
+            );
+        }
+        self.finish_layout(p, pou, frame);
+        self.pou_state[p] = LayoutState::Done;
+    }
+
+    /// A function's result: a variable named as the function, at slot 0.
+    fn layout_result(&mut self, p: usize, pou: &Pou, frame: &mut Frame) {
+        let ret = match &pou.return_type {
+            Some(t) => self.resolve_type(t, None),
+            None => TypeTable::void(),
+        };
+        self.model.pous[p].ret = ret;
+        if ret == TypeTable::void() {
+            return;
+        }
+        if !self.types.get(ret).kind.is_value_type() {
+            self.diags.error(
+                "E209",
+                pou.name.span,
+                "a function cannot return a function block instance",
+            );
+        }
+        frame.vars.insert(
+            pou.name.key(),
+            VarInfo {
+                name: pou.name.name.clone(),
+                ty: ret,
+                kind: MemberKind::Output,
+                storage: Storage::Frame(0),
+                constant: false,
+                value: None,
+                init: None,
+                location: None,
+            },
+        );
+        frame.offset = self.types.size(ret);
+    }
+
+    /// The declarations of one VAR... END_VAR block.
+    fn layout_block(&mut self, pou: &Pou, block: &VarBlock, frame: &mut Frame) {
+        if block.retain == Some(crate::syntax::ast::Retain::Retain) {
+            self.diags.warning(
+                "W203",
+                block.span,
+                "RETAIN is accepted but has no effect: plcrun starts every run from the declared initial values",
+            );
+        }
+        if block.kind == VarKind::Global {
+            self.diags.error(
+                "E209",
+                block.span,
+                "VAR_GLOBAL is only allowed in a CONFIGURATION, a RESOURCE or at top level",
+            );
+            return;
+        }
+        for decl in &block.decls {
+            self.layout_decl(pou, block, decl, frame);
+        }
+    }
+
+    /// One declaration (`a, b : T := init`): its type checked against the
+    /// POU kind, then each name laid out.
+    fn layout_decl(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &mut Frame) {
+        let ty = self.resolve_type(&decl.ty, Some(&frame.vars));
+        let tkind = self.types.get(ty).kind.clone();
+        let is_fb = matches!(tkind, TypeKind::NativeFb(_) | TypeKind::Pou { .. });
+        if matches!(tkind, TypeKind::Pou { program: true, .. }) {
+            self.diags.error(
+                "E209",
+                decl.ty.span(),
+                "a PROGRAM cannot be instantiated inside a POU",
+            );
+            return;
+        }
+        if is_fb && pou.kind == PouKind::Function && block.kind != VarKind::InOut {
+            self.diags.error(
+                "E209",
+                decl.ty.span(),
+                "a FUNCTION cannot hold function block instances (they have state)",
+            );
+            return;
+        }
+        if ty == TypeTable::void() {
+            return;
+        }
+        let init = decl
+            .init
+            .as_ref()
+            .and_then(|i| self.consts().resolve_init(i, ty, Some(&frame.vars)));
+        for name in &decl.names {
+            let key = name.key();
+            if frame.vars.contains_key(&key) {
+                self.diags.error(
+                    "E202",
+                    name.span,
+                    format!("`{}` is declared twice in `{}`", name.name, pou.name.name),
+                );
+                continue;
+            }
+            let Some((storage, location)) = self.var_storage(pou, block, decl, name, ty, frame)
+            else {
+                continue;
+            };
+            let var = self.declared_var(block, name, ty, storage, location, &init);
+            if matches!(
+                block.kind,
+                VarKind::Input | VarKind::Output | VarKind::InOut
+            ) {
+                frame.params.push(key.clone());
+            }
+            if let Storage::Frame(o) | Storage::Ref(o) = storage {
+                frame.members.push(Member {
+                    name: name.name.clone(),
+                    ty,
+                    offset: o,
+                    kind: var.kind,
+                    constant: block.constant,
+                });
+            }
+            frame.vars.insert(key, var);
+        }
+    }
+
+    /// Where variable `name` lives: a located address, the global of a
+    /// VAR_EXTERNAL, a pointer slot (VAR_IN_OUT) or frame slots.
+    fn var_storage(
+        &mut self,
+        pou: &Pou,
+        block: &VarBlock,
+        decl: &VarDecl,
+        name: &Ident,
+        ty: TypeId,
+        frame: &mut Frame,
+    ) -> Option<(Storage, Option<String>)> {
+        if let Some(a) = &decl.location {
+            if pou.kind != PouKind::Program {
+                self.diags.error(
+                    "E207",
+                    a.span,
+                    "located variables (AT %...) are only allowed in PROGRAMs and globals",
+                );
+                return None;
+            }
+            let addr = self.out.located_slot(&self.types, self.diags, a, ty)?;
+            return Some((Storage::Abs(addr), Some(normalize_address(a))));
+        }
+        match block.kind {
+            VarKind::External => self.external_storage(block, name, ty),
+            VarKind::InOut => {
+                let s = Storage::Ref(frame.offset);
+                frame.offset += 1;
+                Some((s, None))
+            }
+            _ => {
+                let s = Storage::Frame(frame.offset);
+                frame.offset = self.grow(frame.offset, self.types.size(ty), name.span);
+                Some((s, None))
+            }
+        }
+    }
+
+    /// The global a VAR_EXTERNAL refers to, checked for type and CONSTANT.
+    fn external_storage(
+        &mut self,
+        block: &VarBlock,
+        name: &Ident,
+        ty: TypeId,
+    ) -> Option<(Storage, Option<String>)> {
+        let Some(g) = self.model.globals.get(&name.key()) else {
+            self.diags.error(
+                "E201",
+                name.span,
+                format!("no VAR_GLOBAL named `{}` for this VAR_EXTERNAL", name.name),
+            );
+            return None;
+        };
+        if g.ty != ty && ty != TypeTable::error() {
+            self.diags.error(
+                "E301",
+                name.span,
+                format!(
+                    "VAR_EXTERNAL `{}` is declared {} but the global is {}",
+                    name.name,
+                    self.types.name(ty),
+                    self.types.name(g.ty)
+                ),
+            );
+        }
+        if g.constant && !block.constant {
+            self.diags.error(
+                "E401",
+                name.span,
+                format!(
+                    "global `{}` is CONSTANT: declare it in VAR_EXTERNAL CONSTANT",
+                    name.name
+                ),
+            );
+        }
+        Some((g.storage, g.location.clone()))
+    }
+
+    /// The variable as the model records it; a CONSTANT needs a constant
+    /// initial value (a VAR_EXTERNAL CONSTANT takes the global's).
+    fn declared_var(
+        &mut self,
+        block: &VarBlock,
+        name: &Ident,
+        ty: TypeId,
+        storage: Storage,
+        location: Option<String>,
+        init: &Option<ConstInit>,
+    ) -> VarInfo {
+        let value = if block.constant {
+            init.as_ref().and_then(init_const)
+        } else {
+            None
+        };
+        if block.constant
+            && value.is_none()
+            && block.kind != VarKind::External
+            && !self.is_aggregate(ty)
+        {
+            self.diags.error(
+                "E205",
+                name.span,
+                format!("constant `{}` needs a constant initial value", name.name),
+            );
+        }
+        let value = if block.kind == VarKind::External {
+            self.model
+                .globals
+                .get(&name.key())
+                .and_then(|g| g.value.clone())
+        } else {
+            value
+        };
+        VarInfo {
+            name: name.name.clone(),
+            ty,
+            kind: member_kind(block.kind),
+            storage,
+            constant: block.constant,
+            value,
+            init: init.clone(),
+            location,
+        }
+    }
+
+    /// Gives the laid-out POU its code block and instance type.
+    fn finish_layout(&mut self, p: usize, pou: &Pou, frame: Frame) {
+        let code = self.out.codes.len() as u32;
+        self.out.codes.push(crate::ir::image::CodeBlock {
+            name: pou.name.name.clone(),
+            kind: match pou.kind {
+                PouKind::Program => crate::ir::image::CodeKind::Program,
+                PouKind::FunctionBlock => crate::ir::image::CodeKind::FunctionBlock,
+                PouKind::Function => crate::ir::image::CodeKind::Function,
+            },
+            ops: Vec::new(),
+            spans: Vec::new(),
+            entry_init: Vec::new(),
+            entry_strings: Vec::new(),
+            frame: 0,
+            frame_size: frame.offset,
+        });
+        let ty = self.types.add(TypeDef {
+            name: pou.name.name.clone(),
+            kind: TypeKind::Pou {
+                code,
+                members: frame.members,
+                program: pou.kind == PouKind::Program,
+            },
+            size: frame.offset,
+        });
+        let info = &mut self.model.pous[p];
+        info.vars = frame.vars;
+        info.params = frame.params;
+        info.code = code;
+        info.vars_size = frame.offset;
+        info.ty = ty;
+    }
+}

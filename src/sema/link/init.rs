@@ -1,0 +1,158 @@
+//! Initial values: instances and static frames written into memory (with
+//! their string variables), and what a code block resets on entry.
+
+use super::{EntryResets, Linker};
+use crate::ir::image::StringInit;
+use crate::ir::types::{MemberKind, TypeId, TypeKind};
+use crate::sema::model::{ConstInit, Storage};
+use crate::syntax::ast::PouKind;
+
+impl Linker<'_> {
+    /// Writes the initial value of a `ty` at `at` in `buf`, collecting string slots.
+    fn write_init(
+        &self,
+        buf: &mut [u64],
+        at: usize,
+        ty: TypeId,
+        init: Option<&ConstInit>,
+        strs: &mut Vec<(usize, StringInit)>,
+    ) {
+        let default;
+        let init = match init {
+            Some(i) => Some(i),
+            None => {
+                default = self.model.type_inits.get(&ty).cloned();
+                default.as_ref()
+            }
+        };
+        match &self.types.get(ty).kind {
+            TypeKind::Elem(_) | TypeKind::Enum { .. } | TypeKind::Subrange { .. } => {
+                let Some(slot) = buf.get_mut(at) else { return };
+                *slot = match init {
+                    Some(ConstInit::Scalar(b)) => *b,
+                    _ => match self.model.default_init(self.types, ty) {
+                        ConstInit::Scalar(b) => b,
+                        _ => 0,
+                    },
+                };
+            }
+            TypeKind::Str { max, wide } => {
+                let text = match init {
+                    Some(ConstInit::Str(s)) => s.clone(),
+                    _ => String::new(),
+                };
+                strs.push((
+                    at,
+                    StringInit {
+                        max: *max,
+                        wide: *wide,
+                        init: text,
+                    },
+                ));
+            }
+            TypeKind::Array { dims, elem } => {
+                let n: u64 = dims.iter().map(|d| d.len()).product();
+                let stride = self.types.size(*elem) as usize;
+                let items = match init {
+                    Some(ConstInit::Array(v)) => v.as_slice(),
+                    _ => &[],
+                };
+                for k in 0..n as usize {
+                    self.write_init(buf, at + k * stride, *elem, items.get(k), strs);
+                }
+            }
+            TypeKind::Struct { fields } => {
+                let overrides = match init {
+                    Some(ConstInit::Struct(v)) => v.as_slice(),
+                    _ => &[],
+                };
+                let type_defaults = match self.model.type_inits.get(&ty) {
+                    Some(ConstInit::Struct(v)) => v.clone(),
+                    _ => Vec::new(),
+                };
+                for (k, m) in fields.iter().enumerate() {
+                    let fi = overrides
+                        .iter()
+                        .find(|(i, _)| *i == k)
+                        .or_else(|| type_defaults.iter().find(|(i, _)| *i == k))
+                        .map(|(_, c)| c);
+                    self.write_init(buf, at + m.offset as usize, m.ty, fi, strs);
+                }
+            }
+            TypeKind::NativeFb(fb) => {
+                for (k, p) in crate::stdlib::interface(*fb).iter().enumerate() {
+                    if let Some(slot) = buf.get_mut(at + k) {
+                        *slot = p.init;
+                    }
+                }
+            }
+            TypeKind::Pou { code, .. } => {
+                let Some(p) = self.model.pous.iter().position(|p| p.code == *code) else {
+                    return;
+                };
+                for var in self.model.pous[p].vars.values() {
+                    if let Storage::Frame(o) = var.storage {
+                        self.write_init(buf, at + o as usize, var.ty, var.init.as_ref(), strs);
+                    }
+                }
+                for &(slot, value) in &self.model.pous[p].consts {
+                    if let Some(s) = buf.get_mut(at + slot as usize) {
+                        *s = value;
+                    }
+                }
+            }
+            TypeKind::Step | TypeKind::Void | TypeKind::Error => {}
+        }
+    }
+
+    /// Writes initial values into absolute memory and allocates string ids.
+    pub(super) fn instantiate(&mut self, addr: u32, ty: TypeId, init: Option<&ConstInit>) {
+        let mut strs = Vec::new();
+        let mut buf = std::mem::take(&mut self.out.memory);
+        self.write_init(&mut buf, addr as usize, ty, init, &mut strs);
+        for (slot, s) in strs {
+            if let Some(s) = buf.get_mut(slot) {
+                *s = self.out.strings.len() as u64;
+            }
+            self.out.strings.push(s);
+        }
+        self.out.memory = buf;
+    }
+
+    /// Entry resets of a POU's VAR_TEMP (FBs, programs) or of all its
+    /// non-input variables (functions).
+    pub(super) fn entry_resets(&mut self, p: usize) -> EntryResets {
+        let kind = self.model.pous[p].kind;
+        let size = self.model.pous[p].vars_size as usize;
+        let mut buf = vec![0u64; size];
+        let mut strs = Vec::new();
+        let mut slots = Vec::new();
+        let vars: Vec<_> = self.model.pous[p].vars.values().cloned().collect();
+        for var in vars {
+            let reset = match kind {
+                PouKind::Function => !matches!(var.kind, MemberKind::Input | MemberKind::InOut),
+                _ => var.kind == MemberKind::Temp,
+            };
+            let Storage::Frame(o) = var.storage else {
+                continue;
+            };
+            if !reset {
+                continue;
+            }
+            let before = strs.len();
+            self.write_init(&mut buf, o as usize, var.ty, var.init.as_ref(), &mut strs);
+            let n = self.types.size(var.ty) as usize;
+            let string_slots: Vec<usize> = strs[before..].iter().map(|(s, _)| *s).collect();
+            for (k, value) in buf.iter().enumerate().skip(o as usize).take(n) {
+                if !string_slots.contains(&k) {
+                    slots.push((k as u32, *value));
+                }
+            }
+        }
+        let strings = strs
+            .into_iter()
+            .map(|(slot, s)| (slot as u32, self.out.str_const(&s.init)))
+            .collect();
+        (slots, strings)
+    }
+}

@@ -1,0 +1,54 @@
+//! Recursion check over the call graph (IEC 61131-3 forbids recursion).
+
+use super::Linker;
+use crate::source::Span;
+
+impl Linker<'_> {
+    /// Reports calls that form a cycle (IEC forbids recursion).
+    pub(super) fn check_recursion(&mut self) {
+        let n = self.out.codes.len();
+        let mut adj: Vec<Vec<(u32, Span)>> = vec![Vec::new(); n];
+        for &(a, b, s) in &self.out.calls {
+            if (a as usize) < n {
+                adj[a as usize].push((b, s));
+            }
+        }
+        // 0 = unvisited, 1 = on stack, 2 = done
+        let mut state = vec![0u8; n];
+        let mut reported = false;
+        for start in 0..n {
+            if state[start] != 0 {
+                continue;
+            }
+            let mut stack: Vec<(usize, usize)> = vec![(start, 0)];
+            state[start] = 1;
+            while let Some(&mut (node, ref mut next)) = stack.last_mut() {
+                if *next < adj[node].len() {
+                    let (to, span) = adj[node][*next];
+                    *next += 1;
+                    match state[to as usize] {
+                        0 => {
+                            state[to as usize] = 1;
+                            stack.push((to as usize, 0));
+                        }
+                        1 if !reported => {
+                            reported = true;
+                            let name = self.out.codes[to as usize].name.clone();
+                            self.diags.error(
+                                "E409",
+                                span,
+                                format!(
+                                    "recursive call of `{name}`: IEC 61131-3 forbids recursion"
+                                ),
+                            );
+                        }
+                        _ => {}
+                    }
+                } else {
+                    state[node] = 2;
+                    stack.pop();
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,149 @@
+//! The program being built: the append-only tables that body emission and
+//! linking fill (memory, code blocks, constant pools, array descriptors,
+//! charts, the call graph) and that become the [`crate::ir::image::Image`].
+//! Pools are interned, so a value is stored once however often it is used.
+
+use super::declare::normalize_address;
+use crate::diagnostics::Diagnostics;
+use crate::ir::chart::Chart;
+use crate::ir::image::{ArrayDesc, CodeBlock, StringInit};
+use crate::ir::types::{TypeId, TypeTable};
+use crate::source::Span;
+use crate::syntax::ast::{AddrSize, DirectAddress};
+use crate::types::ElemType;
+use indexmap::{IndexMap, IndexSet};
+
+/// The output tables of one compilation.
+#[derive(Debug, Default)]
+pub(crate) struct Program {
+    /// Initial contents of the PLC memory.
+    pub memory: Vec<u64>,
+    /// Memory exhaustion has been reported.
+    memory_exhausted: bool,
+    /// Located addresses (`%IX0.1`) with their slot and type.
+    pub located: IndexMap<String, (u32, TypeId)>,
+    /// String variables and temporaries (index = string id).
+    pub strings: Vec<StringInit>,
+    /// Code blocks (index = code number).
+    pub codes: Vec<CodeBlock>,
+    /// 64-bit constants of `LoadK`.
+    pub consts: IndexSet<u64>,
+    /// Constant strings.
+    pub str_consts: IndexSet<String>,
+    /// Array descriptors.
+    pub arrays: Vec<ArrayDesc>,
+    /// Elementary types of `ToStr`/`FromStr`.
+    pub scalar_types: IndexSet<ElemType>,
+    /// Call graph edges between code blocks (for recursion detection).
+    pub calls: Vec<(u32, u32, Span)>,
+    /// Function-frame relocations: (code block, instruction, callee POU).
+    pub fixups: Vec<(u32, usize, usize)>,
+    /// Step tables of chart bodies.
+    pub charts: Vec<Chart>,
+}
+
+impl Program {
+    /// Reserves `size` slots of absolute memory.
+    pub(super) fn alloc_abs(&mut self, diags: &mut Diagnostics, size: u32) -> u32 {
+        let at = self.memory.len();
+        if at + size as usize > super::MAX_MEMORY_SLOTS {
+            if !self.memory_exhausted {
+                self.memory_exhausted = true;
+                diags.error(
+                    "E206",
+                    Span::default(),
+                    format!(
+                        "the program needs more than {} MiB of PLC memory",
+                        (super::MAX_MEMORY_SLOTS * 8) >> 20
+                    ),
+                );
+            }
+            // Nothing is allocated; the program will not link.
+            return at as u32;
+        }
+        self.memory.resize(at + size as usize, 0);
+        at as u32
+    }
+
+    /// Interns a 64-bit constant.
+    pub(super) fn konst(&mut self, v: u64) -> u32 {
+        self.consts.insert_full(v).0 as u32
+    }
+
+    /// Interns a constant string.
+    pub(super) fn str_const(&mut self, s: &str) -> u32 {
+        match self.str_consts.get_index_of(s) {
+            Some(i) => i as u32,
+            None => self.str_consts.insert_full(s.to_string()).0 as u32,
+        }
+    }
+
+    /// Index of an elementary type in the `ToStr`/`FromStr` list.
+    pub(super) fn scalar_index(&mut self, e: ElemType) -> u8 {
+        self.scalar_types.insert_full(e).0 as u8
+    }
+
+    /// Adds an array descriptor (one per access site: it carries the span).
+    pub(super) fn array_desc(&mut self, d: ArrayDesc) -> u32 {
+        self.arrays.push(d);
+        self.arrays.len() as u32 - 1
+    }
+
+    /// Absolute slot of a located variable (shared by every declaration of
+    /// the same address).
+    pub(super) fn located_slot(
+        &mut self,
+        types: &TypeTable,
+        diags: &mut Diagnostics,
+        a: &DirectAddress,
+        ty: TypeId,
+    ) -> Option<u32> {
+        let key = normalize_address(a);
+        let elem = types.scalar(ty);
+        let ok = match (a.size, elem) {
+            (AddrSize::Bit, Some(ElemType::Bool)) => true,
+            (AddrSize::Bit, _) => false,
+            (size, Some(e)) => {
+                let bits = match size {
+                    AddrSize::Byte => 8,
+                    AddrSize::Word => 16,
+                    AddrSize::Dword => 32,
+                    _ => 64,
+                };
+                e.bits() == bits || (bits == 32 && matches!(e, ElemType::Time))
+            }
+            _ => false,
+        };
+        if !ok {
+            diags.error(
+                "E207",
+                a.span,
+                format!(
+                    "`{}` cannot hold a {}: the address size does not match the type",
+                    a.text,
+                    types.name(ty)
+                ),
+            );
+            return None;
+        }
+        if let Some(&(addr, prev)) = self.located.get(&key) {
+            if prev != ty {
+                diags.error(
+                    "E207",
+                    a.span,
+                    format!(
+                        "`{}` is already declared as {}, not {}",
+                        a.text,
+                        types.name(prev),
+                        types.name(ty)
+                    ),
+                );
+                return None;
+            }
+            return Some(addr);
+        }
+        let addr = self.alloc_abs(diags, 1);
+        self.located.insert(key, (addr, ty));
+        Some(addr)
+    }
+}
