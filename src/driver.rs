@@ -158,7 +158,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
 
 #[cfg(test)]
 mod tests {
-    use crate::types::ElemType;
+    use crate::elementary::ElemType;
 
     /// Literal texts of every shape, including malformed ones.
     fn corpus() -> Vec<String> {

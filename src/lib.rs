@@ -37,6 +37,7 @@
 // the library's API; the stages themselves stay inside the crate.
 mod diagnostics;
 mod driver;
+mod elementary;
 pub(crate) mod ir;
 mod runtime;
 mod sema;
@@ -44,12 +45,12 @@ mod source;
 pub(crate) mod stdlib;
 #[doc(hidden)]
 pub mod syntax;
-mod types;
 mod value;
 pub(crate) mod vm;
 
 pub use diagnostics::{Diagnostic, Diagnostics, Severity};
 pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
+pub use elementary::ElemType;
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
 pub use runtime::names::VarRef;
 pub use runtime::plc_value::Value;
@@ -60,7 +61,6 @@ pub use runtime::stimulus::{
 pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter};
 pub use runtime::var_error::{PathProblem, ValueProblem, VarError};
 pub use source::{FileId, SourceFile, SourceMap, Span};
-pub use types::ElemType;
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind};
 

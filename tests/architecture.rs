@@ -11,31 +11,31 @@ use std::path::{Path, PathBuf};
 /// used by anyone but `lib.rs`, which only re-exports.
 const ALLOWED: &[(&str, &[&str])] = &[
     ("source", &[]),
-    ("types", &[]),
-    ("value", &["types"]),
+    ("elementary", &[]),
+    ("value", &["elementary"]),
     ("diagnostics", &["source"]),
-    ("syntax", &["source", "diagnostics", "types", "value"]),
-    ("ir", &["source", "types", "value"]),
-    ("stdlib", &["ir", "types"]),
+    ("syntax", &["source", "diagnostics", "elementary", "value"]),
+    ("ir", &["source", "elementary", "value"]),
+    ("stdlib", &["ir", "elementary"]),
     (
         "sema",
         &[
             "source",
             "diagnostics",
-            "types",
+            "elementary",
             "value",
             "syntax",
             "ir",
             "stdlib",
         ],
     ),
-    ("vm", &["types", "value", "ir", "stdlib"]),
+    ("vm", &["elementary", "value", "ir", "stdlib"]),
     (
         "driver",
         &[
             "source",
             "diagnostics",
-            "types",
+            "elementary",
             "value",
             "syntax",
             "sema",
@@ -47,7 +47,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
         &[
             "source",
             "diagnostics",
-            "types",
+            "elementary",
             "value",
             "ir",
             "stdlib",

@@ -167,7 +167,7 @@ pub struct Association {
 pub struct Step {
     /// Name as declared.
     pub name: String,
-    /// Offset of its step record (`ir::types::step_layout`).
+    /// Offset of its step record (`ir::type_table::step_layout`).
     pub rec: u32,
     /// Offset of its per-call scratch slot (the transition that wins it).
     pub scratch: u32,

@@ -1,10 +1,10 @@
 //! A compiled, linked program: code blocks, constants, array descriptors,
 //! the initial memory image and the directory of runnable program instances.
 
+use crate::elementary::ElemType;
 use crate::ir::op::Op;
-use crate::ir::types::{TypeId, TypeTable};
+use crate::ir::type_table::{TypeId, TypeTable};
 use crate::source::Span;
-use crate::types::ElemType;
 
 /// What a code block belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -76,7 +76,7 @@ pub struct RootVar {
     /// Absolute slot address.
     pub addr: u32,
     /// Role in the program (`Input`, `Output`, `Local`...).
-    pub kind: crate::ir::types::MemberKind,
+    pub kind: crate::ir::type_table::MemberKind,
     /// Located address text, normalised (e.g. `%QX0.0.0.0.1`), if any.
     pub location: Option<String>,
 }

@@ -6,5 +6,5 @@ pub mod image;
 pub mod op;
 mod op_list;
 pub mod operands;
-pub mod types;
+pub mod type_table;
 pub mod verify;

@@ -19,7 +19,7 @@ use super::chart::{ActionKind, Chart, Condition, Duration, action_layout as al, 
 use super::image::{CodeBlock, CodeKind, Image};
 use super::op::Op;
 use super::operands::{ArrayUse, Callee, Operand, Shape, operands, shape};
-use super::types::step_layout as sl;
+use super::type_table::step_layout as sl;
 use std::fmt;
 
 /// An image the verifier accepted: the executor may run it without

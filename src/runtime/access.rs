@@ -5,8 +5,8 @@ use super::engine::Plc;
 use super::names::{self, VarRef};
 use super::plc_value::Value;
 use super::var_error::{ValueProblem, VarError};
-use crate::ir::types::TypeKind;
-use crate::types::ElemType;
+use crate::elementary::ElemType;
+use crate::ir::type_table::TypeKind;
 use crate::value::encode::is_canonical;
 use crate::value::text::{Lit, parse_literal_text, parse_scalar};
 

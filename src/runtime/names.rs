@@ -3,9 +3,9 @@
 //! `prog.x` for configuration instances, and located addresses `%IX0.1`.
 
 use super::var_error::{PathProblem, VarError};
+use crate::elementary::ElemType;
 use crate::ir::image::Image;
-use crate::ir::types::{MemberKind, TypeId, TypeKind, step_layout};
-use crate::types::ElemType;
+use crate::ir::type_table::{MemberKind, TypeId, TypeKind, step_layout};
 
 /// A resolved variable: a handle for repeated access without looking the
 /// name up again. Only [`crate::Plc::resolve`] makes one, and only the PLC
@@ -205,7 +205,7 @@ fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId), VarError> {
 
 /// Offset and type of member `name` of `ty`.
 fn member(image: &Image, ty: TypeId, name: &str) -> Option<(u32, TypeId)> {
-    use crate::ir::types::TypeTable;
+    use crate::ir::type_table::TypeTable;
     match &image.types.get(ty).kind {
         TypeKind::Struct { .. } | TypeKind::Pou { .. } => image
             .types

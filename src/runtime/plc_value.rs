@@ -1,6 +1,6 @@
 //! Values read from and written to a PLC's variables from outside.
 
-use crate::types::{ElemType, Family};
+use crate::elementary::{ElemType, Family};
 use std::fmt;
 
 /// A value read from the PLC.

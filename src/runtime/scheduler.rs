@@ -85,7 +85,7 @@ impl Scheduler {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ir::types::TypeId;
+    use crate::ir::type_table::TypeId;
 
     fn task(name: &str, interval: i64, priority: i64, single: Option<u32>) -> Task {
         Task {

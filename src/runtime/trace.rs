@@ -22,7 +22,7 @@
 //! least one traced cell's text differs from the previous cycle's row (the
 //! previous row given to [`TraceWriter::row`], written or not).
 
-use crate::types::ElemType;
+use crate::elementary::ElemType;
 use crate::value::format::{format_string, json_value, write_value};
 use crate::value::literal::format_duration;
 use serde::Serialize;

@@ -6,11 +6,11 @@ use super::body::BodyBuilder;
 use super::consts::{Const, slot_to_int, slot_to_real};
 use super::emit::{Fcx, Ty, Val};
 use super::typeck::shift_of;
+use crate::elementary::{ElemType, Family};
 use crate::ir::op::{Cmp, Op, Slot};
-use crate::ir::types::{TypeId, TypeTable};
+use crate::ir::type_table::{TypeId, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{BinaryOp, Expr};
-use crate::types::{ElemType, Family};
 
 impl BodyBuilder<'_> {
     /// Checks and emits `a op b`.

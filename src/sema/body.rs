@@ -12,7 +12,7 @@ use super::model::Model;
 use super::program::Program;
 use crate::diagnostics::Diagnostics;
 use crate::ir::op::Op;
-use crate::ir::types::TypeTable;
+use crate::ir::type_table::TypeTable;
 use crate::syntax::ast::{Body, Pou};
 use indexmap::IndexSet;
 

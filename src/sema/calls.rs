@@ -4,12 +4,12 @@
 use super::body::BodyBuilder;
 use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::ConstInit;
+use crate::elementary::ElemType;
 use crate::ir::op::Op;
-use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib::{self, ParamDir};
 use crate::syntax::ast::{Arg, Call, Expr, ExprKind, PouKind};
-use crate::types::ElemType;
 
 /// One formal parameter of a callee.
 #[derive(Debug, Clone)]

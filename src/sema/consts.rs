@@ -2,8 +2,8 @@
 //! (through the value module, which also reads values given at run time),
 //! and slots decoded back into numbers for folding.
 
+use crate::elementary::{ElemType, Family};
 use crate::syntax::ast::{Literal, LiteralValue};
-use crate::types::{ElemType, Family};
 pub use crate::value::encode::{int_to_slot, real_to_slot};
 use crate::value::text::{Encoded, Lit, encode, natural_type};
 

@@ -7,9 +7,9 @@ use super::consts::{
 };
 use super::model::{ConstInit, Model, VarInfo};
 use crate::diagnostics::Diagnostics;
-use crate::ir::types::{TypeId, TypeKind, TypeTable};
+use crate::elementary::ElemType;
+use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::syntax::ast::{BinaryOp, Expr, ExprKind, Initializer, LiteralValue, UnaryOp};
-use crate::types::ElemType;
 use indexmap::IndexMap;
 
 /// Folds the constant expressions of declarations.

@@ -10,13 +10,13 @@ use super::decl_consts::DeclConsts;
 use super::model::{LayoutState, Model, PouInfo, Storage, VarInfo};
 use super::program::Program;
 use crate::diagnostics::Diagnostics;
-use crate::ir::types::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
+use crate::elementary::ElemType;
+use crate::ir::type_table::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib;
 use crate::syntax::ast::{
     AddrSize, Area, CompilationUnit, DirectAddress, Item, Pou, TypeDecl, TypeSpec, VarBlock,
 };
-use crate::types::ElemType;
 use indexmap::IndexMap;
 use std::collections::HashMap;
 

@@ -5,11 +5,11 @@
 use super::body::BodyBuilder;
 use super::consts::Const;
 use super::model::VarInfo;
+use crate::elementary::ElemType;
 use crate::ir::image::StringInit;
 use crate::ir::op::{Op, Slot};
-use crate::ir::types::{TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
-use crate::types::ElemType;
 use indexmap::IndexSet;
 
 /// The type of an expression: a known type, or an untyped literal that

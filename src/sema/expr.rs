@@ -5,11 +5,11 @@ use super::body::BodyBuilder;
 use super::consts::{Const, literal_to_slot, literal_type, slot_to_int, slot_to_real};
 use super::emit::{Ty, Val};
 use super::typeck::shift_of;
+use crate::elementary::{ElemType, Family};
 use crate::ir::op::{Op, ShiftKind};
-use crate::ir::types::{TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{Expr, ExprKind, Literal, LiteralValue, UnaryOp};
-use crate::types::{ElemType, Family};
 
 impl BodyBuilder<'_> {
     /// Checks and emits an expression used as a value.

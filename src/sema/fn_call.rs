@@ -10,7 +10,7 @@ use super::consts::Const;
 use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::{ConstInit, PouInfo, Storage};
 use crate::ir::op::{Op, Slot};
-use crate::ir::types::{MemberKind, TypeKind, TypeTable};
+use crate::ir::type_table::{MemberKind, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{Call, Expr};
 

@@ -8,14 +8,14 @@ use super::consts::slot_to_int;
 use super::emit::{LoopCtx, Ty, Val};
 use super::stmt::negate;
 use super::typeck::shift_of;
+use crate::elementary::ElemType;
 use crate::ir::op::Slot;
 use crate::ir::op::{Cmp, Op};
-use crate::ir::types::TypeId;
-use crate::ir::types::TypeKind;
+use crate::ir::type_table::TypeId;
+use crate::ir::type_table::TypeKind;
 use crate::source::Span;
 use crate::syntax::ast::Ident;
 use crate::syntax::ast::{Expr, ExprKind, Stmt, StmtKind};
-use crate::types::ElemType;
 
 /// A FOR loop's control variable, limit and step.
 struct ForLoop {

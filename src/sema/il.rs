@@ -6,14 +6,14 @@
 use super::body::BodyBuilder;
 use super::emit::{Ty, Val};
 use super::model::{Storage, VarInfo};
+use crate::elementary::ElemType;
 use crate::ir::op::Op;
-use crate::ir::types::{MemberKind, TypeId, TypeTable};
+use crate::ir::type_table::{MemberKind, TypeId, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{
     Arg, BinaryOp, Call, Expr, ExprKind, Ident, IlInstr, IlInstrKind, IlLine, IlOperator,
     IlOutputCopy,
 };
-use crate::types::ElemType;
 use std::collections::HashMap;
 
 /// Name under which the CR slot is visible to the expression checker.
@@ -245,7 +245,7 @@ impl BodyBuilder<'_> {
         if self.types.scalar(t).is_some_and(|e| e.is_string()) {
             // The CR holds the id of a string temporary owned by this body.
             let (max, wide) = match self.types.get(t).kind {
-                crate::ir::types::TypeKind::Str { max, wide } => (max, wide),
+                crate::ir::type_table::TypeKind::Str { max, wide } => (max, wide),
                 _ => (254, false),
             };
             let tmp = self.string_temp(max, wide);
@@ -684,14 +684,14 @@ impl BodyBuilder<'_> {
             return false;
         };
         let has_pin = match &self.types.get(var.ty).kind {
-            crate::ir::types::TypeKind::NativeFb(fb) => {
+            crate::ir::type_table::TypeKind::NativeFb(fb) => {
                 crate::stdlib::interface(*fb).iter().any(|p| {
                     p.dir == crate::stdlib::ParamDir::Input
                         && (p.name.eq_ignore_ascii_case(pin)
                             || p.aliases.iter().any(|a| a.eq_ignore_ascii_case(pin)))
                 })
             }
-            crate::ir::types::TypeKind::Pou { members, .. } => members
+            crate::ir::type_table::TypeKind::Pou { members, .. } => members
                 .iter()
                 .any(|m| m.kind == MemberKind::Input && m.name.eq_ignore_ascii_case(pin)),
             _ => false,

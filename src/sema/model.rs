@@ -1,7 +1,7 @@
 //! What the checker knows about declarations: POUs, variables, globals.
 
 use super::consts::Const;
-use crate::ir::types::{MemberKind, TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{MemberKind, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::PouKind;
 use indexmap::IndexMap;

@@ -7,15 +7,15 @@ use super::consts::{Const, slot_to_int};
 use super::declare::{address_type, normalize_address};
 use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::Storage;
+use crate::elementary::ElemType;
 use crate::ir::image::ArrayDesc;
 use crate::ir::op::NativeFb;
 use crate::ir::op::{Op, Slot};
-use crate::ir::types::{
+use crate::ir::type_table::{
     Dim, Member, MemberKind, TypeDef, TypeId, TypeKind, TypeTable, step_layout,
 };
 use crate::source::Span;
 use crate::syntax::ast::{DirectAddress, Expr, ExprKind, Ident};
-use crate::types::ElemType;
 
 /// The shape of an indexed array for element access.
 #[derive(Clone, Copy)]

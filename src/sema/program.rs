@@ -5,12 +5,12 @@
 
 use super::declare::normalize_address;
 use crate::diagnostics::Diagnostics;
+use crate::elementary::ElemType;
 use crate::ir::chart::Chart;
 use crate::ir::image::{ArrayDesc, CodeBlock, StringInit};
-use crate::ir::types::{TypeId, TypeTable};
+use crate::ir::type_table::{TypeId, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{AddrSize, DirectAddress};
-use crate::types::ElemType;
 use indexmap::{IndexMap, IndexSet};
 
 /// The output tables of one compilation.

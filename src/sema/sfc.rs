@@ -8,11 +8,11 @@
 
 use super::declare::Declarer;
 use super::model::{Storage, VarInfo};
+use crate::elementary::ElemType;
 use crate::ir::chart::{action_layout, header};
-use crate::ir::types::{Member, MemberKind, TypeDef, TypeKind, TypeTable};
+use crate::ir::type_table::{Member, MemberKind, TypeDef, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{Ident, Pou, SfcElement, Stmt};
-use crate::types::ElemType;
 use indexmap::IndexMap;
 
 /// Key of the hidden chart-state variable (not a valid identifier).

@@ -8,16 +8,16 @@ use super::consts::Const;
 use super::emit::{Fcx, Ty, Val};
 use super::model::{Storage, VarInfo};
 use super::sfc::{HIDDEN, Hidden, Names, hidden_layout, names};
+use crate::elementary::ElemType;
 use crate::ir::chart::{
     self, Action, ActionKind, Association, Chart, Condition, Duration, Qualifier, action_layout,
     header,
 };
 use crate::ir::image::{CodeBlock, CodeKind};
 use crate::ir::op::Op;
-use crate::ir::types::{MemberKind, TypeTable};
+use crate::ir::type_table::{MemberKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{Body, Expr, Ident, Pou, SfcElement, TransitionCondition};
-use crate::types::ElemType;
 use std::collections::HashMap;
 
 /// The chart of the POU being emitted: where its state lives.
@@ -631,7 +631,7 @@ impl BodyBuilder<'_> {
     fn scratch_expr(
         &mut self,
         e: &Expr,
-        expect: Option<crate::ir::types::TypeId>,
+        expect: Option<crate::ir::type_table::TypeId>,
     ) -> (Val, Vec<Op>) {
         let scratch = Fcx::new(self.block.pou, self.block.temp_base);
         let outer = std::mem::replace(&mut self.block, scratch);

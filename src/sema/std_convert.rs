@@ -4,10 +4,10 @@
 use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Ty, Val};
+use crate::elementary::{ElemType, Family};
 use crate::ir::op::{Conv, Op};
-use crate::ir::types::TypeTable;
+use crate::ir::type_table::TypeTable;
 use crate::source::Span;
-use crate::types::{ElemType, Family};
 
 impl BodyBuilder<'_> {
     /// `*_TO_*` conversions (the source type from the name or the argument).

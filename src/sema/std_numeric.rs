@@ -4,11 +4,11 @@
 use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Ty, Val};
+use crate::elementary::{ElemType, Family};
 use crate::ir::op::{Conv, MathFn, Op, ShiftKind};
-use crate::ir::types::TypeTable;
+use crate::ir::type_table::TypeTable;
 use crate::source::Span;
 use crate::syntax::ast::BinaryOp;
-use crate::types::{ElemType, Family};
 
 impl BodyBuilder<'_> {
     /// ADD, MUL, ... and the time functions: the operator folded over the inputs.
@@ -147,7 +147,7 @@ impl BodyBuilder<'_> {
         &mut self,
         to: Option<ElemType>,
         mut vals: Vec<(Val, Span)>,
-        expect: Option<crate::ir::types::TypeId>,
+        expect: Option<crate::ir::type_table::TypeId>,
     ) -> Val {
         let (v, s) = vals.remove(0);
         let to = to
@@ -177,7 +177,7 @@ impl BodyBuilder<'_> {
         mut vals: Vec<(Val, Span)>,
         fname: &str,
         span: Span,
-        expect: Option<crate::ir::types::TypeId>,
+        expect: Option<crate::ir::type_table::TypeId>,
     ) -> Val {
         let bool_t = TypeTable::elem(ElemType::Bool);
         let (b, _) = vals.pop().unwrap_or((Val::error(), span));
@@ -216,7 +216,7 @@ impl BodyBuilder<'_> {
         vals: Vec<(Val, Span)>,
         fname: &str,
         span: Span,
-        expect: Option<crate::ir::types::TypeId>,
+        expect: Option<crate::ir::type_table::TypeId>,
     ) -> Val {
         let tys: Vec<Ty> = vals.iter().map(|(v, _)| v.ty()).collect();
         let Some(t) = self.unify_all(&tys, span, fname, expect) else {
@@ -240,7 +240,7 @@ impl BodyBuilder<'_> {
         vals: Vec<(Val, Span)>,
         fname: &str,
         span: Span,
-        expect: Option<crate::ir::types::TypeId>,
+        expect: Option<crate::ir::type_table::TypeId>,
     ) -> Val {
         let tys: Vec<Ty> = vals.iter().map(|(v, _)| v.ty()).collect();
         let Some(t) = self.unify_all(&tys, span, fname, expect) else {
@@ -262,7 +262,7 @@ impl BodyBuilder<'_> {
         mut vals: Vec<(Val, Span)>,
         fname: &str,
         span: Span,
-        expect: Option<crate::ir::types::TypeId>,
+        expect: Option<crate::ir::type_table::TypeId>,
     ) -> Val {
         let (k, ks) = vals.remove(0);
         let k_ok = match k.ty() {
@@ -408,8 +408,8 @@ impl BodyBuilder<'_> {
         tys: &[Ty],
         span: Span,
         fname: &str,
-        expect: Option<crate::ir::types::TypeId>,
-    ) -> Option<crate::ir::types::TypeId> {
+        expect: Option<crate::ir::type_table::TypeId>,
+    ) -> Option<crate::ir::type_table::TypeId> {
         let mut acc = *tys.first()?;
         for t in &tys[1..] {
             match self.unify(acc, *t) {
@@ -430,7 +430,7 @@ impl BodyBuilder<'_> {
         Some(self.default_type(acc, None))
     }
 
-    fn minmax(&mut self, t: crate::ir::types::TypeId, a: u32, b: u32, max: bool) -> u32 {
+    fn minmax(&mut self, t: crate::ir::type_table::TypeId, a: u32, b: u32, max: bool) -> u32 {
         let e = self.scalar(t).unwrap_or(ElemType::Dint);
         let d = self.block.temp();
         self.block.emit(match e {

@@ -3,10 +3,10 @@
 
 use super::body::BodyBuilder;
 use super::emit::Val;
+use crate::elementary::ElemType;
 use crate::ir::op::{Op, StrFn};
-use crate::ir::types::{TypeKind, TypeTable};
+use crate::ir::type_table::{TypeKind, TypeTable};
 use crate::source::Span;
-use crate::types::ElemType;
 
 impl BodyBuilder<'_> {
     /// CONCAT of two or more strings, left to right.
@@ -75,7 +75,7 @@ impl BodyBuilder<'_> {
         let max = max.clamp(1, 65535);
         let d = self.string_temp(max, wide);
         self.block.emit(Op::StrCall { d, a, f: func });
-        let t = self.types.intern(crate::ir::types::TypeDef {
+        let t = self.types.intern(crate::ir::type_table::TypeDef {
             name: format!("{}[{max}]", if wide { "WSTRING" } else { "STRING" }),
             kind: TypeKind::Str { wide, max },
             size: 1,

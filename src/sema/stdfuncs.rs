@@ -4,11 +4,11 @@
 
 use super::body::BodyBuilder;
 use super::emit::Val;
+use crate::elementary::{ElemType, Family};
 use crate::ir::op::{MathFn, Op, ShiftKind, StrFn};
-use crate::ir::types::TypeTable;
+use crate::ir::type_table::TypeTable;
 use crate::source::Span;
 use crate::syntax::ast::{Arg, BinaryOp, Ident};
-use crate::types::{ElemType, Family};
 
 /// The kinds of standard function.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -173,7 +173,7 @@ impl BodyBuilder<'_> {
         id: &Ident,
         args: &[Arg],
         span: Span,
-        expect: Option<crate::ir::types::TypeId>,
+        expect: Option<crate::ir::type_table::TypeId>,
     ) -> Option<Val> {
         let std = classify(&id.name)?;
         let fname = id.name.to_ascii_uppercase();
@@ -279,7 +279,7 @@ impl BodyBuilder<'_> {
         fname: &str,
         mut vals: Vec<(Val, Span)>,
         span: Span,
-        expect: Option<crate::ir::types::TypeId>,
+        expect: Option<crate::ir::type_table::TypeId>,
     ) -> Val {
         match std {
             Std::Binary(op, _) | Std::Time(op) => self.std_fold_binary(op, vals, span),

@@ -4,11 +4,11 @@
 use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Fcx, LoopCtx, Ty, Val};
+use crate::elementary::ElemType;
 use crate::ir::op::{Cmp, Op, Slot};
-use crate::ir::types::{TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{CaseLabel, Expr, ExprKind, Stmt, StmtKind};
-use crate::types::ElemType;
 
 /// The predicate that is TRUE exactly when `c` is FALSE.
 pub fn negate(c: Cmp) -> Cmp {
@@ -345,7 +345,7 @@ impl BodyBuilder<'_> {
         let Some(p) = self.place(base) else { return };
         let Some(e) = self
             .scalar(p.ty)
-            .filter(|e| e.family() == crate::types::Family::Bits && !self.is_enum(p.ty))
+            .filter(|e| e.family() == crate::elementary::Family::Bits && !self.is_enum(p.ty))
         else {
             if p.ty != TypeTable::error() {
                 let n = self.types.name(p.ty).to_string();
@@ -463,7 +463,7 @@ impl BodyBuilder<'_> {
     }
 
     /// True if a value of `t` holds string slots.
-    pub(super) fn contains_strings(&self, t: crate::ir::types::TypeId) -> bool {
+    pub(super) fn contains_strings(&self, t: crate::ir::type_table::TypeId) -> bool {
         match &self.types.get(t).kind {
             TypeKind::Str { .. } => true,
             TypeKind::Array { elem, .. } => self.contains_strings(*elem),
@@ -621,7 +621,7 @@ impl BodyBuilder<'_> {
     }
 
     /// A CASE label's constant value in the selector's type.
-    fn case_label(&mut self, x: &Expr, st: crate::ir::types::TypeId) -> Option<i128> {
+    fn case_label(&mut self, x: &Expr, st: crate::ir::type_table::TypeId) -> Option<i128> {
         let v = self.expr(x, Some(st));
         let Val::Const(c, t) = &v else {
             if !v.is_error() {

@@ -5,11 +5,11 @@
 use super::consts::int_to_slot;
 use super::declare::Declarer;
 use super::model::{ConstInit, LayoutState, VarInfo};
-use crate::ir::types::{Dim, Member, MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
+use crate::elementary::ElemType;
+use crate::ir::type_table::{Dim, Member, MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib;
 use crate::syntax::ast::{Expr, Ident, Item, PouKind, TypeSpec, VarDecl};
-use crate::types::ElemType;
 use indexmap::IndexMap;
 
 impl Declarer<'_> {

@@ -5,10 +5,10 @@
 use super::body::BodyBuilder;
 use super::consts::{Const, int_to_slot, real_to_slot, slot_to_int, slot_to_real};
 use super::emit::{Ty, Val};
+use crate::elementary::{ElemType, Family};
 use crate::ir::op::{Cmp, Conv, Op};
-use crate::ir::types::{TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
-use crate::types::{ElemType, Family};
 
 /// `64 - bits` of an integer-like type (0 for 64-bit and time types).
 pub fn shift_of(e: ElemType) -> u8 {

@@ -9,10 +9,10 @@
 mod bistable;
 mod counters;
 mod edges;
-mod layout;
+mod pins;
 mod timers;
 
-pub use layout::{ParamDir, interface, lookup_native, native_name};
+pub use pins::{ParamDir, interface, lookup_native, native_name};
 
 use crate::ir::op::NativeFb;
 

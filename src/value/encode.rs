@@ -1,7 +1,7 @@
 //! Numbers encoded into the 64-bit slot of an elementary type (see
-//! [`crate::types`] for the encoding of each type).
+//! [`crate::elementary`] for the encoding of each type).
 
-use crate::types::{ElemType, Family};
+use crate::elementary::{ElemType, Family};
 
 /// Encodes an integer into the slot of `ty`, if it fits.
 pub fn int_to_slot(v: i128, ty: ElemType) -> Option<u64> {

@@ -1,7 +1,7 @@
 //! Values as IEC 61131-3 literal text, the way traces and messages print them.
 //!
 //! The input is an elementary type and the raw 64-bit slot (see
-//! [`crate::types`] for the encoding). Printing rules:
+//! [`crate::elementary`] for the encoding). Printing rules:
 //!
 //! | type | example |
 //! |---|---|
@@ -26,7 +26,7 @@
 //! before 1970 print as earlier dates and a TOD slot outside one day wraps
 //! modulo 24 hours. Nothing here panics, whatever the slot holds.
 
-use crate::types::ElemType;
+use crate::elementary::ElemType;
 use crate::value::literal::format_duration;
 use std::fmt::Write;
 

@@ -10,7 +10,7 @@ use super::literal::{
     decode_string, parse_date_body, parse_dt_body, parse_duration_body, parse_int_text,
     parse_real_text, parse_tod_body,
 };
-use crate::types::{ElemType, Family};
+use crate::elementary::{ElemType, Family};
 
 /// A decoded literal, before it is given a type.
 #[derive(Debug, Clone, PartialEq)]

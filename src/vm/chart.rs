@@ -10,7 +10,7 @@ use crate::ir::chart::{
     ActionKind, Chart, Condition, Duration, Qualifier, action_layout as al, header as hd,
 };
 use crate::ir::image::Image;
-use crate::ir::types::step_layout as sl;
+use crate::ir::type_table::step_layout as sl;
 
 /// Runs one call of chart `chart` for the instance at `base`.
 pub(super) fn run(m: &mut Machine, img: &Image, chart: u32, base: usize) -> Result<(), Fault> {

@@ -7,7 +7,7 @@
 use super::{FaultKind, Machine};
 use crate::ir::image::{CodeBlock, CodeKind, Image, ProgramInstance, Task};
 use crate::ir::op::{NativeFb, Op};
-use crate::ir::types::{TypeId, TypeTable};
+use crate::ir::type_table::{TypeId, TypeTable};
 use crate::ir::verify::{VerifiedImage, verify};
 
 const MEMORY: usize = 16;

@@ -3,7 +3,7 @@
 
 use super::{EntryResets, Linker};
 use crate::ir::image::StringInit;
-use crate::ir::types::{MemberKind, TypeId, TypeKind};
+use crate::ir::type_table::{MemberKind, TypeId, TypeKind};
 use crate::sema::model::{ConstInit, Storage};
 use crate::syntax::ast::PouKind;
 

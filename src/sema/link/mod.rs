@@ -15,7 +15,7 @@ use super::program::Program;
 use crate::diagnostics::Diagnostics;
 use crate::ir::image::{Image, ProgramInstance, RootVar};
 use crate::ir::op::Op;
-use crate::ir::types::{MemberKind, TypeId, TypeTable};
+use crate::ir::type_table::{MemberKind, TypeId, TypeTable};
 use crate::ir::verify::VerifiedImage;
 use crate::source::Span;
 use crate::syntax::ast::{CompilationUnit, PouKind};

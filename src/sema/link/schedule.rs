@@ -3,14 +3,14 @@
 //! task.
 
 use super::{Connection, Linker, Scheduled};
+use crate::elementary::ElemType;
 use crate::ir::image::Task;
-use crate::ir::types::MemberKind;
+use crate::ir::type_table::MemberKind;
 use crate::sema::CompileOptions;
 use crate::sema::model::Storage;
 use crate::source::Span;
 use crate::syntax::ast::ProgramInstance as ProgramDecl;
 use crate::syntax::ast::{Configuration, ExprKind, Item, LiteralValue, PouKind, TaskDecl};
-use crate::types::ElemType;
 
 impl Linker<'_> {
     /// Tasks and the program instances to run: (instance name, POU, task index).

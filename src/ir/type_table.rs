@@ -2,8 +2,8 @@
 //! layout in slots. Shared by the checker (typing), the image (naming
 //! variables from outside) and the runtime (reading and writing values).
 
+use crate::elementary::ElemType;
 use crate::ir::op::NativeFb;
-use crate::types::ElemType;
 
 /// Index of a type in a [`TypeTable`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -2,8 +2,8 @@
 //! slot offsets. The checker reads these to type calls and member accesses;
 //! the executor relies on the same offsets.
 
+use crate::elementary::ElemType;
 use crate::ir::op::{CounterRange, NativeFb};
-use crate::types::ElemType;
 
 /// Direction of a pin.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
