@@ -67,8 +67,24 @@ pub enum TraceFormat {
     Jsonl,
 }
 
+/// A trace format name that is not `table`, `csv` or `jsonl`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct UnknownTraceFormat(pub String);
+
+impl std::fmt::Display for UnknownTraceFormat {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "unknown trace format `{}` (expected table, csv or jsonl)",
+            self.0
+        )
+    }
+}
+
+impl std::error::Error for UnknownTraceFormat {}
+
 impl FromStr for TraceFormat {
-    type Err = String;
+    type Err = UnknownTraceFormat;
 
     /// `table`, `csv` or `jsonl` (case-insensitive).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
@@ -80,9 +96,7 @@ impl FromStr for TraceFormat {
         } else if s.eq_ignore_ascii_case("jsonl") {
             Ok(TraceFormat::Jsonl)
         } else {
-            Err(format!(
-                "unknown trace format `{s}` (expected table, csv or jsonl)"
-            ))
+            Err(UnknownTraceFormat(s.to_string()))
         }
     }
 }
@@ -538,6 +552,7 @@ mod tests {
     #[test]
     fn unknown_format() {
         let err = "xml".parse::<TraceFormat>().unwrap_err();
-        assert!(err.contains("`xml`"), "{err}");
+        assert_eq!(err, UnknownTraceFormat("xml".into()));
+        assert!(err.to_string().contains("`xml`"), "{err}");
     }
 }
