@@ -115,10 +115,12 @@ impl std::fmt::Display for TraceFormat {
 /// its JSON form (JSON lines).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TraceCell {
-    /// The IEC literal text, as [`crate::value::format::format_value`] or
-    /// [`format_string`] print it.
+    /// The IEC literal text, as [`crate::Value::to_literal`] prints it.
     pub text: String,
-    /// The value as JSON, as [`json_value`] gives it.
+    /// The value as JSON: BOOL as `true`/`false`, integers as JSON
+    /// integers, REAL/LREAL as numbers (`"NaN"`, `"INF"`, `"-INF"` as
+    /// strings), every other elementary type (bit strings, times, dates,
+    /// characters) as its literal text, a STRING as its plain text.
     pub json: serde_json::Value,
 }
 

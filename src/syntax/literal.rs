@@ -1,5 +1,5 @@
 //! Typed literal bodies (`INT#-3`, `WORD#16#FF`, `Color#Red`) decoded into
-//! AST literal values; the decoding itself is [`crate::value::text`]'s,
+//! AST literal values; the decoding itself is `crate::value::text`'s,
 //! shared with values read at run time.
 
 use crate::source::Span;
