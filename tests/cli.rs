@@ -427,3 +427,19 @@ fn help_and_version_exit_0() {
     assert_eq!(code, 0);
     assert!(out.contains("plcrun"));
 }
+
+#[test]
+fn watchdog_zero_disables_the_watchdog() {
+    // About two million loop iterations: far more than 1 ms per cycle.
+    let path = temp_file(
+        "busy.st",
+        "PROGRAM Busy VAR_OUTPUT x : DINT; END_VAR VAR i : DINT; END_VAR
+         FOR i := 1 TO 2000000 DO x := x + 1; END_FOR; END_PROGRAM",
+    );
+    let (code, _, stderr) = plcrun(&[&path, "--cycles", "1", "--watchdog", "1ms"]);
+    assert_eq!(code, 3, "a 1 ms watchdog stops the cycle: {stderr}");
+    let out = plcrun_ok(&[&path, "--cycles", "1", "--watchdog", "0"]);
+    assert_eq!(out, "cycle,time,x\n0,T#0s,2000000\n");
+    let out = plcrun_ok(&[&path, "--cycles", "1", "--watchdog", "T#0s"]);
+    assert_eq!(out, "cycle,time,x\n0,T#0s,2000000\n");
+}

@@ -47,7 +47,13 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         Ok(_) => return Err("--cycle-time must be positive".into()),
         Err(e) => return Err(format!("--cycle-time: {e}")),
     };
-    let watchdog = match parse_time_literal(&args.watchdog) {
+    // `0` alone (no unit) is the documented way to turn the watchdog off.
+    let watchdog_text = if args.watchdog.trim() == "0" {
+        "0s"
+    } else {
+        args.watchdog.as_str()
+    };
+    let watchdog = match parse_time_literal(watchdog_text) {
         Ok(0) => None,
         Ok(ns) if ns > 0 => Some(Duration::from_nanos(ns as u64)),
         Ok(_) => return Err("--watchdog must not be negative".into()),
