@@ -158,7 +158,8 @@ macro_rules! role {
 /// Refuses, at compile time, a typed index declared as plain `Data`
 /// (the verifier would not check it). The other direction needs no rule
 /// here: every other role hands its field to an [`Operand`] variant of one
-/// index type, so a field of another type does not compile there.
+/// index type (`Array` also takes the 16-bit form, through `From`), so a
+/// field of another type does not compile there.
 macro_rules! type_fits_role {
     ($ty:ident, Data) => {
         type_fits_role!(@data $ty)

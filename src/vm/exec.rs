@@ -170,11 +170,13 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             unsafe { *fp.add($s.index()) = v }
         }};
     }
-    // The same at a frame offset computed from a verified descriptor.
+    // The same at a frame offset computed at run time (an element or a
+    // MUX input), which the instruction has checked first.
     macro_rules! r_at {
         ($i:expr) => {
-            // SAFETY: descriptor extents lie inside the frame (verified at
-            // link time) and the index was checked against the length.
+            // SAFETY: the offset was checked against a verified descriptor
+            // (whose extent lies in the frame), a verified run, or the
+            // frame size.
             unsafe { *fp.add($i as usize) }
         };
     }
