@@ -185,7 +185,7 @@ pub enum Condition {
     /// A BOOL in the instance frame.
     Frame(u32),
     /// A code block that leaves the BOOL in the header's `COND` slot.
-    Code(u32),
+    Code(crate::ir::op::CodeIdx),
 }
 
 /// A transition.
@@ -203,7 +203,7 @@ pub struct Transition {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ActionKind {
     /// Runs a code block (while Q, plus the final scan).
-    Body(u32),
+    Body(crate::ir::op::CodeIdx),
     /// Copies Q into a BOOL in the instance frame.
     Frame(u32),
     /// Copies Q into a BOOL at an absolute address.

@@ -13,7 +13,7 @@
 //! forms re-read every operand on every iteration, exactly as the pair
 //! does, so they need no knowledge of aliasing.
 
-use super::op::Op;
+use super::op::{ArrayIdx, Op, ShortArrayIdx, ShortTarget, Slot, Target};
 
 /// Rewrites the fusable loop pairs of one code block in place.
 pub fn fuse_loops(ops: &mut [Op]) {
@@ -28,7 +28,7 @@ pub fn fuse_loops(ops: &mut [Op]) {
 fn fused(ops: &[Op], at: usize) -> Option<Op> {
     match ops[at] {
         Op::StoreElem { idx, s, desc } => match ops.get(at + 1)? {
-            Op::AddBr { d, t, .. } if *d == idx && *t as usize == at => {
+            Op::AddBr { d, t, .. } if *d == idx && t.index() == at => {
                 Some(Op::StoreStep { idx, s, desc })
             }
             _ => None,
@@ -40,15 +40,15 @@ fn fused(ops: &[Op], at: usize) -> Option<Op> {
             step,
             shift,
         } => {
-            let (idx, desc, back, when) = element_test(ops.get(t as usize)?)?;
-            if idx != i || back as usize != at {
+            let (idx, desc, back, when) = element_test(ops.get(t.index())?)?;
+            if idx != i || back.index() != at {
                 return None;
             }
             Some(Op::ForScan {
                 i,
                 lim,
-                t: u16::try_from(t).ok()?,
-                desc: u16::try_from(desc).ok()?,
+                t: ShortTarget::new(u16::try_from(t.get()).ok()?),
+                desc: ShortArrayIdx::new(u16::try_from(desc.get()).ok()?),
                 step: i8::try_from(step).ok()?,
                 shift,
                 when,
@@ -60,7 +60,7 @@ fn fused(ops: &[Op], at: usize) -> Option<Op> {
 
 /// A branch on a BOOL array element as (index slot, descriptor, target,
 /// value of the element for which it falls through).
-fn element_test(op: &Op) -> Option<(u32, u32, u32, bool)> {
+fn element_test(op: &Op) -> Option<(Slot, ArrayIdx, Target, bool)> {
     match *op {
         Op::JzElem { idx, desc, t } => Some((idx, desc, t, true)),
         Op::JnzElem { idx, desc, t } => Some((idx, desc, t, false)),
@@ -77,7 +77,7 @@ pub fn store_step_partner(ops: &[Op], at: usize) -> bool {
     };
     matches!(
         ops.get(at + 1),
-        Some(Op::AddBr { d, t, .. }) if d == idx && *t as usize == at
+        Some(Op::AddBr { d, t, .. }) if d == idx && t.index() == at
     )
 }
 
@@ -90,8 +90,10 @@ pub fn for_scan_partner(ops: &[Op], at: usize) -> bool {
     else {
         return false;
     };
-    ops.get(t as usize).and_then(element_test) == Some((i, desc as u32, at as u32, when))
-        && (t as usize) + 1 < ops.len()
+    let test = ops.get(t.index()).and_then(element_test);
+    test.is_some_and(|(idx, d, back, w)| {
+        idx == i && d == ArrayIdx::from(desc) && back.index() == at && w == when
+    }) && t.index() + 1 < ops.len()
 }
 
 #[cfg(test)]
@@ -99,12 +101,16 @@ mod tests {
     use super::*;
     use crate::ir::op::Cmp;
 
+    fn slot(n: u32) -> Slot {
+        Slot::new(n)
+    }
+
     fn add_br(d: u32, t: u16) -> Op {
         Op::AddBr {
-            d,
-            b: 7,
+            d: slot(d),
+            b: slot(7),
             imm: 100,
-            t,
+            t: ShortTarget::new(t),
             cmp: Cmp::Le,
             shift: 32,
         }
@@ -112,46 +118,50 @@ mod tests {
 
     fn for_next(i: u32, t: u32, step: i16) -> Op {
         Op::ForNext {
-            i,
+            i: slot(i),
             lim: 50,
-            t,
+            t: Target::new(t),
             step,
             shift: 32,
         }
     }
 
+    fn store_elem(idx: u32) -> Op {
+        Op::StoreElem {
+            idx: slot(idx),
+            s: slot(4),
+            desc: ArrayIdx::new(0),
+        }
+    }
+
+    fn elem_test(jump_if_true: bool, idx: u32, t: u32) -> Op {
+        let (idx, desc, t) = (slot(idx), ArrayIdx::new(1), Target::new(t));
+        if jump_if_true {
+            Op::JnzElem { idx, desc, t }
+        } else {
+            Op::JzElem { idx, desc, t }
+        }
+    }
+
     #[test]
     fn store_then_step_back_is_fused() {
-        let mut ops = vec![
-            Op::Nop,
-            Op::StoreElem {
-                idx: 3,
-                s: 4,
-                desc: 0,
-            },
-            add_br(3, 1),
-            Op::Ret,
-        ];
+        let mut ops = vec![Op::Nop, store_elem(3), add_br(3, 1), Op::Ret];
         fuse_loops(&mut ops);
-        assert!(matches!(
+        assert_eq!(
             ops[1],
             Op::StoreStep {
-                idx: 3,
-                s: 4,
-                desc: 0
+                idx: slot(3),
+                s: slot(4),
+                desc: ArrayIdx::new(0)
             }
-        ));
+        );
         assert!(matches!(ops[2], Op::AddBr { .. }));
         assert!(store_step_partner(&ops, 1));
     }
 
     #[test]
     fn store_step_needs_the_same_variable_and_a_jump_to_the_store() {
-        let store = Op::StoreElem {
-            idx: 3,
-            s: 4,
-            desc: 0,
-        };
+        let store = store_elem(3);
         for step in [add_br(5, 0), add_br(3, 2)] {
             let mut ops = vec![store, step, Op::Ret];
             fuse_loops(&mut ops);
@@ -162,18 +172,10 @@ mod tests {
     #[test]
     fn for_loop_guarded_by_its_element_is_fused() {
         let mut ops = vec![
-            Op::JzElem {
-                idx: 2,
-                desc: 1,
-                t: 2,
-            },
+            elem_test(false, 2, 2),
             Op::Nop,
             for_next(2, 0, 1),
-            Op::JnzElem {
-                idx: 2,
-                desc: 1,
-                t: 5,
-            },
+            elem_test(true, 2, 5),
             Op::Nop,
             for_next(2, 3, -1),
             Op::Ret,
@@ -182,29 +184,29 @@ mod tests {
         assert!(matches!(
             ops[2],
             Op::ForScan {
-                i: 2,
-                t: 0,
-                desc: 1,
+                i,
+                t,
+                desc,
                 step: 1,
                 when: true,
                 ..
-            }
+            } if i == slot(2) && t == ShortTarget::new(0) && desc == ShortArrayIdx::new(1)
         ));
         assert!(matches!(
             ops[5],
             Op::ForScan {
-                t: 3,
+                t,
                 step: -1,
                 when: false,
                 ..
-            }
+            } if t == ShortTarget::new(3)
         ));
         assert!(for_scan_partner(&ops, 2) && for_scan_partner(&ops, 5));
     }
 
     #[test]
     fn for_scan_needs_the_loop_variable_a_jump_back_and_a_small_step() {
-        let test = |idx, t| Op::JzElem { idx, desc: 1, t };
+        let test = |idx, t| elem_test(false, idx, t);
         for (first, step) in [(test(9, 2), 1), (test(2, 1), 1), (test(2, 2), 300)] {
             let mut ops = vec![first, Op::Nop, for_next(2, 0, step), Op::Ret];
             fuse_loops(&mut ops);
@@ -216,9 +218,9 @@ mod tests {
     fn a_broken_pair_fails_the_partner_check() {
         let ops = vec![
             Op::StoreStep {
-                idx: 3,
-                s: 4,
-                desc: 0,
+                idx: slot(3),
+                s: slot(4),
+                desc: ArrayIdx::new(0),
             },
             Op::Ret,
         ];

@@ -2,7 +2,7 @@
 //! the initial memory image and the directory of runnable program instances.
 
 use crate::elementary::ElemType;
-use crate::ir::op::Op;
+use crate::ir::op::{CodeIdx, Op, Slot, StrConstIdx};
 use crate::ir::type_table::{TypeId, TypeTable};
 use crate::source::Span;
 
@@ -31,9 +31,9 @@ pub struct CodeBlock {
     /// Source span of each instruction (for runtime faults).
     pub spans: Vec<Span>,
     /// Slots reset at every call (VAR_TEMP, function locals): `(slot, value)`.
-    pub entry_init: Vec<(u32, u64)>,
+    pub entry_init: Vec<(Slot, u64)>,
     /// Strings reset at every call: `(slot holding the string index, constant string index)`.
-    pub entry_strings: Vec<(u32, u32)>,
+    pub entry_strings: Vec<(Slot, StrConstIdx)>,
     /// For functions: absolute address of the static frame.
     pub frame: u32,
     /// Size of one frame/instance in slots.
@@ -89,7 +89,7 @@ pub struct ProgramInstance {
     /// The PROGRAM type name.
     pub type_name: String,
     /// Code block of its body.
-    pub code: u32,
+    pub code: CodeIdx,
     /// Absolute base address of its instance memory.
     pub base: u32,
     /// Its type (for naming its variables).

@@ -3,6 +3,7 @@
 pub mod chart;
 pub mod fuse;
 pub mod image;
+pub mod index;
 pub mod op;
 mod op_list;
 pub mod operands;

@@ -14,10 +14,10 @@
 pub use crate::value::convert::Conv;
 pub use crate::value::encode::{wrap_s, wrap_u};
 
-/// A frame-relative slot index.
-pub type Slot = u32;
-/// An index into the instruction vector of a code block.
-pub type Target = u32;
+pub use super::index::{
+    ArrayIdx, ChartIdx, CodeIdx, ConstIdx, ScalarTypeIdx, ShortArrayIdx, ShortTarget, Slot,
+    StrConstIdx, Target,
+};
 
 /// Elementary math functions on REAL/LREAL.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -28,9 +28,13 @@
 //! | `Abs` | an absolute memory address | inside memory |
 //! | `Data` | an immediate, a shift, a predicate, a static offset | nothing to check |
 //!
-//! Field types are single names; a `Slot` field must have a slot role
-//! (`Out` to `NativeInstance`) and a `Target` field the `Target` role, and
-//! no other type may take those roles: a mismatch does not compile.
+//! Field types are single names. Every role but `Data` and `Abs` takes
+//! one typed index ([`super::index`]): a slot role a `Slot`, `Target` a
+//! `Target`, `ShortTarget` a `ShortTarget`, `Const` a `ConstIdx`,
+//! `StrConst` a `StrConstIdx`, `Array` an `ArrayIdx` or `ShortArrayIdx`,
+//! `ScalarType` a `ScalarTypeIdx`, `Code` a `CodeIdx`, `Chart` a
+//! `ChartIdx`; and no typed index may be declared `Data`. A mismatch
+//! either way does not compile.
 //!
 //! After the fields an instruction may name its *shape* (how it relates to
 //! its neighbours; [`super::operands::Shape`]): `@ TakesOperandWord` (the
@@ -45,7 +49,7 @@ macro_rules! for_each_op {
             /// No operation (left where an instruction was removed).
             Nop;
             /// `d := constants[k]`.
-            LoadK { d: Slot => Out, k: u32 => Const };
+            LoadK { d: Slot => Out, k: ConstIdx => Const };
             /// `d := imm` (sign-extended 32-bit immediate).
             LoadI { d: Slot => Out, imm: i32 => Data };
             /// `d := s`.
@@ -63,17 +67,17 @@ macro_rules! for_each_op {
             /// `d := mem[p] + off` (address arithmetic on a pointer).
             AddrAdd { d: Slot => Def, p: Slot => In, off: u32 => Data };
             /// Checked 1-D element load: `d := frame[arr + (idx - lo) * stride]` using array descriptor `desc`.
-            LoadElem { d: Slot => Out, idx: Slot => In, desc: u32 => Array(Elems) };
+            LoadElem { d: Slot => Out, idx: Slot => In, desc: ArrayIdx => Array(Elems) };
             /// Checked 1-D element store.
-            StoreElem { idx: Slot => In, s: Slot => In, desc: u32 => Array(Elems) };
+            StoreElem { idx: Slot => In, s: Slot => In, desc: ArrayIdx => Array(Elems) };
             /// Element address: `d := d + offset + checked(idx - lo) * stride` where
             /// `d` holds the array's absolute address on entry (descriptor `desc`).
-            ElemAddr { d: Slot => InOut, idx: Slot => In, desc: u32 => Array(Any) };
+            ElemAddr { d: Slot => InOut, idx: Slot => In, desc: ArrayIdx => Array(Any) };
             /// Element address in the current frame:
             /// `d := base + offset + checked(idx - lo) * stride` (descriptor `desc`).
-            ElemRef { d: Slot => Def, idx: Slot => In, desc: u32 => Array(Span) };
+            ElemRef { d: Slot => Def, idx: Slot => In, desc: ArrayIdx => Array(Span) };
             /// Linearised multi-dimensional index step: `acc := acc * len + checked(idx - lo)`.
-            IndexStep { acc: Slot => InOut, idx: Slot => In, desc: u32 => Array(Any) };
+            IndexStep { acc: Slot => InOut, idx: Slot => In, desc: ArrayIdx => Array(Any) };
 
             /// Signed add wrapped at `64 - shift` bits.
             AddS { d: Slot => Out, a: Slot => In, b: Slot => In, shift: u8 => Data };
@@ -199,11 +203,11 @@ macro_rules! for_each_op {
             /// result slot `d` holds a string id, or receives LEN/FIND's integer).
             StrCall { d: Slot => InOut, a: Slot => Run(4), f: StrFn => Data };
             /// Set string `d` (a slot holding its id) to the constant string `k`.
-            StrConst { d: Slot => In, k: u32 => StrConst };
+            StrConst { d: Slot => In, k: StrConstIdx => StrConst };
             /// Convert a scalar of type `ty` (index into the type list) to its literal text.
-            ToStr { d: Slot => In, a: Slot => In, ty: u8 => ScalarType };
+            ToStr { d: Slot => In, a: Slot => In, ty: ScalarTypeIdx => ScalarType };
             /// Parse string `a` as a value of type `ty`.
-            FromStr { d: Slot => Def, a: Slot => In, ty: u8 => ScalarType };
+            FromStr { d: Slot => Def, a: Slot => In, ty: ScalarTypeIdx => ScalarType };
 
             /// Unconditional jump.
             Jmp { t: Target => Target };
@@ -221,14 +225,14 @@ macro_rules! for_each_op {
             /// `lim + 1` fits the type, stores `v` in all elements and sets
             /// `i := lim + 1`; otherwise does nothing (the loop that follows runs as
             /// written and faults where it would).
-            FillElems { i: Slot => InOut, v: Slot => In, lim: i32 => Data, desc: u16 => Array(Dense), shift: u8 => Data };
+            FillElems { i: Slot => InOut, v: Slot => In, lim: i32 => Data, desc: ShortArrayIdx => Array(Dense), shift: u8 => Data };
             /// Jump if the BOOL array element `frame[desc][idx]` is FALSE (checked index).
-            JzElem { idx: Slot => In, desc: u32 => Array(Elems), t: Target => Target };
+            JzElem { idx: Slot => In, desc: ArrayIdx => Array(Elems), t: Target => Target };
             /// Jump if the BOOL array element is TRUE.
-            JnzElem { idx: Slot => In, desc: u32 => Array(Elems), t: Target => Target };
+            JnzElem { idx: Slot => In, desc: ArrayIdx => Array(Elems), t: Target => Target };
             /// `d := d + b` (signed, wrapped), then jump to `t` if `d cmp imm`
             /// (a WHILE loop stepping its variable just before its test).
-            AddBr { d: Slot => InOut, b: Slot => In, imm: i16 => Data, t: u16 => ShortTarget, cmp: Cmp => Data, shift: u8 => Data };
+            AddBr { d: Slot => InOut, b: Slot => In, imm: i16 => Data, t: ShortTarget => ShortTarget, cmp: Cmp => Data, shift: u8 => Data };
             /// Jump if `a cmp b` is FALSE on REAL values (NaN compares FALSE, so it jumps).
             JnCmpF32 { a: Slot => In, b: Slot => In, cmp: Cmp => Data, t: Target => Target };
             /// Jump if `a cmp b` is FALSE on LREAL values.
@@ -253,25 +257,25 @@ macro_rules! for_each_op {
             /// body is one element store, such as striking multiples in a sieve).
             /// Runs the pair until the `AddBr` test fails, then continues after
             /// it, in one dispatch; the `AddBr` stays in place as the second word.
-            StoreStep { idx: Slot => InOut, s: Slot => In, desc: u32 => Array(Elems) } @ Fused(crate::ir::fuse::store_step_partner);
+            StoreStep { idx: Slot => InOut, s: Slot => In, desc: ArrayIdx => Array(Elems) } @ Fused(crate::ir::fuse::store_step_partner);
             /// Loop superinstruction: a `ForNext` whose target `t` is a
             /// `JzElem` (`when` TRUE) or `JnzElem` (`when` FALSE) on `i` that jumps
             /// back here (a FOR loop whose body is guarded by `IF arr[i] THEN`).
             /// Steps `i` over every iteration the element test would skip, then
             /// continues at `t + 1` (the body), at `t` (the index is out of range:
             /// the test faults there) or after the loop.
-            ForScan { i: Slot => InOut, lim: i32 => Data, t: u16 => ShortTarget, desc: u16 => Array(Elems), step: i8 => Data, shift: u8 => Data, when: bool => Data } @ Fused(crate::ir::fuse::for_scan_partner);
+            ForScan { i: Slot => InOut, lim: i32 => Data, t: ShortTarget => ShortTarget, desc: ShortArrayIdx => Array(Elems), step: i8 => Data, shift: u8 => Data, when: bool => Data } @ Fused(crate::ir::fuse::for_scan_partner);
 
             /// Call a user FB body (code block `code`) on the instance at frame slot `inst`.
-            CallFb { code: u32 => Code(FunctionBlock), inst: Slot => FbInstance(code) };
+            CallFb { code: CodeIdx => Code(FunctionBlock), inst: Slot => FbInstance(code) };
             /// Call a user FB on the instance whose absolute address is in slot `p`.
-            CallFbInd { code: u32 => Code(FunctionBlock), p: Slot => In };
+            CallFbInd { code: CodeIdx => Code(FunctionBlock), p: Slot => In };
             /// Call a native FB on the instance at frame slot `inst`.
             CallNative { fb: NativeFb => Data, inst: Slot => NativeInstance(fb) };
             /// Call a native FB on the instance whose address is in slot `p`.
             CallNativeInd { fb: NativeFb => Data, p: Slot => In };
             /// Call a function: reset its static frame, run its code at its frame base.
-            CallFn { code: u32 => Code(Function) };
+            CallFn { code: CodeIdx => Code(Function) };
             /// Copies `n` slots from address `mem[s]` to address `mem[d]` (aggregates by value).
             MemCopy { d: Slot => In, s: Slot => In, n: u32 => Data };
             /// `d := current clock value` (PLC_CLOCK).
@@ -280,7 +284,7 @@ macro_rules! for_each_op {
             Ret;
             /// One call of the SFC chart `chart` (index into `Image::charts`) on
             /// the current instance: evolution, then action control.
-            Sfc { chart: u32 => Chart };
+            Sfc { chart: ChartIdx => Chart };
         }
     };
 }

@@ -11,7 +11,10 @@
 //! the verifier) saying what it does with it.
 
 use super::image::CodeKind;
-use super::op::{NativeFb, Op, Slot, Target};
+use super::op::{
+    ArrayIdx, ChartIdx, CodeIdx, ConstIdx, NativeFb, Op, ScalarTypeIdx, ShortTarget, Slot,
+    StrConstIdx, Target,
+};
 
 /// How an instruction uses a single frame slot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,7 +34,7 @@ pub enum Access {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Callee {
     /// A user FB body (code-block index): its instance is its frame.
-    Fb(u32),
+    Fb(CodeIdx),
     /// A native FB: its instance is its pins.
     Native(NativeFb),
 }
@@ -63,19 +66,19 @@ pub enum Operand<'a> {
     /// A jump target.
     Target(&'a mut Target),
     /// A 16-bit jump target (not patched by the emitter).
-    ShortTarget(&'a mut u16),
+    ShortTarget(&'a mut ShortTarget),
     /// An index into `Image::consts`.
-    Const(u32),
+    Const(ConstIdx),
     /// An index into `Image::str_consts`.
-    StrConst(u32),
+    StrConst(StrConstIdx),
     /// An index into `Image::arrays`.
-    Array(u32, ArrayUse),
+    Array(ArrayIdx, ArrayUse),
     /// An index into `Image::scalar_types`.
-    ScalarType(u8),
+    ScalarType(ScalarTypeIdx),
     /// A code-block index that must be of the given kind.
-    Code(u32, CodeKind),
+    Code(CodeIdx, CodeKind),
     /// An index into `Image::charts`.
-    Chart(u32),
+    Chart(ChartIdx),
     /// An absolute memory address.
     Abs(u32),
 }
@@ -133,7 +136,7 @@ macro_rules! role {
         $f(Operand::StrConst(*$x))
     };
     ($f:ident, $x:ident, Array($use:ident)) => {
-        $f(Operand::Array(u32::from(*$x), ArrayUse::$use))
+        $f(Operand::Array(ArrayIdx::from(*$x), ArrayUse::$use))
     };
     ($f:ident, $x:ident, ScalarType) => {
         $f(Operand::ScalarType(*$x))
@@ -152,39 +155,30 @@ macro_rules! role {
     };
 }
 
-/// Refuses, at compile time, a field whose declared type and role disagree:
-/// `Slot` and `Target` are `u32` underneath, so a slot declared as `Data`
-/// or a table index declared as `In` would otherwise compile, and the
-/// verifier would check the wrong thing.
+/// Refuses, at compile time, a typed index declared as plain `Data`
+/// (the verifier would not check it). The other direction needs no rule
+/// here: every other role hands its field to an [`Operand`] variant of one
+/// index type (`Array` also takes the 16-bit form, through `From`), so a
+/// field of another type does not compile there.
 macro_rules! type_fits_role {
-    (Slot, Out) => {};
-    (Slot, Def) => {};
-    (Slot, InOut) => {};
-    (Slot, In) => {};
-    (Slot, Run) => {};
-    (Slot, FbInstance) => {};
-    (Slot, NativeInstance) => {};
-    (Slot, $role:ident) => {
-        compile_error!(concat!("a `Slot` field declared `", stringify!($role), "`"));
-    };
-    ($ty:ident, Out) => { type_fits_role!(@slot_role $ty) };
-    ($ty:ident, Def) => { type_fits_role!(@slot_role $ty) };
-    ($ty:ident, InOut) => { type_fits_role!(@slot_role $ty) };
-    ($ty:ident, In) => { type_fits_role!(@slot_role $ty) };
-    ($ty:ident, Run) => { type_fits_role!(@slot_role $ty) };
-    ($ty:ident, FbInstance) => { type_fits_role!(@slot_role $ty) };
-    ($ty:ident, NativeInstance) => { type_fits_role!(@slot_role $ty) };
-    (@slot_role $ty:ident) => {
-        compile_error!(concat!("a slot role on a `", stringify!($ty), "` field"));
-    };
-    (Target, Target) => {};
-    (Target, $role:ident) => {
-        compile_error!(concat!("a `Target` field declared `", stringify!($role), "`"));
-    };
-    ($ty:ident, Target) => {
-        compile_error!(concat!("a `Target` role on a `", stringify!($ty), "` field"));
+    ($ty:ident, Data) => {
+        type_fits_role!(@data $ty)
     };
     ($ty:ident, $role:ident) => {};
+    (@data Slot) => { type_fits_role!(@refuse Slot) };
+    (@data Target) => { type_fits_role!(@refuse Target) };
+    (@data ShortTarget) => { type_fits_role!(@refuse ShortTarget) };
+    (@data ConstIdx) => { type_fits_role!(@refuse ConstIdx) };
+    (@data StrConstIdx) => { type_fits_role!(@refuse StrConstIdx) };
+    (@data ArrayIdx) => { type_fits_role!(@refuse ArrayIdx) };
+    (@data ShortArrayIdx) => { type_fits_role!(@refuse ShortArrayIdx) };
+    (@data ScalarTypeIdx) => { type_fits_role!(@refuse ScalarTypeIdx) };
+    (@data CodeIdx) => { type_fits_role!(@refuse CodeIdx) };
+    (@data ChartIdx) => { type_fits_role!(@refuse ChartIdx) };
+    (@data $ty:ident) => {};
+    (@refuse $ty:ident) => {
+        compile_error!(concat!("a `", stringify!($ty), "` field declared `Data`"));
+    };
 }
 
 /// The shape an instruction declares (none: it stands alone).
@@ -251,7 +245,7 @@ super::op_list::for_each_op!(define_operands);
 /// Calls `f` on every frame-relative slot operand of `op` (destinations,
 /// sources, pointer slots, run starts, instance bases). Absolute addresses,
 /// jump targets and table indexes are not slots and are not visited.
-pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
+pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut Slot)) {
     operands(op, &mut |o| match o {
         Operand::Slot(s, _) | Operand::Run(s, _) | Operand::Instance(s, _) => f(s),
         Operand::Target(_)
@@ -268,7 +262,7 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut u32)) {
 
 /// The jump target of a branch instruction (the 32-bit targets the
 /// emitter patches).
-pub fn target_mut(op: &mut Op) -> Option<&mut u32> {
+pub fn target_mut(op: &mut Op) -> Option<&mut Target> {
     let mut found = None;
     operands(op, &mut |o| {
         if let Operand::Target(t) = o {
@@ -282,7 +276,7 @@ pub fn target_mut(op: &mut Op) -> Option<&mut u32> {
 /// reached through addresses and called code are not named slots.)
 pub struct Writes<'a> {
     /// The frame slot written by name, if any.
-    pub slot: Option<&'a mut u32>,
+    pub slot: Option<&'a mut Slot>,
     /// Whether that slot only receives the instruction's result, so the
     /// emitter may point it elsewhere (false for accumulators, loop
     /// variables and slots written beside other effects).
@@ -315,7 +309,10 @@ pub fn writes(op: &mut Op) -> Writes<'_> {
 /// Field values for [`examples`].
 #[cfg(test)]
 mod example {
-    use crate::ir::op::{Cmp, Conv, MathFn, NativeFb, ShiftKind, StrFn};
+    use crate::ir::op::{
+        ArrayIdx, ChartIdx, Cmp, CodeIdx, ConstIdx, Conv, MathFn, NativeFb, ScalarTypeIdx,
+        ShiftKind, ShortArrayIdx, ShortTarget, Slot, StrConstIdx, StrFn, Target,
+    };
 
     /// A value of a field type made from a small number.
     pub trait Example {
@@ -330,6 +327,26 @@ mod example {
         })* };
     }
     from_number!(u16, u32, i16, i32);
+
+    macro_rules! index_from_number {
+        ($($t:ident),*) => { $(impl Example for $t {
+            fn example(n: u8) -> Self {
+                $t::new(n.into())
+            }
+        })* };
+    }
+    index_from_number!(
+        Slot,
+        Target,
+        ShortTarget,
+        ConstIdx,
+        StrConstIdx,
+        ArrayIdx,
+        ShortArrayIdx,
+        CodeIdx,
+        ChartIdx,
+        ScalarTypeIdx
+    );
 
     impl Example for u8 {
         fn example(n: u8) -> Self {
@@ -412,7 +429,7 @@ mod tests {
             let mut moved = op;
             let mut n = 0;
             for_each_slot(&mut moved, &mut |s| {
-                *s += 100;
+                *s = s.offset(100);
                 n += 1;
             });
             assert_eq!(n > 0, moved != op, "{op:?}");
@@ -421,12 +438,25 @@ mod tests {
 
     #[test]
     fn branches_expose_their_target() {
-        let mut jz = Op::Jz { c: 1, t: 7 };
-        *target_mut(&mut jz).expect("a branch") = 9;
-        assert_eq!(jz, Op::Jz { c: 1, t: 9 });
+        let c = Slot::new(1);
+        let mut jz = Op::Jz {
+            c,
+            t: Target::new(7),
+        };
+        *target_mut(&mut jz).expect("a branch") = Target::new(9);
+        assert_eq!(
+            jz,
+            Op::Jz {
+                c,
+                t: Target::new(9)
+            }
+        );
         assert!(target_mut(&mut Op::Ret).is_none());
-        let mut load = Op::LoadK { d: 3, k: 4 };
+        let mut load = Op::LoadK {
+            d: Slot::new(3),
+            k: ConstIdx::new(4),
+        };
         let w = writes(&mut load);
-        assert!(w.result && w.slot.is_some_and(|s| *s == 3));
+        assert!(w.result && w.slot.is_some_and(|s| *s == Slot::new(3)));
     }
 }

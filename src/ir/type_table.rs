@@ -115,7 +115,7 @@ pub enum TypeKind {
     /// A user FUNCTION_BLOCK or PROGRAM (its instance layout).
     Pou {
         /// Index of the POU's code block.
-        code: u32,
+        code: crate::ir::op::CodeIdx,
         /// Members (variables, steps, actions) in declaration order.
         members: Vec<Member>,
         /// True for PROGRAM.

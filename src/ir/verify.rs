@@ -17,7 +17,7 @@
 
 use super::chart::{ActionKind, Chart, Condition, Duration, action_layout as al, header as hd};
 use super::image::{CodeBlock, CodeKind, Image};
-use super::op::Op;
+use super::op::{CodeIdx, Op};
 use super::operands::{ArrayUse, Callee, Operand, Shape, operands, shape};
 use super::type_table::step_layout as sl;
 use std::fmt;
@@ -215,10 +215,10 @@ fn check_block(image: &Image, c: &CodeBlock) -> Result<(), Located> {
         ensure(inside, Problem::FunctionFrameOutsideMemory).map_err(at0)?;
     }
     for &(slot, _) in &c.entry_init {
-        ensure(fits(slot, 1, size), Problem::EntryResetOutsideFrame).map_err(at0)?;
+        ensure(fits(slot.get(), 1, size), Problem::EntryResetOutsideFrame).map_err(at0)?;
     }
     for &(slot, k) in &c.entry_strings {
-        let ok = fits(slot, 1, size) && (k as usize) < image.str_consts.len();
+        let ok = fits(slot.get(), 1, size) && k.index() < image.str_consts.len();
         ensure(ok, Problem::EntryStringOutOfRange).map_err(at0)?;
     }
     for pc in 0..c.ops.len() {
@@ -258,34 +258,34 @@ fn check_operand(image: &Image, c: &CodeBlock, o: Operand<'_>) -> Result<(), Pro
             .is_some_and(|o| !matches!(shape(o), Shape::OperandWord));
         ensure(ok, Problem::BadTarget)
     };
-    let code = |i: u32, kind: CodeKind| {
-        let callee = image.codes.get(i as usize).ok_or(Problem::CodeOutOfRange)?;
+    let code = |i: CodeIdx, kind: CodeKind| {
+        let callee = image.codes.get(i.index()).ok_or(Problem::CodeOutOfRange)?;
         ensure(callee.kind == kind, Problem::WrongCalleeKind)?;
         Ok(callee)
     };
     match o {
-        Operand::Slot(s, _) => ensure(fits(*s, 1, size), Problem::SlotOutsideFrame),
-        Operand::Run(s, n) => ensure(fits(*s, n as u64, size), Problem::RunOutsideFrame),
+        Operand::Slot(s, _) => ensure(fits(s.get(), 1, size), Problem::SlotOutsideFrame),
+        Operand::Run(s, n) => ensure(fits(s.get(), n as u64, size), Problem::RunOutsideFrame),
         Operand::Instance(s, Callee::Fb(i)) => {
             let callee = code(i, CodeKind::FunctionBlock)?;
             let n = callee.frame_size as u64;
-            ensure(fits(*s, n, size), Problem::InstanceOutsideFrame)
+            ensure(fits(s.get(), n, size), Problem::InstanceOutsideFrame)
         }
         Operand::Instance(s, Callee::Native(fb)) => {
             let n = fb.instance_slots() as u64;
-            ensure(fits(*s, n, size), Problem::InstanceOutsideFrame)
+            ensure(fits(s.get(), n, size), Problem::InstanceOutsideFrame)
         }
-        Operand::Target(t) => target(*t as usize),
-        Operand::ShortTarget(t) => target(*t as usize),
-        Operand::Const(k) => ensure((k as usize) < image.consts.len(), Problem::ConstOutOfRange),
+        Operand::Target(t) => target(t.index()),
+        Operand::ShortTarget(t) => target(t.index()),
+        Operand::Const(k) => ensure(k.index() < image.consts.len(), Problem::ConstOutOfRange),
         Operand::StrConst(k) => ensure(
-            (k as usize) < image.str_consts.len(),
+            k.index() < image.str_consts.len(),
             Problem::StrConstOutOfRange,
         ),
         Operand::Array(desc, used) => {
             let d = image
                 .arrays
-                .get(desc as usize)
+                .get(desc.index())
                 .ok_or(Problem::ArrayOutOfRange)?;
             let extent = d.offset as u64 + d.len.saturating_mul(d.stride as u64);
             let ok = match used {
@@ -297,14 +297,14 @@ fn check_operand(image: &Image, c: &CodeBlock, o: Operand<'_>) -> Result<(), Pro
             ensure(ok, Problem::ArrayOutsideFrame)
         }
         Operand::ScalarType(ty) => ensure(
-            (ty as usize) < image.scalar_types.len(),
+            ty.index() < image.scalar_types.len(),
             Problem::ScalarTypeOutOfRange,
         ),
         Operand::Code(i, kind) => code(i, kind).map(|_| ()),
         Operand::Chart(i) => {
             let chart = image
                 .charts
-                .get(i as usize)
+                .get(i.index())
                 .ok_or(Problem::ChartOutOfRange)?;
             check_chart(image, chart, size)
         }
@@ -320,8 +320,8 @@ fn check_chart(image: &Image, c: &Chart, size: u64) -> Result<(), Problem> {
     let (steps, transitions, actions) = (c.steps.len(), c.transitions.len(), c.actions.len());
     let index = |i: u32, n: usize| ensure((i as usize) < n, Problem::ChartIndex);
     let state = |at: u32, n: u64| ensure(fits(at, n, size), Problem::ChartOutsideFrame);
-    let block = |i: u32| {
-        let b = image.codes.get(i as usize).ok_or(Problem::CodeOutOfRange)?;
+    let block = |i: CodeIdx| {
+        let b = image.codes.get(i.index()).ok_or(Problem::CodeOutOfRange)?;
         ensure(b.kind == CodeKind::Block, Problem::WrongCalleeKind)?;
         ensure(b.frame_size as u64 <= size, Problem::ChartOutsideFrame)
     };
@@ -379,7 +379,7 @@ fn check_programs(image: &Image) -> Result<(), VerifyError> {
         };
         let c = image
             .codes
-            .get(p.code as usize)
+            .get(p.code.index())
             .filter(|c| c.kind == CodeKind::Program)
             .ok_or(fail(Problem::ProgramCode))?;
         if p.base as u64 + c.frame_size as u64 > mem {

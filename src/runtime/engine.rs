@@ -217,7 +217,7 @@ impl Plc {
     }
 
     fn locate(&self, fault: Fault) -> RuntimeFault {
-        let block = &self.image.codes[fault.code as usize];
+        let block = &self.image.codes[fault.code.index()];
         let span: Span = block
             .spans
             .get(fault.pc as usize)

@@ -100,7 +100,7 @@ mod tests {
         ProgramInstance {
             name: String::new(),
             type_name: String::new(),
-            code: 0,
+            code: crate::ir::op::CodeIdx::new(0),
             base: 0,
             ty: TypeId(0),
             task,

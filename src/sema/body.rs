@@ -11,7 +11,7 @@ use super::emit::{Fcx, place_tagged};
 use super::model::Model;
 use super::program::Program;
 use crate::diagnostics::Diagnostics;
-use crate::ir::op::Op;
+use crate::ir::op::{CodeIdx, Op, Slot};
 use crate::ir::type_table::TypeTable;
 use crate::syntax::ast::{Body, Pou};
 use indexmap::IndexSet;
@@ -30,9 +30,9 @@ pub(super) struct BodyBuilder<'a> {
     pub(super) block: Fcx,
     /// SFC blocks of this POU whose constant and pinned slots still need
     /// placing: (code block, constants, pin count).
-    pub(super) pending_blocks: Vec<(u32, IndexSet<u64>, u32)>,
+    pub(super) pending_blocks: Vec<(CodeIdx, IndexSet<u64>, u32)>,
     /// SFC blocks of this POU (they share its frame size).
-    pub(super) owned_blocks: Vec<u32>,
+    pub(super) owned_blocks: Vec<CodeIdx>,
 }
 
 /// What an emitted body tells the declarations: its frame.
@@ -40,7 +40,7 @@ pub(super) struct BuiltBody {
     /// Frame size: variables, temporaries, constant and pinned slots.
     pub(super) frame_size: u32,
     /// The frame's constant slots: `(slot, value)`.
-    pub(super) consts: Vec<(u32, u64)>,
+    pub(super) consts: Vec<(Slot, u64)>,
 }
 
 impl<'a> BodyBuilder<'a> {
@@ -87,18 +87,18 @@ impl<'a> BodyBuilder<'a> {
         let first = f.temp_max;
         let (mut frame_size, mut consts) = f.place_consts(first);
         for (block, block_consts, pins) in std::mem::take(&mut self.pending_blocks) {
-            let ops = &mut self.out.codes[block as usize].ops;
+            let ops = &mut self.out.codes[block.index()].ops;
             let (end, list) = place_tagged(ops, &block_consts, pins, frame_size);
             consts.extend(list);
             frame_size = end;
         }
         for c in std::mem::take(&mut self.owned_blocks) {
-            self.out.codes[c as usize].frame_size = frame_size;
+            self.out.codes[c.index()].frame_size = frame_size;
         }
         for (at, callee) in std::mem::take(&mut f.fixups) {
             self.out.fixups.push((code, at, callee));
         }
-        let block = &mut self.out.codes[code as usize];
+        let block = &mut self.out.codes[code.index()];
         block.ops = f.ops;
         block.spans = f.spans;
         block.frame_size = frame_size;

@@ -6,7 +6,7 @@
 //! become `LoadElemU` / `StoreElemU`, which skip it.
 
 use crate::ir::image::ArrayDesc;
-use crate::ir::op::{Op, Slot};
+use crate::ir::op::{ArrayIdx, Op, Slot};
 use crate::ir::operands::writes;
 
 /// Rewrites the element accesses of `body` indexed by `i` whose array
@@ -15,8 +15,8 @@ pub(super) fn drop_proven_checks(body: &mut [Op], arrays: &[ArrayDesc], i: Slot,
     if !body.iter().all(|op| leaves_alone(op, i)) {
         return;
     }
-    let bias_of = |desc: u32| {
-        let a = arrays.get(desc as usize)?;
+    let bias_of = |desc: ArrayIdx| {
+        let a = arrays.get(desc.index())?;
         let inside =
             a.stride == 1 && a.lo <= lo && hi < a.lo.checked_add(i64::try_from(a.len).ok()?)?;
         inside.then(|| i32::try_from(a.offset as i64 - a.lo).ok())?
@@ -55,7 +55,12 @@ fn leaves_alone(op: &Op, i: Slot) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ir::op::{CodeIdx, Target};
     use crate::source::Span;
+
+    /// The loop variable and the value slot of the tests.
+    const I: Slot = Slot::new(2);
+    const V: Slot = Slot::new(9);
 
     fn array(offset: u32, lo: i64, len: u64) -> ArrayDesc {
         ArrayDesc {
@@ -68,7 +73,11 @@ mod tests {
     }
 
     fn load(desc: u32) -> Op {
-        Op::LoadElem { d: 9, idx: 2, desc }
+        Op::LoadElem {
+            d: V,
+            idx: I,
+            desc: ArrayIdx::new(desc),
+        }
     }
 
     #[test]
@@ -78,33 +87,33 @@ mod tests {
         let mut body = [
             load(0),
             Op::StoreElem {
-                idx: 2,
-                s: 9,
-                desc: 0,
+                idx: I,
+                s: V,
+                desc: ArrayIdx::new(0),
             },
             load(1),
         ];
-        drop_proven_checks(&mut body, &arrays, 2, 0, 9);
+        drop_proven_checks(&mut body, &arrays, I, 0, 9);
         assert!(matches!(
             body[0],
             Op::LoadElemU {
-                d: 9,
-                idx: 2,
+                d: V,
+                idx: I,
                 bias: 20
             }
         ));
         assert!(matches!(
             body[1],
             Op::StoreElemU {
-                idx: 2,
-                s: 9,
+                idx: I,
+                s: V,
                 bias: 20
             }
         ));
         // 0..=9 is not inside b's 1..=5: still checked.
         assert!(matches!(body[2], Op::LoadElem { .. }));
         let mut body = [load(1)];
-        drop_proven_checks(&mut body, &arrays, 2, 1, 5);
+        drop_proven_checks(&mut body, &arrays, I, 1, 5);
         assert!(matches!(body[0], Op::LoadElemU { bias: 39, .. }));
     }
 
@@ -113,24 +122,30 @@ mod tests {
         let arrays = [array(20, 0, 10)];
         let changes = [
             Op::AddSI {
-                d: 2,
-                a: 2,
+                d: I,
+                a: I,
                 imm: 1,
                 shift: 32,
             },
-            Op::AddrOf { d: 7, off: 2 },
-            Op::CallFb { code: 1, inst: 30 },
+            Op::AddrOf {
+                d: Slot::new(7),
+                off: I,
+            },
+            Op::CallFb {
+                code: CodeIdx::new(1),
+                inst: Slot::new(30),
+            },
             Op::ForNext {
-                i: 2,
+                i: I,
                 lim: 3,
-                t: 0,
+                t: Target::new(0),
                 step: 1,
                 shift: 32,
             },
         ];
         for change in changes {
             let mut body = [load(0), change];
-            drop_proven_checks(&mut body, &arrays, 2, 0, 9);
+            drop_proven_checks(&mut body, &arrays, I, 0, 9);
             assert!(matches!(body[0], Op::LoadElem { .. }), "{change:?}");
         }
     }
@@ -139,11 +154,11 @@ mod tests {
     fn other_indexes_keep_their_check() {
         let arrays = [array(20, 0, 10)];
         let mut body = [Op::LoadElem {
-            d: 9,
-            idx: 3,
-            desc: 0,
+            d: V,
+            idx: Slot::new(3),
+            desc: ArrayIdx::new(0),
         }];
-        drop_proven_checks(&mut body, &arrays, 2, 0, 9);
+        drop_proven_checks(&mut body, &arrays, I, 0, 9);
         assert!(matches!(body[0], Op::LoadElem { .. }));
     }
 }

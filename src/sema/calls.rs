@@ -5,7 +5,7 @@ use super::body::BodyBuilder;
 use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::ConstInit;
 use crate::elementary::ElemType;
-use crate::ir::op::Op;
+use crate::ir::op::{Op, Slot, Target};
 use crate::ir::type_table::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib::{self, ParamDir};
@@ -42,16 +42,16 @@ pub(super) struct Bound<'e> {
 #[derive(Clone, Copy)]
 enum InstanceAt {
     /// At a slot of the current frame.
-    Frame(u32),
+    Frame(Slot),
     /// At the address held in a slot.
-    Ptr(u32),
+    Ptr(Slot),
 }
 
 impl InstanceAt {
     /// The place of the instance's member at `off`.
     fn member(self, off: u32) -> Place {
         match self {
-            InstanceAt::Frame(o) => Place::Frame(o + off),
+            InstanceAt::Frame(o) => Place::Frame(o.offset(off)),
             InstanceAt::Ptr(p) => Place::Ind { p, off },
         }
     }
@@ -511,7 +511,9 @@ impl BodyBuilder<'_> {
         self.block.emit(Op::LoadI { d: one, imm: 1 });
         self.write_place(&t, one);
         if let Some(j) = skip {
-            let over = self.block.emit(Op::Jmp { t: 0 });
+            let over = self.block.emit(Op::Jmp {
+                t: Target::UNPATCHED,
+            });
             let at = self.block.here();
             self.block.patch(j, at);
             let zero = self.block.temp();

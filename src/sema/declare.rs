@@ -248,7 +248,7 @@ impl Declarer<'_> {
             ret: TypeTable::void(),
             vars: IndexMap::new(),
             params: Vec::new(),
-            code: u32::MAX,
+            code: crate::ir::op::CodeIdx::new(u32::MAX),
             vars_size: 0,
             consts: Vec::new(),
             span: p.name.span,

@@ -7,7 +7,7 @@ use super::consts::Const;
 use super::model::VarInfo;
 use crate::elementary::ElemType;
 use crate::ir::image::StringInit;
-use crate::ir::op::{Op, Slot};
+use crate::ir::op::{ArrayIdx, Op, Slot, Target};
 use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use indexmap::IndexSet;
@@ -84,7 +84,7 @@ pub enum Place {
         /// Frame slot holding the index.
         idx: Slot,
         /// Array descriptor.
-        desc: u32,
+        desc: ArrayIdx,
     },
 }
 
@@ -209,16 +209,16 @@ impl Fcx {
 
     /// Index of the next instruction (a jump target). A label ends the
     /// basic block, so cached element addresses are forgotten.
-    pub fn here(&mut self) -> u32 {
+    pub fn here(&mut self) -> Target {
         self.last_def = None;
         self.elem_cache.clear();
-        self.ops.len() as u32
+        Target::new(self.ops.len() as u32)
     }
 
     /// A slot that keeps its value across statements (for cached addresses).
     pub fn pin(&mut self) -> Slot {
         self.pins += 1;
-        PIN_TAG | (self.pins - 1)
+        Slot::new(PIN_TAG | (self.pins - 1))
     }
 
     /// Forgets cached element addresses that `op` may make stale: any write
@@ -251,7 +251,7 @@ impl Fcx {
     }
 
     /// Points the jump at `at` to `target`.
-    pub fn patch(&mut self, at: usize, target: u32) {
+    pub fn patch(&mut self, at: usize, target: Target) {
         if let Some(t) = crate::ir::operands::target_mut(&mut self.ops[at]) {
             *t = target;
         }
@@ -259,7 +259,7 @@ impl Fcx {
 
     /// Closes the innermost loop at the current position: its EXITs and
     /// `exits` jump here, its CONTINUEs to `cont`.
-    pub fn end_loop(&mut self, cont: u32, exits: Vec<usize>) {
+    pub fn end_loop(&mut self, cont: Target, exits: Vec<usize>) {
         let lp = self.loops.pop().unwrap_or_default();
         let end = self.here();
         for j in exits.into_iter().chain(lp.exits) {
@@ -275,7 +275,7 @@ impl Fcx {
         let t = self.temp_next;
         self.temp_next += 1;
         self.temp_max = self.temp_max.max(self.temp_next);
-        t
+        Slot::new(t)
     }
 
     /// `n` consecutive temporaries.
@@ -283,23 +283,23 @@ impl Fcx {
         let t = self.temp_next;
         self.temp_next += n;
         self.temp_max = self.temp_max.max(self.temp_next);
-        t
+        Slot::new(t)
     }
 
     /// True if `s` is a temporary.
     pub fn is_temp(&self, s: Slot) -> bool {
-        s >= self.temp_base && s < PIN_TAG
+        s.get() >= self.temp_base && s.get() < PIN_TAG
     }
 
     /// A read-only frame slot holding `bits`, initialised once per instance.
     pub fn const_slot(&mut self, bits: u64) -> Slot {
-        CONST_TAG | self.consts.insert_full(bits).0 as u32
+        Slot::new(CONST_TAG | self.consts.insert_full(bits).0 as u32)
     }
 
     /// Gives this body's constant and pinned slots their final numbers
     /// from `first` on; returns the end of the region and the constants'
     /// `(slot, value)` list.
-    pub fn place_consts(&mut self, first: u32) -> (u32, Vec<(u32, u64)>) {
+    pub fn place_consts(&mut self, first: u32) -> (u32, Vec<(Slot, u64)>) {
         place_tagged(&mut self.ops, &self.consts, self.pins, first)
     }
 }
@@ -312,21 +312,22 @@ pub fn place_tagged(
     consts: &IndexSet<u64>,
     pins: u32,
     first: u32,
-) -> (u32, Vec<(u32, u64)>) {
+) -> (u32, Vec<(Slot, u64)>) {
     let pins_at = first + consts.len() as u32;
     for op in ops.iter_mut() {
         crate::ir::operands::for_each_slot(op, &mut |s| {
-            if *s & CONST_TAG != 0 {
-                *s = first + (*s & !CONST_TAG);
-            } else if *s & PIN_TAG != 0 {
-                *s = pins_at + (*s & !PIN_TAG);
+            let n = s.get();
+            if n & CONST_TAG != 0 {
+                *s = Slot::new(first + (n & !CONST_TAG));
+            } else if n & PIN_TAG != 0 {
+                *s = Slot::new(pins_at + (n & !PIN_TAG));
             }
         });
     }
     let list = consts
         .iter()
         .enumerate()
-        .map(|(k, v)| (first + k as u32, *v))
+        .map(|(k, v)| (Slot::new(first + k as u32), *v))
         .collect();
     (pins_at + pins, list)
 }

@@ -9,8 +9,7 @@ use super::emit::{LoopCtx, Ty, Val};
 use super::stmt::negate;
 use super::typeck::shift_of;
 use crate::elementary::ElemType;
-use crate::ir::op::Slot;
-use crate::ir::op::{Cmp, Op};
+use crate::ir::op::{Cmp, Op, ShortArrayIdx, Slot, Target};
 use crate::ir::type_table::TypeId;
 use crate::ir::type_table::TypeKind;
 use crate::source::Span;
@@ -101,7 +100,7 @@ impl BodyBuilder<'_> {
             && let Ok(s0) = i64::try_from(slot_to_int(*b0, e))
         {
             super::bounds::drop_proven_checks(
-                &mut self.block.ops[body_at as usize..cont as usize],
+                &mut self.block.ops[body_at.index()..cont.index()],
                 &self.out.arrays,
                 i,
                 s0.min(l as i64),
@@ -206,9 +205,14 @@ impl BodyBuilder<'_> {
                     imm: 0,
                     cmp: Cmp::Lt,
                 });
-                let to_neg = self.block.emit(Op::Jnz { c: neg, t: 0 });
+                let to_neg = self.block.emit(Op::Jnz {
+                    c: neg,
+                    t: Target::UNPATCHED,
+                });
                 let up = self.loop_test(fl, Cmp::Le, false);
-                let to_body = self.block.emit(Op::Jmp { t: 0 });
+                let to_body = self.block.emit(Op::Jmp {
+                    t: Target::UNPATCHED,
+                });
                 let neg_at = self.block.here();
                 self.block.patch(to_neg, neg_at);
                 let down = self.loop_test(fl, Cmp::Ge, false);
@@ -221,7 +225,7 @@ impl BodyBuilder<'_> {
 
     /// The back edge: a fused `ForNext` when the step is a small constant,
     /// else the increment and the test again (rotated) or a jump to the test.
-    fn for_back_edge(&mut self, fl: &ForLoop, body_at: u32, test_at: u32) {
+    fn for_back_edge(&mut self, fl: &ForLoop, body_at: Target, test_at: Target) {
         let (i, e) = (fl.i, fl.e);
         let shift = shift_of(e);
         if let Some(st) = fl.step_const
@@ -308,11 +312,17 @@ impl BodyBuilder<'_> {
         let (i, signed) = (fl.i, fl.signed);
         // The fused branches jump when the comparison is FALSE.
         let jcmp = if when { negate(cmp) } else { cmp };
-        let branch = |d: u32| {
+        let branch = |d: Slot| {
             if when {
-                Op::Jnz { c: d, t: 0 }
+                Op::Jnz {
+                    c: d,
+                    t: Target::UNPATCHED,
+                }
             } else {
-                Op::Jz { c: d, t: 0 }
+                Op::Jz {
+                    c: d,
+                    t: Target::UNPATCHED,
+                }
             }
         };
         match (fl.lim_imm, fl.lim) {
@@ -320,7 +330,7 @@ impl BodyBuilder<'_> {
                 a: i,
                 imm,
                 cmp: jcmp,
-                t: 0,
+                t: Target::UNPATCHED,
             }),
             (Some(imm), _) => {
                 let t = self.block.const_slot(imm as i64 as u64);
@@ -332,14 +342,16 @@ impl BodyBuilder<'_> {
                 a: i,
                 b: l,
                 cmp: jcmp,
-                t: 0,
+                t: Target::UNPATCHED,
             }),
             (None, Some(l)) => {
                 let d = self.block.temp();
                 self.block.emit(Op::CmpU { d, a: i, b: l, cmp });
                 self.block.emit(branch(d))
             }
-            (None, None) => self.block.emit(Op::Jmp { t: 0 }),
+            (None, None) => self.block.emit(Op::Jmp {
+                t: Target::UNPATCHED,
+            }),
         }
     }
 
@@ -352,7 +364,7 @@ impl BodyBuilder<'_> {
         &mut self,
         var: &crate::syntax::ast::Ident,
         body: &[Stmt],
-        i: u32,
+        i: Slot,
         lim: i32,
         shift: u8,
     ) {
@@ -415,11 +427,11 @@ impl BodyBuilder<'_> {
         }
         let v = self.materialize(&v);
         let desc = self.out.arrays.len();
-        let Ok(desc) = u16::try_from(desc) else {
+        let Ok(desc) = u16::try_from(desc).map(ShortArrayIdx::new) else {
             return;
         };
         self.out.arrays.push(crate::ir::image::ArrayDesc {
-            offset: o,
+            offset: o.get(),
             lo: dims[0].lo,
             len: dims[0].len(),
             stride: 1,

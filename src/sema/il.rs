@@ -7,7 +7,7 @@ use super::body::BodyBuilder;
 use super::emit::{Ty, Val};
 use super::model::{Storage, VarInfo};
 use crate::elementary::ElemType;
-use crate::ir::op::Op;
+use crate::ir::op::{Op, Slot, Target};
 use crate::ir::type_table::{MemberKind, TypeId, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{
@@ -23,7 +23,7 @@ pub(super) const CR_KEY: &str = "\u{0}CR";
 struct Deferred {
     op: IlOperator,
     negate: bool,
-    saved: u32,
+    saved: Slot,
     saved_ty: Option<TypeId>,
     /// The saved CR when it was an untyped literal.
     saved_lit: Option<Val>,
@@ -76,20 +76,20 @@ fn op_name(op: IlOperator) -> &'static str {
 
 /// IL lowering state of one body.
 struct IlState {
-    cr: u32,
+    cr: Slot,
     cr_ty: Option<TypeId>,
     /// The CR as an untyped literal (`LD 1`), so that the next operation
     /// or store gives it its type; the slot holds it in the default type.
     cr_lit: Option<Val>,
     stack: Vec<Deferred>,
-    labels: HashMap<String, (u32, Option<TypeId>)>,
+    labels: HashMap<String, (Target, Option<TypeId>)>,
     pending: Vec<(usize, Ident, Option<TypeId>)>,
 }
 
 impl BodyBuilder<'_> {
     /// Lowers an IL body. Returns the CR slot and its final type (used for
     /// IL transition conditions).
-    pub(super) fn il_body(&mut self, lines: &[IlLine]) -> (u32, Option<TypeId>) {
+    pub(super) fn il_body(&mut self, lines: &[IlLine]) -> (Slot, Option<TypeId>) {
         let cr = self.block.temp();
         // Keep the CR and deferred slots out of statement-level temp reuse.
         self.block.temp_base = self.block.temp_next;
@@ -187,7 +187,7 @@ impl BodyBuilder<'_> {
             name: "current result".into(),
             ty,
             kind: MemberKind::Temp,
-            storage: Storage::Frame(st.cr),
+            storage: Storage::Frame(st.cr.get()),
             constant: false,
             value: None,
             init: None,
@@ -340,9 +340,15 @@ impl BodyBuilder<'_> {
                             return;
                         }
                         Some(if *when {
-                            self.block.emit(Op::Jz { c: st.cr, t: 0 })
+                            self.block.emit(Op::Jz {
+                                c: st.cr,
+                                t: Target::UNPATCHED,
+                            })
                         } else {
-                            self.block.emit(Op::Jnz { c: st.cr, t: 0 })
+                            self.block.emit(Op::Jnz {
+                                c: st.cr,
+                                t: Target::UNPATCHED,
+                            })
                         })
                     }
                 };
@@ -427,15 +433,23 @@ impl BodyBuilder<'_> {
     /// `JMP`, `JMPC`, `JMPCN`: patched when the labels are known.
     fn il_jump(&mut self, st: &mut IlState, cond: Option<bool>, label: &Ident, span: Span) {
         let at = match cond {
-            None => self.block.emit(Op::Jmp { t: 0 }),
+            None => self.block.emit(Op::Jmp {
+                t: Target::UNPATCHED,
+            }),
             Some(when) => {
                 if !self.cr_is_bool(st, span, "JMPC") {
                     return;
                 }
                 if when {
-                    self.block.emit(Op::Jnz { c: st.cr, t: 0 })
+                    self.block.emit(Op::Jnz {
+                        c: st.cr,
+                        t: Target::UNPATCHED,
+                    })
                 } else {
-                    self.block.emit(Op::Jz { c: st.cr, t: 0 })
+                    self.block.emit(Op::Jz {
+                        c: st.cr,
+                        t: Target::UNPATCHED,
+                    })
                 }
             }
         };
@@ -450,15 +464,23 @@ impl BodyBuilder<'_> {
     /// `RET`, `RETC`, `RETCN`.
     fn il_return(&mut self, st: &mut IlState, cond: Option<bool>, span: Span) {
         let at = match cond {
-            None => self.block.emit(Op::Jmp { t: 0 }),
+            None => self.block.emit(Op::Jmp {
+                t: Target::UNPATCHED,
+            }),
             Some(when) => {
                 if !self.cr_is_bool(st, span, "RETC") {
                     return;
                 }
                 if when {
-                    self.block.emit(Op::Jnz { c: st.cr, t: 0 })
+                    self.block.emit(Op::Jnz {
+                        c: st.cr,
+                        t: Target::UNPATCHED,
+                    })
                 } else {
-                    self.block.emit(Op::Jz { c: st.cr, t: 0 })
+                    self.block.emit(Op::Jz {
+                        c: st.cr,
+                        t: Target::UNPATCHED,
+                    })
                 }
             }
         };
@@ -626,7 +648,10 @@ impl BodyBuilder<'_> {
                 if !self.cr_is_bool(st, span, name) {
                     return;
                 }
-                let skip = self.block.emit(Op::Jz { c: st.cr, t: 0 });
+                let skip = self.block.emit(Op::Jz {
+                    c: st.cr,
+                    t: Target::UNPATCHED,
+                });
                 let v = Val::Const(
                     crate::sema::consts::Const::Bits((op == IlOperator::S) as u64),
                     Ty::T(TypeTable::elem(ElemType::Bool)),

@@ -342,7 +342,7 @@ impl Declarer<'_> {
 
     /// Gives the laid-out POU its code block and instance type.
     fn finish_layout(&mut self, p: usize, pou: &Pou, frame: Frame) {
-        let code = self.out.codes.len() as u32;
+        let code = crate::ir::op::CodeIdx::new(self.out.codes.len() as u32);
         self.out.codes.push(crate::ir::image::CodeBlock {
             name: pou.name.name.clone(),
             kind: match pou.kind {

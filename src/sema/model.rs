@@ -70,11 +70,11 @@ pub struct PouInfo {
     /// Keys of VAR_INPUT, VAR_IN_OUT, VAR_OUTPUT in declaration order (call interface).
     pub params: Vec<String>,
     /// Code block index.
-    pub code: u32,
+    pub code: crate::ir::op::CodeIdx,
     /// Frame size before temporaries.
     pub vars_size: u32,
     /// Constant slots of the frame: `(slot, value)`.
-    pub consts: Vec<(u32, u64)>,
+    pub consts: Vec<(crate::ir::op::Slot, u64)>,
     /// Declaration span.
     pub span: Span,
 }

@@ -78,9 +78,12 @@ impl BodyBuilder<'_> {
             return None;
         };
         let place = match var.storage {
-            Storage::Frame(o) => Place::Frame(o),
+            Storage::Frame(o) => Place::Frame(Slot::new(o)),
             Storage::Abs(a) => Place::Abs(a),
-            Storage::Ref(o) => Place::Ind { p: o, off: 0 },
+            Storage::Ref(o) => Place::Ind {
+                p: Slot::new(o),
+                off: 0,
+            },
         };
         let function_input = self.model.pous.get(self.block.pou).is_some_and(|p| {
             p.kind == crate::syntax::ast::PouKind::Function && var.kind == MemberKind::Input
@@ -418,7 +421,7 @@ impl BodyBuilder<'_> {
         match b.place {
             Place::Frame(o) if scalar_elem => {
                 let desc = self.out.array_desc(ArrayDesc {
-                    offset: o,
+                    offset: o.get(),
                     lo: shape.lo,
                     len: shape.total,
                     stride: shape.stride,
@@ -433,8 +436,8 @@ impl BodyBuilder<'_> {
             Place::Frame(o) => {
                 // Arrays of FBs or structures in this frame: the
                 // element address, reused within the basic block.
-                let key = (o, shape.lo, shape.total, shape.stride);
-                let cacheable = idx < self.block.vars_size && shape.one_dim;
+                let key = (o.get(), shape.lo, shape.total, shape.stride);
+                let cacheable = idx.get() < self.block.vars_size && shape.one_dim;
                 let cached = self
                     .block
                     .elem_cache
@@ -445,7 +448,7 @@ impl BodyBuilder<'_> {
                     Some(p) => p,
                     None => {
                         let desc = self.out.array_desc(ArrayDesc {
-                            offset: o,
+                            offset: o.get(),
                             lo: shape.lo,
                             len: shape.total,
                             stride: shape.stride,
@@ -502,7 +505,7 @@ impl BodyBuilder<'_> {
     /// `place + offset`, turning element places into pointers when needed.
     fn offset_place(&mut self, place: Place, off: u32) -> Place {
         match place {
-            Place::Frame(o) => Place::Frame(o + off),
+            Place::Frame(o) => Place::Frame(o.offset(off)),
             Place::Abs(a) => Place::Abs(a + off),
             Place::Ind { p, off: o } => Place::Ind { p, off: o + off },
             Place::Elem { idx, desc } => {

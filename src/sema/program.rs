@@ -8,6 +8,7 @@ use crate::diagnostics::Diagnostics;
 use crate::elementary::ElemType;
 use crate::ir::chart::Chart;
 use crate::ir::image::{ArrayDesc, CodeBlock, StringInit};
+use crate::ir::op::{ArrayIdx, CodeIdx, ConstIdx, ScalarTypeIdx, StrConstIdx};
 use crate::ir::type_table::{TypeId, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{AddrSize, DirectAddress};
@@ -35,9 +36,9 @@ pub(crate) struct Program {
     /// Elementary types of `ToStr`/`FromStr`.
     pub scalar_types: IndexSet<ElemType>,
     /// Call graph edges between code blocks (for recursion detection).
-    pub calls: Vec<(u32, u32, Span)>,
+    pub calls: Vec<(CodeIdx, CodeIdx, Span)>,
     /// Function-frame relocations: (code block, instruction, callee POU).
-    pub fixups: Vec<(u32, usize, usize)>,
+    pub fixups: Vec<(CodeIdx, usize, usize)>,
     /// Step tables of chart bodies.
     pub charts: Vec<Chart>,
 }
@@ -66,27 +67,28 @@ impl Program {
     }
 
     /// Interns a 64-bit constant.
-    pub(super) fn konst(&mut self, v: u64) -> u32 {
-        self.consts.insert_full(v).0 as u32
+    pub(super) fn konst(&mut self, v: u64) -> ConstIdx {
+        ConstIdx::new(self.consts.insert_full(v).0 as u32)
     }
 
     /// Interns a constant string.
-    pub(super) fn str_const(&mut self, s: &str) -> u32 {
-        match self.str_consts.get_index_of(s) {
-            Some(i) => i as u32,
-            None => self.str_consts.insert_full(s.to_string()).0 as u32,
-        }
+    pub(super) fn str_const(&mut self, s: &str) -> StrConstIdx {
+        let i = match self.str_consts.get_index_of(s) {
+            Some(i) => i,
+            None => self.str_consts.insert_full(s.to_string()).0,
+        };
+        StrConstIdx::new(i as u32)
     }
 
     /// Index of an elementary type in the `ToStr`/`FromStr` list.
-    pub(super) fn scalar_index(&mut self, e: ElemType) -> u8 {
-        self.scalar_types.insert_full(e).0 as u8
+    pub(super) fn scalar_index(&mut self, e: ElemType) -> ScalarTypeIdx {
+        ScalarTypeIdx::new(self.scalar_types.insert_full(e).0 as u8)
     }
 
     /// Adds an array descriptor (one per access site: it carries the span).
-    pub(super) fn array_desc(&mut self, d: ArrayDesc) -> u32 {
+    pub(super) fn array_desc(&mut self, d: ArrayDesc) -> ArrayIdx {
         self.arrays.push(d);
-        self.arrays.len() as u32 - 1
+        ArrayIdx::new(self.arrays.len() as u32 - 1)
     }
 
     /// Absolute slot of a located variable (shared by every declaration of

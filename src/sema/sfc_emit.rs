@@ -14,7 +14,7 @@ use crate::ir::chart::{
     header,
 };
 use crate::ir::image::{CodeBlock, CodeKind};
-use crate::ir::op::Op;
+use crate::ir::op::{ChartIdx, CodeIdx, Op, Slot};
 use crate::ir::type_table::{MemberKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{Body, Expr, Ident, Pou, SfcElement, TransitionCondition};
@@ -93,7 +93,7 @@ impl BodyBuilder<'_> {
             transitions,
             actions,
         };
-        let index = self.out.charts.len() as u32;
+        let index = ChartIdx::new(self.out.charts.len() as u32);
         self.out.charts.push(chart);
         self.block.span = pou.name.span;
         self.block.emit(Op::Sfc { chart: index });
@@ -542,7 +542,7 @@ impl BodyBuilder<'_> {
                             return;
                         }
                         Val::Slot(s, _) if c.block.ops.is_empty() => {
-                            folded = Some(Condition::Frame(s));
+                            folded = Some(Condition::Frame(s.get()));
                             return;
                         }
                         _ => {}
@@ -570,7 +570,7 @@ impl BodyBuilder<'_> {
                 );
                 return;
             }
-            c.block.mov(cond_slot, slot);
+            c.block.mov(Slot::new(cond_slot), slot);
         });
         match folded {
             Some(c) => {
@@ -593,7 +593,7 @@ impl BodyBuilder<'_> {
         span: Span,
         temp_base: u32,
         build: impl FnOnce(&mut BodyBuilder),
-    ) -> (u32, u32) {
+    ) -> (CodeIdx, u32) {
         let mut sub = Fcx::new(p, temp_base);
         sub.span = span;
         let outer = std::mem::replace(&mut self.block, sub);
@@ -605,7 +605,7 @@ impl BodyBuilder<'_> {
         }
         sub.span = span;
         sub.emit(Op::Ret);
-        let code = self.out.codes.len() as u32;
+        let code = CodeIdx::new(self.out.codes.len() as u32);
         for (at, callee) in std::mem::take(&mut sub.fixups) {
             self.out.fixups.push((code, at, callee));
         }
@@ -658,7 +658,7 @@ impl BodyBuilder<'_> {
         }
         match (&v, ops.as_slice()) {
             (Val::Const(Const::Bits(b), _), _) => Some(Duration::Const(*b as i64)),
-            (Val::Slot(s, _), []) => Some(Duration::Frame(*s)),
+            (Val::Slot(s, _), []) => Some(Duration::Frame(s.get())),
             (Val::Slot(s, _), [Op::LoadAbs { d, abs }]) if d == s => Some(Duration::Abs(*abs)),
             _ => {
                 self.diags.error(

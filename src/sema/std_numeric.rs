@@ -5,7 +5,7 @@ use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Ty, Val};
 use crate::elementary::{ElemType, Family};
-use crate::ir::op::{Conv, MathFn, Op, ShiftKind};
+use crate::ir::op::{Conv, MathFn, Op, ShiftKind, Slot};
 use crate::ir::type_table::TypeTable;
 use crate::source::Span;
 use crate::syntax::ast::BinaryOp;
@@ -222,7 +222,7 @@ impl BodyBuilder<'_> {
         let Some(t) = self.unify_all(&tys, span, fname, expect) else {
             return Val::error();
         };
-        let mut acc: Option<u32> = None;
+        let mut acc: Option<Slot> = None;
         for (v, s) in vals {
             let v = self.coerce(v, t, s, fname);
             let x = self.materialize(&v);
@@ -231,7 +231,7 @@ impl BodyBuilder<'_> {
                 Some(a) => self.minmax(t, a, x, max),
             });
         }
-        Val::Slot(acc.unwrap_or(0), t)
+        Val::Slot(acc.unwrap_or(Slot::new(0)), t)
     }
 
     /// LIMIT(MN, IN, MX) as MIN(MAX(IN, MN), MX).
@@ -292,7 +292,7 @@ impl BodyBuilder<'_> {
         let first = self.block.temps(n as u32);
         for (i, s) in slots.into_iter().enumerate() {
             self.block.emit(Op::Mov {
-                d: first + i as u32,
+                d: first.offset(i as u32),
                 s,
             });
         }
@@ -430,7 +430,7 @@ impl BodyBuilder<'_> {
         Some(self.default_type(acc, None))
     }
 
-    fn minmax(&mut self, t: crate::ir::type_table::TypeId, a: u32, b: u32, max: bool) -> u32 {
+    fn minmax(&mut self, t: crate::ir::type_table::TypeId, a: Slot, b: Slot, max: bool) -> Slot {
         let e = self.scalar(t).unwrap_or(ElemType::Dint);
         let d = self.block.temp();
         self.block.emit(match e {

@@ -65,7 +65,10 @@ impl BodyBuilder<'_> {
         }
         let a = self.block.temps(4);
         for (i, s) in slots.into_iter().enumerate() {
-            self.block.emit(Op::Mov { d: a + i as u32, s });
+            self.block.emit(Op::Mov {
+                d: a.offset(i as u32),
+                s,
+            });
         }
         if matches!(func, StrFn::Len | StrFn::Find) {
             let d = self.block.temp();

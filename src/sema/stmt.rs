@@ -5,7 +5,7 @@ use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Fcx, LoopCtx, Ty, Val};
 use crate::elementary::ElemType;
-use crate::ir::op::{Cmp, Op, Slot};
+use crate::ir::op::{Cmp, Op, ShortTarget, Slot, Target};
 use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{CaseLabel, Expr, ExprKind, Stmt, StmtKind};
@@ -34,7 +34,7 @@ fn strip_not(cond: &Expr, when: bool) -> (&Expr, bool) {
 /// `v := v + x` (or `v + 3`) right before a WHILE test `v cmp K` becomes one `AddBr`
 /// that steps and branches back; the test stays in place for the loop
 /// entry and for CONTINUE, and runs once more only when the loop ends.
-fn fuse_step_and_test(f: &mut Fcx, cond_at: usize, top: u32) {
+fn fuse_step_and_test(f: &mut Fcx, cond_at: usize, top: Target) {
     if cond_at == 0 || cond_at + 1 != f.ops.len() {
         return;
     }
@@ -53,7 +53,7 @@ fn fuse_step_and_test(f: &mut Fcx, cond_at: usize, top: u32) {
         Op::AddSI { d, a, imm, shift } => (d, a, f.const_slot(imm as i64 as u64), shift),
         _ => return,
     };
-    let (Ok(imm), Ok(target)) = (i16::try_from(imm), u16::try_from(top)) else {
+    let (Ok(imm), Ok(target)) = (i16::try_from(imm), u16::try_from(top.get())) else {
         return;
     };
     if a != d || tested != d || t != top || b == d {
@@ -63,7 +63,7 @@ fn fuse_step_and_test(f: &mut Fcx, cond_at: usize, top: u32) {
         d,
         b,
         imm,
-        t: target,
+        t: ShortTarget::new(target),
         cmp: negate(cmp),
         shift,
     };
@@ -94,7 +94,9 @@ impl BodyBuilder<'_> {
                     self.stmts(body);
                     let last = k + 1 == branches.len() && else_branch.is_none();
                     if !last {
-                        ends.push(self.block.emit(Op::Jmp { t: 0 }));
+                        ends.push(self.block.emit(Op::Jmp {
+                            t: Target::UNPATCHED,
+                        }));
                     }
                     let next = self.block.here();
                     if let Some(j) = skip {
@@ -122,7 +124,9 @@ impl BodyBuilder<'_> {
                 body,
             } => self.for_loop(var, from, to, by.as_ref(), body, s.span),
             StmtKind::While { cond, body } => {
-                let to_cond = self.block.emit(Op::Jmp { t: 0 });
+                let to_cond = self.block.emit(Op::Jmp {
+                    t: Target::UNPATCHED,
+                });
                 let top = self.block.here();
                 self.block.loops.push(LoopCtx::default());
                 self.stmts(body);
@@ -130,7 +134,7 @@ impl BodyBuilder<'_> {
                 self.block.patch(to_cond, cont);
                 self.block.span = cond.span;
                 self.cond_branch_to(cond, true, top);
-                fuse_step_and_test(&mut self.block, cont as usize, top);
+                fuse_step_and_test(&mut self.block, cont.index(), top);
                 self.block.end_loop(cont, Vec::new());
             }
             StmtKind::Repeat { body, until } => {
@@ -145,7 +149,9 @@ impl BodyBuilder<'_> {
             StmtKind::Exit => self.loop_jump(true, s.span),
             StmtKind::Continue => self.loop_jump(false, s.span),
             StmtKind::Return => {
-                let j = self.block.emit(Op::Jmp { t: 0 });
+                let j = self.block.emit(Op::Jmp {
+                    t: Target::UNPATCHED,
+                });
                 self.block.returns.push(j);
             }
             StmtKind::Empty => {}
@@ -164,7 +170,9 @@ impl BodyBuilder<'_> {
             );
             return;
         }
-        let j = self.block.emit(Op::Jmp { t: 0 });
+        let j = self.block.emit(Op::Jmp {
+            t: Target::UNPATCHED,
+        });
         if let Some(lp) = self.block.loops.last_mut() {
             if exit {
                 lp.exits.push(j);
@@ -182,16 +190,18 @@ impl BodyBuilder<'_> {
         let v = self.bool_expr(test, cond.span)?;
         if let Val::Const(Const::Bits(b), _) = v {
             if (b != 0) == when {
-                return Some(self.block.emit(Op::Jmp { t: 0 }));
+                return Some(self.block.emit(Op::Jmp {
+                    t: Target::UNPATCHED,
+                }));
             }
             return None;
         }
         let s = self.materialize(&v);
-        Some(self.branch_on_slot(s, when, 0))
+        Some(self.branch_on_slot(s, when, Target::UNPATCHED))
     }
 
     /// Emits a jump to `target` taken when `cond` equals `when`.
-    fn cond_branch_to(&mut self, cond: &Expr, when: bool, target: u32) {
+    fn cond_branch_to(&mut self, cond: &Expr, when: bool, target: Target) {
         let (test, when) = strip_not(cond, when);
         let Some(v) = self.bool_expr(test, cond.span) else {
             return;
@@ -207,7 +217,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Jump on a BOOL slot, fusing a just-computed integer comparison.
-    fn branch_on_slot(&mut self, s: u32, when: bool, target: u32) -> usize {
+    fn branch_on_slot(&mut self, s: Slot, when: bool, target: Target) -> usize {
         if let Some((at, d)) = self.block.last_def
             && d == s
             && self.block.is_temp(s)
@@ -519,7 +529,9 @@ impl BodyBuilder<'_> {
             }
             to_body.push(jumps);
         }
-        let to_else = self.block.emit(Op::Jmp { t: 0 });
+        let to_else = self.block.emit(Op::Jmp {
+            t: Target::UNPATCHED,
+        });
         let mut ends = Vec::new();
         for (arm, jumps) in arms.iter().zip(to_body) {
             let start = self.block.here();
@@ -527,7 +539,9 @@ impl BodyBuilder<'_> {
                 self.block.patch(j, start);
             }
             self.stmts(&arm.body);
-            ends.push(self.block.emit(Op::Jmp { t: 0 }));
+            ends.push(self.block.emit(Op::Jmp {
+                t: Target::UNPATCHED,
+            }));
         }
         let else_at = self.block.here();
         self.block.patch(to_else, else_at);
@@ -581,7 +595,7 @@ impl BodyBuilder<'_> {
                     cmp: Cmp::Eq,
                 }
             });
-            self.branch_on_slot(d, true, 0)
+            self.branch_on_slot(d, true, Target::UNPATCHED)
         } else {
             let (cl, ch) = (
                 self.block.const_slot(lo as u64),
@@ -616,7 +630,10 @@ impl BodyBuilder<'_> {
                 });
             }
             self.block.emit(Op::And { d, a: d1, b: d2 });
-            self.block.emit(Op::Jnz { c: d, t: 0 })
+            self.block.emit(Op::Jnz {
+                c: d,
+                t: Target::UNPATCHED,
+            })
         }
     }
 

@@ -6,7 +6,7 @@ use super::body::BodyBuilder;
 use super::consts::{Const, int_to_slot, real_to_slot, slot_to_int, slot_to_real};
 use super::emit::{Ty, Val};
 use crate::elementary::{ElemType, Family};
-use crate::ir::op::{Cmp, Conv, Op};
+use crate::ir::op::{Cmp, Conv, Op, Slot};
 use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 
@@ -238,12 +238,11 @@ impl BodyBuilder<'_> {
     }
 
     /// Range check for values stored into a subrange variable.
-    fn check_subrange(&mut self, s: u32, to: TypeId) -> u32 {
+    fn check_subrange(&mut self, s: Slot, to: TypeId) -> Slot {
         let TypeKind::Subrange { lo, hi, .. } = self.types.get(to).kind else {
             return s;
         };
-        let desc = self.out.arrays.len() as u32;
-        self.out.arrays.push(crate::ir::image::ArrayDesc {
+        let desc = self.out.array_desc(crate::ir::image::ArrayDesc {
             offset: 0,
             lo,
             len: (hi - lo + 1) as u64,
@@ -305,7 +304,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Emits a comparison of two slots of elementary type `e`.
-    pub(super) fn emit_cmp(&mut self, e: ElemType, a: u32, b: u32, cmp: Cmp) -> u32 {
+    pub(super) fn emit_cmp(&mut self, e: ElemType, a: Slot, b: Slot, cmp: Cmp) -> Slot {
         let d = self.block.temp();
         let op = if e.is_string() {
             Op::CmpStr { d, a, b, cmp }

@@ -13,8 +13,13 @@ use crate::ir::image::Image;
 use crate::ir::type_table::step_layout as sl;
 
 /// Runs one call of chart `chart` for the instance at `base`.
-pub(super) fn run(m: &mut Machine, img: &Image, chart: u32, base: usize) -> Result<(), Fault> {
-    let Some(c) = img.charts.get(chart as usize) else {
+pub(super) fn run(
+    m: &mut Machine,
+    img: &Image,
+    chart: crate::ir::op::ChartIdx,
+    base: usize,
+) -> Result<(), Fault> {
+    let Some(c) = img.charts.get(chart.index()) else {
         return Ok(());
     };
     let now = m.now;

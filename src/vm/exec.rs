@@ -2,7 +2,7 @@
 
 use super::{Fault, FaultKind, Machine, string_ops};
 use crate::ir::image::Image;
-use crate::ir::op::{Cmp, Op, ShiftKind, wrap_s, wrap_u};
+use crate::ir::op::{Cmp, CodeIdx, Op, ShiftKind, Slot, wrap_s, wrap_u};
 use crate::stdlib;
 use crate::value::convert;
 
@@ -87,12 +87,12 @@ fn shift(x: u64, n: u64, kind: ShiftKind, bits: u8) -> u64 {
 
 /// The slot of the `Operand` word at `ip` (verified to be there).
 #[inline(always)]
-fn operand_word(ip: *const Op) -> u32 {
+fn operand_word(ip: *const Op) -> Slot {
     // SAFETY: the verifier guarantees an Operand word after a two-word
     // instruction, inside the block.
     match unsafe { *ip } {
         Op::Operand { s } => s,
-        _ => 0,
+        _ => Slot::new(0),
     }
 }
 
@@ -143,8 +143,8 @@ fn int_pow(base: i64, exp: i64) -> Option<u64> {
 /// `img` must have passed [`crate::ir::verify::verify`] (callers hold a
 /// `VerifiedImage`); `m` may hold any memory, since every frame is checked
 /// against it on entry.
-pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Result<(), Fault> {
-    let block = &img.codes[code as usize];
+pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> Result<(), Fault> {
+    let block = &img.codes[code.index()];
     let len = m.mem.len();
     // `base` may come from a pointer slot: compared without overflow.
     if base > len || block.frame_size as usize > len - base {
@@ -160,14 +160,31 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
     macro_rules! r {
         ($s:expr) => {
             // SAFETY: frame operands are < frame_size (verified at link time).
-            unsafe { *fp.add($s as usize) }
+            unsafe { *fp.add($s.index()) }
         };
     }
     macro_rules! w {
         ($s:expr, $v:expr) => {{
             let v = $v;
             // SAFETY: as for `r!`.
-            unsafe { *fp.add($s as usize) = v }
+            unsafe { *fp.add($s.index()) = v }
+        }};
+    }
+    // The same at a frame offset computed at run time (an element or a
+    // MUX input), which the instruction has checked first.
+    macro_rules! r_at {
+        ($i:expr) => {
+            // SAFETY: the offset was checked against a verified descriptor
+            // (whose extent lies in the frame), a verified run, or the
+            // frame size.
+            unsafe { *fp.add($i as usize) }
+        };
+    }
+    macro_rules! w_at {
+        ($i:expr, $v:expr) => {{
+            let v = $v;
+            // SAFETY: as for `r_at!`.
+            unsafe { *fp.add($i as usize) = v }
         }};
     }
     for &(slot, value) in &block.entry_init {
@@ -175,7 +192,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
     }
     for &(slot, k) in &block.entry_strings {
         let id = r!(slot) as usize;
-        m.strings[id].set(&img.str_consts[k as usize]);
+        m.strings[id].set(&img.str_consts[k.index()]);
     }
     let ops = &block.ops[..];
     // The instruction pointer; `pc()` recovers the index for faults and jumps.
@@ -249,7 +266,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
     macro_rules! jump {
         ($t:expr) => {{
             // SAFETY: jump targets are inside the block (verified).
-            let target = unsafe { start.add($t as usize) };
+            let target = unsafe { start.add($t.index()) };
             if target < ip {
                 tick!();
             }
@@ -265,7 +282,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
         ip = unsafe { ip.add(1) };
         match *op {
             Op::Nop => {}
-            Op::LoadK { d, k } => w!(d, img.consts[k as usize]),
+            Op::LoadK { d, k } => w!(d, img.consts[k.index()]),
             Op::LoadI { d, imm } => w!(d, imm as i64 as u64),
             Op::Mov { d, s } => w!(d, r!(s)),
             Op::LoadAbs { d, abs } => w!(d, mload!(abs)),
@@ -278,16 +295,16 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 let a = (r!(p) as usize).wrapping_add(off as usize);
                 mstore!(a, r!(s));
             }
-            Op::AddrOf { d, off } => w!(d, (base + off as usize) as u64),
+            Op::AddrOf { d, off } => w!(d, (base + off.index()) as u64),
             Op::AddrAdd { d, p, off } => w!(d, r!(p).wrapping_add(off as u64)),
             Op::LoadElem { d, idx, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
                 }
-                w!(d, r!(ad.offset as u64 + i * ad.stride as u64));
+                w!(d, r_at!(ad.offset as u64 + i * ad.stride as u64));
             }
             Op::LoadElemU { d, idx, bias } => {
                 // The index is proved in range; staying inside the frame is
@@ -296,27 +313,27 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 if at >= block.frame_size as u64 {
                     fault!(FaultKind::BadAddress);
                 }
-                w!(d, r!(at));
+                w!(d, r_at!(at));
             }
             Op::StoreElemU { idx, s, bias } => {
                 let at = (r!(idx) as i64).wrapping_add(bias as i64) as u64;
                 if at >= block.frame_size as u64 {
                     fault!(FaultKind::BadAddress);
                 }
-                w!(at, r!(s));
+                w_at!(at, r!(s));
             }
             Op::StoreElem { idx, s, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
                 }
-                w!(ad.offset as u64 + i * ad.stride as u64, r!(s));
+                w_at!(ad.offset as u64 + i * ad.stride as u64, r!(s));
             }
             Op::ElemAddr { d, idx, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
@@ -328,7 +345,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             }
             Op::ElemRef { d, idx, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
@@ -337,7 +354,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             }
             Op::IndexStep { acc, idx, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
@@ -479,7 +496,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                         n: n as u32
                     });
                 }
-                w!(d, r!(first as u64 + sel as u64));
+                w!(d, r_at!(first.get() as u64 + sel as u64));
             }
             Op::MulTimeF64 { d, a, b } => {
                 let v = (r!(a) as i64) as f64 * f64_of(r!(b));
@@ -543,7 +560,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 shift,
             } => {
                 // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 let (start, last) = (r!(i) as i64, lim as i64);
                 let after = wrap_s((last + 1) as u64, shift);
                 let (a, b) = (start.wrapping_sub(ad.lo), last.wrapping_sub(ad.lo));
@@ -559,12 +576,12 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             }
             Op::JzElem { idx, desc, t } | Op::JnzElem { idx, desc, t } => {
                 // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 let i = (r!(idx) as i64).wrapping_sub(ad.lo) as u64;
                 if i >= ad.len {
                     fault!(index_fault(r!(idx), ad));
                 }
-                let set = r!(ad.offset as u64 + i * ad.stride as u64) != 0;
+                let set = r_at!(ad.offset as u64 + i * ad.stride as u64) != 0;
                 if set == matches!(*op, Op::JnzElem { .. }) {
                     jump!(t)
                 }
@@ -621,7 +638,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             }
             Op::StoreStep { idx, s, desc } => {
                 // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 // SAFETY: the verifier checked that the AddBr stepping `idx`
                 // back to this instruction follows it.
                 let (b, imm, cmp, shift) = match unsafe { *ip } {
@@ -638,8 +655,8 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                         fault!(index_fault(j, ad));
                     }
                     let at = ad.offset as u64 + i * ad.stride as u64;
-                    w!(at, r!(s));
-                    if at == idx as u64 {
+                    w_at!(at, r!(s));
+                    if at == idx.get() as u64 {
                         // The element stored is the loop variable itself.
                         j = r!(idx);
                     }
@@ -664,7 +681,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 when,
             } => {
                 // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc as usize) };
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 let mut v = r!(i);
                 loop {
                     let go;
@@ -678,17 +695,17 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                     if k >= ad.len {
                         // The element test at `t` reports the bad index.
                         // SAFETY: t + 1 < block length (verified with the partner test).
-                        ip = unsafe { start.add(t as usize) };
+                        ip = unsafe { start.add(t.index()) };
                         break;
                     }
-                    if (r!(ad.offset as u64 + k * ad.stride as u64) != 0) == when {
+                    if (r_at!(ad.offset as u64 + k * ad.stride as u64) != 0) == when {
                         // SAFETY: as above.
-                        ip = unsafe { start.add(t as usize + 1) };
+                        ip = unsafe { start.add(t.index() + 1) };
                         break;
                     }
                 }
             }
-            Op::CallFb { code: c, inst } => run(m, img, c, base + inst as usize)?,
+            Op::CallFb { code: c, inst } => run(m, img, c, base + inst.index())?,
             Op::CallFbInd { code: c, p } => {
                 let at = r!(p) as usize;
                 run(m, img, c, at)?
@@ -696,7 +713,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
             Op::CallNative { fb, inst } => {
                 // SAFETY: inst + pins(fb) <= frame_size (verified), so the
                 // instance lies inside this frame.
-                unsafe { stdlib::call_raw(fb, fp.add(inst as usize), m.now) }
+                unsafe { stdlib::call_raw(fb, fp.add(inst.index()), m.now) }
             }
             Op::CallNativeInd { fb, p } => {
                 let n = fb.instance_slots() as usize;
@@ -708,7 +725,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: u32, base: usize) -> Resul
                 unsafe { stdlib::call_raw(fb, mem.add(start), m.now) }
             }
             Op::CallFn { code: c } => {
-                let frame = img.codes[c as usize].frame as usize;
+                let frame = img.codes[c.index()].frame as usize;
                 run(m, img, c, frame)?
             }
             Op::Clock { d } => w!(d, m.now as u64),

@@ -88,7 +88,7 @@ pub struct Fault {
     /// What happened.
     pub kind: FaultKind,
     /// Code block.
-    pub code: u32,
+    pub code: crate::ir::op::CodeIdx,
     /// Instruction index inside the block.
     pub pc: u32,
 }

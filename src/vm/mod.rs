@@ -19,6 +19,7 @@ mod strings;
 pub use fault::{Fault, FaultKind};
 pub use strings::PlcString;
 
+use crate::ir::op::CodeIdx;
 use crate::ir::verify::VerifiedImage;
 use std::time::{Duration, Instant};
 
@@ -69,7 +70,7 @@ impl Machine {
 
     /// Runs code block `code` with frame base `base` (a frame outside
     /// memory faults with `BadAddress`).
-    pub fn run(&mut self, image: &VerifiedImage, code: u32, base: u32) -> Result<(), Fault> {
+    pub fn run(&mut self, image: &VerifiedImage, code: CodeIdx, base: u32) -> Result<(), Fault> {
         exec::run(self, image.image(), code, base as usize)
     }
 

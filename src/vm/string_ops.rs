@@ -4,7 +4,7 @@
 
 use super::{FaultKind, Machine, strings};
 use crate::ir::image::Image;
-use crate::ir::op::Op;
+use crate::ir::op::{Op, Slot};
 
 /// Runs one string instruction (`CmpStr`, `StrMov`, `StrConst`, `StrCall`,
 /// `ToStr`, `FromStr`; anything else does nothing) on the frame at `fp`.
@@ -21,8 +21,8 @@ pub(super) unsafe fn run(
     op: &Op,
 ) -> Result<(), FaultKind> {
     // SAFETY (both): the caller guarantees the slot lies in the frame.
-    let r = |s: u32| unsafe { *fp.add(s as usize) };
-    let w = |s: u32, v: u64| unsafe { *fp.add(s as usize) = v };
+    let r = |s: Slot| unsafe { *fp.add(s.index()) };
+    let w = |s: Slot, v: u64| unsafe { *fp.add(s.index()) = v };
     match *op {
         Op::CmpStr { d, a, b, cmp } => {
             let x = &m.strings[r(a) as usize];
@@ -39,21 +39,21 @@ pub(super) unsafe fn run(
         }
         Op::StrConst { d, k } => {
             let di = r(d) as usize;
-            m.strings[di].set(&img.str_consts[k as usize]);
+            m.strings[di].set(&img.str_consts[k.index()]);
         }
         Op::StrCall { d, a, f } => {
-            let args = [r(a), r(a + 1), r(a + 2), r(a + 3)];
+            let args = [r(a), r(a.offset(1)), r(a.offset(2)), r(a.offset(3))];
             if let Some(v) = strings::call(&mut m.strings, f, r(d), &args)? {
                 w(d, v);
             }
         }
         Op::ToStr { d, a, ty } => {
-            let text = crate::value::format::format_value(img.scalar_types[ty as usize], r(a));
+            let text = crate::value::format::format_value(img.scalar_types[ty.index()], r(a));
             m.strings[r(d) as usize].set(&text);
         }
         Op::FromStr { d, a, ty } => {
             let text = m.strings[r(a) as usize].as_str();
-            match crate::value::text::parse_scalar(text, img.scalar_types[ty as usize]) {
+            match crate::value::text::parse_scalar(text, img.scalar_types[ty.index()]) {
                 Some(v) => w(d, v),
                 None => return Err(FaultKind::ConversionOverflow),
             }

@@ -3,7 +3,10 @@
 
 use super::*;
 use crate::ir::image::CodeBlock;
-use crate::ir::op::Op;
+use crate::ir::op::{
+    ArrayIdx, ChartIdx, CodeIdx, ConstIdx, Op, ScalarTypeIdx, ShortArrayIdx, ShortTarget, Slot,
+    StrConstIdx, Target,
+};
 use crate::ir::operands::{Access, examples};
 
 /// A program with every kind of operand the verifier checks: frame slots,
@@ -158,8 +161,8 @@ fn the_issue_example_a_move_far_outside_the_frame_is_refused() {
     main.ops.insert(
         0,
         Op::Mov {
-            d: 50_000_000,
-            s: 0,
+            d: Slot::new(50_000_000),
+            s: Slot::new(0),
         },
     );
     main.spans.insert(0, Default::default());
@@ -179,7 +182,7 @@ fn every_slot_operand_of_every_instruction_outside_its_frame_is_refused() {
                 let mut k = 0;
                 crate::ir::operands::for_each_slot(&mut bad.codes[ci].ops[pc], &mut |s| {
                     if k == j {
-                        *s = size;
+                        *s = Slot::new(size);
                     }
                     k += 1;
                 });
@@ -224,7 +227,7 @@ fn every_slot_role_of_every_listed_instruction_is_checked_against_the_frame() {
         });
         for s in slots {
             let block = CodeBlock {
-                frame_size: s,
+                frame_size: s.get(),
                 ..img.codes[0].clone()
             };
             let mut refused = false;
@@ -238,7 +241,7 @@ fn every_slot_role_of_every_listed_instruction_is_checked_against_the_frame() {
                     refused |= check_operand(&img, &block, o).is_err();
                 }
             });
-            assert!(refused, "{op:?} slot {s}");
+            assert!(refused, "{op:?} slot {s:?}");
         }
     }
 }
@@ -250,7 +253,7 @@ fn runs_reaching_past_the_frame_are_refused() {
     let size = img.codes[mux.0].frame_size;
     let bad = with_op(&img, mux, |o| {
         if let Op::Mux { first, .. } = o {
-            *first = size - 1;
+            *first = Slot::new(size - 1);
         }
     });
     assert_eq!(refused(bad), Problem::RunOutsideFrame);
@@ -258,7 +261,7 @@ fn runs_reaching_past_the_frame_are_refused() {
     let size = img.codes[call.0].frame_size;
     let bad = with_op(&img, call, |o| {
         if let Op::StrCall { a, .. } = o {
-            *a = size - 3;
+            *a = Slot::new(size - 3);
         }
     });
     assert_eq!(refused(bad), Problem::RunOutsideFrame);
@@ -288,11 +291,11 @@ fn jumps_outside_the_block_or_onto_an_operand_word_are_refused() {
                 let mut t32 = None;
                 operands(o, &mut |x| match x {
                     Operand::Target(t) => t32 = Some(t),
-                    Operand::ShortTarget(t) => *t = target as u16,
+                    Operand::ShortTarget(t) => *t = ShortTarget::new(target as u16),
                     _ => {}
                 });
                 if let Some(t) = t32 {
-                    *t = target;
+                    *t = Target::new(target);
                 }
             });
             let problem = refused(bad);
@@ -331,12 +334,12 @@ type ChartCase = (Box<dyn Fn(&mut Chart)>, Problem);
 #[test]
 fn every_table_index_out_of_range_is_refused() {
     let img = image();
-    let consts = img.consts.len() as u32;
-    let strs = img.str_consts.len() as u32;
+    let consts = ConstIdx::new(img.consts.len() as u32);
+    let strs = StrConstIdx::new(img.str_consts.len() as u32);
     let arrays = img.arrays.len() as u32;
-    let types = img.scalar_types.len() as u8;
-    let codes = img.codes.len() as u32;
-    let charts = img.charts.len() as u32;
+    let types = ScalarTypeIdx::new(img.scalar_types.len() as u8);
+    let codes = CodeIdx::new(img.codes.len() as u32);
+    let charts = ChartIdx::new(img.charts.len() as u32);
     let mem = img.memory.len() as u32;
     let cases: [OpCase; 9] = [
         (
@@ -361,7 +364,7 @@ fn every_table_index_out_of_range_is_refused() {
             |o| matches!(o, Op::LoadElem { .. }),
             Box::new(move |o| {
                 if let Op::LoadElem { desc, .. } = o {
-                    *desc = arrays
+                    *desc = ArrayIdx::new(arrays)
                 }
             }),
             Problem::ArrayOutOfRange,
@@ -370,7 +373,7 @@ fn every_table_index_out_of_range_is_refused() {
             |o| matches!(o, Op::ForScan { .. }),
             Box::new(move |o| {
                 if let Op::ForScan { desc, .. } = o {
-                    *desc = arrays as u16
+                    *desc = ShortArrayIdx::new(arrays as u16)
                 }
             }),
             Problem::ArrayOutOfRange,
@@ -435,10 +438,10 @@ fn an_array_reaching_past_the_frame_is_refused() {
         unreachable!()
     };
     let mut bad = img.clone();
-    bad.arrays[desc as usize].offset = img.codes[ci].frame_size;
+    bad.arrays[desc.index()].offset = img.codes[ci].frame_size;
     assert_eq!(refused(bad), Problem::ArrayOutsideFrame);
     let mut bad = img.clone();
-    bad.arrays[desc as usize].stride = 0;
+    bad.arrays[desc.index()].stride = 0;
     assert_eq!(refused(bad), Problem::ArrayOutsideFrame);
 }
 
@@ -450,7 +453,7 @@ fn callee_frames_too_big_or_of_the_wrong_kind_are_refused() {
         unreachable!()
     };
     let mut bad = img.clone();
-    bad.codes[fb as usize].frame_size = img.codes[ci].frame_size;
+    bad.codes[fb.index()].frame_size = img.codes[ci].frame_size;
     assert_eq!(refused(bad), Problem::InstanceOutsideFrame);
     let (fi, fpc) = place(&img, |o| matches!(o, Op::CallFn { .. }));
     let Op::CallFn { code: function } = img.codes[fi].ops[fpc] else {
@@ -470,7 +473,7 @@ fn callee_frames_too_big_or_of_the_wrong_kind_are_refused() {
     let size = img.codes[native.0].frame_size;
     let bad = with_op(&img, native, |o| {
         if let Op::CallNative { inst, .. } = o {
-            *inst = size - 2
+            *inst = Slot::new(size - 2)
         }
     });
     assert_eq!(refused(bad), Problem::InstanceOutsideFrame);
@@ -494,7 +497,7 @@ fn a_fused_loop_without_its_partner_is_refused() {
     let Op::ForScan { t, .. } = img.codes[ci].ops[pc] else {
         unreachable!()
     };
-    let bad = with_op(&img, (ci, t as usize), |o| *o = Op::Nop);
+    let bad = with_op(&img, (ci, t.index()), |o| *o = Op::Nop);
     assert_eq!(refused(bad), Problem::MissingPartner);
 }
 
@@ -521,10 +524,10 @@ fn frames_instances_connections_and_triggers_outside_memory_are_refused() {
     bad.programs[0].outputs[0].0 = mem;
     assert_eq!(refused(bad), Problem::ConnectionOutsideMemory);
     let mut bad = img.clone();
-    bad.programs[0].code = img.codes.len() as u32;
+    bad.programs[0].code = CodeIdx::new(img.codes.len() as u32);
     assert_eq!(refused(bad), Problem::ProgramCode);
     let mut bad = img.clone();
-    bad.programs[0].code = function as u32;
+    bad.programs[0].code = CodeIdx::new(function as u32);
     assert_eq!(refused(bad), Problem::ProgramCode);
     let mut bad = img.clone();
     bad.programs[0].task = img.tasks.len();
@@ -544,17 +547,17 @@ fn entry_resets_outside_the_frame_are_refused() {
         .position(|c| !c.entry_init.is_empty())
         .expect("a block with entry resets");
     let mut bad = img.clone();
-    bad.codes[ci].entry_init[0].0 = img.codes[ci].frame_size;
+    bad.codes[ci].entry_init[0].0 = Slot::new(img.codes[ci].frame_size);
     assert_eq!(refused(bad), Problem::EntryResetOutsideFrame);
     let mut bad = img.clone();
     bad.codes[ci]
         .entry_strings
-        .push((img.codes[ci].frame_size, 0));
+        .push((Slot::new(img.codes[ci].frame_size), StrConstIdx::new(0)));
     assert_eq!(refused(bad), Problem::EntryStringOutOfRange);
     let mut bad = img.clone();
     bad.codes[ci]
         .entry_strings
-        .push((0, img.str_consts.len() as u32));
+        .push((Slot::new(0), StrConstIdx::new(img.str_consts.len() as u32)));
     assert_eq!(refused(bad), Problem::EntryStringOutOfRange);
 }
 
@@ -572,6 +575,7 @@ fn inconsistent_chart_tables_are_refused() {
         .iter()
         .position(|c| c.kind == CodeKind::FunctionBlock)
         .expect("an FB") as u32;
+    let fb = CodeIdx::new(fb);
     let corruptions: Vec<ChartCase> = vec![
         (
             Box::new(|c| c.initial.push(c.steps.len() as u32)),
@@ -621,18 +625,18 @@ fn inconsistent_chart_tables_are_refused() {
             Problem::WrongCalleeKind,
         ),
         (
-            Box::new(move |c| c.transitions[0].cond = Condition::Code(u32::MAX)),
+            Box::new(move |c| c.transitions[0].cond = Condition::Code(CodeIdx::new(u32::MAX))),
             Problem::CodeOutOfRange,
         ),
     ];
     for (corrupt, problem) in corruptions {
         let mut bad = img.clone();
-        corrupt(&mut bad.charts[chart as usize]);
+        corrupt(&mut bad.charts[chart.index()]);
         assert_eq!(refused(bad), problem);
     }
     // A condition block larger than the frame it runs on.
     let mut bad = img.clone();
-    let Condition::Code(cond) = img.charts[chart as usize]
+    let Condition::Code(cond) = img.charts[chart.index()]
         .transitions
         .iter()
         .map(|t| t.cond)
@@ -641,7 +645,7 @@ fn inconsistent_chart_tables_are_refused() {
     else {
         unreachable!()
     };
-    bad.codes[cond as usize].frame_size = size + 1;
+    bad.codes[cond.index()].frame_size = size + 1;
     assert_eq!(refused(bad), Problem::ChartOutsideFrame);
 }
 

@@ -3,6 +3,7 @@
 
 use super::{EntryResets, Linker};
 use crate::ir::image::StringInit;
+use crate::ir::op::Slot;
 use crate::ir::type_table::{MemberKind, TypeId, TypeKind};
 use crate::sema::model::{ConstInit, Storage};
 use crate::syntax::ast::PouKind;
@@ -96,7 +97,7 @@ impl Linker<'_> {
                     }
                 }
                 for &(slot, value) in &self.model.pous[p].consts {
-                    if let Some(s) = buf.get_mut(at + slot as usize) {
+                    if let Some(s) = buf.get_mut(at + slot.index()) {
                         *s = value;
                     }
                 }
@@ -145,13 +146,13 @@ impl Linker<'_> {
             let string_slots: Vec<usize> = strs[before..].iter().map(|(s, _)| *s).collect();
             for (k, value) in buf.iter().enumerate().skip(o as usize).take(n) {
                 if !string_slots.contains(&k) {
-                    slots.push((k as u32, *value));
+                    slots.push((Slot::new(k as u32), *value));
                 }
             }
         }
         let strings = strs
             .into_iter()
-            .map(|(slot, s)| (slot as u32, self.out.str_const(&s.init)))
+            .map(|(slot, s)| (Slot::new(slot as u32), self.out.str_const(&s.init)))
             .collect();
         (slots, strings)
     }

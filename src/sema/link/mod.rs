@@ -14,7 +14,7 @@ use super::model::{Model, Storage};
 use super::program::Program;
 use crate::diagnostics::Diagnostics;
 use crate::ir::image::{Image, ProgramInstance, RootVar};
-use crate::ir::op::Op;
+use crate::ir::op::{Op, Slot, StrConstIdx};
 use crate::ir::type_table::{MemberKind, TypeId, TypeTable};
 use crate::ir::verify::VerifiedImage;
 use crate::source::Span;
@@ -73,7 +73,7 @@ pub(super) struct Connection {
 
 /// Slots and strings a code block resets on entry: `(slot, value)` and
 /// `(slot, constant string)`.
-pub(super) type EntryResets = (Vec<(u32, u64)>, Vec<(u32, u32)>);
+pub(super) type EntryResets = (Vec<(Slot, u64)>, Vec<(Slot, StrConstIdx)>);
 
 impl Linker<'_> {
     /// The folder of declaration constants (for constant connections).
@@ -147,7 +147,7 @@ impl Linker<'_> {
             if self.model.pous[p].kind != PouKind::Function || !self.model.emitted[p] {
                 continue;
             }
-            let code = self.model.pous[p].code as usize;
+            let code = self.model.pous[p].code.index();
             let size = self.out.codes[code].frame_size.max(1);
             let at = self.out.alloc_abs(self.diags, size);
             self.frame_abs[p] = at;
@@ -164,7 +164,7 @@ impl Linker<'_> {
                 continue;
             }
             let (init, strings) = self.entry_resets(p);
-            let code = self.model.pous[p].code as usize;
+            let code = self.model.pous[p].code.index();
             self.out.codes[code].entry_init = init;
             self.out.codes[code].entry_strings = strings;
         }
@@ -175,7 +175,7 @@ impl Linker<'_> {
     fn relocate_frame_addresses(&mut self) {
         for (code, at, callee) in std::mem::take(&mut self.out.fixups) {
             let base = self.frame_abs[callee];
-            match &mut self.out.codes[code as usize].ops[at] {
+            match &mut self.out.codes[code.index()].ops[at] {
                 Op::StoreAbs { abs, .. } | Op::LoadAbs { abs, .. } => *abs += base,
                 Op::LoadI { imm, .. } => *imm += base as i32,
                 _ => {}

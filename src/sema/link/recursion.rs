@@ -7,10 +7,10 @@ impl Linker<'_> {
     /// Reports calls that form a cycle (IEC forbids recursion).
     pub(super) fn check_recursion(&mut self) {
         let n = self.out.codes.len();
-        let mut adj: Vec<Vec<(u32, Span)>> = vec![Vec::new(); n];
+        let mut adj: Vec<Vec<(usize, Span)>> = vec![Vec::new(); n];
         for &(a, b, s) in &self.out.calls {
-            if (a as usize) < n {
-                adj[a as usize].push((b, s));
+            if a.index() < n {
+                adj[a.index()].push((b.index(), s));
             }
         }
         // 0 = unvisited, 1 = on stack, 2 = done
@@ -26,14 +26,14 @@ impl Linker<'_> {
                 if *next < adj[node].len() {
                     let (to, span) = adj[node][*next];
                     *next += 1;
-                    match state[to as usize] {
+                    match state[to] {
                         0 => {
-                            state[to as usize] = 1;
-                            stack.push((to as usize, 0));
+                            state[to] = 1;
+                            stack.push((to, 0));
                         }
                         1 if !reported => {
                             reported = true;
-                            let name = self.out.codes[to as usize].name.clone();
+                            let name = self.out.codes[to].name.clone();
                             self.diags.error(
                                 "E409",
                                 span,
