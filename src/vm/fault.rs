@@ -87,8 +87,9 @@ impl fmt::Display for FaultKind {
 pub struct Fault {
     /// What happened.
     pub kind: FaultKind,
-    /// Code block.
-    pub code: crate::ir::op::CodeIdx,
+    /// Code block (the runtime turns it and `pc` into the source location
+    /// that `RuntimeFault` carries).
+    pub(crate) code: crate::ir::op::CodeIdx,
     /// Instruction index inside the block.
-    pub pc: u32,
+    pub(crate) pc: u32,
 }
