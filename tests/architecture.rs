@@ -260,3 +260,62 @@ fn the_command_line_uses_only_the_public_api() {
         }
     }
 }
+
+/// The length in lines of every `fn` of `text` whose body closes at the
+/// indentation it opened at (rustfmt's layout): `(first line, name, lines)`.
+fn function_lengths(text: &str) -> Vec<(usize, String, usize)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut found = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let code = line.trim_start();
+        let indent = &line[..line.len() - code.len()];
+        let rest = ["pub(crate) ", "pub(super) ", "pub ", "const ", "unsafe "]
+            .iter()
+            .fold(code, |c, p| c.strip_prefix(p).unwrap_or(c));
+        let Some(after) = rest.strip_prefix("fn ") else {
+            continue;
+        };
+        let name: String = after
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        if code.ends_with('}') {
+            continue; // a one-line function
+        }
+        let close = format!("{indent}}}");
+        if let Some(end) = lines[i + 1..].iter().position(|l| *l == close) {
+            found.push((i + 1, name, end + 2));
+        }
+    }
+    found
+}
+
+#[test]
+fn no_function_but_the_dispatch_loop_is_longer_than_150_lines() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut long = Vec::new();
+    for file in files {
+        let text = std::fs::read_to_string(&file).expect("readable source");
+        for (line, name, length) in function_lengths(&text) {
+            let dispatch_loop = file.ends_with("vm/exec.rs") && name == "run";
+            if length > 150 && !dispatch_loop {
+                long.push(format!(
+                    "{}:{line}: `{name}` has {length} lines",
+                    file.display()
+                ));
+            }
+        }
+    }
+    assert!(long.is_empty(), "split these by case:\n{}", long.join("\n"));
+}
+
+#[test]
+fn function_lengths_are_measured_from_fn_to_its_closing_brace() {
+    let text = "impl X {\n    pub fn a() {\n        1;\n    }\n}\nfn b() {}\nfn c() {\n}\n";
+    assert_eq!(
+        function_lengths(text),
+        [(2, "a".to_string(), 3), (7, "c".to_string(), 2)]
+    );
+}
