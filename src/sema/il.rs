@@ -432,26 +432,8 @@ impl BodyBuilder<'_> {
 
     /// `JMP`, `JMPC`, `JMPCN`: patched when the labels are known.
     fn il_jump(&mut self, st: &mut IlState, cond: Option<bool>, label: &Ident, span: Span) {
-        let at = match cond {
-            None => self.block.emit(Op::Jmp {
-                t: Target::UNPATCHED,
-            }),
-            Some(when) => {
-                if !self.cr_is_bool(st, span, "JMPC") {
-                    return;
-                }
-                if when {
-                    self.block.emit(Op::Jnz {
-                        c: st.cr,
-                        t: Target::UNPATCHED,
-                    })
-                } else {
-                    self.block.emit(Op::Jz {
-                        c: st.cr,
-                        t: Target::UNPATCHED,
-                    })
-                }
-            }
+        let Some(at) = self.il_branch(st, cond, span, "JMPC") else {
+            return;
         };
         self.block.last_def = None;
         st.pending.push((at, label.clone(), st.cr_ty));
@@ -463,28 +445,37 @@ impl BodyBuilder<'_> {
 
     /// `RET`, `RETC`, `RETCN`.
     fn il_return(&mut self, st: &mut IlState, cond: Option<bool>, span: Span) {
-        let at = match cond {
-            None => self.block.emit(Op::Jmp {
-                t: Target::UNPATCHED,
-            }),
+        if let Some(at) = self.il_branch(st, cond, span, "RETC") {
+            self.block.returns.push(at);
+        }
+    }
+
+    /// The jump of `JMP`/`RET` (unconditional, `cond` None) or of their
+    /// `C`/`CN` forms (taken when the BOOL current result equals `cond`),
+    /// with its target left to patch; `None` when the current result is
+    /// not a BOOL (reported, naming `what`).
+    fn il_branch(
+        &mut self,
+        st: &mut IlState,
+        cond: Option<bool>,
+        span: Span,
+        what: &str,
+    ) -> Option<usize> {
+        let t = Target::UNPATCHED;
+        Some(match cond {
+            None => self.block.emit(Op::Jmp { t }),
             Some(when) => {
-                if !self.cr_is_bool(st, span, "RETC") {
-                    return;
+                if !self.cr_is_bool(st, span, what) {
+                    return None;
                 }
-                if when {
-                    self.block.emit(Op::Jnz {
-                        c: st.cr,
-                        t: Target::UNPATCHED,
-                    })
+                let c = st.cr;
+                self.block.emit(if when {
+                    Op::Jnz { c, t }
                 } else {
-                    self.block.emit(Op::Jz {
-                        c: st.cr,
-                        t: Target::UNPATCHED,
-                    })
-                }
+                    Op::Jz { c, t }
+                })
             }
-        };
-        self.block.returns.push(at);
+        })
     }
 
     /// `CAL inst(...)` and its `=>` output copies (the condition is the caller's).

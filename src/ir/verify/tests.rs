@@ -7,7 +7,7 @@ use crate::ir::op::{
     ArrayIdx, ChartIdx, CodeIdx, ConstIdx, Op, ScalarTypeIdx, ShortArrayIdx, ShortTarget, Slot,
     StrConstIdx, Target,
 };
-use crate::ir::operands::{Access, examples};
+use crate::ir::operands::{Access, examples, for_each_slot};
 
 /// A program with every kind of operand the verifier checks: frame slots,
 /// runs (MUX, string functions), instances of user and native FBs, jumps,
@@ -213,18 +213,7 @@ fn every_slot_role_of_every_listed_instruction_is_checked_against_the_frame() {
     for op in examples() {
         let mut probe = op;
         let mut slots = Vec::new();
-        operands(&mut probe, &mut |o| match o {
-            Operand::Slot(s, _) | Operand::Run(s, _) | Operand::Instance(s, _) => slots.push(*s),
-            Operand::Target(_)
-            | Operand::ShortTarget(_)
-            | Operand::Const(_)
-            | Operand::StrConst(_)
-            | Operand::Array(..)
-            | Operand::ScalarType(_)
-            | Operand::Code(..)
-            | Operand::Chart(_)
-            | Operand::Abs(_) => {}
-        });
+        for_each_slot(&mut probe, &mut |s| slots.push(*s));
         for s in slots {
             let block = CodeBlock {
                 frame_size: s.get(),
