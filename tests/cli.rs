@@ -443,3 +443,39 @@ fn watchdog_zero_disables_the_watchdog() {
     let out = plcrun_ok(&[&path, "--cycles", "1", "--watchdog", "T#0s"]);
     assert_eq!(out, "cycle,time,x\n0,T#0s,2000000\n");
 }
+
+#[test]
+fn default_trace_expands_aggregate_outputs_into_their_values() {
+    let path = temp_file(
+        "agg.st",
+        "TYPE Pair : STRUCT a : BOOL; b : INT; END_STRUCT; END_TYPE
+         FUNCTION_BLOCK Cnt VAR_INPUT go : BOOL; END_VAR VAR_OUTPUT n : INT; END_VAR
+         IF go THEN n := n + 1; END_IF END_FUNCTION_BLOCK
+         PROGRAM Agg
+         VAR_OUTPUT
+             v : ARRAY[1..2] OF INT;
+             g : ARRAY[0..1, 1..2] OF BOOL;
+             p : Pair;
+             c : Cnt;
+             t : TON;
+             big : ARRAY[1..300] OF BYTE;
+             last : DINT;
+         END_VAR
+         v[2] := 7; g[1, 2] := TRUE; p.b := 3; c(go := TRUE);
+         t(IN := TRUE, PT := T#10ms); last := 1;
+         END_PROGRAM",
+    );
+    let (code, out, err) = plcrun(&[&path, "--cycles", "2"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        out,
+        // (CSV quotes the headers that hold a comma.)
+        "cycle,time,v[1],v[2],\"g[0,1]\",\"g[0,2]\",\"g[1,1]\",\"g[1,2]\",p.a,p.b,c.n,t.Q,t.ET,last\n\
+         0,T#0s,0,7,FALSE,FALSE,FALSE,TRUE,FALSE,3,1,FALSE,T#0s,1\n\
+         1,T#10ms,0,7,FALSE,FALSE,FALSE,TRUE,FALSE,3,2,TRUE,T#10ms,1\n"
+    );
+    assert!(
+        err.contains("note: `big` (300 values) is left out of the default trace"),
+        "{err}"
+    );
+}

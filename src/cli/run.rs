@@ -99,6 +99,11 @@ fn session(args: &RunArgs, mut plc: Plc) -> Result<Session, String> {
             .map_err(|e| format!("--set {item}: {e}"))?;
     }
     let names: Vec<String> = if args.trace.is_empty() {
+        for (name, values) in plc.default_trace_left_out() {
+            eprintln!(
+                "note: `{name}` ({values} values) is left out of the default trace; name the values to trace with --trace"
+            );
+        }
         plc.default_trace()
     } else {
         args.trace

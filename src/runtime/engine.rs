@@ -1,7 +1,7 @@
 //! The embeddable soft-PLC: compile sources, run cycles on the virtual
 //! clock, read and write variables by name.
 
-use super::names;
+use super::default_trace;
 use super::scheduler::Scheduler;
 use crate::diagnostics::Diagnostics;
 use crate::driver::{self, Build};
@@ -234,8 +234,16 @@ impl Plc {
         }
     }
 
-    /// The names traced by default (VAR_OUTPUTs and `%Q` variables).
+    /// The names traced by default: the single values inside every
+    /// VAR_OUTPUT and `%Q` variable (array elements, structure fields, FB
+    /// outputs expanded), in declaration order.
     pub fn default_trace(&self) -> Vec<String> {
-        names::default_trace(&self.image)
+        default_trace::default_trace(&self.image).names
+    }
+
+    /// The VAR_OUTPUT and `%Q` variables left out of [`Self::default_trace`]
+    /// because they hold more than 256 values, each with its count.
+    pub fn default_trace_left_out(&self) -> Vec<(String, usize)> {
+        default_trace::default_trace(&self.image).left_out
     }
 }

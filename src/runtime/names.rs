@@ -230,37 +230,3 @@ fn member(image: &Image, ty: TypeId, name: &str) -> Option<(u32, TypeId)> {
         _ => None,
     }
 }
-
-/// The variables traced when the user names none: every program
-/// instance's VAR_OUTPUTs and its `%Q` located variables.
-pub fn default_trace(image: &Image) -> Vec<String> {
-    let mut out = Vec::new();
-    let qualify = image.programs.len() > 1;
-    for inst in &image.programs {
-        for m in image.types.members(inst.ty) {
-            if m.kind == MemberKind::Output {
-                out.push(if qualify {
-                    format!("{}.{}", inst.name, m.name)
-                } else {
-                    m.name.clone()
-                });
-            }
-        }
-    }
-    // One name per %Q address: the declared name when there is one.
-    let mut seen: Vec<u32> = Vec::new();
-    let outputs = image
-        .globals
-        .iter()
-        .filter(|r| r.location.as_deref().is_some_and(|l| l.starts_with("%Q")));
-    let mut named: Vec<&crate::ir::image::RootVar> = outputs.collect();
-    named.sort_by_key(|r| (r.name.starts_with('%'), r.addr));
-    for r in named {
-        if seen.contains(&r.addr) || out.iter().any(|n| n.eq_ignore_ascii_case(&r.name)) {
-            continue;
-        }
-        seen.push(r.addr);
-        out.push(r.name.clone());
-    }
-    out
-}
