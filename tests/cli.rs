@@ -479,3 +479,24 @@ fn default_trace_expands_aggregate_outputs_into_their_values() {
         "{err}"
     );
 }
+
+#[test]
+fn variables_named_cycle_or_time_are_traced_by_their_path() {
+    let path = temp_file(
+        "clock.st",
+        "PROGRAM Clk VAR_OUTPUT Time : INT; cycle : BOOL; END_VAR
+         Time := Time + 1; cycle := TRUE; END_PROGRAM",
+    );
+    let out = plcrun_ok(&[&path, "--cycles", "1"]);
+    assert_eq!(out, "cycle,time,Clk.Time,Clk.cycle\n0,T#0s,1,TRUE\n");
+    let out = plcrun_ok(&[&path, "--cycles", "1", "--format", "jsonl"]);
+    assert_eq!(
+        out,
+        "{\"cycle\":0,\"time\":\"T#0s\",\"Clk.Time\":1,\"Clk.cycle\":true}\n"
+    );
+    let (code, _, err) = plcrun(&[&path, "--cycles", "1", "--trace", "time"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("`time` is the trace's own column"), "{err}");
+    let out = plcrun_ok(&[&path, "--cycles", "1", "--trace", "clk.time"]);
+    assert_eq!(out, "cycle,time,clk.time\n0,T#0s,1\n");
+}

@@ -13,6 +13,13 @@ use crate::stdlib::{ParamDir, interface};
 /// bury the others; `--trace` can still name its elements.
 pub const MAX_COLUMNS_PER_VARIABLE: usize = 256;
 
+/// True for the names of the trace's own columns, `cycle` and `time`
+/// (case-insensitive): a variable of that name is traced by its qualified
+/// path (`P.time`).
+pub fn is_trace_column(name: &str) -> bool {
+    name.eq_ignore_ascii_case("cycle") || name.eq_ignore_ascii_case("time")
+}
+
 /// The default trace: its column names, and the variables left out.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct DefaultTrace {
@@ -29,7 +36,9 @@ pub fn default_trace(image: &Image) -> DefaultTrace {
     for inst in &image.programs {
         for m in image.types.members(inst.ty) {
             if m.kind == MemberKind::Output {
-                let name = if qualify {
+                // `cycle` and `time` are the trace's own columns.
+                let clashes = is_trace_column(&m.name);
+                let name = if qualify || clashes {
                     format!("{}.{}", inst.name, m.name)
                 } else {
                     m.name.clone()

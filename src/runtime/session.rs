@@ -19,6 +19,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use super::default_trace::is_trace_column;
 use super::engine::{Plc, RuntimeFault};
 use super::names::VarRef;
 use super::plc_value::Value;
@@ -159,6 +160,11 @@ impl Session {
             .iter()
             .map(|n| n.as_ref().trim().to_string())
             .collect();
+        if let Some(clash) = names.iter().find(|n| is_trace_column(n)) {
+            return Err(VarError::TraceColumn {
+                name: clash.clone(),
+            });
+        }
         let traced = names
             .iter()
             .map(|n| self.plc.resolve(n))

@@ -85,6 +85,11 @@ pub enum VarError {
         /// The path.
         path: String,
     },
+    /// A trace column named `cycle` or `time`, the trace's own columns.
+    TraceColumn {
+        /// The name as given.
+        name: String,
+    },
     /// A handle resolved by another PLC.
     ForeignHandle {
         /// The handle's path.
@@ -182,6 +187,11 @@ impl fmt::Display for VarError {
                 ValueProblem::OutsideSubrange(v) => write!(f, "{v} is outside {ty}"),
             },
             VarError::NotAnInteger { path } => write!(f, "`{path}` is not an integer"),
+            VarError::TraceColumn { name } => write!(
+                f,
+                "`{name}` is the trace's own column: name the variable by its path, \
+                 e.g. `P.{name}` with its program instance"
+            ),
             VarError::ForeignHandle { path } => {
                 write!(f, "`{path}` was resolved by another PLC")
             }
