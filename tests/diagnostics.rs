@@ -144,6 +144,7 @@ const INC: &str =
 #[case("E405", prog("x : INT;", "EXIT;"), "5:1")]
 #[case("E405", prog("x : INT;", "CONTINUE;"), "5:1")]
 #[case("E406", prog("b : BOOL;", "b := TON(IN := TRUE);"), "5:6")]
+#[case("E406", prog("x : INT;", "x := x(1);"), "5:6")]
 #[case("E407", prog("r : REAL;", "FOR r := 1.0 TO 2.0 DO END_FOR;"), "5:5")]
 #[case("E407", prog("i : INT;", "FOR i := 1 TO 2 BY 0 DO END_FOR;"), "5:")]
 #[case(

@@ -1025,3 +1025,17 @@ END_CONFIGURATION
     assert_eq!(lit(&plc, "sink"), "7");
     assert_eq!(lit(&plc, "d.y"), "7");
 }
+
+/// A variable named like a standard function does not hide the function:
+/// a call is not a variable.
+#[test]
+fn a_variable_named_like_a_standard_function_does_not_hide_it() {
+    let plc = run_once(&program(
+        "",
+        "sel : INT; max : INT; limit : REAL;",
+        "sel := SEL(TRUE, 10, 20); max := MAX(3, 9); limit := LIMIT(0.0, 7.5, 5.0);",
+    ));
+    assert_eq!(lit(&plc, "sel"), "20");
+    assert_eq!(lit(&plc, "max"), "9");
+    assert_eq!(lit(&plc, "limit"), "5.0");
+}

@@ -58,11 +58,24 @@ impl InstanceAt {
 }
 
 impl BodyBuilder<'_> {
+    /// True when the callee is a name that is not an FB instance variable:
+    /// then it names a function (a variable called `sel` does not hide the
+    /// function `SEL`; a call is not a variable).
+    fn calls_a_function(&self, call: &Call) -> bool {
+        let ExprKind::Name(id) = &call.callee.kind else {
+            return false;
+        };
+        self.lookup_var(&id.key()).is_none_or(|v| {
+            !matches!(
+                self.types.get(v.ty).kind,
+                TypeKind::Pou { .. } | TypeKind::NativeFb(_) | TypeKind::Error
+            )
+        })
+    }
+
     /// A call used as a statement.
     pub(super) fn call_stmt(&mut self, call: &Call) {
-        if let ExprKind::Name(id) = &call.callee.kind
-            && self.lookup_var(&id.key()).is_none()
-        {
+        if self.calls_a_function(call) {
             self.call_function(call, None, false);
             return;
         }
@@ -74,9 +87,7 @@ impl BodyBuilder<'_> {
 
     /// A call used in an expression: must be a function.
     pub(super) fn call_expr(&mut self, call: &Call, expect: Option<TypeId>) -> Val {
-        if let ExprKind::Name(id) = &call.callee.kind
-            && self.lookup_var(&id.key()).is_none()
-        {
+        if self.calls_a_function(call) {
             return self.call_function(call, expect, true);
         }
         self.diags.error(
@@ -120,6 +131,16 @@ impl BodyBuilder<'_> {
                 id.span,
                 format!(
                     "`{}` is a function block type: declare an instance and call it",
+                    id.name
+                ),
+            );
+        } else if let Some(v) = self.lookup_var(&key) {
+            let ty = self.types.name(v.ty).to_string();
+            self.diags.error(
+                "E406",
+                id.span,
+                format!(
+                    "`{}` is a variable of type {ty}, not a function or a function block instance",
                     id.name
                 ),
             );
