@@ -586,3 +586,39 @@ fn oversized_declarations_are_reported() {
     assert!(codes.len() >= 3, "{codes:?}");
     assert!(codes.iter().all(|c| c == "E206"), "{codes:?}");
 }
+
+/// Edition-3 partial access is named as such until it is supported, not
+/// reported as a malformed direct address.
+#[test]
+fn partial_access_is_named_in_its_message() {
+    let mut sources = plcrun::SourceMap::new();
+    sources.add(
+        "p.st",
+        "PROGRAM P VAR b : BYTE; x : BOOL; END_VAR x := b.%X0; END_PROGRAM",
+    );
+    let report = plcrun::check(&sources, &plcrun::CheckOptions::default());
+    let e009: Vec<&str> = report
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "E009")
+        .map(|d| d.message.as_str())
+        .collect();
+    assert_eq!(e009.len(), 1, "{e009:?}");
+    assert!(e009[0].starts_with("partial access `.%X0`"), "{}", e009[0]);
+    // A direct address elsewhere keeps its own message.
+    let mut sources = plcrun::SourceMap::new();
+    sources.add("q.st", "PROGRAM Q VAR x AT %Z0 : BOOL; END_VAR END_PROGRAM");
+    let report = plcrun::check(&sources, &plcrun::CheckOptions::default());
+    assert!(
+        report
+            .diagnostics
+            .iter()
+            .any(|d| d.code == "E009" && d.message.contains("must start with %I, %Q or %M")),
+        "{:?}",
+        report
+            .diagnostics
+            .iter()
+            .map(|d| &d.message)
+            .collect::<Vec<_>>()
+    );
+}

@@ -102,6 +102,15 @@ pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
             Raw::Direct => match direct(file, slice, r.start) {
                 Ok(d) => Tok::Direct(d),
                 Err(m) => {
+                    let m = if is_partial_access(text, r.start, slice) {
+                        format!(
+                            "partial access `.{slice}` (edition 3: a bit, byte, word or double \
+                             word of a variable) is not supported yet; use SHR and AND, or \
+                             the bit as `.n` on a bit string"
+                        )
+                    } else {
+                        m
+                    };
                     diags.error("E009", span(r.start, r.end), m);
                     Tok::Ident(String::from("_"))
                 }
@@ -248,6 +257,13 @@ fn typed(file: FileId, slice: &str, start: usize, diags: &mut Diagnostics) -> To
             lit(LiteralValue::Int(0), None)
         }
     }
+}
+
+/// True when the direct-address text `slice` at `start` follows a `.` and
+/// names a size (`b.%X3`, `w.%B1`): the edition-3 partial access form.
+fn is_partial_access(text: &str, start: usize, slice: &str) -> bool {
+    let size = slice[1..].chars().next().map(|c| c.to_ascii_uppercase());
+    text[..start].ends_with('.') && matches!(size, Some('X' | 'B' | 'W' | 'D' | 'L'))
 }
 
 /// Decodes `%IX0.3`, `%QW4`, `%I0.0.0.0.1`, `%MD12`, `%I*`.
