@@ -5,7 +5,10 @@
 
 use crate::diagnostics::{Diagnostic, Diagnostics};
 use crate::ir::verify::VerifiedImage;
-use crate::sema::{self, CompileOptions};
+use crate::sema;
+/// What to build from the sources (the program to run, the implicit
+/// task's cycle time, check only).
+pub(crate) use crate::sema::CompileOptions;
 use crate::source::{FileId, SourceMap, Span};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -77,34 +80,18 @@ fn invalid_utf8(file: FileId, offset: usize) -> Diagnostic {
     )
 }
 
-/// What to build from the sources.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Build {
-    /// The PROGRAM to run when there is no configuration.
-    pub program: Option<String>,
-    /// Cycle time of the implicit task, in nanoseconds.
-    pub cycle_time: i64,
-    /// Only check the sources: no runnable program is required.
-    pub check_only: bool,
-}
-
 /// Parses and checks every file of `sources`, reporting into `diags`;
 /// returns the linked image when there is no error.
 pub(crate) fn compile(
     sources: &SourceMap,
-    build: &Build,
+    options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
     let mut units = Vec::with_capacity(sources.files().len());
     for (i, file) in sources.files().iter().enumerate() {
         units.push(crate::syntax::parse(FileId(i as u32), &file.text, diags));
     }
-    let options = CompileOptions {
-        program: build.program.clone(),
-        cycle_time: build.cycle_time,
-        check_only: build.check_only,
-    };
-    let image = sema::compile(&units, &options, diags);
+    let image = sema::compile(&units, options, diags);
     if diags.has_errors() { None } else { image }
 }
 
@@ -140,7 +127,7 @@ impl CheckReport {
 /// `ir_listing`, a set of declarations with no PROGRAM is fine.
 pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
     let mut diagnostics = Diagnostics::new();
-    let build = Build {
+    let build = CompileOptions {
         program: options.program.clone(),
         cycle_time: 10_000_000,
         check_only: !options.ir_listing,

@@ -4,7 +4,7 @@
 use super::default_trace;
 use super::scheduler::Scheduler;
 use crate::diagnostics::Diagnostics;
-use crate::driver::{self, Build};
+use crate::driver::{self, CompileOptions};
 use crate::ir::image::Image;
 use crate::ir::verify::VerifiedImage;
 use crate::source::{SourceMap, Span};
@@ -121,7 +121,7 @@ impl Plc {
     /// Compiles every file of `sources`.
     pub fn compile(sources: SourceMap, options: &Options) -> Result<Plc, CompileError> {
         let mut diags = Diagnostics::new();
-        let build = Build {
+        let build = CompileOptions {
             program: options.program.clone(),
             cycle_time: options.cycle_time,
             check_only: false,
