@@ -58,6 +58,7 @@ pub use runtime::session::{Pacing, RunError, Session, StimulusBindError};
 pub use runtime::stimulus::{
     Stimulus, StimulusCursor, StimulusError, StimulusKey, StimulusRow, parse_stimulus,
 };
+pub use runtime::stop::StopHandle;
 pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter, UnknownTraceFormat};
 pub use runtime::var_error::{PathProblem, ValueProblem, VarError};
 pub use source::{FileId, SourceFile, SourceMap, Span};

@@ -3,6 +3,7 @@
 
 use super::default_trace;
 use super::scheduler::Scheduler;
+use super::stop::StopHandle;
 use crate::diagnostics::Diagnostics;
 use crate::driver::{self, CompileOptions};
 use crate::ir::image::Image;
@@ -103,6 +104,8 @@ pub struct Plc {
     scheduler: Scheduler,
     /// Tells this PLC's variable handles from another's.
     pub(super) id: u64,
+    /// Stop requests from other threads.
+    stop: StopHandle,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -155,7 +158,13 @@ impl Plc {
             cycle: 0,
             scheduler,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
+            stop: StopHandle::default(),
         }
+    }
+
+    /// A handle that asks this PLC's run to stop, from any thread.
+    pub fn stop_handle(&self) -> StopHandle {
+        self.stop.clone()
     }
 
     /// Warnings the compilation produced.

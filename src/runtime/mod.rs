@@ -9,6 +9,7 @@
 //! - [`default_trace`]: what is traced when the user names nothing;
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
 //! - [`var_error`]: why such a path cannot be resolved, read or written;
+//! - [`stop`]: asking a run to end from another thread;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
@@ -20,5 +21,6 @@ pub mod plc_value;
 pub mod scheduler;
 pub mod session;
 pub mod stimulus;
+pub mod stop;
 pub mod trace;
 pub mod var_error;
