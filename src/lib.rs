@@ -52,6 +52,7 @@ pub use diagnostics::{Diagnostic, Diagnostics, Severity};
 pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
 pub use elementary::ElemType;
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
+pub use runtime::life_cycle::PlcState;
 pub use runtime::names::VarRef;
 pub use runtime::plc_value::Value;
 pub use runtime::session::{Pacing, RunError, Session, StimulusBindError};
@@ -61,6 +62,7 @@ pub use runtime::stimulus::{
 pub use runtime::stop::StopHandle;
 pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter, UnknownTraceFormat};
 pub use runtime::var_error::{PathProblem, ValueProblem, VarError};
+pub use runtime::watchdog::{UnknownTask, WatchdogTrip};
 pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind};

@@ -163,7 +163,8 @@ pub fn run(args: &RunArgs) -> i32 {
     let status = match session.run(cycles, &mut writer) {
         Ok(()) => EXIT_OK,
         Err(RunError::Fault(fault)) => {
-            eprintln!("error: {fault}");
+            // Starts with `error[R...]:`, like a compile diagnostic.
+            eprintln!("{fault}");
             EXIT_FAULT
         }
         Err(e @ RunError::Trace(_)) => {

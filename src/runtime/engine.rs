@@ -4,6 +4,7 @@
 use super::default_trace;
 use super::scheduler::Scheduler;
 use super::stop::StopHandle;
+use super::watchdog::{Watchdog, WatchdogTrip};
 use crate::diagnostics::Diagnostics;
 use crate::driver::{self, CompileOptions};
 use crate::ir::image::Image;
@@ -21,7 +22,9 @@ pub struct Options {
     pub cycle_time: i64,
     /// The PROGRAM to run when the sources hold several (and no configuration).
     pub program: Option<String>,
-    /// Wall-clock limit for one cycle (default 1 s); `None` disables it.
+    /// Wall-clock limit for one run of a task's programs (default 1 s),
+    /// for every task ([`Plc::set_task_watchdog`] changes one task's);
+    /// `None` disables it.
     pub watchdog: Option<Duration>,
 }
 
@@ -76,19 +79,34 @@ pub struct RuntimeFault {
     pub pou: String,
     /// Cycle number (from 0).
     pub cycle: u64,
+    /// For a watchdog fault: the task, its limit and the time spent
+    /// (boxed: other faults do not pay for it).
+    pub watchdog: Option<Box<WatchdogTrip>>,
+}
+
+impl RuntimeFault {
+    /// The fault's stable code (`R001`...; see [`crate::FaultKind::code`]).
+    pub fn code(&self) -> &'static str {
+        self.fault.kind.code()
+    }
 }
 
 impl fmt::Display for RuntimeFault {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // Laid out like a compile diagnostic: `error[R001]: ...`.
         write!(
             f,
-            "runtime fault in cycle {} at {} (in {}): {}\n    {}",
+            "error[{}]: runtime fault in cycle {} at {} (in {}): ",
+            self.code(),
             self.cycle,
             self.location,
-            self.pou,
-            self.fault.kind,
-            self.excerpt.trim()
-        )
+            self.pou
+        )?;
+        match &self.watchdog {
+            Some(trip) => write!(f, "{trip}")?,
+            None => write!(f, "{}", self.fault.kind)?,
+        }
+        write!(f, "\n    {}", self.excerpt.trim())
     }
 }
 
@@ -100,12 +118,16 @@ pub struct Plc {
     pub(super) machine: Machine,
     sources: SourceMap,
     warnings: Diagnostics,
-    cycle: u64,
-    scheduler: Scheduler,
+    pub(super) cycle: u64,
+    pub(super) scheduler: Scheduler,
     /// Tells this PLC's variable handles from another's.
     pub(super) id: u64,
     /// Stop requests from other threads.
-    stop: StopHandle,
+    pub(super) stop: StopHandle,
+    /// The fault that stopped the PLC (see `life_cycle`).
+    pub(super) faulted: Option<RuntimeFault>,
+    /// Per-task cycle-time limits and their timer thread.
+    pub(super) watchdog: Watchdog,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -147,8 +169,13 @@ impl Plc {
         warnings: Diagnostics,
         options: &Options,
     ) -> Plc {
-        let mut machine = Machine::new(&image);
-        machine.set_watchdog(options.watchdog);
+        let machine = Machine::new(&image);
+        let stop = StopHandle::interrupting(machine.interrupt().clone());
+        let watchdog = Watchdog::new(
+            machine.interrupt().clone(),
+            image.tasks.len(),
+            options.watchdog,
+        );
         let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
         Plc {
             image,
@@ -158,7 +185,9 @@ impl Plc {
             cycle: 0,
             scheduler,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
-            stop: StopHandle::default(),
+            stop,
+            faulted: None,
+            watchdog,
         }
     }
 
@@ -198,10 +227,14 @@ impl Plc {
     }
 
     /// Runs one cycle: every task due at this tick runs its programs.
+    /// After a fault the PLC is stopped: this runs nothing and returns the
+    /// same fault until a reset (see [`Self::state`], [`Self::reset_cold`]).
     pub fn run_cycle(&mut self) -> Result<(), RuntimeFault> {
+        if let Some(fault) = &self.faulted {
+            return Err(fault.clone());
+        }
         let now = self.time();
         self.machine.now = now;
-        self.machine.start_cycle();
         self.scheduler
             .start_tick(&self.image.tasks, now, &self.machine.mem);
         for k in 0..self.scheduler.len() {
@@ -210,22 +243,24 @@ impl Plc {
             };
             let inst = &self.image.programs[p];
             let (code, base) = (inst.code, inst.base);
+            self.watchdog.enter(inst.task);
             for &(from, to) in &inst.inputs {
                 self.machine.mem[to as usize] = self.machine.mem[from as usize];
             }
             if let Err(fault) = self.machine.run(&self.image, code, base) {
-                return Err(self.locate(fault));
+                return Err(self.fail(fault));
             }
             let inst = &self.image.programs[p];
             for &(from, to) in &inst.outputs {
                 self.machine.mem[to as usize] = self.machine.mem[from as usize];
             }
         }
+        self.watchdog.leave();
         self.cycle += 1;
         Ok(())
     }
 
-    fn locate(&self, fault: Fault) -> RuntimeFault {
+    pub(super) fn locate(&self, fault: Fault) -> RuntimeFault {
         let block = &self.image.codes[fault.code.index()];
         let span: Span = block
             .spans
@@ -240,6 +275,7 @@ impl Plc {
             pou: block.name.clone(),
             cycle: self.cycle,
             fault,
+            watchdog: None,
         }
     }
 

@@ -10,12 +10,15 @@
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
 //! - [`var_error`]: why such a path cannot be resolved, read or written;
 //! - [`stop`]: asking a run to end from another thread;
+//! - [`life_cycle`]: the faulted STOP state and the resets;
+//! - [`watchdog`]: per-task cycle-time limits and the thread enforcing them;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
 pub mod access;
 pub mod default_trace;
 pub mod engine;
+pub mod life_cycle;
 pub mod names;
 pub mod plc_value;
 pub mod scheduler;
@@ -24,3 +27,4 @@ pub mod stimulus;
 pub mod stop;
 pub mod trace;
 pub mod var_error;
+pub mod watchdog;

@@ -6,6 +6,7 @@
 //! cleanly: the trace is flushed and retained data saved), or at once, even
 //! inside a runaway loop of the running cycle.
 
+use crate::vm::Interrupt;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -16,6 +17,8 @@ pub(crate) struct StopFlags {
     pub(crate) stop: AtomicBool,
     /// Interrupt the running cycle now.
     pub(crate) abort: AtomicBool,
+    /// The word the PLC's executor polls; `abort` sets its abort bit.
+    pub(crate) interrupt: Arc<Interrupt>,
 }
 
 /// Asks a PLC (or a run loop driving it) to stop, from any thread.
@@ -34,6 +37,17 @@ pub struct StopHandle {
 }
 
 impl StopHandle {
+    /// A handle whose [`Self::abort`] interrupts the machine polling
+    /// `interrupt`.
+    pub(crate) fn interrupting(interrupt: Arc<Interrupt>) -> StopHandle {
+        StopHandle {
+            flags: Arc::new(StopFlags {
+                interrupt,
+                ..StopFlags::default()
+            }),
+        }
+    }
+
     /// Asks the run to end at the next cycle boundary: the cycle under way
     /// completes.
     pub fn stop(&self) {
@@ -41,11 +55,14 @@ impl StopHandle {
     }
 
     /// Asks the run to end now: the cycle under way is interrupted at its
-    /// next backward jump or call, even inside a loop that never ends.
-    /// Implies [`Self::stop`].
+    /// next backward jump or call, even inside a loop that never ends, and
+    /// fails with an `Aborted` fault (R009) that leaves the PLC faulted
+    /// until a reset ([`crate::Plc::reset_cold`]). If no cycle is running,
+    /// the next one is interrupted as it starts. Implies [`Self::stop`].
     pub fn abort(&self) {
         self.flags.stop.store(true, Ordering::Release);
         self.flags.abort.store(true, Ordering::Release);
+        self.flags.interrupt.abort();
     }
 
     /// True once [`Self::stop`] or [`Self::abort`] was called (and not
@@ -63,5 +80,6 @@ impl StopHandle {
     pub fn clear(&self) {
         self.flags.stop.store(false, Ordering::Release);
         self.flags.abort.store(false, Ordering::Release);
+        self.flags.interrupt.clear_abort();
     }
 }

@@ -1,10 +1,12 @@
 //! The dispatch loop.
 
-use super::{Fault, FaultKind, Machine, string_ops};
+use super::{Fault, FaultKind, Interrupt, Machine, string_ops};
 use crate::ir::image::Image;
 use crate::ir::op::{Cmp, CodeIdx, Op, ShiftKind, Slot, wrap_s, wrap_u};
 use crate::stdlib;
 use crate::value::convert;
+use std::sync::Arc;
+use std::sync::atomic::Ordering;
 
 #[inline(always)]
 fn f32_of(x: u64) -> f32 {
@@ -154,6 +156,18 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             pc: 0,
         });
     }
+    // The interrupt word, polled through a pointer kept in a register:
+    // the `Arc` in `m` keeps it alive, and it is only ever shared.
+    let irq: *const Interrupt = Arc::as_ptr(m.interrupt());
+    // Every call enters here: a check per call bounds call chains that
+    // take time without looping (each function calling two others...).
+    // SAFETY: see `irq`.
+    if unsafe { (*irq).word().load(Ordering::Relaxed) } != 0 {
+        // SAFETY: see `irq`.
+        if let Some(kind) = unsafe { (*irq).pending() } {
+            return Err(Fault { kind, code, pc: 0 });
+        }
+    }
     let mut mem: *mut u64 = m.mem.as_mut_ptr();
     // SAFETY: base + frame_size <= len was checked just above.
     let mut fp: *mut u64 = unsafe { mem.add(base) };
@@ -238,24 +252,20 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             unsafe { *mem.add(a) = v }
         }};
     }
-    // Backward jumps left before the next look at the watchdog; kept per
-    // block so it lives in a register (an endless loop is always a
-    // backward jump repeating in one block).
-    let mut budget: u32 = super::WATCHDOG_STRIDE;
-    // One backward jump: counts down the budget, looks at the clock when
-    // it runs out. A watchdog fault names the instruction at `$pc`
-    // (by default the one running).
+    // One backward jump (or a long copy): looks at the interrupt word. A
+    // watchdog or abort fault names the instruction at `$pc` (by default
+    // the one running).
     macro_rules! tick {
         () => {
             tick!(pc!() - 1)
         };
         ($pc:expr) => {{
-            budget -= 1;
-            if budget == 0 {
-                budget = super::WATCHDOG_STRIDE;
-                if m.watchdog_expired() {
+            // SAFETY: see `irq`.
+            if unsafe { (*irq).word().load(Ordering::Relaxed) } != 0 {
+                // SAFETY: see `irq`.
+                if let Some(kind) = unsafe { (*irq).pending() } {
                     return Err(Fault {
-                        kind: FaultKind::Watchdog,
+                        kind,
                         code,
                         pc: $pc as u32,
                     });
@@ -572,6 +582,8 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                     // a <= b < len, so the range lies inside this frame.
                     unsafe { std::slice::from_raw_parts_mut(fp.add(first), count) }.fill(value);
                     w!(i, after);
+                    // The loop this replaces looked at the word each turn.
+                    tick!();
                 }
             }
             Op::JzElem { idx, desc, t } | Op::JnzElem { idx, desc, t } => {
@@ -737,6 +749,9 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                 // SAFETY: both ranges lie inside memory (checked above);
                 // `copy` allows overlap.
                 unsafe { std::ptr::copy(mem.add(from), mem.add(to), n) };
+                // A copy's time grows with the memory: straight-line code
+                // made of big copies is stopped between two of them.
+                tick!();
             }
             Op::Ret => return Ok(()),
             Op::Sfc { chart } => {

@@ -39,8 +39,11 @@ pub enum FaultKind {
     InvalidBcd,
     /// A negative exponent in an integer `**`.
     NegativeExponent,
-    /// A cycle ran longer than the watchdog allows.
+    /// A task ran longer than its watchdog allows (the runtime's
+    /// `RuntimeFault::watchdog` says which task, the limit and the time).
     Watchdog,
+    /// The cycle was interrupted through a stop handle's `abort`.
+    Aborted,
     /// A computed address fell outside memory (an internal error).
     BadAddress,
 }
@@ -50,6 +53,30 @@ impl From<ConvError> for FaultKind {
         match e {
             ConvError::Overflow => FaultKind::ConversionOverflow,
             ConvError::InvalidBcd => FaultKind::InvalidBcd,
+        }
+    }
+}
+
+impl FaultKind {
+    /// The fault's stable code (`R001`...), listed with an explanation in
+    /// docs/diagnostics.md; never reused for another kind of fault.
+    ///
+    /// ```
+    /// assert_eq!(plcrun::FaultKind::DivisionByZero.code(), "R001");
+    /// assert_eq!(plcrun::FaultKind::Watchdog.code(), "R008");
+    /// ```
+    pub fn code(&self) -> &'static str {
+        match self {
+            FaultKind::DivisionByZero => "R001",
+            FaultKind::IndexOutOfRange { .. } => "R002",
+            FaultKind::SubrangeViolation { .. } => "R003",
+            FaultKind::ConversionOverflow => "R004",
+            FaultKind::MuxOutOfRange { .. } => "R005",
+            FaultKind::InvalidBcd => "R006",
+            FaultKind::NegativeExponent => "R007",
+            FaultKind::Watchdog => "R008",
+            FaultKind::Aborted => "R009",
+            FaultKind::BadAddress => "R999",
         }
     }
 }
@@ -77,6 +104,7 @@ impl fmt::Display for FaultKind {
             FaultKind::InvalidBcd => write!(f, "invalid BCD value"),
             FaultKind::NegativeExponent => write!(f, "negative exponent in integer `**`"),
             FaultKind::Watchdog => write!(f, "watchdog: cycle exceeded its time limit"),
+            FaultKind::Aborted => write!(f, "aborted: the cycle was interrupted by a stop handle"),
             FaultKind::BadAddress => write!(f, "internal error: computed address outside memory"),
         }
     }

@@ -13,21 +13,21 @@
 mod chart;
 mod exec;
 mod fault;
+mod interrupt;
 mod string_ops;
 mod strings;
 
 pub use fault::{Fault, FaultKind};
+pub(crate) use interrupt::Interrupt;
 pub use strings::PlcString;
 
 use crate::ir::op::CodeIdx;
 use crate::ir::verify::VerifiedImage;
-use std::time::{Duration, Instant};
+use std::sync::Arc;
 
-/// How many backward jumps run between two looks at the wall clock.
-pub(crate) const WATCHDOG_STRIDE: u32 = 4096;
-
-/// The mutable state of a running PLC: memory, strings, clock, watchdog.
-#[derive(Debug, Clone)]
+/// The mutable state of a running PLC: memory, strings, clock, and the
+/// interrupt word other threads use to stop it.
+#[derive(Debug)]
 pub struct Machine {
     /// All slots (globals, program instances, FB instances, function frames).
     pub(crate) mem: Vec<u64>,
@@ -35,8 +35,8 @@ pub struct Machine {
     pub(crate) strings: Vec<PlcString>,
     /// The current cycle's clock value in nanoseconds.
     pub(crate) now: i64,
-    watchdog: Option<Duration>,
-    deadline: Option<Instant>,
+    /// Polled at every backward jump and call (see [`Interrupt`]).
+    interrupt: Arc<Interrupt>,
 }
 
 impl Machine {
@@ -50,45 +50,37 @@ impl Machine {
                 .map(|s| PlcString::new(&s.init, s.max, s.wide))
                 .collect(),
             now: 0,
-            watchdog: None,
-            deadline: None,
+            interrupt: Arc::default(),
         }
     }
 
-    /// Sets the wall-clock limit for one cycle (`None` disables it).
-    pub fn set_watchdog(&mut self, limit: Option<Duration>) {
-        self.watchdog = limit;
+    /// Puts every variable back to its initial value (the memory and the
+    /// strings the machine had when it was built from `image`).
+    pub(crate) fn reinitialise(&mut self, image: &VerifiedImage) {
+        // Same image, same sizes: the buffers are reused.
+        self.mem.clear();
+        self.mem.extend_from_slice(&image.memory);
+        self.strings.truncate(image.strings.len());
+        for (k, init) in image.strings.iter().enumerate() {
+            match self.strings.get_mut(k) {
+                Some(s) => *s = PlcString::new(&init.init, init.max, init.wide),
+                None => self
+                    .strings
+                    .push(PlcString::new(&init.init, init.max, init.wide)),
+            }
+        }
     }
 
-    /// Starts the watchdog for a new cycle. The wall clock is first read
-    /// when the cycle has taken `WATCHDOG_STRIDE` backward jumps (a few
-    /// microseconds of looping), so cycles without long loops never pay for
-    /// reading it; straight-line code always terminates.
-    pub fn start_cycle(&mut self) {
-        self.deadline = None;
+    /// The interrupt word this machine polls, to share with the threads
+    /// that may stop it.
+    pub(crate) fn interrupt(&self) -> &Arc<Interrupt> {
+        &self.interrupt
     }
 
     /// Runs code block `code` with frame base `base` (a frame outside
     /// memory faults with `BadAddress`).
     pub fn run(&mut self, image: &VerifiedImage, code: CodeIdx, base: u32) -> Result<(), Fault> {
         exec::run(self, image.image(), code, base as usize)
-    }
-
-    /// Called every `WATCHDOG_STRIDE` backward jumps of one block: true
-    /// when the cycle has run out of time.
-    #[cold]
-    fn watchdog_expired(&mut self) -> bool {
-        let Some(limit) = self.watchdog else {
-            return false;
-        };
-        let now = Instant::now();
-        match self.deadline {
-            None => {
-                self.deadline = Some(now + limit);
-                false
-            }
-            Some(d) => now >= d,
-        }
     }
 }
 

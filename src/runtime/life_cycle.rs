@@ -1,0 +1,99 @@
+//! A PLC's life cycle: running, stopped by a fault (faulted STOP), and
+//! the resets that bring it back.
+//!
+//! After a runtime fault (an abort through a stop handle included) the PLC
+//! keeps the fault and runs nothing more: [`Plc::run_cycle`] returns the
+//! same fault again until a reset. A cold reset puts every variable back
+//! to its initial value, as if the program had just been loaded.
+
+use super::engine::{Plc, RuntimeFault};
+use super::scheduler::Scheduler;
+use crate::vm::{Fault, FaultKind};
+
+/// Where a PLC stands.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PlcState<'a> {
+    /// Cycles run.
+    Ready,
+    /// Stopped by this fault: no cycle runs until a reset.
+    Faulted(&'a RuntimeFault),
+}
+
+impl Plc {
+    /// Whether cycles run, or which fault stopped them.
+    ///
+    /// ```
+    /// use plcrun::{Options, Plc, PlcState};
+    /// let src = "PROGRAM P VAR n, z : INT; END_VAR n := n + 1; n := n / z; END_PROGRAM";
+    /// let mut plc = Plc::compile_files(&[("p.st", src)], &Options::default())?;
+    /// assert_eq!(plc.state(), PlcState::Ready);
+    /// let fault = plc.run_cycle().unwrap_err();
+    /// assert_eq!(plc.state(), PlcState::Faulted(&fault));
+    /// assert_eq!(plc.run_cycle(), Err(fault)); // nothing runs
+    /// assert_eq!(plc.read("n")?.to_literal(), "1");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn state(&self) -> PlcState<'_> {
+        match &self.faulted {
+            Some(fault) => PlcState::Faulted(fault),
+            None => PlcState::Ready,
+        }
+    }
+
+    /// The fault that stopped the PLC, if it is stopped.
+    pub fn fault(&self) -> Option<&RuntimeFault> {
+        self.faulted.as_ref()
+    }
+
+    /// Cold reset: every variable back to its initial value (retained ones
+    /// too), the cycle count and the clock back to 0, the fault and any stop
+    /// or abort request withdrawn. The compiled program and the settings
+    /// (watchdog limits) stay.
+    ///
+    /// ```
+    /// use plcrun::{Options, Plc};
+    /// let src = "PROGRAM P VAR n : INT := 5; z : INT; END_VAR
+    ///            n := n + 1; IF n > 6 THEN n := n / z; END_IF; END_PROGRAM";
+    /// let mut plc = Plc::compile_files(&[("p.st", src)], &Options::default())?;
+    /// plc.run_cycle()?; // n = 6
+    /// assert!(plc.run_cycle().is_err()); // n = 7: division by zero
+    /// plc.reset_cold();
+    /// assert_eq!(plc.read("n")?.to_literal(), "5");
+    /// assert_eq!(plc.cycle(), 0);
+    /// plc.run_cycle()?; // runs again
+    /// assert_eq!(plc.read("n")?.to_literal(), "6");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn reset_cold(&mut self) {
+        self.reinitialise();
+    }
+
+    /// The part every reset shares: initial values everywhere, cycle 0,
+    /// trigger memory of SINGLE tasks cleared, fault and stop requests
+    /// withdrawn. A warm reset runs it, then restores the retained values.
+    pub(crate) fn reinitialise(&mut self) {
+        self.machine.reinitialise(&self.image);
+        self.scheduler = Scheduler::new(
+            &self.image.tasks,
+            &self.image.programs,
+            self.scheduler.base_tick(),
+        );
+        self.cycle = 0;
+        self.faulted = None;
+        self.stop.clear();
+    }
+
+    /// Records a fault raised by the executor: locates it, adds the
+    /// watchdog's account for a watchdog fault, and stops the PLC.
+    #[cold]
+    pub(super) fn fail(&mut self, fault: Fault) -> RuntimeFault {
+        let mut located = self.locate(fault);
+        if located.fault.kind == FaultKind::Watchdog {
+            let tasks = &self.image.tasks;
+            located.watchdog = self.watchdog.trip(|k| tasks[k].name.clone()).map(Box::new);
+        }
+        self.watchdog.leave();
+        self.faulted = Some(located.clone());
+        located
+    }
+}
