@@ -4,14 +4,14 @@
 //! The thread that runs the PLC never reads the clock for the watchdog. It
 //! only publishes, with two plain atomic stores, that a task run started
 //! (an odd activity number, with the task's limit) or ended (the next,
-//! even, number). The watchdog thread looks at that number every quarter
+//! even, number). The watchdog thread looks at that number every eighth
 //! of the smallest limit; the first time it sees a run, it notes the time,
 //! and once that run has been seen for its whole limit it sets the
 //! interrupt word, which the executor polls at every backward jump and
-//! call. So a run is stopped at most a quarter of the limit (plus the
+//! call. So a run is stopped at most an eighth of the limit (plus the
 //! operating system's wake-up latency) after its limit, and the time it
-//! reports is measured from that first look: at most a quarter of the
-//! limit below the real time spent. The thread is started by the first
+//! reports is measured from that first look: at most an eighth of the
+//! limit (plus that latency) below the real time spent. The thread is started by the first
 //! task run that has a limit and ends with its PLC.
 
 use super::engine::Plc;
@@ -24,7 +24,7 @@ use std::time::{Duration, Instant};
 
 /// The polling period never goes below this, so that a tiny limit does
 /// not turn the watchdog thread into a busy loop.
-const MIN_PERIOD: Duration = Duration::from_micros(500);
+const MIN_PERIOD: Duration = Duration::from_micros(250);
 
 /// A task ran past its watchdog limit: which task, the limit and the time
 /// it had run when it was stopped.
@@ -36,8 +36,8 @@ pub struct WatchdogTrip {
     /// The task's limit.
     pub limit: Duration,
     /// The time the task had run when it was stopped (measured from the
-    /// watchdog's first look at the run: at most a quarter of the limit
-    /// below the real time).
+    /// watchdog's first look at the run: at most an eighth of the limit,
+    /// plus the operating system's wake-up latency, below the real time).
     pub elapsed: Duration,
 }
 
@@ -150,7 +150,7 @@ impl Watchdog {
 
     fn update_period(&mut self) {
         let smallest = self.limits.iter().flatten().min().copied();
-        let period = smallest.map_or(Duration::from_secs(1), |l| (l / 4).max(MIN_PERIOD));
+        let period = smallest.map_or(Duration::from_secs(1), |l| (l / 8).max(MIN_PERIOD));
         self.shared
             .period_ns
             .store(nanos(period), Ordering::Relaxed);
