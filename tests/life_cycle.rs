@@ -90,7 +90,11 @@ fn a_cold_reset_of_a_running_plc_restarts_it() {
 }
 
 fn endless(watchdog: Option<Duration>) -> Plc {
-    let src = program("", "x : DINT;", "x := x + 1; WHILE TRUE DO x := x + 1; END_WHILE;");
+    let src = program(
+        "",
+        "x : DINT;",
+        "x := x + 1; WHILE TRUE DO x := x + 1; END_WHILE;",
+    );
     let options = Options {
         watchdog,
         ..Options::default()
@@ -113,7 +117,11 @@ fn abort_from_another_thread_ends_an_endless_cycle() {
     assert_eq!(fault.fault.kind, FaultKind::Aborted);
     assert!(took >= Duration::from_millis(50), "{took:?}");
     assert!(took < Duration::from_secs(5), "{took:?}");
-    assert!(fault.location.starts_with("test.st:6:"), "{}", fault.location);
+    assert!(
+        fault.location.starts_with("test.st:6:"),
+        "{}",
+        fault.location
+    );
     let shown = fault.to_string();
     assert!(
         shown.starts_with("error[R009]: runtime fault in cycle 0") && shown.contains("aborted"),

@@ -111,7 +111,10 @@ fn stops_within_bound(src: &str) -> RuntimeFault {
         assert!(trip.elapsed >= LIMIT, "{trip}");
         assert!(trip.elapsed <= took, "{trip} but the cycle took {took:?}");
         let shown = fault.to_string();
-        assert!(shown.starts_with("error[R008]: runtime fault in cycle 0"), "{shown}");
+        assert!(
+            shown.starts_with("error[R008]: runtime fault in cycle 0"),
+            "{shown}"
+        );
         assert!(
             shown.contains("watchdog: task `default` ran ") && shown.contains(", limit 10 ms"),
             "{shown}"
@@ -163,7 +166,11 @@ fn an_endless_while_loop_is_stopped() {
     let _timing = one_at_a_time();
     let src = program("", "x : DINT;", "WHILE TRUE DO x := x + 1; END_WHILE;");
     let fault = stops_within_bound(&src);
-    assert!(fault.location.starts_with("test.st:6:"), "{}", fault.location);
+    assert!(
+        fault.location.starts_with("test.st:6:"),
+        "{}",
+        fault.location
+    );
 }
 
 /// Straight-line code: no loop, no call, 300 copies of 10^6-element
@@ -202,7 +209,11 @@ fn a_deep_call_chain_is_stopped() {
     let src = call_chain_program();
     runs_long_without_watchdog(&src);
     let fault = stops_within_bound(&src);
-    assert!(fault.pou.starts_with('F'), "stopped inside a function: {}", fault.pou);
+    assert!(
+        fault.pou.starts_with('F'),
+        "stopped inside a function: {}",
+        fault.pou
+    );
 }
 
 /// A watchdog fault stops the PLC like any other.
@@ -243,7 +254,10 @@ fn each_task_has_its_own_limit() {
     assert_eq!(plc.task_watchdog("Fast").unwrap(), Some(LIMIT));
     assert_eq!(plc.task_watchdog("slow").unwrap(), None);
     let err = plc.set_task_watchdog("medium", Some(LIMIT)).unwrap_err();
-    assert_eq!(err.to_string(), "no task `medium` (the tasks are: Fast, Slow)");
+    assert_eq!(
+        err.to_string(),
+        "no task `medium` (the tasks are: Fast, Slow)"
+    );
     // The slow task runs past the fast task's limit, unhindered.
     let start = Instant::now();
     plc.run_cycle().expect("the slow task has no limit");
@@ -269,7 +283,11 @@ fn each_task_has_its_own_limit() {
 #[test]
 fn short_cycles_are_never_stopped() {
     let _timing = one_at_a_time();
-    let src = program("", "i, x : DINT;", "FOR i := 1 TO 100 DO x := x + i; END_FOR;");
+    let src = program(
+        "",
+        "i, x : DINT;",
+        "FOR i := 1 TO 100 DO x := x + i; END_FOR;",
+    );
     // Far above a cycle (microseconds), far above the time slices of a
     // loaded machine too: the wall time a preempted cycle loses counts.
     let mut plc = compile(&src, Some(Duration::from_millis(100)));
@@ -292,4 +310,3 @@ fn set_watchdog_none_turns_every_limit_off() {
     plc.set_watchdog(Some(LIMIT));
     assert_eq!(plc.task_watchdog("slow").unwrap(), Some(LIMIT));
 }
-

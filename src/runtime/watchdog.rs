@@ -116,11 +116,17 @@ impl Shared {
 pub(crate) struct Watchdog {
     /// Per task (indexed like the image's tasks).
     limits: Vec<Option<Duration>>,
-    /// The task whose run is under way (between `enter` and `leave`).
-    running: Option<usize>,
+    /// The same in ns (0: none), as the cycle publishes them.
+    limits_ns: Vec<u64>,
+    /// The task whose run is under way (between `enter` and `leave`),
+    /// `NO_TASK` between runs.
+    running: usize,
     shared: Arc<Shared>,
     thread: Option<JoinHandle<()>>,
 }
+
+/// `Watchdog::running` between task runs.
+const NO_TASK: usize = usize::MAX;
 
 fn nanos(d: Duration) -> u64 {
     d.as_nanos().min(u64::MAX as u128) as u64
@@ -132,7 +138,8 @@ impl Watchdog {
     pub(crate) fn new(interrupt: Arc<Interrupt>, tasks: usize, limit: Option<Duration>) -> Self {
         let mut w = Watchdog {
             limits: vec![limit; tasks],
-            running: None,
+            limits_ns: vec![limit.map_or(0, nanos); tasks],
+            running: NO_TASK,
             shared: Arc::new(Shared {
                 interrupt,
                 limit_ns: AtomicU64::new(0),
@@ -160,17 +167,15 @@ impl Watchdog {
     /// now on; nothing to do while the same task goes on.
     #[inline]
     pub(crate) fn enter(&mut self, task: usize) {
-        if self.running == Some(task) {
+        if self.running == task {
             return;
         }
         self.leave();
-        let limit = self.limits.get(task).copied().flatten();
-        self.shared
-            .limit_ns
-            .store(limit.map_or(0, nanos), Ordering::Relaxed);
+        let limit = self.limits_ns.get(task).copied().unwrap_or(0);
+        self.shared.limit_ns.store(limit, Ordering::Relaxed);
         self.shared.interrupt.advance_activity();
-        self.running = Some(task);
-        if limit.is_some() && self.thread.is_none() {
+        self.running = task;
+        if limit != 0 && self.thread.is_none() {
             self.start_thread();
         }
     }
@@ -178,7 +183,8 @@ impl Watchdog {
     /// The task run under way (if any) has ended.
     #[inline]
     pub(crate) fn leave(&mut self) {
-        if self.running.take().is_some() {
+        if self.running != NO_TASK {
+            self.running = NO_TASK;
             self.shared.interrupt.advance_activity();
         }
     }
@@ -186,7 +192,7 @@ impl Watchdog {
     /// Why the run under way was stopped by the watchdog: the task, its
     /// limit and the time spent (`tasks` names the image's tasks).
     pub(crate) fn trip(&self, task_name: impl Fn(usize) -> String) -> Option<WatchdogTrip> {
-        let task = self.running?;
+        let task = self.running;
         let limit = self.limits.get(task).copied().flatten()?;
         let now = self.shared.since_epoch();
         let run = self.shared.interrupt.activity();
@@ -204,8 +210,9 @@ impl Watchdog {
 
     /// Sets the limit of task `task` (an index into the image's tasks).
     fn set_limit(&mut self, task: usize, limit: Option<Duration>) {
-        if let Some(slot) = self.limits.get_mut(task) {
+        if let (Some(slot), Some(ns)) = (self.limits.get_mut(task), self.limits_ns.get_mut(task)) {
             *slot = limit;
+            *ns = limit.map_or(0, nanos);
         }
         self.update_period();
     }
@@ -270,7 +277,7 @@ fn watch(shared: &Shared) {
 impl Plc {
     /// Sets the watchdog limit of the task named `task` (case-insensitive;
     /// `default` is the implicit task of a program without configuration);
-    /// `None` turns its watchdog off. A run of the task's programs that
+    /// `None` (or a zero limit) turns its watchdog off. A run of the task's programs that
     /// takes longer is stopped with a [`crate::FaultKind::Watchdog`] fault
     /// (R008) whose [`crate::RuntimeFault::watchdog`] names the task, the
     /// limit and the time spent. [`crate::Options::watchdog`] is every
