@@ -17,7 +17,7 @@
 use super::engine::Plc;
 use crate::vm::Interrupt;
 use std::fmt;
-use std::sync::Arc;
+use std::sync::{Arc, Barrier};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
@@ -217,15 +217,26 @@ impl Watchdog {
         self.update_period();
     }
 
-    /// Starts the timer thread. Should the system refuse a thread, the
-    /// next task run with a limit tries again.
+    /// Starts the timer thread and waits until it is under way, so that
+    /// whatever the thread's start-up allocates is allocated before the
+    /// cycle goes on (cycles do not allocate, even on another thread).
+    /// Should the system refuse a thread, the next task run with a limit
+    /// tries again.
     #[cold]
     fn start_thread(&mut self) {
         let shared = Arc::clone(&self.shared);
+        let ready = Arc::new(Barrier::new(2));
+        let started = Arc::clone(&ready);
         self.thread = std::thread::Builder::new()
             .name("plcrun-watchdog".into())
-            .spawn(move || watch(&shared))
+            .spawn(move || {
+                started.wait();
+                watch(&shared)
+            })
             .ok();
+        if self.thread.is_some() {
+            ready.wait();
+        }
     }
 }
 
