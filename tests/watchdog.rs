@@ -145,7 +145,7 @@ fn runs_long_without_watchdog(src: &str) {
 /// old watchdog (a look at the clock every 4 096 backward jumps) it was
 /// never stopped.
 fn slow_loop_program() -> String {
-    let body = "x := (x * 7 + i) MOD 1000; y := y + x / 3; ".repeat(400);
+    let body = "x := (x * 7 + i) MOD 1000; y := y + x / 3; ".repeat(1500);
     program(
         "",
         "i : INT; x, y : DINT;",
@@ -173,13 +173,13 @@ fn an_endless_while_loop_is_stopped() {
     );
 }
 
-/// Straight-line code: no loop, no call, 300 copies of 10^6-element
+/// Straight-line code: no loop, no call, 1 200 copies of 10^6-element
 /// arrays (the copies are what takes time; the executor looks at the
 /// interrupt word after each).
 #[test]
 fn long_straight_line_code_is_stopped() {
     let _timing = one_at_a_time();
-    let body = "b := a; a := b; ".repeat(150);
+    let body = "b := a; a := b; ".repeat(600);
     let src = program(
         "",
         "a, b : ARRAY[0..999999] OF LREAL;",

@@ -17,8 +17,8 @@
 use super::engine::Plc;
 use crate::vm::Interrupt;
 use std::fmt;
-use std::sync::{Arc, Barrier};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Barrier};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
