@@ -207,3 +207,18 @@ fn a_fault_message_shows_its_code() {
     );
     assert!(shown.contains("division by zero"), "{shown}");
 }
+
+/// A PLC (with its watchdog thread) moves to another thread, and dropping
+/// it ends that thread at once.
+#[test]
+fn a_plc_with_a_watchdog_is_send_and_drops_promptly() {
+    fn send<T: Send>(_: &T) {}
+    let start = Instant::now();
+    for _ in 0..20 {
+        let mut plc = counter(); // default watchdog: 1 s, thread polling every 125 ms
+        run(&mut plc, 1);
+        send(&plc);
+        std::thread::spawn(move || drop(plc)).join().unwrap();
+    }
+    assert!(start.elapsed() < Duration::from_secs(2), "{:?}", start.elapsed());
+}
