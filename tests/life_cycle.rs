@@ -220,5 +220,9 @@ fn a_plc_with_a_watchdog_is_send_and_drops_promptly() {
         send(&plc);
         std::thread::spawn(move || drop(plc)).join().unwrap();
     }
-    assert!(start.elapsed() < Duration::from_secs(2), "{:?}", start.elapsed());
+    assert!(
+        start.elapsed() < Duration::from_secs(2),
+        "{:?}",
+        start.elapsed()
+    );
 }
