@@ -53,6 +53,10 @@ pub struct RunArgs {
     /// Initial value NAME=VALUE (IEC literal), applied before cycle 0. Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
+    /// Force NAME to VALUE (IEC literal) for the whole run: the program, the stimulus and
+    /// --set cannot change it; the trace marks it. Repeatable.
+    #[arg(long = "force", value_name = "NAME=VALUE")]
+    pub force: Vec<String>,
     /// Stimulus CSV file (first column `cycle` or `time`).
     #[arg(long)]
     pub stimulus: Option<PathBuf>,

@@ -2,6 +2,8 @@
 //! clock, read and write variables by name.
 
 use super::default_trace;
+use super::forcing::Forces;
+use super::process_image::ProcessImage;
 use super::scheduler::Scheduler;
 use super::stop::StopHandle;
 use crate::diagnostics::Diagnostics;
@@ -106,6 +108,10 @@ pub struct Plc {
     pub(super) id: u64,
     /// Stop requests from other threads.
     stop: StopHandle,
+    /// The `%I`, `%Q`, `%M` areas exchanged with located variables.
+    pub(super) io: ProcessImage,
+    /// Forced variables, applied around every program run.
+    pub(super) forces: Forces,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -150,6 +156,7 @@ impl Plc {
         let mut machine = Machine::new(&image);
         machine.set_watchdog(options.watchdog);
         let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
+        let io = ProcessImage::new(&image, &machine.mem);
         Plc {
             image,
             machine,
@@ -159,6 +166,8 @@ impl Plc {
             scheduler,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             stop: StopHandle::default(),
+            io,
+            forces: Forces::default(),
         }
     }
 
@@ -198,10 +207,22 @@ impl Plc {
     }
 
     /// Runs one cycle: every task due at this tick runs its programs.
+    ///
+    /// Around them: at the start, located variables take the `%I`/`%M`
+    /// bits the host changed in the [process image](Self::process_image)
+    /// and forced variables take their forced values; after each program,
+    /// forces are applied again; at the end, `%Q`/`%M` variables the cycle
+    /// changed are published into the image.
     pub fn run_cycle(&mut self) -> Result<(), RuntimeFault> {
         let now = self.time();
         self.machine.now = now;
         self.machine.start_cycle();
+        if !self.io.is_empty() {
+            self.io.latch(&mut self.machine.mem);
+        }
+        if !self.forces.is_empty() {
+            self.apply_forces();
+        }
         self.scheduler
             .start_tick(&self.image.tasks, now, &self.machine.mem);
         for k in 0..self.scheduler.len() {
@@ -220,6 +241,12 @@ impl Plc {
             for &(from, to) in &inst.outputs {
                 self.machine.mem[to as usize] = self.machine.mem[from as usize];
             }
+            if !self.forces.is_empty() {
+                self.apply_forces();
+            }
+        }
+        if !self.io.is_empty() {
+            self.io.publish(&self.machine.mem);
         }
         self.cycle += 1;
         Ok(())
