@@ -25,7 +25,13 @@ fn forced_values_hold_and_are_marked_in_csv() {
 fn forced_values_are_listed_in_json_lines() {
     let p = temp_file("count.st", COUNTER);
     let out = plcrun_ok(&[
-        &p, "--cycles", "1", "--format", "jsonl", "--force", "lamp=TRUE",
+        &p,
+        "--cycles",
+        "1",
+        "--format",
+        "jsonl",
+        "--force",
+        "lamp=TRUE",
     ]);
     assert_eq!(
         out,

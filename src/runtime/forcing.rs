@@ -107,7 +107,7 @@ impl Plc {
                 path: r.name.clone(),
                 literal,
                 ty,
-                problem,
+                problem: Box::new(problem),
             },
             other => other,
         })?;

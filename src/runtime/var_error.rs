@@ -122,8 +122,8 @@ pub enum VarError {
         literal: String,
         /// The variable's type.
         ty: String,
-        /// Why.
-        problem: ValueProblem,
+        /// Why (boxed to keep the error small).
+        problem: Box<ValueProblem>,
     },
 }
 
