@@ -594,6 +594,35 @@ mod tests {
     }
 
     #[test]
+    fn forced_cells_are_marked_and_unforced_rows_are_unchanged() {
+        let cells = [
+            TraceCell::from_string("a!", false),
+            TraceCell::from_value(Int, 7),
+        ];
+        let write = |format, forced: &[bool]| {
+            let mut w = TraceWriter::new(Vec::new(), format, names(&["s", "n"]), false);
+            w.row_marked(0, 0, &cells, forced).unwrap();
+            String::from_utf8(w.finish().unwrap()).unwrap()
+        };
+        assert_eq!(
+            write(TraceFormat::Csv, &[false, true]),
+            "cycle,time,s,n\n0,T#0s,'a!',7!\n"
+        );
+        assert_eq!(
+            write(TraceFormat::Csv, &[false, false]),
+            write(TraceFormat::Csv, &[])
+        );
+        assert_eq!(
+            write(TraceFormat::Jsonl, &[true, true]),
+            "{\"cycle\":0,\"time\":\"T#0s\",\"s\":\"a!\",\"n\":7,\"forced\":[\"s\",\"n\"]}\n"
+        );
+        assert_eq!(
+            write(TraceFormat::Jsonl, &[false, false]),
+            "{\"cycle\":0,\"time\":\"T#0s\",\"s\":\"a!\",\"n\":7}\n"
+        );
+    }
+
+    #[test]
     fn cells_can_be_reused() {
         let mut cell = TraceCell::from_value(Int, 5);
         cell.set_value(Lreal, 2.5f64.to_bits());
