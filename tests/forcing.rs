@@ -315,3 +315,30 @@ fn global_constants_are_refused_too() {
         })
     ));
 }
+
+#[test]
+fn a_force_applies_between_the_programs_of_a_tick() {
+    let src = "VAR_GLOBAL g : INT; END_VAR
+PROGRAM Writer VAR_EXTERNAL g : INT; END_VAR g := g + 1; END_PROGRAM
+PROGRAM Reader VAR_EXTERNAL g : INT; END_VAR VAR_OUTPUT copy : INT; END_VAR copy := g; END_PROGRAM
+CONFIGURATION C
+RESOURCE R ON PLC
+TASK T (INTERVAL := T#10ms, PRIORITY := 1);
+PROGRAM w WITH T : Writer;
+PROGRAM r WITH T : Reader;
+END_RESOURCE
+END_CONFIGURATION
+";
+    let mut plc = compile("c.st", src);
+    plc.force("g", "50").unwrap();
+    plc.run_cycle().unwrap();
+    // The writer made 51; the force was applied again before the reader ran.
+    assert_eq!(lit(&plc, "r.copy"), "50");
+    assert_eq!(lit(&plc, "g"), "50");
+    plc.unforce("g").unwrap();
+    plc.run_cycle().unwrap();
+    assert_eq!(lit(&plc, "r.copy"), "51");
+    let vars = plc.variables();
+    assert!(vars.iter().any(|v| v.path == "r.copy"), "{vars:#?}");
+    assert!(vars.iter().any(|v| v.path == "g"), "{vars:#?}");
+}
