@@ -27,6 +27,8 @@ pub struct Cli {
 }
 
 /// The subcommands.
+// Parsed once per process: the size of `RunArgs` does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Run a program and print a trace (the default command).
@@ -53,6 +55,10 @@ pub struct RunArgs {
     /// Initial value NAME=VALUE (IEC literal), applied before cycle 0. Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
+    /// Force NAME to VALUE (IEC literal) for the whole run: the program, the stimulus and
+    /// --set cannot change it; the trace marks it. Repeatable.
+    #[arg(long = "force", value_name = "NAME=VALUE")]
+    pub force: Vec<String>,
     /// Stimulus CSV file (first column `cycle` or `time`).
     #[arg(long)]
     pub stimulus: Option<PathBuf>,

@@ -98,6 +98,13 @@ fn session(args: &RunArgs, mut plc: Plc) -> Result<Session, String> {
         plc.write(name.trim(), value)
             .map_err(|e| format!("--set {item}: {e}"))?;
     }
+    for item in &args.force {
+        let Some((name, value)) = item.split_once('=') else {
+            return Err(format!("--force `{item}`: expected NAME=VALUE"));
+        };
+        plc.force(name.trim(), value)
+            .map_err(|e| format!("--force {item}: {e}"))?;
+    }
     let names: Vec<String> = if args.trace.is_empty() {
         for (name, values) in plc.default_trace_left_out() {
             eprintln!(

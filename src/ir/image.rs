@@ -79,6 +79,8 @@ pub struct RootVar {
     pub kind: crate::ir::type_table::MemberKind,
     /// Located address text, normalised (e.g. `%QX0.0.0.0.1`), if any.
     pub location: Option<String>,
+    /// Declared CONSTANT.
+    pub constant: bool,
 }
 
 /// A program instance the scheduler runs.

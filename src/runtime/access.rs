@@ -27,7 +27,7 @@ impl Plc {
     }
 
     /// Checks that `r` was resolved by this PLC.
-    fn owned(&self, r: &VarRef) -> Result<(), VarError> {
+    pub(super) fn owned(&self, r: &VarRef) -> Result<(), VarError> {
         if r.owner == self.id {
             Ok(())
         } else {
@@ -124,26 +124,61 @@ impl Plc {
 
     /// Writes a value into a resolved variable. The value must be of the
     /// variable's type (as [`Self::parse_value`] or [`Self::get`] give it),
-    /// and a handle resolved by another PLC is refused.
+    /// and a handle resolved by another PLC is refused, as is a variable
+    /// the program cannot write either (a CONSTANT, an SFC step flag:
+    /// [`VarError::ReadOnly`]).
+    ///
+    /// This is a soft write: on a [forced](Self::force) variable it is
+    /// accepted but the force wins; the variable takes the written value
+    /// when it is unforced.
     pub fn set(&mut self, r: &VarRef, v: &Value) -> Result<(), VarError> {
         self.owned(r)?;
-        if !self.fits(r, v) {
-            return Err(VarError::WrongValue {
-                path: r.name.clone(),
-                ty: self.image.types.name(r.ty).to_string(),
-                value: v.to_literal(),
-            });
+        self.writable(r)?;
+        self.check_fits(r, v)?;
+        if !self.forces.is_empty() && self.forces.hold_under(r.addr, v) {
+            return Ok(());
         }
         self.store(r, v);
         Ok(())
     }
 
-    /// Stores a value of `r`'s type into a variable of this PLC.
+    /// Refuses a value not of `r`'s type.
+    pub(super) fn check_fits(&self, r: &VarRef, v: &Value) -> Result<(), VarError> {
+        if self.fits(r, v) {
+            Ok(())
+        } else {
+            Err(VarError::WrongValue {
+                path: r.name.clone(),
+                ty: self.image.types.name(r.ty).to_string(),
+                value: v.to_literal(),
+            })
+        }
+    }
+
+    /// Refuses a write from outside to a variable the program cannot write.
+    pub(super) fn writable(&self, r: &VarRef) -> Result<(), VarError> {
+        match r.read_only {
+            Some(why) => Err(VarError::ReadOnly {
+                path: r.name.clone(),
+                why,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Stores a value of `r`'s type into a variable of this PLC (and into
+    /// the process image when the variable is located there).
     pub(super) fn store(&mut self, r: &VarRef, v: &Value) {
         let slot = &mut self.machine.mem[r.addr as usize];
         match v {
-            Value::Scalar(_, raw) => *slot = *raw,
-            Value::Enum(_, x) => *slot = *x as u64,
+            Value::Scalar(_, raw) => {
+                *slot = *raw;
+                self.io.stored(r.addr, *raw);
+            }
+            Value::Enum(_, x) => {
+                *slot = *x as u64;
+                self.io.stored(r.addr, *x as u64);
+            }
             Value::String(s, _) => {
                 if let Some(string) = self.machine.strings.get_mut(*slot as usize) {
                     string.set(s);
@@ -168,7 +203,8 @@ impl Plc {
         }
     }
 
-    /// Writes a variable by name from an IEC literal.
+    /// Writes a variable by name from an IEC literal (a soft write, as
+    /// [`Self::set`]).
     pub fn write(&mut self, name: &str, literal: &str) -> Result<(), VarError> {
         let r = self.resolve(name)?;
         let v = self.parse_value(&r, literal)?;

@@ -2,6 +2,8 @@
 //! clock, read and write variables by name.
 
 use super::default_trace;
+use super::forcing::Forces;
+use super::process_image::ProcessImage;
 use super::scheduler::Scheduler;
 use super::stop::StopHandle;
 use super::watchdog::{Watchdog, WatchdogTrip};
@@ -128,6 +130,10 @@ pub struct Plc {
     pub(super) faulted: Option<RuntimeFault>,
     /// Per-task cycle-time limits and their timer thread.
     pub(super) watchdog: Watchdog,
+    /// The `%I`, `%Q`, `%M` areas exchanged with located variables.
+    pub(super) io: ProcessImage,
+    /// Forced variables, applied around every program run.
+    pub(super) forces: Forces,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -177,6 +183,7 @@ impl Plc {
             options.watchdog,
         );
         let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
+        let io = ProcessImage::new(&image, &machine.mem);
         Plc {
             image,
             machine,
@@ -188,6 +195,8 @@ impl Plc {
             stop,
             faulted: None,
             watchdog,
+            io,
+            forces: Forces::default(),
         }
     }
 
@@ -229,12 +238,24 @@ impl Plc {
     /// Runs one cycle: every task due at this tick runs its programs.
     /// After a fault the PLC is stopped: this runs nothing and returns the
     /// same fault until a reset (see [`Self::state`], [`Self::reset_cold`]).
+    ///
+    /// Around them: at the start, located variables take the `%I`/`%M`
+    /// bits the host changed in the [process image](Self::process_image)
+    /// and forced variables take their forced values; after each program,
+    /// forces are applied again; at the end, `%Q`/`%M` variables the cycle
+    /// changed are published into the image.
     pub fn run_cycle(&mut self) -> Result<(), RuntimeFault> {
         if let Some(fault) = &self.faulted {
             return Err(fault.clone());
         }
         let now = self.time();
         self.machine.now = now;
+        if !self.io.is_empty() {
+            self.io.latch(&mut self.machine.mem);
+        }
+        if !self.forces.is_empty() {
+            self.apply_forces();
+        }
         self.scheduler
             .start_tick(&self.image.tasks, now, &self.machine.mem);
         for k in 0..self.scheduler.len() {
@@ -254,6 +275,12 @@ impl Plc {
             for &(from, to) in &inst.outputs {
                 self.machine.mem[to as usize] = self.machine.mem[from as usize];
             }
+            if !self.forces.is_empty() {
+                self.apply_forces();
+            }
+        }
+        if !self.io.is_empty() {
+            self.io.publish(&self.machine.mem);
         }
         self.watchdog.leave();
         self.cycle += 1;

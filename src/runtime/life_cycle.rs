@@ -78,6 +78,9 @@ impl Plc {
             &self.image.programs,
             self.scheduler.base_tick(),
         );
+        // The image follows the variables back to their initial values, so
+        // that it does not publish or latch stale bits afterwards.
+        self.io = super::process_image::ProcessImage::new(&self.image, &self.machine.mem);
         self.cycle = 0;
         self.faulted = None;
         self.stop.clear();

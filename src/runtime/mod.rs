@@ -13,14 +13,22 @@
 //! - [`life_cycle`]: the faulted STOP state and the resets;
 //! - [`watchdog`]: per-task cycle-time limits and the thread enforcing them;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
+//! - [`process_image`], [`io_address`]: the `%I`/`%Q`/`%M` byte areas and
+//!   how direct addresses map into them;
+//! - [`forcing`]: forced variables and soft writes;
+//! - [`variables`]: the list of variables with their types, and chart step
+//!   states;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
 pub mod access;
 pub mod default_trace;
 pub mod engine;
 pub mod life_cycle;
+pub mod forcing;
+pub mod io_address;
 pub mod names;
 pub mod plc_value;
+pub mod process_image;
 pub mod scheduler;
 pub mod session;
 pub mod stimulus;
@@ -28,3 +36,4 @@ pub mod stop;
 pub mod trace;
 pub mod var_error;
 pub mod watchdog;
+pub mod variables;

@@ -2,7 +2,7 @@
 //! the embedding API): `x`, `inst.ET`, `arr[3]`, `grid[1,2]`, `S1.X`,
 //! `prog.x` for configuration instances, and located addresses `%IX0.1`.
 
-use super::var_error::{PathProblem, VarError};
+use super::var_error::{PathProblem, ReadOnlyReason, VarError};
 use crate::elementary::ElemType;
 use crate::ir::image::Image;
 use crate::ir::type_table::{MemberKind, TypeId, TypeKind, step_layout};
@@ -20,12 +20,20 @@ pub struct VarRef {
     pub(crate) ty: TypeId,
     /// The identity of the PLC that resolved it.
     pub(crate) owner: u64,
+    /// Why it cannot be written from outside, if it cannot.
+    pub(crate) read_only: Option<ReadOnlyReason>,
 }
 
 impl VarRef {
     /// The name as it was given to `resolve` (trimmed).
     pub fn name(&self) -> &str {
         &self.name
+    }
+
+    /// Why the variable cannot be written from outside (a CONSTANT, an
+    /// SFC step or action flag), or `None` when it can.
+    pub fn read_only(&self) -> Option<ReadOnlyReason> {
+        self.read_only
     }
 }
 
@@ -106,23 +114,34 @@ fn normalize(text: &str) -> String {
 /// what is unknown.
 pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError> {
     let (root, segs) = parse_path(text)?;
-    let (mut addr, mut ty) = if root.starts_with('%') {
+    let (mut addr, mut ty, mut read_only) = if root.starts_with('%') {
         let key = normalize(&root);
+        // The text as declared, else the same place in the process image
+        // (`%IX0.1` names a variable declared at `%I0.0.0.0.1`).
+        let place = super::io_address::parse(&root).ok();
         let r = image
             .globals
             .iter()
             .find(|r| r.location.as_deref() == Some(key.as_str()))
+            .or_else(|| {
+                let place = place?;
+                image.globals.iter().find(|r| {
+                    r.location
+                        .as_deref()
+                        .is_some_and(|l| super::io_address::parse(l).ok() == Some(place))
+                })
+            })
             .ok_or_else(|| VarError::NotLocated {
                 address: root.clone(),
             })?;
-        (r.addr, r.ty)
+        (r.addr, r.ty, r.constant.then_some(ReadOnlyReason::Constant))
     } else {
         find_root(image, &root)?
     };
     for seg in segs {
         match seg {
             Seg::Member(m) => {
-                let Some((off, t)) = member(image, ty, &m) else {
+                let Some((off, t, why)) = member(image, ty, &m) else {
                     return Err(VarError::NoMember {
                         path: text.to_string(),
                         ty: image.types.name(ty).to_string(),
@@ -131,6 +150,7 @@ pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError
                 };
                 addr += off;
                 ty = t;
+                read_only = read_only.or(why);
             }
             Seg::Index(idx) => {
                 let TypeKind::Array { dims, elem } = &image.types.get(ty).kind else {
@@ -168,10 +188,22 @@ pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError
         addr,
         ty,
         owner,
+        read_only,
     })
 }
 
-fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId), VarError> {
+/// Why a member of kind `kind` (declared CONSTANT or not) cannot be
+/// written from outside.
+fn member_read_only(kind: MemberKind, constant: bool) -> Option<ReadOnlyReason> {
+    match kind {
+        _ if constant => Some(ReadOnlyReason::Constant),
+        MemberKind::Step => Some(ReadOnlyReason::StepFlag),
+        MemberKind::Action => Some(ReadOnlyReason::ActionFlag),
+        _ => None,
+    }
+}
+
+fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId, Option<ReadOnlyReason>), VarError> {
     // A variable of the (single) program, then globals, then instance names.
     if image.programs.len() == 1 {
         let inst = &image.programs[0];
@@ -181,7 +213,11 @@ fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId), VarError> {
             .iter()
             .find(|m| m.name.eq_ignore_ascii_case(name) && m.kind != MemberKind::InOut)
         {
-            return Ok((inst.base + m.offset, m.ty));
+            return Ok((
+                inst.base + m.offset,
+                m.ty,
+                member_read_only(m.kind, m.constant),
+            ));
         }
     }
     if let Some(r) = image
@@ -189,22 +225,23 @@ fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId), VarError> {
         .iter()
         .find(|r| r.name.eq_ignore_ascii_case(name))
     {
-        return Ok((r.addr, r.ty));
+        return Ok((r.addr, r.ty, r.constant.then_some(ReadOnlyReason::Constant)));
     }
     if let Some(inst) = image
         .programs
         .iter()
         .find(|p| p.name.eq_ignore_ascii_case(name))
     {
-        return Ok((inst.base, inst.ty));
+        return Ok((inst.base, inst.ty, None));
     }
     Err(VarError::Unknown {
         name: name.to_string(),
     })
 }
 
-/// Offset and type of member `name` of `ty`.
-fn member(image: &Image, ty: TypeId, name: &str) -> Option<(u32, TypeId)> {
+/// Offset and type of member `name` of `ty`, and why it cannot be
+/// written from outside.
+fn member(image: &Image, ty: TypeId, name: &str) -> Option<(u32, TypeId, Option<ReadOnlyReason>)> {
     use crate::ir::type_table::TypeTable;
     match &image.types.get(ty).kind {
         TypeKind::Struct { .. } | TypeKind::Pou { .. } => image
@@ -212,7 +249,7 @@ fn member(image: &Image, ty: TypeId, name: &str) -> Option<(u32, TypeId)> {
             .members(ty)
             .iter()
             .find(|m| m.name.eq_ignore_ascii_case(name) && m.kind != MemberKind::InOut)
-            .map(|m| (m.offset, m.ty)),
+            .map(|m| (m.offset, m.ty, member_read_only(m.kind, m.constant))),
         TypeKind::NativeFb(fb) => crate::stdlib::interface(*fb)
             .iter()
             .enumerate()
@@ -221,10 +258,18 @@ fn member(image: &Image, ty: TypeId, name: &str) -> Option<(u32, TypeId)> {
                     && (p.name.eq_ignore_ascii_case(name)
                         || p.aliases.iter().any(|a| a.eq_ignore_ascii_case(name)))
             })
-            .map(|(i, p)| (i as u32, TypeTable::elem(p.ty))),
+            .map(|(i, p)| (i as u32, TypeTable::elem(p.ty), None)),
         TypeKind::Step => match name.to_ascii_uppercase().as_str() {
-            "X" => Some((step_layout::X, TypeTable::elem(ElemType::Bool))),
-            "T" => Some((step_layout::T, TypeTable::elem(ElemType::Time))),
+            "X" => Some((
+                step_layout::X,
+                TypeTable::elem(ElemType::Bool),
+                Some(ReadOnlyReason::StepFlag),
+            )),
+            "T" => Some((
+                step_layout::T,
+                TypeTable::elem(ElemType::Time),
+                Some(ReadOnlyReason::StepFlag),
+            )),
             _ => None,
         },
         _ => None,

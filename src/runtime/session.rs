@@ -113,6 +113,9 @@ pub struct Session {
     names: Vec<String>,
     traced: Vec<VarRef>,
     cells: Vec<TraceCell>,
+    /// Per traced name, whether its value was forced in the last cycle
+    /// (empty while nothing has been forced).
+    forced: Vec<bool>,
     pacing: Pacing,
 }
 
@@ -127,6 +130,7 @@ impl Session {
             names: Vec::new(),
             traced: Vec::new(),
             cells: Vec::new(),
+            forced: Vec::new(),
             pacing: Pacing::Virtual,
         }
     }
@@ -193,11 +197,15 @@ impl Session {
     pub fn bind_stimulus(&mut self, stimulus: Stimulus) -> Result<(), StimulusBindError> {
         let mut columns = Vec::with_capacity(stimulus.columns.len());
         for name in &stimulus.columns {
-            let r = self.plc.resolve(name).map_err(|error| StimulusBindError {
-                column: name.clone(),
-                line: None,
-                error,
-            })?;
+            let r = self
+                .plc
+                .resolve(name)
+                .and_then(|r| self.plc.writable(&r).map(|()| r))
+                .map_err(|error| StimulusBindError {
+                    column: name.clone(),
+                    line: None,
+                    error,
+                })?;
             columns.push(r);
         }
         let mut rows = Vec::with_capacity(stimulus.rows.len());
@@ -242,6 +250,7 @@ impl Session {
             bound.applied += due;
         }
         self.plc.run_cycle()?;
+        self.mark_forced();
         for (cell, r) in self.cells.iter_mut().zip(&self.traced) {
             match self.plc.value_at(r) {
                 Value::Scalar(t, raw) => cell.set_value(t, raw),
@@ -262,6 +271,25 @@ impl Session {
         &self.cells
     }
 
+    /// Which traced values were forced in the last [`Self::step`], one per
+    /// name; empty when nothing is forced.
+    pub fn forced_cells(&self) -> &[bool] {
+        &self.forced
+    }
+
+    /// Notes which traced variables are forced (nothing to do while no
+    /// variable is, or has been, forced).
+    fn mark_forced(&mut self) {
+        if self.plc.forces.is_empty() {
+            self.forced.clear();
+            return;
+        }
+        self.forced.clear();
+        for r in &self.traced {
+            self.forced.push(self.plc.forces.is_forced(r.addr));
+        }
+    }
+
     /// Runs `cycles` cycles, writing one trace row per cycle to `out`
     /// (whose names should be [`Self::trace_names`]). Stops at the first
     /// runtime fault or trace write error; the rows of the cycles before
@@ -280,7 +308,8 @@ impl Session {
                 }
             }
             self.step().map_err(RunError::Fault)?;
-            out.row(cycle, time, &self.cells).map_err(RunError::Trace)?;
+            out.row_marked(cycle, time, &self.cells, &self.forced)
+                .map_err(RunError::Trace)?;
         }
         Ok(())
     }

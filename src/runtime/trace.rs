@@ -18,6 +18,15 @@
 //! 0      T#0s  TRUE   42
 //! ```
 //!
+//! Forced values ([`TraceWriter::row_marked`]): in the table and CSV, the
+//! cell's text is followed by `!` (`TRUE!`, `42!`; no literal ends with
+//! `!`, a string's ends with its quote); a JSON line gets a last key
+//! `"forced"` listing the forced names. Rows without forced values are
+//! written exactly as without forcing:
+//! ```text
+//! {"cycle":0,"time":"T#0s","start":true,"count":42,"forced":["start"]}
+//! ```
+//!
 //! With `changes_only`, the first row is written, then only rows where at
 //! least one traced cell's text differs from the previous cycle's row (the
 //! previous row given to [`TraceWriter::row`], written or not).
@@ -38,7 +47,13 @@ struct JsonRow<'a> {
     time: &'a str,
     #[serde(flatten)]
     values: NamedCells<'a>,
+    /// The names whose values are forced (left out when none is).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    forced: Vec<&'a str>,
 }
+
+/// Appended to the text of a forced cell in the table and CSV.
+pub const FORCED_MARK: char = '!';
 
 /// The traced values as a JSON object, in trace order.
 struct NamedCells<'a> {
@@ -221,6 +236,49 @@ impl<W: Write> TraceWriter<W> {
     /// Records the row of cycle `cycle` at clock `time_ns`; `cells` has one
     /// entry per name, in the same order (else an `InvalidInput` error).
     pub fn row(&mut self, cycle: u64, time_ns: i64, cells: &[TraceCell]) -> io::Result<()> {
+        self.row_marked(cycle, time_ns, cells, &[])
+    }
+
+    /// As [`Self::row`], marking the cells whose `forced` entry is true (see
+    /// the module documentation); an empty `forced` marks nothing.
+    pub fn row_marked(
+        &mut self,
+        cycle: u64,
+        time_ns: i64,
+        cells: &[TraceCell],
+        forced: &[bool],
+    ) -> io::Result<()> {
+        if forced.iter().any(|&f| f) {
+            let marked: Vec<TraceCell> = cells
+                .iter()
+                .zip(forced.iter().chain(std::iter::repeat(&false)))
+                .map(|(c, &f)| {
+                    let mut c = c.clone();
+                    if f {
+                        c.text.push(FORCED_MARK);
+                    }
+                    c
+                })
+                .collect();
+            let names: Vec<String> = self
+                .names
+                .iter()
+                .zip(forced)
+                .filter(|(_, f)| **f)
+                .map(|(n, _)| n.clone())
+                .collect();
+            return self.write_row(cycle, time_ns, &marked, &names);
+        }
+        self.write_row(cycle, time_ns, cells, &[])
+    }
+
+    fn write_row(
+        &mut self,
+        cycle: u64,
+        time_ns: i64,
+        cells: &[TraceCell],
+        forced: &[String],
+    ) -> io::Result<()> {
         if cells.len() != self.names.len() {
             return Err(io::Error::new(
                 io::ErrorKind::InvalidInput,
@@ -271,6 +329,7 @@ impl<W: Write> TraceWriter<W> {
                         names: &self.names,
                         cells,
                     },
+                    forced: forced.iter().map(String::as_str).collect(),
                 };
                 serde_json::to_writer(&mut *line, &row)?;
                 line.push(b'\n');
@@ -532,6 +591,35 @@ mod tests {
         let mut w = TraceWriter::new(Vec::new(), TraceFormat::Table, names(&["a"]), false);
         let err = w.row(0, 0, &[]).unwrap_err();
         assert_eq!(err.kind(), io::ErrorKind::InvalidInput);
+    }
+
+    #[test]
+    fn forced_cells_are_marked_and_unforced_rows_are_unchanged() {
+        let cells = [
+            TraceCell::from_string("a!", false),
+            TraceCell::from_value(Int, 7),
+        ];
+        let write = |format, forced: &[bool]| {
+            let mut w = TraceWriter::new(Vec::new(), format, names(&["s", "n"]), false);
+            w.row_marked(0, 0, &cells, forced).unwrap();
+            String::from_utf8(w.finish().unwrap()).unwrap()
+        };
+        assert_eq!(
+            write(TraceFormat::Csv, &[false, true]),
+            "cycle,time,s,n\n0,T#0s,'a!',7!\n"
+        );
+        assert_eq!(
+            write(TraceFormat::Csv, &[false, false]),
+            write(TraceFormat::Csv, &[])
+        );
+        assert_eq!(
+            write(TraceFormat::Jsonl, &[true, true]),
+            "{\"cycle\":0,\"time\":\"T#0s\",\"s\":\"a!\",\"n\":7,\"forced\":[\"s\",\"n\"]}\n"
+        );
+        assert_eq!(
+            write(TraceFormat::Jsonl, &[false, false]),
+            "{\"cycle\":0,\"time\":\"T#0s\",\"s\":\"a!\",\"n\":7}\n"
+        );
     }
 
     #[test]

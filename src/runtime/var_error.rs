@@ -105,6 +105,48 @@ pub enum VarError {
         /// The value given, as a literal.
         value: String,
     },
+    /// A write from outside to a variable the program itself cannot write:
+    /// reading it is fine.
+    ReadOnly {
+        /// The path.
+        path: String,
+        /// Why it cannot be written.
+        why: ReadOnlyReason,
+    },
+    /// A literal that does not decode as a value of the variable it is
+    /// meant for (a force): names both.
+    ValueDoesNotFit {
+        /// The variable's path.
+        path: String,
+        /// The literal as given (trimmed).
+        literal: String,
+        /// The variable's type.
+        ty: String,
+        /// Why (boxed to keep the error small).
+        problem: Box<ValueProblem>,
+    },
+}
+
+/// Why a variable cannot be written from outside the program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ReadOnlyReason {
+    /// It is declared CONSTANT (its uses may be folded into the code).
+    Constant,
+    /// An SFC step flag (`S1.X`, `S1.T`): the chart's evolution sets it.
+    StepFlag,
+    /// An SFC action's control flag (`A1.Q`, `A1.A`): action control sets it.
+    ActionFlag,
+}
+
+impl fmt::Display for ReadOnlyReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            ReadOnlyReason::Constant => "it is a CONSTANT",
+            ReadOnlyReason::StepFlag => "step flags are set by the chart's evolution",
+            ReadOnlyReason::ActionFlag => "action flags are set by action control",
+        })
+    }
 }
 
 /// What is wrong with a variable path's text.
@@ -121,6 +163,17 @@ pub enum PathProblem {
     IndexNotAnInteger(String),
     /// A character that cannot follow.
     Unexpected(char),
+}
+
+impl fmt::Display for ValueProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ValueProblem::NotAString => f.write_str("a string literal is needed (write 'text')"),
+            ValueProblem::NotAnEnumValue => f.write_str("not a value of the enumeration"),
+            ValueProblem::Invalid => f.write_str("not a valid literal of the type"),
+            ValueProblem::OutsideSubrange(v) => write!(f, "{v} is outside the subrange"),
+        }
+    }
 }
 
 /// Why a literal does not fit a variable.
@@ -198,6 +251,21 @@ impl fmt::Display for VarError {
             VarError::WrongValue { path, ty, value } => {
                 write!(f, "`{path}` is of type {ty} and cannot hold {value}")
             }
+            VarError::ReadOnly { path, why } => {
+                write!(
+                    f,
+                    "`{path}` cannot be written from outside: {why} (it can be read)"
+                )
+            }
+            VarError::ValueDoesNotFit {
+                path,
+                literal,
+                ty,
+                problem,
+            } => write!(
+                f,
+                "`{path}` is of type {ty} and cannot take `{literal}`: {problem}"
+            ),
         }
     }
 }

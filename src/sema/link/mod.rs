@@ -248,6 +248,7 @@ impl Linker<'_> {
                     addr: a,
                     kind: MemberKind::Local,
                     location: g.location.clone(),
+                    constant: g.constant,
                 }),
                 _ => None,
             })
@@ -262,6 +263,7 @@ impl Linker<'_> {
                     addr: *addr,
                     kind: MemberKind::Local,
                     location: Some(text.clone()),
+                    constant: false,
                 });
             }
         }
@@ -276,6 +278,7 @@ impl Linker<'_> {
                         addr: a,
                         kind: v.kind,
                         location: Some(loc.clone()),
+                        constant: v.constant,
                     });
                 }
             }
