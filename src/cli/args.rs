@@ -41,8 +41,9 @@ pub struct RunArgs {
     /// Source files (IL, ST and SFC may be mixed; the language is recognised from the content).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// Number of cycles to run.
-    #[arg(long, required = true)]
+    /// Number of cycles (base ticks) to run; required unless --realtime,
+    /// which runs until stopped (Ctrl-C, SIGTERM) without it.
+    #[arg(long)]
     pub cycles: Option<u64>,
     /// Cycle time of the implicit task (e.g. 10ms, T#100ms).
     #[arg(long, default_value = "10ms")]
@@ -53,7 +54,8 @@ pub struct RunArgs {
     /// Initial value NAME=VALUE (IEC literal), applied before cycle 0. Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
-    /// Stimulus CSV file (first column `cycle` or `time`).
+    /// Stimulus CSV file (first column `cycle` or `time`); `-` reads it from
+    /// standard input (live, row by row, with --realtime).
     #[arg(long)]
     pub stimulus: Option<PathBuf>,
     /// Comma-separated variables to trace (default: VAR_OUTPUTs and %Q variables).
@@ -71,9 +73,17 @@ pub struct RunArgs {
     /// Wall-clock limit of one cycle (e.g. 1s, 250ms); 0 disables it.
     #[arg(long, default_value = "1s")]
     pub watchdog: String,
-    /// Pace cycles on the wall clock instead of running as fast as possible.
+    /// Run the tasks on the wall clock, each at its INTERVAL, with absolute
+    /// deadlines; the program's clock is the real one.
     #[arg(long)]
     pub realtime: bool,
+    /// Print per-task statistics (cycles, execution time, start jitter,
+    /// overruns) on standard error at the end of the run.
+    #[arg(long)]
+    pub stats: bool,
+    /// Format of --stats.
+    #[arg(long, default_value = "text", value_parser = ["text", "json"], requires = "stats")]
+    pub stats_format: String,
 }
 
 /// `plcrun check FILES...`: parse and check only.

@@ -1,6 +1,7 @@
 //! The embeddable soft-PLC: compile sources, run cycles on the virtual
 //! clock, read and write variables by name.
 
+use super::clock::Clock;
 use super::default_trace;
 use super::scheduler::Scheduler;
 use super::stop::StopHandle;
@@ -100,8 +101,10 @@ pub struct Plc {
     pub(super) machine: Machine,
     sources: SourceMap,
     warnings: Diagnostics,
-    cycle: u64,
-    scheduler: Scheduler,
+    pub(super) cycle: u64,
+    pub(super) scheduler: Scheduler,
+    /// Where `now` comes from (virtual by default).
+    pub(super) clock: Clock,
     /// Tells this PLC's variable handles from another's.
     pub(super) id: u64,
     /// Stop requests from other threads.
@@ -157,6 +160,7 @@ impl Plc {
             warnings,
             cycle: 0,
             scheduler,
+            clock: Clock::default(),
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             stop: StopHandle::default(),
         }
@@ -192,36 +196,64 @@ impl Plc {
         self.scheduler.base_tick()
     }
 
-    /// The clock value of the next cycle, in nanoseconds.
+    /// The clock value of the next cycle, in nanoseconds: on the virtual
+    /// clock the next base tick's time, on another clock its current
+    /// reading.
     pub fn time(&self) -> i64 {
-        (self.cycle as i64).saturating_mul(self.scheduler.base_tick())
+        self.clock.now(self.scheduler.scheduled_time())
     }
 
-    /// Runs one cycle: every task due at this tick runs its programs.
+    /// The clock value the last cycle ran at (the `now` its timers saw), in
+    /// nanoseconds; 0 before the first cycle.
+    pub fn last_cycle_time(&self) -> i64 {
+        self.machine.now
+    }
+
+    /// Replaces the clock (see [`Clock`]); the schedule is unchanged.
+    pub fn set_clock(&mut self, clock: Clock) {
+        self.clock = clock;
+    }
+
+    /// The clock in use.
+    pub fn clock(&self) -> &Clock {
+        &self.clock
+    }
+
+    /// Runs one base tick: every task due at this tick runs its programs,
+    /// by priority.
     pub fn run_cycle(&mut self) -> Result<(), RuntimeFault> {
-        let now = self.time();
-        self.machine.now = now;
+        let scheduled = self.scheduler.scheduled_time();
+        self.machine.now = self.clock.now(scheduled);
         self.machine.start_cycle();
         self.scheduler
-            .start_tick(&self.image.tasks, now, &self.machine.mem);
+            .start_tick(&self.image.tasks, scheduled, &self.machine.mem);
         for k in 0..self.scheduler.len() {
             let Some(p) = self.scheduler.due_program(k, &self.image.programs) else {
                 continue;
             };
-            let inst = &self.image.programs[p];
-            let (code, base) = (inst.code, inst.base);
-            for &(from, to) in &inst.inputs {
-                self.machine.mem[to as usize] = self.machine.mem[from as usize];
-            }
-            if let Err(fault) = self.machine.run(&self.image, code, base) {
-                return Err(self.locate(fault));
-            }
-            let inst = &self.image.programs[p];
-            for &(from, to) in &inst.outputs {
-                self.machine.mem[to as usize] = self.machine.mem[from as usize];
-            }
+            self.run_program(p)?;
         }
+        self.scheduler.end_tick();
         self.cycle += 1;
+        Ok(())
+    }
+
+    /// Runs program instance `p`: copies its task-bound inputs in, runs
+    /// its body, copies its outputs out.
+    #[inline]
+    pub(super) fn run_program(&mut self, p: usize) -> Result<(), RuntimeFault> {
+        let inst = &self.image.programs[p];
+        let (code, base) = (inst.code, inst.base);
+        for &(from, to) in &inst.inputs {
+            self.machine.mem[to as usize] = self.machine.mem[from as usize];
+        }
+        if let Err(fault) = self.machine.run(&self.image, code, base) {
+            return Err(self.locate(fault));
+        }
+        let inst = &self.image.programs[p];
+        for &(from, to) in &inst.outputs {
+            self.machine.mem[to as usize] = self.machine.mem[from as usize];
+        }
         Ok(())
     }
 

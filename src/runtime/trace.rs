@@ -18,6 +18,12 @@
 //! 0      T#0s  TRUE   42
 //! ```
 //!
+//! A streaming writer ([`TraceWriter::set_streaming`], used in real time)
+//! writes and flushes every row as it comes, and so holds no rows: its
+//! table columns are as wide as the header or the first row's value,
+//! whichever is wider; a later, wider value shifts the rest of its row
+//! right rather than the whole column.
+//!
 //! With `changes_only`, the first row is written, then only rows where at
 //! least one traced cell's text differs from the previous cycle's row (the
 //! previous row given to [`TraceWriter::row`], written or not).
@@ -185,6 +191,8 @@ pub struct TraceWriter<W: Write> {
     /// Scratch for one JSON line.
     line: Vec<u8>,
     table: TableBuffer,
+    /// Write and flush each row at once (see the module docs).
+    streaming: bool,
 }
 
 impl<W: Write> TraceWriter<W> {
@@ -215,6 +223,22 @@ impl<W: Write> TraceWriter<W> {
             cycle_text: String::new(),
             line: Vec::new(),
             table,
+            streaming: false,
+        }
+    }
+
+    /// Writes and flushes every row as it comes (see the module docs).
+    /// Turn it on before the first row.
+    pub fn set_streaming(&mut self, on: bool) {
+        self.streaming = on;
+    }
+
+    /// Flushes what has been written so far (a buffered table is written
+    /// by [`Self::finish`] only).
+    pub fn flush(&mut self) -> io::Result<()> {
+        match &mut self.sink {
+            Sink::Csv(csv) => csv.flush(),
+            Sink::Plain(out) => out.flush(),
         }
     }
 
@@ -237,7 +261,8 @@ impl<W: Write> TraceWriter<W> {
         self.cycle_text.clear();
         let _ = write!(self.cycle_text, "{cycle}");
         let time = format_duration(time_ns, "T#");
-        match self.format {
+        let written = match self.format {
+            TraceFormat::Table if self.streaming => self.stream_table_row(&time, cells),
             TraceFormat::Table => {
                 let table = &mut self.table;
                 let texts = [self.cycle_text.as_str(), time.as_str()]
@@ -279,6 +304,40 @@ impl<W: Write> TraceWriter<W> {
                     Sink::Csv(_) => Ok(()),
                 }
             }
+        };
+        written?;
+        if self.streaming { self.flush() } else { Ok(()) }
+    }
+
+    /// Writes one table row now (the header and rule first, with the
+    /// widths the first row fixes).
+    fn stream_table_row(&mut self, time: &str, cells: &[TraceCell]) -> io::Result<()> {
+        let texts = || {
+            [self.cycle_text.as_str(), time]
+                .into_iter()
+                .chain(cells.iter().map(|c| c.text.as_str()))
+        };
+        if !self.header_written {
+            for (width, text) in self.table.widths.iter_mut().zip(texts()) {
+                *width = (*width).max(text.chars().count());
+            }
+            let header: Vec<&str> = ["cycle", "time"]
+                .into_iter()
+                .chain(self.names.iter().map(String::as_str))
+                .collect();
+            let rules: Vec<String> = self.table.widths.iter().map(|w| "-".repeat(*w)).collect();
+            let line = table_line(&self.table.widths, header.into_iter());
+            let rule = table_line(&self.table.widths, rules.iter().map(String::as_str));
+            if let Sink::Plain(out) = &mut self.sink {
+                out.write_all(line.as_bytes())?;
+                out.write_all(rule.as_bytes())?;
+            }
+            self.header_written = true;
+        }
+        let line = table_line(&self.table.widths, texts());
+        match &mut self.sink {
+            Sink::Plain(out) => out.write_all(line.as_bytes()),
+            Sink::Csv(_) => Ok(()),
         }
     }
 
@@ -287,6 +346,7 @@ impl<W: Write> TraceWriter<W> {
     pub fn finish(mut self) -> io::Result<W> {
         match self.format {
             TraceFormat::Csv => self.write_csv_header()?,
+            TraceFormat::Table if self.header_written => {}
             TraceFormat::Table => self.write_table()?,
             TraceFormat::Jsonl => {}
         }
@@ -375,6 +435,27 @@ impl<W: Write> TraceWriter<W> {
     }
 }
 
+/// One table line: `texts` left-aligned in columns of `widths`, two spaces
+/// apart, without trailing blanks.
+fn table_line<'a>(widths: &[usize], texts: impl Iterator<Item = &'a str>) -> String {
+    let mut line = String::new();
+    for (i, text) in texts.enumerate() {
+        if i > 0 {
+            line.push_str("  ");
+        }
+        line.push_str(text);
+        let width = widths.get(i).copied().unwrap_or(0);
+        line.extend(std::iter::repeat_n(
+            ' ',
+            width.saturating_sub(text.chars().count()),
+        ));
+    }
+    let kept = line.trim_end_matches(' ').len();
+    line.truncate(kept);
+    line.push('\n');
+    line
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -457,6 +538,46 @@ mod tests {
         assert_eq!(
             run(TraceFormat::Csv, true, &rows),
             "cycle,time,start,Count\n0,T#0s,FALSE,0\n1,T#10ms,FALSE,1\n3,T#30ms,FALSE,0\n"
+        );
+    }
+
+    #[test]
+    fn a_streaming_table_writes_each_row_at_once() {
+        let mut w = TraceWriter::new(
+            Vec::new(),
+            TraceFormat::Table,
+            names(&["start", "Count"]),
+            false,
+        );
+        w.set_streaming(true);
+        for (cycle, &(start, count)) in ROWS.iter().enumerate() {
+            let cells = [
+                TraceCell::from_value(Bool, start as u64),
+                TraceCell::from_value(Int, count as u64),
+            ];
+            w.row(cycle as u64, cycle as i64 * 10 * MS, &cells).unwrap();
+        }
+        // Widths from the header and the first row; the wider -1200 and
+        // T#10ms push their rows right.
+        assert_eq!(
+            String::from_utf8(w.finish().unwrap()).unwrap(),
+            "cycle  time  start  Count\n\
+             -----  ----  -----  -----\n\
+             0      T#0s  FALSE  0\n\
+             1      T#10ms  TRUE   0\n\
+             2      T#20ms  TRUE   0\n\
+             3      T#30ms  TRUE   -1200\n"
+        );
+    }
+
+    #[test]
+    fn streaming_csv_is_the_same_csv() {
+        let mut w = TraceWriter::new(Vec::new(), TraceFormat::Csv, names(&["Count"]), false);
+        w.set_streaming(true);
+        w.row(0, 0, &[TraceCell::from_value(Int, 3)]).unwrap();
+        assert_eq!(
+            String::from_utf8(w.finish().unwrap()).unwrap(),
+            "cycle,time,Count\n0,T#0s,3\n"
         );
     }
 
