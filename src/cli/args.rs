@@ -4,7 +4,7 @@
 //! implied when the first argument is not a subcommand's name);
 //! `plcrun check FILES...` only checks.
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
 /// The whole command line.
@@ -82,8 +82,8 @@ pub struct RunArgs {
     #[arg(long)]
     pub stats: bool,
     /// Format of --stats.
-    #[arg(long, default_value = "text", value_parser = ["text", "json"], requires = "stats")]
-    pub stats_format: String,
+    #[arg(long, value_enum, default_value_t = StatsFormat::Text, requires = "stats")]
+    pub stats_format: StatsFormat,
 }
 
 /// `plcrun check FILES...`: parse and check only.
@@ -98,4 +98,13 @@ pub struct CheckArgs {
     /// The PROGRAM to build when the files hold several (with --dump-ir).
     #[arg(long)]
     pub program: Option<String>,
+}
+
+/// How `--stats` prints the statistics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum StatsFormat {
+    /// An aligned table, times in microseconds.
+    Text,
+    /// One line of JSON, times in nanoseconds.
+    Json,
 }

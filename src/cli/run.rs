@@ -1,6 +1,6 @@
 //! The `run` and `check` commands, over the library's public API.
 
-use super::args::{CheckArgs, RunArgs};
+use super::args::{CheckArgs, RunArgs, StatsFormat};
 use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
 use plcrun::{
     CheckOptions, Diagnostics, LiveStimulus, Options, Plc, RunError, Session, TaskRunner,
@@ -158,7 +158,7 @@ fn drive<W: Write>(
     session: &mut Session,
     cycles: Option<u64>,
     writer: &mut TraceWriter<W>,
-) -> Result<(), RunError> {
+) -> Result<(), Box<RunError>> {
     let stop = session.plc().stop_handle();
     // A second handler cannot be set in one process; the run works without.
     if let Err(e) = ctrlc::set_handler(move || stop.stop()) {
@@ -166,7 +166,7 @@ fn drive<W: Write>(
     }
     if !args.realtime && !args.stats {
         // Virtual time without statistics: the plain loop.
-        return session.run(cycles.unwrap_or(0), writer);
+        return session.run(cycles.unwrap_or(0), writer).map_err(Box::new);
     }
     let mut runner = if args.realtime {
         TaskRunner::real_time(session.plc())
@@ -176,7 +176,7 @@ fn drive<W: Write>(
     let result = runner.run(session, cycles, writer);
     if args.stats {
         let stats = runner.stats().snapshot();
-        if args.stats_format == "json" {
+        if args.stats_format == StatsFormat::Json {
             match serde_json::to_string(&stats) {
                 Ok(json) => eprintln!("{json}"),
                 Err(e) => eprintln!("error: cannot print the statistics: {e}"),
@@ -185,7 +185,7 @@ fn drive<W: Write>(
             eprint!("{}", format_stats_table(&stats));
         }
     }
-    result
+    result.map_err(Box::new)
 }
 
 /// `plcrun FILES... --cycles N ...`
@@ -218,7 +218,7 @@ pub fn run(args: &RunArgs) -> i32 {
     };
     let names = session.trace_names().to_vec();
     let mut writer = TraceWriter::new(out, format, names, args.changes_only);
-    let status = match drive(args, &mut session, args.cycles, &mut writer) {
+    let status = match drive(args, &mut session, args.cycles, &mut writer).map_err(|e| *e) {
         Ok(()) => EXIT_OK,
         Err(RunError::Fault(fault)) => {
             eprintln!("error: {fault}");

@@ -32,7 +32,9 @@
 //! let trace = TraceWriter::new(std::io::sink(), TraceFormat::Csv, Vec::new(), false);
 //! // On its own thread, until stopped.
 //! let thread = runner.spawn(Session::new(plc), None, trace);
-//! std::thread::sleep(Duration::from_millis(50));
+//! while stats.snapshot()[0].cycles < 6 {
+//!     std::thread::sleep(Duration::from_millis(5));
+//! }
 //! stop.stop();
 //! let outcome = thread.join();
 //! outcome.result?;
@@ -185,10 +187,8 @@ impl TaskRunner {
             let deadline = self
                 .real_time
                 .then(|| deadline_of(session.plc().next_tick()));
-            if let Some(deadline) = deadline {
-                if !sleep_until(deadline, &stop) {
-                    break;
-                }
+            if deadline.is_some_and(|d| !sleep_until(d, &stop)) {
+                break;
             }
             session.apply_live_stimulus().map_err(RunError::Stimulus)?;
             let cycle = session.plc().cycle();
