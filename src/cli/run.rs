@@ -10,6 +10,10 @@ use plcrun::{
 use std::io::{Read, Write};
 use std::time::Duration;
 
+/// Exit status after a third Ctrl-C or SIGTERM (128 + SIGINT, as shells
+/// report an interrupted command).
+const EXIT_INTERRUPTED: i32 = 130;
+
 fn usage_error(msg: impl std::fmt::Display) -> i32 {
     eprintln!("error: {msg}");
     EXIT_USAGE
@@ -160,8 +164,20 @@ fn drive<W: Write>(
     writer: &mut TraceWriter<W>,
 ) -> Result<(), Box<RunError>> {
     let stop = session.plc().stop_handle();
+    // First signal: stop at the cycle boundary; second: interrupt the
+    // cycle under way; third: leave at once (a cycle stuck where it
+    // cannot be interrupted).
+    let on_signal = move || {
+        if stop.is_abort_requested() {
+            std::process::exit(EXIT_INTERRUPTED);
+        } else if stop.is_stop_requested() {
+            stop.abort();
+        } else {
+            stop.stop();
+        }
+    };
     // A second handler cannot be set in one process; the run works without.
-    if let Err(e) = ctrlc::set_handler(move || stop.stop()) {
+    if let Err(e) = ctrlc::set_handler(on_signal) {
         eprintln!("warning: Ctrl-C and SIGTERM will not stop cleanly: {e}");
     }
     if !args.realtime && !args.stats {
