@@ -199,6 +199,7 @@ impl Plc {
     /// The clock value of the next cycle, in nanoseconds: on the virtual
     /// clock the next base tick's time, on another clock its current
     /// reading.
+    #[inline]
     pub fn time(&self) -> i64 {
         self.clock.now(self.scheduler.scheduled_time())
     }
@@ -240,7 +241,7 @@ impl Plc {
 
     /// Runs program instance `p`: copies its task-bound inputs in, runs
     /// its body, copies its outputs out.
-    #[inline]
+    #[inline(always)]
     pub(super) fn run_program(&mut self, p: usize) -> Result<(), RuntimeFault> {
         let inst = &self.image.programs[p];
         let (code, base) = (inst.code, inst.base);

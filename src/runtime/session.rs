@@ -292,6 +292,7 @@ impl Session {
 
     /// Applies the live stimulus rows that have arrived and are due at the
     /// next cycle (nothing without a live stimulus).
+    #[inline]
     pub fn apply_live_stimulus(&mut self) -> Result<(), LiveStimulusError> {
         match &mut self.live {
             Some(live) => live.apply_due(&mut self.plc),

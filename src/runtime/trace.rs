@@ -245,6 +245,23 @@ impl<W: Write> TraceWriter<W> {
     /// Records the row of cycle `cycle` at clock `time_ns`; `cells` has one
     /// entry per name, in the same order (else an `InvalidInput` error).
     pub fn row(&mut self, cycle: u64, time_ns: i64, cells: &[TraceCell]) -> io::Result<()> {
+        if self.streaming {
+            return self.streamed_row(cycle, time_ns, cells);
+        }
+        self.record_row(cycle, time_ns, cells)
+    }
+
+    /// A row in streaming mode: written, then flushed (out of the virtual
+    /// run's path).
+    #[cold]
+    #[inline(never)]
+    fn streamed_row(&mut self, cycle: u64, time_ns: i64, cells: &[TraceCell]) -> io::Result<()> {
+        self.record_row(cycle, time_ns, cells)?;
+        self.flush()
+    }
+
+    #[inline]
+    fn record_row(&mut self, cycle: u64, time_ns: i64, cells: &[TraceCell]) -> io::Result<()> {
         if cells.len() != self.names.len() {
             return Err(io::Error::new(
                 io::ErrorKind::InvalidInput,
@@ -261,7 +278,7 @@ impl<W: Write> TraceWriter<W> {
         self.cycle_text.clear();
         let _ = write!(self.cycle_text, "{cycle}");
         let time = format_duration(time_ns, "T#");
-        let written = match self.format {
+        match self.format {
             TraceFormat::Table if self.streaming => self.stream_table_row(&time, cells),
             TraceFormat::Table => {
                 let table = &mut self.table;
@@ -304,19 +321,7 @@ impl<W: Write> TraceWriter<W> {
                     Sink::Csv(_) => Ok(()),
                 }
             }
-        };
-        written?;
-        if self.streaming {
-            return self.flush_streamed_row();
         }
-        Ok(())
-    }
-
-    /// Flushes a row in streaming mode (out of the virtual run's path).
-    #[cold]
-    #[inline(never)]
-    fn flush_streamed_row(&mut self) -> io::Result<()> {
-        self.flush()
     }
 
     /// Writes one table row now (the header and rule first, with the
