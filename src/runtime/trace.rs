@@ -260,7 +260,7 @@ impl<W: Write> TraceWriter<W> {
         self.flush()
     }
 
-    #[inline]
+    #[inline(always)]
     fn record_row(&mut self, cycle: u64, time_ns: i64, cells: &[TraceCell]) -> io::Result<()> {
         if cells.len() != self.names.len() {
             return Err(io::Error::new(
