@@ -30,6 +30,7 @@ pub mod scheduler;
 pub mod session;
 pub mod stimulus;
 pub mod stop;
+mod table_rows;
 pub mod task_stats;
 pub mod tasks;
 pub mod trace;

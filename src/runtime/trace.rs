@@ -11,7 +11,8 @@
 //! {"cycle":0,"time":"T#0s","start":true,"count":42}
 //! ```
 //! Table (columns left-aligned, two spaces apart; written by
-//! [`TraceWriter::finish`], since the widths depend on every row):
+//! [`TraceWriter::finish`], since the widths depend on every row; the rows
+//! wait in memory, and past 4 MiB in a temporary file):
 //! ```text
 //! cycle  time  start  count
 //! -----  ----  -----  -----
@@ -28,6 +29,7 @@
 //! least one traced cell's text differs from the previous cycle's row (the
 //! previous row given to [`TraceWriter::row`], written or not).
 
+use super::table_rows::TableRows;
 use crate::elementary::ElemType;
 use crate::value::format::{format_string, json_value, write_value};
 use crate::value::literal::format_duration;
@@ -165,12 +167,10 @@ enum Sink<W: Write> {
     Plain(W),
 }
 
-/// Rows kept for the table until [`TraceWriter::finish`]: all cell texts in
-/// one buffer, with their end offsets.
-#[derive(Default)]
+/// Rows kept for the table until [`TraceWriter::finish`], and the column
+/// widths so far.
 struct TableBuffer {
-    text: String,
-    ends: Vec<usize>,
+    rows: TableRows,
     /// Width in characters of each column so far (header included).
     widths: Vec<usize>,
 }
@@ -204,7 +204,10 @@ impl<W: Write> TraceWriter<W> {
             TraceFormat::Csv => Sink::Csv(Box::new(csv::WriterBuilder::new().from_writer(out))),
             TraceFormat::Table | TraceFormat::Jsonl => Sink::Plain(out),
         };
-        let mut table = TableBuffer::default();
+        let mut table = TableBuffer {
+            rows: TableRows::new(names.len() + 2),
+            widths: Vec::new(),
+        };
         if format == TraceFormat::Table {
             table.widths = ["cycle", "time"]
                 .into_iter()
@@ -287,10 +290,9 @@ impl<W: Write> TraceWriter<W> {
                     .chain(cells.iter().map(|c| c.text.as_str()));
                 for (width, text) in table.widths.iter_mut().zip(texts) {
                     *width = (*width).max(text.chars().count());
-                    table.text.push_str(text);
-                    table.ends.push(table.text.len());
+                    table.rows.push(text);
                 }
-                Ok(())
+                table.rows.end_row()
             }
             TraceFormat::Csv => {
                 self.write_csv_header()?;
@@ -414,8 +416,8 @@ impl<W: Write> TraceWriter<W> {
         let Sink::Plain(out) = &mut self.sink else {
             return Ok(());
         };
-        let table = &self.table;
-        let widths = &table.widths;
+        let TableBuffer { rows, widths } = &mut self.table;
+        let widths = &*widths;
         let mut line = String::new();
         let mut emit = |line: &mut String, cells: &mut dyn Iterator<Item = &str>| {
             line.clear();
@@ -440,16 +442,7 @@ impl<W: Write> TraceWriter<W> {
         emit(&mut line, &mut header.into_iter())?;
         let rules: Vec<String> = widths.iter().map(|w| "-".repeat(*w)).collect();
         emit(&mut line, &mut rules.iter().map(String::as_str))?;
-        let mut start = 0;
-        for row in table.ends.chunks(widths.len().max(1)) {
-            let mut cells = row.iter().map(|&end| {
-                let text = table.text.get(start..end).unwrap_or("");
-                start = end;
-                text
-            });
-            emit(&mut line, &mut cells)?;
-        }
-        Ok(())
+        rows.for_each_row(|cells| emit(&mut line, cells))
     }
 }
 
@@ -597,6 +590,27 @@ mod tests {
             String::from_utf8(w.finish().unwrap()).unwrap(),
             "cycle,time,Count\n0,T#0s,3\n"
         );
+    }
+
+    #[test]
+    fn a_table_longer_than_memory_holds_is_the_same_table() {
+        let rows: Vec<(bool, i16)> = (0..2000).map(|k| (k % 3 == 0, (k * 7) as i16)).collect();
+        let in_memory = run(TraceFormat::Table, false, &rows);
+        let mut w = TraceWriter::new(
+            Vec::new(),
+            TraceFormat::Table,
+            names(&["start", "Count"]),
+            false,
+        );
+        w.table.rows = TableRows::with_limit(4, 100);
+        for (cycle, &(start, count)) in rows.iter().enumerate() {
+            let cells = [
+                TraceCell::from_value(Bool, start as u64),
+                TraceCell::from_value(Int, count as u64),
+            ];
+            w.row(cycle as u64, cycle as i64 * 10 * MS, &cells).unwrap();
+        }
+        assert_eq!(String::from_utf8(w.finish().unwrap()).unwrap(), in_memory);
     }
 
     #[test]
