@@ -51,22 +51,29 @@ pub(crate) mod vm;
 pub use diagnostics::{Diagnostic, Diagnostics, Severity};
 pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
 pub use elementary::ElemType;
+pub use runtime::clock::Clock;
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
-pub use runtime::life_cycle::PlcState;
 pub use runtime::forcing::Force;
 pub use runtime::io_address::{AddressError, Area, IoAddress, Width};
+pub use runtime::life_cycle::PlcState;
+pub use runtime::live_stimulus::{LiveStimulus, LiveStimulusError};
 pub use runtime::names::VarRef;
 pub use runtime::plc_value::Value;
 pub use runtime::process_image::ProcessImage;
-pub use runtime::session::{Pacing, RunError, Session, StimulusBindError};
+pub use runtime::realtime::{RunOutcome, RunThread, TaskRunner};
+pub use runtime::session::{
+    CycleHook, Pacing, RunError, Session, StimulusBindError, StopHook, StopHookError,
+};
 pub use runtime::stimulus::{
     Stimulus, StimulusCursor, StimulusError, StimulusKey, StimulusRow, parse_stimulus,
 };
 pub use runtime::stop::StopHandle;
+pub use runtime::task_stats::{TaskStats, TaskStatsHandle, TimeStats, format_stats_table};
+pub use runtime::tasks::{TaskInfo, TaskStepError};
 pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter, UnknownTraceFormat};
-pub use runtime::watchdog::{UnknownTask, WatchdogTrip};
 pub use runtime::var_error::{PathProblem, ReadOnlyReason, ValueProblem, VarError};
 pub use runtime::variables::{ChartState, Direction, VarInfo, VarShape};
+pub use runtime::watchdog::{UnknownTask, WatchdogTrip};
 pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind};

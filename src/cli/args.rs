@@ -4,7 +4,7 @@
 //! implied when the first argument is not a subcommand's name);
 //! `plcrun check FILES...` only checks.
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
 /// The whole command line.
@@ -43,8 +43,9 @@ pub struct RunArgs {
     /// Source files (IL, ST and SFC may be mixed; the language is recognised from the content).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// Number of cycles to run.
-    #[arg(long, required = true)]
+    /// Number of cycles (base ticks) to run; required unless --realtime,
+    /// which runs until stopped (Ctrl-C, SIGTERM) without it.
+    #[arg(long)]
     pub cycles: Option<u64>,
     /// Cycle time of the implicit task (e.g. 10ms, T#100ms).
     #[arg(long, default_value = "10ms")]
@@ -59,7 +60,8 @@ pub struct RunArgs {
     /// --set cannot change it; the trace marks it. Repeatable.
     #[arg(long = "force", value_name = "NAME=VALUE")]
     pub force: Vec<String>,
-    /// Stimulus CSV file (first column `cycle` or `time`).
+    /// Stimulus CSV file (first column `cycle` or `time`); `-` reads it from
+    /// standard input (live, row by row, with --realtime).
     #[arg(long)]
     pub stimulus: Option<PathBuf>,
     /// Comma-separated variables to trace (default: VAR_OUTPUTs and %Q variables).
@@ -77,9 +79,17 @@ pub struct RunArgs {
     /// Wall-clock limit of one cycle (e.g. 1s, 250ms); 0 disables it.
     #[arg(long, default_value = "1s")]
     pub watchdog: String,
-    /// Pace cycles on the wall clock instead of running as fast as possible.
+    /// Run the tasks on the wall clock, each at its INTERVAL, with absolute
+    /// deadlines; the program's clock is the real one.
     #[arg(long)]
     pub realtime: bool,
+    /// Print per-task statistics (cycles, execution time, start jitter,
+    /// overruns) on standard error at the end of the run.
+    #[arg(long)]
+    pub stats: bool,
+    /// Format of --stats.
+    #[arg(long, value_enum, default_value_t = StatsFormat::Text, requires = "stats")]
+    pub stats_format: StatsFormat,
 }
 
 /// `plcrun check FILES...`: parse and check only.
@@ -94,4 +104,13 @@ pub struct CheckArgs {
     /// The PROGRAM to build when the files hold several (with --dump-ir).
     #[arg(long)]
     pub program: Option<String>,
+}
+
+/// How `--stats` prints the statistics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum StatsFormat {
+    /// An aligned table, times in microseconds.
+    Text,
+    /// One line of JSON, times in nanoseconds.
+    Json,
 }

@@ -1,13 +1,18 @@
 //! The `run` and `check` commands, over the library's public API.
 
-use super::args::{CheckArgs, RunArgs};
+use super::args::{CheckArgs, RunArgs, StatsFormat};
 use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
 use plcrun::{
-    CheckOptions, Diagnostics, Options, Pacing, Plc, RunError, Session, TraceFormat, TraceWriter,
-    check as check_sources, load_files, parse_stimulus, parse_time_literal,
+    CheckOptions, Diagnostics, LiveStimulus, Options, Plc, RunError, Session, TaskRunner,
+    TraceFormat, TraceWriter, check as check_sources, format_stats_table, load_files,
+    parse_stimulus, parse_time_literal,
 };
-use std::io::Write;
+use std::io::{Read, Write};
 use std::time::Duration;
+
+/// Exit status after a third Ctrl-C or SIGTERM (128 + SIGINT, as shells
+/// report an interrupted command).
+const EXIT_INTERRUPTED: i32 = 130;
 
 fn usage_error(msg: impl std::fmt::Display) -> i32 {
     eprintln!("error: {msg}");
@@ -120,28 +125,97 @@ fn session(args: &RunArgs, mut plc: Plc) -> Result<Session, String> {
             .collect()
     };
     let mut session = Session::new(plc);
-    if let Some(path) = &args.stimulus {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| format!("cannot read stimulus `{}`: {e}", path.display()))?;
-        let stimulus = parse_stimulus(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-        session
-            .bind_stimulus(stimulus)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+    match &args.stimulus {
+        // Live from standard input: rows applied as they arrive.
+        Some(path) if path.as_os_str() == "-" && args.realtime => {
+            let live =
+                LiveStimulus::start(session.plc(), std::io::BufReader::new(std::io::stdin()))
+                    .map_err(|e| format!("standard input: {e}"))?;
+            session.set_live_stimulus(live);
+        }
+        Some(path) => {
+            let text = read_stimulus(path)?;
+            let stimulus = parse_stimulus(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+            session
+                .bind_stimulus(stimulus)
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+        }
+        None => {}
     }
     session
         .set_trace(&names)
         .map_err(|e| format!("--trace: {e}"))?;
-    if args.realtime {
-        session.set_pacing(Pacing::WallClock);
-    }
     Ok(session)
+}
+
+/// The text of a stimulus file; `-` is standard input, read to its end.
+fn read_stimulus(path: &std::path::Path) -> Result<String, String> {
+    if path.as_os_str() == "-" {
+        let mut text = String::new();
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .map_err(|e| format!("cannot read the stimulus from standard input: {e}"))?;
+        return Ok(text);
+    }
+    std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read stimulus `{}`: {e}", path.display()))
+}
+
+/// Runs the session: plain virtual cycles, or through a task runner (real
+/// time, or virtual with statistics), with Ctrl-C and SIGTERM asking for a
+/// stop at the next cycle boundary. Prints the statistics if asked.
+fn drive<W: Write>(
+    args: &RunArgs,
+    session: &mut Session,
+    cycles: Option<u64>,
+    writer: &mut TraceWriter<W>,
+) -> Result<(), Box<RunError>> {
+    let stop = session.plc().stop_handle();
+    // First signal: stop at the cycle boundary; second: interrupt the
+    // cycle under way; third: leave at once (a cycle stuck where it
+    // cannot be interrupted).
+    let on_signal = move || {
+        if stop.is_abort_requested() {
+            std::process::exit(EXIT_INTERRUPTED);
+        } else if stop.is_stop_requested() {
+            stop.abort();
+        } else {
+            stop.stop();
+        }
+    };
+    // A second handler cannot be set in one process; the run works without.
+    if let Err(e) = ctrlc::set_handler(on_signal) {
+        eprintln!("warning: Ctrl-C and SIGTERM will not stop cleanly: {e}");
+    }
+    if !args.realtime && !args.stats {
+        // Virtual time without statistics: the plain loop.
+        return session.run(cycles.unwrap_or(0), writer).map_err(Box::new);
+    }
+    let mut runner = if args.realtime {
+        TaskRunner::real_time(session.plc())
+    } else {
+        TaskRunner::virtual_time(session.plc())
+    };
+    let result = runner.run(session, cycles, writer);
+    if args.stats {
+        let stats = runner.stats().snapshot();
+        if args.stats_format == StatsFormat::Json {
+            match serde_json::to_string(&stats) {
+                Ok(json) => eprintln!("{json}"),
+                Err(e) => eprintln!("error: cannot print the statistics: {e}"),
+            }
+        } else {
+            eprint!("{}", format_stats_table(&stats));
+        }
+    }
+    result.map_err(Box::new)
 }
 
 /// `plcrun FILES... --cycles N ...`
 pub fn run(args: &RunArgs) -> i32 {
-    let Some(cycles) = args.cycles else {
-        return usage_error("--cycles is required");
-    };
+    if args.cycles.is_none() && !args.realtime {
+        return usage_error("--cycles is required (or --realtime, which runs until stopped)");
+    }
     let format: TraceFormat = match args.format.parse() {
         Ok(f) => f,
         Err(e) => return usage_error(e),
@@ -167,7 +241,7 @@ pub fn run(args: &RunArgs) -> i32 {
     };
     let names = session.trace_names().to_vec();
     let mut writer = TraceWriter::new(out, format, names, args.changes_only);
-    let status = match session.run(cycles, &mut writer) {
+    let status = match drive(args, &mut session, args.cycles, &mut writer).map_err(|e| *e) {
         Ok(()) => EXIT_OK,
         Err(RunError::Fault(fault)) => {
             // Starts with `error[R...]:`, like a compile diagnostic.
@@ -177,6 +251,10 @@ pub fn run(args: &RunArgs) -> i32 {
         Err(e @ RunError::Trace(_)) => {
             eprintln!("error: {e}");
             return EXIT_USAGE;
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            EXIT_USAGE
         }
     };
     match writer.finish() {

@@ -1,6 +1,7 @@
 //! The embeddable soft-PLC: compile sources, run cycles on the virtual
 //! clock, read and write variables by name.
 
+use super::clock::Clock;
 use super::default_trace;
 use super::forcing::Forces;
 use super::process_image::ProcessImage;
@@ -122,6 +123,8 @@ pub struct Plc {
     warnings: Diagnostics,
     pub(super) cycle: u64,
     pub(super) scheduler: Scheduler,
+    /// Where `now` comes from (virtual by default).
+    pub(super) clock: Clock,
     /// Tells this PLC's variable handles from another's.
     pub(super) id: u64,
     /// Stop requests from other threads.
@@ -191,6 +194,7 @@ impl Plc {
             warnings,
             cycle: 0,
             scheduler,
+            clock: Clock::default(),
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             stop,
             faulted: None,
@@ -230,60 +234,107 @@ impl Plc {
         self.scheduler.base_tick()
     }
 
-    /// The clock value of the next cycle, in nanoseconds.
+    /// The clock value of the next cycle, in nanoseconds: on the virtual
+    /// clock the next base tick's time, on another clock its current
+    /// reading.
+    #[inline]
     pub fn time(&self) -> i64 {
-        (self.cycle as i64).saturating_mul(self.scheduler.base_tick())
+        self.clock.now(self.scheduler.scheduled_time())
     }
 
-    /// Runs one cycle: every task due at this tick runs its programs.
-    /// After a fault the PLC is stopped: this runs nothing and returns the
-    /// same fault until a reset (see [`Self::state`], [`Self::reset_cold`]).
+    /// The clock value the last cycle ran at (the `now` its timers saw), in
+    /// nanoseconds; 0 before the first cycle.
+    pub fn last_cycle_time(&self) -> i64 {
+        self.machine.now
+    }
+
+    /// Replaces the clock (see [`Clock`]); the schedule is unchanged.
+    pub fn set_clock(&mut self, clock: Clock) {
+        self.clock = clock;
+    }
+
+    /// The clock in use.
+    pub fn clock(&self) -> &Clock {
+        &self.clock
+    }
+
+    /// Runs one base tick: every task due at this tick runs its programs,
+    /// by priority. After a fault the PLC is stopped: this runs nothing and
+    /// returns the same fault until a reset (see [`Self::state`],
+    /// [`Self::reset_cold`]).
     ///
-    /// Around them: at the start, located variables take the `%I`/`%M`
-    /// bits the host changed in the [process image](Self::process_image)
-    /// and forced variables take their forced values; after each program,
-    /// forces are applied again; at the end, `%Q`/`%M` variables the cycle
-    /// changed are published into the image.
+    /// Around the programs: at the start, located variables take the
+    /// `%I`/`%M` bits the host changed in the
+    /// [process image](Self::process_image) and forced variables take their
+    /// forced values; after each program, forces are applied again; at the
+    /// end, `%Q`/`%M` variables the cycle changed are published into the
+    /// image.
     pub fn run_cycle(&mut self) -> Result<(), RuntimeFault> {
+        let scheduled = self.begin_tick()?;
+        self.scheduler
+            .start_tick(&self.image.tasks, scheduled, &self.machine.mem);
+        for k in 0..self.scheduler.len() {
+            let Some(p) = self.scheduler.due_program(k, &self.image.programs) else {
+                continue;
+            };
+            self.run_program(p)?;
+        }
+        self.end_programs();
+        self.scheduler.end_tick();
+        self.cycle += 1;
+        Ok(())
+    }
+
+    /// Starts a tick or a task step: refuses while faulted, reads the
+    /// clock, latches the process image's inputs, applies forces. Returns
+    /// the tick's scheduled time.
+    #[inline(always)]
+    pub(super) fn begin_tick(&mut self) -> Result<i64, RuntimeFault> {
         if let Some(fault) = &self.faulted {
             return Err(fault.clone());
         }
-        let now = self.time();
-        self.machine.now = now;
+        let scheduled = self.scheduler.scheduled_time();
+        self.machine.now = self.clock.now(scheduled);
         if !self.io.is_empty() {
             self.io.latch(&mut self.machine.mem);
         }
         if !self.forces.is_empty() {
             self.apply_forces();
         }
-        self.scheduler
-            .start_tick(&self.image.tasks, now, &self.machine.mem);
-        for k in 0..self.scheduler.len() {
-            let Some(p) = self.scheduler.due_program(k, &self.image.programs) else {
-                continue;
-            };
-            let inst = &self.image.programs[p];
-            let (code, base) = (inst.code, inst.base);
-            self.watchdog.enter(inst.task);
-            for &(from, to) in &inst.inputs {
-                self.machine.mem[to as usize] = self.machine.mem[from as usize];
-            }
-            if let Err(fault) = self.machine.run(&self.image, code, base) {
-                return Err(self.fail(fault));
-            }
-            let inst = &self.image.programs[p];
-            for &(from, to) in &inst.outputs {
-                self.machine.mem[to as usize] = self.machine.mem[from as usize];
-            }
-            if !self.forces.is_empty() {
-                self.apply_forces();
-            }
-        }
+        Ok(scheduled)
+    }
+
+    /// Ends the programs of a tick or task step: publishes the process
+    /// image's outputs, tells the watchdog no task runs.
+    #[inline(always)]
+    pub(super) fn end_programs(&mut self) {
         if !self.io.is_empty() {
             self.io.publish(&self.machine.mem);
         }
         self.watchdog.leave();
-        self.cycle += 1;
+    }
+
+    /// Runs program instance `p`: copies its task-bound inputs in, runs
+    /// its body under its task's watchdog, copies its outputs out, applies
+    /// forces again.
+    #[inline(always)]
+    pub(super) fn run_program(&mut self, p: usize) -> Result<(), RuntimeFault> {
+        let inst = &self.image.programs[p];
+        let (code, base) = (inst.code, inst.base);
+        self.watchdog.enter(inst.task);
+        for &(from, to) in &inst.inputs {
+            self.machine.mem[to as usize] = self.machine.mem[from as usize];
+        }
+        if let Err(fault) = self.machine.run(&self.image, code, base) {
+            return Err(self.fail(fault));
+        }
+        let inst = &self.image.programs[p];
+        for &(from, to) in &inst.outputs {
+            self.machine.mem[to as usize] = self.machine.mem[from as usize];
+        }
+        if !self.forces.is_empty() {
+            self.apply_forces();
+        }
         Ok(())
     }
 

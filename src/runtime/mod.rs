@@ -6,6 +6,11 @@
 //! - [`plc_value`]: the values read and written;
 //! - [`session`]: a run as the command line does it — stimulus, trace;
 //! - [`scheduler`]: which program instances run at a tick, in which order;
+//! - [`clock`]: where a cycle's `now` comes from (virtual, wall, caller's);
+//! - [`tasks`]: listing tasks, one cycle of one task, timed ticks;
+//! - [`task_stats`]: per-task cycles, execution time, jitter, overruns;
+//! - [`realtime`]: running the tasks on the wall clock, on a thread;
+//! - [`live_stimulus`]: stimulus rows read while the program runs;
 //! - [`default_trace`]: what is traced when the user names nothing;
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
 //! - [`var_error`]: why such a path cannot be resolved, read or written;
@@ -21,19 +26,25 @@
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
 pub mod access;
+pub mod clock;
 pub mod default_trace;
 pub mod engine;
-pub mod life_cycle;
 pub mod forcing;
 pub mod io_address;
+pub mod life_cycle;
+pub mod live_stimulus;
 pub mod names;
 pub mod plc_value;
 pub mod process_image;
+pub mod realtime;
 pub mod scheduler;
 pub mod session;
 pub mod stimulus;
 pub mod stop;
+mod table_rows;
+pub mod task_stats;
+pub mod tasks;
 pub mod trace;
 pub mod var_error;
-pub mod watchdog;
 pub mod variables;
+pub mod watchdog;

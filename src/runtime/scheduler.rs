@@ -19,6 +19,9 @@ fn gcd(a: i64, b: i64) -> i64 {
 #[derive(Debug, Clone)]
 pub(crate) struct Scheduler {
     base_tick: i64,
+    /// The number of the next base tick: its scheduled time is
+    /// `next_tick × base_tick` (ticks a real-time run skips are counted).
+    next_tick: u64,
     /// Program instance indexes by task priority, then declaration.
     order: Vec<usize>,
     /// Each SINGLE task's trigger at the previous tick.
@@ -42,6 +45,7 @@ impl Scheduler {
         order.sort_by_key(|&i| (tasks[programs[i].task].priority, i));
         Scheduler {
             base_tick,
+            next_tick: 0,
             order,
             single_prev: vec![false; tasks.len()],
             due: vec![false; tasks.len()],
@@ -51,6 +55,50 @@ impl Scheduler {
     /// The base tick in nanoseconds.
     pub(crate) fn base_tick(&self) -> i64 {
         self.base_tick
+    }
+
+    /// The number of the next base tick.
+    pub(crate) fn next_tick(&self) -> u64 {
+        self.next_tick
+    }
+
+    /// The scheduled time of the next base tick, in nanoseconds.
+    #[inline]
+    pub(crate) fn scheduled_time(&self) -> i64 {
+        (self.next_tick as i64).saturating_mul(self.base_tick)
+    }
+
+    /// Moves on to the next base tick.
+    #[inline]
+    pub(crate) fn end_tick(&mut self) {
+        self.next_tick += 1;
+    }
+
+    /// Skips ahead so that the next base tick is `tick` (a real-time run
+    /// that fell behind); never goes back.
+    pub(crate) fn skip_to(&mut self, tick: u64) {
+        self.next_tick = self.next_tick.max(tick);
+    }
+
+    /// Whether task `task` is due at the current tick (after
+    /// [`Self::start_tick`]).
+    #[cfg(test)]
+    pub(crate) fn is_due(&self, task: usize) -> bool {
+        self.due.get(task).copied().unwrap_or(false)
+    }
+
+    /// How many activations of a cyclic task of `interval` ns fall on the
+    /// ticks `from..to` (0 for an event task).
+    pub(crate) fn activations_between(&self, interval: i64, from: u64, to: u64) -> u64 {
+        if interval <= 0 || to <= from {
+            return 0;
+        }
+        // Multiples of `interval` in [a, b) are ceil(b / i) - ceil(a / i).
+        let a = i128::from(from) * i128::from(self.base_tick);
+        let b = i128::from(to) * i128::from(self.base_tick);
+        let i = i128::from(interval);
+        let ceil = |x: i128| (x + i - 1) / i;
+        u64::try_from(ceil(b) - ceil(a)).unwrap_or(0)
     }
 
     /// Decides which tasks are due at clock `now`; a SINGLE task reads its
@@ -138,6 +186,24 @@ mod tests {
         assert_eq!(due(&s, &programs), [0, 2]);
         s.start_tick(&tasks, 50, &[]);
         assert_eq!(due(&s, &programs), [1]);
+    }
+
+    #[test]
+    fn ticks_advance_skip_and_count_missed_activations() {
+        let tasks = [task("fast", 20, 1, None), task("slow", 50, 0, None)];
+        let mut s = Scheduler::new(&tasks, &[program(0)], 10);
+        assert_eq!((s.next_tick(), s.scheduled_time()), (0, 0));
+        s.end_tick();
+        assert_eq!(s.scheduled_time(), 10);
+        s.skip_to(7);
+        s.skip_to(3);
+        assert_eq!((s.next_tick(), s.scheduled_time()), (7, 70));
+        // Ticks 1..7 are 10..60: "fast" is due at 20, 40, 60, "slow" at 50.
+        assert_eq!(s.activations_between(20, 1, 7), 3);
+        assert_eq!(s.activations_between(50, 1, 7), 1);
+        assert_eq!(s.activations_between(50, 0, 1), 1);
+        assert_eq!(s.activations_between(0, 0, 100), 0);
+        assert_eq!(s.activations_between(20, 5, 5), 0);
     }
 
     #[test]

@@ -21,6 +21,7 @@
 
 use super::default_trace::is_trace_column;
 use super::engine::{Plc, RuntimeFault};
+use super::live_stimulus::{LiveStimulus, LiveStimulusError};
 use super::names::VarRef;
 use super::plc_value::Value;
 use super::stimulus::{Stimulus, StimulusCursor};
@@ -64,13 +65,28 @@ pub enum RunError {
     Fault(RuntimeFault),
     /// The trace could not be written.
     Trace(io::Error),
+    /// A row of a live stimulus could not be read or does not fit.
+    Stimulus(LiveStimulusError),
+    /// The hook run at a clean stop ([`Session::set_on_stop`]) failed.
+    OnStop(StopHookError),
 }
+
+/// The error a stop hook returns.
+pub type StopHookError = Box<dyn std::error::Error + Send + Sync>;
+
+/// A hook run after each cycle, between cycles (see [`Session::set_cycle_hook`]).
+pub type CycleHook = Box<dyn FnMut(&mut Plc) + Send>;
+
+/// A hook run at a clean stop (see [`Session::set_on_stop`]).
+pub type StopHook = Box<dyn FnMut(&mut Plc) -> Result<(), StopHookError> + Send>;
 
 impl fmt::Display for RunError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             RunError::Fault(fault) => fault.fmt(f),
             RunError::Trace(e) => write!(f, "cannot write the trace: {e}"),
+            RunError::Stimulus(e) => e.fmt(f),
+            RunError::OnStop(e) => write!(f, "at the stop: {e}"),
         }
     }
 }
@@ -80,6 +96,8 @@ impl std::error::Error for RunError {
         match self {
             RunError::Fault(fault) => Some(fault),
             RunError::Trace(e) => Some(e),
+            RunError::Stimulus(e) => Some(e),
+            RunError::OnStop(e) => Some(e.as_ref()),
         }
     }
 }
@@ -117,6 +135,10 @@ pub struct Session {
     /// (empty while nothing has been forced).
     forced: Vec<bool>,
     pacing: Pacing,
+    /// Stimulus rows arriving while the program runs (`--stimulus -`).
+    live: Option<LiveStimulus>,
+    cycle_hook: Option<CycleHook>,
+    on_stop: Option<StopHook>,
 }
 
 impl Session {
@@ -132,6 +154,9 @@ impl Session {
             cells: Vec::new(),
             forced: Vec::new(),
             pacing: Pacing::Virtual,
+            live: None,
+            cycle_hook: None,
+            on_stop: None,
         }
     }
 
@@ -235,9 +260,65 @@ impl Session {
         Ok(())
     }
 
+    /// Sets the hook run after every cycle of [`Self::step`] (and so of
+    /// every run), once the traced values are sampled: the PLC is between
+    /// two cycles, its outputs can be read and its inputs written for the
+    /// next one (a simulated plant, a host's I/O). Replaces any hook set
+    /// before.
+    pub fn set_cycle_hook(&mut self, hook: impl FnMut(&mut Plc) + Send + 'static) {
+        self.cycle_hook = Some(Box::new(hook));
+    }
+
+    /// Sets the hook run when a run ends cleanly — its cycles done, or a
+    /// stop asked through the PLC's [`crate::StopHandle::stop`] (Ctrl-C,
+    /// SIGTERM in the command line) — after the last trace row is written:
+    /// the place to save retained data. Not run after a fault. Replaces
+    /// any hook set before.
+    pub fn set_on_stop(
+        &mut self,
+        hook: impl FnMut(&mut Plc) -> Result<(), StopHookError> + Send + 'static,
+    ) {
+        self.on_stop = Some(Box::new(hook));
+    }
+
+    /// Runs the stop hook (the runs do it when they end cleanly; a host
+    /// driving [`Self::step`] itself calls it when it stops).
+    pub fn run_on_stop(&mut self) -> Result<(), RunError> {
+        match &mut self.on_stop {
+            Some(hook) => hook(&mut self.plc).map_err(RunError::OnStop),
+            None => Ok(()),
+        }
+    }
+
+    /// Feeds the stimulus from rows arriving while the program runs (see
+    /// [`LiveStimulus`]); replaces any live stimulus set before. The runs
+    /// apply its rows before each cycle; a host driving [`Self::step`]
+    /// calls [`Self::apply_live_stimulus`].
+    pub fn set_live_stimulus(&mut self, live: LiveStimulus) {
+        self.live = Some(live);
+    }
+
+    /// Applies the live stimulus rows that have arrived and are due at the
+    /// next cycle (nothing without a live stimulus).
+    #[inline]
+    pub fn apply_live_stimulus(&mut self) -> Result<(), LiveStimulusError> {
+        match &mut self.live {
+            Some(live) => live.apply_due(&mut self.plc),
+            None => Ok(()),
+        }
+    }
+
     /// Runs one cycle: applies the stimulus rows due at this cycle, runs
     /// the tasks due, and samples the traced variables (see [`Self::cells`]).
     pub fn step(&mut self) -> Result<(), RuntimeFault> {
+        self.step_by(Plc::run_cycle)
+    }
+
+    /// [`Self::step`] with `run` running the tick (timed or not).
+    pub(crate) fn step_by(
+        &mut self,
+        run: impl FnOnce(&mut Plc) -> Result<(), RuntimeFault>,
+    ) -> Result<(), RuntimeFault> {
         if let Some(bound) = &mut self.stimulus {
             let (cycle, time) = (self.plc.cycle(), self.plc.time());
             let due = bound.cursor.due(&bound.stimulus, cycle, time).len();
@@ -249,7 +330,7 @@ impl Session {
             }
             bound.applied += due;
         }
-        self.plc.run_cycle()?;
+        run(&mut self.plc)?;
         self.mark_forced();
         for (cell, r) in self.cells.iter_mut().zip(&self.traced) {
             match self.plc.value_at(r) {
@@ -262,6 +343,9 @@ impl Session {
                     }
                 }
             }
+        }
+        if let Some(hook) = &mut self.cycle_hook {
+            hook(&mut self.plc);
         }
         Ok(())
     }
@@ -293,11 +377,17 @@ impl Session {
     /// Runs `cycles` cycles, writing one trace row per cycle to `out`
     /// (whose names should be [`Self::trace_names`]). Stops at the first
     /// runtime fault or trace write error; the rows of the cycles before
-    /// it are written.
+    /// it are written. Ends early, cleanly, at the cycle boundary after a
+    /// stop was asked through the PLC's [`crate::StopHandle`]; a clean end
+    /// runs the stop hook ([`Self::set_on_stop`]).
     pub fn run<W: Write>(&mut self, cycles: u64, out: &mut TraceWriter<W>) -> Result<(), RunError> {
         let started = Instant::now();
         let first_time = self.plc.time();
+        let stop = self.plc.stop_handle();
         for _ in 0..cycles {
+            if stop.is_stop_requested() {
+                break;
+            }
             let (cycle, time) = (self.plc.cycle(), self.plc.time());
             if self.pacing == Pacing::WallClock {
                 let offset = Duration::from_nanos(time.saturating_sub(first_time).max(0) as u64);
@@ -307,10 +397,11 @@ impl Session {
                     std::thread::sleep(due - now);
                 }
             }
-            self.step().map_err(RunError::Fault)?;
+            self.apply_live_stimulus().map_err(RunError::Stimulus)?;
+            self.step_by(Plc::run_cycle).map_err(RunError::Fault)?;
             out.row_marked(cycle, time, &self.cells, &self.forced)
                 .map_err(RunError::Trace)?;
         }
-        Ok(())
+        self.run_on_stop()
     }
 }

@@ -11,7 +11,8 @@
 //! {"cycle":0,"time":"T#0s","start":true,"count":42}
 //! ```
 //! Table (columns left-aligned, two spaces apart; written by
-//! [`TraceWriter::finish`], since the widths depend on every row):
+//! [`TraceWriter::finish`], since the widths depend on every row; the rows
+//! wait in memory, and past 4 MiB in a temporary file):
 //! ```text
 //! cycle  time  start  count
 //! -----  ----  -----  -----
@@ -27,10 +28,17 @@
 //! {"cycle":0,"time":"T#0s","start":true,"count":42,"forced":["start"]}
 //! ```
 //!
+//! A streaming writer ([`TraceWriter::set_streaming`], used in real time)
+//! writes and flushes every row as it comes, and so holds no rows: its
+//! table columns are as wide as the header or the first row's value,
+//! whichever is wider; a later, wider value shifts the rest of its row
+//! right rather than the whole column.
+//!
 //! With `changes_only`, the first row is written, then only rows where at
 //! least one traced cell's text differs from the previous cycle's row (the
 //! previous row given to [`TraceWriter::row`], written or not).
 
+use super::table_rows::TableRows;
 use crate::elementary::ElemType;
 use crate::value::format::{format_string, json_value, write_value};
 use crate::value::literal::format_duration;
@@ -174,12 +182,10 @@ enum Sink<W: Write> {
     Plain(W),
 }
 
-/// Rows kept for the table until [`TraceWriter::finish`]: all cell texts in
-/// one buffer, with their end offsets.
-#[derive(Default)]
+/// Rows kept for the table until [`TraceWriter::finish`], and the column
+/// widths so far.
 struct TableBuffer {
-    text: String,
-    ends: Vec<usize>,
+    rows: TableRows,
     /// Width in characters of each column so far (header included).
     widths: Vec<usize>,
 }
@@ -200,6 +206,8 @@ pub struct TraceWriter<W: Write> {
     /// Scratch for one JSON line.
     line: Vec<u8>,
     table: TableBuffer,
+    /// Write and flush each row at once (see the module docs).
+    streaming: bool,
 }
 
 impl<W: Write> TraceWriter<W> {
@@ -211,7 +219,10 @@ impl<W: Write> TraceWriter<W> {
             TraceFormat::Csv => Sink::Csv(Box::new(csv::WriterBuilder::new().from_writer(out))),
             TraceFormat::Table | TraceFormat::Jsonl => Sink::Plain(out),
         };
-        let mut table = TableBuffer::default();
+        let mut table = TableBuffer {
+            rows: TableRows::new(names.len() + 2),
+            widths: Vec::new(),
+        };
         if format == TraceFormat::Table {
             table.widths = ["cycle", "time"]
                 .into_iter()
@@ -230,13 +241,29 @@ impl<W: Write> TraceWriter<W> {
             cycle_text: String::new(),
             line: Vec::new(),
             table,
+            streaming: false,
+        }
+    }
+
+    /// Writes and flushes every row as it comes (see the module docs).
+    /// Turn it on before the first row.
+    pub fn set_streaming(&mut self, on: bool) {
+        self.streaming = on;
+    }
+
+    /// Flushes what has been written so far (a buffered table is written
+    /// by [`Self::finish`] only).
+    pub fn flush(&mut self) -> io::Result<()> {
+        match &mut self.sink {
+            Sink::Csv(csv) => csv.flush(),
+            Sink::Plain(out) => out.flush(),
         }
     }
 
     /// Records the row of cycle `cycle` at clock `time_ns`; `cells` has one
     /// entry per name, in the same order (else an `InvalidInput` error).
     pub fn row(&mut self, cycle: u64, time_ns: i64, cells: &[TraceCell]) -> io::Result<()> {
-        self.row_marked(cycle, time_ns, cells, &[])
+        self.write_row(cycle, time_ns, cells, &[])
     }
 
     /// As [`Self::row`], marking the cells whose `forced` entry is true (see
@@ -272,7 +299,37 @@ impl<W: Write> TraceWriter<W> {
         self.write_row(cycle, time_ns, cells, &[])
     }
 
+    #[inline(always)]
     fn write_row(
+        &mut self,
+        cycle: u64,
+        time_ns: i64,
+        cells: &[TraceCell],
+        forced: &[String],
+    ) -> io::Result<()> {
+        if self.streaming {
+            return self.streamed_row(cycle, time_ns, cells, forced);
+        }
+        self.record_row(cycle, time_ns, cells, forced)
+    }
+
+    /// A row in streaming mode: written, then flushed (out of the virtual
+    /// run's path).
+    #[cold]
+    #[inline(never)]
+    fn streamed_row(
+        &mut self,
+        cycle: u64,
+        time_ns: i64,
+        cells: &[TraceCell],
+        forced: &[String],
+    ) -> io::Result<()> {
+        self.record_row(cycle, time_ns, cells, forced)?;
+        self.flush()
+    }
+
+    #[inline(always)]
+    fn record_row(
         &mut self,
         cycle: u64,
         time_ns: i64,
@@ -296,6 +353,7 @@ impl<W: Write> TraceWriter<W> {
         let _ = write!(self.cycle_text, "{cycle}");
         let time = format_duration(time_ns, "T#");
         match self.format {
+            TraceFormat::Table if self.streaming => self.stream_table_row(&time, cells),
             TraceFormat::Table => {
                 let table = &mut self.table;
                 let texts = [self.cycle_text.as_str(), time.as_str()]
@@ -303,10 +361,9 @@ impl<W: Write> TraceWriter<W> {
                     .chain(cells.iter().map(|c| c.text.as_str()));
                 for (width, text) in table.widths.iter_mut().zip(texts) {
                     *width = (*width).max(text.chars().count());
-                    table.text.push_str(text);
-                    table.ends.push(table.text.len());
+                    table.rows.push(text);
                 }
-                Ok(())
+                table.rows.end_row()
             }
             TraceFormat::Csv => {
                 self.write_csv_header()?;
@@ -341,11 +398,47 @@ impl<W: Write> TraceWriter<W> {
         }
     }
 
+    /// Writes one table row now (the header and rule first, with the
+    /// widths the first row fixes). Out of line: real-time runs only, kept
+    /// out of the virtual run's row path.
+    #[cold]
+    #[inline(never)]
+    fn stream_table_row(&mut self, time: &str, cells: &[TraceCell]) -> io::Result<()> {
+        let texts = || {
+            [self.cycle_text.as_str(), time]
+                .into_iter()
+                .chain(cells.iter().map(|c| c.text.as_str()))
+        };
+        if !self.header_written {
+            for (width, text) in self.table.widths.iter_mut().zip(texts()) {
+                *width = (*width).max(text.chars().count());
+            }
+            let header: Vec<&str> = ["cycle", "time"]
+                .into_iter()
+                .chain(self.names.iter().map(String::as_str))
+                .collect();
+            let rules: Vec<String> = self.table.widths.iter().map(|w| "-".repeat(*w)).collect();
+            let line = table_line(&self.table.widths, header.into_iter());
+            let rule = table_line(&self.table.widths, rules.iter().map(String::as_str));
+            if let Sink::Plain(out) = &mut self.sink {
+                out.write_all(line.as_bytes())?;
+                out.write_all(rule.as_bytes())?;
+            }
+            self.header_written = true;
+        }
+        let line = table_line(&self.table.widths, texts());
+        match &mut self.sink {
+            Sink::Plain(out) => out.write_all(line.as_bytes()),
+            Sink::Csv(_) => Ok(()),
+        }
+    }
+
     /// Writes what is still pending (the CSV header of an empty trace, the
     /// whole table), flushes, and hands the output back.
     pub fn finish(mut self) -> io::Result<W> {
         match self.format {
             TraceFormat::Csv => self.write_csv_header()?,
+            TraceFormat::Table if self.header_written => {}
             TraceFormat::Table => self.write_table()?,
             TraceFormat::Jsonl => {}
         }
@@ -395,8 +488,8 @@ impl<W: Write> TraceWriter<W> {
         let Sink::Plain(out) = &mut self.sink else {
             return Ok(());
         };
-        let table = &self.table;
-        let widths = &table.widths;
+        let TableBuffer { rows, widths } = &mut self.table;
+        let widths = &*widths;
         let mut line = String::new();
         let mut emit = |line: &mut String, cells: &mut dyn Iterator<Item = &str>| {
             line.clear();
@@ -421,17 +514,29 @@ impl<W: Write> TraceWriter<W> {
         emit(&mut line, &mut header.into_iter())?;
         let rules: Vec<String> = widths.iter().map(|w| "-".repeat(*w)).collect();
         emit(&mut line, &mut rules.iter().map(String::as_str))?;
-        let mut start = 0;
-        for row in table.ends.chunks(widths.len().max(1)) {
-            let mut cells = row.iter().map(|&end| {
-                let text = table.text.get(start..end).unwrap_or("");
-                start = end;
-                text
-            });
-            emit(&mut line, &mut cells)?;
-        }
-        Ok(())
+        rows.for_each_row(|cells| emit(&mut line, cells))
     }
+}
+
+/// One table line: `texts` left-aligned in columns of `widths`, two spaces
+/// apart, without trailing blanks.
+fn table_line<'a>(widths: &[usize], texts: impl Iterator<Item = &'a str>) -> String {
+    let mut line = String::new();
+    for (i, text) in texts.enumerate() {
+        if i > 0 {
+            line.push_str("  ");
+        }
+        line.push_str(text);
+        let width = widths.get(i).copied().unwrap_or(0);
+        line.extend(std::iter::repeat_n(
+            ' ',
+            width.saturating_sub(text.chars().count()),
+        ));
+    }
+    let kept = line.trim_end_matches(' ').len();
+    line.truncate(kept);
+    line.push('\n');
+    line
 }
 
 #[cfg(test)]
@@ -517,6 +622,67 @@ mod tests {
             run(TraceFormat::Csv, true, &rows),
             "cycle,time,start,Count\n0,T#0s,FALSE,0\n1,T#10ms,FALSE,1\n3,T#30ms,FALSE,0\n"
         );
+    }
+
+    #[test]
+    fn a_streaming_table_writes_each_row_at_once() {
+        let mut w = TraceWriter::new(
+            Vec::new(),
+            TraceFormat::Table,
+            names(&["start", "Count"]),
+            false,
+        );
+        w.set_streaming(true);
+        for (cycle, &(start, count)) in ROWS.iter().enumerate() {
+            let cells = [
+                TraceCell::from_value(Bool, start as u64),
+                TraceCell::from_value(Int, count as u64),
+            ];
+            w.row(cycle as u64, cycle as i64 * 10 * MS, &cells).unwrap();
+        }
+        // Widths from the header and the first row; the wider -1200 and
+        // T#10ms push their rows right.
+        assert_eq!(
+            String::from_utf8(w.finish().unwrap()).unwrap(),
+            "cycle  time  start  Count\n\
+             -----  ----  -----  -----\n\
+             0      T#0s  FALSE  0\n\
+             1      T#10ms  TRUE   0\n\
+             2      T#20ms  TRUE   0\n\
+             3      T#30ms  TRUE   -1200\n"
+        );
+    }
+
+    #[test]
+    fn streaming_csv_is_the_same_csv() {
+        let mut w = TraceWriter::new(Vec::new(), TraceFormat::Csv, names(&["Count"]), false);
+        w.set_streaming(true);
+        w.row(0, 0, &[TraceCell::from_value(Int, 3)]).unwrap();
+        assert_eq!(
+            String::from_utf8(w.finish().unwrap()).unwrap(),
+            "cycle,time,Count\n0,T#0s,3\n"
+        );
+    }
+
+    #[test]
+    fn a_table_longer_than_memory_holds_is_the_same_table() {
+        let rows: Vec<(bool, i16)> = (0..2000).map(|k| (k % 3 == 0, (k * 7) as i16)).collect();
+        let in_memory = run(TraceFormat::Table, false, &rows);
+        let mut w = TraceWriter::new(
+            Vec::new(),
+            TraceFormat::Table,
+            names(&["start", "Count"]),
+            false,
+        );
+        w.table.rows = TableRows::with_limit(4, 100);
+        for (cycle, &(start, count)) in rows.iter().enumerate() {
+            let cells = [
+                TraceCell::from_value(Bool, start as u64),
+                TraceCell::from_value(Int, count as u64),
+            ];
+            w.row(cycle as u64, cycle as i64 * 10 * MS, &cells).unwrap();
+        }
+        assert_eq!(String::from_utf8(w.finish().unwrap()).unwrap(), in_memory);
     }
 
     #[test]
