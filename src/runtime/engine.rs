@@ -98,10 +98,10 @@ impl std::error::Error for RuntimeFault {}
 pub struct Plc {
     pub(super) image: VerifiedImage,
     pub(super) machine: Machine,
-    sources: SourceMap,
-    warnings: Diagnostics,
+    pub(super) sources: SourceMap,
+    pub(super) warnings: Diagnostics,
     cycle: u64,
-    scheduler: Scheduler,
+    pub(super) scheduler: Scheduler,
     /// Tells this PLC's variable handles from another's.
     pub(super) id: u64,
     /// Stop requests from other threads.

@@ -9,14 +9,18 @@
 //! - [`default_trace`]: what is traced when the user names nothing;
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
 //! - [`var_error`]: why such a path cannot be resolved, read or written;
+//! - [`online_change`]: a new program version taking over a running PLC,
+//!   with its [`change_report`];
 //! - [`stop`]: asking a run to end from another thread;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
 pub mod access;
+pub mod change_report;
 pub mod default_trace;
 pub mod engine;
 pub mod names;
+pub mod online_change;
 pub mod plc_value;
 pub mod scheduler;
 pub mod session;

@@ -76,6 +76,15 @@ impl Scheduler {
         self.due[programs[p].task].then_some(p)
     }
 
+    /// Takes over the SINGLE triggers' memory of `old`, a schedule of the
+    /// same tasks (online change), so that a trigger already high does not
+    /// count as a new rising edge.
+    pub(crate) fn carry_triggers(&mut self, old: &Scheduler) {
+        if old.single_prev.len() == self.single_prev.len() {
+            self.single_prev.clone_from(&old.single_prev);
+        }
+    }
+
     /// How many program instances there are.
     pub(crate) fn len(&self) -> usize {
         self.order.len()
