@@ -53,6 +53,10 @@ pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
 pub use elementary::ElemType;
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped};
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
+pub use runtime::host_blocks::{
+    HOST_SOURCE, HostBlocks, HostDeclError, HostIo, HostIoError, HostPin, HostResult,
+    HostSignature, PinDir,
+};
 pub use runtime::names::VarRef;
 pub use runtime::plc_value::Value;
 pub use runtime::session::{Pacing, RunError, Session, StimulusBindError};
@@ -64,7 +68,7 @@ pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter, UnknownTraceFormat
 pub use runtime::var_error::{PathProblem, ValueProblem, VarError};
 pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
-pub use vm::{Fault, FaultKind};
+pub use vm::{Fault, FaultKind, HostFailure};
 
 /// The examples of `docs/embedding.md`, compiled and run as doc-tests.
 #[cfg(doctest)]

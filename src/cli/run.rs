@@ -63,6 +63,7 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         cycle_time,
         program: args.program.clone(),
         watchdog,
+        ..Options::default()
     })
 }
 

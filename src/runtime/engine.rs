@@ -2,6 +2,7 @@
 //! clock, read and write variables by name.
 
 use super::default_trace;
+use super::host_blocks::{HOST_SOURCE, HostBlocks};
 use super::scheduler::Scheduler;
 use super::stop::StopHandle;
 use crate::diagnostics::Diagnostics;
@@ -9,9 +10,10 @@ use crate::driver::{self, CompileOptions};
 use crate::ir::image::Image;
 use crate::ir::verify::VerifiedImage;
 use crate::source::{SourceMap, Span};
-use crate::vm::{Fault, Machine};
+use crate::vm::{Fault, HostLink, Machine};
 use std::fmt;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 /// How to build and run a program.
@@ -23,6 +25,8 @@ pub struct Options {
     pub program: Option<String>,
     /// Wall-clock limit for one cycle (default 1 s); `None` disables it.
     pub watchdog: Option<Duration>,
+    /// FUNCTIONs and FUNCTION_BLOCKs implemented by the host (none by default).
+    pub hosts: HostBlocks,
 }
 
 impl Default for Options {
@@ -31,6 +35,7 @@ impl Default for Options {
             cycle_time: 10_000_000,
             program: None,
             watchdog: Some(Duration::from_secs(1)),
+            hosts: HostBlocks::default(),
         }
     }
 }
@@ -122,12 +127,16 @@ impl Plc {
     }
 
     /// Compiles every file of `sources`.
-    pub fn compile(sources: SourceMap, options: &Options) -> Result<Plc, CompileError> {
+    pub fn compile(mut sources: SourceMap, options: &Options) -> Result<Plc, CompileError> {
         let mut diags = Diagnostics::new();
+        if !options.hosts.is_empty() {
+            sources.add(HOST_SOURCE, options.hosts.declarations());
+        }
         let build = CompileOptions {
             program: options.program.clone(),
             cycle_time: options.cycle_time,
             check_only: false,
+            host_pous: options.hosts.names(),
         };
         let image = driver::compile(&sources, &build, &mut diags);
         match image {
@@ -149,6 +158,10 @@ impl Plc {
     ) -> Plc {
         let mut machine = Machine::new(&image);
         machine.set_watchdog(options.watchdog);
+        if !image.hosts.is_empty() {
+            let dispatcher = options.hosts.dispatcher(&image);
+            machine.host = HostLink(Some(Arc::new(Mutex::new(dispatcher))));
+        }
         let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
         Plc {
             image,

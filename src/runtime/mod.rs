@@ -7,6 +7,7 @@
 //! - [`session`]: a run as the command line does it — stimulus, trace;
 //! - [`scheduler`]: which program instances run at a tick, in which order;
 //! - [`default_trace`]: what is traced when the user names nothing;
+//! - [`host_blocks`]: FUNCTIONs and FUNCTION_BLOCKs implemented by the host;
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
 //! - [`var_error`]: why such a path cannot be resolved, read or written;
 //! - [`online_change`]: a new program version taking over a running PLC,
@@ -19,6 +20,7 @@ pub mod access;
 pub mod change_report;
 pub mod default_trace;
 pub mod engine;
+pub mod host_blocks;
 pub mod names;
 pub mod online_change;
 pub mod plc_value;

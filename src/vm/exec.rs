@@ -724,6 +724,16 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                 // SAFETY: start + n <= len was checked above (without overflow).
                 unsafe { stdlib::call_raw(fb, mem.add(start), m.now) }
             }
+            Op::CallHost { id } => {
+                if let Err(kind) = m.call_host(id, base, block.frame_size as usize) {
+                    fault!(kind);
+                }
+                // The host borrowed memory mutably: take fresh pointers
+                // (same buffer, same length).
+                mem = m.mem.as_mut_ptr();
+                // SAFETY: as at entry.
+                fp = unsafe { mem.add(base) };
+            }
             Op::CallFn { code: c } => {
                 let frame = img.codes[c.index()].frame as usize;
                 run(m, img, c, frame)?

@@ -13,10 +13,12 @@
 mod chart;
 mod exec;
 mod fault;
+mod host;
 mod string_ops;
 mod strings;
 
-pub use fault::{Fault, FaultKind};
+pub use fault::{Fault, FaultKind, HostFailure};
+pub(crate) use host::{HostDispatch, HostFrame, HostLink};
 pub use strings::PlcString;
 
 use crate::ir::op::CodeIdx;
@@ -37,6 +39,8 @@ pub struct Machine {
     pub(crate) now: i64,
     watchdog: Option<Duration>,
     deadline: Option<Instant>,
+    /// Runs the bodies of host-registered POUs (`Op::CallHost`).
+    pub(crate) host: HostLink,
 }
 
 impl Machine {
@@ -52,6 +56,7 @@ impl Machine {
             now: 0,
             watchdog: None,
             deadline: None,
+            host: HostLink::default(),
         }
     }
 
