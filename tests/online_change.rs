@@ -340,3 +340,33 @@ fn handles_resolved_before_the_change_are_refused_after_it() {
     assert!(p.get(&et).is_err());
     assert!(p.get(&p.resolve("P.et").unwrap()).is_ok());
 }
+
+#[test]
+fn a_session_rebinds_its_trace_and_stimulus_and_refuses_a_lost_name() {
+    use plcrun::{Session, SessionChangeError, parse_stimulus};
+    let v1 = "PROGRAM P VAR_INPUT go : BOOL; END_VAR VAR_OUTPUT n : INT; END_VAR
+IF go THEN n := n + 1; END_IF END_PROGRAM";
+    // A variable declared first: every address moves.
+    let v2 = "PROGRAM P VAR pad : ARRAY[1..5] OF INT; END_VAR VAR_INPUT go : BOOL; END_VAR
+VAR_OUTPUT n : INT; END_VAR IF go THEN n := n + 2; END_IF END_PROGRAM";
+    let mut s = Session::new(plc(v1));
+    s.set_trace(&["n", "go"]).unwrap();
+    s.bind_stimulus(parse_stimulus("cycle,go\n1,TRUE\n4,FALSE\n").unwrap())
+        .unwrap();
+    for _ in 0..3 {
+        s.step().unwrap();
+    }
+    let cells = |s: &Session| -> Vec<String> { s.cells().iter().map(|c| c.text.clone()).collect() };
+    assert_eq!(cells(&s), ["2", "TRUE"]);
+    // A version without `go` cannot take the stimulus: refused, unchanged.
+    let no_go = plc("PROGRAM P VAR_OUTPUT n : INT; END_VAR END_PROGRAM");
+    let err = s.online_change(no_go).expect_err("refused");
+    assert!(matches!(err, SessionChangeError::Trace(_)), "{err:?}");
+    let new = Plc::compile_files(&[("v2.st", v2)], &Options::default()).unwrap();
+    let report = s.online_change(new).unwrap();
+    assert_eq!(report.initialised, ["P.pad"]);
+    s.step().unwrap(); // cycle 3: go still TRUE, +2
+    assert_eq!(cells(&s), ["4", "TRUE"]);
+    s.step().unwrap(); // cycle 4: the stimulus goes on: go FALSE
+    assert_eq!(cells(&s), ["4", "FALSE"]);
+}

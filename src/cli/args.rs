@@ -74,6 +74,10 @@ pub struct RunArgs {
     /// Pace cycles on the wall clock instead of running as fast as possible.
     #[arg(long)]
     pub realtime: bool,
+    /// Before cycle N, load FILE (the whole new version) into the running
+    /// PLC by online change. Repeatable.
+    #[arg(long = "online-change-at", value_name = "N:FILE")]
+    pub online_change_at: Vec<String>,
 }
 
 /// `plcrun check FILES...`: parse and check only.

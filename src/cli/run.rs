@@ -161,7 +161,11 @@ pub fn run(args: &RunArgs) -> i32 {
     };
     let names = session.trace_names().to_vec();
     let mut writer = TraceWriter::new(out, format, names, args.changes_only);
-    let status = match session.run(cycles, &mut writer) {
+    let changes = match super::online::planned(&args.online_change_at) {
+        Ok(c) => c,
+        Err(e) => return usage_error(e),
+    };
+    let status = match super::online::run(&mut session, cycles, &mut writer, &changes, &options) {
         Ok(()) => EXIT_OK,
         Err(RunError::Fault(fault)) => {
             eprintln!("error: {fault}");

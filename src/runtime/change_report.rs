@@ -2,6 +2,8 @@
 //! ([`OnlineChangeError`]).
 
 use super::engine::CompileError;
+use super::session::StimulusBindError;
+use super::var_error::VarError;
 use std::fmt;
 
 /// A variable whose type changed across an online change: it starts again
@@ -133,5 +135,45 @@ impl std::error::Error for OnlineChangeError {
 impl From<CompileError> for OnlineChangeError {
     fn from(e: CompileError) -> Self {
         OnlineChangeError::Compile(Box::new(e))
+    }
+}
+
+/// Why [`crate::Session::online_change`] was refused. The session and its
+/// program are left exactly as they were.
+#[derive(Debug, Clone)]
+pub enum SessionChangeError {
+    /// The PLC refused the change.
+    Change(OnlineChangeError),
+    /// A traced name does not name a value of the new version.
+    Trace(VarError),
+    /// A stimulus column or cell does not fit the new version.
+    Stimulus(StimulusBindError),
+}
+
+impl fmt::Display for SessionChangeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SessionChangeError::Change(e) => e.fmt(f),
+            SessionChangeError::Trace(e) => {
+                write!(f, "online change refused: traced variable: {e}")
+            }
+            SessionChangeError::Stimulus(e) => write!(f, "online change refused: stimulus: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for SessionChangeError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            SessionChangeError::Change(e) => Some(e),
+            SessionChangeError::Trace(e) => Some(e),
+            SessionChangeError::Stimulus(e) => Some(e),
+        }
+    }
+}
+
+impl From<OnlineChangeError> for SessionChangeError {
+    fn from(e: OnlineChangeError) -> Self {
+        SessionChangeError::Change(e)
     }
 }
