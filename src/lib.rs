@@ -51,9 +51,7 @@ pub(crate) mod vm;
 pub use diagnostics::{Diagnostic, Diagnostics, Severity};
 pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
 pub use elementary::ElemType;
-pub use runtime::change_report::{
-    ChangeReport, OnlineChangeError, Retyped, SessionChangeError,
-};
+pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
 pub use runtime::host_blocks::{
     HOST_SOURCE, HostBlocks, HostDeclError, HostIo, HostIoError, HostPin, HostResult,

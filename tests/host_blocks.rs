@@ -325,3 +325,20 @@ fn each_host_body_is_one_host_instruction_and_calls_are_ordinary_calls() {
     assert_eq!(used.image().instruction_count("CallFb"), Some(1));
     assert_eq!(used.image().instruction_count("CallFn"), Some(1));
 }
+
+#[test]
+fn a_plc_with_host_code_can_move_to_another_thread() {
+    fn assert_send<T: Send>(_: &T) {}
+    let mut plc = compile(
+        "PROGRAM P VAR r : Ramp; END_VAR r(run := TRUE, inc := 4); END_PROGRAM",
+        hosts(),
+    );
+    assert_send(&plc);
+    let plc = std::thread::spawn(move || {
+        plc.run_cycle().unwrap();
+        plc
+    })
+    .join()
+    .unwrap();
+    assert_eq!(read(&plc, "P.r.value"), "4");
+}

@@ -275,10 +275,6 @@ macro_rules! for_each_op {
             CallNative { fb: NativeFb => Data, inst: Slot => NativeInstance(fb) };
             /// Call a native FB on the instance whose address is in slot `p`.
             CallNativeInd { fb: NativeFb => Data, p: Slot => In };
-            /// The body of a FUNCTION or FUNCTION_BLOCK the host registered
-            /// (entry `id` of `Image::hosts`): runs the host's code on the
-            /// current frame (the FB instance or the function's frame).
-            CallHost { id: HostIdx => Host };
             /// Call a function: reset its static frame, run its code at its frame base.
             CallFn { code: CodeIdx => Code(Function) };
             /// Copies `n` slots from address `mem[s]` to address `mem[d]` (aggregates by value).
@@ -290,6 +286,10 @@ macro_rules! for_each_op {
             /// One call of the SFC chart `chart` (index into `Image::charts`) on
             /// the current instance: evolution, then action control.
             Sfc { chart: ChartIdx => Chart };
+            /// The body of a FUNCTION or FUNCTION_BLOCK the host registered
+            /// (entry `id` of `Image::hosts`): runs the host's code on the
+            /// current frame (the FB instance or the function's frame).
+            CallHost { id: HostIdx => Host };
         }
     };
 }

@@ -19,8 +19,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::default_trace::is_trace_column;
 use super::change_report::{ChangeReport, SessionChangeError};
+use super::default_trace::is_trace_column;
 use super::engine::{Plc, RuntimeFault};
 use super::names::VarRef;
 use super::plc_value::Value;
@@ -301,14 +301,13 @@ fn bind(plc: &Plc, stimulus: Stimulus) -> Result<BoundStimulus, StimulusBindErro
         let mut cells = Vec::new();
         for (i, cell) in row.cells.iter().enumerate() {
             let Some(text) = cell else { continue };
-            let value =
-                plc
-                    .parse_value(&columns[i], text)
-                    .map_err(|error| StimulusBindError {
-                        column: stimulus.columns[i].clone(),
-                        line: Some(row.line),
-                        error,
-                    })?;
+            let value = plc
+                .parse_value(&columns[i], text)
+                .map_err(|error| StimulusBindError {
+                    column: stimulus.columns[i].clone(),
+                    line: Some(row.line),
+                    error,
+                })?;
             cells.push((i, value));
         }
         rows.push(cells);

@@ -724,16 +724,6 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                 // SAFETY: start + n <= len was checked above (without overflow).
                 unsafe { stdlib::call_raw(fb, mem.add(start), m.now) }
             }
-            Op::CallHost { id } => {
-                if let Err(kind) = m.call_host(id, base, block.frame_size as usize) {
-                    fault!(kind);
-                }
-                // The host borrowed memory mutably: take fresh pointers
-                // (same buffer, same length).
-                mem = m.mem.as_mut_ptr();
-                // SAFETY: as at entry.
-                fp = unsafe { mem.add(base) };
-            }
             Op::CallFn { code: c } => {
                 let frame = img.codes[c.index()].frame as usize;
                 run(m, img, c, frame)?
@@ -756,6 +746,20 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                 mem = m.mem.as_mut_ptr();
                 // SAFETY: as at entry.
                 fp = unsafe { mem.add(base) };
+            }
+            Op::CallHost { id } => {
+                // SAFETY: the frame lies in memory (checked at entry), and
+                // nothing else reaches it during the call (the host sees
+                // only this slice and the string table).
+                let frame =
+                    unsafe { std::slice::from_raw_parts_mut(fp, block.frame_size as usize) };
+                super::host::call(&m.host, &mut m.strings, m.now, id, frame, base).map_err(
+                    |kind| Fault {
+                        kind,
+                        code,
+                        pc: (pc!() - 1) as u32,
+                    },
+                )?
             }
         }
     }

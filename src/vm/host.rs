@@ -3,7 +3,7 @@
 //! in ([`HostDispatch`]); the pins, the closures and their per-instance
 //! state live in the runtime (`runtime::host_blocks`).
 
-use super::{FaultKind, Machine, PlcString};
+use super::{FaultKind, PlcString};
 use crate::ir::op::HostIdx;
 use std::fmt;
 use std::sync::{Arc, Mutex};
@@ -41,33 +41,31 @@ impl fmt::Debug for HostLink {
     }
 }
 
-impl Machine {
-    /// Runs host body `id` on the frame at `base` of `size` slots. Out of
-    /// line: programs that call no host body never come here.
-    #[cold]
-    #[inline(never)]
-    pub(super) fn call_host(
-        &mut self,
-        id: HostIdx,
-        base: usize,
-        size: usize,
-    ) -> Result<(), FaultKind> {
-        let unlinked = || FaultKind::host(format!("#{}", id.get()), "no host code is linked");
-        let link = self.host.0.clone().ok_or_else(unlinked)?;
-        let frame = base
-            .checked_add(size)
-            .and_then(|end| self.mem.get_mut(base..end))
-            .ok_or(FaultKind::BadAddress)?;
-        let frame = HostFrame {
-            frame,
-            strings: &mut self.strings,
-            base,
-            now: self.now,
-        };
-        // A host body that panicked left the dispatcher's own state
-        // consistent (it catches panics itself), so a poisoned lock is
-        // still usable.
-        let mut dispatch = link.lock().unwrap_or_else(|p| p.into_inner());
-        dispatch.call(id, frame)
-    }
+/// Runs host body `id` on `frame` (at absolute address `base`) through
+/// `link`. Out of line: programs that call no host body never come here.
+/// `frame` is the executor's view of the current frame and the machine's
+/// memory is not touched otherwise, so the executor's pointers stay valid.
+#[cold]
+#[inline(never)]
+pub(super) fn call(
+    link: &HostLink,
+    strings: &mut [PlcString],
+    now: i64,
+    id: HostIdx,
+    frame: &mut [u64],
+    base: usize,
+) -> Result<(), FaultKind> {
+    let unlinked = || FaultKind::host(format!("#{}", id.get()), "no host code is linked");
+    let link = link.0.as_ref().ok_or_else(unlinked)?;
+    let frame = HostFrame {
+        frame,
+        strings,
+        base,
+        now,
+    };
+    // A host body that panicked left the dispatcher's own state
+    // consistent (it catches panics itself), so a poisoned lock is
+    // still usable.
+    let mut dispatch = link.lock().unwrap_or_else(|p| p.into_inner());
+    dispatch.call(id, frame)
 }
