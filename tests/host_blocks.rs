@@ -342,3 +342,20 @@ fn a_plc_with_host_code_can_move_to_another_thread() {
     .unwrap();
     assert_eq!(read(&plc, "P.r.value"), "4");
 }
+
+#[test]
+fn after_an_online_change_host_pins_are_kept_and_instances_start_afresh() {
+    let v1 = "PROGRAM P VAR r : Ramp; END_VAR r(run := TRUE, inc := 2); END_PROGRAM";
+    let v2 = "PROGRAM P VAR r : Ramp; n : INT; END_VAR r(run := TRUE, inc := 2); n := n + 1; END_PROGRAM";
+    let mut plc = compile(v1, hosts());
+    cycles(&mut plc, 3);
+    let report = plc
+        .online_change_files(&[("p.st", v2)], &options(hosts()))
+        .unwrap();
+    assert!(report.kept.contains(&"P.r".to_string()), "{report}");
+    // The pins (PLC memory) are carried; the Rust closure is new.
+    assert_eq!(read(&plc, "P.r.value"), "6");
+    cycles(&mut plc, 1);
+    assert_eq!(read(&plc, "P.r.value"), "2");
+    assert_eq!(read(&plc, "P.r.calls"), "1");
+}
