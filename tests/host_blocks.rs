@@ -344,17 +344,26 @@ fn a_plc_with_host_code_can_move_to_another_thread() {
 }
 
 #[test]
-fn after_an_online_change_host_pins_are_kept_and_instances_start_afresh() {
+fn after_an_online_change_host_instances_keep_their_state() {
     let v1 = "PROGRAM P VAR r : Ramp; END_VAR r(run := TRUE, inc := 2); END_PROGRAM";
     let v2 = "PROGRAM P VAR r : Ramp; n : INT; END_VAR r(run := TRUE, inc := 2); n := n + 1; END_PROGRAM";
-    let mut plc = compile(v1, hosts());
+    let registered = hosts();
+    let mut plc = compile(v1, registered.clone());
     cycles(&mut plc, 3);
     let report = plc
-        .online_change_files(&[("p.st", v2)], &options(hosts()))
+        .online_change_files(&[("p.st", v2)], &options(registered))
         .unwrap();
     assert!(report.kept.contains(&"P.r".to_string()), "{report}");
-    // The pins (PLC memory) are carried; the Rust closure is new.
+    // The pins (PLC memory) and the closure's own state are carried.
     assert_eq!(read(&plc, "P.r.value"), "6");
+    cycles(&mut plc, 1);
+    assert_eq!(read(&plc, "P.r.value"), "8");
+    assert_eq!(read(&plc, "P.r.calls"), "4");
+    // Registered anew (other code under the same name): a fresh instance.
+    let report = plc
+        .online_change_files(&[("p.st", v1)], &options(hosts()))
+        .unwrap();
+    assert!(report.dropped.contains(&"P.n".to_string()), "{report}");
     cycles(&mut plc, 1);
     assert_eq!(read(&plc, "P.r.value"), "2");
     assert_eq!(read(&plc, "P.r.calls"), "1");

@@ -2,7 +2,7 @@
 //! clock, read and write variables by name.
 
 use super::default_trace;
-use super::host_blocks::{HOST_SOURCE, HostBlocks};
+use super::host_blocks::{HOST_SOURCE, HostBlocks, HostDispatcher};
 use super::scheduler::Scheduler;
 use super::stop::StopHandle;
 use crate::diagnostics::Diagnostics;
@@ -111,6 +111,9 @@ pub struct Plc {
     pub(super) id: u64,
     /// Stop requests from other threads.
     stop: StopHandle,
+    /// The host bodies' dispatcher (also linked into the machine), kept
+    /// typed for online change to move host instances' state.
+    pub(super) host_code: Option<Arc<Mutex<HostDispatcher>>>,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -158,9 +161,10 @@ impl Plc {
     ) -> Plc {
         let mut machine = Machine::new(&image);
         machine.set_watchdog(options.watchdog);
-        if !image.hosts.is_empty() {
-            let dispatcher = options.hosts.dispatcher(&image);
-            machine.host = HostLink(Some(Arc::new(Mutex::new(dispatcher))));
+        let host_code = (!image.hosts.is_empty())
+            .then(|| Arc::new(Mutex::new(options.hosts.dispatcher(&image))));
+        if let Some(code) = &host_code {
+            machine.host = HostLink(Some(code.clone()));
         }
         let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
         Plc {
@@ -172,6 +176,7 @@ impl Plc {
             scheduler,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             stop: StopHandle::default(),
+            host_code,
         }
     }
 

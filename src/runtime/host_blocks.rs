@@ -470,6 +470,29 @@ pub(crate) struct HostDispatcher {
     bodies: Vec<Body>,
 }
 
+impl HostDispatcher {
+    /// Takes over the state of FUNCTION_BLOCK instances from `old` (online
+    /// change): each `(block, old base, new base)` moves when the block is
+    /// registered with the same code in both.
+    pub(crate) fn adopt(&mut self, old: &mut HostDispatcher, moves: &[(String, usize, usize)]) {
+        for (name, from, to) in moves {
+            let named = |b: &&mut Body| b.entry.signature.name.eq_ignore_ascii_case(name);
+            let (Some(src), Some(dst)) = (
+                old.bodies.iter_mut().find(named),
+                self.bodies.iter_mut().find(named),
+            ) else {
+                continue;
+            };
+            if !Arc::ptr_eq(&src.entry, &dst.entry) {
+                continue;
+            }
+            if let Some(state) = src.instances.remove(from) {
+                dst.instances.insert(*to, state);
+            }
+        }
+    }
+}
+
 impl HostDispatch for HostDispatcher {
     fn call(&mut self, id: HostIdx, frame: HostFrame<'_>) -> Result<(), FaultKind> {
         let Some(body) = self.bodies.get_mut(id.index()) else {

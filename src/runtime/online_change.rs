@@ -73,10 +73,17 @@ impl Plc {
             new: &new.image,
             new_m: &mut new.machine,
             entries: Vec::new(),
+            host_moves: Vec::new(),
         };
         carry.programs();
         carry.globals();
+        let host_moves = std::mem::take(&mut carry.host_moves);
         let report = carry.report();
+        if let (Some(old), Some(code)) = (&self.host_code, &new.host_code) {
+            let mut old = old.lock().unwrap_or_else(|p| p.into_inner());
+            let mut code = code.lock().unwrap_or_else(|p| p.into_inner());
+            code.adopt(&mut old, &host_moves);
+        }
         new.machine.now = self.machine.now;
         new.scheduler.carry_triggers(&self.scheduler);
         self.take_over(new);
@@ -107,6 +114,7 @@ impl Plc {
         self.sources = new.sources;
         self.warnings = new.warnings;
         self.id = new.id;
+        self.host_code = new.host_code;
     }
 }
 
@@ -160,6 +168,8 @@ struct Carry<'a> {
     new: &'a Image,
     new_m: &'a mut Machine,
     entries: Vec<Entry>,
+    /// Host FUNCTION_BLOCK instances carried: `(block, old base, new base)`.
+    host_moves: Vec<(String, usize, usize)>,
 }
 
 /// A variable seen in one version: its type and absolute address.
@@ -265,6 +275,15 @@ impl Carry<'_> {
             | (TypeKind::Pou { .. }, TypeKind::Pou { .. })
                 if od.name.eq_ignore_ascii_case(&nd.name) =>
             {
+                if self
+                    .new
+                    .hosts
+                    .iter()
+                    .any(|h| h.eq_ignore_ascii_case(&nd.name))
+                {
+                    let (from, to) = (o.1 as usize, n.1 as usize);
+                    self.host_moves.push((nd.name.clone(), from, to));
+                }
                 self.members(path, o, n)
             }
             (TypeKind::Step, TypeKind::Step) => {
