@@ -131,6 +131,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         program: options.program.clone(),
         cycle_time: 10_000_000,
         check_only: !options.ir_listing,
+        host_pous: Vec::new(),
     };
     let image = compile(sources, &build, &mut diagnostics);
     let ir_listing = match (options.ir_listing, image) {

@@ -51,9 +51,14 @@ pub(crate) mod vm;
 pub use diagnostics::{Diagnostic, Diagnostics, Severity};
 pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
 pub use elementary::ElemType;
+pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::clock::Clock;
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
 pub use runtime::forcing::Force;
+pub use runtime::host_blocks::{
+    HOST_SOURCE, HostBlocks, HostDeclError, HostIo, HostIoError, HostPin, HostResult,
+    HostSignature, PinDir,
+};
 pub use runtime::io_address::{AddressError, Area, IoAddress, Width};
 pub use runtime::life_cycle::PlcState;
 pub use runtime::live_stimulus::{LiveStimulus, LiveStimulusError};
@@ -76,7 +81,7 @@ pub use runtime::variables::{ChartState, Direction, VarInfo, VarShape};
 pub use runtime::watchdog::{UnknownTask, WatchdogTrip};
 pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
-pub use vm::{Fault, FaultKind};
+pub use vm::{Fault, FaultKind, HostFailure};
 
 /// The examples of `docs/embedding.md`, compiled and run as doc-tests.
 #[cfg(doctest)]

@@ -32,7 +32,7 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Run a program and print a trace (the default command).
-    Run(RunArgs),
+    Run(Box<RunArgs>),
     /// Parse and check sources; exit 0 iff there is no error.
     Check(CheckArgs),
 }
@@ -90,6 +90,10 @@ pub struct RunArgs {
     /// Format of --stats.
     #[arg(long, value_enum, default_value_t = StatsFormat::Text, requires = "stats")]
     pub stats_format: StatsFormat,
+    /// Before cycle N, load FILE (the whole new version) into the running
+    /// PLC by online change. Repeatable.
+    #[arg(long = "online-change-at", value_name = "N:FILE")]
+    pub online_change_at: Vec<String>,
 }
 
 /// `plcrun check FILES...`: parse and check only.

@@ -68,6 +68,7 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         cycle_time,
         program: args.program.clone(),
         watchdog,
+        ..Options::default()
     })
 }
 
@@ -241,7 +242,21 @@ pub fn run(args: &RunArgs) -> i32 {
     };
     let names = session.trace_names().to_vec();
     let mut writer = TraceWriter::new(out, format, names, args.changes_only);
-    let status = match drive(args, &mut session, args.cycles, &mut writer).map_err(|e| *e) {
+    let changes = match super::online::planned(&args.online_change_at) {
+        Ok(c) => c,
+        Err(e) => return usage_error(e),
+    };
+    let result = if changes.is_empty() {
+        drive(args, &mut session, args.cycles, &mut writer).map_err(|e| *e)
+    } else if args.realtime {
+        return usage_error(
+            "--online-change-at runs in virtual time; it cannot be combined with --realtime",
+        );
+    } else {
+        let cycles = args.cycles.unwrap_or(0);
+        super::online::run(&mut session, cycles, &mut writer, &changes, &options)
+    };
+    let status = match result {
         Ok(()) => EXIT_OK,
         Err(RunError::Fault(fault)) => {
             // Starts with `error[R...]:`, like a compile diagnostic.

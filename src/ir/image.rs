@@ -144,6 +144,9 @@ pub struct Image {
     pub tasks: Vec<Task>,
     /// Step tables of the SFC bodies (referenced by `Op::Sfc`).
     pub charts: Vec<crate::ir::chart::Chart>,
+    /// Names of the POUs whose bodies the host registered (referenced by
+    /// `Op::CallHost`), in the order the compile options list them.
+    pub hosts: Vec<String>,
 }
 
 impl Image {

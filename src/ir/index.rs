@@ -97,6 +97,11 @@ index_type!(
     ChartIdx(u32)
 );
 index_type!(
+    /// An index into `Image::hosts`: a FUNCTION or FUNCTION_BLOCK whose
+    /// body the host registered.
+    HostIdx(u32)
+);
+index_type!(
     /// An index into `Image::scalar_types`.
     ScalarTypeIdx(u8)
 );

@@ -15,8 +15,8 @@ pub use crate::value::convert::Conv;
 pub use crate::value::encode::{wrap_s, wrap_u};
 
 pub use super::index::{
-    ArrayIdx, ChartIdx, CodeIdx, ConstIdx, ScalarTypeIdx, ShortArrayIdx, ShortTarget, Slot,
-    StrConstIdx, Target,
+    ArrayIdx, ChartIdx, CodeIdx, ConstIdx, HostIdx, ScalarTypeIdx, ShortArrayIdx, ShortTarget,
+    Slot, StrConstIdx, Target,
 };
 
 /// Elementary math functions on REAL/LREAL.

@@ -25,6 +25,7 @@
 //! | `ScalarType` | an index into `Image::scalar_types` | in the table |
 //! | `Code(kind)` | a code-block index of the given `CodeKind` | in the table, of that kind |
 //! | `Chart` | an index into `Image::charts` | in the table (the chart is verified on its own) |
+//! | `Host` | an index into `Image::hosts` | in the table |
 //! | `Abs` | an absolute memory address | inside memory |
 //! | `Data` | an immediate, a shift, a predicate, a static offset | nothing to check |
 //!
@@ -33,7 +34,7 @@
 //! `Target`, `ShortTarget` a `ShortTarget`, `Const` a `ConstIdx`,
 //! `StrConst` a `StrConstIdx`, `Array` an `ArrayIdx` or `ShortArrayIdx`,
 //! `ScalarType` a `ScalarTypeIdx`, `Code` a `CodeIdx`, `Chart` a
-//! `ChartIdx`; and no typed index may be declared `Data`. A mismatch
+//! `ChartIdx`, `Host` a `HostIdx`; and no typed index may be declared `Data`. A mismatch
 //! either way does not compile.
 //!
 //! After the fields an instruction may name its *shape* (how it relates to
@@ -285,6 +286,10 @@ macro_rules! for_each_op {
             /// One call of the SFC chart `chart` (index into `Image::charts`) on
             /// the current instance: evolution, then action control.
             Sfc { chart: ChartIdx => Chart };
+            /// The body of a FUNCTION or FUNCTION_BLOCK the host registered
+            /// (entry `id` of `Image::hosts`): runs the host's code on the
+            /// current frame (the FB instance or the function's frame).
+            CallHost { id: HostIdx => Host };
         }
     };
 }

@@ -12,7 +12,7 @@
 
 use super::image::CodeKind;
 use super::op::{
-    ArrayIdx, ChartIdx, CodeIdx, ConstIdx, NativeFb, Op, ScalarTypeIdx, ShortTarget, Slot,
+    ArrayIdx, ChartIdx, CodeIdx, ConstIdx, HostIdx, NativeFb, Op, ScalarTypeIdx, ShortTarget, Slot,
     StrConstIdx, Target,
 };
 
@@ -79,6 +79,8 @@ pub enum Operand<'a> {
     Code(CodeIdx, CodeKind),
     /// An index into `Image::charts`.
     Chart(ChartIdx),
+    /// An index into `Image::hosts`.
+    Host(HostIdx),
     /// An absolute memory address.
     Abs(u32),
 }
@@ -147,6 +149,9 @@ macro_rules! role {
     ($f:ident, $x:ident, Chart) => {
         $f(Operand::Chart(*$x))
     };
+    ($f:ident, $x:ident, Host) => {
+        $f(Operand::Host(*$x))
+    };
     ($f:ident, $x:ident, Abs) => {
         $f(Operand::Abs(*$x))
     };
@@ -175,6 +180,7 @@ macro_rules! type_fits_role {
     (@data ScalarTypeIdx) => { type_fits_role!(@refuse ScalarTypeIdx) };
     (@data CodeIdx) => { type_fits_role!(@refuse CodeIdx) };
     (@data ChartIdx) => { type_fits_role!(@refuse ChartIdx) };
+    (@data HostIdx) => { type_fits_role!(@refuse HostIdx) };
     (@data $ty:ident) => {};
     (@refuse $ty:ident) => {
         compile_error!(concat!("a `", stringify!($ty), "` field declared `Data`"));
@@ -256,6 +262,7 @@ pub fn for_each_slot(op: &mut Op, f: &mut impl FnMut(&mut Slot)) {
         | Operand::ScalarType(_)
         | Operand::Code(..)
         | Operand::Chart(_)
+        | Operand::Host(_)
         | Operand::Abs(_) => {}
     });
 }
@@ -310,7 +317,7 @@ pub fn writes(op: &mut Op) -> Writes<'_> {
 #[cfg(test)]
 mod example {
     use crate::ir::op::{
-        ArrayIdx, ChartIdx, Cmp, CodeIdx, ConstIdx, Conv, MathFn, NativeFb, ScalarTypeIdx,
+        ArrayIdx, ChartIdx, Cmp, CodeIdx, ConstIdx, Conv, HostIdx, MathFn, NativeFb, ScalarTypeIdx,
         ShiftKind, ShortArrayIdx, ShortTarget, Slot, StrConstIdx, StrFn, Target,
     };
 
@@ -345,6 +352,7 @@ mod example {
         ShortArrayIdx,
         CodeIdx,
         ChartIdx,
+        HostIdx,
         ScalarTypeIdx
     );
 

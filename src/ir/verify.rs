@@ -110,6 +110,8 @@ pub enum Problem {
     ChartIndex,
     /// A chart's state is not inside the frame of the block running it.
     ChartOutsideFrame,
+    /// A host-body index is out of range.
+    HostOutOfRange,
     /// An absolute address is outside memory.
     AbsOutsideMemory,
     /// A program instance's code block is missing or not a PROGRAM body.
@@ -148,6 +150,7 @@ impl fmt::Display for Problem {
             Problem::ChartOutOfRange => "chart index out of range",
             Problem::ChartIndex => "chart table index out of range",
             Problem::ChartOutsideFrame => "chart state outside the frame",
+            Problem::HostOutOfRange => "host body index out of range",
             Problem::AbsOutsideMemory => "absolute address outside memory",
             Problem::ProgramCode => "program instance without a PROGRAM body",
             Problem::ProgramOutsideMemory => "program instance outside memory",
@@ -308,6 +311,7 @@ fn check_operand(image: &Image, c: &CodeBlock, o: Operand<'_>) -> Result<(), Pro
                 .ok_or(Problem::ChartOutOfRange)?;
             check_chart(image, chart, size)
         }
+        Operand::Host(i) => ensure(i.index() < image.hosts.len(), Problem::HostOutOfRange),
         Operand::Abs(a) => ensure((a as u64) < mem, Problem::AbsOutsideMemory),
     }
 }

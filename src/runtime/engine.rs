@@ -4,6 +4,7 @@
 use super::clock::Clock;
 use super::default_trace;
 use super::forcing::Forces;
+use super::host_blocks::{HOST_SOURCE, HostBlocks, HostDispatcher};
 use super::process_image::ProcessImage;
 use super::scheduler::Scheduler;
 use super::stop::StopHandle;
@@ -13,9 +14,10 @@ use crate::driver::{self, CompileOptions};
 use crate::ir::image::Image;
 use crate::ir::verify::VerifiedImage;
 use crate::source::{SourceMap, Span};
-use crate::vm::{Fault, Machine};
+use crate::vm::{Fault, HostLink, Machine};
 use std::fmt;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 /// How to build and run a program.
@@ -29,6 +31,8 @@ pub struct Options {
     /// for every task ([`Plc::set_task_watchdog`] changes one task's);
     /// `None` disables it.
     pub watchdog: Option<Duration>,
+    /// FUNCTIONs and FUNCTION_BLOCKs implemented by the host (none by default).
+    pub hosts: HostBlocks,
 }
 
 impl Default for Options {
@@ -37,6 +41,7 @@ impl Default for Options {
             cycle_time: 10_000_000,
             program: None,
             watchdog: Some(Duration::from_secs(1)),
+            hosts: HostBlocks::default(),
         }
     }
 }
@@ -119,8 +124,8 @@ impl std::error::Error for RuntimeFault {}
 pub struct Plc {
     pub(super) image: VerifiedImage,
     pub(super) machine: Machine,
-    sources: SourceMap,
-    warnings: Diagnostics,
+    pub(super) sources: SourceMap,
+    pub(super) warnings: Diagnostics,
     pub(super) cycle: u64,
     pub(super) scheduler: Scheduler,
     /// Where `now` comes from (virtual by default).
@@ -137,6 +142,9 @@ pub struct Plc {
     pub(super) io: ProcessImage,
     /// Forced variables, applied around every program run.
     pub(super) forces: Forces,
+    /// The host bodies' dispatcher (also linked into the machine), kept
+    /// typed for online change to move host instances' state.
+    pub(super) host_code: Option<Arc<Mutex<HostDispatcher>>>,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -153,12 +161,16 @@ impl Plc {
     }
 
     /// Compiles every file of `sources`.
-    pub fn compile(sources: SourceMap, options: &Options) -> Result<Plc, CompileError> {
+    pub fn compile(mut sources: SourceMap, options: &Options) -> Result<Plc, CompileError> {
         let mut diags = Diagnostics::new();
+        if !options.hosts.is_empty() {
+            sources.add(HOST_SOURCE, options.hosts.declarations());
+        }
         let build = CompileOptions {
             program: options.program.clone(),
             cycle_time: options.cycle_time,
             check_only: false,
+            host_pous: options.hosts.names(),
         };
         let image = driver::compile(&sources, &build, &mut diags);
         match image {
@@ -178,13 +190,18 @@ impl Plc {
         warnings: Diagnostics,
         options: &Options,
     ) -> Plc {
-        let machine = Machine::new(&image);
+        let mut machine = Machine::new(&image);
         let stop = StopHandle::interrupting(machine.interrupt().clone());
         let watchdog = Watchdog::new(
             machine.interrupt().clone(),
             image.tasks.len(),
             options.watchdog,
         );
+        let host_code = (!image.hosts.is_empty())
+            .then(|| Arc::new(Mutex::new(options.hosts.dispatcher(&image))));
+        if let Some(code) = &host_code {
+            machine.host = HostLink(Some(code.clone()));
+        }
         let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
         let io = ProcessImage::new(&image, &machine.mem);
         Plc {
@@ -201,6 +218,7 @@ impl Plc {
             watchdog,
             io,
             forces: Forces::default(),
+            host_code,
         }
     }
 

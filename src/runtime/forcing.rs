@@ -55,6 +55,25 @@ pub(crate) struct Forces {
 }
 
 impl Forces {
+    /// The same forces resolved in `plc` (a new version of the program,
+    /// for an online change), or the path of the first one that no longer
+    /// fits, with why.
+    pub(crate) fn rebind(&self, plc: &Plc) -> Result<Forces, (String, VarError)> {
+        let mut list = Vec::with_capacity(self.list.len());
+        for f in &self.list {
+            let fail = |e| (f.r.name.clone(), e);
+            let r = plc.resolve(&f.r.name).map_err(fail)?;
+            plc.writable(&r).map_err(fail)?;
+            let value = plc.parse_value(&r, &f.value.to_literal()).map_err(fail)?;
+            let under = match &f.under {
+                Some(u) => Some(plc.parse_value(&r, &u.to_literal()).map_err(fail)?),
+                None => None,
+            };
+            list.push(Forced { r, value, under });
+        }
+        Ok(Forces { list })
+    }
+
     /// True when nothing is forced (then nothing is applied per cycle).
     #[inline]
     pub(crate) fn is_empty(&self) -> bool {

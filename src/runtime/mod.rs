@@ -12,8 +12,11 @@
 //! - [`realtime`]: running the tasks on the wall clock, on a thread;
 //! - [`live_stimulus`]: stimulus rows read while the program runs;
 //! - [`default_trace`]: what is traced when the user names nothing;
+//! - [`host_blocks`]: FUNCTIONs and FUNCTION_BLOCKs implemented by the host;
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
 //! - [`var_error`]: why such a path cannot be resolved, read or written;
+//! - [`online_change`]: a new program version taking over a running PLC,
+//!   with its [`change_report`];
 //! - [`stop`]: asking a run to end from another thread;
 //! - [`life_cycle`]: the faulted STOP state and the resets;
 //! - [`watchdog`]: per-task cycle-time limits and the thread enforcing them;
@@ -26,14 +29,17 @@
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
 pub mod access;
+pub mod change_report;
 pub mod clock;
 pub mod default_trace;
 pub mod engine;
 pub mod forcing;
+pub mod host_blocks;
 pub mod io_address;
 pub mod life_cycle;
 pub mod live_stimulus;
 pub mod names;
+pub mod online_change;
 pub mod plc_value;
 pub mod process_image;
 pub mod realtime;

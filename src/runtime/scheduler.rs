@@ -124,6 +124,16 @@ impl Scheduler {
         self.due[programs[p].task].then_some(p)
     }
 
+    /// Takes over the tick count and the SINGLE triggers' memory of `old`, a
+    /// schedule of the same tasks (online change): the clock goes on, and a
+    /// trigger already high does not count as a new rising edge.
+    pub(crate) fn carry_over(&mut self, old: &Scheduler) {
+        self.next_tick = old.next_tick;
+        if old.single_prev.len() == self.single_prev.len() {
+            self.single_prev.clone_from(&old.single_prev);
+        }
+    }
+
     /// How many program instances there are.
     pub(crate) fn len(&self) -> usize {
         self.order.len()

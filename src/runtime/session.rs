@@ -19,6 +19,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use super::change_report::{ChangeReport, SessionChangeError};
 use super::default_trace::is_trace_column;
 use super::engine::{Plc, RuntimeFault};
 use super::live_stimulus::{LiveStimulus, LiveStimulusError};
@@ -220,44 +221,37 @@ impl Session {
     /// so that a bad cell is reported before the first cycle runs. Replaces
     /// any stimulus bound before.
     pub fn bind_stimulus(&mut self, stimulus: Stimulus) -> Result<(), StimulusBindError> {
-        let mut columns = Vec::with_capacity(stimulus.columns.len());
-        for name in &stimulus.columns {
-            let r = self
-                .plc
-                .resolve(name)
-                .and_then(|r| self.plc.writable(&r).map(|()| r))
-                .map_err(|error| StimulusBindError {
-                    column: name.clone(),
-                    line: None,
-                    error,
-                })?;
-            columns.push(r);
-        }
-        let mut rows = Vec::with_capacity(stimulus.rows.len());
-        for row in &stimulus.rows {
-            let mut cells = Vec::new();
-            for (i, cell) in row.cells.iter().enumerate() {
-                let Some(text) = cell else { continue };
-                let value =
-                    self.plc
-                        .parse_value(&columns[i], text)
-                        .map_err(|error| StimulusBindError {
-                            column: stimulus.columns[i].clone(),
-                            line: Some(row.line),
-                            error,
-                        })?;
-                cells.push((i, value));
-            }
-            rows.push(cells);
-        }
-        self.stimulus = Some(BoundStimulus {
-            stimulus,
-            columns,
-            rows,
-            cursor: StimulusCursor::new(),
-            applied: 0,
-        });
+        self.stimulus = Some(bind(&self.plc, stimulus)?);
         Ok(())
+    }
+
+    /// Applies an online change ([`Plc::online_change`]) and binds the
+    /// traced names and the stimulus to the new version, where the
+    /// stimulus goes on from the row it had reached. A traced name or a
+    /// stimulus column that does not fit the new version refuses the
+    /// change, and nothing changes.
+    pub fn online_change(&mut self, new: Plc) -> Result<ChangeReport, SessionChangeError> {
+        let traced = self
+            .names
+            .iter()
+            .map(|n| new.resolve(n))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(SessionChangeError::Trace)?;
+        let stimulus = match &self.stimulus {
+            Some(old) => {
+                let mut bound =
+                    bind(&new, old.stimulus.clone()).map_err(SessionChangeError::Stimulus)?;
+                bound.cursor = old.cursor.clone();
+                bound.applied = old.applied;
+                Some(bound)
+            }
+            None => None,
+        };
+        // The handles were resolved by `new`, whose identity the PLC takes.
+        let report = self.plc.online_change(new)?;
+        self.traced = traced;
+        self.stimulus = stimulus;
+        Ok(report)
     }
 
     /// Sets the hook run after every cycle of [`Self::step`] (and so of
@@ -404,4 +398,44 @@ impl Session {
         }
         self.run_on_stop()
     }
+}
+
+/// Resolves every column of `stimulus` in `plc` and decodes every cell for
+/// its column's type.
+fn bind(plc: &Plc, stimulus: Stimulus) -> Result<BoundStimulus, StimulusBindError> {
+    let mut columns = Vec::with_capacity(stimulus.columns.len());
+    for name in &stimulus.columns {
+        let r = plc
+            .resolve(name)
+            .and_then(|r| plc.writable(&r).map(|()| r))
+            .map_err(|error| StimulusBindError {
+                column: name.clone(),
+                line: None,
+                error,
+            })?;
+        columns.push(r);
+    }
+    let mut rows = Vec::with_capacity(stimulus.rows.len());
+    for row in &stimulus.rows {
+        let mut cells = Vec::new();
+        for (i, cell) in row.cells.iter().enumerate() {
+            let Some(text) = cell else { continue };
+            let value = plc
+                .parse_value(&columns[i], text)
+                .map_err(|error| StimulusBindError {
+                    column: stimulus.columns[i].clone(),
+                    line: Some(row.line),
+                    error,
+                })?;
+            cells.push((i, value));
+        }
+        rows.push(cells);
+    }
+    Ok(BoundStimulus {
+        stimulus,
+        columns,
+        rows,
+        cursor: StimulusCursor::new(),
+        applied: 0,
+    })
 }

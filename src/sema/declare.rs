@@ -111,6 +111,11 @@ impl<'a> Declarer<'a> {
     }
 
     /// Emits every body not emitted yet and ends the phase.
+    /// Names the POUs whose bodies the host provides.
+    pub(super) fn set_host_pous(&mut self, names: &[String]) {
+        self.model.host_pous = names.iter().map(|n| n.to_ascii_uppercase()).collect();
+    }
+
     pub(super) fn finish(mut self) -> Declared {
         for p in 0..self.model.pous.len() {
             self.ensure_emitted(p);

@@ -63,6 +63,10 @@ pub struct CompileOptions {
     pub cycle_time: i64,
     /// Only check; do not require a runnable program.
     pub check_only: bool,
+    /// FUNCTIONs and FUNCTION_BLOCKs whose bodies the host provides (their
+    /// declarations are among the sources, with empty bodies): each body
+    /// becomes `Op::CallHost` with its index in this list.
+    pub host_pous: Vec<String>,
 }
 
 /// Checks and lowers parsed files into a verified image. Returns `None` when
@@ -73,6 +77,7 @@ pub fn compile(
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
     let mut declarer = declare::Declarer::new(units, diags);
+    declarer.set_host_pous(&options.host_pous);
     declarer.declare_all();
     let declared = declarer.finish();
     let image = link::link(units, declared, options, diags);

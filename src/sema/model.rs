@@ -108,6 +108,9 @@ pub(crate) struct Model {
     pub globals: IndexMap<String, VarInfo>,
     /// Which POU bodies were emitted (the linker places only those).
     pub emitted: Vec<bool>,
+    /// Case-folded names of the POUs whose bodies the host provides, by
+    /// `Op::CallHost` index.
+    pub host_pous: Vec<String>,
 }
 
 impl Model {

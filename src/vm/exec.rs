@@ -762,6 +762,20 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                 // SAFETY: as at entry.
                 fp = unsafe { mem.add(base) };
             }
+            Op::CallHost { id } => {
+                // SAFETY: the frame lies in memory (checked at entry), and
+                // nothing else reaches it during the call (the host sees
+                // only this slice and the string table).
+                let frame =
+                    unsafe { std::slice::from_raw_parts_mut(fp, block.frame_size as usize) };
+                super::host::call(&m.host, &mut m.strings, m.now, id, frame, base).map_err(
+                    |kind| Fault {
+                        kind,
+                        code,
+                        pc: (pc!() - 1) as u32,
+                    },
+                )?
+            }
         }
     }
 }

@@ -46,6 +46,28 @@ pub enum FaultKind {
     Aborted,
     /// A computed address fell outside memory (an internal error).
     BadAddress,
+    /// A host-registered FUNCTION or FUNCTION_BLOCK failed: it returned
+    /// an error or panicked (boxed: faults stay small).
+    HostFunction(Box<HostFailure>),
+}
+
+/// Which host body failed, and how.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct HostFailure {
+    /// The POU's name.
+    pub name: String,
+    /// The error's text, or `panicked: ` and the panic's message.
+    pub message: String,
+}
+
+impl FaultKind {
+    /// The fault of a failed host body.
+    pub(crate) fn host(name: impl Into<String>, message: impl Into<String>) -> FaultKind {
+        FaultKind::HostFunction(Box::new(HostFailure {
+            name: name.into(),
+            message: message.into(),
+        }))
+    }
 }
 
 impl From<ConvError> for FaultKind {
@@ -76,6 +98,7 @@ impl FaultKind {
             FaultKind::NegativeExponent => "R007",
             FaultKind::Watchdog => "R008",
             FaultKind::Aborted => "R009",
+            FaultKind::HostFunction(_) => "R010",
             FaultKind::BadAddress => "R999",
         }
     }
@@ -106,6 +129,9 @@ impl fmt::Display for FaultKind {
             FaultKind::Watchdog => write!(f, "watchdog: cycle exceeded its time limit"),
             FaultKind::Aborted => write!(f, "aborted: the cycle was interrupted by a stop handle"),
             FaultKind::BadAddress => write!(f, "internal error: computed address outside memory"),
+            FaultKind::HostFunction(h) => {
+                write!(f, "host function `{}` failed: {}", h.name, h.message)
+            }
         }
     }
 }

@@ -13,11 +13,13 @@
 mod chart;
 mod exec;
 mod fault;
+mod host;
 mod interrupt;
 mod string_ops;
 mod strings;
 
-pub use fault::{Fault, FaultKind};
+pub use fault::{Fault, FaultKind, HostFailure};
+pub(crate) use host::{HostDispatch, HostFrame, HostLink};
 pub(crate) use interrupt::Interrupt;
 pub use strings::PlcString;
 
@@ -37,6 +39,8 @@ pub struct Machine {
     pub(crate) now: i64,
     /// Polled at every backward jump and call (see [`Interrupt`]).
     interrupt: Arc<Interrupt>,
+    /// Runs the bodies of host-registered POUs (`Op::CallHost`).
+    pub(crate) host: HostLink,
 }
 
 impl Machine {
@@ -51,6 +55,7 @@ impl Machine {
                 .collect(),
             now: 0,
             interrupt: Arc::default(),
+            host: HostLink::default(),
         }
     }
 

@@ -653,3 +653,31 @@ fn writes_come_from_the_roles() {
         assert_eq!(w.result, outs == 1, "{op:?}");
     }
 }
+
+#[test]
+fn a_host_body_index_out_of_range_is_refused() {
+    let mut hosts = crate::HostBlocks::new();
+    let sig = crate::HostSignature::block("Hb").output("q", crate::ElemType::Bool);
+    let ok = |_: &mut crate::HostIo<'_>| -> crate::HostResult { Ok(()) };
+    hosts.block(sig, move || ok).expect("a valid declaration");
+    let options = crate::Options {
+        hosts,
+        ..crate::Options::default()
+    };
+    let src = "PROGRAM P VAR h : Hb; END_VAR h(); END_PROGRAM";
+    let plc =
+        crate::Plc::compile_files(&[("h.st", src)], &options).unwrap_or_else(|e| panic!("{e}"));
+    let img = plc.image().clone();
+    assert!(verify(img.clone()).is_ok());
+    let at = place(&img, |o| matches!(o, Op::CallHost { .. }));
+    let bad = with_op(&img, at, |o| {
+        if let Op::CallHost { id } = o {
+            *id = crate::ir::op::HostIdx::new(1)
+        }
+    });
+    assert_eq!(refused(bad), Problem::HostOutOfRange);
+    // An image that lost its host table is refused too.
+    let mut bad = img;
+    bad.hosts.clear();
+    assert_eq!(refused(bad), Problem::HostOutOfRange);
+}

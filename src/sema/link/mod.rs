@@ -122,6 +122,7 @@ impl Linker<'_> {
             programs: instances,
             tasks,
             charts: std::mem::take(&mut self.out.charts),
+            hosts: options.host_pous.clone(),
         };
         if self.diags.has_errors() {
             return None;
