@@ -54,6 +54,10 @@ pub use elementary::ElemType;
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
 pub use runtime::names::VarRef;
 pub use runtime::plc_value::Value;
+pub use runtime::retain::saver::RetainSaver;
+pub use runtime::retain::{
+    Damage, RestoreMode, RestoreReport, RetainDiff, RetainError, RetainedVariable, TypeChange,
+};
 pub use runtime::session::{Pacing, RunError, Session, StimulusBindError};
 pub use runtime::stimulus::{
     Stimulus, StimulusCursor, StimulusError, StimulusKey, StimulusRow, parse_stimulus,

@@ -74,6 +74,21 @@ pub struct RunArgs {
     /// Pace cycles on the wall clock instead of running as fast as possible.
     #[arg(long)]
     pub realtime: bool,
+    /// Retained data file: RETAIN/PERSISTENT values are restored from it at
+    /// start (a missing file is a cold start) and saved to it.
+    #[arg(long, value_name = "FILE")]
+    pub retain: Option<PathBuf>,
+    /// Save the retained values every N cycles (and at the end of the run).
+    #[arg(long, value_name = "N", default_value_t = 10, requires = "retain",
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub retain_every: u64,
+    /// Cold start: ignore the retain file's values (it is overwritten at the next save).
+    #[arg(long, requires = "retain")]
+    pub cold: bool,
+    /// Restore the retained values that still fit the program and name the others,
+    /// instead of refusing a file saved by another version of the program.
+    #[arg(long, requires = "retain", conflicts_with = "cold")]
+    pub retain_partial: bool,
 }
 
 /// `plcrun check FILES...`: parse and check only.

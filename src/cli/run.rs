@@ -143,14 +143,21 @@ pub fn run(args: &RunArgs) -> i32 {
         Ok(o) => o,
         Err(e) => return usage_error(e),
     };
-    let plc = match compile(args, &options) {
+    let mut plc = match compile(args, &options) {
         Ok(plc) => plc,
         Err(status) => return status,
+    };
+    let saver = match super::retain::start(args, &mut plc) {
+        Ok(saver) => saver,
+        Err(e) => return usage_error(e),
     };
     let mut session = match session(args, plc) {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
+    if let Some(saver) = saver {
+        session.save_retain_every(saver, args.retain_every);
+    }
     let out: Box<dyn Write> = match &args.output {
         Some(p) => match std::fs::File::create(p) {
             Ok(f) => Box::new(std::io::BufWriter::new(f)),
@@ -160,7 +167,17 @@ pub fn run(args: &RunArgs) -> i32 {
     };
     let names = session.trace_names().to_vec();
     let mut writer = TraceWriter::new(out, format, names, args.changes_only);
-    let status = match session.run(cycles, &mut writer) {
+    let result = session.run(cycles, &mut writer);
+    // A fault leaves the faulting cycle half done: the last periodic save
+    // is the consistent one, so only a run ending at a cycle boundary saves.
+    let boundary = !matches!(result, Err(RunError::Fault(_)));
+    if let Some(saver) = session.take_retain_saver()
+        && let Err(e) = super::retain::finish(saver, session.plc(), boundary)
+    {
+        eprintln!("error: {e}");
+        return EXIT_USAGE;
+    }
+    let status = match result {
         Ok(()) => EXIT_OK,
         Err(RunError::Fault(fault)) => {
             eprintln!("error: {fault}");

@@ -142,6 +142,8 @@ pub struct Image {
     pub tasks: Vec<Task>,
     /// Step tables of the SFC bodies (referenced by `Op::Sfc`).
     pub charts: Vec<crate::ir::chart::Chart>,
+    /// The retained values (RETAIN, PERSISTENT), in declaration order.
+    pub retained: Vec<crate::ir::retained::RetainedVar>,
 }
 
 impl Image {

@@ -101,7 +101,7 @@ pub struct Plc {
     sources: SourceMap,
     warnings: Diagnostics,
     cycle: u64,
-    scheduler: Scheduler,
+    pub(super) scheduler: Scheduler,
     /// Tells this PLC's variable handles from another's.
     pub(super) id: u64,
     /// Stop requests from other threads.

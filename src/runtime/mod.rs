@@ -10,6 +10,7 @@
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
 //! - [`var_error`]: why such a path cannot be resolved, read or written;
 //! - [`stop`]: asking a run to end from another thread;
+//! - [`retain`]: RETAIN and PERSISTENT values kept over a restart in a file;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
@@ -18,6 +19,7 @@ pub mod default_trace;
 pub mod engine;
 pub mod names;
 pub mod plc_value;
+pub mod retain;
 pub mod scheduler;
 pub mod session;
 pub mod stimulus;

@@ -114,6 +114,8 @@ pub struct Session {
     traced: Vec<VarRef>,
     cells: Vec<TraceCell>,
     pacing: Pacing,
+    /// Retained values saved every so many cycles by [`Self::run`].
+    retain: Option<(super::retain::saver::RetainSaver, u64)>,
 }
 
 impl Session {
@@ -128,6 +130,7 @@ impl Session {
             traced: Vec::new(),
             cells: Vec::new(),
             pacing: Pacing::Virtual,
+            retain: None,
         }
     }
 
@@ -149,6 +152,17 @@ impl Session {
     /// Sets how cycles are paced (virtual by default).
     pub fn set_pacing(&mut self, pacing: Pacing) {
         self.pacing = pacing;
+    }
+
+    /// Has [`Self::run`] hand the retained values to `saver` after every
+    /// `every`-th cycle (counted by cycle number; 0 is taken as 1).
+    pub fn save_retain_every(&mut self, saver: super::retain::saver::RetainSaver, every: u64) {
+        self.retain = Some((saver, every.max(1)));
+    }
+
+    /// Takes back the saver given to [`Self::save_retain_every`].
+    pub fn take_retain_saver(&mut self) -> Option<super::retain::saver::RetainSaver> {
+        self.retain.take().map(|(saver, _)| saver)
     }
 
     /// Traces these variables, in this order; names are kept as written
@@ -281,6 +295,13 @@ impl Session {
             }
             self.step().map_err(RunError::Fault)?;
             out.row(cycle, time, &self.cells).map_err(RunError::Trace)?;
+            if let Some((saver, every)) = &self.retain
+                && (cycle + 1) % every == 0
+            {
+                // The saver was made for this PLC by its owner; a saver of
+                // another PLC only refuses to save.
+                let _ = saver.offer(&self.plc);
+            }
         }
         Ok(())
     }
