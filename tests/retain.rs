@@ -77,7 +77,8 @@ const VALUES: &[(&str, &str)] = &[
 fn every_elementary_type_survives_a_save_and_restore() {
     let mut plc = compile(ALL_TYPES);
     for (name, literal) in VALUES {
-        plc.write(name, literal).unwrap_or_else(|e| panic!("{name}: {e}"));
+        plc.write(name, literal)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
     }
     let expected: Vec<Value> = VALUES.iter().map(|(n, _)| plc.read(n).unwrap()).collect();
     let path = temp_path("all.json");
@@ -93,10 +94,22 @@ fn every_elementary_type_survives_a_save_and_restore() {
     }
     // The file is readable JSON with IEC literals.
     let text = std::fs::read_to_string(&path).unwrap();
-    assert!(text.contains(r#"{"name":"P.w","type":"WORD","value":"16#BEEF"}"#), "{text}");
-    assert!(text.contains(r#"{"name":"P.s","type":"STRING[12]","value":"'it$'s $N ok'"}"#), "{text}");
-    assert!(text.contains(r#""type":"ENUM(Red,Green,Blue)","value":"Blue""#), "{text}");
-    assert!(text.contains(r#""type":"INT(0..100)","value":"99""#), "{text}");
+    assert!(
+        text.contains(r#"{"name":"P.w","type":"WORD","value":"16#BEEF"}"#),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#"{"name":"P.s","type":"STRING[12]","value":"'it$'s $N ok'"}"#),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#""type":"ENUM(Red,Green,Blue)","value":"Blue""#),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#""type":"INT(0..100)","value":"99""#),
+        "{text}"
+    );
 }
 
 #[test]
@@ -115,8 +128,19 @@ END_PROGRAM";
     assert_eq!(
         names(&plc),
         [
-            "g_total", "g_grid[1,0]", "g_grid[1,1]", "g_grid[2,0]", "g_grid[2,1]", "m", "P.arr[1]",
-            "P.arr[2]", "P.arr[3]", "P.pts[0].x", "P.pts[0].tag", "P.pts[1].x", "P.pts[1].tag",
+            "g_total",
+            "g_grid[1,0]",
+            "g_grid[1,1]",
+            "g_grid[2,0]",
+            "g_grid[2,1]",
+            "m",
+            "P.arr[1]",
+            "P.arr[2]",
+            "P.arr[3]",
+            "P.pts[0].x",
+            "P.pts[0].tag",
+            "P.pts[1].x",
+            "P.pts[1].tag",
         ]
     );
     for _ in 0..3 {
@@ -157,7 +181,13 @@ fn fb_instances_keep_their_internals_and_fb_types_retain_their_retain_variables(
     let listed = names(&plc);
     // The whole retained instance, native blocks' hidden state included,
     // but not what its type declares NON_RETAIN.
-    for n in ["P.kept.add", "P.kept.total", "P.kept.scratch", "P.kept.c.CV", "P.kept.t.START"] {
+    for n in [
+        "P.kept.add",
+        "P.kept.total",
+        "P.kept.scratch",
+        "P.kept.c.CV",
+        "P.kept.t.START",
+    ] {
         assert!(listed.iter().any(|l| l == n), "{n} in {listed:?}");
     }
     assert!(!listed.iter().any(|l| l == "P.kept.never"), "{listed:?}");
@@ -208,7 +238,10 @@ END_PROGRAM";
     let path = temp_path("persistent.json");
     plc.save_retain(&path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
-    assert!(text.contains(r#"{"name":"P.p","type":"DINT","value":"1","persistent":true}"#), "{text}");
+    assert!(
+        text.contains(r#"{"name":"P.p","type":"DINT","value":"1","persistent":true}"#),
+        "{text}"
+    );
     let mut fresh = compile(src);
     fresh.restore_retain(&path, RestoreMode::Exact).unwrap();
     fresh.run_cycle().unwrap();
@@ -230,7 +263,12 @@ fn a_file_of_another_program_version_is_refused_with_what_differs() {
 
     let mut v2 = compile(V2);
     let err = v2.restore_retain(&path, RestoreMode::Exact).unwrap_err();
-    let RetainError::Mismatch { differences, fitting, .. } = &err else {
+    let RetainError::Mismatch {
+        differences,
+        fitting,
+        ..
+    } = &err
+    else {
         panic!("{err:?}");
     };
     assert_eq!(differences.not_in_file, ["P.fresh"]);
@@ -240,8 +278,14 @@ fn a_file_of_another_program_version_is_refused_with_what_differs() {
     let msg = err.to_string();
     assert!(msg.contains("does not fit this program"), "{msg}");
     assert!(msg.contains("not in the file: P.fresh"), "{msg}");
-    assert!(msg.contains("no longer retained by the program: P.old"), "{msg}");
-    assert!(msg.contains("changed type: P.b (file INT, program DINT)"), "{msg}");
+    assert!(
+        msg.contains("no longer retained by the program: P.old"),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("changed type: P.b (file INT, program DINT)"),
+        "{msg}"
+    );
     // Nothing was restored.
     assert_eq!(v2.read_i64("a").unwrap(), 0);
 
@@ -271,7 +315,10 @@ fn a_missing_file_is_told_apart_and_damaged_files_say_what_is_wrong() {
             other => panic!("{other:?}"),
         }
     };
-    assert!(matches!(damaged(&good[..good.len() / 2]), Damage::Json { .. }));
+    assert!(matches!(
+        damaged(&good[..good.len() / 2]),
+        Damage::Json { .. }
+    ));
     assert!(matches!(damaged(""), Damage::Json { line: 1, .. }));
     assert!(matches!(
         damaged(&good.replace("\"P.old\"", "\"P.older\"")),
@@ -292,8 +339,14 @@ fn a_missing_file_is_told_apart_and_damaged_files_say_what_is_wrong() {
     );
     let p = temp_path("bad.json");
     std::fs::write(&p, "{").unwrap();
-    let msg = compile(V1).restore_retain(&p, RestoreMode::Exact).unwrap_err().to_string();
-    assert!(msg.starts_with(&format!("retain file `{}` line 1 column", p.display())), "{msg}");
+    let msg = compile(V1)
+        .restore_retain(&p, RestoreMode::Exact)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.starts_with(&format!("retain file `{}` line 1 column", p.display())),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -307,7 +360,10 @@ fn the_background_saver_writes_the_newest_snapshot_and_refuses_another_plc() {
         plc.run_cycle().unwrap();
         saver.offer(&plc).unwrap();
     }
-    assert!(matches!(saver.offer(&compile(src)), Err(RetainError::ForeignPlc)));
+    assert!(matches!(
+        saver.offer(&compile(src)),
+        Err(RetainError::ForeignPlc)
+    ));
     saver.flush();
     let written = saver.saves();
     assert!(written >= 1);

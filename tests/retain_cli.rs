@@ -36,9 +36,16 @@ fn saved_counter(path: &str) -> i64 {
     assert_eq!(report.restored, 66);
     let n = plc.read_i64("n").unwrap();
     for i in 1..=64 {
-        assert_eq!(plc.read_i64(&format!("copies[{i}]")).unwrap(), n, "torn at copies[{i}]");
+        assert_eq!(
+            plc.read_i64(&format!("copies[{i}]")).unwrap(),
+            n,
+            "torn at copies[{i}]"
+        );
     }
-    assert_eq!(plc.read("text").unwrap().as_str(), Some(n.to_string().as_str()));
+    assert_eq!(
+        plc.read("text").unwrap().as_str(),
+        Some(n.to_string().as_str())
+    );
     n
 }
 
@@ -49,13 +56,19 @@ fn a_run_is_continued_from_its_retain_file_and_a_missing_file_is_a_cold_start() 
     std::fs::remove_file(&retain).unwrap();
     let (code, out, err) = plcrun(&[&src, "--cycles", "3", "--retain", &retain]);
     assert_eq!(code, 0, "{err}");
-    assert!(err.contains("cold start: retain file") && err.contains("does not exist"), "{err}");
+    assert!(
+        err.contains("cold start: retain file") && err.contains("does not exist"),
+        "{err}"
+    );
     assert!(out.ends_with("2,T#20ms,3\n"), "{out}");
     assert_eq!(saved_counter(&retain), 3);
 
     let (code, out, err) = plcrun(&[&src, "--cycles", "2", "--retain", &retain]);
     assert_eq!(code, 0, "{err}");
-    assert!(err.contains("warm start: 66 retained values restored"), "{err}");
+    assert!(
+        err.contains("warm start: 66 retained values restored"),
+        "{err}"
+    );
     assert_eq!(out, "cycle,time,out\n0,T#0s,4\n1,T#10ms,5\n");
 
     let (code, out, err) = plcrun(&[&src, "--cycles", "1", "--retain", &retain, "--cold"]);
@@ -72,9 +85,25 @@ fn retain_every_saves_periodically_and_needs_retain() {
     assert_eq!(code, 2, "{err}");
     let retain = temp_file("r.json", "");
     std::fs::remove_file(&retain).unwrap();
-    let (code, _, err) = plcrun(&[&src, "--cycles", "3", "--retain", &retain, "--retain-every", "0"]);
+    let (code, _, err) = plcrun(&[
+        &src,
+        "--cycles",
+        "3",
+        "--retain",
+        &retain,
+        "--retain-every",
+        "0",
+    ]);
     assert_eq!(code, 2, "{err}");
-    plcrun_ok(&[&src, "--cycles", "7", "--retain", &retain, "--retain-every", "3"]);
+    plcrun_ok(&[
+        &src,
+        "--cycles",
+        "7",
+        "--retain",
+        &retain,
+        "--retain-every",
+        "3",
+    ]);
     assert_eq!(saved_counter(&retain), 7);
 }
 
@@ -85,7 +114,10 @@ fn a_damaged_or_mismatching_file_stops_the_run_with_a_clear_message() {
     let (code, out, err) = plcrun(&[&src, "--cycles", "3", "--retain", &damaged]);
     assert_eq!(code, 2, "{err}");
     assert!(out.is_empty());
-    assert!(err.contains(&format!("error: retain file `{damaged}` line 1")), "{err}");
+    assert!(
+        err.contains(&format!("error: retain file `{damaged}` line 1")),
+        "{err}"
+    );
 
     let other = temp_file(
         "o.st",
@@ -97,13 +129,26 @@ fn a_damaged_or_mismatching_file_stops_the_run_with_a_clear_message() {
     let (code, _, err) = plcrun(&[&src, "--cycles", "1", "--retain", &retain]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("does not fit this program"), "{err}");
-    assert!(err.contains("changed type: P.n (file INT, program DINT)"), "{err}");
+    assert!(
+        err.contains("changed type: P.n (file INT, program DINT)"),
+        "{err}"
+    );
     assert!(err.contains("P.extra"), "{err}");
     assert!(err.contains("--retain-partial"), "{err}");
 
-    let (code, out, err) = plcrun(&[&src, "--cycles", "1", "--retain", &retain, "--retain-partial"]);
+    let (code, out, err) = plcrun(&[
+        &src,
+        "--cycles",
+        "1",
+        "--retain",
+        &retain,
+        "--retain-partial",
+    ]);
     assert_eq!(code, 0, "{err}");
-    assert!(err.contains("warm start: 0 retained values restored"), "{err}");
+    assert!(
+        err.contains("warm start: 0 retained values restored"),
+        "{err}"
+    );
     assert!(err.contains("not restored:"), "{err}");
     assert_eq!(out, "cycle,time,out\n0,T#0s,1\n");
 }
@@ -122,8 +167,22 @@ fn kill_9_at_random_moments_never_leaves_a_torn_or_older_file() {
     let mut first_seen = None;
     for round in 0..50 {
         let mut child = Command::new(env!("CARGO_BIN_EXE_plcrun"))
-            .args([&src, "--cycles", "100000000", "--cycle-time", "1ms", "--realtime"])
-            .args(["--retain", &retain, "--retain-every", "1", "--watchdog", "0"])
+            .args([
+                &src,
+                "--cycles",
+                "100000000",
+                "--cycle-time",
+                "1ms",
+                "--realtime",
+            ])
+            .args([
+                "--retain",
+                &retain,
+                "--retain-every",
+                "1",
+                "--watchdog",
+                "0",
+            ])
             .stdin(Stdio::null())
             .stdout(Stdio::null())
             .stderr(Stdio::null())
@@ -132,13 +191,19 @@ fn kill_9_at_random_moments_never_leaves_a_torn_or_older_file() {
         std::thread::sleep(Duration::from_millis(20 + rng.below(130) as u64));
         child.kill().expect("SIGKILL");
         let status = child.wait().unwrap();
-        assert!(status.code().is_none(), "round {round}: ended by itself: {status:?}");
+        assert!(
+            status.code().is_none(),
+            "round {round}: ended by itself: {status:?}"
+        );
         if !std::path::Path::new(&retain).exists() {
             assert_eq!(last, 0, "round {round}: the file disappeared");
             continue;
         }
         let n = saved_counter(&retain);
-        assert!(n >= last, "round {round}: counter went back from {last} to {n}");
+        assert!(
+            n >= last,
+            "round {round}: counter went back from {last} to {n}"
+        );
         first_seen.get_or_insert(n);
         last = n;
     }

@@ -14,7 +14,9 @@ pub fn start(args: &RunArgs, plc: &mut Plc) -> Result<Option<RetainSaver>, Strin
     };
     let shown = path.display();
     if args.cold {
-        eprintln!("note: cold start: the values in `{shown}` are not used (the file is overwritten at the next save)");
+        eprintln!(
+            "note: cold start: the values in `{shown}` are not used (the file is overwritten at the next save)"
+        );
     } else {
         let mode = if args.retain_partial {
             RestoreMode::Partial

@@ -5,9 +5,7 @@
 use super::decl_consts::init_const;
 use super::declare::{Declarer, normalize_address};
 use super::model::{ConstInit, LayoutState, Storage, VarInfo};
-use crate::ir::type_table::{
-    Member, MemberKind, Retention, TypeDef, TypeId, TypeKind, TypeTable,
-};
+use crate::ir::type_table::{Member, MemberKind, Retention, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{Ident, Item, Pou, PouKind, Retain, VarBlock, VarDecl, VarKind};
 use indexmap::IndexMap;

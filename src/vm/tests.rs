@@ -76,6 +76,7 @@ fn program(ops: Vec<Op>) -> VerifiedImage {
             single: None,
         }],
         charts: Vec::new(),
+        retained: Vec::new(),
     };
     verify(image).expect("a valid image")
 }

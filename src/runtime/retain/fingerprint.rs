@@ -106,7 +106,9 @@ impl RetainDiff {
 
     /// True when nothing differs.
     pub fn is_empty(&self) -> bool {
-        self.not_in_file.is_empty() && self.not_in_program.is_empty() && self.changed_type.is_empty()
+        self.not_in_file.is_empty()
+            && self.not_in_program.is_empty()
+            && self.changed_type.is_empty()
     }
 }
 
@@ -133,7 +135,10 @@ impl fmt::Display for RetainDiff {
             sep = "; ";
         }
         if !self.not_in_program.is_empty() {
-            write!(f, "{sep}in the file but no longer retained by the program: ")?;
+            write!(
+                f,
+                "{sep}in the file but no longer retained by the program: "
+            )?;
             list(f, &self.not_in_program)?;
             sep = "; ";
         }

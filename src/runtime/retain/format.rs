@@ -30,7 +30,7 @@ pub(crate) struct RetainFile {
 }
 
 /// One retained value in the file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 pub(crate) struct FileVar {
     /// The outside path.
     pub name: String,
@@ -48,6 +48,19 @@ pub(crate) struct FileVar {
     pub persistent: bool,
 }
 
+/// [`FileVar`] as written, borrowing its texts.
+#[derive(Serialize)]
+struct FileVarRef<'a> {
+    name: &'a str,
+    #[serde(rename = "type")]
+    ty: &'a str,
+    value: &'a str,
+    #[serde(skip_serializing_if = "is_false")]
+    relative: bool,
+    #[serde(skip_serializing_if = "is_false")]
+    persistent: bool,
+}
+
 fn is_false(b: &bool) -> bool {
     !*b
 }
@@ -61,7 +74,10 @@ pub(crate) fn encode(layout: &RetainLayout, snap: &Snapshot) -> String {
     out.push_str("{\n");
     out.push_str(&format!("  \"format\": {},\n", quoted(FORMAT)));
     out.push_str(&format!("  \"version\": {VERSION},\n"));
-    out.push_str(&format!("  \"fingerprint\": {},\n", quoted(&layout.fingerprint)));
+    out.push_str(&format!(
+        "  \"fingerprint\": {},\n",
+        quoted(&layout.fingerprint)
+    ));
     out.push_str(&format!("  \"cycle\": {},\n", snap.cycle));
     out.push_str(&format!("  \"time\": {},\n", quoted(&time)));
     out.push_str("  \"variables\": [");
@@ -90,20 +106,23 @@ pub(crate) fn encode(layout: &RetainLayout, snap: &Snapshot) -> String {
                 value.push_str(&format_string(s, *wide));
             }
         }
-        let var = FileVar {
-            name: e.name.clone(),
-            ty: e.ty.clone(),
-            value: std::mem::take(&mut value),
+        let var = FileVarRef {
+            name: &e.name,
+            ty: &e.ty,
+            value: &value,
             relative: e.clock_instant,
             persistent: e.persistent,
         };
-        // A struct of strings and booleans always serialises.
+        // Strings and booleans always serialise.
         let line = serde_json::to_string(&var).unwrap_or_default();
-        value = var.value;
         out.push_str(if k == 0 { "\n    " } else { ",\n    " });
         out.push_str(&line);
     }
-    out.push_str(if layout.entries.is_empty() { "]\n}\n" } else { "\n  ]\n}\n" });
+    out.push_str(if layout.entries.is_empty() {
+        "]\n}\n"
+    } else {
+        "\n  ]\n}\n"
+    });
     out
 }
 
@@ -124,7 +143,10 @@ pub(crate) fn decode(text: &str) -> Result<RetainFile, super::Damage> {
             version: file.version,
         });
     }
-    let listed = file.variables.iter().map(|v| (v.name.as_str(), v.ty.as_str()));
+    let listed = file
+        .variables
+        .iter()
+        .map(|v| (v.name.as_str(), v.ty.as_str()));
     if super::fingerprint::fingerprint(listed) != file.fingerprint {
         return Err(super::Damage::Fingerprint);
     }

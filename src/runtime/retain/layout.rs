@@ -47,6 +47,9 @@ pub(crate) struct RetainLayout {
     pub entries: Vec<Entry>,
     /// Addresses copied into [`Snapshot::slots`], in order.
     slot_addrs: Vec<u32>,
+    /// The same as runs of consecutive addresses `(first address, length)`
+    /// (an array is one run), copied slice by slice.
+    slot_runs: Vec<(usize, usize)>,
     /// String ids copied into [`Snapshot::strings`], in order, with their
     /// capacity in characters.
     string_ids: Vec<(u32, u32)>,
@@ -73,6 +76,7 @@ impl RetainLayout {
         let mut layout = RetainLayout {
             entries: Vec::with_capacity(image.retained.len()),
             slot_addrs: Vec::new(),
+            slot_runs: Vec::new(),
             string_ids: Vec::new(),
             fingerprint: String::new(),
         };
@@ -104,7 +108,16 @@ impl RetainLayout {
                 type_id: r.ty,
             });
         }
-        let pairs = layout.entries.iter().map(|e| (e.name.as_str(), e.ty.as_str()));
+        for &a in &layout.slot_addrs {
+            match layout.slot_runs.last_mut() {
+                Some((first, len)) if *first + *len == a as usize => *len += 1,
+                _ => layout.slot_runs.push((a as usize, 1)),
+            }
+        }
+        let pairs = layout
+            .entries
+            .iter()
+            .map(|e| (e.name.as_str(), e.ty.as_str()));
         layout.fingerprint = fingerprint(pairs);
         layout
     }
@@ -130,10 +143,15 @@ impl RetainLayout {
         snap.cycle = cycle;
         snap.now = now;
         snap.slots.resize(self.slot_addrs.len(), 0);
-        for (dst, &a) in snap.slots.iter_mut().zip(&self.slot_addrs) {
-            if let Some(v) = machine.mem.get(a as usize) {
-                *dst = *v;
+        let mut at = 0;
+        for &(first, len) in &self.slot_runs {
+            if let (Some(src), Some(dst)) = (
+                machine.mem.get(first..first + len),
+                snap.slots.get_mut(at..at + len),
+            ) {
+                dst.copy_from_slice(src);
             }
+            at += len;
         }
         snap.strings.resize_with(self.string_ids.len(), String::new);
         for (dst, &(id, _)) in snap.strings.iter_mut().zip(&self.string_ids) {
@@ -146,7 +164,13 @@ impl RetainLayout {
     /// Puts the values of `snap` (taken with this layout) back into
     /// `machine` — only the entries `only` marks, when given; a timer's
     /// start instant is moved to the clock `now`.
-    pub(crate) fn put(&self, snap: &Snapshot, machine: &mut Machine, now: i64, only: Option<&[bool]>) {
+    pub(crate) fn put(
+        &self,
+        snap: &Snapshot,
+        machine: &mut Machine,
+        now: i64,
+        only: Option<&[bool]>,
+    ) {
         for (k, e) in self.entries.iter().enumerate() {
             if only.is_some_and(|m| !m.get(k).copied().unwrap_or(false)) {
                 continue;
@@ -172,7 +196,6 @@ impl RetainLayout {
             }
         }
     }
-
 }
 
 /// An instant taken on clock `from`, moved to clock `to` (the same time

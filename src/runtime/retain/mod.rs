@@ -97,7 +97,7 @@ pub enum Damage {
         /// The variable.
         name: String,
         /// Why.
-        error: VarError,
+        error: Box<VarError>,
     },
 }
 
@@ -195,9 +195,7 @@ impl fmt::Display for RetainError {
                  (nothing restored; a partial restore would restore the {fitting} that fit)",
                 path.display()
             ),
-            RetainError::ForeignPlc => {
-                f.write_str("this retain saver belongs to another PLC")
-            }
+            RetainError::ForeignPlc => f.write_str("this retain saver belongs to another PLC"),
         }
     }
 }

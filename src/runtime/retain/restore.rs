@@ -73,10 +73,18 @@ impl Plc {
         };
         let file = decode(&text).map_err(damaged)?;
         let layout = RetainLayout::new(&self.image);
-        let listed = file.variables.iter().map(|v| (v.name.as_str(), v.ty.as_str()));
-        let program = layout.entries.iter().map(|e| (e.name.as_str(), e.ty.as_str()));
+        let listed = file
+            .variables
+            .iter()
+            .map(|v| (v.name.as_str(), v.ty.as_str()));
+        let program = layout
+            .entries
+            .iter()
+            .map(|e| (e.name.as_str(), e.ty.as_str()));
         let differences = RetainDiff::between(listed, program);
-        let (snap, fits) = self.decode_values(&layout, &file.variables).map_err(damaged)?;
+        let (snap, fits) = self
+            .decode_values(&layout, &file.variables)
+            .map_err(damaged)?;
         let restored = fits.iter().filter(|f| **f).count();
         if !differences.is_empty() && mode == RestoreMode::Exact {
             return Err(RetainError::Mismatch {
@@ -121,10 +129,12 @@ impl Plc {
                 ty: e.type_id,
                 owner: self.id,
             };
-            let value = self.parse_value(&r, &v.value).map_err(|error| Damage::BadValue {
-                name: v.name.clone(),
-                error,
-            })?;
+            let value = self
+                .parse_value(&r, &v.value)
+                .map_err(|error| Damage::BadValue {
+                    name: v.name.clone(),
+                    error: Box::new(error),
+                })?;
             match (&e.shape, value) {
                 (Shape::Scalar(_, i) | Shape::Enum(_, i), Value::Scalar(_, raw)) => {
                     snap.slots[*i] = raw;

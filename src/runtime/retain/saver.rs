@@ -9,9 +9,10 @@ use super::file::write_atomically;
 use super::format::encode;
 use super::layout::{RetainLayout, Snapshot};
 use crate::runtime::engine::Plc;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
 
 /// What the cycle's thread and the writer share.
 #[derive(Default)]
@@ -23,6 +24,11 @@ struct State {
     spare: Vec<Snapshot>,
     /// The writer is writing a snapshot.
     writing: bool,
+    /// The writer waits for work (only then does an offer wake it: a
+    /// wake-up is a system call the cycle need not pay otherwise).
+    idle: bool,
+    /// Time the writer spent formatting and writing files.
+    busy: Duration,
     /// Ends the writer once nothing is pending.
     stop: bool,
     /// Files written.
@@ -127,8 +133,11 @@ impl RetainSaver {
         if let Some(old) = s.pending.replace(snap) {
             s.spare.push(old);
         }
+        let wake = s.idle;
         drop(s);
-        self.shared.work.notify_one();
+        if wake {
+            self.shared.work.notify_one();
+        }
         Ok(())
     }
 
@@ -141,6 +150,13 @@ impl RetainSaver {
     /// got to them.
     pub fn replaced(&self) -> u64 {
         self.shared.lock().replaced
+    }
+
+    /// The time the writer thread spent formatting and writing files so
+    /// far (divided by [`Self::saves`]: the cost of one save off the
+    /// cycle's path).
+    pub fn writer_time(&self) -> Duration {
+        self.shared.lock().busy
     }
 
     /// The first write failure since the last call, if any (the writer
@@ -170,7 +186,7 @@ impl RetainSaver {
 
     fn stop(&mut self) {
         self.shared.lock().stop = true;
-        self.shared.work.notify_one();
+        self.shared.work.notify_all();
         if let Some(writer) = self.writer.take() {
             // The writer does not panic; if it did, the error is lost with it.
             let _ = writer.join();
@@ -187,12 +203,14 @@ impl Drop for RetainSaver {
 
 /// The writer thread: writes the pending snapshot, again and again, until
 /// stopped with nothing pending.
-fn write_loop(layout: &RetainLayout, shared: &Shared, path: &PathBuf) {
+fn write_loop(layout: &RetainLayout, shared: &Shared, path: &Path) {
     loop {
         let snap = {
             let mut s = shared.lock();
             while s.pending.is_none() && !s.stop {
+                s.idle = true;
                 s = shared.work.wait(s).unwrap_or_else(|e| e.into_inner());
+                s.idle = false;
             }
             match s.pending.take() {
                 Some(snap) => {
@@ -202,15 +220,17 @@ fn write_loop(layout: &RetainLayout, shared: &Shared, path: &PathBuf) {
                 None => return,
             }
         };
+        let started = Instant::now();
         let result = write_atomically(path, &encode(layout, &snap));
         let mut s = shared.lock();
+        s.busy += started.elapsed();
         s.writing = false;
         s.spare.push(snap);
         match result {
             Ok(()) => s.saves += 1,
             Err(error) if s.error.is_none() => {
                 s.error = Some(RetainError::Write {
-                    path: path.clone(),
+                    path: path.to_path_buf(),
                     error,
                 })
             }

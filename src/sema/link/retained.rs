@@ -10,8 +10,8 @@
 //! records, VAR_TEMP, VAR_IN_OUT and VAR_EXTERNAL are never retained (a
 //! chart restarts at its initial step).
 
-use super::Linker;
 use super::super::model::Storage;
+use super::Linker;
 use crate::ir::image::ProgramInstance;
 use crate::ir::op::NativeFb;
 use crate::ir::retained::{RetainedStorage, RetainedVar};
@@ -119,7 +119,13 @@ impl Linker<'_> {
                     let ty = crate::ir::type_table::TypeTable::elem(pin.ty);
                     let storage = RetainedStorage::Slot(addr + i as u32);
                     let clock = timer && pin.name == "START";
-                    out.push(leaf(format!("{path}.{}", pin.name), ty, storage, keep, clock));
+                    out.push(leaf(
+                        format!("{path}.{}", pin.name),
+                        ty,
+                        storage,
+                        keep,
+                        clock,
+                    ));
                 }
             }
             TypeKind::Step | TypeKind::Void | TypeKind::Error => {}
@@ -153,7 +159,13 @@ fn retainable(kind: MemberKind) -> bool {
     )
 }
 
-fn leaf(path: String, ty: TypeId, storage: RetainedStorage, keep: Keep, clock: bool) -> RetainedVar {
+fn leaf(
+    path: String,
+    ty: TypeId,
+    storage: RetainedStorage,
+    keep: Keep,
+    clock: bool,
+) -> RetainedVar {
     RetainedVar {
         path,
         ty,
