@@ -54,13 +54,16 @@ fn per_iteration(batches: usize, n: u32, mut f: impl FnMut()) -> f64 {
     median(times)
 }
 
-/// Cycles with a snapshot offered after each, to a saver writing `path`:
-/// (ns per cycle, ns per offer alone, files written, writer ns per file).
-fn with_saver(plc: &mut Plc, path: &Path) -> (f64, f64, u64, f64) {
+/// Cycles with a snapshot offered after every `every`-th, to a saver
+/// writing `path`: (ns per cycle, ns per offer alone, files written,
+/// writer ns per file).
+fn with_saver(plc: &mut Plc, path: &Path, every: u64) -> (f64, f64, u64, f64) {
     let saver = RetainSaver::new(plc, path).expect("saver");
     let with_offer = per_iteration(15, 2000, || {
         plc.run_cycle().expect("runs");
-        saver.offer(plc).expect("own plc");
+        if plc.cycle() % every == 0 {
+            saver.offer(plc).expect("own plc");
+        }
     });
     let offer = per_iteration(15, 2000, || saver.offer(plc).expect("own plc"));
     saver.flush();
@@ -78,7 +81,7 @@ fn main() {
 
     let cycle = per_iteration(15, 2000, || plc.run_cycle().expect("runs"));
     let disk = dir.join("every_cycle.json");
-    let (with_offer, offer, saves, per_save) = with_saver(&mut plc, &disk);
+    let (with_offer, offer, saves, per_save) = with_saver(&mut plc, &disk, 1);
     let size = std::fs::metadata(&disk).map(|m| m.len()).unwrap_or(0);
     println!("retained values: 1000 (800 DINT, 150 REAL, 50 STRING[16]); file {size} bytes");
     println!("run_cycle alone:                       {cycle:>10.0} ns/cycle");
@@ -92,12 +95,14 @@ fn main() {
     let shm = Path::new("/dev/shm");
     if shm.is_dir() {
         let mem = shm.join(format!("plcrun-retain-bench-{}.json", std::process::id()));
-        let (with_offer, offer, saves, per_save) = with_saver(&mut plc, &mem);
+        let (with_offer, offer, saves, per_save) = with_saver(&mut plc, &mem, 1);
         let _ = std::fs::remove_file(&mem);
         println!("run_cycle + offer (file on /dev/shm):  {with_offer:>10.0} ns/cycle");
         println!("RetainSaver::offer alone (snapshot):   {offer:>10.0} ns");
         println!("writer per save, /dev/shm (no disk):   {per_save:>10.0} ns ({saves} files)");
     }
+    let (every10, _, saves, _) = with_saver(&mut plc, &disk, 10);
+    println!("run_cycle + offer every 10th cycle:    {every10:>10.0} ns/cycle ({saves} files)");
     let file = dir.join("direct.json");
     let sync = per_iteration(9, 20, || plc.save_retain(&file).expect("saves"));
     println!("Plc::save_retain (synchronous, fsync): {sync:>10.0} ns/save");

@@ -427,3 +427,29 @@ fn a_program_without_retain_saves_an_empty_list() {
     let report = plc.restore_retain(&path, RestoreMode::Exact).unwrap();
     assert_eq!(report.restored, 0);
 }
+
+#[test]
+fn output_and_input_blocks_can_be_retained_too() {
+    let src = "
+FUNCTION_BLOCK F
+VAR_INPUT RETAIN setpoint : REAL; END_VAR
+VAR_OUTPUT RETAIN hours : UDINT; END_VAR
+VAR_OUTPUT q : BOOL; END_VAR
+hours := hours + 1;
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR_OUTPUT RETAIN o : INT; END_VAR
+VAR f : F; END_VAR
+o := o + 1; f(setpoint := 2.5);
+END_PROGRAM";
+    let mut plc = compile(src);
+    assert_eq!(names(&plc), ["P.o", "P.f.setpoint", "P.f.hours"]);
+    plc.run_cycle().unwrap();
+    let path = temp_path("io.json");
+    plc.save_retain(&path).unwrap();
+    let mut fresh = compile(src);
+    fresh.restore_retain(&path, RestoreMode::Exact).unwrap();
+    assert_eq!(fresh.read_i64("o").unwrap(), 1);
+    assert_eq!(fresh.read_i64("f.hours").unwrap(), 1);
+    assert_eq!(fresh.read("f.setpoint").unwrap().as_f64(), Some(2.5));
+}
