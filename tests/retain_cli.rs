@@ -153,6 +153,20 @@ fn a_damaged_or_mismatching_file_stops_the_run_with_a_clear_message() {
     assert_eq!(out, "cycle,time,out\n0,T#0s,1\n");
 }
 
+#[test]
+fn a_retain_file_that_cannot_be_written_is_reported_before_the_run() {
+    let src = temp_file("c.st", COUNTER);
+    let dir = temp_file("x", "");
+    let retain = format!("{dir}.d/missing/r.json");
+    let (code, out, err) = plcrun(&[&src, "--cycles", "3", "--retain", &retain]);
+    assert_eq!(code, 2, "{err}");
+    assert!(out.is_empty(), "{out}");
+    assert!(
+        err.contains(&format!("error: cannot write retain file `{retain}`")),
+        "{err}"
+    );
+}
+
 /// 50 runs, each killed with SIGKILL at a random moment while it saves
 /// every cycle; each restart continues from the file the previous run
 /// left. The file must always be complete and the counter never go back.

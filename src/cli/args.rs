@@ -82,7 +82,7 @@ pub struct RunArgs {
     #[arg(long, value_name = "N", default_value_t = 10, requires = "retain",
           value_parser = clap::value_parser!(u64).range(1..))]
     pub retain_every: u64,
-    /// Cold start: ignore the retain file's values (it is overwritten at the next save).
+    /// Cold start: ignore the retain file's values (it is overwritten when the run starts).
     #[arg(long, requires = "retain")]
     pub cold: bool,
     /// Restore the retained values that still fit the program and name the others,

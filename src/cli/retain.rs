@@ -15,7 +15,7 @@ pub fn start(args: &RunArgs, plc: &mut Plc) -> Result<Option<RetainSaver>, Strin
     let shown = path.display();
     if args.cold {
         eprintln!(
-            "note: cold start: the values in `{shown}` are not used (the file is overwritten at the next save)"
+            "note: cold start: the values in `{shown}` are not used (the file is overwritten with the initial values)"
         );
     } else {
         let mode = if args.retain_partial {
@@ -46,6 +46,9 @@ pub fn start(args: &RunArgs, plc: &mut Plc) -> Result<Option<RetainSaver>, Strin
             Err(e) => return Err(e.to_string()),
         }
     }
+    // A first save now: a file that cannot be written is reported before
+    // the run, not after it.
+    plc.save_retain(path).map_err(|e| e.to_string())?;
     RetainSaver::new(plc, path)
         .map(Some)
         .map_err(|e| e.to_string())
