@@ -61,7 +61,7 @@ fn with_saver(plc: &mut Plc, path: &Path, every: u64) -> (f64, f64, u64, f64) {
     let saver = RetainSaver::new(plc, path).expect("saver");
     let with_offer = per_iteration(15, 2000, || {
         plc.run_cycle().expect("runs");
-        if plc.cycle() % every == 0 {
+        if plc.cycle().is_multiple_of(every) {
             saver.offer(plc).expect("own plc");
         }
     });

@@ -296,7 +296,7 @@ impl Session {
             self.step().map_err(RunError::Fault)?;
             out.row(cycle, time, &self.cells).map_err(RunError::Trace)?;
             if let Some((saver, every)) = &self.retain
-                && (cycle + 1) % every == 0
+                && (cycle + 1).is_multiple_of(*every)
             {
                 // The saver was made for this PLC by its owner; a saver of
                 // another PLC only refuses to save.
