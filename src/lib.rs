@@ -66,6 +66,10 @@ pub use runtime::names::VarRef;
 pub use runtime::plc_value::Value;
 pub use runtime::process_image::ProcessImage;
 pub use runtime::realtime::{RunOutcome, RunThread, TaskRunner};
+pub use runtime::retain::saver::RetainSaver;
+pub use runtime::retain::{
+    Damage, RestoreMode, RestoreReport, RetainDiff, RetainError, RetainedVariable, TypeChange,
+};
 pub use runtime::session::{
     CycleHook, Pacing, RunError, Session, StimulusBindError, StopHook, StopHookError,
 };

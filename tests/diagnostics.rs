@@ -126,6 +126,8 @@ const INC: &str =
     "PROGRAM Q\nEND_PROGRAM\nPROGRAM P\nVAR q : Q; END_VAR\nEND_PROGRAM\n".to_string(),
     "4:9"
 )]
+#[case("E210", "FUNCTION_BLOCK F\nVAR_TEMP RETAIN t : INT; END_VAR\nEND_FUNCTION_BLOCK\nPROGRAM P\nEND_PROGRAM\n".to_string(), "2:1")]
+#[case("E210", "VAR_GLOBAL CONSTANT RETAIN g : INT := 1; END_VAR\nPROGRAM P\nEND_PROGRAM\n".to_string(), "1:1")]
 // ---- E3xx: types
 #[case("E301", prog("i : INT;", "i := TRUE;"), "5:6")]
 #[case("E301", prog("i : INT; d : DINT;", "i := d;"), "5:6")]

@@ -401,7 +401,11 @@ fn forces_clock_and_stop_handles_survive_an_online_change() {
     plc.write("lamp", "FALSE").unwrap();
     plc.run_cycle().unwrap();
     assert_eq!(plc.read("n").unwrap().to_literal(), "5");
-    assert_eq!(plc.read("lamp").unwrap().to_literal(), "TRUE", "still forced");
+    assert_eq!(
+        plc.read("lamp").unwrap().to_literal(),
+        "TRUE",
+        "still forced"
+    );
     assert_eq!(plc.forces().len(), 1);
     plc.run_cycle().unwrap();
     // m reaches 3: an endless loop, ended by the handle taken before.

@@ -94,6 +94,21 @@ pub struct RunArgs {
     /// PLC by online change. Repeatable.
     #[arg(long = "online-change-at", value_name = "N:FILE")]
     pub online_change_at: Vec<String>,
+    /// Retained data file: RETAIN/PERSISTENT values are restored from it at
+    /// start (a missing file is a cold start) and saved to it.
+    #[arg(long, value_name = "FILE")]
+    pub retain: Option<PathBuf>,
+    /// Save the retained values every N cycles (and at the end of the run).
+    #[arg(long, value_name = "N", default_value_t = 10, requires = "retain",
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub retain_every: u64,
+    /// Cold start: ignore the retain file's values (it is overwritten when the run starts).
+    #[arg(long, requires = "retain")]
+    pub cold: bool,
+    /// Restore the retained values that still fit the program and name the others,
+    /// instead of refusing a file saved by another version of the program.
+    #[arg(long, requires = "retain", conflicts_with = "cold")]
+    pub retain_partial: bool,
 }
 
 /// `plcrun check FILES...`: parse and check only.

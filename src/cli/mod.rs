@@ -3,6 +3,7 @@
 
 mod args;
 mod online;
+mod retain;
 mod run;
 
 use clap::Parser;

@@ -225,14 +225,21 @@ pub fn run(args: &RunArgs) -> i32 {
         Ok(o) => o,
         Err(e) => return usage_error(e),
     };
-    let plc = match compile(args, &options) {
+    let mut plc = match compile(args, &options) {
         Ok(plc) => plc,
         Err(status) => return status,
+    };
+    let saver = match super::retain::start(args, &mut plc) {
+        Ok(saver) => saver,
+        Err(e) => return usage_error(e),
     };
     let mut session = match session(args, plc) {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
+    if let Some(saver) = saver {
+        session.save_retain_every(saver, args.retain_every);
+    }
     let out: Box<dyn Write> = match &args.output {
         Some(p) => match std::fs::File::create(p) {
             Ok(f) => Box::new(std::io::BufWriter::new(f)),
@@ -256,6 +263,15 @@ pub fn run(args: &RunArgs) -> i32 {
         let cycles = args.cycles.unwrap_or(0);
         super::online::run(&mut session, cycles, &mut writer, &changes, &options)
     };
+    // A fault leaves the faulting cycle half done: the last periodic save
+    // is the consistent one, so only a run ending at a cycle boundary saves.
+    let boundary = !matches!(result, Err(RunError::Fault(_)));
+    if let Some(saver) = session.take_retain_saver()
+        && let Err(e) = super::retain::finish(saver, session.plc(), boundary)
+    {
+        eprintln!("error: {e}");
+        return EXIT_USAGE;
+    }
     let status = match result {
         Ok(()) => EXIT_OK,
         Err(RunError::Fault(fault)) => {

@@ -147,6 +147,8 @@ pub struct Image {
     /// Names of the POUs whose bodies the host registered (referenced by
     /// `Op::CallHost`), in the order the compile options list them.
     pub hosts: Vec<String>,
+    /// The retained values (RETAIN, PERSISTENT), in declaration order.
+    pub retained: Vec<crate::ir::retained::RetainedVar>,
 }
 
 impl Image {

@@ -7,5 +7,6 @@ pub mod index;
 pub mod op;
 mod op_list;
 pub mod operands;
+pub mod retained;
 pub mod type_table;
 pub mod verify;

@@ -68,6 +68,23 @@ pub struct Member {
     pub kind: MemberKind,
     /// Declared CONSTANT.
     pub constant: bool,
+    /// Declared in a RETAIN, NON_RETAIN or PERSISTENT block.
+    pub retain: Retention,
+}
+
+/// Whether a variable keeps its value over a restart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Retention {
+    /// Not qualified: retained only as part of a retained FB instance or
+    /// structure.
+    #[default]
+    Inherit,
+    /// `NON_RETAIN`: never retained, even inside a retained FB instance.
+    NonRetain,
+    /// `RETAIN`.
+    Retain,
+    /// `PERSISTENT` (alone or with `RETAIN`).
+    Persistent,
 }
 
 /// What a type is.

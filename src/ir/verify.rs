@@ -124,6 +124,9 @@ pub enum Problem {
     ConnectionOutsideMemory,
     /// A SINGLE task's trigger is outside memory.
     TriggerOutsideMemory,
+    /// A retained variable's slot is outside memory, or its string is not
+    /// the one its slot holds.
+    RetainedOutsideMemory,
 }
 
 impl fmt::Display for Problem {
@@ -157,6 +160,7 @@ impl fmt::Display for Problem {
             Problem::ProgramTask => "program instance on a missing task",
             Problem::ConnectionOutsideMemory => "program connection outside memory",
             Problem::TriggerOutsideMemory => "task trigger outside memory",
+            Problem::RetainedOutsideMemory => "retained variable outside memory or strings",
         })
     }
 }
@@ -189,6 +193,7 @@ pub fn verify(image: Image) -> Result<VerifiedImage, VerifyError> {
         })?;
     }
     check_programs(&image)?;
+    check_retained(&image)?;
     Ok(VerifiedImage { image })
 }
 
@@ -402,6 +407,29 @@ fn check_programs(image: &Image) -> Result<(), VerifyError> {
             return Err(VerifyError {
                 place: format!("task `{}`", t.name),
                 problem: Problem::TriggerOutsideMemory,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Every retained value's slot is in memory; a string's id is the one its
+/// slot holds initially and names an existing string (the runtime copies
+/// retained values without further checks).
+fn check_retained(image: &Image) -> Result<(), VerifyError> {
+    use crate::ir::retained::RetainedStorage;
+    for r in &image.retained {
+        let ok = match r.storage {
+            RetainedStorage::Slot(a) => (a as usize) < image.memory.len(),
+            RetainedStorage::Text { slot, string } => {
+                image.memory.get(slot as usize) == Some(&(string as u64))
+                    && (string as usize) < image.strings.len()
+            }
+        };
+        if !ok {
+            return Err(VerifyError {
+                place: format!("retained `{}`", r.path),
+                problem: Problem::RetainedOutsideMemory,
             });
         }
     }

@@ -20,6 +20,7 @@
 //! - [`stop`]: asking a run to end from another thread;
 //! - [`life_cycle`]: the faulted STOP state and the resets;
 //! - [`watchdog`]: per-task cycle-time limits and the thread enforcing them;
+//! - [`retain`]: RETAIN and PERSISTENT values kept over a restart in a file;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
 //! - [`process_image`], [`io_address`]: the `%I`/`%Q`/`%M` byte areas and
 //!   how direct addresses map into them;
@@ -43,6 +44,7 @@ pub mod online_change;
 pub mod plc_value;
 pub mod process_image;
 pub mod realtime;
+pub mod retain;
 pub mod scheduler;
 pub mod session;
 pub mod stimulus;

@@ -140,6 +140,8 @@ pub struct Session {
     live: Option<LiveStimulus>,
     cycle_hook: Option<CycleHook>,
     on_stop: Option<StopHook>,
+    /// Retained values saved every so many cycles by [`Self::run`].
+    retain: Option<(super::retain::saver::RetainSaver, u64)>,
 }
 
 impl Session {
@@ -158,6 +160,7 @@ impl Session {
             live: None,
             cycle_hook: None,
             on_stop: None,
+            retain: None,
         }
     }
 
@@ -179,6 +182,17 @@ impl Session {
     /// Sets how cycles are paced (virtual by default).
     pub fn set_pacing(&mut self, pacing: Pacing) {
         self.pacing = pacing;
+    }
+
+    /// Has every [`Self::step`] (so every run, virtual or real-time) hand the
+    /// retained values to `saver` after every `every`-th cycle (counted by cycle number; 0 is taken as 1).
+    pub fn save_retain_every(&mut self, saver: super::retain::saver::RetainSaver, every: u64) {
+        self.retain = Some((saver, every.max(1)));
+    }
+
+    /// Takes back the saver given to [`Self::save_retain_every`].
+    pub fn take_retain_saver(&mut self) -> Option<super::retain::saver::RetainSaver> {
+        self.retain.take().map(|(saver, _)| saver)
     }
 
     /// Traces these variables, in this order; names are kept as written
@@ -337,6 +351,13 @@ impl Session {
                     }
                 }
             }
+        }
+        if let Some((saver, every)) = &self.retain
+            && self.plc.cycle().is_multiple_of(*every)
+        {
+            // The saver was made for this PLC by its owner; a saver of
+            // another PLC only refuses to save.
+            let _ = saver.offer(&self.plc);
         }
         if let Some(hook) = &mut self.cycle_hook {
             hook(&mut self.plc);

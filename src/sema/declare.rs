@@ -337,6 +337,18 @@ impl Declarer<'_> {
 
     /// Declares the globals of one VAR_GLOBAL block: storage, initial value.
     fn declare_globals(&mut self, block: &VarBlock) {
+        use crate::ir::type_table::Retention;
+        let retained = matches!(
+            super::layout::retention(block),
+            Retention::Retain | Retention::Persistent
+        );
+        if retained && block.constant {
+            self.diags.error(
+                "E210",
+                block.span,
+                "RETAIN and PERSISTENT cannot apply here: a CONSTANT never changes",
+            );
+        }
         for decl in &block.decls {
             let ty = self.resolve_type(&decl.ty, None);
             if matches!(self.types.get(ty).kind, TypeKind::Pou { program: true, .. }) {
@@ -379,6 +391,10 @@ impl Declarer<'_> {
                         name.span,
                         format!("constant `{}` needs a constant initial value", name.name),
                     );
+                }
+                let retention = super::layout::retention(block);
+                if retention != crate::ir::type_table::Retention::Inherit {
+                    self.model.global_retention.insert(key.clone(), retention);
                 }
                 self.model.globals.insert(
                     key,

@@ -5,9 +5,9 @@
 use super::decl_consts::init_const;
 use super::declare::{Declarer, normalize_address};
 use super::model::{ConstInit, LayoutState, Storage, VarInfo};
-use crate::ir::type_table::{Member, MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{Member, MemberKind, Retention, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
-use crate::syntax::ast::{Ident, Item, Pou, PouKind, VarBlock, VarDecl, VarKind};
+use crate::syntax::ast::{Ident, Item, Pou, PouKind, Retain, VarBlock, VarDecl, VarKind};
 use indexmap::IndexMap;
 
 fn member_kind(k: VarKind) -> MemberKind {
@@ -18,6 +18,16 @@ fn member_kind(k: VarKind) -> MemberKind {
         VarKind::InOut => MemberKind::InOut,
         VarKind::External => MemberKind::External,
         VarKind::Temp => MemberKind::Temp,
+    }
+}
+
+/// The retention a block's qualifier gives its variables.
+pub(super) fn retention(block: &VarBlock) -> Retention {
+    match block.retain {
+        None => Retention::Inherit,
+        Some(Retain::Retain) => Retention::Retain,
+        Some(Retain::NonRetain) => Retention::NonRetain,
+        Some(Retain::Persistent) => Retention::Persistent,
     }
 }
 
@@ -132,13 +142,7 @@ impl Declarer<'_> {
 
     /// The declarations of one VAR... END_VAR block.
     fn layout_block(&mut self, pou: &Pou, block: &VarBlock, frame: &mut Frame) {
-        if block.retain == Some(crate::syntax::ast::Retain::Retain) {
-            self.diags.warning(
-                "W203",
-                block.span,
-                "RETAIN is accepted but has no effect: plcrun starts every run from the declared initial values",
-            );
-        }
+        self.check_retain(pou, block);
         if block.kind == VarKind::Global {
             self.diags.error(
                 "E209",
@@ -195,6 +199,12 @@ impl Declarer<'_> {
             else {
                 continue;
             };
+            if let (Storage::Abs(a), Some(_), Retention::Retain | Retention::Persistent) =
+                (storage, &decl.location, retention(block))
+            {
+                let persistent = retention(block) == Retention::Persistent;
+                (self.model.retained_located).push((name.name.clone(), a, ty, persistent));
+            }
             let var = self.declared_var(block, name, ty, storage, location, &init);
             if matches!(
                 block.kind,
@@ -209,9 +219,38 @@ impl Declarer<'_> {
                     offset: o,
                     kind: var.kind,
                     constant: block.constant,
+                    retain: retention(block),
                 });
             }
             frame.vars.insert(key, var);
+        }
+    }
+
+    /// E210: RETAIN or PERSISTENT where a value cannot outlive a call
+    /// (VAR_TEMP, VAR_IN_OUT, VAR_EXTERNAL, a FUNCTION's variables) or
+    /// cannot change (CONSTANT).
+    fn check_retain(&mut self, pou: &Pou, block: &VarBlock) {
+        if !matches!(retention(block), Retention::Retain | Retention::Persistent) {
+            return;
+        }
+        let why = match block.kind {
+            VarKind::Temp => Some("VAR_TEMP is reset at every call"),
+            VarKind::InOut => Some("a VAR_IN_OUT refers to the caller's variable"),
+            VarKind::External => {
+                Some("a VAR_EXTERNAL refers to a global: declare the global RETAIN")
+            }
+            _ if pou.kind == PouKind::Function => {
+                Some("a FUNCTION's variables do not outlive a call")
+            }
+            _ if block.constant => Some("a CONSTANT never changes"),
+            _ => None,
+        };
+        if let Some(why) = why {
+            self.diags.error(
+                "E210",
+                block.span,
+                format!("RETAIN and PERSISTENT cannot apply here: {why}"),
+            );
         }
     }
 

@@ -106,6 +106,12 @@ pub(crate) struct Model {
     pub enum_values: HashMap<String, Vec<(TypeId, i64)>>,
     /// Globals by case-folded name, in declaration order.
     pub globals: IndexMap<String, VarInfo>,
+    /// The retention of each global declared RETAIN, NON_RETAIN or
+    /// PERSISTENT, by case-folded name.
+    pub global_retention: HashMap<String, crate::ir::type_table::Retention>,
+    /// Located variables of PROGRAMs declared RETAIN or PERSISTENT:
+    /// `(name, absolute address, type, persistent)`.
+    pub retained_located: Vec<(String, u32, TypeId, bool)>,
     /// Which POU bodies were emitted (the linker places only those).
     pub emitted: Vec<bool>,
     /// Case-folded names of the POUs whose bodies the host provides, by

@@ -10,7 +10,7 @@ use super::declare::Declarer;
 use super::model::{Storage, VarInfo};
 use crate::elementary::ElemType;
 use crate::ir::chart::{action_layout, header};
-use crate::ir::type_table::{Member, MemberKind, TypeDef, TypeKind, TypeTable};
+use crate::ir::type_table::{Member, MemberKind, Retention, TypeDef, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{Ident, Pou, SfcElement, Stmt};
 use indexmap::IndexMap;
@@ -125,6 +125,7 @@ impl Declarer<'_> {
                         offset: action_layout::Q,
                         kind: MemberKind::Field,
                         constant: false,
+                        retain: Retention::Inherit,
                     },
                     Member {
                         name: "A".into(),
@@ -132,6 +133,7 @@ impl Declarer<'_> {
                         offset: action_layout::A,
                         kind: MemberKind::Field,
                         constant: false,
+                        retain: Retention::Inherit,
                     },
                 ],
             },
@@ -168,6 +170,7 @@ impl Declarer<'_> {
                 offset: at,
                 kind,
                 constant: false,
+                retain: Retention::Inherit,
             });
             vars.insert(
                 key,

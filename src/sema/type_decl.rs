@@ -6,7 +6,9 @@ use super::consts::int_to_slot;
 use super::declare::Declarer;
 use super::model::{ConstInit, LayoutState, VarInfo};
 use crate::elementary::ElemType;
-use crate::ir::type_table::{Dim, Member, MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{
+    Dim, Member, MemberKind, Retention, TypeDef, TypeId, TypeKind, TypeTable,
+};
 use crate::source::Span;
 use crate::stdlib;
 use crate::syntax::ast::{Expr, Ident, Item, PouKind, TypeSpec, VarDecl};
@@ -362,6 +364,7 @@ impl Declarer<'_> {
                     offset,
                     kind: MemberKind::Field,
                     constant: false,
+                    retain: Retention::Inherit,
                 });
                 offset = self.grow(offset, self.types.size(fty), name.span);
             }

@@ -100,13 +100,16 @@ pub enum VarKind {
     Temp,
 }
 
-/// RETAIN / NON_RETAIN qualifier.
+/// RETAIN / NON_RETAIN / PERSISTENT qualifier.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Retain {
     /// `RETAIN`
     Retain,
     /// `NON_RETAIN`
     NonRetain,
+    /// `PERSISTENT`, alone or with `RETAIN` in either order (CODESYS writes
+    /// `VAR_GLOBAL PERSISTENT RETAIN`).
+    Persistent,
 }
 
 /// A `VAR... END_VAR` block.
@@ -116,7 +119,7 @@ pub struct VarBlock {
     pub kind: VarKind,
     /// `CONSTANT` given.
     pub constant: bool,
-    /// `RETAIN` / `NON_RETAIN` given.
+    /// `RETAIN` / `NON_RETAIN` / `PERSISTENT` given.
     pub retain: Option<Retain>,
     /// The declarations.
     pub decls: Vec<VarDecl>,

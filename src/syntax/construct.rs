@@ -453,7 +453,12 @@ pub fn var_block(
     VarBlock {
         kind,
         constant: quals.iter().any(Option::is_none),
-        retain: quals.iter().flatten().last().copied(),
+        // PERSISTENT wins over a RETAIN next to it; otherwise the last word.
+        retain: if quals.contains(&Some(Retain::Persistent)) {
+            Some(Retain::Persistent)
+        } else {
+            quals.iter().flatten().last().copied()
+        },
         decls,
         span: st.span(l, r),
     }

@@ -310,6 +310,7 @@ pub enum Kw {
     Constant,
     Retain,
     NonRetain,
+    Persistent,
     At,
     Type,
     EndType,
@@ -362,7 +363,7 @@ pub enum Kw {
 }
 
 /// Every keyword with its spelling.
-pub const KEYWORDS: [(&str, Kw); 66] = [
+pub const KEYWORDS: [(&str, Kw); 67] = [
     ("PROGRAM", Kw::Program),
     ("END_PROGRAM", Kw::EndProgram),
     ("FUNCTION", Kw::Function),
@@ -380,6 +381,7 @@ pub const KEYWORDS: [(&str, Kw); 66] = [
     ("CONSTANT", Kw::Constant),
     ("RETAIN", Kw::Retain),
     ("NON_RETAIN", Kw::NonRetain),
+    ("PERSISTENT", Kw::Persistent),
     ("AT", Kw::At),
     ("TYPE", Kw::Type),
     ("END_TYPE", Kw::EndType),

@@ -77,6 +77,7 @@ fn program(ops: Vec<Op>) -> VerifiedImage {
         }],
         charts: Vec::new(),
         hosts: Vec::new(),
+        retained: Vec::new(),
     };
     verify(image).expect("a valid image")
 }

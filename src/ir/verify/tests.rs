@@ -681,3 +681,29 @@ fn a_host_body_index_out_of_range_is_refused() {
     bad.hosts.clear();
     assert_eq!(refused(bad), Problem::HostOutOfRange);
 }
+
+#[test]
+fn retained_values_outside_memory_or_with_another_string_are_refused() {
+    use crate::ir::retained::RetainedStorage;
+    let src = "PROGRAM P VAR RETAIN n : INT; s : STRING[4]; t : STRING[4]; END_VAR END_PROGRAM";
+    let plc = crate::Plc::compile_files(&[("r.st", src)], &crate::Options::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let img = plc.image().clone();
+    assert!(verify(img.clone()).is_ok());
+    let mem = img.memory.len() as u32;
+    let mut bad = img.clone();
+    bad.retained[0].storage = RetainedStorage::Slot(mem);
+    assert_eq!(refused(bad), Problem::RetainedOutsideMemory);
+    let RetainedStorage::Text { slot, string } = img.retained[1].storage else {
+        panic!("{:?}", img.retained[1]);
+    };
+    let mut bad = img.clone();
+    bad.retained[1].storage = RetainedStorage::Text {
+        slot,
+        string: string + 1,
+    };
+    assert_eq!(refused(bad), Problem::RetainedOutsideMemory);
+    let mut bad = img.clone();
+    bad.retained[1].storage = RetainedStorage::Text { slot: mem, string };
+    assert_eq!(refused(bad), Problem::RetainedOutsideMemory);
+}

@@ -5,6 +5,7 @@
 
 mod init;
 mod recursion;
+mod retained;
 mod schedule;
 
 use super::CompileOptions;
@@ -102,6 +103,7 @@ impl Linker<'_> {
         let (tasks, programs) = self.schedule(options)?;
         let instances = self.instantiate_programs(programs);
         let roots = self.root_vars(&instances)?;
+        let retained = self.retained_vars(&instances);
         for c in &mut self.out.codes {
             crate::ir::fuse::fuse_loops(&mut c.ops);
         }
@@ -123,6 +125,7 @@ impl Linker<'_> {
             tasks,
             charts: std::mem::take(&mut self.out.charts),
             hosts: options.host_pous.clone(),
+            retained,
         };
         if self.diags.has_errors() {
             return None;
