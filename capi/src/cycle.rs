@@ -40,6 +40,9 @@ pub extern "C" fn plc_run_cycle(plc: PlcHandle) -> c_int {
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn plc_is_faulted(plc: PlcHandle, out: *mut bool) -> c_int {
     guard(|| {
+        if out.is_null() {
+            return Err(Failure::null("out"));
+        }
         let faulted = handles::with_entry(plc, |e| Ok(e.fault.is_some()))?;
         // SAFETY: the caller's contract.
         unsafe { store(out, "out", faulted) }
@@ -74,6 +77,9 @@ pub unsafe extern "C" fn plc_fault_message(
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn plc_cycle(plc: PlcHandle, out: *mut u64) -> c_int {
     guard(|| {
+        if out.is_null() {
+            return Err(Failure::null("out"));
+        }
         let cycle = handles::with_entry(plc, |e| Ok(e.plc.cycle()))?;
         // SAFETY: the caller's contract.
         unsafe { store(out, "out", cycle) }
@@ -87,6 +93,9 @@ pub unsafe extern "C" fn plc_cycle(plc: PlcHandle, out: *mut u64) -> c_int {
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn plc_time_ns(plc: PlcHandle, out: *mut i64) -> c_int {
     guard(|| {
+        if out.is_null() {
+            return Err(Failure::null("out"));
+        }
         let time = handles::with_entry(plc, |e| Ok(e.plc.time()))?;
         // SAFETY: the caller's contract.
         unsafe { store(out, "out", time) }
@@ -100,6 +109,9 @@ pub unsafe extern "C" fn plc_time_ns(plc: PlcHandle, out: *mut i64) -> c_int {
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn plc_cycle_time_ns(plc: PlcHandle, out: *mut i64) -> c_int {
     guard(|| {
+        if out.is_null() {
+            return Err(Failure::null("out"));
+        }
         let tick = handles::with_entry(plc, |e| Ok(e.plc.cycle_time()))?;
         // SAFETY: the caller's contract.
         unsafe { store(out, "out", tick) }

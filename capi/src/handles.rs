@@ -170,3 +170,42 @@ pub(crate) fn with_entry<T>(
     })?;
     f(&mut entry)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::guard::guard;
+    use crate::status::{PLC_E_INVALID_HANDLE, PLC_OK};
+    use plcrun::Options;
+
+    #[test]
+    fn a_plc_a_panic_went_through_refuses_later_calls_but_can_be_freed() {
+        let source = "PROGRAM P VAR x : INT; END_VAR x := x + 1; END_PROGRAM";
+        let plc = Plc::compile_files(&[("p.st", source)], &Options::default()).unwrap();
+        let h = insert(Entry::new(plc));
+        assert_eq!(
+            guard(|| with_entry(h, |e| e.plc.run_cycle().map_err(|f| Failure::from(&f)))),
+            PLC_OK
+        );
+        // A bug inside a call, while the PLC is locked.
+        let status = guard(|| with_entry(h, |_| -> Result<(), Failure> { panic!("bug") }));
+        assert_eq!(status, PLC_E_PANIC);
+        let status = guard(|| with_entry(h, |e| e.plc.run_cycle().map_err(|f| Failure::from(&f))));
+        assert_eq!(status, PLC_E_PANIC);
+        assert_eq!(guard(|| remove(h)), PLC_OK);
+        assert_eq!(guard(|| remove(h)), PLC_E_INVALID_HANDLE);
+    }
+
+    #[test]
+    fn handles_of_a_reused_slot_differ() {
+        let source = "PROGRAM P VAR x : INT; END_VAR x := 1; END_PROGRAM";
+        let make = || Plc::compile_files(&[("p.st", source)], &Options::default()).unwrap();
+        let first = insert(Entry::new(make()));
+        remove(first).unwrap();
+        let second = insert(Entry::new(make()));
+        assert_ne!(first, second);
+        assert!(with_entry(first, |_| Ok(())).is_err());
+        assert!(with_entry(second, |_| Ok(())).is_ok());
+        remove(second).unwrap();
+    }
+}

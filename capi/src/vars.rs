@@ -91,6 +91,9 @@ unsafe fn set_literal(plc: PlcHandle, t: Target, literal: *const c_char) -> Resu
 /// # Safety
 /// `out` is NULL or writable.
 unsafe fn get_bool(plc: PlcHandle, t: Target, out: *mut bool) -> Result<(), Failure> {
+    if out.is_null() {
+        return Err(Failure::null("out"));
+    }
     let b = with_var(plc, t, |plc, r| scalar::to_bool(r.name(), &plc.get(r)?))?;
     // SAFETY: the caller's contract.
     unsafe { store(out, "out", b) }
@@ -99,6 +102,9 @@ unsafe fn get_bool(plc: PlcHandle, t: Target, out: *mut bool) -> Result<(), Fail
 /// # Safety
 /// `out` is NULL or writable.
 unsafe fn get_i64(plc: PlcHandle, t: Target, out: *mut i64) -> Result<(), Failure> {
+    if out.is_null() {
+        return Err(Failure::null("out"));
+    }
     let n = with_var(plc, t, |plc, r| scalar::to_i64(r.name(), &plc.get(r)?))?;
     // SAFETY: the caller's contract.
     unsafe { store(out, "out", n) }
@@ -107,6 +113,9 @@ unsafe fn get_i64(plc: PlcHandle, t: Target, out: *mut i64) -> Result<(), Failur
 /// # Safety
 /// `out` is NULL or writable.
 unsafe fn get_f64(plc: PlcHandle, t: Target, out: *mut f64) -> Result<(), Failure> {
+    if out.is_null() {
+        return Err(Failure::null("out"));
+    }
     let x = with_var(plc, t, |plc, r| scalar::to_f64(r.name(), &plc.get(r)?))?;
     // SAFETY: the caller's contract.
     unsafe { store(out, "out", x) }
