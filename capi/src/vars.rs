@@ -63,6 +63,8 @@ fn set_typed<N: Copy + std::fmt::Display>(
     })
 }
 
+/// The variable as a literal, into the caller's buffer.
+///
 /// # Safety
 /// `buf` is NULL or holds `cap` bytes; `needed` is NULL or writable.
 unsafe fn get_literal(
@@ -77,6 +79,8 @@ unsafe fn get_literal(
     unsafe { output(&text, buf, cap, needed) }
 }
 
+/// Writes the variable from a literal of its type.
+///
 /// # Safety
 /// `literal` is NULL or NUL-terminated.
 unsafe fn set_literal(plc: PlcHandle, t: Target, literal: *const c_char) -> Result<(), Failure> {
@@ -88,6 +92,8 @@ unsafe fn set_literal(plc: PlcHandle, t: Target, literal: *const c_char) -> Resu
     })
 }
 
+/// Reads a BOOL into `*out`.
+///
 /// # Safety
 /// `out` is NULL or writable.
 unsafe fn get_bool(plc: PlcHandle, t: Target, out: *mut bool) -> Result<(), Failure> {
@@ -99,6 +105,8 @@ unsafe fn get_bool(plc: PlcHandle, t: Target, out: *mut bool) -> Result<(), Fail
     unsafe { store(out, "out", b) }
 }
 
+/// Reads an integer-like variable into `*out`.
+///
 /// # Safety
 /// `out` is NULL or writable.
 unsafe fn get_i64(plc: PlcHandle, t: Target, out: *mut i64) -> Result<(), Failure> {
@@ -110,6 +118,8 @@ unsafe fn get_i64(plc: PlcHandle, t: Target, out: *mut i64) -> Result<(), Failur
     unsafe { store(out, "out", n) }
 }
 
+/// Reads a REAL or LREAL into `*out`.
+///
 /// # Safety
 /// `out` is NULL or writable.
 unsafe fn get_f64(plc: PlcHandle, t: Target, out: *mut f64) -> Result<(), Failure> {
