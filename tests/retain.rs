@@ -404,7 +404,11 @@ END_PROGRAM";
     }
     assert_eq!(plc.cycle(), 4);
     plc.reset_warm();
-    assert_eq!(plc.cycle(), 0, "the cycle count restarts, as after a cold reset");
+    assert_eq!(
+        plc.cycle(),
+        0,
+        "the cycle count restarts, as after a cold reset"
+    );
     assert_eq!(plc.read_i64("kept").unwrap(), 4);
     assert_eq!(plc.read("ks").unwrap().as_str(), Some("run"));
     assert_eq!(plc.read_i64("c.CV").unwrap(), 2);

@@ -1,0 +1,39 @@
+//! The C ABI of plcrun: `libplcrun_capi.so` / `libplcrun_capi.a` with the
+//! hand-written header `include/plcrun.h` (docs/embedding.md, "From C").
+//!
+//! Every entry point returns a status code (`PLC_OK` or a negative
+//! `PLC_E_*`, see [`status`]), catches any panic (`PLC_E_PANIC`), refuses
+//! NULL pointers (`PLC_E_NULL_ARGUMENT`) and checks every handle against a
+//! table (`PLC_E_INVALID_HANDLE`) before using it. The message of the last
+//! failure on a thread is `plc_last_error()`.
+//!
+//! The functions are also callable from Rust (the tests do), but a Rust
+//! program should use the `plcrun` crate itself.
+
+#![warn(missing_docs)]
+
+mod cycle;
+mod failure;
+mod guard;
+mod handles;
+mod lifecycle;
+mod scalar;
+pub mod status;
+mod text;
+mod vars;
+
+pub use cycle::{
+    plc_cycle, plc_cycle_time_ns, plc_fault_message, plc_is_faulted, plc_run_cycle, plc_time_ns,
+};
+pub use guard::plc_last_error;
+pub use handles::{PlcHandle, PlcVar};
+pub use lifecycle::{
+    PLC_ABI_VERSION, PlcOptions, PlcSource, plc_abi_version, plc_create, plc_free,
+    plc_options_init, plc_version, plc_warnings,
+};
+pub use status::plc_status_text;
+pub use vars::{
+    plc_get_bool, plc_get_f64, plc_get_i64, plc_get_literal, plc_resolve, plc_set_bool,
+    plc_set_f64, plc_set_i64, plc_set_literal, plc_var_get_bool, plc_var_get_f64, plc_var_get_i64,
+    plc_var_get_literal, plc_var_set_bool, plc_var_set_f64, plc_var_set_i64, plc_var_set_literal,
+};

@@ -1,0 +1,200 @@
+/*
+ * plcrun.h: the C interface of plcrun, an IEC 61131-3 soft-PLC core.
+ *
+ * Link with libplcrun_capi.a (add -lpthread -ldl -lm) or libplcrun_capi.so,
+ * both built by `cargo build -p plcrun-capi` (target/<profile>/).
+ * docs/embedding.md, "From C", explains the rules below with an example;
+ * examples/c/counter.c is a complete program.
+ *
+ * This header is written by hand; capi/tests/header.rs checks that it
+ * declares every entry point of the library with the same parameter and
+ * return types, and the same status codes.
+ *
+ * Rules for every function:
+ * - The return value is a status: PLC_OK (0) or a negative PLC_E_* code.
+ *   plc_last_error() then gives the message (valid until the next plc_*
+ *   call on the same thread).
+ * - Pointers that a function reads or writes must not be NULL (else
+ *   PLC_E_NULL_ARGUMENT), except where said. Text in is NUL-terminated
+ *   UTF-8 and is copied: the caller keeps ownership.
+ * - Handles are checked values, not pointers: a handle that was freed,
+ *   never created, zero, or (for plc_var) resolved by another PLC gives
+ *   PLC_E_INVALID_HANDLE. Nothing the library returns is to be freed by
+ *   the caller except a PLC (plc_free).
+ * - Text out ("buf, capacity, needed"): the text and its NUL are copied
+ *   into buf when capacity is large enough; *needed (if needed is not
+ *   NULL) gets the size that holds it, NUL included, whether or not it
+ *   fit. When it does not fit, buf holds "" and the result is
+ *   PLC_E_BUFFER_TOO_SMALL. buf may be NULL when capacity is 0, to ask
+ *   for the size.
+ * - No Rust panic crosses this interface: a bug inside plcrun returns
+ *   PLC_E_PANIC, and the PLC it happened in refuses later calls with
+ *   PLC_E_PANIC (free it).
+ * - Threads: a PLC may be used from any thread; calls on one PLC are
+ *   serialised (a lock per PLC); different PLCs run in parallel.
+ */
+#ifndef PLCRUN_H
+#define PLCRUN_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The interface version this header describes; plc_abi_version() gives
+ * the library's. */
+#define PLC_ABI_VERSION 1
+
+/* ---- Status codes ------------------------------------------------------ */
+
+enum plc_status {
+    PLC_OK = 0,
+    PLC_E_NULL_ARGUMENT = -1,    /* a required pointer argument is NULL */
+    PLC_E_INVALID_HANDLE = -2,   /* invalid or freed handle */
+    PLC_E_INVALID_ARGUMENT = -3, /* text not UTF-8, cycle time <= 0, no source */
+    PLC_E_COMPILE = -4,          /* the sources do not compile (diagnostics in plc_last_error) */
+    PLC_E_UNKNOWN_VARIABLE = -5, /* no such variable, or not a single value */
+    PLC_E_BAD_VALUE = -6,        /* the literal is not a value of the variable's type */
+    PLC_E_WRONG_TYPE = -7,       /* typed accessor on a variable of another type */
+    PLC_E_OUT_OF_RANGE = -8,     /* the number does not fit the variable's type */
+    PLC_E_RUNTIME_FAULT = -9,    /* the cycle stopped on a runtime fault */
+    PLC_E_FAULTED = -10,         /* the PLC is stopped on an earlier fault */
+    PLC_E_BUFFER_TOO_SMALL = -11, /* see "Text out" above */
+    PLC_E_PANIC = -12            /* internal error caught at the boundary */
+};
+
+/* A static description of a status ("unknown status" for other values). */
+const char *plc_status_text(int status);
+
+/* The message of the last plc_* call on this thread ("" after success). */
+const char *plc_last_error(void);
+
+/* ---- Version ----------------------------------------------------------- */
+
+/* The library's version, e.g. "0.1.0" (static). */
+const char *plc_version(void);
+
+/* The interface version the library implements (compare with
+ * PLC_ABI_VERSION). */
+int plc_abi_version(void);
+
+/* ---- Creating and freeing a PLC ---------------------------------------- */
+
+/* A compiled PLC with its state. Zero-initialised is invalid. */
+typedef struct plc_handle {
+    uint64_t id;
+} plc_handle;
+
+/* One source file. The name's extension chooses the language (.st, .il,
+ * .sfc); the name appears in diagnostics and fault locations. */
+typedef struct plc_source {
+    const char *name;
+    const char *text;
+} plc_source;
+
+typedef struct plc_options {
+    int64_t cycle_time_ns; /* cycle of the implicit task, > 0 (default 10 ms) */
+    const char *program;   /* the PROGRAM to run if there are several, or NULL */
+    int64_t watchdog_ns;   /* wall-clock limit of one cycle; <= 0: none (default 1 s) */
+} plc_options;
+
+/* Fills *options with the defaults. */
+int plc_options_init(plc_options *options);
+
+/* Compiles count source files (options may be NULL for the defaults) and
+ * stores the new PLC in *out ({0} on failure). PLC_E_COMPILE: the
+ * diagnostics, with file:line:column, are in plc_last_error(). */
+int plc_create(const plc_source *sources, size_t count, const plc_options *options,
+               plc_handle *out);
+
+/* Frees a PLC; its handle and variable handles become invalid. */
+int plc_free(plc_handle plc);
+
+/* The compilation's warnings, rendered ("" when none). Text out. */
+int plc_warnings(plc_handle plc, char *buf, size_t capacity, size_t *needed);
+
+/* ---- Cycles and the virtual clock -------------------------------------- */
+
+/* Runs one cycle (every task due at this tick), then advances the clock.
+ * PLC_E_RUNTIME_FAULT: plc_last_error() gives the fault, its POU,
+ * file:line:column and cycle; the PLC is then stopped (later cycles give
+ * PLC_E_FAULTED; variables stay readable and writable). */
+int plc_run_cycle(plc_handle plc);
+
+/* Whether the PLC is stopped on a fault. */
+int plc_is_faulted(plc_handle plc, bool *out);
+
+/* The fault that stopped the PLC ("" when none). Text out. */
+int plc_fault_message(plc_handle plc, char *buf, size_t capacity, size_t *needed);
+
+/* The number of the next cycle (0 before the first). */
+int plc_cycle(plc_handle plc, uint64_t *out);
+
+/* The virtual clock at the start of the next cycle, in nanoseconds. */
+int plc_time_ns(plc_handle plc, int64_t *out);
+
+/* The cycle time (base tick), in nanoseconds. */
+int plc_cycle_time_ns(plc_handle plc, int64_t *out);
+
+/* ---- Variables ---------------------------------------------------------
+ * A path names one value as on the command line: `x`, `inst.Q`, `arr[3]`,
+ * `grid[1,2]`, `S1.X`, `prog.x`, `%IX0.1` (case-insensitive). Literals are
+ * IEC literals of the variable's type: TRUE, 42, 16#FF, 2.5, T#1s500ms,
+ * 'text', an enumeration value's name.
+ *
+ * Typed accessors, and the types they accept (others: PLC_E_WRONG_TYPE):
+ *   bool    BOOL
+ *   int64_t SINT..LINT, USINT..ULINT, BYTE..LWORD, subranges, enumerations
+ *           (the value's number), TIME and LTIME (nanoseconds)
+ *   double  REAL, LREAL (a REAL is rounded to the nearest REAL on writing)
+ * A number the type cannot hold is PLC_E_OUT_OF_RANGE.
+ */
+
+/* A variable resolved once for repeated access; valid until its PLC is
+ * freed; needs no freeing. Zero-initialised is invalid. */
+typedef struct plc_var {
+    uint64_t id;
+} plc_var;
+
+int plc_resolve(plc_handle plc, const char *path, plc_var *out);
+
+/* By path. */
+int plc_get_literal(plc_handle plc, const char *path, char *buf, size_t capacity,
+                    size_t *needed);
+int plc_set_literal(plc_handle plc, const char *path, const char *literal);
+int plc_get_bool(plc_handle plc, const char *path, bool *out);
+int plc_set_bool(plc_handle plc, const char *path, bool value);
+int plc_get_i64(plc_handle plc, const char *path, int64_t *out);
+int plc_set_i64(plc_handle plc, const char *path, int64_t value);
+int plc_get_f64(plc_handle plc, const char *path, double *out);
+int plc_set_f64(plc_handle plc, const char *path, double value);
+
+/* By resolved handle. */
+int plc_var_get_literal(plc_handle plc, plc_var var, char *buf, size_t capacity,
+                        size_t *needed);
+int plc_var_set_literal(plc_handle plc, plc_var var, const char *literal);
+int plc_var_get_bool(plc_handle plc, plc_var var, bool *out);
+int plc_var_set_bool(plc_handle plc, plc_var var, bool value);
+int plc_var_get_i64(plc_handle plc, plc_var var, int64_t *out);
+int plc_var_set_i64(plc_handle plc, plc_var var, int64_t value);
+int plc_var_get_f64(plc_handle plc, plc_var var, double *out);
+int plc_var_set_f64(plc_handle plc, plc_var var, double value);
+
+/* ---- Reserved for the next versions ------------------------------------
+ * Each feature below gets a section of its own here, with its status codes
+ * appended after PLC_E_PANIC (existing values never change):
+ * - Forcing and soft writes: plc_force, plc_unforce, plc_forces, plc_soft_write.
+ * - The process image: %I / %Q / %M byte areas (plc_image_read/write).
+ * - Retained data: plc_retain_save, plc_retain_restore.
+ * - Life cycle: warm and cold reset after a fault; a stop handle.
+ * - Real-time running with per-task statistics.
+ */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PLCRUN_H */
