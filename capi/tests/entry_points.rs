@@ -472,7 +472,7 @@ fn a_runtime_fault_names_its_location_and_stops_the_plc() {
     assert_eq!(plc_run_cycle(plc), PLC_E_RUNTIME_FAULT);
     let message = last_error();
     assert!(
-        message.starts_with("runtime fault in cycle 1 at main.st:10:"),
+        message.starts_with("error[R001]: runtime fault in cycle 1 at main.st:10:"),
         "{message}"
     );
     assert!(
@@ -498,10 +498,9 @@ fn a_runtime_fault_names_its_location_and_stops_the_plc() {
     );
     // No more cycles; the variables stay readable and writable.
     assert_eq!(plc_run_cycle(plc), PLC_E_FAULTED);
-    assert!(
-        last_error()
-            .starts_with("the PLC is stopped on an earlier fault: runtime fault in cycle 1")
-    );
+    assert!(last_error().starts_with(
+        "the PLC is stopped on an earlier fault: error[R001]: runtime fault in cycle 1"
+    ));
     let mut cycle = 0;
     assert_eq!(unsafe { plc_cycle(plc, &mut cycle) }, PLC_OK);
     assert_eq!(cycle, 1);
