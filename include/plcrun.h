@@ -60,7 +60,8 @@ enum plc_status {
     PLC_E_COMPILE = -4,          /* the sources do not compile (diagnostics in plc_last_error) */
     PLC_E_UNKNOWN_VARIABLE = -5, /* no such variable, or not a single value */
     PLC_E_BAD_VALUE = -6,        /* the literal is not a value of the variable's type */
-    PLC_E_WRONG_TYPE = -7,       /* typed accessor on a variable of another type */
+    PLC_E_WRONG_TYPE = -7,       /* typed accessor on a variable of another type, or
+                                    image accessor on an address of another width */
     PLC_E_OUT_OF_RANGE = -8,     /* the number does not fit the variable's type */
     PLC_E_RUNTIME_FAULT = -9,    /* the cycle stopped on a runtime fault */
     PLC_E_FAULTED = -10,         /* the PLC is stopped on an earlier fault */

@@ -74,14 +74,24 @@ pub unsafe extern "C" fn plc_fault_message(
 /// forces and resolved handles stay.
 #[unsafe(no_mangle)]
 pub extern "C" fn plc_reset_cold(plc: PlcHandle) -> c_int {
-    guard(|| handles::with_entry(plc, |e| Ok(e.plc.reset_cold())))
+    guard(|| {
+        handles::with_entry(plc, |e| {
+            e.plc.reset_cold();
+            Ok(())
+        })
+    })
 }
 
 /// Warm reset: as `plc_reset_cold`, but the retained (RETAIN, PERSISTENT)
 /// variables keep their values.
 #[unsafe(no_mangle)]
 pub extern "C" fn plc_reset_warm(plc: PlcHandle) -> c_int {
-    guard(|| handles::with_entry(plc, |e| Ok(e.plc.reset_warm())))
+    guard(|| {
+        handles::with_entry(plc, |e| {
+            e.plc.reset_warm();
+            Ok(())
+        })
+    })
 }
 
 /// The number of the next cycle to run (0 before the first).

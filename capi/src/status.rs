@@ -19,7 +19,8 @@ pub const PLC_E_COMPILE: c_int = -4;
 pub const PLC_E_UNKNOWN_VARIABLE: c_int = -5;
 /// The literal is not a value of the variable's type.
 pub const PLC_E_BAD_VALUE: c_int = -6;
-/// A typed accessor was used on a variable of another type.
+/// A typed accessor was used on a variable of another type, or an image
+/// accessor on an address of another width (`%IX0.1` as a word).
 pub const PLC_E_WRONG_TYPE: c_int = -7;
 /// The number does not fit the variable's type.
 pub const PLC_E_OUT_OF_RANGE: c_int = -8;
@@ -83,7 +84,7 @@ pub(crate) const STATUSES: &[(c_int, &str, &str)] = &[
     (
         PLC_E_WRONG_TYPE,
         "PLC_E_WRONG_TYPE",
-        "the variable is of another type\0",
+        "the variable or address is of another type or width\0",
     ),
     (
         PLC_E_OUT_OF_RANGE,

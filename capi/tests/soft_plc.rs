@@ -366,7 +366,10 @@ fn forcing_soft_writes_and_the_force_list() {
         assert_eq!(plc_unforce_all(plc), PLC_OK);
         assert_eq!(plc_force_count(plc, &mut count), PLC_OK);
         assert_eq!(count, 0);
-        assert_eq!(plc_soft_write(plc, c"sw".as_ptr(), c"FALSE".as_ptr()), PLC_OK);
+        assert_eq!(
+            plc_soft_write(plc, c"sw".as_ptr(), c"FALSE".as_ptr()),
+            PLC_OK
+        );
         cycle(plc);
         assert_eq!(literal(plc, c"lamp"), "FALSE");
     }
