@@ -31,7 +31,9 @@
  *   PLC_E_PANIC, and the PLC it happened in refuses later calls with
  *   PLC_E_PANIC (free it).
  * - Threads: a PLC may be used from any thread; calls on one PLC are
- *   serialised (a lock per PLC); different PLCs run in parallel.
+ *   serialised (a lock per PLC); different PLCs run in parallel. The one
+ *   exception is plc_abort, through a stop token: it takes no PLC lock, so
+ *   it ends a cycle that another thread is running.
  */
 #ifndef PLCRUN_H
 #define PLCRUN_H
@@ -58,12 +60,19 @@ enum plc_status {
     PLC_E_COMPILE = -4,          /* the sources do not compile (diagnostics in plc_last_error) */
     PLC_E_UNKNOWN_VARIABLE = -5, /* no such variable, or not a single value */
     PLC_E_BAD_VALUE = -6,        /* the literal is not a value of the variable's type */
-    PLC_E_WRONG_TYPE = -7,       /* typed accessor on a variable of another type */
+    PLC_E_WRONG_TYPE = -7,       /* typed accessor on a variable of another type, or
+                                    image accessor on an address of another width */
     PLC_E_OUT_OF_RANGE = -8,     /* the number does not fit the variable's type */
     PLC_E_RUNTIME_FAULT = -9,    /* the cycle stopped on a runtime fault */
     PLC_E_FAULTED = -10,         /* the PLC is stopped on an earlier fault */
     PLC_E_BUFFER_TOO_SMALL = -11, /* see "Text out" above */
-    PLC_E_PANIC = -12            /* internal error caught at the boundary */
+    PLC_E_PANIC = -12,           /* internal error caught at the boundary */
+    PLC_E_READ_ONLY = -13,       /* CONSTANT, SFC step/action flag, or the %Q area */
+    PLC_E_BAD_ADDRESS = -14,     /* not an image address, or one with no place in it */
+    PLC_E_ADDRESS_OUT_OF_RANGE = -15, /* past the end of its image area */
+    PLC_E_RETAIN_FILE = -16,     /* retain file unreadable, unwritable or damaged */
+    PLC_E_RETAIN_MISMATCH = -17, /* retain file of other variables; nothing restored */
+    PLC_E_UNKNOWN_TASK = -18     /* no task of that name */
 };
 
 /* A static description of a status ("unknown status" for other values). */
@@ -121,8 +130,17 @@ int plc_warnings(plc_handle plc, char *buf, size_t capacity, size_t *needed);
 /* Runs one cycle (every task due at this tick), then advances the clock.
  * PLC_E_RUNTIME_FAULT: plc_last_error() gives the fault, its POU,
  * file:line:column and cycle; the PLC is then stopped (later cycles give
- * PLC_E_FAULTED; variables stay readable and writable). */
+ * PLC_E_FAULTED until a reset; variables stay readable and writable). */
 int plc_run_cycle(plc_handle plc);
+
+/* Cold reset: every variable back to its initial value (retained ones
+ * too), cycle and clock back to 0, the fault and any abort cleared; cycles
+ * run again. Watchdog limits, forces and plc_var handles stay. */
+int plc_reset_cold(plc_handle plc);
+
+/* Warm reset: as plc_reset_cold, but RETAIN and PERSISTENT variables keep
+ * their values. */
+int plc_reset_warm(plc_handle plc);
 
 /* Whether the PLC is stopped on a fault. */
 int plc_is_faulted(plc_handle plc, bool *out);
@@ -183,14 +201,127 @@ int plc_var_set_i64(plc_handle plc, plc_var var, int64_t value);
 int plc_var_get_f64(plc_handle plc, plc_var var, double *out);
 int plc_var_set_f64(plc_handle plc, plc_var var, double value);
 
+/* ---- Forcing and soft writes -------------------------------------------
+ * A forced variable keeps its value whatever the program or the host
+ * writes (forces are applied before and after every program run) until it
+ * is unforced. An unknown path is PLC_E_UNKNOWN_VARIABLE, a literal not of
+ * the variable's type PLC_E_BAD_VALUE, a CONSTANT or an SFC step/action
+ * flag (S1.X) PLC_E_READ_ONLY.
+ */
+
+/* Forces path to the literal (again: replaces the value). */
+int plc_force(plc_handle plc, const char *path, const char *literal);
+
+/* Releases the force on path; *was_forced (was_forced may be NULL) says
+ * whether it was forced (not being forced is no error). The variable keeps
+ * the forced value, or the last value soft-written while it was forced. */
+int plc_unforce(plc_handle plc, const char *path, bool *was_forced);
+
+/* Releases every force. */
+int plc_unforce_all(plc_handle plc);
+
+/* A write that a force overrides (every plc_set_* is one). */
+int plc_soft_write(plc_handle plc, const char *path, const char *literal);
+
+/* The forces are listed by index 0 .. count-1, in the order of forcing:
+ * plc_force_at gives the path and the value (a literal), each under the
+ * "text out" rules with its own buffer; if either is too small both hold
+ * "" and both *needed are set. An index >= count: PLC_E_INVALID_ARGUMENT. */
+int plc_force_count(plc_handle plc, size_t *out);
+int plc_force_at(plc_handle plc, size_t index, char *path_buf, size_t path_capacity,
+                 size_t *path_needed, char *value_buf, size_t value_capacity,
+                 size_t *value_needed);
+
+/* ---- The process image -------------------------------------------------
+ * %I (inputs), %Q (outputs) and %M (memory) are byte areas, each as long
+ * as the highest address the program uses there. Inputs are latched at
+ * the start of a task's cycle, outputs published at its end. Addresses are
+ * as in the language: %IX0.3 (bit 3 of byte 0), %IB2, %QW4 (bytes 4-5,
+ * little-endian), %MD8, %QL8, and the Moeller form %I0.0.0.0.1 (see
+ * docs/runtime.md for the mapping). The host writes %I and %M only
+ * (%Q: PLC_E_READ_ONLY). Errors: PLC_E_BAD_ADDRESS (syntax, bit > 7, a
+ * non-zero leading field), PLC_E_ADDRESS_OUT_OF_RANGE (past the area's
+ * end), PLC_E_WRONG_TYPE (an accessor of another width than the address,
+ * e.g. plc_image_read_word on %IX0.1).
+ */
+
+enum plc_area {
+    PLC_AREA_INPUT = 0,  /* %I */
+    PLC_AREA_OUTPUT = 1, /* %Q */
+    PLC_AREA_MEMORY = 2  /* %M */
+};
+
+int plc_image_read_bit(plc_handle plc, const char *address, bool *out);
+int plc_image_read_byte(plc_handle plc, const char *address, uint8_t *out);
+int plc_image_read_word(plc_handle plc, const char *address, uint16_t *out);
+int plc_image_read_dword(plc_handle plc, const char *address, uint32_t *out);
+int plc_image_read_lword(plc_handle plc, const char *address, uint64_t *out);
+int plc_image_write_bit(plc_handle plc, const char *address, bool value);
+int plc_image_write_byte(plc_handle plc, const char *address, uint8_t value);
+int plc_image_write_word(plc_handle plc, const char *address, uint16_t value);
+int plc_image_write_dword(plc_handle plc, const char *address, uint32_t value);
+int plc_image_write_lword(plc_handle plc, const char *address, uint64_t value);
+
+/* Whole areas (area: a plc_area value, else PLC_E_INVALID_ARGUMENT). The
+ * copies cover bytes offset .. offset+length-1 of the area
+ * (PLC_E_ADDRESS_OUT_OF_RANGE past its end); buf / data may be NULL when
+ * length is 0. */
+int plc_image_area_size(plc_handle plc, int area, size_t *out);
+int plc_image_read_area(plc_handle plc, int area, size_t offset, uint8_t *buf, size_t length);
+int plc_image_write_area(plc_handle plc, int area, size_t offset, const uint8_t *data,
+                         size_t length);
+
+/* ---- Retained data -----------------------------------------------------
+ * RETAIN and PERSISTENT variables, in a JSON file with IEC literals that
+ * carries the retained variables' names and types (docs/runtime.md).
+ */
+
+/* Saves them to path, atomically (old or new file, never a torn one).
+ * PLC_E_RETAIN_FILE when it cannot be written. */
+int plc_retain_save(plc_handle plc, const char *path);
+
+/* Restores them from path. A file of other variables (names, types) is
+ * PLC_E_RETAIN_MISMATCH, the message saying what differs, and nothing is
+ * restored; with partial true the values that fit are restored instead.
+ * *restored (restored may be NULL) gets how many values were. Unreadable
+ * or damaged: PLC_E_RETAIN_FILE. */
+int plc_retain_restore(plc_handle plc, const char *path, bool partial, size_t *restored);
+
+/* ---- Watchdog and abort ------------------------------------------------ */
+
+/* The watchdog limit of the task named task (case-insensitive; "default"
+ * for a program without configuration), or of every task when task is
+ * NULL, in milliseconds; 0 turns it off, < 0 is PLC_E_INVALID_ARGUMENT.
+ * A cycle that runs longer stops with PLC_E_RUNTIME_FAULT (R008). */
+int plc_set_watchdog_ms(plc_handle plc, const char *task, int64_t limit_ms);
+
+/* A stop token: aborts its PLC's cycle from another thread. Zero-
+ * initialised is invalid. */
+typedef struct plc_stop {
+    uint64_t id;
+} plc_stop;
+
+/* Makes a token for plc into *out ({0} on failure); take it before
+ * starting the cycle to abort (this call waits for the PLC's lock). It
+ * stays valid until plc_stop_token_free, even after plc_free (an abort
+ * then does nothing). */
+int plc_stop_token(plc_handle plc, plc_stop *out);
+
+/* Aborts the running cycle without taking the PLC's lock: it stops at its
+ * next backward jump or call, even in an endless loop, and plc_run_cycle
+ * returns PLC_E_RUNTIME_FAULT (R009, aborted); the PLC is then faulted
+ * until a reset. With no cycle running, the next one is aborted. */
+int plc_abort(plc_stop token);
+
+/* Frees a token. */
+int plc_stop_token_free(plc_stop token);
+
 /* ---- Reserved for the next versions ------------------------------------
  * Each feature below gets a section of its own here, with its status codes
- * appended after PLC_E_PANIC (existing values never change):
- * - Forcing and soft writes: plc_force, plc_unforce, plc_forces, plc_soft_write.
- * - The process image: %I / %Q / %M byte areas (plc_image_read/write).
- * - Retained data: plc_retain_save, plc_retain_restore.
- * - Life cycle: warm and cold reset after a fault; a stop handle.
- * - Real-time running with per-task statistics.
+ * appended after PLC_E_UNKNOWN_TASK (existing values never change):
+ * - Real-time running on a thread with per-task statistics.
+ * - Online change (loading a new program version between cycles).
+ * - Host-registered native functions and function blocks.
  */
 
 #ifdef __cplusplus

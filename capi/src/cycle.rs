@@ -1,5 +1,5 @@
-//! Running cycles on the virtual clock, the clock itself, and the fault
-//! that stops a PLC.
+//! Running cycles on the virtual clock, the clock itself, the fault that
+//! stops a PLC (the library's faulted state) and the resets that clear it.
 
 use crate::failure::Failure;
 use crate::guard::guard;
@@ -12,23 +12,21 @@ use std::ffi::{c_char, c_int};
 /// the clock advances by one cycle time. A runtime fault returns
 /// `PLC_E_RUNTIME_FAULT` (`plc_last_error()` says what, in which POU,
 /// at which `file:line:column`, in which cycle) and stops the PLC: later
-/// cycles return `PLC_E_FAULTED`; its variables can still be read and
-/// written.
+/// cycles return `PLC_E_FAULTED` until `plc_reset_cold` or
+/// `plc_reset_warm`; its variables can still be read and written.
 #[unsafe(no_mangle)]
 pub extern "C" fn plc_run_cycle(plc: PlcHandle) -> c_int {
     guard(|| {
         handles::with_entry(plc, |e| {
-            if let Some(f) = &e.fault {
+            // The library keeps the fault (faulted STOP); only the status
+            // tells a new fault from the one that stopped the PLC earlier.
+            if let Some(f) = e.plc.fault() {
                 return Err(Failure::new(
                     PLC_E_FAULTED,
                     format!("the PLC is stopped on an earlier fault: {f}"),
                 ));
             }
-            e.plc.run_cycle().map_err(|f| {
-                let failure = Failure::from(&f);
-                e.fault = Some(f);
-                failure
-            })
+            e.plc.run_cycle().map_err(|f| Failure::from(&f))
         })
     })
 }
@@ -43,7 +41,7 @@ pub unsafe extern "C" fn plc_is_faulted(plc: PlcHandle, out: *mut bool) -> c_int
         if out.is_null() {
             return Err(Failure::null("out"));
         }
-        let faulted = handles::with_entry(plc, |e| Ok(e.fault.is_some()))?;
+        let faulted = handles::with_entry(plc, |e| Ok(e.plc.fault().is_some()))?;
         // SAFETY: the caller's contract.
         unsafe { store(out, "out", faulted) }
     })
@@ -63,10 +61,36 @@ pub unsafe extern "C" fn plc_fault_message(
 ) -> c_int {
     guard(|| {
         let text = handles::with_entry(plc, |e| {
-            Ok(e.fault.as_ref().map(|f| f.to_string()).unwrap_or_default())
+            Ok(e.plc.fault().map(|f| f.to_string()).unwrap_or_default())
         })?;
         // SAFETY: the caller's contract.
         unsafe { output(&text, buf, capacity, needed) }
+    })
+}
+
+/// Cold reset: every variable back to its initial value (retained ones
+/// too), cycle count and clock back to 0, the fault and any abort request
+/// cleared; cycles run again. The program, the watchdog limits, the
+/// forces and resolved handles stay.
+#[unsafe(no_mangle)]
+pub extern "C" fn plc_reset_cold(plc: PlcHandle) -> c_int {
+    guard(|| {
+        handles::with_entry(plc, |e| {
+            e.plc.reset_cold();
+            Ok(())
+        })
+    })
+}
+
+/// Warm reset: as `plc_reset_cold`, but the retained (RETAIN, PERSISTENT)
+/// variables keep their values.
+#[unsafe(no_mangle)]
+pub extern "C" fn plc_reset_warm(plc: PlcHandle) -> c_int {
+    guard(|| {
+        handles::with_entry(plc, |e| {
+            e.plc.reset_warm();
+            Ok(())
+        })
     })
 }
 

@@ -2,7 +2,7 @@
 //! `plc_last_error` returns, made from the library's typed errors.
 
 use crate::status::*;
-use plcrun::{CompileError, RuntimeFault, VarError};
+use plcrun::{AddressError, CompileError, RetainError, RuntimeFault, UnknownTask, VarError};
 use std::ffi::c_int;
 
 /// Why an entry point failed.
@@ -30,7 +30,10 @@ impl Failure {
 impl From<VarError> for Failure {
     fn from(e: VarError) -> Failure {
         let code = match &e {
-            VarError::BadValue { .. } | VarError::WrongValue { .. } => PLC_E_BAD_VALUE,
+            VarError::BadValue { .. }
+            | VarError::WrongValue { .. }
+            | VarError::ValueDoesNotFit { .. } => PLC_E_BAD_VALUE,
+            VarError::ReadOnly { .. } => PLC_E_READ_ONLY,
             VarError::NotAnInteger { .. } => PLC_E_WRONG_TYPE,
             VarError::ForeignHandle { .. } => PLC_E_INVALID_HANDLE,
             // Every other variant says the path does not name a value.
@@ -49,5 +52,35 @@ impl From<CompileError> for Failure {
 impl From<&RuntimeFault> for Failure {
     fn from(f: &RuntimeFault) -> Failure {
         Failure::new(PLC_E_RUNTIME_FAULT, f.to_string())
+    }
+}
+
+impl From<AddressError> for Failure {
+    fn from(e: AddressError) -> Failure {
+        let code = match &e {
+            AddressError::OutOfRange { .. } => PLC_E_ADDRESS_OUT_OF_RANGE,
+            AddressError::WrongWidth { .. } => PLC_E_WRONG_TYPE,
+            AddressError::NotWritable { .. } => PLC_E_READ_ONLY,
+            // Syntax, a bit over 7, a non-zero leading field (and any
+            // later variant): the text names no place in the image.
+            _ => PLC_E_BAD_ADDRESS,
+        };
+        Failure::new(code, e.to_string())
+    }
+}
+
+impl From<RetainError> for Failure {
+    fn from(e: RetainError) -> Failure {
+        let code = match &e {
+            RetainError::Mismatch { .. } => PLC_E_RETAIN_MISMATCH,
+            _ => PLC_E_RETAIN_FILE,
+        };
+        Failure::new(code, e.to_string())
+    }
+}
+
+impl From<UnknownTask> for Failure {
+    fn from(e: UnknownTask) -> Failure {
+        Failure::new(PLC_E_UNKNOWN_TASK, e.to_string())
     }
 }

@@ -11,7 +11,7 @@
 
 use crate::failure::Failure;
 use crate::status::{PLC_E_INVALID_HANDLE, PLC_E_PANIC};
-use plcrun::{Plc, RuntimeFault, VarRef};
+use plcrun::{Plc, VarRef};
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
@@ -38,8 +38,6 @@ pub(crate) struct Entry {
     pub vars: Vec<VarRef>,
     /// Tells this PLC's variable handles from another's.
     pub tag: u32,
-    /// The fault that stopped the PLC, if one did.
-    pub fault: Option<RuntimeFault>,
 }
 
 impl Entry {
@@ -49,7 +47,6 @@ impl Entry {
             plc,
             vars: Vec::new(),
             tag: NEXT_TAG.fetch_add(1, Ordering::Relaxed),
-            fault: None,
         }
     }
 

@@ -14,24 +14,40 @@
 
 mod cycle;
 mod failure;
+mod forcing;
 mod guard;
 mod handles;
+mod image;
 mod lifecycle;
+mod retain;
 mod scalar;
 pub mod status;
+mod stop;
 mod text;
 mod vars;
 
 pub use cycle::{
-    plc_cycle, plc_cycle_time_ns, plc_fault_message, plc_is_faulted, plc_run_cycle, plc_time_ns,
+    plc_cycle, plc_cycle_time_ns, plc_fault_message, plc_is_faulted, plc_reset_cold,
+    plc_reset_warm, plc_run_cycle, plc_time_ns,
+};
+pub use forcing::{
+    plc_force, plc_force_at, plc_force_count, plc_soft_write, plc_unforce, plc_unforce_all,
 };
 pub use guard::plc_last_error;
 pub use handles::{PlcHandle, PlcVar};
+pub use image::{
+    PLC_AREA_INPUT, PLC_AREA_MEMORY, PLC_AREA_OUTPUT, plc_image_area_size, plc_image_read_area,
+    plc_image_read_bit, plc_image_read_byte, plc_image_read_dword, plc_image_read_lword,
+    plc_image_read_word, plc_image_write_area, plc_image_write_bit, plc_image_write_byte,
+    plc_image_write_dword, plc_image_write_lword, plc_image_write_word,
+};
 pub use lifecycle::{
     PLC_ABI_VERSION, PlcOptions, PlcSource, plc_abi_version, plc_create, plc_free,
     plc_options_init, plc_version, plc_warnings,
 };
+pub use retain::{plc_retain_restore, plc_retain_save};
 pub use status::plc_status_text;
+pub use stop::{PlcStop, plc_abort, plc_set_watchdog_ms, plc_stop_token, plc_stop_token_free};
 pub use vars::{
     plc_get_bool, plc_get_f64, plc_get_i64, plc_get_literal, plc_resolve, plc_set_bool,
     plc_set_f64, plc_set_i64, plc_set_literal, plc_var_get_bool, plc_var_get_f64, plc_var_get_i64,

@@ -19,7 +19,8 @@ pub const PLC_E_COMPILE: c_int = -4;
 pub const PLC_E_UNKNOWN_VARIABLE: c_int = -5;
 /// The literal is not a value of the variable's type.
 pub const PLC_E_BAD_VALUE: c_int = -6;
-/// A typed accessor was used on a variable of another type.
+/// A typed accessor was used on a variable of another type, or an image
+/// accessor on an address of another width (`%IX0.1` as a word).
 pub const PLC_E_WRONG_TYPE: c_int = -7;
 /// The number does not fit the variable's type.
 pub const PLC_E_OUT_OF_RANGE: c_int = -8;
@@ -31,6 +32,21 @@ pub const PLC_E_FAULTED: c_int = -10;
 pub const PLC_E_BUFFER_TOO_SMALL: c_int = -11;
 /// A bug inside plcrun was caught at the boundary (a Rust panic).
 pub const PLC_E_PANIC: c_int = -12;
+/// The variable or image area cannot be written from outside: a
+/// CONSTANT, an SFC step or action flag, the `%Q` area.
+pub const PLC_E_READ_ONLY: c_int = -13;
+/// The text is not a process image address (`%IX0.3`, `%QW4`), or maps
+/// to no place in the image (bit over 7, a non-zero leading field).
+pub const PLC_E_BAD_ADDRESS: c_int = -14;
+/// The address or byte range lies past the end of its image area.
+pub const PLC_E_ADDRESS_OUT_OF_RANGE: c_int = -15;
+/// A retain file could not be read or written, or is damaged.
+pub const PLC_E_RETAIN_FILE: c_int = -16;
+/// A retain file's variables (names, types) differ from the program's;
+/// nothing was restored.
+pub const PLC_E_RETAIN_MISMATCH: c_int = -17;
+/// No task of the configuration has that name.
+pub const PLC_E_UNKNOWN_TASK: c_int = -18;
 
 /// Every status with its name and description, in the header's order.
 pub(crate) const STATUSES: &[(c_int, &str, &str)] = &[
@@ -68,7 +84,7 @@ pub(crate) const STATUSES: &[(c_int, &str, &str)] = &[
     (
         PLC_E_WRONG_TYPE,
         "PLC_E_WRONG_TYPE",
-        "the variable is of another type\0",
+        "the variable or address is of another type or width\0",
     ),
     (
         PLC_E_OUT_OF_RANGE,
@@ -95,6 +111,32 @@ pub(crate) const STATUSES: &[(c_int, &str, &str)] = &[
         "PLC_E_PANIC",
         "internal error (panic caught at the C boundary)\0",
     ),
+    (
+        PLC_E_READ_ONLY,
+        "PLC_E_READ_ONLY",
+        "cannot be written from outside the program\0",
+    ),
+    (
+        PLC_E_BAD_ADDRESS,
+        "PLC_E_BAD_ADDRESS",
+        "not a process image address\0",
+    ),
+    (
+        PLC_E_ADDRESS_OUT_OF_RANGE,
+        "PLC_E_ADDRESS_OUT_OF_RANGE",
+        "outside the process image area\0",
+    ),
+    (
+        PLC_E_RETAIN_FILE,
+        "PLC_E_RETAIN_FILE",
+        "the retain file cannot be read or written, or is damaged\0",
+    ),
+    (
+        PLC_E_RETAIN_MISMATCH,
+        "PLC_E_RETAIN_MISMATCH",
+        "the retain file does not fit the program\0",
+    ),
+    (PLC_E_UNKNOWN_TASK, "PLC_E_UNKNOWN_TASK", "no such task\0"),
 ];
 
 /// A static, NUL-terminated description of `status` ("unknown status" for

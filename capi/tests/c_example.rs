@@ -1,23 +1,36 @@
-//! examples/c/counter.c, compiled with the system C compiler against
-//! include/plcrun.h (every warning an error) and the static library that
-//! this test run built, then run: its output must be exactly
-//! examples/c/counter.expected.
+//! The C examples in examples/c/, each compiled with the system C compiler
+//! against include/plcrun.h (every warning an error) and the static
+//! library that this test run built, then run: its output must be exactly
+//! the example's `.expected` file.
 
 #[path = "support/c_build.rs"]
 mod c_build;
 
 use std::process::Command;
 
-#[test]
-fn the_c_example_compiles_without_warnings_and_prints_what_is_expected() {
-    let exe = c_build::compile("examples/c/counter.c", "counter");
+/// Compiles and runs examples/c/`name`.c and compares its output.
+fn run_example(name: &str) {
+    let exe = c_build::compile(&format!("examples/c/{name}.c"), name);
     let run = Command::new(&exe).output().expect("run the C example");
     let stdout = String::from_utf8_lossy(&run.stdout);
     assert!(
         run.status.success(),
-        "the C example failed ({}):\n{stdout}\n{}",
+        "the C example {name} failed ({}):\n{stdout}\n{}",
         run.status,
         String::from_utf8_lossy(&run.stderr)
     );
-    assert_eq!(stdout, c_build::repo_text("examples/c/counter.expected"));
+    assert_eq!(
+        stdout,
+        c_build::repo_text(&format!("examples/c/{name}.expected"))
+    );
+}
+
+#[test]
+fn the_c_example_compiles_without_warnings_and_prints_what_is_expected() {
+    run_example("counter");
+}
+
+#[test]
+fn the_process_image_and_forcing_example_prints_what_is_expected() {
+    run_example("io_force");
 }

@@ -88,12 +88,16 @@ fn c_spelling(rust: &str) -> String {
         "bool" => "bool",
         "i64" => "int64_t",
         "u64" => "uint64_t",
+        "u32" => "uint32_t",
+        "u16" => "uint16_t",
+        "u8" => "uint8_t",
         "f64" => "double",
         "usize" => "size_t",
         "PlcHandle" => "plc_handle",
         "PlcVar" => "plc_var",
         "PlcSource" => "plc_source",
         "PlcOptions" => "plc_options",
+        "PlcStop" => "plc_stop",
         other => panic!("no C spelling for the Rust type `{other}`: extend this test"),
     }
     .to_string()
@@ -168,7 +172,7 @@ fn the_header_and_the_library_have_the_same_status_codes_and_version() {
     };
     let in_header = pairs(&header, " = ");
     let in_rust = pairs(&status_rs.replace(": c_int =", " ="), " = ");
-    assert_eq!(in_header.len(), 13);
+    assert_eq!(in_header.len(), 19);
     assert_eq!(in_header, in_rust);
     for code in in_header.values() {
         let text = unsafe { std::ffi::CStr::from_ptr(plcrun_capi::plc_status_text(*code)) };
@@ -184,14 +188,14 @@ fn the_header_and_the_library_have_the_same_status_codes_and_version() {
 
 #[test]
 fn c_and_rust_agree_on_the_struct_layouts() {
-    use plcrun_capi::{PlcHandle, PlcOptions, PlcSource, PlcVar};
+    use plcrun_capi::{PlcHandle, PlcOptions, PlcSource, PlcStop, PlcVar};
     let probe = std::env::temp_dir().join(format!("plcrun-layout-{}.c", std::process::id()));
     std::fs::write(
         &probe,
         "#include <stddef.h>\n#include <stdio.h>\n#include \"plcrun.h\"\n\
          int main(void) {\n\
-         printf(\"%zu %zu %zu %zu %zu %zu %zu %zu %zu\\n\",\n\
-         sizeof(plc_handle), sizeof(plc_var), sizeof(plc_source),\n\
+         printf(\"%zu %zu %zu %zu %zu %zu %zu %zu %zu %zu\\n\",\n\
+         sizeof(plc_handle), sizeof(plc_var), sizeof(plc_stop), sizeof(plc_source),\n\
          offsetof(plc_source, text), sizeof(plc_options),\n\
          offsetof(plc_options, cycle_time_ns), offsetof(plc_options, program),\n\
          offsetof(plc_options, watchdog_ns), sizeof(bool));\n\
@@ -201,9 +205,10 @@ fn c_and_rust_agree_on_the_struct_layouts() {
     let exe = c_build::compile(probe.to_str().unwrap(), "layout");
     let out = Command::new(exe).output().expect("run the probe");
     let want = format!(
-        "{} {} {} {} {} {} {} {} {}\n",
+        "{} {} {} {} {} {} {} {} {} {}\n",
         size_of::<PlcHandle>(),
         size_of::<PlcVar>(),
+        size_of::<PlcStop>(),
         size_of::<PlcSource>(),
         offset_of!(PlcSource, text),
         size_of::<PlcOptions>(),
