@@ -131,7 +131,10 @@ fn the_loop_goes_round_in_real_time_with_sane_statistics() {
     assert!(stats.cycles >= 100 && stats.cycles <= 251, "{stats:?}");
     assert!(stats.overruns < stats.cycles, "{stats:?}");
     for t in [stats.execution.unwrap(), stats.start_jitter.unwrap()] {
-        assert!(0 <= t.min_ns && t.min_ns <= t.mean_ns && t.mean_ns <= t.max_ns, "{t:?}");
+        assert!(
+            0 <= t.min_ns && t.min_ns <= t.mean_ns && t.mean_ns <= t.max_ns,
+            "{t:?}"
+        );
     }
     let exec = stats.execution.unwrap();
     assert!(exec.max_ns < 1_000_000_000, "{exec:?}");

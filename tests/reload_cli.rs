@@ -21,7 +21,15 @@ fn start(src: &str) -> Child {
     let out = std::fs::File::create(dir.join("trace.csv")).expect("trace file");
     let err = std::fs::File::create(dir.join("stderr.txt")).expect("stderr file");
     Command::new(env!("CARGO_BIN_EXE_plcrun"))
-        .args([src, "--realtime", "--reload", "--trace", "n", "--format", "csv"])
+        .args([
+            src,
+            "--realtime",
+            "--reload",
+            "--trace",
+            "n",
+            "--format",
+            "csv",
+        ])
         .stdout(Stdio::from(out))
         .stderr(Stdio::from(err))
         .spawn()
@@ -95,7 +103,10 @@ fn a_rewritten_source_is_loaded_and_n_keeps_its_value() {
     // Counting by 1, then by 100 from where it was: n carried over (a
     // restart would have started again from 100).
     let steps = steps(&n);
-    let switch = steps.iter().position(|d| *d == 100).expect("the new version ran");
+    let switch = steps
+        .iter()
+        .position(|d| *d == 100)
+        .expect("the new version ran");
     assert!(switch >= 29, "{steps:?}");
     assert!(steps[..switch].iter().all(|d| *d == 1), "{steps:?}");
     assert!(steps[switch..].iter().all(|d| *d == 100), "{steps:?}");
@@ -116,10 +127,7 @@ fn a_version_that_does_not_compile_is_refused_and_the_program_runs_on() {
     assert_eq!(code, Some(0), "{stderr}");
     assert!(stderr.contains("error[E"), "{stderr}");
     assert!(stderr.contains("count.st:1:"), "{stderr}");
-    assert!(
-        stderr.contains("the program runs on"),
-        "{stderr}"
-    );
+    assert!(stderr.contains("the program runs on"), "{stderr}");
     // The old version counted on, one by one, through and after the refusal.
     assert!(n.len() >= 50, "{n:?}");
     assert!(steps(&n).iter().all(|d| *d == 1), "{n:?}");
@@ -130,5 +138,8 @@ fn reload_needs_realtime() {
     let src = temp_file("count.st", COUNT_BY_1);
     let (code, _, stderr) = plcrun(&[&src, "--cycles", "3", "--reload"]);
     assert_eq!(code, 2, "{stderr}");
-    assert!(stderr.contains("--reload") && stderr.contains("--realtime"), "{stderr}");
+    assert!(
+        stderr.contains("--reload") && stderr.contains("--realtime"),
+        "{stderr}"
+    );
 }

@@ -9,9 +9,7 @@
 
 use super::closed_loop::{CHART, Event, Io, LoopError, Signals};
 use super::plant::{Cart, Operator};
-use plcrun::{
-    Options, Plc, RunError, Session, TaskRunner, TaskStats, TraceFormat, TraceWriter,
-};
+use plcrun::{Options, Plc, RunError, Session, TaskRunner, TaskStats, TraceFormat, TraceWriter};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
 use std::time::{Duration, Instant};
 
@@ -169,7 +167,12 @@ pub fn run(
         if left.is_zero() {
             break;
         }
-        match receive(&rx, left.min(Duration::from_millis(50)), &mut run, &mut on_event) {
+        match receive(
+            &rx,
+            left.min(Duration::from_millis(50)),
+            &mut run,
+            &mut on_event,
+        ) {
             Ok(()) => {}
             Err(e) => failure = Some(e),
         }

@@ -124,9 +124,9 @@ impl Reloader {
                             eprintln!("  {line}");
                         }
                     }
-                    Err(e) => eprintln!(
-                        "reload before cycle {at} refused: {e}; the program runs on"
-                    ),
+                    Err(e) => {
+                        eprintln!("reload before cycle {at} refused: {e}; the program runs on")
+                    }
                 }
             }
         }
