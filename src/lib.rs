@@ -65,7 +65,7 @@ pub use runtime::live_stimulus::{LiveStimulus, LiveStimulusError};
 pub use runtime::names::VarRef;
 pub use runtime::plc_value::Value;
 pub use runtime::process_image::ProcessImage;
-pub use runtime::realtime::{RunOutcome, RunThread, TaskRunner};
+pub use runtime::realtime::{BetweenTicksHook, RunOutcome, RunThread, TaskRunner};
 pub use runtime::retain::saver::RetainSaver;
 pub use runtime::retain::{
     Damage, RestoreMode, RestoreReport, RetainDiff, RetainError, RetainedVariable, TypeChange,

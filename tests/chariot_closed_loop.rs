@@ -1,7 +1,9 @@
 //! The CHARIOT closed loop of `examples/chariot_loop` (issue #9, point 11,
 //! virtual time), run in-process through the example's own modules: the
 //! timeline of the first round trip against a derivation by hand, the
-//! number of round trips, and the plant's refusal of impossible commands.
+//! number of round trips, and the plant's refusal of impossible commands;
+//! and the same loop on the wall clock (a quicker plant, 2.5 s), checked
+//! for round trips and sane task statistics.
 //!
 //! Derivation (10 ms cycles; cart at 1 m/s = 10 mm per cycle on a 1.5 m
 //! track; the operator presses Dcy after the VOM lamp has been lit for 50
@@ -23,6 +25,8 @@
 mod closed_loop;
 #[path = "../examples/chariot_loop/plant.rs"]
 mod plant;
+#[path = "../examples/chariot_loop/realtime.rs"]
+mod realtime;
 
 use plant::{Cart, Operator, PlantError};
 
@@ -86,4 +90,54 @@ fn the_plant_refuses_what_would_break_a_real_one() {
     assert_eq!(presses.iter().filter(|p| **p).count(), 10);
     assert!(presses[49] && !presses[48] && !presses[59]);
     assert!(!operator.button(false));
+}
+
+/// Real time on a shared 2-core machine: the bounds are loose on purpose
+/// (no timeline to the cycle), but the loop must go round and the
+/// statistics must be there and consistent.
+#[test]
+fn the_loop_goes_round_in_real_time_with_sane_statistics() {
+    let setup = realtime::Setup::quick();
+    let mut live = 0;
+    let run = realtime::run(setup, std::time::Duration::from_millis(2500), |_| live += 1)
+        .expect("the loop runs");
+    assert_eq!(live, run.events.len(), "every change is handed over live");
+    assert!(!run.round_trips.is_empty(), "no round trip: {run:#?}");
+    // The chart's steps in their order, starting in INIT.
+    let steps: Vec<&str> = run.events.iter().map(|e| e.signals.step).collect();
+    let mut order = steps.clone();
+    order.dedup();
+    let cycle = ["INIT", "AV", "ATT", "AR"];
+    assert!(order.len() >= 5, "{order:?}");
+    for (i, step) in order.iter().enumerate() {
+        assert_eq!(*step, cycle[i % 4], "{order:?}");
+    }
+    assert!(
+        run.events
+            .iter()
+            .all(|e| !(e.signals.kmav && e.signals.kmar) && (0..=300).contains(&e.position_mm))
+    );
+    // Time goes forward with the cycles.
+    assert!(
+        run.events
+            .windows(2)
+            .all(|w| w[0].cycle < w[1].cycle && w[0].time_ns < w[1].time_ns)
+    );
+    let [stats] = run.stats.as_slice() else {
+        panic!("one task expected: {:?}", run.stats)
+    };
+    assert_eq!(stats.interval_ns, 10_000_000);
+    // 250 deadlines in 2.5 s; a loaded machine may miss some.
+    assert!(stats.cycles >= 100 && stats.cycles <= 251, "{stats:?}");
+    assert!(stats.overruns < stats.cycles, "{stats:?}");
+    for t in [stats.execution.unwrap(), stats.start_jitter.unwrap()] {
+        assert!(
+            0 <= t.min_ns && t.min_ns <= t.mean_ns && t.mean_ns <= t.max_ns,
+            "{t:?}"
+        );
+    }
+    let exec = stats.execution.unwrap();
+    assert!(exec.max_ns < 1_000_000_000, "{exec:?}");
+    let last = *run.round_trips.last().unwrap();
+    assert!(last <= stats.cycles + stats.overruns, "{run:#?}");
 }

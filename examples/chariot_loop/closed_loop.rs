@@ -4,7 +4,9 @@
 //! moves the cart. Variables are resolved once and accessed by handle.
 
 use super::plant::{Cart, Operator, PlantError};
-use plcrun::{CompileError, ElemType, Options, Plc, RuntimeFault, Value, VarError, VarRef};
+use plcrun::{
+    CompileError, ElemType, Options, Plc, RunError, RuntimeFault, Value, VarError, VarRef,
+};
 use std::fmt;
 
 /// The chart, as in the repository.
@@ -66,6 +68,8 @@ pub enum LoopError {
     Fault(Box<RuntimeFault>),
     /// The PLC drove the plant into a crash.
     Plant(PlantError),
+    /// A real-time run ended on another error than a fault.
+    Run(Box<RunError>),
 }
 
 impl fmt::Display for LoopError {
@@ -75,6 +79,7 @@ impl fmt::Display for LoopError {
             LoopError::Variable(e) => write!(f, "{e}"),
             LoopError::Fault(e) => write!(f, "{e}"),
             LoopError::Plant(e) => write!(f, "{e}"),
+            LoopError::Run(e) => write!(f, "{e}"),
         }
     }
 }
@@ -91,7 +96,7 @@ impl From<VarError> for LoopError {
 const STEPS: [&str; 4] = ["INIT", "AV", "ATT", "AR"];
 
 /// The PLC's variables the loop touches, resolved once.
-struct Io {
+pub struct Io {
     dcy: VarRef,
     fca: VarRef,
     fcb: VarRef,
@@ -102,7 +107,8 @@ struct Io {
 }
 
 impl Io {
-    fn resolve(plc: &Plc) -> Result<Io, VarError> {
+    /// Resolves the chart's inputs, outputs and step flags in `plc`.
+    pub fn resolve(plc: &Plc) -> Result<Io, VarError> {
         Ok(Io {
             dcy: plc.resolve("Dcy")?,
             fca: plc.resolve("FcA")?,
@@ -114,6 +120,38 @@ impl Io {
                 .iter()
                 .map(|s| plc.resolve(&format!("{s}.X")))
                 .collect::<Result<_, _>>()?,
+        })
+    }
+
+    /// Writes the button and the limit switches for the next cycle.
+    pub fn write_inputs(&self, plc: &mut Plc, dcy: bool, cart: &Cart) -> Result<(), VarError> {
+        write_bool(plc, &self.dcy, dcy)?;
+        write_bool(plc, &self.fca, cart.at_a())?;
+        write_bool(plc, &self.fcb, cart.at_b())
+    }
+
+    /// The "at origin" lamp as the last cycle left it.
+    pub fn lamp(&self, plc: &Plc) -> Result<bool, VarError> {
+        read_bool(plc, &self.vom)
+    }
+
+    /// What the PLC saw (`dcy` and the cart's switches) and did in the
+    /// cycle just run.
+    pub fn signals(&self, plc: &Plc, dcy: bool, cart: &Cart) -> Result<Signals, VarError> {
+        let mut step = "-";
+        for (name, r) in STEPS.iter().zip(&self.steps) {
+            if read_bool(plc, r)? {
+                step = name;
+            }
+        }
+        Ok(Signals {
+            dcy,
+            fca: cart.at_a(),
+            fcb: cart.at_b(),
+            kmav: read_bool(plc, &self.kmav)?,
+            kmar: read_bool(plc, &self.kmar)?,
+            vom: read_bool(plc, &self.vom)?,
+            step,
         })
     }
 }
@@ -149,27 +187,11 @@ pub fn run(cycles: u64) -> Result<Run, LoopError> {
         }
         been_at_b = (been_at_b || cart.at_b()) && !cart.at_a();
         // Inputs: the operator sees the lamp as the last cycle left it.
-        let dcy = operator.button(read_bool(&plc, &io.vom)?);
-        write_bool(&mut plc, &io.dcy, dcy)?;
-        write_bool(&mut plc, &io.fca, cart.at_a())?;
-        write_bool(&mut plc, &io.fcb, cart.at_b())?;
+        let dcy = operator.button(io.lamp(&plc)?);
+        io.write_inputs(&mut plc, dcy, &cart)?;
         let time_ns = plc.time();
         plc.run_cycle().map_err(|f| LoopError::Fault(Box::new(f)))?;
-        let mut step = "-";
-        for (name, r) in STEPS.iter().zip(&io.steps) {
-            if read_bool(&plc, r)? {
-                step = name;
-            }
-        }
-        let signals = Signals {
-            dcy,
-            fca: cart.at_a(),
-            fcb: cart.at_b(),
-            kmav: read_bool(&plc, &io.kmav)?,
-            kmar: read_bool(&plc, &io.kmar)?,
-            vom: read_bool(&plc, &io.vom)?,
-            step,
-        };
+        let signals = io.signals(&plc, dcy, &cart)?;
         if run.events.last().is_none_or(|e| e.signals != signals) {
             run.events.push(Event {
                 cycle,

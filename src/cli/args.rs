@@ -94,6 +94,10 @@ pub struct RunArgs {
     /// PLC by online change. Repeatable.
     #[arg(long = "online-change-at", value_name = "N:FILE")]
     pub online_change_at: Vec<String>,
+    /// With --realtime: watch the source files and load each new version
+    /// into the running PLC by online change (compiled off the cycle's path).
+    #[arg(long)]
+    pub reload: bool,
     /// Retained data file: RETAIN/PERSISTENT values are restored from it at
     /// start (a missing file is a cold start) and saved to it.
     #[arg(long, value_name = "FILE")]

@@ -3,6 +3,7 @@
 
 mod args;
 mod online;
+mod reload;
 mod retain;
 mod run;
 

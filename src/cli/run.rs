@@ -170,6 +170,7 @@ fn drive<W: Write>(
     session: &mut Session,
     cycles: Option<u64>,
     writer: &mut TraceWriter<W>,
+    reloader: Option<super::reload::Reloader>,
 ) -> Result<(), Box<RunError>> {
     let stop = session.plc().stop_handle();
     // First signal: stop at the cycle boundary; second: interrupt the
@@ -197,6 +198,9 @@ fn drive<W: Write>(
     } else {
         TaskRunner::virtual_time(session.plc())
     };
+    if let Some(reloader) = reloader {
+        runner.set_between_ticks(move |session| reloader.apply_pending(session));
+    }
     let result = runner.run(session, cycles, writer);
     if args.stats {
         let stats = runner.stats().snapshot();
@@ -216,6 +220,9 @@ fn drive<W: Write>(
 pub fn run(args: &RunArgs) -> i32 {
     if args.cycles.is_none() && !args.realtime {
         return usage_error("--cycles is required (or --realtime, which runs until stopped)");
+    }
+    if args.reload && !args.realtime {
+        return usage_error("--reload watches the sources of a --realtime run; add --realtime");
     }
     let format: TraceFormat = match args.format.parse() {
         Ok(f) => f,
@@ -253,8 +260,11 @@ pub fn run(args: &RunArgs) -> i32 {
         Ok(c) => c,
         Err(e) => return usage_error(e),
     };
+    let reloader = args
+        .reload
+        .then(|| super::reload::start(args.files.clone(), options.clone()));
     let result = if changes.is_empty() {
-        drive(args, &mut session, args.cycles, &mut writer).map_err(|e| *e)
+        drive(args, &mut session, args.cycles, &mut writer, reloader).map_err(|e| *e)
     } else if args.realtime {
         return usage_error(
             "--online-change-at runs in virtual time; it cannot be combined with --realtime",

@@ -67,6 +67,20 @@ pub struct TaskRunner {
     real_time: bool,
     stats: TaskStatsHandle,
     timing: TickTiming,
+    between_ticks: Option<BetweenTicks>,
+}
+
+/// A hook the runner calls with the whole session after each tick (see
+/// [`TaskRunner::set_between_ticks`]).
+pub type BetweenTicksHook = Box<dyn FnMut(&mut Session) + Send>;
+
+/// [`BetweenTicksHook`], printable with the runner.
+struct BetweenTicks(BetweenTicksHook);
+
+impl std::fmt::Debug for BetweenTicks {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("BetweenTicks(..)")
+    }
 }
 
 /// What a run on its own thread hands back (see [`TaskRunner::spawn`]).
@@ -126,7 +140,39 @@ impl TaskRunner {
             real_time,
             stats: TaskStatsHandle::new(records),
             timing: TickTiming::default(),
+            between_ticks: None,
         }
+    }
+
+    /// Sets a hook called with the whole session after each tick, once its
+    /// trace row is written and before the wait for the next deadline: the
+    /// place for what needs more than the PLC, such as
+    /// [`Session::online_change`] (loading a new version compiled on
+    /// another thread). Its time counts against the next deadline, as a
+    /// cycle's does. Replaces any hook set before; without one the loop
+    /// pays a single branch.
+    ///
+    /// ```
+    /// use plcrun::{Options, Plc, Session, TaskRunner, TraceFormat, TraceWriter};
+    ///
+    /// let v1 = "PROGRAM P VAR_OUTPUT n : DINT; END_VAR n := n + 1; END_PROGRAM";
+    /// let v2 = "PROGRAM P VAR_OUTPUT n : DINT; END_VAR n := n + 100; END_PROGRAM";
+    /// let plc = Plc::compile_files(&[("p.st", v1)], &Options::default())?;
+    /// let mut next = Some(Plc::compile_files(&[("p.st", v2)], &Options::default())?);
+    /// let mut runner = TaskRunner::virtual_time(&plc);
+    /// runner.set_between_ticks(move |session| {
+    ///     if session.plc().cycle() == 3 && let Some(new) = next.take() {
+    ///         session.online_change(new).expect("same tasks, same variables");
+    ///     }
+    /// });
+    /// let mut session = Session::new(plc);
+    /// let mut trace = TraceWriter::new(std::io::sink(), TraceFormat::Csv, Vec::new(), false);
+    /// runner.run(&mut session, Some(5), &mut trace)?;
+    /// assert_eq!(session.plc().read("n")?.to_literal(), "203"); // 1, 2, 3, then +100 twice
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn set_between_ticks(&mut self, hook: impl FnMut(&mut Session) + Send + 'static) {
+        self.between_ticks = Some(BetweenTicks(Box::new(hook)));
     }
 
     /// True for a wall-clock runner.
@@ -200,6 +246,9 @@ impl TaskRunner {
             out.row_marked(cycle, time, session.cells(), session.forced_cells())
                 .map_err(RunError::Trace)?;
             ran += 1;
+            if let Some(BetweenTicks(hook)) = &mut self.between_ticks {
+                hook(session);
+            }
             if self.real_time {
                 // The latest tick whose deadline has passed; the ones
                 // before it (after the tick just run) are missed.
