@@ -170,6 +170,11 @@ impl Session {
     }
 
     /// The PLC, mutably (to write variables between cycles).
+    ///
+    /// Load a new program version through [`Self::online_change`], not
+    /// through this PLC's own `online_change`: the session's traced names
+    /// and stimulus columns are resolved handles, which only
+    /// [`Self::online_change`] re-binds to the new version's layout.
     pub fn plc_mut(&mut self) -> &mut Plc {
         &mut self.plc
     }
