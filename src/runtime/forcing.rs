@@ -109,7 +109,7 @@ pub struct Force {
 
 impl Plc {
     /// Forces variable `name` to the IEC literal `literal` (see the
-    /// [module documentation](crate::runtime::forcing)). Forcing a forced
+    /// section "Forcing" of docs/runtime.md). Forcing a forced
     /// variable again replaces its value. An unknown name, a literal that
     /// does not fit the variable's type ([`VarError::ValueDoesNotFit`],
     /// naming both) and a variable the program cannot write

@@ -122,7 +122,7 @@ impl fmt::Display for IoAddress {
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum AddressError {
-    /// Not of the form `%` area [size] fields (`%IX0.3`, `%QW4`).
+    /// Not of the form `%` area, optional size, fields (`%IX0.3`, `%QW4`).
     Syntax {
         /// The text as given.
         text: String,
