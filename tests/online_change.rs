@@ -371,6 +371,51 @@ VAR_OUTPUT n : INT; END_VAR IF go THEN n := n + 2; END_IF END_PROGRAM";
     assert_eq!(cells(&s), ["4", "FALSE"]);
 }
 
+/// A new version loaded behind the session's back (through `plc_mut`) is
+/// followed at the next step: the handles re-bind by name, or the step says
+/// which name no longer fits, instead of reading the old layout.
+#[test]
+fn a_session_follows_a_change_made_through_plc_mut() {
+    use plcrun::{RunError, Session, SessionChangeError, parse_stimulus};
+    let v1 = "PROGRAM P VAR_INPUT go : BOOL; END_VAR VAR_OUTPUT n : INT; END_VAR
+IF go THEN n := n + 1; END_IF END_PROGRAM";
+    let v2 = "PROGRAM P VAR pad : ARRAY[1..500] OF INT; END_VAR VAR_INPUT go : BOOL; END_VAR
+VAR_OUTPUT n : INT; END_VAR IF go THEN n := n + 2; END_IF END_PROGRAM";
+    let opts = Options::default();
+    let mut s = Session::new(plc(v1));
+    s.set_trace(&["n", "go"]).unwrap();
+    s.bind_stimulus(parse_stimulus("cycle,go\n1,TRUE\n4,FALSE\n").unwrap())
+        .unwrap();
+    for _ in 0..3 {
+        s.step().unwrap();
+    }
+    s.plc_mut()
+        .online_change_files(&[("v2.st", v2)], &opts)
+        .unwrap();
+    s.step().unwrap();
+    let cells = |s: &Session| -> Vec<String> { s.cells().iter().map(|c| c.text.clone()).collect() };
+    assert_eq!(cells(&s), ["4", "TRUE"]);
+    s.step().unwrap();
+    assert_eq!(cells(&s), ["4", "FALSE"], "the stimulus goes on");
+    // A version without `go`: the step refuses, naming the column.
+    s.plc_mut()
+        .online_change_files(
+            &[("v3.st", "PROGRAM P VAR_OUTPUT n : INT; END_VAR END_PROGRAM")],
+            &opts,
+        )
+        .unwrap();
+    let err = s.step().unwrap_err();
+    assert!(
+        matches!(err, RunError::PlcChanged(SessionChangeError::Trace(_))),
+        "{err:?}"
+    );
+    assert!(
+        err.to_string().contains("changed outside the session"),
+        "{err}"
+    );
+    assert!(err.to_string().contains("go"), "{err}");
+}
+
 /// Forces follow the new version (or refuse it), the clock goes on, and a
 /// stop handle given out before the change still aborts the new version.
 #[test]

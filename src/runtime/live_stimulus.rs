@@ -172,9 +172,54 @@ impl LiveStimulus {
         })
     }
 
+    /// Resolves the columns again in `plc` (a new version of the program,
+    /// after an online change) and re-decodes the rows waiting to be due
+    /// for the new types; nothing changes on error.
+    pub(crate) fn rebind(&mut self, plc: &Plc) -> Result<(), StimulusBindError> {
+        let mut columns = Vec::with_capacity(self.names.len());
+        for name in &self.names {
+            let r = plc
+                .resolve(name)
+                .and_then(|r| plc.writable(&r).map(|()| r))
+                .map_err(|error| StimulusBindError {
+                    column: name.clone(),
+                    line: None,
+                    error,
+                })?;
+            columns.push(r);
+        }
+        let mut pending = VecDeque::with_capacity(self.pending.len());
+        for row in &self.pending {
+            let mut cells = Vec::with_capacity(row.cells.len());
+            for (col, value) in &row.cells {
+                let value = plc
+                    .parse_value(&columns[*col], &value.to_literal())
+                    .map_err(|error| StimulusBindError {
+                        column: self.names[*col].clone(),
+                        line: None,
+                        error,
+                    })?;
+                cells.push((*col, value));
+            }
+            pending.push_back(PendingRow { at: row.at, cells });
+        }
+        self.columns = columns;
+        self.pending = pending;
+        Ok(())
+    }
+
+    /// True when the columns were resolved by another PLC than `plc`.
+    pub(crate) fn is_bound_to_another(&self, plc: &Plc) -> bool {
+        self.columns.first().is_some_and(|c| c.owner != plc.id)
+    }
+
     /// Decodes the rows that have arrived and applies those due at the
     /// next cycle of `plc`.
     pub(crate) fn apply_due(&mut self, plc: &mut Plc) -> Result<(), LiveStimulusError> {
+        if self.is_bound_to_another(plc) {
+            // A new program version (online change): same names, new places.
+            self.rebind(plc).map_err(LiveStimulusError::Bind)?;
+        }
         while !self.ended {
             match self.lines.try_recv() {
                 Ok(Ok((number, text))) => self.receive(plc, number, &text)?,

@@ -239,9 +239,7 @@ impl TaskRunner {
             session.apply_live_stimulus().map_err(RunError::Stimulus)?;
             let cycle = session.plc().cycle();
             let (timing, stats) = (&mut self.timing, &self.stats);
-            session
-                .step_by(|plc| plc.run_tick_timed(deadline, timing, stats))
-                .map_err(RunError::Fault)?;
+            session.step_by(|plc| plc.run_tick_timed(deadline, timing, stats))?;
             let time = session.plc().last_cycle_time();
             out.row_marked(cycle, time, session.cells(), session.forced_cells())
                 .map_err(RunError::Trace)?;

@@ -70,6 +70,10 @@ pub enum RunError {
     Stimulus(LiveStimulusError),
     /// The hook run at a clean stop ([`Session::set_on_stop`]) failed.
     OnStop(StopHookError),
+    /// The PLC was given a new program version through
+    /// [`Session::plc_mut`] rather than [`Session::online_change`], and a
+    /// traced name or stimulus column does not fit it.
+    PlcChanged(SessionChangeError),
 }
 
 /// The error a stop hook returns.
@@ -88,6 +92,10 @@ impl fmt::Display for RunError {
             RunError::Trace(e) => write!(f, "cannot write the trace: {e}"),
             RunError::Stimulus(e) => e.fmt(f),
             RunError::OnStop(e) => write!(f, "at the stop: {e}"),
+            RunError::PlcChanged(e) => write!(
+                f,
+                "the program was changed outside the session and no longer fits it: {e}"
+            ),
         }
     }
 }
@@ -99,6 +107,7 @@ impl std::error::Error for RunError {
             RunError::Trace(e) => Some(e),
             RunError::Stimulus(e) => Some(e),
             RunError::OnStop(e) => Some(e.as_ref()),
+            RunError::PlcChanged(e) => Some(e),
         }
     }
 }
@@ -250,27 +259,64 @@ impl Session {
     /// stimulus column that does not fit the new version refuses the
     /// change, and nothing changes.
     pub fn online_change(&mut self, new: Plc) -> Result<ChangeReport, SessionChangeError> {
+        let rebound = self.rebind(&new)?;
+        // The handles were resolved by `new`, whose identity the PLC takes.
+        let report = self.plc.online_change(new)?;
+        self.adopt(rebound);
+        Ok(report)
+    }
+
+    /// The traced names, the stimulus and the live stimulus resolved in
+    /// `plc`, without changing the session.
+    fn rebind(&self, plc: &Plc) -> Result<Rebound, SessionChangeError> {
         let traced = self
             .names
             .iter()
-            .map(|n| new.resolve(n))
+            .map(|n| plc.resolve(n))
             .collect::<Result<Vec<_>, _>>()
             .map_err(SessionChangeError::Trace)?;
         let stimulus = match &self.stimulus {
             Some(old) => {
                 let mut bound =
-                    bind(&new, old.stimulus.clone()).map_err(SessionChangeError::Stimulus)?;
+                    bind(plc, old.stimulus.clone()).map_err(SessionChangeError::Stimulus)?;
                 bound.cursor = old.cursor.clone();
                 bound.applied = old.applied;
                 Some(bound)
             }
             None => None,
         };
-        // The handles were resolved by `new`, whose identity the PLC takes.
-        let report = self.plc.online_change(new)?;
-        self.traced = traced;
-        self.stimulus = stimulus;
-        Ok(report)
+        Ok(Rebound { traced, stimulus })
+    }
+
+    /// Takes the handles of [`Self::rebind`] (a live stimulus re-binds
+    /// itself when it sees a new PLC).
+    fn adopt(&mut self, rebound: Rebound) {
+        self.traced = rebound.traced;
+        if rebound.stimulus.is_some() {
+            self.stimulus = rebound.stimulus;
+        }
+    }
+
+    /// True when a handle of the session was resolved by another PLC than
+    /// the one it runs (a new version loaded through [`Self::plc_mut`]).
+    #[inline]
+    fn is_stale(&self) -> bool {
+        let id = self.plc.id;
+        self.traced.first().is_some_and(|r| r.owner != id)
+            || self
+                .stimulus
+                .as_ref()
+                .and_then(|s| s.columns.first())
+                .is_some_and(|r| r.owner != id)
+    }
+
+    /// Re-binds every handle to the PLC the session runs now (see
+    /// [`Self::is_stale`]).
+    #[cold]
+    fn follow_plc(&mut self) -> Result<(), RunError> {
+        let rebound = self.rebind(&self.plc).map_err(RunError::PlcChanged)?;
+        self.adopt(rebound);
+        Ok(())
     }
 
     /// Sets the hook run after every cycle of [`Self::step`] (and so of
@@ -323,7 +369,10 @@ impl Session {
 
     /// Runs one cycle: applies the stimulus rows due at this cycle, runs
     /// the tasks due, and samples the traced variables (see [`Self::cells`]).
-    pub fn step(&mut self) -> Result<(), RuntimeFault> {
+    /// A session whose PLC was given a new program version through
+    /// [`Self::plc_mut`] re-binds its traced names and stimulus first
+    /// ([`RunError::PlcChanged`] when they no longer fit).
+    pub fn step(&mut self) -> Result<(), RunError> {
         self.step_by(Plc::run_cycle)
     }
 
@@ -331,7 +380,10 @@ impl Session {
     pub(crate) fn step_by(
         &mut self,
         run: impl FnOnce(&mut Plc) -> Result<(), RuntimeFault>,
-    ) -> Result<(), RuntimeFault> {
+    ) -> Result<(), RunError> {
+        if self.is_stale() {
+            self.follow_plc()?;
+        }
         if let Some(bound) = &mut self.stimulus {
             let (cycle, time) = (self.plc.cycle(), self.plc.time());
             let due = bound.cursor.due(&bound.stimulus, cycle, time).len();
@@ -343,7 +395,7 @@ impl Session {
             }
             bound.applied += due;
         }
-        run(&mut self.plc)?;
+        run(&mut self.plc).map_err(RunError::Fault)?;
         self.mark_forced();
         for (cell, r) in self.cells.iter_mut().zip(&self.traced) {
             match self.plc.value_at(r) {
@@ -418,7 +470,7 @@ impl Session {
                 }
             }
             self.apply_live_stimulus().map_err(RunError::Stimulus)?;
-            self.step_by(Plc::run_cycle).map_err(RunError::Fault)?;
+            self.step_by(Plc::run_cycle)?;
             out.row_marked(cycle, time, &self.cells, &self.forced)
                 .map_err(RunError::Trace)?;
         }
@@ -464,4 +516,10 @@ fn bind(plc: &Plc, stimulus: Stimulus) -> Result<BoundStimulus, StimulusBindErro
         cursor: StimulusCursor::new(),
         applied: 0,
     })
+}
+
+/// Handles resolved in a new version of the program (see `Session::rebind`).
+struct Rebound {
+    traced: Vec<VarRef>,
+    stimulus: Option<BoundStimulus>,
 }
