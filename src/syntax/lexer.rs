@@ -55,6 +55,20 @@ pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
                     continue;
                 }
             }
+            Raw::SlashComment => {
+                if !slice.ends_with("*/") || slice.len() < 4 {
+                    diags.error(
+                        "E002",
+                        span(r.start, r.start + 2),
+                        "unterminated comment: `/*` has no closing `*/`",
+                    );
+                }
+                if slice.contains('\n') {
+                    Tok::Eol
+                } else {
+                    continue;
+                }
+            }
             Raw::LineComment => continue,
             Raw::Pragma => {
                 if slice.ends_with('}') {

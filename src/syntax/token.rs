@@ -22,6 +22,9 @@ pub enum Raw {
     /// `(* ... *)`; the body is consumed by the callback.
     #[token("(*", block_comment)]
     BlockComment,
+    /// `/* ... */` (edition 3); the body is consumed by the callback.
+    #[token("/*", slash_comment)]
+    SlashComment,
     /// `// ...` to the end of the line.
     #[regex(r"//[^\n]*", allow_greedy = true)]
     LineComment,
@@ -132,6 +135,14 @@ pub enum Raw {
 fn block_comment(lex: &mut Lexer<Raw>) {
     let rest = lex.remainder();
     let n = rest.find("*)").map(|i| i + 2).unwrap_or(rest.len());
+    lex.bump(n);
+}
+
+/// Consumes an edition-3 `/* ... */` comment body up to and including
+/// `*/` (not nested, as in the standard).
+fn slash_comment(lex: &mut Lexer<Raw>) {
+    let rest = lex.remainder();
+    let n = rest.find("*/").map(|i| i + 2).unwrap_or(rest.len());
     lex.bump(n);
 }
 

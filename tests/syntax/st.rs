@@ -197,6 +197,23 @@ fn comments_pragmas_and_spans() {
 }
 
 #[test]
+fn edition_3_slash_star_comments_are_comments() {
+    // `/* */` in ST, in IL (where a multi-line one is a line break) and
+    // between the operands of an expression; `(* /* *)` stays one comment.
+    let src = "PROGRAM p /* a\ncomment */ VAR x : INT; END_VAR\n\
+               x := 1 /* one */ + /* two */ 2; (* /* *) x := x + 1; // /*\nEND_PROGRAM";
+    let unit = parse_ok(src);
+    let Body::St(s) = &pou(&unit).body else {
+        panic!()
+    };
+    assert_eq!(s.len(), 2);
+    let il = "FUNCTION_BLOCK f VAR_INPUT a : BOOL; END_VAR VAR_OUTPUT q : BOOL; END_VAR\n\
+              LD a /* load */\n/* a\ntwo-line comment */\nST q\nEND_FUNCTION_BLOCK";
+    let unit = parse_ok(il);
+    assert!(matches!(pou(&unit).body, Body::Il(_)));
+}
+
+#[test]
 fn pou_kinds() {
     let unit = parse_ok(
         "FUNCTION f : INT VAR_INPUT a : INT; END_VAR f := a; END_FUNCTION \
