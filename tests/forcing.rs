@@ -342,3 +342,19 @@ END_CONFIGURATION
     assert!(vars.iter().any(|v| v.path == "r.copy"), "{vars:#?}");
     assert!(vars.iter().any(|v| v.path == "g"), "{vars:#?}");
 }
+
+/// A live stimulus (`--stimulus -`) refuses the columns a stimulus file
+/// refuses: a CONSTANT or an SFC step flag cannot be written from outside.
+#[test]
+fn a_live_stimulus_refuses_read_only_columns() {
+    use plcrun::{LiveStimulus, LiveStimulusError, Options, Plc, VarError};
+    let src = "PROGRAM P VAR CONSTANT k : INT := 3; END_VAR VAR n : INT; END_VAR
+               n := n + k; END_PROGRAM";
+    let plc = Plc::compile_files(&[("p.st", src)], &Options::default()).unwrap();
+    let err = LiveStimulus::start(&plc, std::io::Cursor::new("cycle,k\n0,5\n")).unwrap_err();
+    assert!(
+        matches!(&err, LiveStimulusError::Bind(b) if matches!(b.error, VarError::ReadOnly { .. })),
+        "{err}"
+    );
+    assert!(LiveStimulus::start(&plc, std::io::Cursor::new("cycle,n\n0,5\n")).is_ok());
+}

@@ -35,6 +35,7 @@ use super::engine::Plc;
 use super::names::VarRef;
 use super::plc_value::Value;
 use super::session::StimulusBindError;
+use super::session::stimulus_columns;
 use super::stimulus::{StimulusError, StimulusKey, parse_stimulus};
 use std::collections::VecDeque;
 use std::fmt;
@@ -147,17 +148,7 @@ impl LiveStimulus {
             e.line = number;
             LiveStimulusError::Format(e)
         })?;
-        let mut columns = Vec::with_capacity(parsed.columns.len());
-        for name in &parsed.columns {
-            let r = plc.resolve(name).map_err(|error| {
-                LiveStimulusError::Bind(StimulusBindError {
-                    column: name.clone(),
-                    line: None,
-                    error,
-                })
-            })?;
-            columns.push(r);
-        }
+        let columns = stimulus_columns(plc, &parsed.columns).map_err(LiveStimulusError::Bind)?;
         let (send, lines) = mpsc::channel();
         std::thread::spawn(move || read_lines(input, number, send));
         Ok(LiveStimulus {
@@ -176,18 +167,7 @@ impl LiveStimulus {
     /// after an online change) and re-decodes the rows waiting to be due
     /// for the new types; nothing changes on error.
     pub(crate) fn rebind(&mut self, plc: &Plc) -> Result<(), StimulusBindError> {
-        let mut columns = Vec::with_capacity(self.names.len());
-        for name in &self.names {
-            let r = plc
-                .resolve(name)
-                .and_then(|r| plc.writable(&r).map(|()| r))
-                .map_err(|error| StimulusBindError {
-                    column: name.clone(),
-                    line: None,
-                    error,
-                })?;
-            columns.push(r);
-        }
+        let columns = stimulus_columns(plc, &self.names)?;
         let mut pending = VecDeque::with_capacity(self.pending.len());
         for row in &self.pending {
             let mut cells = Vec::with_capacity(row.cells.len());

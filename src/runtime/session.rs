@@ -481,18 +481,7 @@ impl Session {
 /// Resolves every column of `stimulus` in `plc` and decodes every cell for
 /// its column's type.
 fn bind(plc: &Plc, stimulus: Stimulus) -> Result<BoundStimulus, StimulusBindError> {
-    let mut columns = Vec::with_capacity(stimulus.columns.len());
-    for name in &stimulus.columns {
-        let r = plc
-            .resolve(name)
-            .and_then(|r| plc.writable(&r).map(|()| r))
-            .map_err(|error| StimulusBindError {
-                column: name.clone(),
-                line: None,
-                error,
-            })?;
-        columns.push(r);
-    }
+    let columns = stimulus_columns(plc, &stimulus.columns)?;
     let mut rows = Vec::with_capacity(stimulus.rows.len());
     for row in &stimulus.rows {
         let mut cells = Vec::new();
@@ -522,4 +511,24 @@ fn bind(plc: &Plc, stimulus: Stimulus) -> Result<BoundStimulus, StimulusBindErro
 struct Rebound {
     traced: Vec<VarRef>,
     stimulus: Option<BoundStimulus>,
+}
+
+/// Resolves stimulus column `names` in `plc`: each must name a variable
+/// the host may write (not a CONSTANT, not an SFC flag).
+pub(super) fn stimulus_columns(
+    plc: &Plc,
+    names: &[String],
+) -> Result<Vec<VarRef>, StimulusBindError> {
+    names
+        .iter()
+        .map(|name| {
+            plc.resolve(name)
+                .and_then(|r| plc.writable(&r).map(|()| r))
+                .map_err(|error| StimulusBindError {
+                    column: name.clone(),
+                    line: None,
+                    error,
+                })
+        })
+        .collect()
 }

@@ -41,28 +41,20 @@ pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
         flush_bad(file, text, &mut bad_run, diags);
         let tok = match raw {
             Raw::Newline => Tok::Eol,
-            Raw::BlockComment => {
-                if !slice.ends_with("*)") || slice.len() < 4 {
-                    diags.error(
-                        "E002",
-                        span(r.start, r.start + 2),
-                        "unterminated comment: `(*` has no closing `*)`",
-                    );
-                }
-                if slice.contains('\n') {
-                    Tok::Eol
+            Raw::BlockComment | Raw::SlashComment => {
+                let (open, close) = if raw == Raw::BlockComment {
+                    ("(*", "*)")
                 } else {
-                    continue;
-                }
-            }
-            Raw::SlashComment => {
-                if !slice.ends_with("*/") || slice.len() < 4 {
+                    ("/*", "*/")
+                };
+                if !slice.ends_with(close) || slice.len() < 4 {
                     diags.error(
                         "E002",
                         span(r.start, r.start + 2),
-                        "unterminated comment: `/*` has no closing `*/`",
+                        format!("unterminated comment: `{open}` has no closing `{close}`"),
                     );
                 }
+                // A comment spanning lines still ends an IL line.
                 if slice.contains('\n') {
                     Tok::Eol
                 } else {
