@@ -10,10 +10,11 @@
 //! (a 32-bit counter).
 
 use crate::failure::Failure;
+use crate::slot_table::SlotTable;
 use crate::status::{PLC_E_INVALID_HANDLE, PLC_E_PANIC};
 use plcrun::{Plc, VarRef};
 use std::sync::atomic::{AtomicU32, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex};
 
 /// A compiled PLC, as C holds it (`plc_handle`). Zero is never valid.
 #[repr(C)]
@@ -84,39 +85,13 @@ fn invalid_var(var: PlcVar) -> Failure {
     )
 }
 
-struct Slot {
-    generation: u32,
-    entry: Option<Arc<Mutex<Entry>>>,
-}
-
 /// Every PLC created through the C ABI and not yet freed.
-static TABLE: Mutex<Vec<Slot>> = Mutex::new(Vec::new());
-
-/// The table; it is only ever locked around a few vector operations that
-/// cannot panic, so a poisoned lock still holds consistent data.
-fn table() -> MutexGuard<'static, Vec<Slot>> {
-    TABLE.lock().unwrap_or_else(PoisonError::into_inner)
-}
+static TABLE: SlotTable<Arc<Mutex<Entry>>> = SlotTable::new();
 
 /// Registers a PLC and gives its handle.
 pub(crate) fn insert(entry: Entry) -> PlcHandle {
-    let mut slots = table();
-    let shared = Some(Arc::new(Mutex::new(entry)));
-    let index = match slots.iter().position(|s| s.entry.is_none()) {
-        Some(i) => {
-            slots[i].entry = shared;
-            i
-        }
-        None => {
-            slots.push(Slot {
-                generation: 1,
-                entry: shared,
-            });
-            slots.len() - 1
-        }
-    };
     PlcHandle {
-        id: u64::from(slots[index].generation) << 32 | (index as u64 + 1),
+        id: TABLE.insert(Arc::new(Mutex::new(entry))),
     }
 }
 
@@ -130,21 +105,13 @@ fn invalid(plc: PlcHandle) -> Failure {
     )
 }
 
-/// The slot index of a handle that is live.
-fn live_index(slots: &[Slot], plc: PlcHandle) -> Option<usize> {
-    let (generation, index) = ((plc.id >> 32) as u32, plc.id as u32 as usize);
-    let i = index.checked_sub(1)?;
-    let slot = slots.get(i)?;
-    (slot.generation == generation && slot.entry.is_some()).then_some(i)
-}
-
 /// Removes a PLC; it is dropped when the last call still using it ends.
 pub(crate) fn remove(plc: PlcHandle) -> Result<(), Failure> {
-    let mut slots = table();
-    let i = live_index(&slots, plc).ok_or_else(|| invalid(plc))?;
-    slots[i].entry = None;
-    slots[i].generation = slots[i].generation.wrapping_add(1).max(1);
-    Ok(())
+    if TABLE.remove(plc.id) {
+        Ok(())
+    } else {
+        Err(invalid(plc))
+    }
 }
 
 /// Runs `f` on the PLC behind `plc`. Calls on one PLC from several
@@ -153,11 +120,7 @@ pub(crate) fn with_entry<T>(
     plc: PlcHandle,
     f: impl FnOnce(&mut Entry) -> Result<T, Failure>,
 ) -> Result<T, Failure> {
-    let shared = {
-        let slots = table();
-        let i = live_index(&slots, plc).ok_or_else(|| invalid(plc))?;
-        slots[i].entry.clone().ok_or_else(|| invalid(plc))?
-    };
+    let shared = TABLE.get(plc.id).ok_or_else(|| invalid(plc))?;
     let mut entry = shared.lock().map_err(|_| {
         Failure::new(
             PLC_E_PANIC,

@@ -21,6 +21,7 @@ mod image;
 mod lifecycle;
 mod retain;
 mod scalar;
+mod slot_table;
 pub mod status;
 mod stop;
 mod text;

@@ -9,11 +9,11 @@
 use crate::failure::Failure;
 use crate::guard::guard;
 use crate::handles::{self, PlcHandle};
+use crate::slot_table::SlotTable;
 use crate::status::{PLC_E_INVALID_ARGUMENT, PLC_E_INVALID_HANDLE};
 use crate::text::{input, store};
 use plcrun::StopHandle;
 use std::ffi::{c_char, c_int};
-use std::sync::{Mutex, MutexGuard, PoisonError};
 use std::time::Duration;
 
 /// A stop token (`plc_stop`): aborts its PLC's cycle from any thread.
@@ -67,18 +67,9 @@ pub unsafe extern "C" fn plc_set_watchdog_ms(
     })
 }
 
-struct Slot {
-    generation: u32,
-    handle: Option<StopHandle>,
-}
-
 /// Every stop token not yet freed. Locked only around vector operations
 /// that cannot panic, never while a cycle runs.
-static TOKENS: Mutex<Vec<Slot>> = Mutex::new(Vec::new());
-
-fn tokens() -> MutexGuard<'static, Vec<Slot>> {
-    TOKENS.lock().unwrap_or_else(PoisonError::into_inner)
-}
+static TOKENS: SlotTable<StopHandle> = SlotTable::new();
 
 fn invalid(token: PlcStop) -> Failure {
     Failure::new(
@@ -88,14 +79,6 @@ fn invalid(token: PlcStop) -> Failure {
             token.id
         ),
     )
-}
-
-/// The slot index of a live token.
-fn live_index(slots: &[Slot], token: PlcStop) -> Option<usize> {
-    let (generation, index) = ((token.id >> 32) as u32, token.id as u32 as usize);
-    let i = index.checked_sub(1)?;
-    let slot = slots.get(i)?;
-    (slot.generation == generation && slot.handle.is_some()).then_some(i)
 }
 
 /// Makes a stop token for `plc` into `*out` ({0} on failure). The token
@@ -111,22 +94,8 @@ pub unsafe extern "C" fn plc_stop_token(plc: PlcHandle, out: *mut PlcStop) -> c_
         // SAFETY (both calls): the caller's contract.
         unsafe { store(out, "out", PlcStop { id: 0 }) }?;
         let handle = handles::with_entry(plc, |e| Ok(e.plc.stop_handle()))?;
-        let mut slots = tokens();
-        let index = match slots.iter().position(|s| s.handle.is_none()) {
-            Some(i) => {
-                slots[i].handle = Some(handle);
-                i
-            }
-            None => {
-                slots.push(Slot {
-                    generation: 1,
-                    handle: Some(handle),
-                });
-                slots.len() - 1
-            }
-        };
         let token = PlcStop {
-            id: u64::from(slots[index].generation) << 32 | (index as u64 + 1),
+            id: TOKENS.insert(handle),
         };
         unsafe { store(out, "out", token) }
     })
@@ -142,11 +111,7 @@ pub unsafe extern "C" fn plc_stop_token(plc: PlcHandle, out: *mut PlcStop) -> c_
 pub extern "C" fn plc_abort(token: PlcStop) -> c_int {
     guard(|| {
         // Cloned out so that the table is not locked while aborting.
-        let handle = {
-            let slots = tokens();
-            let i = live_index(&slots, token).ok_or_else(|| invalid(token))?;
-            slots[i].handle.clone().ok_or_else(|| invalid(token))?
-        };
+        let handle = TOKENS.get(token.id).ok_or_else(|| invalid(token))?;
         handle.abort();
         Ok(())
     })
@@ -156,10 +121,10 @@ pub extern "C" fn plc_abort(token: PlcStop) -> c_int {
 #[unsafe(no_mangle)]
 pub extern "C" fn plc_stop_token_free(token: PlcStop) -> c_int {
     guard(|| {
-        let mut slots = tokens();
-        let i = live_index(&slots, token).ok_or_else(|| invalid(token))?;
-        slots[i].handle = None;
-        slots[i].generation = slots[i].generation.wrapping_add(1).max(1);
-        Ok(())
+        if TOKENS.remove(token.id) {
+            Ok(())
+        } else {
+            Err(invalid(token))
+        }
     })
 }
