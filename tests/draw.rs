@@ -479,3 +479,19 @@ fn choosing_the_chart() {
         plcrun::DrawError::NoChart
     );
 }
+
+#[test]
+fn the_pictures_of_the_docs_render() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/images");
+    let mut rendered = 0;
+    for entry in std::fs::read_dir(&dir).expect("docs/images") {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "svg") {
+            let svg = std::fs::read_to_string(&path).unwrap();
+            Document::parse(&svg).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            render(&svg, &path.file_stem().unwrap().to_string_lossy());
+            rendered += 1;
+        }
+    }
+    assert_eq!(rendered, 4, "the pictures of docs/sfc.md");
+}

@@ -191,7 +191,7 @@ fn layers(g: &Graph, forward: &[(usize, usize)]) -> Vec<usize> {
     let mut layer: Vec<usize> = (0..n).map(|v| usize::from(!g.is_step(v))).collect();
     let mut ready: Vec<usize> = (0..n).filter(|&v| indegree[v] == 0).rev().collect();
     while let Some(v) = ready.pop() {
-        let parity_ok = (layer[v] % 2 == 0) == g.is_step(v);
+        let parity_ok = layer[v].is_multiple_of(2) == g.is_step(v);
         if !parity_ok {
             layer[v] += 1;
         }

@@ -151,7 +151,7 @@ pub fn chart_svg(model: &ChartModel, active: &[String]) -> String {
         &model.pou,
     );
     links(&mut w, &l);
-    for (v, node) in l.nodes.iter().enumerate() {
+    for node in &l.nodes {
         let row = l.rows[node.layer];
         match node.kind {
             NodeKind::Step(i) => {
@@ -165,7 +165,6 @@ pub fn chart_svg(model: &ChartModel, active: &[String]) -> String {
             NodeKind::Dummy => {
                 let e = line(node.x, row.top, node.x, row.bottom()).attr("class", "link");
                 w.empty(e);
-                let _ = v;
             }
         }
     }
