@@ -451,6 +451,56 @@ mod tests {
     }
 
     #[test]
+    fn random_charts_keep_the_layout_invariants() {
+        // A small linear congruential generator: reproducible charts.
+        let mut seed: u64 = 0x2545_F491_4F6C_DD1D;
+        let mut next = |bound: usize| {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((seed >> 33) as usize) % bound
+        };
+        for _ in 0..300 {
+            let steps = 1 + next(9);
+            let mut trans = Vec::new();
+            for _ in 0..next(12) {
+                let from: Vec<usize> = (0..1 + next(2)).map(|_| next(steps)).collect();
+                let to: Vec<usize> = (0..1 + next(3)).map(|_| next(steps)).collect();
+                trans.push((from, to));
+            }
+            let initial = [next(steps)];
+            let sizes = vec![unit(); steps + trans.len()];
+            let l = layout(steps, &initial, &trans, &sizes);
+            for (v, n) in l.nodes.iter().enumerate() {
+                match n.kind {
+                    NodeKind::Step(i) => assert!(i == v && n.layer % 2 == 0),
+                    NodeKind::Transition(i) => assert!(i + steps == v && n.layer % 2 == 1),
+                    NodeKind::Dummy => assert!(v >= steps + trans.len()),
+                }
+                assert!(n.x.is_finite() && n.x > 0.0 && n.x < l.width);
+            }
+            for &(a, b) in &l.segments {
+                assert_eq!(l.nodes[a].layer + 1, l.nodes[b].layer);
+            }
+            for b in &l.back {
+                assert!(l.nodes[b.to].layer <= l.nodes[b.from].layer);
+                assert!(l.nodes.iter().all(|n| b.lane < n.x - 20.0));
+            }
+            // Nodes of one layer never share a column.
+            for layer in 0..l.rows.len() {
+                let mut xs: Vec<f64> = l
+                    .nodes
+                    .iter()
+                    .filter(|n| n.layer == layer)
+                    .map(|n| n.x)
+                    .collect();
+                xs.sort_by(f64::total_cmp);
+                assert!(xs.windows(2).all(|w| w[1] - w[0] >= 40.0));
+            }
+        }
+    }
+
+    #[test]
     fn branches_sit_side_by_side_and_long_edges_get_dummies() {
         // S0 -T0-> (S1, S2) simultaneous; S1 -T1-> S3; (S3, S2) -T2-> S0
         let trans = vec![
