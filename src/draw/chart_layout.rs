@@ -16,10 +16,12 @@
 //! 5. **Ordering**: the first order is the search's discovery order; then
 //!    alternate downward and upward barycentre sweeps (eight), keeping the
 //!    order with the fewest edge crossings seen.
-//! 6. **Coordinates**: every layer is centred on one vertical axis with a
-//!    uniform column width (the widest node plus a gap), so a chain of single
-//!    nodes is a straight line and two branches sit symmetrically; each row
-//!    is as tall as its tallest node.
+//! 6. **Coordinates**: each layer is packed in its order (a node's extents
+//!    plus a gap apart), then four rounds of downward and upward sweeps pull
+//!    every node to the mean x of its neighbours in the layer above (below),
+//!    the pushes between neighbours shared both ways: a chain is a straight
+//!    line, branches sit symmetrically under their divergence, a long link
+//!    keeps its column. Each row is as tall as its tallest node.
 
 /// Width and height of a node as the picture draws it: `left` and `right`
 /// are the extents from its flow line (boxes, bars, labels, action blocks).
@@ -100,7 +102,7 @@ pub struct Layout {
 }
 
 /// Vertical gap between rows (edges jog inside it).
-pub const GAP: f64 = 36.0;
+pub const GAP: f64 = 44.0;
 /// Horizontal gap between columns.
 const COLUMN_GAP: f64 = 28.0;
 /// Distance between back-edge lanes.
@@ -347,6 +349,68 @@ pub fn layout(
     place(kinds, layer, &best, segments, back_pairs, sizes)
 }
 
+/// Places the nodes of one layer in their order, each as near as it can
+/// to its `wanted` x: left to right, each at its wanted x or just right of
+/// its left neighbour (its extents plus a gap), then the whole layer shifted
+/// by the mean distance still missing, so the pushes are shared both ways.
+fn pack(row: &[usize], wanted: &[f64], sizes: &[NodeSize], x: &mut [f64]) {
+    let mut prev: Option<usize> = None;
+    for (i, &v) in row.iter().enumerate() {
+        x[v] = match prev {
+            Some(p) => wanted[i].max(x[p] + sizes[p].right + COLUMN_GAP + sizes[v].left),
+            None => wanted[i],
+        };
+        prev = Some(v);
+    }
+    let shift =
+        row.iter().zip(wanted).map(|(&v, w)| w - x[v]).sum::<f64>() / row.len().max(1) as f64;
+    for &v in row {
+        x[v] += shift;
+    }
+}
+
+/// X of every node's flow line: packed layers, then four rounds of
+/// downward and upward sweeps pulling each node to the mean x of its
+/// neighbours in the layer above (below), so chains stay straight, branches
+/// sit symmetrically under their divergence and long links keep a column.
+fn columns(order: &[Vec<usize>], segments: &[(usize, usize)], sizes: &[NodeSize]) -> Vec<f64> {
+    let mut x = vec![0.0; sizes.len()];
+    for row in order {
+        pack(row, &vec![0.0; row.len()], sizes, &mut x);
+    }
+    for _ in 0..4 {
+        for down in [true, false] {
+            let layers: Vec<usize> = if down {
+                (1..order.len()).collect()
+            } else {
+                (0..order.len().saturating_sub(1)).rev().collect()
+            };
+            for l in layers {
+                let wanted: Vec<f64> = order[l]
+                    .iter()
+                    .map(|&v| {
+                        let near: Vec<f64> = segments
+                            .iter()
+                            .filter_map(|&(a, b)| match (down, a == v, b == v) {
+                                (true, _, true) => Some(x[a]),
+                                (false, true, _) => Some(x[b]),
+                                _ => None,
+                            })
+                            .collect();
+                        if near.is_empty() {
+                            x[v]
+                        } else {
+                            near.iter().sum::<f64>() / near.len() as f64
+                        }
+                    })
+                    .collect();
+                pack(&order[l], &wanted, sizes, &mut x);
+            }
+        }
+    }
+    x
+}
+
 /// Coordinates from the layers and the order.
 fn place(
     kinds: Vec<NodeKind>,
@@ -368,16 +432,8 @@ fn place(
             height: 10.0,
         }),
     };
-    let widest_left = (0..kinds.len()).map(|v| size(v).left).fold(0.0, f64::max);
-    let widest_right = (0..kinds.len()).map(|v| size(v).right).fold(0.0, f64::max);
-    let column = widest_left + widest_right + COLUMN_GAP;
-    let mut x = vec![0.0; kinds.len()];
-    for row in order {
-        let k = row.len() as f64;
-        for (i, &v) in row.iter().enumerate() {
-            x[v] = (i as f64 - (k - 1.0) / 2.0) * column;
-        }
-    }
+    let sizes_all: Vec<NodeSize> = (0..kinds.len()).map(size).collect();
+    let x = columns(order, &segments, &sizes_all);
     let mut rows = Vec::new();
     // Room above the first row for a title and for back edges entering it.
     let mut top = MARGIN + TITLE + GAP;
@@ -495,7 +551,7 @@ mod tests {
                     .map(|n| n.x)
                     .collect();
                 xs.sort_by(f64::total_cmp);
-                assert!(xs.windows(2).all(|w| w[1] - w[0] >= 40.0));
+                assert!(xs.windows(2).all(|w| w[1] - w[0] >= COLUMN_GAP - 1e-9));
             }
         }
     }

@@ -346,9 +346,14 @@ fn links(w: &mut SvgWriter, l: &Layout) {
     let is_trans = |v: usize| matches!(l.nodes[v].kind, NodeKind::Transition(_));
     let bottom = |v: usize| l.rows[l.nodes[v].layer].bottom();
     let top = |v: usize| l.rows[l.nodes[v].layer].top;
-    // The jog heights inside a gap: divergences high, convergences low.
-    let div_y = |v: usize| bottom(v) + GAP / 3.0;
-    let conv_y = |v: usize| top(v) - GAP / 3.0;
+    // The heights of the horizontal parts inside a gap, top to bottom:
+    // divergence lines, plain jogs, loops leaving, loops entering,
+    // convergence lines; apart, so no two kinds of line run together.
+    let div_y = |v: usize| bottom(v) + GAP * 0.18;
+    let mid_y = |v: usize| bottom(v) + GAP * 0.36;
+    let leave_y = |v: usize| bottom(v) + GAP * 0.54;
+    let enter_y = |v: usize| top(v) - GAP * 0.3;
+    let conv_y = |v: usize| top(v) - GAP * 0.14;
     w.open(
         Element::new("g")
             .attr("class", "links")
@@ -366,7 +371,7 @@ fn links(w: &mut SvgWriter, l: &Layout) {
             w.empty(line(xa, ya, xa, conv_y(b) - d).attr("class", "link"));
             w.empty(line(xb, conv_y(b) + d, xb, yb).attr("class", "link"));
         } else {
-            let ym = (ya + yb) / 2.0;
+            let ym = mid_y(a);
             w.empty(
                 Element::new("polyline")
                     .attr("class", "link")
@@ -389,10 +394,13 @@ fn links(w: &mut SvgWriter, l: &Layout) {
             let xs: Vec<f64> = l
                 .segments
                 .iter()
-                .filter(|s| s.1 == v)
+                .filter(|s| s.1 == v && outdeg[s.0] == 1)
                 .map(|s| l.nodes[s.0].x)
                 .collect();
-            bar(w, l.nodes[v].x, &xs, conv_y(v), is_trans(v));
+            // Sources on a divergence line come down from it instead.
+            if !xs.is_empty() {
+                bar(w, l.nodes[v].x, &xs, conv_y(v), is_trans(v));
+            }
         }
     }
     for b in &l.back {
@@ -400,12 +408,12 @@ fn links(w: &mut SvgWriter, l: &Layout) {
         let y_leave = if outdeg[b.from] > 1 {
             div_y(b.from)
         } else {
-            bottom(b.from) + GAP / 2.0
+            leave_y(b.from)
         };
         let y_enter = if indeg[b.to] > 1 {
             conv_y(b.to)
         } else {
-            top(b.to) - GAP / 2.0
+            enter_y(b.to)
         };
         w.open(Element::new("g").attr("class", "loop"));
         let pts = [
