@@ -495,3 +495,28 @@ fn the_pictures_of_the_docs_render() {
     }
     assert_eq!(rendered, 4, "the pictures of docs/sfc.md");
 }
+
+#[test]
+fn reals_that_are_not_numbers_stay_inside_their_row() {
+    let src = "PROGRAM r VAR_OUTPUT x : REAL; END_VAR
+        IF x = 0.0 THEN x := 1.0; ELSIF x = 1.0 THEN x := 0.0 / 0.0; ELSE x := 0.0; END_IF;
+        END_PROGRAM";
+    let mut plc = Plc::compile_files(&[("r.st", src)], &Options::default()).unwrap();
+    let mut diagram = TimingDiagram::for_plc(&plc, &["x"]).unwrap();
+    for _ in 0..6 {
+        plc.run_cycle().unwrap();
+        diagram.record(&plc);
+    }
+    let svg = diagram.to_svg();
+    let doc = Document::parse(&svg).unwrap();
+    let signal = with_class(&doc, "signal")[0];
+    assert!(has_class(&signal, "number"));
+    assert!(
+        texts(signal, "value").iter().any(|v| v.contains("NaN")),
+        "{svg}"
+    );
+    let wave = signal.descendants().find(|n| has_class(n, "wave")).unwrap();
+    let ys: Vec<f64> = points(wave).iter().map(|p| p.1).collect();
+    let lo = ys.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(lo > 30.0, "every point inside the row: {ys:?}");
+}

@@ -120,6 +120,20 @@ fn a_chart_cycle_after_the_run_is_an_error() {
     assert_eq!(code, 2);
     assert!(err.contains("the run ended before cycle 10"), "{err}");
     let (code, _, err) = plcrun(&[
+        "programs/chariot.sfc",
+        "--cycles",
+        "3",
+        "--svg-chart",
+        &chart,
+        "--svg-chart-cycle",
+        "18446744073709551615",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("the run ended before cycle 18446744073709551615"),
+        "{err}"
+    );
+    let (code, _, err) = plcrun(&[
         "programs/comparator.st",
         "--cycles",
         "1",

@@ -92,7 +92,7 @@ pub fn prepare(args: &RunArgs, session: &mut Session) -> Result<Option<Pictures>
             t.lock().unwrap_or_else(PoisonError::into_inner).record(plc);
         }
         if let (Some(c), Some(n)) = (&hook_chart, at)
-            && plc.cycle() == n + 1
+            && plc.cycle().checked_sub(1) == Some(n)
         {
             *hook_active.lock().unwrap_or_else(PoisonError::into_inner) = Some(c.active_in(plc));
         }

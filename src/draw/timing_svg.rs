@@ -52,6 +52,10 @@ enum Kind {
 fn kind_of(v: &Value) -> Kind {
     match v {
         Value::Scalar(crate::elementary::ElemType::Bool, _) => Kind::Logic,
+        Value::Scalar(
+            crate::elementary::ElemType::Real | crate::elementary::ElemType::Lreal,
+            _,
+        ) => Kind::Number,
         v if number(v).is_some() => Kind::Number,
         _ => Kind::Label,
     }
@@ -59,7 +63,11 @@ fn kind_of(v: &Value) -> Kind {
 
 fn number(v: &Value) -> Option<f64> {
     match v {
-        Value::Scalar(..) => v.as_f64().or_else(|| v.to_literal().parse().ok()),
+        // NaN and infinities have no place on the scale: drawn mid-row.
+        Value::Scalar(..) => v
+            .as_f64()
+            .or_else(|| v.to_literal().parse().ok())
+            .filter(|x: &f64| x.is_finite()),
         _ => None,
     }
 }
