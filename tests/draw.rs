@@ -520,3 +520,33 @@ fn reals_that_are_not_numbers_stay_inside_their_row() {
     let lo = ys.iter().copied().fold(f64::INFINITY, f64::min);
     assert!(lo > 30.0, "every point inside the row: {ys:?}");
 }
+
+#[test]
+fn enumerations_are_labelled_segments() {
+    let src = "TYPE Light : (Red, Amber, Green); END_TYPE
+        PROGRAM lights VAR_OUTPUT l : Light; END_VAR
+        CASE l OF Red: l := Green; Green: l := Amber; Amber: l := Red; END_CASE;
+        END_PROGRAM";
+    let mut plc = Plc::compile_files(&[("l.st", src)], &Options::default()).unwrap();
+    let mut diagram = TimingDiagram::for_plc(&plc, &["l"]).unwrap();
+    for _ in 0..6 {
+        plc.run_cycle().unwrap();
+        diagram.record(&plc);
+    }
+    diagram.set_end(plc.time());
+    let svg = diagram.to_svg();
+    let doc = Document::parse(&svg).unwrap();
+    let signal = with_class(&doc, "signal")[0];
+    assert!(has_class(&signal, "label"));
+    assert_eq!(
+        texts(signal, "value"),
+        ["Green", "Amber", "Red", "Green", "Amber", "Red"]
+    );
+    assert_eq!(
+        signal
+            .descendants()
+            .filter(|n| has_class(n, "segment"))
+            .count(),
+        6
+    );
+}
