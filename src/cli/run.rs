@@ -247,6 +247,10 @@ pub fn run(args: &RunArgs) -> i32 {
     if let Some(saver) = saver {
         session.save_retain_every(saver, args.retain_every);
     }
+    let pictures = match super::draw::prepare(args, &mut session) {
+        Ok(p) => p,
+        Err(e) => return usage_error(e),
+    };
     let out: Box<dyn Write> = match &args.output {
         Some(p) => match std::fs::File::create(p) {
             Ok(f) => Box::new(std::io::BufWriter::new(f)),
@@ -310,6 +314,12 @@ pub fn run(args: &RunArgs) -> i32 {
             EXIT_USAGE
         }
     };
+    if let Some(pictures) = pictures
+        && let Err(e) = super::draw::finish(args, pictures, &session)
+    {
+        eprintln!("error: {e}");
+        return EXIT_USAGE;
+    }
     match writer.finish() {
         Ok(mut w) => {
             let _ = w.flush();
