@@ -757,3 +757,34 @@ fn coded_diagnostics_with_line_and_column() {
         [("E865".into(), 3, 5)]
     );
 }
+
+#[test]
+fn code_after_mend_is_a_warning_and_every_code_is_documented() {
+    let report = plcrun::check(
+        &{
+            let mut m = plcrun::SourceMap::new();
+            m.add("t.awl", "LD SM0.0\n= Q0.0\nMEND\nLD SM0.0\n= Q0.1\n");
+            m
+        },
+        &plcrun::CheckOptions::default(),
+    );
+    let codes: Vec<&str> = report.diagnostics.iter().map(|d| d.code).collect();
+    assert_eq!(codes, ["W850"]);
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/diagnostics.md"))
+        .expect("docs/diagnostics.md");
+    for code in [
+        "E850", "E851", "E852", "E853", "E854", "E855", "E856", "E857", "E858", "E859", "E860",
+        "E861", "E862", "E864", "E865", "E866", "W850",
+    ] {
+        assert!(doc.contains(&format!("## {code}")), "{code} undocumented");
+    }
+}
+
+#[test]
+fn the_default_trace_is_the_q_bits_used() {
+    let plc = plc("NETWORK 1\nLD I0.0\n= Q1.2\n");
+    let names = plc.default_trace();
+    assert_eq!(names.len(), 16);
+    assert_eq!(names[0], "Q0.0");
+    assert_eq!(names[15], "Q1.7");
+}
