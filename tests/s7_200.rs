@@ -338,7 +338,7 @@ fn a_timer_is_a_bit_and_a_word() {
 fn ctu_counts_rising_edges_saturates_and_resets() {
     let src = "NETWORK 1\nLD I0.0\nLD I0.1\nCTU C0, 3\nLD C0\n= Q0.0\n";
     let mut p = plc(src);
-    let mut pulse = |p: &mut Plc| {
+    let pulse = |p: &mut Plc| {
         set(p, "I0.0", "TRUE");
         cycle(p);
         set(p, "I0.0", "FALSE");
@@ -380,7 +380,7 @@ fn ctd_loads_counts_down_to_zero_and_stops() {
 #[test]
 fn ctud_counts_both_ways_and_wraps() {
     let mut p = plc("NETWORK 1\nLD I0.0\nLD I0.2\nLD I0.1\nCTUD C2, 2\n");
-    let mut edge = |p: &mut Plc, input: &str| {
+    let edge = |p: &mut Plc, input: &str| {
         set(p, input, "TRUE");
         cycle(p);
         set(p, input, "FALSE");
@@ -787,4 +787,23 @@ fn the_default_trace_is_the_q_bits_used() {
     assert_eq!(names.len(), 16);
     assert_eq!(names[0], "Q0.0");
     assert_eq!(names[15], "Q1.7");
+}
+
+#[test]
+fn a_stimulus_drives_s7_inputs_through_a_session() {
+    use plcrun::{Session, parse_stimulus};
+    let mut s = Session::new(plc(
+        "NETWORK 1\nLD I0.0\nA E0.1\n= Q0.0\nLD SM0.0\nINCW VW10\n",
+    ));
+    s.set_trace(&["Q0.0", "VW10", "I0.0"])
+        .expect("S7 names trace");
+    let stimulus = parse_stimulus("cycle,I0.0,E0.1\n0,FALSE,TRUE\n2,TRUE,TRUE\n").expect("csv");
+    s.bind_stimulus(stimulus).expect("S7 names as columns");
+    let mut q = Vec::new();
+    for _ in 0..4 {
+        s.step().expect("cycle");
+        q.push(on(s.plc(), "Q0.0"));
+    }
+    assert_eq!(q, [false, false, true, true]);
+    assert_eq!(int(s.plc(), "VW10"), 4);
 }
