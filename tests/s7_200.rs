@@ -807,3 +807,56 @@ fn a_stimulus_drives_s7_inputs_through_a_session() {
     assert_eq!(q, [false, false, true, true]);
     assert_eq!(int(s.plc(), "VW10"), 4);
 }
+
+#[test]
+fn shifts_rotates_swap_and_conversions() {
+    let mut p = plc("NETWORK 1
+LD SM0.1
+MOVB 16#81, VB0
+SLB VB0, 1
+MOVW 16#8001, VW2
+SRW VW2, 4
+MOVD 16#80000001, VD4
+RLD VD4, 4
+MOVB 16#81, VB8
+RRB VB8, 1
+MOVW 16#1234, VW10
+SWAP VW10
+MOVW 16#FFFF, VW12
+SLW VW12, 16
+MOVB 200, VB14
+BTI VB14, VW16
+MOVW -2, VW18
+ITD VW18, VD20
+MOVD 40000, VD24
+MOVW 7, VW28
+DTI VD24, VW28
+MOVW 300, VW30
+MOVB 9, VB32
+ITB VW30, VB32
+MOVW 100, VW34
+ITB VW34, VB36
+");
+    cycle(&mut p);
+    let want = [
+        ("VB0", 0x02),
+        ("VW2", 0x0800),
+        ("VD4", 0x0000_0018),
+        ("VB8", 0xC0),
+        ("VW10", 0x3412),
+        ("VW12", 0),
+        ("VW16", 200),
+        ("VD20", 0xFFFF_FFFE),
+        ("VW28", 7),
+        ("VB32", 9),
+        ("VB36", 100),
+    ];
+    for (name, v) in want {
+        assert_eq!(int(&p, name), v, "{name}");
+    }
+    assert!(!on(&p, "SM1.1"), "the last conversion fitted");
+    let mut q = plc("NETWORK 1\nLD SM0.0\nMOVD 40000, VD0\nDTI VD0, VW4\n");
+    cycle(&mut q);
+    assert!(on(&q, "SM1.1"), "DTI out of range sets SM1.1");
+    assert_eq!(int(&q, "VW4"), 0);
+}
