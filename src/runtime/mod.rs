@@ -31,6 +31,7 @@
 //! - [`trace_vcd`]: the trace as a VCD waveform.
 
 pub mod access;
+mod byte_view;
 pub mod change_report;
 pub mod clock;
 pub mod default_trace;
@@ -46,6 +47,7 @@ pub mod plc_value;
 pub mod process_image;
 pub mod realtime;
 pub mod retain;
+mod s7_names;
 pub mod scheduler;
 pub mod session;
 pub mod stimulus;
