@@ -35,6 +35,9 @@ pub enum Command {
     Run(Box<RunArgs>),
     /// Parse and check sources; exit 0 iff there is no error.
     Check(CheckArgs),
+    /// Run two programs side by side and compare their outputs
+    /// (`plcrun compare A_FILES... -- B_FILES... --cycles N`).
+    Compare(Box<super::compare::CompareArgs>),
 }
 
 /// `plcrun [run] FILES... --cycles N [options]`.
