@@ -205,6 +205,15 @@ fn the_counterexample_csv_replays_to_the_same_difference() {
     assert_eq!(pair.run(&plan).unwrap().as_ref(), Some(&d));
     let shrunk = pair.shrink(&plan, &d).unwrap();
     assert!(shrunk.plan.changes.len() < plan.truncated(d.cycle + 1).changes.len());
+    // What a lag of one cycle leaves (docs/compare.md): ALG01 lights L1
+    // for one scan when it leaves step 4, ALG02 never does.
+    let o = &shrunk.difference.outputs[0];
+    assert_eq!(pair.pairing().outputs[o.output].a, "L1");
+    assert!(
+        matches!(o.why, Mismatch::NotFollowed { ref value, .. } if value == "TRUE"),
+        "{o:?}"
+    );
+    assert!(shrunk.plan.changes.len() <= 4, "{shrunk:?}");
     let csv = shrunk.plan.to_csv(pair.pairing(), &["a comment".into()]);
     // Read back by compare itself...
     let back = InputPlan::parse_csv(&csv, pair.pairing(), shrunk.plan.cycles, pair.tick()).unwrap();
