@@ -128,18 +128,31 @@ impl CompareReport {
             StimulusSource::Csv { path } => {
                 writeln!(f, "stimulus: {path}, {} cycles", self.cycles)
             }
-            StimulusSource::Random { settings, seeds } => writeln!(
-                f,
-                "stimulus: random, seeds {}..={} ({} seed{}), {} cycles each; change probability {}, hold {}..={} cycles",
-                seeds.start,
-                seeds.end.saturating_sub(1),
-                seeds.end - seeds.start,
-                plural(seeds.end - seeds.start),
-                self.cycles,
-                settings.change_prob,
-                settings.min_hold,
-                settings.max_hold
-            ),
+            StimulusSource::Random { settings, seeds } => {
+                let fixed: Vec<&str> = (self.pairing.inputs.iter())
+                    .filter(|v| v.kind == super::pairing::InputKind::Fixed)
+                    .map(|v| v.a.as_str())
+                    .collect();
+                if !fixed.is_empty() {
+                    writeln!(
+                        f,
+                        "inputs the generator does not draw (they keep their initial value): {}",
+                        fixed.join(", ")
+                    )?;
+                }
+                writeln!(
+                    f,
+                    "stimulus: random, seeds {}..={} ({} seed{}), {} cycles each; change probability {}, hold {}..={} cycles",
+                    seeds.start,
+                    seeds.end.saturating_sub(1),
+                    seeds.end - seeds.start,
+                    plural(seeds.end - seeds.start),
+                    self.cycles,
+                    settings.change_prob,
+                    settings.min_hold,
+                    settings.max_hold
+                )
+            }
         }
     }
 
