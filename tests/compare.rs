@@ -414,3 +414,40 @@ fn a_fault_in_one_program_only_is_a_difference() {
     );
     assert_eq!(d.fault_b, None);
 }
+
+#[test]
+fn inputs_and_outputs_of_one_program_only_are_listed_not_used() {
+    // A reads x and n; B reads x and k (renamed n) and z; --map n=k.
+    let b =
+        "PROGRAM B VAR_INPUT x : BOOL; k, z : INT; END_VAR VAR_OUTPUT y : BOOL; w : INT; END_VAR
+        y := x; w := k * 2 + z; END_PROGRAM";
+    let options = CompareOptions {
+        map: vec![("n".into(), "k".into()), ("m".into(), "w".into())],
+        ..CompareOptions::default()
+    };
+    let pair = pair_of(NOW, b, &options).unwrap();
+    let p = pair.pairing();
+    let inputs: Vec<(&str, &str)> = p
+        .inputs
+        .iter()
+        .map(|v| (v.a.as_str(), v.b.as_str()))
+        .collect();
+    assert_eq!(inputs, [("n", "k"), ("x", "x")]);
+    assert_eq!(p.unpaired_inputs, ["B.z"]);
+    let outputs: Vec<(&str, &str)> = p
+        .outputs
+        .iter()
+        .map(|v| (v.a.as_str(), v.b.as_str()))
+        .collect();
+    assert_eq!(outputs, [("m", "w"), ("y", "y")]);
+    assert!(p.unpaired_outputs.is_empty(), "{:?}", p.unpaired_outputs);
+    // Ignoring an input stops driving it; ignoring an output stops comparing it.
+    let options = CompareOptions {
+        ignore: vec!["n".into(), "M".into()],
+        ..CompareOptions::default()
+    };
+    let p = pair_of(NOW, LATE, &options).unwrap().pairing().clone();
+    assert_eq!(p.inputs.len(), 1);
+    assert_eq!(p.outputs.len(), 1);
+    assert_eq!(p.ignored, ["n", "M"]);
+}

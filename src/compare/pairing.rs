@@ -156,7 +156,7 @@ impl Pairing {
             }
         }
         for xi in &a_in {
-            if p.has_a(&xi.path) || p.has_b(&xi.path) {
+            if p.has_a(&xi.path) {
                 continue;
             }
             match find(&b_in, &xi.path).filter(|y| !p.has_b(&y.path)) {
@@ -165,12 +165,7 @@ impl Pairing {
             }
         }
         for yi in &b_in {
-            if !p.has_b(&yi.path)
-                && !p
-                    .unpaired_inputs
-                    .iter()
-                    .any(|u| u[2..].eq_ignore_ascii_case(&yi.path))
-            {
+            if !p.has_b(&yi.path) {
                 p.unpaired_inputs.push(format!("B.{}", yi.path));
             }
         }
