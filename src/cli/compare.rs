@@ -18,6 +18,9 @@ const EXIT_DIFFERENT: i32 = 1;
 
 /// `plcrun compare A_FILES... -- B_FILES... --cycles N [options]`.
 #[derive(Debug, Args)]
+#[command(
+    after_help = "Exit status: 0 equivalent on every run, 1 a difference found, 2 usage or compile errors. See docs/compare.md."
+)]
 pub struct CompareArgs {
     /// Source files of program A.
     #[arg(required = true)]
