@@ -3,6 +3,7 @@
 
 mod args;
 mod draw;
+mod compare;
 mod online;
 mod reload;
 mod retain;
@@ -21,9 +22,10 @@ pub const EXIT_FAULT: i32 = 3;
 
 /// Parses the command line and runs the chosen command.
 pub fn main() -> i32 {
-    match args::Cli::try_parse() {
+    match args::Cli::try_parse_from(compare::reorder(std::env::args_os().collect())) {
         Ok(cli) => match cli.command {
             Some(args::Command::Check(a)) => run::check(&a),
+            Some(args::Command::Compare(a)) => compare::compare(&a),
             Some(args::Command::Run(a)) => run::run(&a),
             Some(args::Command::Draw(a)) => draw::draw(&a),
             None => run::run(&cli.run),
