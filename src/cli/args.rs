@@ -113,6 +113,10 @@ pub struct RunArgs {
     /// instead of refusing a file saved by another version of the program.
     #[arg(long, requires = "retain", conflicts_with = "cold")]
     pub retain_partial: bool,
+    /// Run charts by IEC 60848 GRAFCET evolution: search for a stable
+    /// situation, stored actions on activation, forcing orders.
+    #[arg(long)]
+    pub grafcet: bool,
 }
 
 /// `plcrun check FILES...`: parse and check only.
@@ -127,6 +131,9 @@ pub struct CheckArgs {
     /// The PROGRAM to build when the files hold several (with --dump-ir).
     #[arg(long)]
     pub program: Option<String>,
+    /// Check charts for IEC 60848 GRAFCET evolution (forcing orders allowed).
+    #[arg(long)]
+    pub grafcet: bool,
 }
 
 /// How `--stats` prints the statistics.

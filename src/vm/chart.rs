@@ -7,7 +7,8 @@
 
 use super::{Fault, Machine, exec};
 use crate::ir::chart::{
-    ActionKind, Chart, Condition, Duration, Qualifier, action_layout as al, header as hd,
+    ActionKind, Chart, Condition, Duration, Evolution, Qualifier, action_layout as al,
+    header as hd,
 };
 use crate::ir::image::Image;
 use crate::ir::type_table::step_layout as sl;
@@ -22,6 +23,10 @@ pub(super) fn run(
     let Some(c) = img.charts.get(chart.index()) else {
         return Ok(());
     };
+    // The evolution rules are chosen once, at compile time, per chart.
+    if c.evolution == Evolution::Grafcet {
+        return super::grafcet::run(m, img, c, base);
+    }
     let now = m.now;
     let h = base + c.header as usize;
     if m.mem[h + hd::STARTED as usize] == 0 {
@@ -37,7 +42,7 @@ pub(super) fn run(
 }
 
 /// Marks step `s` active from `now` and inserts it into the active list.
-fn activate(m: &mut Machine, c: &Chart, base: usize, s: u32, now: i64) {
+pub(super) fn activate(m: &mut Machine, c: &Chart, base: usize, s: u32, now: i64) {
     let rec = base + c.steps[s as usize].rec as usize;
     m.mem[rec + sl::X as usize] = 1;
     m.mem[rec + sl::START as usize] = now as u64;
@@ -48,7 +53,7 @@ fn activate(m: &mut Machine, c: &Chart, base: usize, s: u32, now: i64) {
 
 /// Inserts `v` into the sorted list at `at` whose length is at `n_at`
 /// (no duplicates; the list has room for every possible element).
-fn insert_sorted(m: &mut Machine, at: usize, n_at: usize, v: u64) {
+pub(super) fn insert_sorted(m: &mut Machine, at: usize, n_at: usize, v: u64) {
     let n = m.mem[n_at] as usize;
     let list = &mut m.mem[at..at + n + 1];
     match list[..n].binary_search(&v) {
@@ -63,12 +68,12 @@ fn insert_sorted(m: &mut Machine, at: usize, n_at: usize, v: u64) {
 
 /// Is step `s` active?
 #[inline]
-fn active(m: &Machine, c: &Chart, base: usize, s: u32) -> bool {
+pub(super) fn active(m: &Machine, c: &Chart, base: usize, s: u32) -> bool {
     m.mem[base + (c.steps[s as usize].rec + sl::X) as usize] != 0
 }
 
 /// Evaluates transition `t`'s condition (at most once per call).
-fn condition(
+pub(super) fn condition(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -195,7 +200,7 @@ fn evolve(
 
 /// Reads a duration.
 #[inline]
-fn duration(m: &Machine, base: usize, d: Duration) -> u64 {
+pub(super) fn duration(m: &Machine, base: usize, d: Duration) -> u64 {
     match d {
         Duration::None => 0,
         Duration::Const(v) => v as u64,

@@ -755,7 +755,14 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             }
             Op::Ret => return Ok(()),
             Op::Sfc { chart } => {
-                super::chart::run(m, img, chart, base)?;
+                if let Err(mut f) = super::chart::run(m, img, chart, base) {
+                    // A chart's own fault is located at the `Op::Sfc`.
+                    if f.pc == super::fault::UNLOCATED {
+                        f.code = code;
+                        f.pc = (pc!() - 1) as u32;
+                    }
+                    return Err(f);
+                }
                 // The chart runtime indexes memory through references:
                 // take fresh pointers (same buffer, same length).
                 mem = m.mem.as_mut_ptr();
