@@ -133,12 +133,12 @@ impl BodyBuilder<'_> {
             return None;
         };
         let VarInfo { ty, storage, .. } = var;
-        let target = self
-            .model
-            .pous
-            .iter()
-            .position(|p| p.ty == ty)
-            .filter(|_| matches!(self.types.get(ty).kind, TypeKind::Pou { program: false, .. }));
+        let target = self.model.pous.iter().position(|p| p.ty == ty).filter(|_| {
+            matches!(
+                self.types.get(ty).kind,
+                TypeKind::Pou { program: false, .. }
+            )
+        });
         let chart = target.and_then(|t| {
             let pou = &self.model.pous[t];
             match pou.vars.get(HIDDEN).map(|v| v.storage) {

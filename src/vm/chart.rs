@@ -7,8 +7,7 @@
 
 use super::{Fault, Machine, exec};
 use crate::ir::chart::{
-    ActionKind, Chart, Condition, Duration, Evolution, Qualifier, action_layout as al,
-    header as hd,
+    ActionKind, Chart, Condition, Duration, Evolution, Qualifier, action_layout as al, header as hd,
 };
 use crate::ir::image::Image;
 use crate::ir::type_table::step_layout as sl;
