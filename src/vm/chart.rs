@@ -24,7 +24,7 @@ pub(super) fn run(
     };
     // The evolution rules are chosen once, at compile time, per chart.
     if c.evolution == Evolution::Grafcet {
-        return super::grafcet::run(m, img, c, base);
+        return super::grafcet::run(m, img, c, chart, base);
     }
     let now = m.now;
     let h = base + c.header as usize;

@@ -755,14 +755,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             }
             Op::Ret => return Ok(()),
             Op::Sfc { chart } => {
-                if let Err(mut f) = super::chart::run(m, img, chart, base) {
-                    // A chart's own fault is located at the `Op::Sfc`.
-                    if f.pc == super::fault::UNLOCATED {
-                        f.code = code;
-                        f.pc = (pc!() - 1) as u32;
-                    }
-                    return Err(f);
-                }
+                super::chart::run(m, img, chart, base)?;
                 // The chart runtime indexes memory through references:
                 // take fresh pointers (same buffer, same length).
                 mem = m.mem.as_mut_ptr();

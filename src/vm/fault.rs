@@ -67,10 +67,6 @@ pub struct UnstableCycle {
     pub transitions: Vec<String>,
 }
 
-/// `Fault::pc` of a fault raised by the chart runtime, before `exec`
-/// places it at the chart's `Op::Sfc`.
-pub(crate) const UNLOCATED: u32 = u32::MAX;
-
 /// Which host body failed, and how.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct HostFailure {

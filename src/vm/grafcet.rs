@@ -14,14 +14,14 @@
 //! in its next call. See docs/grafcet.md.
 
 use super::chart::{activate, active, condition, duration, insert_sorted};
-use super::fault::{UNLOCATED, UnstableCycle};
+use super::fault::UnstableCycle;
 use super::{Fault, FaultKind, Machine, exec};
 use crate::ir::chart::{
     ActionKind, Chart, ForcingOrder, InstanceAt, Qualifier, action_layout as al, header as hd,
     started,
 };
 use crate::ir::image::Image;
-use crate::ir::op::CodeIdx;
+use crate::ir::op::{ChartIdx, CodeIdx, Op};
 use crate::ir::type_table::step_layout as sl;
 
 /// Qualifiers whose input is a level of the stable situation.
@@ -42,8 +42,16 @@ const fn bit(q: Qualifier) -> u64 {
     1 << (q as u32)
 }
 
-/// Runs one call of chart `c` for the instance at `base`.
-pub(super) fn run(m: &mut Machine, img: &Image, c: &Chart, base: usize) -> Result<(), Fault> {
+/// Runs one call of chart `c` (number `index`) for the instance at `base`.
+/// Kept out of line: the IEC path that calls it must not change shape.
+#[inline(never)]
+pub(super) fn run(
+    m: &mut Machine,
+    img: &Image,
+    c: &Chart,
+    index: ChartIdx,
+    base: usize,
+) -> Result<(), Fault> {
     let now = m.now;
     let h = base + c.header as usize;
     let state = m.mem[h + hd::STARTED as usize];
@@ -61,7 +69,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, c: &Chart, base: usize) -> Resul
         step_times(m, c, base, now);
         epoch
     } else {
-        stabilize(m, img, c, base, epoch, now)?
+        stabilize(m, img, c, base, epoch, now).map_err(|f| locate(img, index, f))?
     };
     m.mem[h + hd::EPOCH as usize] = last;
     apply_forcings(m, c, base, now);
@@ -325,6 +333,30 @@ fn unstable(
         code: CodeIdx::new(0),
         pc: UNLOCATED,
     }
+}
+
+/// `Fault::pc` of the unstable-chart fault until [`locate`] places it.
+const UNLOCATED: u32 = u32::MAX;
+
+/// Places the chart's own fault at its `Op::Sfc` (faults of condition
+/// blocks already carry their place). Only on the fault path: `exec`'s
+/// dispatch of `Op::Sfc` stays as it is.
+fn locate(img: &Image, index: ChartIdx, mut f: Fault) -> Fault {
+    if f.pc != UNLOCATED {
+        return f;
+    }
+    for (k, block) in img.codes.iter().enumerate() {
+        let at = block
+            .ops
+            .iter()
+            .position(|op| matches!(op, Op::Sfc { chart } if *chart == index));
+        if let Some(pc) = at {
+            f.code = CodeIdx::new(k as u32);
+            f.pc = pc as u32;
+            break;
+        }
+    }
+    f
 }
 
 /// `A -> B`, or `(A, B) -> C` for a convergence or divergence.
