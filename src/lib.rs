@@ -80,6 +80,7 @@ pub use runtime::stop::StopHandle;
 pub use runtime::task_stats::{TaskStats, TaskStatsHandle, TimeStats, format_stats_table};
 pub use runtime::tasks::{TaskInfo, TaskStepError};
 pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter, UnknownTraceFormat};
+pub use runtime::trace_vcd::{VcdSignal, VcdTimescale};
 pub use runtime::var_error::{PathProblem, ReadOnlyReason, ValueProblem, VarError};
 pub use runtime::variables::{ChartState, Direction, VarInfo, VarShape};
 pub use runtime::watchdog::{UnknownTask, WatchdogTrip};

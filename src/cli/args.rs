@@ -67,8 +67,8 @@ pub struct RunArgs {
     /// Comma-separated variables to trace (default: VAR_OUTPUTs and %Q variables).
     #[arg(long, value_delimiter = ',')]
     pub trace: Vec<String>,
-    /// Trace format.
-    #[arg(long, default_value = "csv", value_parser = ["table", "csv", "jsonl"])]
+    /// Trace format (vcd: a waveform for GTKWave or Surfer).
+    #[arg(long, default_value = "csv", value_parser = ["table", "csv", "jsonl", "vcd"])]
     pub format: String,
     /// Print the first row, then only rows where a traced value changed.
     #[arg(long)]

@@ -4,7 +4,7 @@ use super::args::{CheckArgs, RunArgs, StatsFormat};
 use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
 use plcrun::{
     CheckOptions, Diagnostics, LiveStimulus, Options, Plc, RunError, Session, TaskRunner,
-    TraceFormat, TraceWriter, check as check_sources, format_stats_table, load_files,
+    TraceFormat, TraceWriter, VcdTimescale, check as check_sources, format_stats_table, load_files,
     parse_stimulus, parse_time_literal,
 };
 use std::io::{Read, Write};
@@ -256,11 +256,23 @@ pub fn run(args: &RunArgs) -> i32 {
         },
         None => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
     };
-    let names = session.trace_names().to_vec();
-    let mut writer = TraceWriter::new(out, format, names, args.changes_only);
     let changes = match super::online::planned(&args.online_change_at) {
         Ok(c) => c,
         Err(e) => return usage_error(e),
+    };
+    let names = session.trace_names().to_vec();
+    let mut writer = if format == TraceFormat::Vcd {
+        // Exact timestamps: the base tick's unit on the virtual clock of a
+        // fixed program, nanoseconds where the clock or the tick can vary.
+        let timescale = if args.realtime || args.reload || !changes.is_empty() {
+            VcdTimescale::NANOSECOND
+        } else {
+            VcdTimescale::for_cycle(session.plc().cycle_time(), session.plc().time())
+        };
+        let signals = session.vcd_signals();
+        TraceWriter::vcd(out, names, signals, timescale, args.changes_only)
+    } else {
+        TraceWriter::new(out, format, names, args.changes_only)
     };
     let reloader = args
         .reload

@@ -27,7 +27,8 @@
 //! - [`forcing`]: forced variables and soft writes;
 //! - [`variables`]: the list of variables with their types, and chart step
 //!   states;
-//! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
+//! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines;
+//! - [`trace_vcd`]: the trace as a VCD waveform.
 
 pub mod access;
 pub mod change_report;
@@ -53,6 +54,7 @@ mod table_rows;
 pub mod task_stats;
 pub mod tasks;
 pub mod trace;
+pub mod trace_vcd;
 pub mod var_error;
 pub mod variables;
 pub mod watchdog;
