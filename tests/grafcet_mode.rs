@@ -472,3 +472,43 @@ fn a_frozen_grafcet_that_never_ran_keeps_its_initial_situation() {
         "cycle,time,g.P0.X,g.P1.X\n0,T#0s,TRUE,FALSE\n1,T#10ms,TRUE,FALSE\n2,T#20ms,TRUE,FALSE\n"
     );
 }
+
+#[test]
+fn orders_meeting_on_one_grafcet_add_up_and_forced_active_wins() {
+    // S0 -> (S1, S2, S3) on go: the orders {P1}, {} and {P2} hold g at
+    // once. The course: a step forced to 0 by one grafcet and to 1 by
+    // another is forced to 1; so g = {P1, P2}. Without go, g keeps {P0}
+    // (its transitions read t, FALSE: it never evolves by itself).
+    let src = "FUNCTION_BLOCK G
+VAR_INPUT t : BOOL; END_VAR
+INITIAL_STEP P0 : END_STEP
+STEP P1 : END_STEP
+STEP P2 : END_STEP
+TRANSITION FROM P0 TO P1 := t; END_TRANSITION
+TRANSITION FROM P1 TO P2 := t; END_TRANSITION
+TRANSITION FROM P2 TO P0 := t; END_TRANSITION
+END_FUNCTION_BLOCK
+PROGRAM M
+VAR_INPUT go : BOOL; END_VAR
+VAR g : G; END_VAR
+INITIAL_STEP S0 : END_STEP
+STEP S1 : g(F, P1); END_STEP
+STEP S2 : g(F); END_STEP
+STEP S3 : g(F, P2); END_STEP
+TRANSITION FROM S0 TO (S1, S2, S3) := go; END_TRANSITION
+g();
+END_PROGRAM";
+    let stim = "cycle,go\n0,FALSE\n1,TRUE\n";
+    let csv = ok_trace(run_texts(
+        &[("m.sfc", src)],
+        true,
+        3,
+        Some(stim),
+        "g.P0.X,g.P1.X,g.P2.X",
+    ));
+    assert_eq!(
+        csv,
+        "cycle,time,g.P0.X,g.P1.X,g.P2.X\n0,T#0s,TRUE,FALSE,FALSE\n\
+         1,T#10ms,FALSE,TRUE,TRUE\n2,T#20ms,FALSE,TRUE,TRUE\n"
+    );
+}

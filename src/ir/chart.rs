@@ -305,4 +305,8 @@ pub mod started {
     pub const RUNNING: u64 = 1;
     /// A forcing order holds the chart in its situation for its next call.
     pub const FORCED: u64 = 2;
+    /// A forcing order imposed a situation since the chart's last call:
+    /// further orders add their steps (a step forced active by one order
+    /// and inactive by another is active).
+    pub const IMPOSED: u64 = 4;
 }

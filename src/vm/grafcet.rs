@@ -378,7 +378,10 @@ fn transition_name(c: &Chart, t: usize) -> String {
 
 /// Applies the forcing orders held by the active steps: the forced chart
 /// gets the order's situation (a step entering it starts its time, one
-/// staying active keeps it) and is marked held for its next call.
+/// staying active keeps it) and is marked held for its next call. Orders
+/// meeting on one chart before it runs add up: the first imposes its
+/// situation, the next ones add their steps (forced active wins over
+/// forced inactive), and a freeze keeps what they imposed.
 fn apply_forcings(m: &mut Machine, c: &Chart, base: usize, now: i64) {
     for f in &c.forcings {
         if !active(m, c, base, f.step) {
@@ -396,6 +399,9 @@ fn apply_forcings(m: &mut Machine, c: &Chart, base: usize, now: i64) {
             }
             ForcingOrder::Situation(s) => s,
         };
+        let imposed = m.mem[h + hd::STARTED as usize] & started::IMPOSED != 0;
+        let list = h + hd::SIZE as usize;
+        let mut n = 0usize;
         for (i, &rec) in f.steps.iter().enumerate() {
             let r = inst + rec as usize;
             let wanted = situation.binary_search(&(i as u32)).is_ok();
@@ -404,16 +410,17 @@ fn apply_forcings(m: &mut Machine, c: &Chart, base: usize, now: i64) {
                 m.mem[r + sl::X as usize] = 1;
                 m.mem[r + sl::START as usize] = now as u64;
                 m.mem[r + sl::T as usize] = 0;
-            } else if !wanted && was {
+            } else if !wanted && was && !imposed {
                 m.mem[r + sl::X as usize] = 0;
             }
+            // The active list, rebuilt in step order (it stays sorted).
+            if m.mem[r + sl::X as usize] != 0 {
+                m.mem[list + n] = i as u64;
+                n += 1;
+            }
         }
-        let list = h + hd::SIZE as usize;
-        for (k, &s) in situation.iter().enumerate() {
-            m.mem[list + k] = s as u64;
-        }
-        m.mem[h + hd::N_ACTIVE as usize] = situation.len() as u64;
-        m.mem[h + hd::STARTED as usize] = started::RUNNING | started::FORCED;
+        m.mem[h + hd::N_ACTIVE as usize] = n as u64;
+        m.mem[h + hd::STARTED as usize] = started::RUNNING | started::FORCED | started::IMPOSED;
     }
 }
 
