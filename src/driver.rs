@@ -109,6 +109,9 @@ pub struct CheckOptions {
     /// Also build the runnable program and list its IR (a debugging aid;
     /// the sources must then hold one runnable program).
     pub ir_listing: bool,
+    /// Check charts for IEC 60848 evolution (`--grafcet`): forcing orders
+    /// are accepted.
+    pub grafcet: bool,
 }
 
 /// The outcome of [`check`].
@@ -137,6 +140,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         cycle_time: 10_000_000,
         check_only: !options.ir_listing,
         host_pous: Vec::new(),
+        grafcet: options.grafcet,
     };
     let image = compile(sources, &build, &mut diagnostics);
     let ir_listing = match (options.ir_listing, image) {

@@ -97,7 +97,7 @@ pub use runtime::variables::{ChartState, Direction, VarInfo, VarShape};
 pub use runtime::watchdog::{UnknownTask, WatchdogTrip};
 pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
-pub use vm::{Fault, FaultKind, HostFailure};
+pub use vm::{Fault, FaultKind, HostFailure, UnstableCycle};
 
 /// The examples of `docs/embedding.md`, compiled and run as doc-tests.
 #[cfg(doctest)]

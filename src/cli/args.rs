@@ -143,6 +143,10 @@ pub struct RunArgs {
     /// The cycle whose active steps --svg-chart marks (default: the last one run).
     #[arg(long, value_name = "N", requires = "svg_chart")]
     pub svg_chart_cycle: Option<u64>,
+    /// Run charts by IEC 60848 GRAFCET evolution: search for a stable
+    /// situation, stored actions on activation, forcing orders.
+    #[arg(long)]
+    pub grafcet: bool,
 }
 
 /// `plcrun check FILES...`: parse and check only.
@@ -157,6 +161,9 @@ pub struct CheckArgs {
     /// The PROGRAM to build when the files hold several (with --dump-ir).
     #[arg(long)]
     pub program: Option<String>,
+    /// Check charts for IEC 60848 GRAFCET evolution (forcing orders allowed).
+    #[arg(long)]
+    pub grafcet: bool,
 }
 
 /// How `--stats` prints the statistics.

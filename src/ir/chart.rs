@@ -242,4 +242,71 @@ pub struct Chart {
     pub transitions: Vec<Transition>,
     /// Actions, in execution order.
     pub actions: Vec<Action>,
+    /// Which standard's evolution rules the chart follows.
+    pub evolution: Evolution,
+    /// Forcing orders of partial grafcets held by its steps (IEC 60848
+    /// evolution only; empty otherwise).
+    pub forcings: Vec<Forcing>,
+}
+
+/// The evolution rules a chart follows, chosen at compile time for every
+/// chart of the program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Evolution {
+    /// IEC 61131-3 SFC: one evolution per call (`vm::chart`).
+    #[default]
+    Sfc,
+    /// IEC 60848 GRAFCET: evolution iterated to a stable situation, stored
+    /// actions on activation events (`vm::grafcet`).
+    Grafcet,
+}
+
+/// Where a forced FUNCTION_BLOCK instance (a partial grafcet) lives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InstanceAt {
+    /// In the forcing POU's frame, at this offset.
+    Frame(u32),
+    /// At this absolute address (a global instance).
+    Abs(u32),
+}
+
+/// What a forcing order imposes on its partial grafcet.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum ForcingOrder {
+    /// `F/G:{...}`: exactly these steps (indexes into the target's steps,
+    /// sorted, no duplicates; empty for the empty situation).
+    Situation(Vec<u32>),
+    /// `F/G:{*}`: the current situation (the grafcet is frozen).
+    Freeze,
+}
+
+/// A forcing order `F/G:{...}` associated with a step: while that step is
+/// active in a stable situation, the partial grafcet `G` (an FB instance
+/// whose body is a chart) is held in the order's situation and does not
+/// evolve.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Forcing {
+    /// The step of this chart that holds the order.
+    pub step: u32,
+    /// The forced instance.
+    pub instance: InstanceAt,
+    /// Offset of the forced chart's header, relative to the instance.
+    pub header: u32,
+    /// Offsets of the forced chart's step records, relative to the
+    /// instance, in its step order.
+    pub steps: Vec<u32>,
+    /// The order.
+    pub order: ForcingOrder,
+}
+
+/// Bits of the header's `STARTED` slot under IEC 60848 evolution.
+pub mod started {
+    /// The initial situation has been set.
+    pub const RUNNING: u64 = 1;
+    /// A forcing order holds the chart in its situation for its next call.
+    pub const FORCED: u64 = 2;
+    /// A forcing order imposed a situation since the chart's last call:
+    /// further orders add their steps (a step forced active by one order
+    /// and inactive by another is active).
+    pub const IMPOSED: u64 = 4;
 }

@@ -33,6 +33,10 @@ pub struct Options {
     pub watchdog: Option<Duration>,
     /// FUNCTIONs and FUNCTION_BLOCKs implemented by the host (none by default).
     pub hosts: HostBlocks,
+    /// Run charts by IEC 60848 GRAFCET evolution (stable situations,
+    /// forcing orders of partial grafcets) instead of IEC 61131-3 SFC
+    /// evolution (default `false`; see docs/grafcet.md).
+    pub grafcet: bool,
 }
 
 impl Default for Options {
@@ -42,6 +46,7 @@ impl Default for Options {
             program: None,
             watchdog: Some(Duration::from_secs(1)),
             hosts: HostBlocks::default(),
+            grafcet: false,
         }
     }
 }
@@ -171,6 +176,7 @@ impl Plc {
             cycle_time: options.cycle_time,
             check_only: false,
             host_pous: options.hosts.names(),
+            grafcet: options.grafcet,
         };
         let image = driver::compile(&sources, &build, &mut diags);
         match image {

@@ -116,6 +116,11 @@ impl<'a> Declarer<'a> {
         self.model.host_pous = names.iter().map(|n| n.to_ascii_uppercase()).collect();
     }
 
+    /// Selects IEC 60848 evolution for every chart.
+    pub(super) fn set_grafcet(&mut self, grafcet: bool) {
+        self.model.grafcet = grafcet;
+    }
+
     pub(super) fn finish(mut self) -> Declared {
         for p in 0..self.model.pous.len() {
             self.ensure_emitted(p);

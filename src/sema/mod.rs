@@ -37,6 +37,7 @@ mod emit;
 mod expr;
 mod fn_call;
 mod for_loop;
+mod grafcet_forcing;
 mod il;
 mod place;
 mod sfc_emit;
@@ -67,6 +68,9 @@ pub struct CompileOptions {
     /// declarations are among the sources, with empty bodies): each body
     /// becomes `Op::CallHost` with its index in this list.
     pub host_pous: Vec<String>,
+    /// Charts follow IEC 60848 GRAFCET evolution (search for stability,
+    /// forcing orders) instead of IEC 61131-3 SFC evolution.
+    pub grafcet: bool,
 }
 
 /// Checks and lowers parsed files into a verified image. Returns `None` when
@@ -78,6 +82,7 @@ pub fn compile(
 ) -> Option<VerifiedImage> {
     let mut declarer = declare::Declarer::new(units, diags);
     declarer.set_host_pous(&options.host_pous);
+    declarer.set_grafcet(options.grafcet);
     declarer.declare_all();
     let declared = declarer.finish();
     let image = link::link(units, declared, options, diags);

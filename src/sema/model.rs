@@ -117,6 +117,9 @@ pub(crate) struct Model {
     /// Case-folded names of the POUs whose bodies the host provides, by
     /// `Op::CallHost` index.
     pub host_pous: Vec<String>,
+    /// Charts follow IEC 60848 evolution (`--grafcet`) instead of IEC
+    /// 61131-3's.
+    pub grafcet: bool,
 }
 
 impl Model {

@@ -27,6 +27,9 @@ pub(super) struct Names<'a> {
     /// Names associated with steps that are not ACTIONs (candidate BOOL
     /// variables), by key, with the first association's span.
     pub(super) var_actions: IndexMap<String, (Ident, Span)>,
+    /// Forcing orders of partial grafcets (`G1(F, X8)`, `G1(FREEZE)`),
+    /// with the step that holds each (see `grafcet_forcing`).
+    pub(super) forcings: Vec<(&'a Ident, &'a crate::syntax::ast::ActionAssociation)>,
 }
 
 /// Sorts the elements of a chart body by kind.
@@ -37,6 +40,7 @@ pub(super) fn names(elems: &[SfcElement]) -> Names<'_> {
         transitions: Vec::new(),
         statements: Vec::new(),
         var_actions: IndexMap::new(),
+        forcings: Vec::new(),
     };
     for e in elems {
         match e {
@@ -51,7 +55,9 @@ pub(super) fn names(elems: &[SfcElement]) -> Names<'_> {
     for s in &n.steps {
         for a in &s.actions {
             let key = a.action.key();
-            if !action_keys.contains(&key) {
+            if super::grafcet_forcing::is_forcing(a) {
+                n.forcings.push((&s.name, a));
+            } else if !action_keys.contains(&key) {
                 n.var_actions
                     .entry(key)
                     .or_insert((a.action.clone(), a.span));

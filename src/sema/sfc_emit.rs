@@ -75,6 +75,12 @@ impl BodyBuilder<'_> {
         let transitions = self.chart_transitions(&mut cf, &n, &step_index, &mut steps);
         let temp_max = cf.temp_max;
         self.chart_structure(pou, &step_src, &transitions, &initial);
+        let forcings = self.chart_forcings(&n, &step_index);
+        let evolution = if self.model.grafcet {
+            chart::Evolution::Grafcet
+        } else {
+            chart::Evolution::Sfc
+        };
 
         if self.diags.has_errors() {
             // Keep going for more diagnostics, but emit nothing runnable.
@@ -92,6 +98,8 @@ impl BodyBuilder<'_> {
             steps,
             transitions,
             actions,
+            evolution,
+            forcings,
         };
         let index = ChartIdx::new(self.out.charts.len() as u32);
         self.out.charts.push(chart);

@@ -49,6 +49,22 @@ pub enum FaultKind {
     /// A host-registered FUNCTION or FUNCTION_BLOCK failed: it returned
     /// an error or panicked (boxed: faults stay small).
     HostFunction(Box<HostFailure>),
+    /// IEC 60848 evolution (`--grafcet`) found no stable situation within
+    /// its bound: the chart's transitions keep firing (boxed: faults stay
+    /// small).
+    UnstableChart(Box<UnstableCycle>),
+}
+
+/// A chart that did not reach a stable situation under IEC 60848 evolution.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct UnstableCycle {
+    /// The POU whose chart it is.
+    pub chart: String,
+    /// The bound that was reached: successive firings in one call.
+    pub bound: usize,
+    /// The transitions of the unstable cycle (`FROM -> TO`), in firing
+    /// order.
+    pub transitions: Vec<String>,
 }
 
 /// Which host body failed, and how.
@@ -99,6 +115,7 @@ impl FaultKind {
             FaultKind::Watchdog => "R008",
             FaultKind::Aborted => "R009",
             FaultKind::HostFunction(_) => "R010",
+            FaultKind::UnstableChart(_) => "R020",
             FaultKind::BadAddress => "R999",
         }
     }
@@ -132,6 +149,13 @@ impl fmt::Display for FaultKind {
             FaultKind::HostFunction(h) => {
                 write!(f, "host function `{}` failed: {}", h.name, h.message)
             }
+            FaultKind::UnstableChart(u) => write!(
+                f,
+                "unstable GRAFCET: the chart of `{}` is still evolving after {} successive firings; unstable cycle of transitions: {}",
+                u.chart,
+                u.bound,
+                u.transitions.join(", ")
+            ),
         }
     }
 }

@@ -13,12 +13,13 @@
 mod chart;
 mod exec;
 mod fault;
+mod grafcet;
 mod host;
 mod interrupt;
 mod string_ops;
 mod strings;
 
-pub use fault::{Fault, FaultKind, HostFailure};
+pub use fault::{Fault, FaultKind, HostFailure, UnstableCycle};
 pub(crate) use host::{HostDispatch, HostFrame, HostLink};
 pub(crate) use interrupt::Interrupt;
 pub use strings::PlcString;
