@@ -35,6 +35,8 @@ pub enum Command {
     Run(Box<RunArgs>),
     /// Parse and check sources; exit 0 iff there is no error.
     Check(CheckArgs),
+    /// Write textual sources (IL, ST, SFC) in another format (PLCopen XML).
+    Export(ExportArgs),
 }
 
 /// `plcrun [run] FILES... --cycles N [options]`.
@@ -127,6 +129,20 @@ pub struct CheckArgs {
     /// The PROGRAM to build when the files hold several (with --dump-ir).
     #[arg(long)]
     pub program: Option<String>,
+}
+
+/// `plcrun export --plcopen FILES... [-o OUT.xml]`.
+#[derive(Debug, Args)]
+pub struct ExportArgs {
+    /// Source files (IL, ST, SFC).
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Write PLCopen TC6 XML 2.01 (the only export format, required).
+    #[arg(long, required = true)]
+    pub plcopen: bool,
+    /// Write to FILE instead of standard output.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
 }
 
 /// How `--stats` prints the statistics.

@@ -2,6 +2,7 @@
 //! Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.
 
 mod args;
+mod export;
 mod online;
 mod reload;
 mod retain;
@@ -24,6 +25,7 @@ pub fn main() -> i32 {
         Ok(cli) => match cli.command {
             Some(args::Command::Check(a)) => run::check(&a),
             Some(args::Command::Run(a)) => run::run(&a),
+            Some(args::Command::Export(a)) => export::export(&a),
             None => run::run(&cli.run),
         },
         Err(e) => usage(e),
