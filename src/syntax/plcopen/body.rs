@@ -16,8 +16,8 @@ pub const SFC_STATEMENTS_DATA: &str = "urn:plcrun:sfc-statements";
 
 /// A POU's `<body>`.
 pub fn pou_body(em: &mut Emitter, pou: Node, body: Node) {
-    let Some(lang) = elements(body)
-        .find(|c| matches!(c.tag_name().name(), "IL" | "ST" | "FBD" | "LD" | "SFC"))
+    let Some(lang) =
+        elements(body).find(|c| matches!(c.tag_name().name(), "IL" | "ST" | "FBD" | "LD" | "SFC"))
     else {
         super::types::missing_child(em, body, "ST>, <IL> or <SFC");
         return;
@@ -55,7 +55,11 @@ pub fn graphical(em: &mut Emitter, lang: Node) {
         em.at(lang),
         format!(
             "`<{name}>` body refused: plcrun runs textual bodies (ST, IL) and SFC, not {} networks",
-            if name == "LD" { "ladder" } else { "function block diagram" }
+            if name == "LD" {
+                "ladder"
+            } else {
+                "function block diagram"
+            }
         ),
     );
 }

@@ -60,7 +60,9 @@ fn resource(em: &mut Emitter, node: Node) {
             _ => em.unknown(c, "resource"),
         }
     }
-    let tasks: Vec<Node> = elements(node).filter(|c| c.tag_name().name() == "task").collect();
+    let tasks: Vec<Node> = elements(node)
+        .filter(|c| c.tag_name().name() == "task")
+        .collect();
     for &t in &tasks {
         task(em, t);
     }
@@ -87,7 +89,11 @@ fn task(em: &mut Emitter, node: Node) {
     em.name(node, "name");
     em.synth("(", at);
     let mut first = true;
-    for (attr, key) in [("single", "SINGLE"), ("interval", "INTERVAL"), ("priority", "PRIORITY")] {
+    for (attr, key) in [
+        ("single", "SINGLE"),
+        ("interval", "INTERVAL"),
+        ("priority", "PRIORITY"),
+    ] {
         if node.attribute(attr).is_some() {
             if !first {
                 em.synth(",", at);

@@ -122,7 +122,8 @@ impl<'x> Emitter<'x> {
     /// Emits a line break (IL bodies are line-oriented).
     pub fn eol(&mut self, range: Range) {
         let span = self.span(range);
-        self.toks.push((span.start as usize, Tok::Eol, span.end as usize));
+        self.toks
+            .push((span.start as usize, Tok::Eol, span.end as usize));
     }
 
     /// Decodes `range` of the file and emits its tokens at their own
@@ -159,7 +160,8 @@ impl<'x> Emitter<'x> {
             }
             let (s, e) = decoded.file_range(l, r);
             let span = self.span((s, e));
-            self.toks.push((span.start as usize, tok, span.end as usize));
+            self.toks
+                .push((span.start as usize, tok, span.end as usize));
         }
     }
 
@@ -185,7 +187,10 @@ impl<'x> Emitter<'x> {
                     self.error(
                         codes::MISSING_ATTRIBUTE,
                         range,
-                        format!("attribute `{name}` of `<{}>` is empty", node.tag_name().name()),
+                        format!(
+                            "attribute `{name}` of `<{}>` is empty",
+                            node.tag_name().name()
+                        ),
                     );
                     return false;
                 }
@@ -203,10 +208,7 @@ impl<'x> Emitter<'x> {
         self.error(
             codes::MISSING_ATTRIBUTE,
             self.at(node),
-            format!(
-                "`<{}>` needs a `{name}` attribute",
-                node.tag_name().name()
-            ),
+            format!("`<{}>` needs a `{name}` attribute", node.tag_name().name()),
         );
     }
 

@@ -65,12 +65,17 @@ pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUn
         }
     };
     project(&mut em, doc.root_element());
-    let Emitter { toks, diags: found, .. } = em;
-    let had_errors = found.has_errors();
+    let Emitter {
+        toks, diags: found, ..
+    } = em;
+    // After a structural error (E8xx) the token stream would only add
+    // consequent syntax errors: the checker sees an empty unit. Lexical
+    // errors inside bodies (E0xx) do not stop the parse.
+    let structural = found
+        .iter()
+        .any(|d| d.severity == crate::diagnostics::Severity::Error && d.code.starts_with("E8"));
     diags.extend(found);
-    if had_errors {
-        // The token stream of a refused project would only add consequent
-        // syntax errors; the checker sees an empty unit.
+    if structural {
         return CompilationUnit::default();
     }
     let toks = il_lines::keep_il_lines(toks);
@@ -106,11 +111,7 @@ fn offset_of(xml: &str, pos: roxmltree::TextPos) -> usize {
     for (i, line) in xml.split_inclusive('\n').enumerate() {
         if i + 1 == pos.row as usize {
             let col = (pos.col as usize).saturating_sub(1);
-            return offset
-                + line
-                    .char_indices()
-                    .nth(col)
-                    .map_or(line.len(), |(b, _)| b);
+            return offset + line.char_indices().nth(col).map_or(line.len(), |(b, _)| b);
         }
         offset += line.len();
     }

@@ -75,14 +75,21 @@ fn network<'a, 'i>(em: &mut Emitter, sfc: Node<'a, 'i>) -> Option<Network<'a, 'i
     let mut ok = true;
     for node in elements(sfc) {
         let Some(kind) = kind_of(em, node) else {
-            ok &= matches!(node.tag_name().name(), "comment" | "documentation" | "addData");
+            ok &= matches!(
+                node.tag_name().name(),
+                "comment" | "documentation" | "addData"
+            );
             continue;
         };
         match node.attribute("localId") {
             Some(id) => {
                 if ids.insert(id.trim(), elements_.len()).is_some() {
                     let range = em.attr_range(node, "localId").unwrap_or(em.at(node));
-                    em.error(codes::DUPLICATE_ID, range, format!("localId {id} is used twice in this chart"));
+                    em.error(
+                        codes::DUPLICATE_ID,
+                        range,
+                        format!("localId {id} is used twice in this chart"),
+                    );
                     ok = false;
                 }
             }
@@ -91,11 +98,18 @@ fn network<'a, 'i>(em: &mut Emitter, sfc: Node<'a, 'i>) -> Option<Network<'a, 'i
                 ok = false;
             }
         }
-        elements_.push(Element { kind, node, inputs: Vec::new() });
+        elements_.push(Element {
+            kind,
+            node,
+            inputs: Vec::new(),
+        });
     }
     for el in &mut elements_ {
         let points = elements(el.node).filter(|c| c.tag_name().name() == "connectionPointIn");
-        for conn in points.flat_map(elements).filter(|c| c.tag_name().name() == "connection") {
+        for conn in points
+            .flat_map(elements)
+            .filter(|c| c.tag_name().name() == "connection")
+        {
             let target = conn.attribute("refLocalId").map(str::trim);
             match target.and_then(|t| ids.get(t)) {
                 Some(&i) => el.inputs.push(i),
@@ -104,7 +118,10 @@ fn network<'a, 'i>(em: &mut Emitter, sfc: Node<'a, 'i>) -> Option<Network<'a, 'i
                     em.error(
                         codes::DANGLING_REF,
                         range,
-                        format!("refLocalId `{}` names no element of this chart", target.unwrap_or("")),
+                        format!(
+                            "refLocalId `{}` names no element of this chart",
+                            target.unwrap_or("")
+                        ),
                     );
                     ok = false;
                 }
@@ -122,11 +139,19 @@ fn network<'a, 'i>(em: &mut Emitter, sfc: Node<'a, 'i>) -> Option<Network<'a, 'i
         if let Kind::Step { name, .. } = &el.kind
             && steps.insert(name.to_ascii_uppercase(), i).is_some()
         {
-            em.error(codes::SFC_STRUCTURE, em.at(el.node), format!("step `{name}` is declared twice"));
+            em.error(
+                codes::SFC_STRUCTURE,
+                em.at(el.node),
+                format!("step `{name}` is declared twice"),
+            );
             ok = false;
         }
     }
-    ok.then_some(Network { elements: elements_, outputs, steps })
+    ok.then_some(Network {
+        elements: elements_,
+        outputs,
+        steps,
+    })
 }
 
 /// The kind of a chart element; `None` (reported unless it is a comment)
@@ -142,7 +167,9 @@ fn kind_of(em: &mut Emitter, node: Node) -> Option<Kind> {
         "selectionConvergence" => Kind::SelectionConvergence,
         "simultaneousDivergence" => Kind::SimultaneousDivergence,
         "simultaneousConvergence" => Kind::SimultaneousConvergence,
-        "jumpStep" => Kind::Jump { target: em.required_name(node, "targetName")?.to_string() },
+        "jumpStep" => Kind::Jump {
+            target: em.required_name(node, "targetName")?.to_string(),
+        },
         "actionBlock" => Kind::ActionBlock,
         "comment" | "documentation" => return None,
         "addData" => {
@@ -166,7 +193,12 @@ fn kind_of(em: &mut Emitter, node: Node) -> Option<Kind> {
 }
 
 /// `<actions>`/`<transitions>` of a POU: name to element.
-fn named_bodies<'a, 'i>(em: &mut Emitter, pou: Node<'a, 'i>, list: &str, item: &str) -> Vec<(String, Node<'a, 'i>)> {
+fn named_bodies<'a, 'i>(
+    em: &mut Emitter,
+    pou: Node<'a, 'i>,
+    list: &str,
+    item: &str,
+) -> Vec<(String, Node<'a, 'i>)> {
     let mut out = Vec::new();
     for l in elements(pou).filter(|c| c.tag_name().name() == list) {
         for c in elements(l) {
@@ -196,7 +228,11 @@ fn step<'a, 'i>(
     em.synth(if initial { "INITIAL_STEP" } else { "STEP" }, at);
     em.name(node, "name");
     em.synth(":", at);
-    for block in net.elements.iter().filter(|b| b.kind == Kind::ActionBlock && b.inputs.contains(&index)) {
+    for block in net
+        .elements
+        .iter()
+        .filter(|b| b.kind == Kind::ActionBlock && b.inputs.contains(&index))
+    {
         for action in elements(block.node).filter(|a| a.tag_name().name() == "action") {
             association(em, name, action, inline_actions);
         }
@@ -218,13 +254,16 @@ fn association<'a, 'i>(
             return;
         }
     } else if let Some(inline) = child(action, "inline") {
-        let id = action.attribute("localId").unwrap_or("").trim();
-        let id: String = id.chars().filter(char::is_ascii_alphanumeric).collect();
-        let name = format!("{step}_INLINE{}{id}", inline_actions.len());
+        // Named after its step and its rank among the chart's inline actions.
+        let name = format!("{step}_INLINE{}", inline_actions.len());
         em.ident(&name, at);
         inline_actions.push((name, inline));
     } else {
-        em.error(codes::MISSING_CHILD, at, "`<action>` needs a `<reference>` or an `<inline>` body");
+        em.error(
+            codes::MISSING_CHILD,
+            at,
+            "`<action>` needs a `<reference>` or an `<inline>` body",
+        );
         return;
     }
     em.synth("(", at);
@@ -260,13 +299,23 @@ fn transition(em: &mut Emitter, net: &Network, index: usize, named: &[(String, N
         return;
     }
     if from.is_empty() || to.is_empty() {
-        let which = if from.is_empty() { "no step before it" } else { "no step after it" };
-        em.error(codes::SFC_STRUCTURE, at, format!("this transition has {which}"));
+        let which = if from.is_empty() {
+            "no step before it"
+        } else {
+            "no step after it"
+        };
+        em.error(
+            codes::SFC_STRUCTURE,
+            at,
+            format!("this transition has {which}"),
+        );
         return;
     }
     em.synth("TRANSITION", at);
     let condition = child(node, "condition");
-    if let Some(name) = condition.and_then(|c| child(c, "inline")).and_then(|i| i.attribute("name"))
+    if let Some(name) = condition
+        .and_then(|c| child(c, "inline"))
+        .and_then(|i| i.attribute("name"))
         && is_identifier(name)
     {
         em.ident(name, at);
@@ -282,7 +331,11 @@ fn transition(em: &mut Emitter, net: &Network, index: usize, named: &[(String, N
     step_set(em, &to, at);
     match condition {
         Some(c) => transition_condition(em, c, named),
-        None => em.error(codes::MISSING_CHILD, at, "`<transition>` needs a `<condition>`"),
+        None => em.error(
+            codes::MISSING_CHILD,
+            at,
+            "`<transition>` needs a `<condition>`",
+        ),
     }
     em.synth("END_TRANSITION", em.end_of(node));
 }
@@ -309,7 +362,13 @@ const MAX_BARS: usize = 64;
 
 /// The steps a transition's input comes from, through selection
 /// divergences and simultaneous convergences.
-fn preceding(em: &mut Emitter, net: &Network, i: usize, out: &mut Vec<String>, depth: usize) -> bool {
+fn preceding(
+    em: &mut Emitter,
+    net: &Network,
+    i: usize,
+    out: &mut Vec<String>,
+    depth: usize,
+) -> bool {
     let el = &net.elements[i];
     match &el.kind {
         Kind::Step { name, .. } => {
@@ -318,11 +377,16 @@ fn preceding(em: &mut Emitter, net: &Network, i: usize, out: &mut Vec<String>, d
             }
             true
         }
-        Kind::SelectionDivergence | Kind::SimultaneousConvergence if depth < MAX_BARS => {
-            el.inputs.iter().all(|&j| preceding(em, net, j, out, depth + 1))
-        }
+        Kind::SelectionDivergence | Kind::SimultaneousConvergence if depth < MAX_BARS => el
+            .inputs
+            .iter()
+            .all(|&j| preceding(em, net, j, out, depth + 1)),
         _ => {
-            wrong_link(em, el.node, "a transition must be connected from a step, a selection divergence or a simultaneous convergence");
+            wrong_link(
+                em,
+                el.node,
+                "a transition must be connected from a step, a selection divergence or a simultaneous convergence",
+            );
             false
         }
     }
@@ -330,7 +394,13 @@ fn preceding(em: &mut Emitter, net: &Network, i: usize, out: &mut Vec<String>, d
 
 /// The steps a transition leads to, through simultaneous divergences,
 /// selection convergences and jumps.
-fn following(em: &mut Emitter, net: &Network, i: usize, out: &mut Vec<String>, depth: usize) -> bool {
+fn following(
+    em: &mut Emitter,
+    net: &Network,
+    i: usize,
+    out: &mut Vec<String>,
+    depth: usize,
+) -> bool {
     let el = &net.elements[i];
     match &el.kind {
         Kind::Step { name, .. } => {
@@ -342,16 +412,27 @@ fn following(em: &mut Emitter, net: &Network, i: usize, out: &mut Vec<String>, d
         Kind::Jump { target } => match net.steps.get(&target.to_ascii_uppercase()) {
             Some(&s) => following(em, net, s, out, depth + 1),
             None => {
-                let range = em.attr_range(el.node, "targetName").unwrap_or(em.at(el.node));
-                em.error(codes::UNKNOWN_JUMP_TARGET, range, format!("jump to `{target}`, a step this chart does not have"));
+                let range = em
+                    .attr_range(el.node, "targetName")
+                    .unwrap_or(em.at(el.node));
+                em.error(
+                    codes::UNKNOWN_JUMP_TARGET,
+                    range,
+                    format!("jump to `{target}`, a step this chart does not have"),
+                );
                 false
             }
         },
-        Kind::SimultaneousDivergence | Kind::SelectionConvergence if depth < MAX_BARS => {
-            net.outputs[i].iter().all(|&j| following(em, net, j, out, depth + 1))
-        }
+        Kind::SimultaneousDivergence | Kind::SelectionConvergence if depth < MAX_BARS => net
+            .outputs[i]
+            .iter()
+            .all(|&j| following(em, net, j, out, depth + 1)),
         _ => {
-            wrong_link(em, el.node, "a transition must lead to a step, a jump, a simultaneous divergence or a selection convergence");
+            wrong_link(
+                em,
+                el.node,
+                "a transition must lead to a step, a jump, a simultaneous divergence or a selection convergence",
+            );
             false
         }
     }
@@ -359,31 +440,51 @@ fn following(em: &mut Emitter, net: &Network, i: usize, out: &mut Vec<String>, d
 
 /// Reports a connection the textual SFC cannot express.
 fn wrong_link(em: &mut Emitter, node: Node, why: &str) {
-    em.error(codes::SFC_STRUCTURE, em.at(node), format!("`<{}>` here: {why}", node.tag_name().name()));
+    em.error(
+        codes::SFC_STRUCTURE,
+        em.at(node),
+        format!("`<{}>` here: {why}", node.tag_name().name()),
+    );
 }
 
 /// `<condition>`: inline ST/IL, or a reference to a named transition.
 fn transition_condition(em: &mut Emitter, cond: Node, named: &[(String, Node)]) {
     let negated = is_true(cond.attribute("negated"));
-    let Some(kind) = elements(cond).find(|c| c.tag_name().name() != "documentation" && c.tag_name().name() != "addData") else {
+    let Some(kind) = elements(cond)
+        .find(|c| c.tag_name().name() != "documentation" && c.tag_name().name() != "addData")
+    else {
         em.error(codes::MISSING_CHILD, em.at(cond), "`<condition>` is empty");
         return;
     };
     let lang = match kind.tag_name().name() {
-        "inline" => elements(kind).find(|c| matches!(c.tag_name().name(), "ST" | "IL" | "FBD" | "LD")),
+        "inline" => {
+            elements(kind).find(|c| matches!(c.tag_name().name(), "ST" | "IL" | "FBD" | "LD"))
+        }
         "reference" => {
-            let Some(name) = em.required_name(kind, "name") else { return };
+            let Some(name) = em.required_name(kind, "name") else {
+                return;
+            };
             match named.iter().find(|(n, _)| n.eq_ignore_ascii_case(name)) {
-                Some((_, t)) => child(*t, "body").and_then(|b| elements(b).find(|c| matches!(c.tag_name().name(), "ST" | "IL" | "FBD" | "LD" | "SFC"))),
+                Some((_, t)) => child(*t, "body").and_then(|b| {
+                    elements(b)
+                        .find(|c| matches!(c.tag_name().name(), "ST" | "IL" | "FBD" | "LD" | "SFC"))
+                }),
                 None => {
                     let range = em.attr_range(kind, "name").unwrap_or(em.at(kind));
-                    em.error(codes::UNKNOWN_REFERENCE, range, format!("no transition `{name}` in this POU's `<transitions>`"));
+                    em.error(
+                        codes::UNKNOWN_REFERENCE,
+                        range,
+                        format!("no transition `{name}` in this POU's `<transitions>`"),
+                    );
                     return;
                 }
             }
         }
         "connectionPointIn" => {
-            em.refuse(kind, "a condition wired to an FBD/LD network; write it in ST or IL");
+            em.refuse(
+                kind,
+                "a condition wired to an FBD/LD network; write it in ST or IL",
+            );
             return;
         }
         _ => {
@@ -392,7 +493,11 @@ fn transition_condition(em: &mut Emitter, cond: Node, named: &[(String, Node)]) 
         }
     };
     let Some(lang) = lang else {
-        em.error(codes::MISSING_CHILD, em.at(kind), "the condition has no ST or IL body");
+        em.error(
+            codes::MISSING_CHILD,
+            em.at(kind),
+            "the condition has no ST or IL body",
+        );
         return;
     };
     match lang.tag_name().name() {
@@ -412,11 +517,21 @@ fn st_condition(em: &mut Emitter, lang: Node, negated: bool) {
     let at = em.at(lang);
     let start = em.toks.len();
     text_body(em, lang);
-    let mut body: Vec<_> = em.toks.drain(start..).filter(|t| t.1 != crate::syntax::token::Tok::Eol).collect();
-    if body.first().is_some_and(|t| t.1 == crate::syntax::token::Tok::Assign) {
+    let mut body: Vec<_> = em
+        .toks
+        .drain(start..)
+        .filter(|t| t.1 != crate::syntax::token::Tok::Eol)
+        .collect();
+    if body
+        .first()
+        .is_some_and(|t| t.1 == crate::syntax::token::Tok::Assign)
+    {
         body.remove(0);
     }
-    while body.last().is_some_and(|t| t.1 == crate::syntax::token::Tok::Semi) {
+    while body
+        .last()
+        .is_some_and(|t| t.1 == crate::syntax::token::Tok::Semi)
+    {
         body.pop();
     }
     em.synth(":=", at);
@@ -434,9 +549,15 @@ fn st_condition(em: &mut Emitter, lang: Node, negated: bool) {
 /// or an inline one.
 fn action_decl(em: &mut Emitter, name: &str, node: Node, body: Option<Node>) {
     let at = em.at(node);
-    let lang = body.and_then(|b| elements(b).find(|c| matches!(c.tag_name().name(), "ST" | "IL" | "FBD" | "LD" | "SFC")));
+    let lang = body.and_then(|b| {
+        elements(b).find(|c| matches!(c.tag_name().name(), "ST" | "IL" | "FBD" | "LD" | "SFC"))
+    });
     let Some(lang) = lang else {
-        em.error(codes::MISSING_CHILD, at, format!("action `{name}` has no ST or IL body"));
+        em.error(
+            codes::MISSING_CHILD,
+            at,
+            format!("action `{name}` has no ST or IL body"),
+        );
         return;
     };
     match lang.tag_name().name() {

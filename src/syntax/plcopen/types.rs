@@ -101,7 +101,14 @@ fn type_element(em: &mut Emitter, node: Node) {
     match name {
         _ if ELEMENTARY.contains(&name) => em.synth(name, at),
         "string" | "wstring" => {
-            em.synth(if name == "string" { "STRING" } else { "WSTRING" }, at);
+            em.synth(
+                if name == "string" {
+                    "STRING"
+                } else {
+                    "WSTRING"
+                },
+                at,
+            );
             if node.attribute("length").is_some() {
                 em.synth("[", at);
                 em.lex_attr(node, "length");

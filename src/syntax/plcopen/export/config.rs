@@ -6,7 +6,11 @@ use crate::syntax::ast::{Configuration, ProgramInstance, Resource};
 
 impl Exporter<'_> {
     /// `<configuration>` with its globals and resources.
-    pub(super) fn configuration(&self, w: &mut Writer, c: &Configuration) -> Result<(), ExportError> {
+    pub(super) fn configuration(
+        &self,
+        w: &mut Writer,
+        c: &Configuration,
+    ) -> Result<(), ExportError> {
         w.open("configuration", &[("name", &c.name.name)]);
         for r in &c.resources {
             self.resource(w, r)?;
@@ -37,8 +41,10 @@ impl Exporter<'_> {
                 // TC6 requires a priority; 0 is what IEC assumes without one.
                 attrs.push(("priority".into(), "0".into()));
             }
-            let borrowed: Vec<(&str, &str)> =
-                attrs.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
+            let borrowed: Vec<(&str, &str)> = attrs
+                .iter()
+                .map(|(k, v)| (k.as_str(), v.as_str()))
+                .collect();
             w.open("task", &borrowed);
             for p in r.programs.iter().filter(|p| task_is(p, &t.name.name)) {
                 self.pou_instance(w, p)?;
@@ -51,8 +57,19 @@ impl Exporter<'_> {
         for p in &r.programs {
             match &p.task {
                 None => self.pou_instance(w, p)?,
-                Some(t) if !r.tasks.iter().any(|d| d.name.name.eq_ignore_ascii_case(&t.name)) => {
-                    return Err(self.refuse(format!("a program instance WITH `{}`, a task of no resource", t.name), t.span));
+                Some(t)
+                    if !r
+                        .tasks
+                        .iter()
+                        .any(|d| d.name.name.eq_ignore_ascii_case(&t.name)) =>
+                {
+                    return Err(self.refuse(
+                        format!(
+                            "a program instance WITH `{}`, a task of no resource",
+                            t.name
+                        ),
+                        t.span,
+                    ));
                 }
                 Some(_) => {}
             }
@@ -76,5 +93,7 @@ impl Exporter<'_> {
 
 /// True when `p` runs in the task named `task`.
 fn task_is(p: &ProgramInstance, task: &str) -> bool {
-    p.task.as_ref().is_some_and(|t| t.name.eq_ignore_ascii_case(task))
+    p.task
+        .as_ref()
+        .is_some_and(|t| t.name.eq_ignore_ascii_case(task))
 }

@@ -42,7 +42,10 @@ impl fmt::Display for ExportError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ExportError::NotTextual { file } => {
-                write!(f, "`{file}` is PLCopen XML already; export writes IL, ST and SFC sources")
+                write!(
+                    f,
+                    "`{file}` is PLCopen XML already; export writes IL, ST and SFC sources"
+                )
             }
             ExportError::Syntax { rendered } => {
                 write!(f, "the sources have syntax errors:\n{rendered}")
@@ -77,7 +80,11 @@ pub fn export_plcopen(sources: &SourceMap) -> Result<String, ExportError> {
                 file: file.name.clone(),
             });
         }
-        units.push(crate::syntax::parse(FileId(i as u32), &file.text, &mut diags));
+        units.push(crate::syntax::parse(
+            FileId(i as u32),
+            &file.text,
+            &mut diags,
+        ));
     }
     if diags.has_errors() {
         return Err(ExportError::Syntax {
@@ -96,7 +103,8 @@ impl Exporter<'_> {
     /// The source text of `span`.
     fn text(&self, span: Span) -> &str {
         let text = &self.sources.file(span.file).text;
-        text.get(span.start as usize..span.end as usize).unwrap_or("")
+        text.get(span.start as usize..span.end as usize)
+            .unwrap_or("")
     }
 
     /// An [`ExportError::Unrepresentable`] at `span`.
@@ -137,7 +145,9 @@ impl Exporter<'_> {
                     }
                 }
                 Item::Globals(block) => {
-                    return Err(self.refuse("a VAR_GLOBAL list outside a CONFIGURATION", block.span));
+                    return Err(
+                        self.refuse("a VAR_GLOBAL list outside a CONFIGURATION", block.span)
+                    );
                 }
                 _ => {}
             }
@@ -185,7 +195,11 @@ impl Exporter<'_> {
         match &pou.body {
             Body::Sfc(elements) => self.sfc_pou(w, pou, elements)?,
             Body::St(_) | Body::Il(_) => {
-                let lang = if matches!(pou.body, Body::Il(_)) { "IL" } else { "ST" };
+                let lang = if matches!(pou.body, Body::Il(_)) {
+                    "IL"
+                } else {
+                    "ST"
+                };
                 w.open("body", &[]);
                 w.text_body(lang, &self.pou_body_text(pou)?);
                 w.close("body");
@@ -266,7 +280,10 @@ fn header(w: &mut Writer, name: &str) {
     );
     w.open(
         "contentHeader",
-        &[("name", name), ("modificationDateTime", "1970-01-01T00:00:00")],
+        &[
+            ("name", name),
+            ("modificationDateTime", "1970-01-01T00:00:00"),
+        ],
     );
     w.open("coordinateInfo", &[]);
     for lang in ["fbd", "ld", "sfc"] {

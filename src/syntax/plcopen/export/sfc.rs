@@ -39,15 +39,36 @@ struct Chart<'a> {
 impl Exporter<'_> {
     /// A POU whose body is a chart: `<actions>`, then the `<SFC>` body,
     /// then plcrun's plain statements in `<addData>`.
-    pub(super) fn sfc_pou(&self, w: &mut Writer, pou: &Pou, elements: &[SfcElement]) -> Result<(), ExportError> {
-        let actions: Vec<&Action> = elements.iter().filter_map(|e| match e { SfcElement::Action(a) => Some(a), _ => None }).collect();
-        let statements: Vec<&Stmt> = elements.iter().filter_map(|e| match e { SfcElement::Statement(s) => Some(s), _ => None }).collect();
+    pub(super) fn sfc_pou(
+        &self,
+        w: &mut Writer,
+        pou: &Pou,
+        elements: &[SfcElement],
+    ) -> Result<(), ExportError> {
+        let actions: Vec<&Action> = elements
+            .iter()
+            .filter_map(|e| match e {
+                SfcElement::Action(a) => Some(a),
+                _ => None,
+            })
+            .collect();
+        let statements: Vec<&Stmt> = elements
+            .iter()
+            .filter_map(|e| match e {
+                SfcElement::Statement(s) => Some(s),
+                _ => None,
+            })
+            .collect();
         if !actions.is_empty() {
             w.open("actions", &[]);
             for a in &actions {
                 w.open("action", &[("name", &a.name.name)]);
                 w.open("body", &[]);
-                let lang = if matches!(a.body, Body::Il(_)) { "IL" } else { "ST" };
+                let lang = if matches!(a.body, Body::Il(_)) {
+                    "IL"
+                } else {
+                    "ST"
+                };
                 w.text_body(lang, &self.action_text(a)?);
                 w.close("body");
                 w.close("action");
@@ -71,11 +92,21 @@ impl Exporter<'_> {
                 .iter()
                 .map(|s| {
                     let t = self.text(s.span).trim();
-                    if t.ends_with(';') { t.to_string() } else { format!("{t};") }
+                    if t.ends_with(';') {
+                        t.to_string()
+                    } else {
+                        format!("{t};")
+                    }
                 })
                 .collect();
             w.open("addData", &[]);
-            w.open("data", &[("name", SFC_STATEMENTS_DATA), ("handleUnknown", "implementation")]);
+            w.open(
+                "data",
+                &[
+                    ("name", SFC_STATEMENTS_DATA),
+                    ("handleUnknown", "implementation"),
+                ],
+            );
             w.text_body("ST", &format!("{}\n", text.join("\n")));
             w.close("data");
             w.close("addData");
@@ -86,13 +117,33 @@ impl Exporter<'_> {
 
     /// The steps and transitions, with the transitions' steps resolved.
     fn chart<'a>(&self, pou: &Pou, elements: &'a [SfcElement]) -> Result<Chart<'a>, ExportError> {
-        let steps: Vec<&Step> = elements.iter().filter_map(|e| match e { SfcElement::Step(s) => Some(s), _ => None }).collect();
-        let transitions: Vec<&Transition> = elements.iter().filter_map(|e| match e { SfcElement::Transition(t) => Some(t), _ => None }).collect();
+        let steps: Vec<&Step> = elements
+            .iter()
+            .filter_map(|e| match e {
+                SfcElement::Step(s) => Some(s),
+                _ => None,
+            })
+            .collect();
+        let transitions: Vec<&Transition> = elements
+            .iter()
+            .filter_map(|e| match e {
+                SfcElement::Transition(t) => Some(t),
+                _ => None,
+            })
+            .collect();
         let find = |name: &crate::syntax::ast::Ident| {
             steps
                 .iter()
                 .position(|s| s.name.name.eq_ignore_ascii_case(&name.name))
-                .ok_or_else(|| self.refuse(format!("a transition from or to `{}`, which is not a step", name.name), name.span))
+                .ok_or_else(|| {
+                    self.refuse(
+                        format!(
+                            "a transition from or to `{}`, which is not a step",
+                            name.name
+                        ),
+                        name.span,
+                    )
+                })
         };
         let mut from = Vec::new();
         let mut to = Vec::new();
@@ -113,27 +164,56 @@ impl Exporter<'_> {
                 ins[s].push(t);
             }
         }
-        Ok(Chart { steps, transitions, from, to, outs, ins })
+        Ok(Chart {
+            steps,
+            transitions,
+            from,
+            to,
+            outs,
+            ins,
+        })
     }
 
     /// The text of an action's body: after `ACTION name :`, before `END_ACTION`.
     fn action_text(&self, a: &Action) -> Result<String, ExportError> {
         let whole = self.text(a.span);
         let after_name = (a.name.span.end - a.span.start) as usize;
-        let colon = whole.get(after_name..).and_then(|t| t.find(':')).map(|c| after_name + c + 1);
+        let colon = whole
+            .get(after_name..)
+            .and_then(|t| t.find(':'))
+            .map(|c| after_name + c + 1);
         let cut = whole.len().checked_sub("END_ACTION".len());
         match (colon, cut) {
-            (Some(c), Some(e)) if c <= e && whole.is_char_boundary(e) && whole[e..].eq_ignore_ascii_case("END_ACTION") => {
+            (Some(c), Some(e))
+                if c <= e
+                    && whole.is_char_boundary(e)
+                    && whole[e..].eq_ignore_ascii_case("END_ACTION") =>
+            {
                 Ok(trim_body(&whole[c..e]))
             }
-            _ => Err(self.refuse("an ACTION not written `ACTION name : ... END_ACTION`", a.span)),
+            _ => Err(self.refuse(
+                "an ACTION not written `ACTION name : ... END_ACTION`",
+                a.span,
+            )),
         }
     }
 
     /// `<step>` and its `<actionBlock>`.
-    fn write_step(&self, w: &mut Writer, chart: &Chart, ids: &Ids, s: usize, step: &Step) -> Result<(), ExportError> {
+    fn write_step(
+        &self,
+        w: &mut Writer,
+        chart: &Chart,
+        ids: &Ids,
+        s: usize,
+        step: &Step,
+    ) -> Result<(), ExportError> {
         let id = ids.step[s].to_string();
-        let mut attrs = vec![("localId", id.as_str()), ("name", step.name.name.as_str()), ("height", "40"), ("width", "60")];
+        let mut attrs = vec![
+            ("localId", id.as_str()),
+            ("name", step.name.name.as_str()),
+            ("height", "40"),
+            ("width", "60"),
+        ];
         if step.initial {
             attrs.push(("initialStep", "true"));
         }
@@ -141,7 +221,10 @@ impl Exporter<'_> {
         position(w, ids.step[s], 0);
         let sources: Vec<usize> = match ids.sel_conv[s] {
             Some(c) => vec![c],
-            None => chart.ins[s].iter().map(|&t| ids.sim_div[t].unwrap_or(ids.transition[t])).collect(),
+            None => chart.ins[s]
+                .iter()
+                .map(|&t| ids.sim_div[t].unwrap_or(ids.transition[t]))
+                .collect(),
         };
         connection_in(w, &sources);
         w.empty("connectionPointOut", &[("formalParameter", "")]);
@@ -156,14 +239,25 @@ impl Exporter<'_> {
     }
 
     /// `<actionBlock>` of a step: one `<action>` per association.
-    fn write_block(&self, w: &mut Writer, id: usize, step_id: usize, step: &Step) -> Result<(), ExportError> {
+    fn write_block(
+        &self,
+        w: &mut Writer,
+        id: usize,
+        step_id: usize,
+        step: &Step,
+    ) -> Result<(), ExportError> {
         let id_text = id.to_string();
-        w.open("actionBlock", &[("localId", &id_text), ("height", "30"), ("width", "120")]);
+        w.open(
+            "actionBlock",
+            &[("localId", &id_text), ("height", "30"), ("width", "120")],
+        );
         position(w, id, 1);
         connection_in(w, &[step_id]);
         for assoc in &step.actions {
             if assoc.indicators.len() > 1 {
-                return Err(self.refuse("an action association with several indicators", assoc.span));
+                return Err(
+                    self.refuse("an action association with several indicators", assoc.span)
+                );
             }
             let qualifier = assoc.qualifier.as_ref().map_or("N", |q| q.name.as_str());
             let mut attrs = vec![("localId", "0"), ("qualifier", qualifier)];
@@ -183,7 +277,14 @@ impl Exporter<'_> {
     }
 
     /// `<transition>` with its condition.
-    fn write_transition(&self, w: &mut Writer, chart: &Chart, ids: &Ids, t: usize, tr: &Transition) -> Result<(), ExportError> {
+    fn write_transition(
+        &self,
+        w: &mut Writer,
+        chart: &Chart,
+        ids: &Ids,
+        t: usize,
+        tr: &Transition,
+    ) -> Result<(), ExportError> {
         let id = ids.transition[t].to_string();
         let mut attrs = vec![("localId", id.as_str()), ("height", "2"), ("width", "20")];
         if let Some(p) = &tr.priority {
@@ -233,22 +334,51 @@ fn numbering(chart: &Chart) -> Ids {
     };
     let step: Vec<usize> = (0..n_steps).map(|_| take()).collect();
     let transition: Vec<usize> = (0..n_tr).map(|_| take()).collect();
-    let sel_div = (0..n_steps).map(|s| (chart.outs[s].len() > 1).then(&mut take)).collect();
-    let sel_conv = (0..n_steps).map(|s| (chart.ins[s].len() > 1).then(&mut take)).collect();
-    let sim_conv = (0..n_tr).map(|t| (chart.from[t].len() > 1).then(&mut take)).collect();
-    let sim_div = (0..n_tr).map(|t| (chart.to[t].len() > 1).then(&mut take)).collect();
-    let block = chart.steps.iter().map(|s| (!s.actions.is_empty()).then(&mut take)).collect();
-    Ids { step, transition, sel_div, sel_conv, sim_conv, sim_div, block }
+    let sel_div = (0..n_steps)
+        .map(|s| (chart.outs[s].len() > 1).then(&mut take))
+        .collect();
+    let sel_conv = (0..n_steps)
+        .map(|s| (chart.ins[s].len() > 1).then(&mut take))
+        .collect();
+    let sim_conv = (0..n_tr)
+        .map(|t| (chart.from[t].len() > 1).then(&mut take))
+        .collect();
+    let sim_div = (0..n_tr)
+        .map(|t| (chart.to[t].len() > 1).then(&mut take))
+        .collect();
+    let block = chart
+        .steps
+        .iter()
+        .map(|s| (!s.actions.is_empty()).then(&mut take))
+        .collect();
+    Ids {
+        step,
+        transition,
+        sel_div,
+        sel_conv,
+        sim_conv,
+        sim_div,
+        block,
+    }
 }
 
 /// The divergences and convergences.
 fn write_bars(w: &mut Writer, chart: &Chart, ids: &Ids) {
     for s in 0..chart.steps.len() {
         if let Some(id) = ids.sel_div[s] {
-            bar(w, "selectionDivergence", id, &[ids.step[s]], chart.outs[s].len());
+            bar(
+                w,
+                "selectionDivergence",
+                id,
+                &[ids.step[s]],
+                chart.outs[s].len(),
+            );
         }
         if let Some(id) = ids.sel_conv[s] {
-            let sources: Vec<usize> = chart.ins[s].iter().map(|&t| ids.sim_div[t].unwrap_or(ids.transition[t])).collect();
+            let sources: Vec<usize> = chart.ins[s]
+                .iter()
+                .map(|&t| ids.sim_div[t].unwrap_or(ids.transition[t]))
+                .collect();
             bar(w, "selectionConvergence", id, &sources, 1);
         }
     }
@@ -258,7 +388,13 @@ fn write_bars(w: &mut Writer, chart: &Chart, ids: &Ids) {
             bar(w, "simultaneousConvergence", id, &sources, 1);
         }
         if let Some(id) = ids.sim_div[t] {
-            bar(w, "simultaneousDivergence", id, &[ids.transition[t]], chart.to[t].len());
+            bar(
+                w,
+                "simultaneousDivergence",
+                id,
+                &[ids.transition[t]],
+                chart.to[t].len(),
+            );
         }
     }
 }
@@ -267,7 +403,10 @@ fn write_bars(w: &mut Writer, chart: &Chart, ids: &Ids) {
 /// `outs` connection points out.
 fn bar(w: &mut Writer, kind: &str, id: usize, sources: &[usize], outs: usize) {
     let id_text = id.to_string();
-    w.open(kind, &[("localId", &id_text), ("height", "1"), ("width", "100")]);
+    w.open(
+        kind,
+        &[("localId", &id_text), ("height", "1"), ("width", "100")],
+    );
     position(w, id, 2);
     let converges = kind.ends_with("Convergence");
     if converges {

@@ -80,7 +80,11 @@ impl Exporter<'_> {
             }
             TypeSpec::Subrange { base, lo, hi, .. } => {
                 let unsigned = base.name.to_ascii_uppercase().starts_with('U');
-                let el = if unsigned { "subrangeUnsigned" } else { "subrangeSigned" };
+                let el = if unsigned {
+                    "subrangeUnsigned"
+                } else {
+                    "subrangeSigned"
+                };
                 w.open(el, &[]);
                 w.empty(
                     "range",
@@ -157,7 +161,9 @@ impl Exporter<'_> {
                 w.open("arrayValue", &[]);
                 for el in elems {
                     let Some(value) = &el.value else {
-                        return Err(self.refuse("an array initializer `n()` (default values)", el.span));
+                        return Err(
+                            self.refuse("an array initializer `n()` (default values)", el.span)
+                        );
                     };
                     match &el.repeat {
                         Some(n) => w.open("value", &[("repetitionValue", self.text(n.span))]),
