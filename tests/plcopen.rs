@@ -58,7 +58,11 @@ fn generated_stimulus(files: &[(&str, String)]) -> Option<String> {
                 state ^= state << 13;
                 state ^= state >> 17;
                 state ^= state << 5;
-                if state % 3 == 0 { "TRUE" } else { "FALSE" }
+                if state.is_multiple_of(3) {
+                    "TRUE"
+                } else {
+                    "FALSE"
+                }
             })
             .collect();
         csv.push_str(&format!("{},{}\n", row * 5, cells.join(",")));
@@ -428,9 +432,9 @@ fn errors_in_bodies_point_at_their_characters_in_the_file() {
     let (_, at, message) = only_error(&text);
     assert_eq!(at, location_of("t.xml", &text, "zz;", 0), "{message}");
     // A syntax error in CDATA, and a bad literal in an attribute value.
-    let text = project(&format!(
-        "<pou name=\"P\" pouType=\"program\"><interface><localVars><variable name=\"t\"><type><TIME/></type><initialValue><simpleValue value=\"T#5q\"/></initialValue></variable></localVars></interface><body><ST><xhtml:p><![CDATA[\nt := t;\nIF THEN\n]]></xhtml:p></ST></body></pou>"
-    ));
+    let text = project(
+        "<pou name=\"P\" pouType=\"program\"><interface><localVars><variable name=\"t\"><type><TIME/></type><initialValue><simpleValue value=\"T#5q\"/></initialValue></variable></localVars></interface><body><ST><xhtml:p><![CDATA[\nt := t;\nIF THEN\n]]></xhtml:p></ST></body></pou>",
+    );
     let found = diagnostics("t.xml", &text);
     let at = |code: &str| found.iter().find(|d| d.0 == code).map(|d| d.1.clone());
     assert_eq!(
