@@ -510,3 +510,42 @@ fn recognised_by_content_and_never_panics_on_truncated_input() {
         }
     }
 }
+
+#[test]
+fn hostile_networks_and_nesting_end_quickly_with_an_error() {
+    // A chain of 60 selection convergences, each connected twice to the
+    // previous one: followed naively, 2^60 paths.
+    let mut bars = String::new();
+    for k in 0..60 {
+        let prev = if k == 0 { 2 } else { 100 + k - 1 };
+        bars.push_str(&format!(
+            "<selectionConvergence localId=\"{}\"><connectionPointIn><connection refLocalId=\"{prev}\"/></connectionPointIn><connectionPointIn><connection refLocalId=\"{prev}\"/></connectionPointIn></selectionConvergence>",
+            100 + k
+        ));
+    }
+    let text = project(&format!(
+        "<pou name=\"P\" pouType=\"program\">{OUT_Q}<body><SFC><step localId=\"1\" name=\"S0\" initialStep=\"true\"/><transition localId=\"2\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn><condition><inline name=\"\"><ST><xhtml:p>q</xhtml:p></ST></inline></condition></transition>{bars}<step localId=\"3\" name=\"S1\"><connectionPointIn><connection refLocalId=\"159\"/></connectionPointIn></step></SFC></body></pou>"
+    ));
+    let started = std::time::Instant::now();
+    let found = diagnostics("t.xml", &text);
+    assert!(
+        started.elapsed().as_secs() < 5,
+        "took {:?}",
+        started.elapsed()
+    );
+    assert!(found.iter().all(|d| !d.0.starts_with('E')), "{found:#?}");
+    // Types nested 5000 deep are refused, not a stack overflow.
+    let deep = format!(
+        "{}<BOOL/>{}",
+        "<array><dimension lower=\"0\" upper=\"1\"/><baseType>".repeat(5000),
+        "</baseType></array>".repeat(5000)
+    );
+    let text = project(&format!(
+        "<pou name=\"P\" pouType=\"program\"><interface><localVars><variable name=\"v\"><type>{deep}</type></variable></localVars></interface><body><ST><xhtml:p>;</xhtml:p></ST></body></pou>"
+    ));
+    let found = diagnostics("t.xml", &text);
+    assert!(
+        found.iter().any(|d| d.0 == "E807" || d.0 == "E801"),
+        "{found:#?}"
+    );
+}

@@ -240,6 +240,21 @@ impl<'x> Emitter<'x> {
     }
 }
 
+/// Deepest element nesting the importer follows (types in types, values in
+/// values): deeper input is refused instead of exhausting the stack.
+const MAX_DEPTH: usize = 200;
+
+impl Emitter<'_> {
+    /// Reports (and returns true) when `node` is nested too deeply to follow.
+    pub fn too_deep(&mut self, node: Node) -> bool {
+        if node.ancestors().nth(MAX_DEPTH).is_none() {
+            return false;
+        }
+        self.refuse(node, "nested too deeply");
+        true
+    }
+}
+
 /// True for `[A-Za-z_][A-Za-z0-9_]*`.
 pub fn is_identifier(s: &str) -> bool {
     let mut chars = s.chars();

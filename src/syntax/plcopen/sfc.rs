@@ -289,11 +289,13 @@ fn transition(em: &mut Emitter, net: &Network, index: usize, named: &[(String, N
     let mut from = Vec::new();
     let mut to = Vec::new();
     let mut ok = true;
+    let mut seen = vec![false; net.elements.len()];
     for &i in &net.elements[index].inputs {
-        ok &= preceding(em, net, i, &mut from, 0);
+        ok &= preceding(em, net, i, &mut from, &mut seen);
     }
+    let mut seen = vec![false; net.elements.len()];
     for &i in &net.outputs[index] {
-        ok &= following(em, net, i, &mut to, 0);
+        ok &= following(em, net, i, &mut to, &mut seen);
     }
     if !ok {
         return;
@@ -356,10 +358,6 @@ fn step_set(em: &mut Emitter, names: &[String], at: (usize, usize)) {
     }
 }
 
-/// Longest chain of divergences and convergences followed between a step
-/// and a transition (a cycle of bars is reported, not followed forever).
-const MAX_BARS: usize = 64;
-
 /// The steps a transition's input comes from, through selection
 /// divergences and simultaneous convergences.
 fn preceding(
@@ -367,8 +365,13 @@ fn preceding(
     net: &Network,
     i: usize,
     out: &mut Vec<String>,
-    depth: usize,
+    seen: &mut [bool],
 ) -> bool {
+    // Each element is visited once per transition, so a cycle of bars or a
+    // dense mesh of them ends, in linear time.
+    if std::mem::replace(&mut seen[i], true) {
+        return true;
+    }
     let el = &net.elements[i];
     match &el.kind {
         Kind::Step { name, .. } => {
@@ -377,10 +380,9 @@ fn preceding(
             }
             true
         }
-        Kind::SelectionDivergence | Kind::SimultaneousConvergence if depth < MAX_BARS => el
-            .inputs
-            .iter()
-            .all(|&j| preceding(em, net, j, out, depth + 1)),
+        Kind::SelectionDivergence | Kind::SimultaneousConvergence => {
+            el.inputs.iter().all(|&j| preceding(em, net, j, out, seen))
+        }
         _ => {
             wrong_link(
                 em,
@@ -399,8 +401,13 @@ fn following(
     net: &Network,
     i: usize,
     out: &mut Vec<String>,
-    depth: usize,
+    seen: &mut [bool],
 ) -> bool {
+    // Each element is visited once per transition, so a cycle of bars or a
+    // dense mesh of them ends, in linear time.
+    if std::mem::replace(&mut seen[i], true) {
+        return true;
+    }
     let el = &net.elements[i];
     match &el.kind {
         Kind::Step { name, .. } => {
@@ -410,7 +417,7 @@ fn following(
             true
         }
         Kind::Jump { target } => match net.steps.get(&target.to_ascii_uppercase()) {
-            Some(&s) => following(em, net, s, out, depth + 1),
+            Some(&s) => following(em, net, s, out, seen),
             None => {
                 let range = em
                     .attr_range(el.node, "targetName")
@@ -423,10 +430,9 @@ fn following(
                 false
             }
         },
-        Kind::SimultaneousDivergence | Kind::SelectionConvergence if depth < MAX_BARS => net
-            .outputs[i]
+        Kind::SimultaneousDivergence | Kind::SelectionConvergence => net.outputs[i]
             .iter()
-            .all(|&j| following(em, net, j, out, depth + 1)),
+            .all(|&j| following(em, net, j, out, seen)),
         _ => {
             wrong_link(
                 em,

@@ -96,6 +96,9 @@ pub fn type_of(em: &mut Emitter, wrapper: Node) {
 /// One type element: elementary, `string`, `array`, `derived`, `enum`,
 /// `struct`, `subrangeSigned`/`subrangeUnsigned`.
 fn type_element(em: &mut Emitter, node: Node) {
+    if em.too_deep(node) {
+        return;
+    }
     let at = em.at(node);
     let name = node.tag_name().name();
     match name {
@@ -234,6 +237,9 @@ fn subrange(em: &mut Emitter, node: Node) {
 /// `<initialValue>` (or a `<value>` inside an array or struct value):
 /// `simpleValue`, `arrayValue` or `structValue`.
 pub fn initial_value(em: &mut Emitter, node: Node) {
+    if em.too_deep(node) {
+        return;
+    }
     let mut found = false;
     for c in elements(node) {
         match c.tag_name().name() {
