@@ -96,7 +96,13 @@ mod tests {
     #[test]
     fn escapes_and_splits_cdata() {
         let mut w = Writer::new();
-        w.open("a", &[("v", "x<\"&")]);
+        w.open(
+            "a",
+            &[
+                ("v", "x<\"&"),
+                ("xmlns:xhtml", "http://www.w3.org/1999/xhtml"),
+            ],
+        );
         w.text_body("ST", "a]]>b");
         w.close("a");
         let doc = w.finish();
