@@ -549,3 +549,38 @@ fn hostile_networks_and_nesting_end_quickly_with_an_error() {
         "{found:#?}"
     );
 }
+
+#[test]
+fn other_body_shapes_and_the_2_0_namespace_read_like_text() {
+    // Bodies in an `<xhtml xmlns=...>` element, a named ST transition
+    // written `:= expr;`, a negated inline condition, the tc6_0200
+    // namespace.
+    let xml = "<?xml version=\"1.0\"?>\n<project xmlns=\"http://www.plcopen.org/xml/tc6_0200\">\n<fileHeader companyName=\"x\" productName=\"x\" productVersion=\"1\" creationDateTime=\"2026-01-01T00:00:00\"/>\n<contentHeader name=\"x\"/>\n<types><dataTypes/><pous>\n<pou name=\"P\" pouType=\"program\">\n<interface><inputVars><variable name=\"go\"><type><BOOL/></type></variable></inputVars><outputVars><variable name=\"n\"><type><INT/></type></variable></outputVars></interface>\n<actions><action name=\"Inc\"><body><ST><xhtml xmlns=\"http://www.w3.org/1999/xhtml\">n := n + 1;</xhtml></ST></body></action></actions>\n<transitions><transition name=\"Go\"><body><ST><xhtml xmlns=\"http://www.w3.org/1999/xhtml\">:= go AND n &lt; 5;</xhtml></ST></body></transition></transitions>\n<body><SFC>\n<step localId=\"1\" name=\"A\" initialStep=\"true\"><connectionPointIn><connection refLocalId=\"4\"/></connectionPointIn></step>\n<transition localId=\"2\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn><condition><reference name=\"Go\"/></condition></transition>\n<step localId=\"3\" name=\"B\"><connectionPointIn><connection refLocalId=\"2\"/></connectionPointIn></step>\n<actionBlock localId=\"5\"><connectionPointIn><connection refLocalId=\"3\"/></connectionPointIn><action localId=\"0\" qualifier=\"P1\"><reference name=\"Inc\"/></action></actionBlock>\n<transition localId=\"4\"><connectionPointIn><connection refLocalId=\"3\"/></connectionPointIn><condition negated=\"true\"><inline name=\"\"><ST><xhtml xmlns=\"http://www.w3.org/1999/xhtml\">go</xhtml></ST></inline></condition></transition>\n</SFC></body></pou>\n</pous></types><instances><configurations/></instances></project>\n";
+    let twin = "PROGRAM P\nVAR_INPUT go : BOOL; END_VAR\nVAR_OUTPUT n : INT; END_VAR\nINITIAL_STEP A : END_STEP\nSTEP B : Inc(P1); END_STEP\nTRANSITION FROM A TO B := go AND n < 5; END_TRANSITION\nTRANSITION FROM B TO A := NOT (go); END_TRANSITION\nACTION Inc : n := n + 1; END_ACTION\nEND_PROGRAM\n";
+    assert!(
+        diagnostics("t.xml", xml).is_empty(),
+        "{:#?}",
+        diagnostics("t.xml", xml)
+    );
+    let stimulus = "cycle,go\n0,FALSE\n2,TRUE\n4,FALSE\n6,TRUE\n7,FALSE\n9,TRUE\n10,FALSE\n12,TRUE\n13,FALSE\n15,TRUE\n16,FALSE\n18,TRUE\n";
+    let request = TraceRequest {
+        cycles: 25,
+        stimulus: Some(stimulus),
+        ..TraceRequest::default()
+    };
+    let from_xml = full_trace(&[("t.xml", xml.to_string())], &request);
+    assert_same(
+        &from_xml,
+        &full_trace(&[("t.st", twin.to_string())], &request),
+        "2.0",
+    );
+    assert!(
+        from_xml.lines().any(|l| l.contains(",5,")),
+        "n reaches 5:\n{from_xml}"
+    );
+    // Any other namespace is read, with a warning.
+    let other = xml.replace("tc6_0200", "tc6_9999");
+    let found = diagnostics("t.xml", &other);
+    assert_eq!(found.len(), 1, "{found:#?}");
+    assert_eq!(found[0].0, "W801");
+}
