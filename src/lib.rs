@@ -96,6 +96,7 @@ pub use runtime::var_error::{PathProblem, ReadOnlyReason, ValueProblem, VarError
 pub use runtime::variables::{ChartState, Direction, VarInfo, VarShape};
 pub use runtime::watchdog::{UnknownTask, WatchdogTrip};
 pub use source::{FileId, SourceFile, SourceMap, Span};
+pub use syntax::plcopen::export::{ExportError, export_plcopen};
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind, HostFailure, UnstableCycle};
 

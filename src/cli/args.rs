@@ -40,6 +40,8 @@ pub enum Command {
     /// Run two programs side by side and compare their outputs
     /// (`plcrun compare A_FILES... -- B_FILES... --cycles N`).
     Compare(Box<super::compare::CompareArgs>),
+    /// Write textual sources (IL, ST, SFC) in another format (PLCopen XML).
+    Export(ExportArgs),
 }
 
 /// `plcrun draw FILES... [--program P] [-o OUT.svg]`.
@@ -164,6 +166,20 @@ pub struct CheckArgs {
     /// Check charts for IEC 60848 GRAFCET evolution (forcing orders allowed).
     #[arg(long)]
     pub grafcet: bool,
+}
+
+/// `plcrun export --plcopen FILES... [-o OUT.xml]`.
+#[derive(Debug, Args)]
+pub struct ExportArgs {
+    /// Source files (IL, ST, SFC).
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Write PLCopen TC6 XML 2.01 (the only export format, required).
+    #[arg(long, required = true)]
+    pub plcopen: bool,
+    /// Write to FILE instead of standard output.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
 }
 
 /// How `--stats` prints the statistics.

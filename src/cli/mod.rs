@@ -4,6 +4,7 @@
 mod args;
 mod draw;
 mod compare;
+mod export;
 mod online;
 mod reload;
 mod retain;
@@ -28,6 +29,7 @@ pub fn main() -> i32 {
             Some(args::Command::Compare(a)) => compare::compare(&a),
             Some(args::Command::Run(a)) => run::run(&a),
             Some(args::Command::Draw(a)) => draw::draw(&a),
+            Some(args::Command::Export(a)) => export::export(&a),
             None => run::run(&cli.run),
         },
         Err(e) => usage(e),

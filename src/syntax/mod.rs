@@ -11,6 +11,7 @@ pub mod lexer;
 pub mod literal;
 pub mod parser;
 pub mod s7;
+pub mod plcopen;
 pub mod token;
 
 use crate::diagnostics::{Diagnostics, Severity};
@@ -20,6 +21,9 @@ use token::Tok;
 
 /// Parses one file. Never panics, on any input. Reports every syntax error it can (recover, don't stop at the first).
 pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> ast::CompilationUnit {
+    if plcopen::is_plcopen(text) {
+        return plcopen::parse(file, text, diags);
+    }
     let tokens = lexer::lex(file, text, diags);
     let tokens = il_lines::keep_il_lines(tokens);
     parser::parse_tokens(construct::State::new(file, text), tokens, diags)

@@ -1,0 +1,65 @@
+//! The PLCopen commands of the binary: `plcrun FILE.xml`, `plcrun check
+//! FILE.xml` and `plcrun export --plcopen`, end to end.
+
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::{plcrun, plcrun_ok, temp_file};
+
+#[test]
+fn an_xml_project_runs_and_checks_like_a_textual_file() {
+    let args = [
+        "tests/plcopen/chariot.xml",
+        "--cycles",
+        "60320",
+        "--stimulus",
+        "programs/chariot.csv",
+        "--trace",
+        "Dcy,FcA,FcB,INIT.X,AV.X,ATT.X,AR.X,KMAV,KMAR,VOM",
+        "--changes-only",
+    ];
+    let expected = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/chariot.expected.csv"),
+    )
+    .expect("expected trace");
+    assert_eq!(plcrun_ok(&args), expected);
+    let (code, _, err) = plcrun(&["check", "tests/plcopen/openplc_project.xml"]);
+    assert_eq!((code, err.as_str()), (0, "ok: 1 file checked\n"));
+}
+
+#[test]
+fn export_writes_a_project_that_runs_identically() {
+    let out = temp_file("chariot.xml", "");
+    plcrun_ok(&["export", "--plcopen", "programs/chariot.sfc", "-o", &out]);
+    let written = std::fs::read_to_string(&out).expect("the export was written");
+    assert!(written.starts_with("<?xml"));
+    let run = |file: &str| {
+        plcrun_ok(&[
+            file,
+            "--cycles",
+            "3000",
+            "--stimulus",
+            "programs/chariot.csv",
+            "--changes-only",
+        ])
+    };
+    assert_eq!(run(&out), run("programs/chariot.sfc"));
+    let stdout = plcrun_ok(&["export", "--plcopen", "programs/chariot.sfc"]);
+    assert_eq!(stdout, written);
+}
+
+#[test]
+fn refusals_and_usage_errors_have_their_exit_statuses() {
+    let fbd = temp_file(
+        "fbd.xml",
+        "<?xml version=\"1.0\"?>\n<project xmlns=\"http://www.plcopen.org/xml/tc6_0201\">\n<types><dataTypes/><pous>\n<pou name=\"P\" pouType=\"program\"><body>\n<FBD/>\n</body></pou>\n</pous></types><instances><configurations/></instances></project>\n",
+    );
+    let (code, _, err) = plcrun(&["check", &fbd]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("E804") && err.contains("fbd.xml:5:1"), "{err}");
+    let (code, _, err) = plcrun(&["export", "programs/chariot.sfc"]);
+    assert_eq!(code, 2, "--plcopen is required: {err}");
+    let (code, _, err) = plcrun(&["export", "--plcopen", "tests/plcopen/chariot.xml"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("PLCopen XML already"), "{err}");
+}
