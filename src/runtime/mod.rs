@@ -30,6 +30,7 @@
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
 
 pub mod access;
+mod byte_view;
 pub mod change_report;
 pub mod clock;
 pub mod default_trace;
@@ -45,6 +46,7 @@ pub mod plc_value;
 pub mod process_image;
 pub mod realtime;
 pub mod retain;
+mod s7_names;
 pub mod scheduler;
 pub mod session;
 pub mod stimulus;

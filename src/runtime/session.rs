@@ -442,7 +442,7 @@ impl Session {
         }
         self.forced.clear();
         for r in &self.traced {
-            self.forced.push(self.plc.forces.is_forced(r.addr));
+            self.forced.push(self.plc.forces.is_forced(r));
         }
     }
 
