@@ -431,20 +431,7 @@ impl<'a> Lowering<'a> {
                 let (top, v) = (e.s(at, 0), at.not(e.s(at, 0)));
                 e.seg.push(at.assign(top, v));
             }
-            Op::Eu | Op::Ed => {
-                self.ops(ins, 0)?;
-                let mem = at.index("S7_E", self.edges);
-                self.edges += 1;
-                let top = e.s(at, 0);
-                let edge = if ins.op == Op::Eu {
-                    at.bin(BinaryOp::And, top.clone(), at.not(mem.clone()))
-                } else {
-                    at.bin(BinaryOp::And, at.not(top.clone()), mem.clone())
-                };
-                e.seg.push(at.assign(at.name("S7_X"), edge));
-                e.seg.push(at.assign(mem, top.clone()));
-                e.seg.push(at.assign(top, at.name("S7_X")));
-            }
+            Op::Eu | Op::Ed => self.edge(e, ins)?,
             Op::Compare(combine, w, rel) => {
                 let o = self.ops(ins, 2)?;
                 let conv = match w {
@@ -518,6 +505,25 @@ impl<'a> Lowering<'a> {
                 e.when_top(at, body);
             }
         }
+        Ok(())
+    }
+
+    /// `EU`/`ED`: the top becomes its rising / falling edge, against the
+    /// instruction's own memory bit.
+    fn edge(&mut self, e: &mut Emit, ins: &Instr) -> Result<(), Diagnostic> {
+        let at = At(ins.span);
+        self.ops(ins, 0)?;
+        let mem = at.index("S7_E", self.edges);
+        self.edges += 1;
+        let top = e.s(at, 0);
+        let edge = if ins.op == Op::Eu {
+            at.bin(BinaryOp::And, top.clone(), at.not(mem.clone()))
+        } else {
+            at.bin(BinaryOp::And, at.not(top.clone()), mem.clone())
+        };
+        e.seg.push(at.assign(at.name("S7_X"), edge));
+        e.seg.push(at.assign(mem, top.clone()));
+        e.seg.push(at.assign(top, at.name("S7_X")));
         Ok(())
     }
 
