@@ -338,7 +338,7 @@ fn a_timer_is_a_bit_and_a_word() {
 fn ctu_counts_rising_edges_saturates_and_resets() {
     let src = "NETWORK 1\nLD I0.0\nLD I0.1\nCTU C0, 3\nLD C0\n= Q0.0\n";
     let mut p = plc(src);
-    let mut pulse = |p: &mut Plc| {
+    let pulse = |p: &mut Plc| {
         set(p, "I0.0", "TRUE");
         cycle(p);
         set(p, "I0.0", "FALSE");
@@ -380,7 +380,7 @@ fn ctd_loads_counts_down_to_zero_and_stops() {
 #[test]
 fn ctud_counts_both_ways_and_wraps() {
     let mut p = plc("NETWORK 1\nLD I0.0\nLD I0.2\nLD I0.1\nCTUD C2, 2\n");
-    let mut edge = |p: &mut Plc, input: &str| {
+    let edge = |p: &mut Plc, input: &str| {
         set(p, input, "TRUE");
         cycle(p);
         set(p, input, "FALSE");
@@ -787,4 +787,76 @@ fn the_default_trace_is_the_q_bits_used() {
     assert_eq!(names.len(), 16);
     assert_eq!(names[0], "Q0.0");
     assert_eq!(names[15], "Q1.7");
+}
+
+#[test]
+fn a_stimulus_drives_s7_inputs_through_a_session() {
+    use plcrun::{Session, parse_stimulus};
+    let mut s = Session::new(plc(
+        "NETWORK 1\nLD I0.0\nA E0.1\n= Q0.0\nLD SM0.0\nINCW VW10\n",
+    ));
+    s.set_trace(&["Q0.0", "VW10", "I0.0"])
+        .expect("S7 names trace");
+    let stimulus = parse_stimulus("cycle,I0.0,E0.1\n0,FALSE,TRUE\n2,TRUE,TRUE\n").expect("csv");
+    s.bind_stimulus(stimulus).expect("S7 names as columns");
+    let mut q = Vec::new();
+    for _ in 0..4 {
+        s.step().expect("cycle");
+        q.push(on(s.plc(), "Q0.0"));
+    }
+    assert_eq!(q, [false, false, true, true]);
+    assert_eq!(int(s.plc(), "VW10"), 4);
+}
+
+#[test]
+fn shifts_rotates_swap_and_conversions() {
+    let mut p = plc("NETWORK 1
+LD SM0.1
+MOVB 16#81, VB0
+SLB VB0, 1
+MOVW 16#8001, VW2
+SRW VW2, 4
+MOVD 16#80000001, VD4
+RLD VD4, 4
+MOVB 16#81, VB8
+RRB VB8, 1
+MOVW 16#1234, VW10
+SWAP VW10
+MOVW 16#FFFF, VW12
+SLW VW12, 16
+MOVB 200, VB14
+BTI VB14, VW16
+MOVW -2, VW18
+ITD VW18, VD20
+MOVD 40000, VD24
+MOVW 7, VW28
+DTI VD24, VW28
+MOVW 300, VW30
+MOVB 9, VB32
+ITB VW30, VB32
+MOVW 100, VW34
+ITB VW34, VB36
+");
+    cycle(&mut p);
+    let want = [
+        ("VB0", 0x02),
+        ("VW2", 0x0800),
+        ("VD4", 0x0000_0018),
+        ("VB8", 0xC0),
+        ("VW10", 0x3412),
+        ("VW12", 0),
+        ("VW16", 200),
+        ("VD20", 0xFFFF_FFFE),
+        ("VW28", 7),
+        ("VB32", 9),
+        ("VB36", 100),
+    ];
+    for (name, v) in want {
+        assert_eq!(int(&p, name), v, "{name}");
+    }
+    assert!(!on(&p, "SM1.1"), "the last conversion fitted");
+    let mut q = plc("NETWORK 1\nLD SM0.0\nMOVD 40000, VD0\nDTI VD0, VW4\n");
+    cycle(&mut q);
+    assert!(on(&q, "SM1.1"), "DTI out of range sets SM1.1");
+    assert_eq!(int(&q, "VW4"), 0);
 }

@@ -143,6 +143,13 @@ pub(super) enum Op {
     Inc(Width),
     /// `DECB`, `DECW`, `DECD`
     Dec(Width),
+    /// `SLB`/`SRB`/`RLB`/`RRB` … `OUT, N`: shift (left or right) or
+    /// rotate (`true`) by a constant N.
+    Shift(bool, bool, Width),
+    /// `SWAP IN`: exchange the two bytes of a word.
+    Swap,
+    /// `BTI ITB ITD DTI IN, OUT`: integer conversions between widths.
+    Convert(Width, Width),
     /// `JMP n`
     Jmp,
     /// `LBL n`
@@ -177,14 +184,13 @@ pub(super) enum Lookup {
 /// Instructions of the S7-200 that are refused (a coded diagnostic, never
 /// a silent skip).
 const UNSUPPORTED: &[&str] = &[
-    "STOP", "WDR", "LSCR", "SCRT", "SCRE", "CSCRE", "FOR", "NEXT", "SHRB", "SLB", "SLW", "SLD",
-    "SRB", "SRW", "SRD", "RLB", "RLW", "RLD", "RRB", "RRW", "RRD", "+R", "-R", "*R", "/R", "SQRT",
-    "SIN", "COS", "TAN", "LN", "EXP", "PID", "BCDI", "IBCD", "ITD", "DTI", "ITB", "BTI", "DTR",
-    "TRUNC", "ROUND", "ATCH", "DTCH", "ENI", "DISI", "CRETI", "RETI", "HDEF", "HSC", "PLS", "XMT",
-    "RCV", "NETR", "NETW", "ATT", "FND=", "FND<>", "FND<", "FND>", "LIFO", "FIFO", "SEG", "DECO",
-    "ENCO", "ATH", "HTA", "ITA", "DTA", "RTA", "TODR", "TODW", "AENO", "SWAP", "BIR", "BIW",
-    "LDR=", "LDR<>", "LDR<", "LDR<=", "LDR>", "LDR>=", "AR=", "OR=", "LDS=", "LDS<>", "SCAT",
-    "SCPY", "SLEN", "SSCPY", "SFND", "CFND", "STR", "TON_IEC",
+    "STOP", "WDR", "LSCR", "SCRT", "SCRE", "CSCRE", "FOR", "NEXT", "SHRB", "+R", "-R", "*R", "/R",
+    "SQRT", "SIN", "COS", "TAN", "LN", "EXP", "PID", "BCDI", "IBCD", "DTR", "TRUNC", "ROUND",
+    "ATCH", "DTCH", "ENI", "DISI", "CRETI", "RETI", "HDEF", "HSC", "PLS", "XMT", "RCV", "NETR",
+    "NETW", "ATT", "FND=", "FND<>", "FND<", "FND>", "LIFO", "FIFO", "SEG", "DECO", "ENCO", "ATH",
+    "HTA", "ITA", "DTA", "RTA", "TODR", "TODW", "AENO", "BIR", "BIW", "LDR=", "LDR<>", "LDR<",
+    "LDR<=", "LDR>", "LDR>=", "AR=", "OR=", "LDS=", "LDS<>", "SCAT", "SCPY", "SLEN", "SSCPY",
+    "SFND", "CFND", "STR", "TON_IEC",
 ];
 
 /// Parses a comparison mnemonic (`LDW>=`, `AB=`, `UB>=`, `OD<>`).
@@ -287,6 +293,23 @@ pub(super) fn lookup(mnemonic: &str) -> Lookup {
         "DECB" => Op::Dec(B),
         "DECW" => Op::Dec(W),
         "DECD" => Op::Dec(D),
+        "SLB" => Op::Shift(true, false, B),
+        "SLW" => Op::Shift(true, false, W),
+        "SLD" => Op::Shift(true, false, D),
+        "SRB" => Op::Shift(false, false, B),
+        "SRW" => Op::Shift(false, false, W),
+        "SRD" => Op::Shift(false, false, D),
+        "RLB" => Op::Shift(true, true, B),
+        "RLW" => Op::Shift(true, true, W),
+        "RLD" => Op::Shift(true, true, D),
+        "RRB" => Op::Shift(false, true, B),
+        "RRW" => Op::Shift(false, true, W),
+        "RRD" => Op::Shift(false, true, D),
+        "SWAP" => Op::Swap,
+        "BTI" => Op::Convert(B, W),
+        "ITB" => Op::Convert(W, B),
+        "ITD" => Op::Convert(W, D),
+        "DTI" => Op::Convert(D, W),
         "JMP" => Op::Jmp,
         "LBL" => Op::Lbl,
         "CALL" => Op::Call,

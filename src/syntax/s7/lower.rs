@@ -814,6 +814,89 @@ impl<'a> Lowering<'a> {
                 }
             }
             Op::Mul | Op::Div => self.mul_div(ins),
+            Op::Shift(left, rotate, w) => {
+                let o = self.ops(ins, 2)?;
+                let n = match o[1].op {
+                    Operand::Const(n) if (0..=255).contains(&n) => n,
+                    _ => {
+                        return Err(err(
+                            "E856",
+                            o[1].span,
+                            format!(
+                                "`{}`: N must be a constant from 0 to 255, found `{}`",
+                                ins.mnemonic, o[1].text
+                            ),
+                        ));
+                    }
+                };
+                let bits = 8 * i64::from(w.bytes());
+                let v = rd(&o[0], w)?;
+                let value = match (rotate, left) {
+                    (true, true) => at.call("ROL", vec![v, at.int(n % bits)]),
+                    (true, false) => at.call("ROR", vec![v, at.int(n % bits)]),
+                    // Shifting by the width or more leaves 0, as on the CPU.
+                    (false, _) if n >= bits => at.typed(bits_type(w), 0),
+                    (false, true) => at.call("SHL", vec![v, at.int(n)]),
+                    (false, false) => at.call("SHR", vec![v, at.int(n)]),
+                };
+                wr(&o[0], w, value)
+            }
+            Op::Swap => {
+                let o = self.ops(ins, 1)?;
+                let v = rd(&o[0], Width::W)?;
+                let swapped = at.bin(
+                    BinaryOp::Or,
+                    at.call("SHL", vec![v.clone(), at.int(8)]),
+                    at.call("SHR", vec![v, at.int(8)]),
+                );
+                wr(&o[0], Width::W, swapped)
+            }
+            Op::Convert(from, to) => {
+                let o = self.ops(ins, 2)?;
+                let v = rd(&o[0], from)?;
+                let (value, range) = match (from, to) {
+                    (Width::B, _) => (
+                        at.call("INT_TO_WORD", vec![at.call("BYTE_TO_INT", vec![v])]),
+                        None,
+                    ),
+                    (Width::W, Width::D) => (
+                        at.call(
+                            "DINT_TO_DWORD",
+                            vec![at.call("INT_TO_DINT", vec![at.call("WORD_TO_INT", vec![v])])],
+                        ),
+                        None,
+                    ),
+                    (Width::W, _) => {
+                        let x = at.call("WORD_TO_INT", vec![v]);
+                        (at.call("INT_TO_BYTE", vec![x.clone()]), Some((x, 0, 255)))
+                    }
+                    (Width::D, _) => {
+                        let x = at.call("DWORD_TO_DINT", vec![v]);
+                        let as_int = at.call("DINT_TO_INT", vec![x.clone()]);
+                        (
+                            at.call("INT_TO_WORD", vec![as_int]),
+                            Some((x, -32768, 32767)),
+                        )
+                    }
+                };
+                let store = wr(&o[1], to, value)?;
+                let Some((x, lo, hi)) = range else {
+                    return Ok(store);
+                };
+                // Out of range: SM1.1 (overflow) set and OUT left as it was.
+                let fits = at.bin(
+                    BinaryOp::And,
+                    at.bin(BinaryOp::Ge, x.clone(), at.int(lo)),
+                    at.bin(BinaryOp::Le, x, at.int(hi)),
+                );
+                Ok(vec![
+                    at.assign(
+                        at.bit(at.index(Area::Sm.image(), 1), 1),
+                        at.not(fits.clone()),
+                    ),
+                    at.when(fits, store),
+                ])
+            }
             Op::Fill => self.fill(ins),
             Op::BlockMove(w) => self.block_move(ins, w),
             _ => Err(err(
