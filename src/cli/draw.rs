@@ -26,9 +26,12 @@ pub fn draw(args: &DrawArgs) -> i32 {
     };
     let report = check_sources(
         &sources,
+        // Charts are drawn whatever their evolution rules: a chart with
+        // GRAFCET forcing orders draws as well as an IEC one.
         &CheckOptions {
             program: None,
             ir_listing: false,
+            grafcet: true,
         },
     );
     diags.extend(report.diagnostics);
