@@ -2,6 +2,7 @@
 //! Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.
 
 mod args;
+mod modbus;
 mod online;
 mod reload;
 mod retain;
