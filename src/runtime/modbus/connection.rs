@@ -64,7 +64,8 @@ fn serve_frames(
     let mut response = Vec::with_capacity(MAX_FRAME);
     loop {
         let deadline = Instant::now() + shared.config.idle_timeout;
-        if let Err(ended) = read_full(stream, &mut frame[..HEADER], deadline, shared) {
+        // Transaction, protocol, length: enough to judge the frame.
+        if let Err(ended) = read_full(stream, &mut frame[..HEADER - 1], deadline, shared) {
             return ended;
         }
         let protocol = u16::from_be_bytes([frame[2], frame[3]]);
@@ -73,7 +74,7 @@ fn serve_frames(
             return Ended::Malformed;
         }
         let size = HEADER - 1 + length;
-        if let Err(ended) = read_full(stream, &mut frame[HEADER..size], deadline, shared) {
+        if let Err(ended) = read_full(stream, &mut frame[HEADER - 1..size], deadline, shared) {
             return ended;
         }
         respond(&frame[..size], shared, writes, &mut response);
