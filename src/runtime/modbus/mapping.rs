@@ -180,10 +180,10 @@ impl Tables {
     pub(crate) fn read_bits(&self, table: ModbusTable, start: u16, count: u16, out: &mut [u8]) {
         out.fill(0);
         for i in 0..count {
-            if let Some(ImagePlace::Bit(area, byte, bit)) = modbus_place(table, start + i) {
-                if self.area(area)[byte] >> bit & 1 != 0 {
-                    out[usize::from(i / 8)] |= 1 << (i % 8);
-                }
+            if let Some(ImagePlace::Bit(area, byte, bit)) = modbus_place(table, start + i)
+                && self.area(area)[byte] >> bit & 1 != 0
+            {
+                out[usize::from(i / 8)] |= 1 << (i % 8);
             }
         }
     }
