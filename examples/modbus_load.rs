@@ -12,6 +12,8 @@
 //!    (FC 1), write one holding register (FC 6), in turn.
 //!
 //! Prints the statistics table of each phase and the requests per second.
+//! Under `chrt -f 50` the scan runs at the real-time priority and the
+//! server's and the load's threads at the normal one.
 
 use plcrun::{
     ModbusConfig, ModbusServer, Options, Plc, Session, TaskRunner, TaskStats, TraceFormat,
@@ -133,6 +135,21 @@ fn phase(seconds: f64, clients: usize) -> Result<Phase, Box<dyn std::error::Erro
     })
 }
 
+/// The load threads stand for other machines on the network: under
+/// `chrt` they leave the real-time priority to the scan, as the server's
+/// own threads do.
+#[cfg(target_os = "linux")]
+fn normal_priority() {
+    // SAFETY: plain system calls on the calling thread.
+    unsafe {
+        let normal = libc::sched_param { sched_priority: 0 };
+        libc::sched_setscheduler(0, libc::SCHED_OTHER, &normal);
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn normal_priority() {}
+
 /// One client: requests back to back until `done`.
 fn hammer(
     addr: SocketAddr,
@@ -141,6 +158,7 @@ fn hammer(
     served: &AtomicU64,
     busy: &AtomicU64,
 ) -> Result<(), String> {
+    normal_priority();
     let mut stream = TcpStream::connect(addr).map_err(|e| e.to_string())?;
     stream.set_nodelay(true).map_err(|e| e.to_string())?;
     let mut frame = Vec::new();

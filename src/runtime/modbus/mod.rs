@@ -9,7 +9,8 @@
 //! - [`request`]: one request, decoded and answered with `rmodbus`;
 //! - [`exchange`]: the scan side, [`ModbusExchange`], called between cycles;
 //! - [`published`]: the last completed cycle's image as clients read it;
-//! - [`stats`]: the server's counters.
+//! - [`stats`]: the server's counters;
+//! - `priority`: the server's threads leave a real-time priority to the scan.
 //!
 //! Consistency: clients read the image published after the last completed
 //! cycle; their writes wait in a bounded queue and are applied between two
@@ -19,6 +20,7 @@
 pub mod connection;
 pub mod exchange;
 pub mod mapping;
+mod priority;
 pub mod published;
 pub mod request;
 pub mod server;

@@ -1,6 +1,7 @@
 //! The listening socket, its acceptor thread and the client threads.
 //!
-//! One thread accepts; each client gets its own thread, at most
+//! One thread accepts; each client gets its own thread (both at the normal
+//! priority, whatever the process runs at: see `priority`), at most
 //! [`ModbusConfig::max_clients`] of them: a connection over the limit is
 //! accepted and closed at once. Stopping the server (drop or
 //! [`ModbusServer::shutdown`]) wakes the acceptor, shuts every client
@@ -165,7 +166,11 @@ impl ModbusServer {
         let acceptor_shared = Arc::clone(&shared);
         let acceptor = std::thread::Builder::new()
             .name("modbus-accept".into())
-            .spawn(move || accept(&listener, &acceptor_shared, &tx))
+            .spawn(move || {
+                // Client threads, spawned from here, inherit the policy.
+                super::priority::leave_real_time();
+                accept(&listener, &acceptor_shared, &tx);
+            })
             .map_err(ModbusError::Thread)?;
         let server = ModbusServer {
             shared: Arc::clone(&shared),
