@@ -89,7 +89,12 @@ pub(crate) fn compile(
 ) -> Option<VerifiedImage> {
     let mut units = Vec::with_capacity(sources.files().len());
     for (i, file) in sources.files().iter().enumerate() {
-        units.push(crate::syntax::parse(FileId(i as u32), &file.text, diags));
+        units.push(crate::syntax::parse_file(
+            FileId(i as u32),
+            &file.name,
+            &file.text,
+            diags,
+        ));
     }
     let image = sema::compile(&units, options, diags);
     if diags.has_errors() { None } else { image }

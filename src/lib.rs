@@ -36,6 +36,7 @@
 // The stages, in pipeline order. Only what the re-exports below name is
 // the library's API; the stages themselves stay inside the crate.
 mod diagnostics;
+mod draw;
 mod driver;
 mod elementary;
 pub(crate) mod ir;
@@ -49,6 +50,10 @@ mod value;
 pub(crate) mod vm;
 
 pub use diagnostics::{Diagnostic, Diagnostics, Severity};
+pub use draw::{
+    ActionLine, ChartModel, ChartPicture, DrawError, MAX_CHANGES, StepNode, TimingDiagram,
+    TransitionNode, draw_chart,
+};
 pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
 pub use elementary::ElemType;
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
@@ -84,6 +89,7 @@ pub use runtime::stop::StopHandle;
 pub use runtime::task_stats::{TaskStats, TaskStatsHandle, TimeStats, format_stats_table};
 pub use runtime::tasks::{TaskInfo, TaskStepError};
 pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter, UnknownTraceFormat};
+pub use runtime::trace_vcd::{VcdSignal, VcdTimescale};
 pub use runtime::var_error::{PathProblem, ReadOnlyReason, ValueProblem, VarError};
 pub use runtime::variables::{ChartState, Direction, VarInfo, VarShape};
 pub use runtime::watchdog::{UnknownTask, WatchdogTrip};

@@ -189,6 +189,16 @@ const INC: &str =
     "PROGRAM P\nVAR_INPUT x : INT; END_VAR\nEND_PROGRAM\nCONFIGURATION A\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\nPROGRAM i WITH T : P(z := 1);\nEND_RESOURCE\nEND_CONFIGURATION\n".to_string(),
     "7:22"
 )]
+#[case(
+    "E703",
+    "PROGRAM P\nVAR_OUTPUT y : BOOL; END_VAR\nEND_PROGRAM\nCONFIGURATION A\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\nPROGRAM i WITH T : P(y => %IX0.0);\nEND_RESOURCE\nEND_CONFIGURATION\n".to_string(),
+    "7:27"
+)]
+#[case(
+    "E207",
+    "PROGRAM P\nVAR_INPUT x : BOOL; END_VAR\nEND_PROGRAM\nCONFIGURATION A\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\nPROGRAM i WITH T : P(x := %IW2);\nEND_RESOURCE\nEND_CONFIGURATION\n".to_string(),
+    "7:27"
+)]
 fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     check_error(code, &src, at);
 }

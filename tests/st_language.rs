@@ -905,6 +905,52 @@ END_CONFIGURATION";
     assert_eq!(lit(&p, "b1.n"), "4");
 }
 
+/// `PROGRAM p1 WITH t : Main(in1 := %IX0.0, out1 => %QX0.1)` (IEC 61131-3
+/// program configuration: a data source or sink may be a direct variable):
+/// the input is read from the process image at each run of the program,
+/// the output written to it after the run (issue #13).
+#[test]
+fn program_parameters_connected_to_direct_addresses() {
+    let src = "PROGRAM Main
+VAR_INPUT in1 : BOOL; level : INT; END_VAR
+VAR_OUTPUT out1 : BOOL; twice : WORD; END_VAR
+VAR runs : INT; END_VAR
+runs := runs + 1;
+out1 := NOT in1;
+twice := INT_TO_WORD(level * 2);
+END_PROGRAM
+PROGRAM Watch
+VAR_OUTPUT seen : WORD; END_VAR
+seen := %QW4;
+END_PROGRAM
+CONFIGURATION Cfg
+  RESOURCE Res ON PLC
+    TASK Slow (INTERVAL := T#20ms, PRIORITY := 1);
+    TASK Fast (INTERVAL := T#10ms, PRIORITY := 2);
+    PROGRAM p1 WITH Slow : Main(in1 := %IX0.0, level := %IW2, out1 => %QX0.1, twice => %QW4);
+    PROGRAM w WITH Fast : Watch;
+  END_RESOURCE
+END_CONFIGURATION";
+    let mut p = compile(src);
+    run(&mut p, 1);
+    assert!(p.process_image().read_bit("%QX0.1").unwrap());
+    p.process_image_mut().write_bit("%IX0.0", true).unwrap();
+    p.process_image_mut().write_word("%IW2", 21).unwrap();
+    // Tick 1 (10 ms): Main does not run, so nothing it connects changes.
+    run(&mut p, 1);
+    assert!(p.process_image().read_bit("%QX0.1").unwrap());
+    assert_eq!(lit(&p, "p1.in1"), "FALSE");
+    // Tick 2 (20 ms): Main reads the inputs, its outputs reach the image;
+    // Watch (after it, lower priority) reads %QW4 by address.
+    run(&mut p, 1);
+    assert_eq!(lit(&p, "p1.runs"), "2");
+    assert_eq!(lit(&p, "p1.in1"), "TRUE");
+    assert!(!p.process_image().read_bit("%QX0.1").unwrap());
+    assert_eq!(p.process_image().read_word("%QW4").unwrap(), 42);
+    assert_eq!(lit(&p, "%QW4"), "16#2A");
+    assert_eq!(lit(&p, "w.seen"), "16#2A");
+}
+
 // ---------------------------------------------------------------- bit strings, durations
 
 #[rstest]

@@ -35,6 +35,23 @@ pub enum Command {
     Run(Box<RunArgs>),
     /// Parse and check sources; exit 0 iff there is no error.
     Check(CheckArgs),
+    /// Draw the chart (SFC) of a program as SVG.
+    Draw(DrawArgs),
+}
+
+/// `plcrun draw FILES... [--program P] [-o OUT.svg]`.
+#[derive(Debug, Args)]
+pub struct DrawArgs {
+    /// Source files (checked first; errors stop the drawing).
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// The PROGRAM or FUNCTION_BLOCK whose chart to draw (needed when
+    /// several have one).
+    #[arg(long)]
+    pub program: Option<String>,
+    /// Write the SVG to FILE instead of standard output.
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub output: Option<PathBuf>,
 }
 
 /// `plcrun [run] FILES... --cycles N [options]`.
@@ -67,8 +84,8 @@ pub struct RunArgs {
     /// Comma-separated variables to trace (default: VAR_OUTPUTs and %Q variables).
     #[arg(long, value_delimiter = ',')]
     pub trace: Vec<String>,
-    /// Trace format.
-    #[arg(long, default_value = "csv", value_parser = ["table", "csv", "jsonl"])]
+    /// Trace format (vcd: a waveform for GTKWave or Surfer).
+    #[arg(long, default_value = "csv", value_parser = ["table", "csv", "jsonl", "vcd"])]
     pub format: String,
     /// Print the first row, then only rows where a traced value changed.
     #[arg(long)]
@@ -113,6 +130,16 @@ pub struct RunArgs {
     /// instead of refusing a file saved by another version of the program.
     #[arg(long, requires = "retain", conflicts_with = "cold")]
     pub retain_partial: bool,
+    /// Also write a timing diagram (SVG) of the traced variables to FILE.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+    /// Also write the program's chart (SVG) to FILE, with the steps active
+    /// at --svg-chart-cycle marked.
+    #[arg(long, value_name = "FILE")]
+    pub svg_chart: Option<PathBuf>,
+    /// The cycle whose active steps --svg-chart marks (default: the last one run).
+    #[arg(long, value_name = "N", requires = "svg_chart")]
+    pub svg_chart_cycle: Option<u64>,
     /// Serve the process image over Modbus TCP on ADDR:PORT (e.g.
     /// 0.0.0.0:502, 127.0.0.1:0 for a free port); see docs/modbus.md.
     #[arg(long, value_name = "ADDR:PORT")]

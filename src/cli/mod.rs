@@ -2,6 +2,7 @@
 //! Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.
 
 mod args;
+mod draw;
 mod modbus;
 mod online;
 mod reload;
@@ -25,6 +26,7 @@ pub fn main() -> i32 {
         Ok(cli) => match cli.command {
             Some(args::Command::Check(a)) => run::check(&a),
             Some(args::Command::Run(a)) => run::run(&a),
+            Some(args::Command::Draw(a)) => draw::draw(&a),
             None => run::run(&cli.run),
         },
         Err(e) => usage(e),

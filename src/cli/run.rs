@@ -4,8 +4,8 @@ use super::args::{CheckArgs, RunArgs, StatsFormat};
 use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
 use plcrun::{
     CheckOptions, Diagnostics, LiveStimulus, ModbusExchange, Options, Plc, RunError, Session,
-    TaskRunner, TraceFormat, TraceWriter, check as check_sources, format_stats_table, load_files,
-    parse_stimulus, parse_time_literal,
+    TaskRunner, TraceFormat, TraceWriter, VcdTimescale, check as check_sources, format_stats_table,
+    load_files, parse_stimulus, parse_time_literal,
 };
 use std::io::{Read, Write};
 use std::time::Duration;
@@ -262,6 +262,10 @@ pub fn run(args: &RunArgs) -> i32 {
     if let Some(saver) = saver {
         session.save_retain_every(saver, args.retain_every);
     }
+    let pictures = match super::draw::prepare(args, &mut session) {
+        Ok(p) => p,
+        Err(e) => return usage_error(e),
+    };
     let out: Box<dyn Write> = match &args.output {
         Some(p) => match std::fs::File::create(p) {
             Ok(f) => Box::new(std::io::BufWriter::new(f)),
@@ -269,11 +273,23 @@ pub fn run(args: &RunArgs) -> i32 {
         },
         None => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
     };
-    let names = session.trace_names().to_vec();
-    let mut writer = TraceWriter::new(out, format, names, args.changes_only);
     let changes = match super::online::planned(&args.online_change_at) {
         Ok(c) => c,
         Err(e) => return usage_error(e),
+    };
+    let names = session.trace_names().to_vec();
+    let mut writer = if format == TraceFormat::Vcd {
+        // Exact timestamps: the base tick's unit on the virtual clock of a
+        // fixed program, nanoseconds where the clock or the tick can vary.
+        let timescale = if args.realtime || args.reload || !changes.is_empty() {
+            VcdTimescale::NANOSECOND
+        } else {
+            VcdTimescale::for_cycle(session.plc().cycle_time(), session.plc().time())
+        };
+        let signals = session.vcd_signals();
+        TraceWriter::vcd(out, names, signals, timescale, args.changes_only)
+    } else {
+        TraceWriter::new(out, format, names, args.changes_only)
     };
     let reloader = args
         .reload
@@ -326,6 +342,12 @@ pub fn run(args: &RunArgs) -> i32 {
             EXIT_USAGE
         }
     };
+    if let Some(pictures) = pictures
+        && let Err(e) = super::draw::finish(args, pictures, &session)
+    {
+        eprintln!("error: {e}");
+        return EXIT_USAGE;
+    }
     match writer.finish() {
         Ok(mut w) => {
             let _ = w.flush();

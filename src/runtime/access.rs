@@ -46,6 +46,10 @@ impl Plc {
 
     /// The value of a variable of this PLC (`r` resolved by it).
     pub(super) fn value_at(&self, r: &VarRef) -> Value {
+        if let Some(view) = r.view {
+            let ty = self.image.types.scalar(r.ty).unwrap_or(ElemType::Lint);
+            return Value::Scalar(ty, view.read(&self.machine.mem, r.addr));
+        }
         let raw = self.machine.mem[r.addr as usize];
         match &self.image.types.get(r.ty).kind {
             TypeKind::Str { wide, .. } => {
@@ -135,7 +139,7 @@ impl Plc {
         self.owned(r)?;
         self.writable(r)?;
         self.check_fits(r, v)?;
-        if !self.forces.is_empty() && self.forces.hold_under(r.addr, v) {
+        if !self.forces.is_empty() && self.forces.hold_under(r, v) {
             return Ok(());
         }
         self.store(r, v);
@@ -169,6 +173,10 @@ impl Plc {
     /// Stores a value of `r`'s type into a variable of this PLC (and into
     /// the process image when the variable is located there).
     pub(super) fn store(&mut self, r: &VarRef, v: &Value) {
+        if let (Some(view), Value::Scalar(_, raw)) = (r.view, v) {
+            view.write(&mut self.machine.mem, r.addr, *raw);
+            return;
+        }
         let slot = &mut self.machine.mem[r.addr as usize];
         match v {
             Value::Scalar(_, raw) => {

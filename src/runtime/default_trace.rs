@@ -32,6 +32,11 @@ pub struct DefaultTrace {
 /// The default trace of `image` (see the module documentation).
 pub fn default_trace(image: &Image) -> DefaultTrace {
     let mut trace = DefaultTrace::default();
+    // An S7-200 program's outputs are the bits of its Q image.
+    if let Some(names) = super::s7_names::default_trace(image) {
+        trace.names = names;
+        return trace;
+    }
     let qualify = image.programs.len() > 1;
     for inst in &image.programs {
         for m in image.types.members(inst.ty) {

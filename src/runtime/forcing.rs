@@ -80,15 +80,15 @@ impl Forces {
         self.list.is_empty()
     }
 
-    /// Whether the slot `addr` is forced.
-    pub(crate) fn is_forced(&self, addr: u32) -> bool {
-        self.list.iter().any(|f| f.r.addr == addr)
+    /// Whether the variable `r` is forced.
+    pub(crate) fn is_forced(&self, r: &VarRef) -> bool {
+        self.list.iter().any(|f| f.r.same_place(r))
     }
 
-    /// When slot `addr` is forced, remembers `v` as the value under the
-    /// force and returns true (the write must not reach the slot).
-    pub(crate) fn hold_under(&mut self, addr: u32, v: &Value) -> bool {
-        match self.list.iter_mut().find(|f| f.r.addr == addr) {
+    /// When the variable `r` is forced, remembers `v` as the value under
+    /// the force and returns true (the write must not reach the slot).
+    pub(crate) fn hold_under(&mut self, r: &VarRef, v: &Value) -> bool {
+        match self.list.iter_mut().find(|f| f.r.same_place(r)) {
             Some(f) => {
                 f.under = Some(v.clone());
                 true
@@ -140,7 +140,7 @@ impl Plc {
         self.writable(r)?;
         self.check_fits(r, value)?;
         // A soft write made under an earlier force still applies on unforce.
-        let under = match self.forces.list.iter().position(|f| f.r.addr == r.addr) {
+        let under = match self.forces.list.iter().position(|f| f.r.same_place(r)) {
             Some(i) => self.forces.list.remove(i).under,
             None => None,
         };
@@ -166,7 +166,7 @@ impl Plc {
         if r.owner != self.id {
             return false;
         }
-        let Some(i) = self.forces.list.iter().position(|f| f.r.addr == r.addr) else {
+        let Some(i) = self.forces.list.iter().position(|f| f.r.same_place(r)) else {
             return false;
         };
         let f = self.forces.list.remove(i);
@@ -199,7 +199,7 @@ impl Plc {
 
     /// Whether the variable `r` is forced (under any of its names).
     pub fn is_forced(&self, r: &VarRef) -> bool {
-        r.owner == self.id && self.forces.is_forced(r.addr)
+        r.owner == self.id && self.forces.is_forced(r)
     }
 
     /// Writes variable `name` from an IEC literal as a soft write: a force

@@ -28,9 +28,11 @@
 //! - [`modbus`]: a Modbus TCP server on the process image;
 //! - [`variables`]: the list of variables with their types, and chart step
 //!   states;
-//! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines.
+//! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines;
+//! - [`trace_vcd`]: the trace as a VCD waveform.
 
 pub mod access;
+mod byte_view;
 pub mod change_report;
 pub mod clock;
 pub mod default_trace;
@@ -47,6 +49,7 @@ pub mod plc_value;
 pub mod process_image;
 pub mod realtime;
 pub mod retain;
+mod s7_names;
 pub mod scheduler;
 pub mod session;
 pub mod stimulus;
@@ -55,6 +58,7 @@ mod table_rows;
 pub mod task_stats;
 pub mod tasks;
 pub mod trace;
+pub mod trace_vcd;
 pub mod var_error;
 pub mod variables;
 pub mod watchdog;

@@ -2,6 +2,7 @@
 //! the embedding API): `x`, `inst.ET`, `arr[3]`, `grid[1,2]`, `S1.X`,
 //! `prog.x` for configuration instances, and located addresses `%IX0.1`.
 
+use super::byte_view::ByteView;
 use super::var_error::{PathProblem, ReadOnlyReason, VarError};
 use crate::elementary::ElemType;
 use crate::ir::image::Image;
@@ -22,9 +23,19 @@ pub struct VarRef {
     pub(crate) owner: u64,
     /// Why it cannot be written from outside, if it cannot.
     pub(crate) read_only: Option<ReadOnlyReason>,
+    /// A part of the byte slots from `addr` (an S7-200 bit, word or double
+    /// word of a byte image); `None` for a whole slot.
+    pub(crate) view: Option<ByteView>,
 }
 
 impl VarRef {
+    /// Whether `self` and `other` name the same value (the same slot and
+    /// the same view of it; `V6.1` and `VB6` share a slot but are not the
+    /// same value).
+    pub(crate) fn same_place(&self, other: &VarRef) -> bool {
+        self.addr == other.addr && self.view == other.view
+    }
+
     /// The name as it was given to `resolve` (trimmed).
     pub fn name(&self) -> &str {
         &self.name
@@ -113,6 +124,9 @@ fn normalize(text: &str) -> String {
 /// Resolves `text` against the image, for the PLC `owner`; the error names
 /// what is unknown.
 pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError> {
+    if let Some(r) = super::s7_names::resolve(image, text, owner) {
+        return r;
+    }
     let (root, segs) = parse_path(text)?;
     let (mut addr, mut ty, mut read_only) = if root.starts_with('%') {
         let key = normalize(&root);
@@ -189,6 +203,7 @@ pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError
         ty,
         owner,
         read_only,
+        view: None,
     })
 }
 

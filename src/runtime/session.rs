@@ -27,6 +27,7 @@ use super::names::VarRef;
 use super::plc_value::Value;
 use super::stimulus::{Stimulus, StimulusCursor};
 use super::trace::{TraceCell, TraceWriter};
+use super::trace_vcd::{VcdSignal, vcd_signal};
 use super::var_error::VarError;
 use std::fmt;
 use std::io::{self, Write};
@@ -245,6 +246,15 @@ impl Session {
         &self.names
     }
 
+    /// The VCD type of each traced name, in column order (for
+    /// [`TraceWriter::vcd`]).
+    pub fn vcd_signals(&self) -> Vec<VcdSignal> {
+        self.traced
+            .iter()
+            .map(|r| vcd_signal(self.plc.image(), r))
+            .collect()
+    }
+
     /// Binds a stimulus: resolves every column and decodes every cell now,
     /// so that a bad cell is reported before the first cycle runs. Replaces
     /// any stimulus bound before.
@@ -442,7 +452,7 @@ impl Session {
         }
         self.forced.clear();
         for r in &self.traced {
-            self.forced.push(self.plc.forces.is_forced(r.addr));
+            self.forced.push(self.plc.forces.is_forced(r));
         }
     }
 

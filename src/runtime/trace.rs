@@ -34,11 +34,15 @@
 //! whichever is wider; a later, wider value shifts the rest of its row
 //! right rather than the whole column.
 //!
+//! VCD waveforms ([`TraceFormat::Vcd`], made with [`TraceWriter::vcd`],
+//! which needs each column's type): see [`super::trace_vcd`].
+//!
 //! With `changes_only`, the first row is written, then only rows where at
 //! least one traced cell's text differs from the previous cycle's row (the
 //! previous row given to [`TraceWriter::row`], written or not).
 
 use super::table_rows::TableRows;
+use super::trace_vcd::{VcdSignal, VcdSink, VcdTimescale};
 use crate::elementary::ElemType;
 use crate::value::format::{format_string, json_value, write_value};
 use crate::value::literal::format_duration;
@@ -88,9 +92,11 @@ pub enum TraceFormat {
     Csv,
     /// One JSON object per line.
     Jsonl,
+    /// A VCD waveform (see [`TraceWriter::vcd`]).
+    Vcd,
 }
 
-/// A trace format name that is not `table`, `csv` or `jsonl`.
+/// A trace format name that is not `table`, `csv`, `jsonl` or `vcd`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct UnknownTraceFormat(pub String);
 
@@ -98,7 +104,7 @@ impl std::fmt::Display for UnknownTraceFormat {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "unknown trace format `{}` (expected table, csv or jsonl)",
+            "unknown trace format `{}` (expected table, csv, jsonl or vcd)",
             self.0
         )
     }
@@ -109,7 +115,7 @@ impl std::error::Error for UnknownTraceFormat {}
 impl FromStr for TraceFormat {
     type Err = UnknownTraceFormat;
 
-    /// `table`, `csv` or `jsonl` (case-insensitive).
+    /// `table`, `csv`, `jsonl` or `vcd` (case-insensitive).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let s = s.trim();
         if s.eq_ignore_ascii_case("table") {
@@ -118,6 +124,8 @@ impl FromStr for TraceFormat {
             Ok(TraceFormat::Csv)
         } else if s.eq_ignore_ascii_case("jsonl") {
             Ok(TraceFormat::Jsonl)
+        } else if s.eq_ignore_ascii_case("vcd") {
+            Ok(TraceFormat::Vcd)
         } else {
             Err(UnknownTraceFormat(s.to_string()))
         }
@@ -130,6 +138,7 @@ impl std::fmt::Display for TraceFormat {
             TraceFormat::Table => "table",
             TraceFormat::Csv => "csv",
             TraceFormat::Jsonl => "jsonl",
+            TraceFormat::Vcd => "vcd",
         })
     }
 }
@@ -180,6 +189,7 @@ impl TraceCell {
 enum Sink<W: Write> {
     Csv(Box<csv::Writer<W>>),
     Plain(W),
+    Vcd(Box<VcdSink<W>>),
 }
 
 /// Rows kept for the table until [`TraceWriter::finish`], and the column
@@ -214,10 +224,20 @@ impl<W: Write> TraceWriter<W> {
     /// A writer of `format` to `out`, with one traced column per name (printed
     /// exactly as given). `changes_only` drops rows where no traced value
     /// changed since the previous cycle (the first row is always written).
+    ///
+    /// A VCD trace needs the type of each column: make it with
+    /// [`Self::vcd`] (one made here refuses rows with `InvalidInput`).
     pub fn new(out: W, format: TraceFormat, names: Vec<String>, changes_only: bool) -> Self {
         let sink = match format {
             TraceFormat::Csv => Sink::Csv(Box::new(csv::WriterBuilder::new().from_writer(out))),
             TraceFormat::Table | TraceFormat::Jsonl => Sink::Plain(out),
+            TraceFormat::Vcd => Sink::Vcd(Box::new(VcdSink::new(
+                out,
+                names.clone(),
+                Vec::new(),
+                VcdTimescale::NANOSECOND,
+                changes_only,
+            ))),
         };
         let mut table = TableBuffer {
             rows: TableRows::new(names.len() + 2),
@@ -245,6 +265,51 @@ impl<W: Write> TraceWriter<W> {
         }
     }
 
+    /// A VCD writer (see [`super::trace_vcd`]): one variable per name, of
+    /// the type `signals` gives in the same order
+    /// ([`crate::Session::vcd_signals`] gives them for the traced names),
+    /// timestamps in units of `timescale`. A row whose clock is not a whole
+    /// number of units, or does not advance, is refused (`InvalidInput`).
+    ///
+    /// ```
+    /// use plcrun::{ElemType, TraceCell, TraceFormat, TraceWriter, VcdSignal, VcdTimescale};
+    /// let names = vec!["main.run".to_string()];
+    /// let signals = vec![VcdSignal::Elementary(ElemType::Bool)];
+    /// let timescale = VcdTimescale::for_cycle(10_000_000, 0); // 10 ms
+    /// let mut w = TraceWriter::vcd(Vec::new(), names, signals, timescale, false);
+    /// w.row(0, 0, &[TraceCell::from_value(ElemType::Bool, 1)])?;
+    /// w.row(1, 10_000_000, &[TraceCell::from_value(ElemType::Bool, 0)])?;
+    /// let vcd = String::from_utf8(w.finish()?).unwrap();
+    /// assert!(vcd.contains("$timescale 10 ms $end"));
+    /// assert!(vcd.ends_with("#0\n$dumpvars\n1!\n$end\n#1\n0!\n"));
+    /// # Ok::<(), std::io::Error>(())
+    /// ```
+    pub fn vcd(
+        out: W,
+        names: Vec<String>,
+        signals: Vec<VcdSignal>,
+        timescale: VcdTimescale,
+        changes_only: bool,
+    ) -> Self {
+        let sink = VcdSink::new(out, names.clone(), signals, timescale, changes_only);
+        TraceWriter {
+            sink: Sink::Vcd(Box::new(sink)),
+            format: TraceFormat::Vcd,
+            names,
+            changes_only,
+            header_written: false,
+            prev: Vec::new(),
+            has_prev: false,
+            cycle_text: String::new(),
+            line: Vec::new(),
+            table: TableBuffer {
+                rows: TableRows::new(0),
+                widths: Vec::new(),
+            },
+            streaming: false,
+        }
+    }
+
     /// Writes and flushes every row as it comes (see the module docs).
     /// Turn it on before the first row.
     pub fn set_streaming(&mut self, on: bool) {
@@ -257,6 +322,7 @@ impl<W: Write> TraceWriter<W> {
         match &mut self.sink {
             Sink::Csv(csv) => csv.flush(),
             Sink::Plain(out) => out.flush(),
+            Sink::Vcd(vcd) => vcd.flush(),
         }
     }
 
@@ -267,7 +333,8 @@ impl<W: Write> TraceWriter<W> {
     }
 
     /// As [`Self::row`], marking the cells whose `forced` entry is true (see
-    /// the module documentation); an empty `forced` marks nothing.
+    /// the module documentation); an empty `forced` marks nothing, and so
+    /// does VCD, which has no mark.
     pub fn row_marked(
         &mut self,
         cycle: u64,
@@ -275,7 +342,7 @@ impl<W: Write> TraceWriter<W> {
         cells: &[TraceCell],
         forced: &[bool],
     ) -> io::Result<()> {
-        if forced.iter().any(|&f| f) {
+        if self.format != TraceFormat::Vcd && forced.iter().any(|&f| f) {
             let marked: Vec<TraceCell> = cells
                 .iter()
                 .zip(forced.iter().chain(std::iter::repeat(&false)))
@@ -346,6 +413,10 @@ impl<W: Write> TraceWriter<W> {
                 ),
             ));
         }
+        if let Sink::Vcd(vcd) = &mut self.sink {
+            // VCD keeps its own last values (changes_only included).
+            return vcd.row(time_ns, cells);
+        }
         if self.changes_only && !self.changed(cells) {
             return Ok(());
         }
@@ -376,6 +447,7 @@ impl<W: Write> TraceWriter<W> {
                 csv.write_record(fields)?;
                 Ok(())
             }
+            TraceFormat::Vcd => Ok(()),
             TraceFormat::Jsonl => {
                 let line = &mut self.line;
                 line.clear();
@@ -392,7 +464,7 @@ impl<W: Write> TraceWriter<W> {
                 line.push(b'\n');
                 match &mut self.sink {
                     Sink::Plain(out) => out.write_all(line),
-                    Sink::Csv(_) => Ok(()),
+                    Sink::Csv(_) | Sink::Vcd(_) => Ok(()),
                 }
             }
         }
@@ -429,7 +501,7 @@ impl<W: Write> TraceWriter<W> {
         let line = table_line(&self.table.widths, texts());
         match &mut self.sink {
             Sink::Plain(out) => out.write_all(line.as_bytes()),
-            Sink::Csv(_) => Ok(()),
+            Sink::Csv(_) | Sink::Vcd(_) => Ok(()),
         }
     }
 
@@ -440,10 +512,11 @@ impl<W: Write> TraceWriter<W> {
             TraceFormat::Csv => self.write_csv_header()?,
             TraceFormat::Table if self.header_written => {}
             TraceFormat::Table => self.write_table()?,
-            TraceFormat::Jsonl => {}
+            TraceFormat::Jsonl | TraceFormat::Vcd => {}
         }
         match self.sink {
             Sink::Csv(csv) => csv.into_inner().map_err(|err| err.into_error()),
+            Sink::Vcd(vcd) => vcd.finish(),
             Sink::Plain(mut out) => {
                 out.flush()?;
                 Ok(out)

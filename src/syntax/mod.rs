@@ -10,6 +10,7 @@ pub mod il_lines;
 pub mod lexer;
 pub mod literal;
 pub mod parser;
+pub mod s7;
 pub mod token;
 
 use crate::diagnostics::{Diagnostics, Severity};
@@ -22,6 +23,20 @@ pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> ast::Compilat
     let tokens = lexer::lex(file, text, diags);
     let tokens = il_lines::keep_il_lines(tokens);
     parser::parse_tokens(construct::State::new(file, text), tokens, diags)
+}
+
+/// Parses one file named `name`: S7-200 STL when [`s7::recognise`] says
+/// so (a `.awl`/`.stl` file, or S7-200 content), IEC text otherwise.
+pub fn parse_file(
+    file: FileId,
+    name: &str,
+    text: &str,
+    diags: &mut Diagnostics,
+) -> ast::CompilationUnit {
+    if s7::recognise(name, text) {
+        return s7::parse(file, text, diags);
+    }
+    parse(file, text, diags)
 }
 
 /// Parses one standalone IEC literal as written on a command line / stimulus cell:

@@ -129,6 +129,7 @@ impl Plc {
                 ty: e.type_id,
                 owner: self.id,
                 read_only: None,
+                view: None,
             };
             let value = self
                 .parse_value(&r, &v.value)

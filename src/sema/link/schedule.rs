@@ -366,6 +366,9 @@ impl Linker<'_> {
                 global: addr,
             });
         }
+        if let ExprKind::Direct(a) = &expr.kind {
+            return self.direct_connection(a, input, offset, var.ty);
+        }
         if input
             && let Some(crate::sema::consts::Const::Bits(bits)) =
                 self.consts().const_value(expr, var.ty, None)
@@ -384,10 +387,42 @@ impl Linker<'_> {
             self.diags.error(
                 "E703",
                 expr.span,
-                "a program output connects to a VAR_GLOBAL variable",
+                "a program output connects to a VAR_GLOBAL variable or a %Q or %M address",
             );
         }
         None
+    }
+
+    /// `x := %IX0.0` or `y => %QX0.1`: the parameter is connected to the
+    /// located slot of the address (the one every other use of the address
+    /// shares), which the process image fills and reads like any located
+    /// variable. The address must fit the parameter's type (E207); an
+    /// output cannot go to a `%I` input.
+    fn direct_connection(
+        &mut self,
+        a: &crate::syntax::ast::DirectAddress,
+        input: bool,
+        offset: u32,
+        ty: crate::ir::type_table::TypeId,
+    ) -> Option<Connection> {
+        let key = crate::sema::declare::normalize_address(a);
+        if !input && key.starts_with("%I") {
+            self.diags.error(
+                "E703",
+                a.span,
+                format!(
+                    "a program output cannot go to the input address `{}`: connect it to a %Q or %M address or a VAR_GLOBAL",
+                    a.text
+                ),
+            );
+            return None;
+        }
+        let global = self.out.located_slot(self.types, self.diags, a, ty)?;
+        Some(Connection {
+            input,
+            offset,
+            global,
+        })
     }
 
     fn program_names(&self, programs: &[usize]) -> String {
