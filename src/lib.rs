@@ -35,6 +35,7 @@
 
 // The stages, in pipeline order. Only what the re-exports below name is
 // the library's API; the stages themselves stay inside the crate.
+mod compare;
 mod diagnostics;
 mod draw;
 mod driver;
@@ -49,6 +50,11 @@ pub mod syntax;
 mod value;
 pub(crate) mod vm;
 
+pub use compare::{
+    CompareError, CompareOptions, CompareReport, Difference, InputChange, InputKind, InputPlan,
+    Mismatch, OutputDifference, Pair, PairedVar, Pairing, RandomStimulus, SeedsOutcome, Shrunk,
+    Side, StimulusSource, parse_map, run_seeds,
+};
 pub use diagnostics::{Diagnostic, Diagnostics, Severity};
 pub use draw::{
     ActionLine, ChartModel, ChartPicture, DrawError, MAX_CHANGES, StepNode, TimingDiagram,

@@ -37,6 +37,9 @@ pub enum Command {
     Check(CheckArgs),
     /// Draw the chart (SFC) of a program as SVG.
     Draw(DrawArgs),
+    /// Run two programs side by side and compare their outputs
+    /// (`plcrun compare A_FILES... -- B_FILES... --cycles N`).
+    Compare(Box<super::compare::CompareArgs>),
 }
 
 /// `plcrun draw FILES... [--program P] [-o OUT.svg]`.

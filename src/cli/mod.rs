@@ -2,6 +2,7 @@
 //! Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.
 
 mod args;
+mod compare;
 mod draw;
 mod modbus;
 mod online;
@@ -22,9 +23,10 @@ pub const EXIT_FAULT: i32 = 3;
 
 /// Parses the command line and runs the chosen command.
 pub fn main() -> i32 {
-    match args::Cli::try_parse() {
+    match args::Cli::try_parse_from(compare::reorder(std::env::args_os().collect())) {
         Ok(cli) => match cli.command {
             Some(args::Command::Check(a)) => run::check(&a),
+            Some(args::Command::Compare(a)) => compare::compare(&a),
             Some(args::Command::Run(a)) => run::run(&a),
             Some(args::Command::Draw(a)) => draw::draw(&a),
             None => run::run(&cli.run),
