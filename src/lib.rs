@@ -73,6 +73,10 @@ pub use runtime::host_blocks::{
 pub use runtime::io_address::{AddressError, Area, IoAddress, Width};
 pub use runtime::life_cycle::PlcState;
 pub use runtime::live_stimulus::{LiveStimulus, LiveStimulusError};
+pub use runtime::modbus::{
+    ExchangeReport, ImagePlace, ModbusConfig, ModbusError, ModbusExchange, ModbusServer,
+    ModbusStats, ModbusTable, modbus_place,
+};
 pub use runtime::names::VarRef;
 pub use runtime::plc_value::Value;
 pub use runtime::process_image::ProcessImage;

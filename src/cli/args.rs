@@ -149,6 +149,22 @@ pub struct RunArgs {
     /// situation, stored actions on activation, forcing orders.
     #[arg(long)]
     pub grafcet: bool,
+    /// Serve the process image over Modbus TCP on ADDR:PORT (e.g.
+    /// 0.0.0.0:502, 127.0.0.1:0 for a free port); see docs/modbus.md.
+    #[arg(long, value_name = "ADDR:PORT")]
+    pub modbus: Option<String>,
+    /// Modbus clients connected at once; more are closed on arrival.
+    #[arg(long, value_name = "N", default_value_t = 16, requires = "modbus",
+          value_parser = clap::value_parser!(u64).range(1..10_000))]
+    pub modbus_max_clients: u64,
+    /// Close a Modbus connection with no complete request for this long.
+    #[arg(
+        long,
+        value_name = "DURATION",
+        default_value = "30s",
+        requires = "modbus"
+    )]
+    pub modbus_idle_timeout: String,
 }
 
 /// `plcrun check FILES...`: parse and check only.

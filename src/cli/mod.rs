@@ -2,9 +2,10 @@
 //! Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.
 
 mod args;
-mod draw;
 mod compare;
 mod export;
+mod draw;
+mod modbus;
 mod online;
 mod reload;
 mod retain;

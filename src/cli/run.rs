@@ -3,9 +3,9 @@
 use super::args::{CheckArgs, RunArgs, StatsFormat};
 use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
 use plcrun::{
-    CheckOptions, Diagnostics, LiveStimulus, Options, Plc, RunError, Session, TaskRunner,
-    TraceFormat, TraceWriter, VcdTimescale, check as check_sources, format_stats_table, load_files,
-    parse_stimulus, parse_time_literal,
+    CheckOptions, Diagnostics, LiveStimulus, ModbusExchange, Options, Plc, RunError, Session,
+    TaskRunner, TraceFormat, TraceWriter, VcdTimescale, check as check_sources, format_stats_table,
+    load_files, parse_stimulus, parse_time_literal,
 };
 use std::io::{Read, Write};
 use std::time::Duration;
@@ -173,6 +173,7 @@ fn drive<W: Write>(
     cycles: Option<u64>,
     writer: &mut TraceWriter<W>,
     reloader: Option<super::reload::Reloader>,
+    modbus: Option<ModbusExchange>,
 ) -> Result<(), Box<RunError>> {
     let stop = session.plc().stop_handle();
     // First signal: stop at the cycle boundary; second: interrupt the
@@ -191,7 +192,7 @@ fn drive<W: Write>(
     if let Err(e) = ctrlc::set_handler(on_signal) {
         eprintln!("warning: Ctrl-C and SIGTERM will not stop cleanly: {e}");
     }
-    if !args.realtime && !args.stats {
+    if !args.realtime && !args.stats && modbus.is_none() {
         // Virtual time without statistics: the plain loop.
         return session.run(cycles.unwrap_or(0), writer).map_err(Box::new);
     }
@@ -200,8 +201,19 @@ fn drive<W: Write>(
     } else {
         TaskRunner::virtual_time(session.plc())
     };
-    if let Some(reloader) = reloader {
-        runner.set_between_ticks(move |session| reloader.apply_pending(session));
+    if reloader.is_some() || modbus.is_some() {
+        let mut modbus = modbus;
+        if let Some(exchange) = &mut modbus {
+            exchange.exchange(session.plc_mut()); // clients see the initial image
+        }
+        runner.set_between_ticks(move |session| {
+            if let Some(reloader) = &reloader {
+                reloader.apply_pending(session);
+            }
+            if let Some(exchange) = &mut modbus {
+                exchange.exchange(session.plc_mut());
+            }
+        });
     }
     let result = runner.run(session, cycles, writer);
     if args.stats {
@@ -225,6 +237,9 @@ pub fn run(args: &RunArgs) -> i32 {
     }
     if args.reload && !args.realtime {
         return usage_error("--reload watches the sources of a --realtime run; add --realtime");
+    }
+    if args.modbus.is_some() && !args.online_change_at.is_empty() {
+        return usage_error("--online-change-at cannot be combined with --modbus");
     }
     let format: TraceFormat = match args.format.parse() {
         Ok(f) => f,
@@ -281,8 +296,21 @@ pub fn run(args: &RunArgs) -> i32 {
     let reloader = args
         .reload
         .then(|| super::reload::start(args.files.clone(), options.clone()));
+    let modbus = match super::modbus::start(args) {
+        Ok(m) => m,
+        Err(e) => return usage_error(e),
+    };
+    let (_server, exchange) = modbus.unzip();
     let result = if changes.is_empty() {
-        drive(args, &mut session, args.cycles, &mut writer, reloader).map_err(|e| *e)
+        drive(
+            args,
+            &mut session,
+            args.cycles,
+            &mut writer,
+            reloader,
+            exchange,
+        )
+        .map_err(|e| *e)
     } else if args.realtime {
         return usage_error(
             "--online-change-at runs in virtual time; it cannot be combined with --realtime",

@@ -25,6 +25,7 @@
 //! - [`process_image`], [`io_address`]: the `%I`/`%Q`/`%M` byte areas and
 //!   how direct addresses map into them;
 //! - [`forcing`]: forced variables and soft writes;
+//! - [`modbus`]: a Modbus TCP server on the process image;
 //! - [`variables`]: the list of variables with their types, and chart step
 //!   states;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines;
@@ -41,6 +42,7 @@ pub mod host_blocks;
 pub mod io_address;
 pub mod life_cycle;
 pub mod live_stimulus;
+pub mod modbus;
 pub mod names;
 pub mod online_change;
 pub mod plc_value;

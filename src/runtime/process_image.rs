@@ -169,6 +169,13 @@ impl ProcessImage {
         &self.areas[area.index()]
     }
 
+    /// The bytes of any area, `%Q` included, for the crate's own servers
+    /// (a Modbus client writes coils and holding registers, which are
+    /// `%Q`); like a host write, the program sees them at the next cycle.
+    pub(crate) fn area_bytes_mut(&mut self, area: Area) -> &mut [u8] {
+        &mut self.areas[area.index()]
+    }
+
     /// The `%I` bytes, for a host that copies its inputs in bulk. The
     /// program sees them at the start of the next cycle.
     pub fn inputs_mut(&mut self) -> &mut [u8] {
