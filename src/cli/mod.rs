@@ -3,8 +3,8 @@
 
 mod args;
 mod compare;
-mod export;
 mod draw;
+mod export;
 mod modbus;
 mod online;
 mod reload;

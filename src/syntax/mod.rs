@@ -10,8 +10,8 @@ pub mod il_lines;
 pub mod lexer;
 pub mod literal;
 pub mod parser;
-pub mod s7;
 pub mod plcopen;
+pub mod s7;
 pub mod token;
 
 use crate::diagnostics::{Diagnostics, Severity};
