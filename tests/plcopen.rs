@@ -248,6 +248,11 @@ fn every_program_runs_identically_after_export_and_import() {
             .file_name()
             .to_string_lossy()
             .into_owned();
+        // The GRAFCET-mode programs need `--grafcet`: tests/plcopen_cli.rs
+        // round-trips them under it.
+        if name.starts_with("grafcet_") {
+            continue;
+        }
         if [".il", ".st", ".sfc"].iter().any(|e| name.ends_with(e)) {
             let path = format!("programs/{name}");
             assert!(

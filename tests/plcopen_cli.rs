@@ -63,3 +63,46 @@ fn refusals_and_usage_errors_have_their_exit_statuses() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("PLCopen XML already"), "{err}");
 }
+
+/// The GRAFCET-mode programs (forcing orders are step associations) export
+/// and run identically under `--grafcet`; `tests/plcopen.rs` round-trips
+/// the others with default options.
+#[test]
+fn grafcet_mode_programs_round_trip_under_grafcet() {
+    for (name, cycles, trace) in [
+        ("grafcet_transient", "13", None),
+        (
+            "grafcet_forcing",
+            "16",
+            Some("S0.X,S1.X,S2.X,S3.X,G1.P0.X,G1.P1.X,G1.P2.X,motor,alarm"),
+        ),
+    ] {
+        let source = format!("programs/{name}.sfc");
+        let stimulus = format!("programs/{name}.csv");
+        let out = temp_file(&format!("{name}.xml"), "");
+        plcrun_ok(&["export", "--plcopen", &source, "-o", &out]);
+        let run = |file: &str| {
+            let mut args = vec![
+                file,
+                "--grafcet",
+                "--cycles",
+                cycles,
+                "--stimulus",
+                &stimulus,
+            ];
+            if let Some(t) = trace {
+                args.extend(["--trace", t]);
+            }
+            plcrun_ok(&args)
+        };
+        assert_eq!(run(&out), run(&source), "{name}");
+    }
+}
+
+/// S7-200 STL has no PLCopen body language: export refuses it by name.
+#[test]
+fn an_s7_200_program_is_not_exported() {
+    let (code, out, err) = plcrun(&["export", "--plcopen", "programs/s7_table_example1.awl"]);
+    assert_eq!((code, out.as_str()), (2, ""), "{err}");
+    assert!(err.contains("S7-200 STL"), "{err}");
+}

@@ -20,7 +20,7 @@ pub fn export(args: &ExportArgs) -> i32 {
     }
     let xml = match export_plcopen(&sources) {
         Ok(xml) => xml,
-        Err(e @ ExportError::NotTextual { .. }) => {
+        Err(e @ (ExportError::NotTextual { .. } | ExportError::S7Source { .. })) => {
             eprintln!("error: {e}");
             return EXIT_USAGE;
         }

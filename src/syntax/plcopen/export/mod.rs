@@ -24,6 +24,11 @@ pub enum ExportError {
         /// The file's name.
         file: String,
     },
+    /// A file is S7-200 STL, a language TC6 XML has no body kind for.
+    S7Source {
+        /// The file's name.
+        file: String,
+    },
     /// The sources have syntax errors (rendered as `plcrun check` shows them).
     Syntax {
         /// The rendered diagnostics.
@@ -45,6 +50,13 @@ impl fmt::Display for ExportError {
                 write!(
                     f,
                     "`{file}` is PLCopen XML already; export writes IL, ST and SFC sources"
+                )
+            }
+            ExportError::S7Source { file } => {
+                write!(
+                    f,
+                    "`{file}` is S7-200 STL, which PLCopen TC6 XML has no body language for; \
+                     export writes IL, ST and SFC sources"
                 )
             }
             ExportError::Syntax { rendered } => {
@@ -77,6 +89,11 @@ pub fn export_plcopen(sources: &SourceMap) -> Result<String, ExportError> {
     for (i, file) in sources.files().iter().enumerate() {
         if super::is_plcopen(&file.text) {
             return Err(ExportError::NotTextual {
+                file: file.name.clone(),
+            });
+        }
+        if crate::syntax::s7::recognise(&file.name, &file.text) {
+            return Err(ExportError::S7Source {
                 file: file.name.clone(),
             });
         }
