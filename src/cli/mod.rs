@@ -2,8 +2,8 @@
 //! Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.
 
 mod args;
-mod draw;
 mod compare;
+mod draw;
 mod online;
 mod reload;
 mod retain;
