@@ -102,11 +102,38 @@ impl BodyBuilder<'_> {
         if let Some(v) = fuse_mul_add(&mut self.block, op, a, b, ct, e) {
             return v;
         }
+        if op == BinaryOp::Pow && e.is_unsigned_int() {
+            return self.unsigned_pow(a, b, ct, e);
+        }
         let d = self.block.temp();
         let Some(o) = arith_op(op, e, d, a, b) else {
             return Val::error();
         };
         self.block.emit(o);
+        Val::Slot(d, ct)
+    }
+
+    /// `a ** b` on an unsigned type: the 64-bit wrapping power, then
+    /// zero-extended from the type's width (PowS alone sign-extends,
+    /// which would leave a USINT holding 16#FF..81).
+    fn unsigned_pow(&mut self, a: Slot, b: Slot, ct: TypeId, e: ElemType) -> Val {
+        let p = self.block.temp();
+        self.block.emit(Op::PowS {
+            d: p,
+            a,
+            b,
+            shift: 0,
+        });
+        let shift = shift_of(e);
+        if shift == 0 {
+            return Val::Slot(p, ct);
+        }
+        let d = self.block.temp();
+        self.block.emit(Op::Convert {
+            d,
+            a: p,
+            conv: crate::ir::op::Conv::WrapU(shift),
+        });
         Val::Slot(d, ct)
     }
 
@@ -262,12 +289,20 @@ impl BodyBuilder<'_> {
                 return Some(Val::error());
             }
         };
+        let result_elem = self.scalar(result);
         if let (Val::Const(Const::Bits(x), _), Val::Const(Const::Bits(y), _)) = (va, vb) {
             let r = if op == BinaryOp::Add {
                 (*x as i64).checked_add(*y as i64)
             } else {
                 (*x as i64).checked_sub(*y as i64)
             };
+            let r = r.map(|v| {
+                if is_tod(result_elem) {
+                    v.rem_euclid(DAY_NS)
+                } else {
+                    v
+                }
+            });
             return Some(match r {
                 Some(v) => Val::Const(Const::Bits(v as u64), Ty::T(result)),
                 None => {
@@ -285,6 +320,16 @@ impl BodyBuilder<'_> {
         } else {
             Op::SubS { d, a, b, shift: 0 }
         });
+        if is_tod(result_elem) {
+            // A time of day stays within the day: it wraps around midnight.
+            let w = self.block.temp();
+            self.block.emit(Op::Convert {
+                d: w,
+                a: d,
+                conv: crate::ir::op::Conv::DtToTod,
+            });
+            return Some(Val::Slot(w, result));
+        }
         Some(Val::Slot(d, result))
     }
 
@@ -296,7 +341,18 @@ impl BodyBuilder<'_> {
             Ty::T(x) => self.scalar(x).unwrap_or(ElemType::Lint),
         };
         let nv = self.coerce(n.clone(), TypeTable::elem(ne), span, "time factor");
-        let b = self.materialize(&nv);
+        let mut b = self.materialize(&nv);
+        if ne == ElemType::Ulint && op == BinaryOp::Div {
+            // The division is signed: a ULINT divisor of 2^63 or more
+            // would read as negative, so it faults (R004) instead.
+            let c = self.block.temp();
+            self.block.emit(Op::Convert {
+                d: c,
+                a: b,
+                conv: crate::ir::op::Conv::CheckU(1),
+            });
+            b = c;
+        }
         let d = self.block.temp();
         if ne.is_real() {
             let b = if ne == ElemType::Real {
@@ -516,6 +572,14 @@ fn fuse_mul_add(
         return Some(Val::Slot(d, ct));
     }
     None
+}
+
+/// Nanoseconds in a day (a TOD wraps around midnight).
+const DAY_NS: i64 = 86_400_000_000_000;
+
+/// Whether `e` is TOD or LTOD.
+fn is_tod(e: Option<ElemType>) -> bool {
+    matches!(e, Some(ElemType::Tod | ElemType::Ltod))
 }
 
 /// The instruction computing `a op b` into `d` for elementary type `e`.

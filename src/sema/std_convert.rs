@@ -168,6 +168,12 @@ impl BodyBuilder<'_> {
                     }
                 } else if to.is_signed_int() {
                     // Between integers the value must fit (semantics §3).
+                    if from == E::Ulint {
+                        // CheckS reads the slot as signed: a ULINT of 2^63
+                        // or more must fail before it looks negative.
+                        let v = self.apply_conv(v, Conv::CheckU(1), E::Lint, span);
+                        return self.apply_conv(v, Conv::CheckS(shift), to, span);
+                    }
                     Some(Conv::CheckS(shift))
                 } else if from.is_signed_int() {
                     Some(Conv::CheckSToU(shift))

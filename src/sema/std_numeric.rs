@@ -386,8 +386,15 @@ impl BodyBuilder<'_> {
     ) -> Val {
         let (t, _) = vals.pop().unwrap_or((Val::error(), span));
         let (d, ds) = vals.pop().unwrap_or((Val::error(), span));
-        let dt = TypeTable::elem(ElemType::Date);
-        let tt = TypeTable::elem(ElemType::Tod);
+        // CONCAT_LDATE_LTOD works on the long types and gives an LDT.
+        let long = fname.to_ascii_uppercase().contains("LDATE");
+        let (de, te, re) = if long {
+            (ElemType::Ldate, ElemType::Ltod, ElemType::Ldt)
+        } else {
+            (ElemType::Date, ElemType::Tod, ElemType::Dt)
+        };
+        let dt = TypeTable::elem(de);
+        let tt = TypeTable::elem(te);
         let d = self.coerce(d, dt, ds, fname);
         let t = self.coerce(t, tt, ds, fname);
         let (a, b) = (self.materialize(&d), self.materialize(&t));
@@ -398,7 +405,7 @@ impl BodyBuilder<'_> {
             b,
             shift: 0,
         });
-        Val::Slot(r, TypeTable::elem(ElemType::Dt))
+        Val::Slot(r, TypeTable::elem(re))
     }
 
     /// The common type of the arguments; untyped literals alone take the

@@ -54,13 +54,15 @@ pub enum Conv {
     ToBcd(u8),
     /// BCD to binary; faults on an invalid nibble.
     FromBcd,
-    /// Nanoseconds to whole milliseconds (`TIME_TO_<int>`), then wrap as signed.
+    /// Nanoseconds to whole milliseconds (`TIME_TO_<int>`, truncated
+    /// toward zero), checked into a signed range (faults when it does not fit).
     NsToMsS(u8),
-    /// Nanoseconds to whole milliseconds, then wrap as unsigned.
+    /// Nanoseconds to whole milliseconds, checked into an unsigned range.
     NsToMsU(u8),
-    /// Milliseconds (signed) to nanoseconds (`<int>_TO_TIME`).
+    /// Milliseconds (signed) to nanoseconds (`<int>_TO_TIME`); faults
+    /// beyond the range of TIME.
     MsToNsS,
-    /// Milliseconds (unsigned) to nanoseconds.
+    /// Milliseconds (unsigned) to nanoseconds; faults beyond the range of TIME.
     MsToNsU,
     /// TIME to REAL milliseconds.
     NsToMsF32,
@@ -199,10 +201,20 @@ pub fn convert(c: Conv, x: u64) -> Result<u64, ConvError> {
         }
         Conv::ToBcd(bits) => to_bcd(x, bits)?,
         Conv::FromBcd => from_bcd(x)?,
-        Conv::NsToMsS(s) => wrap_s(((x as i64) / NS_PER_MS) as u64, s),
-        Conv::NsToMsU(s) => wrap_u(((x as i64) / NS_PER_MS) as u64, s),
-        Conv::MsToNsS => ((x as i64).wrapping_mul(NS_PER_MS)) as u64,
-        Conv::MsToNsU => x.wrapping_mul(NS_PER_MS as u64),
+        // Like the integer conversions, a count that does not fit faults
+        // (semantics §3) instead of wrapping.
+        Conv::NsToMsS(s) => fits_s((x as i64) / NS_PER_MS, s).ok_or(ConvError::Overflow)?,
+        Conv::NsToMsU(s) => {
+            let ms = u64::try_from((x as i64) / NS_PER_MS).map_err(|_| ConvError::Overflow)?;
+            fits_u(ms, s).ok_or(ConvError::Overflow)?
+        }
+        Conv::MsToNsS => (x as i64)
+            .checked_mul(NS_PER_MS)
+            .ok_or(ConvError::Overflow)? as u64,
+        Conv::MsToNsU => i64::try_from(x)
+            .ok()
+            .and_then(|ms| ms.checked_mul(NS_PER_MS))
+            .ok_or(ConvError::Overflow)? as u64,
         Conv::NsToMsF32 => (((x as i64) as f64 / NS_PER_MS as f64) as f32).to_bits() as u64,
         Conv::NsToMsF64 => ((x as i64) as f64 / NS_PER_MS as f64).to_bits(),
         Conv::MsF32ToNs => {
@@ -211,7 +223,11 @@ pub fn convert(c: Conv, x: u64) -> Result<u64, ConvError> {
         Conv::MsF64ToNs => {
             f64_to_i64((f64v() * NS_PER_MS as f64).round()).ok_or(ConvError::Overflow)? as u64
         }
-        Conv::DtToDate => ((x as i64).div_euclid(DAY_NS) * DAY_NS) as u64,
+        // The first day of the range has no midnight in range: it faults.
+        Conv::DtToDate => (x as i64)
+            .div_euclid(DAY_NS)
+            .checked_mul(DAY_NS)
+            .ok_or(ConvError::Overflow)? as u64,
         Conv::DtToTod => (x as i64).rem_euclid(DAY_NS) as u64,
     })
 }
