@@ -113,6 +113,11 @@ pub struct RunArgs {
     /// instead of refusing a file saved by another version of the program.
     #[arg(long, requires = "retain", conflicts_with = "cold")]
     pub retain_partial: bool,
+    /// Most MiB of program data (variables, FB instances) the program may
+    /// hold; a larger one is refused with E120.
+    #[arg(long, value_name = "MIB", default_value_t = 512,
+          value_parser = clap::value_parser!(u64).range(1..=2048))]
+    pub max_data_mib: u64,
 }
 
 /// `plcrun check FILES...`: parse and check only.
@@ -127,6 +132,11 @@ pub struct CheckArgs {
     /// The PROGRAM to build when the files hold several (with --dump-ir).
     #[arg(long)]
     pub program: Option<String>,
+    /// Most MiB of program data (variables, FB instances) the program may
+    /// hold; a larger one is refused with E120.
+    #[arg(long, value_name = "MIB", default_value_t = 512,
+          value_parser = clap::value_parser!(u64).range(1..=2048))]
+    pub max_data_mib: u64,
 }
 
 /// How `--stats` prints the statistics.

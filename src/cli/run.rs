@@ -29,6 +29,7 @@ pub fn check(args: &CheckArgs) -> i32 {
     let options = CheckOptions {
         program: args.program.clone(),
         ir_listing: args.dump_ir,
+        max_data_bytes: (args.max_data_mib as usize) << 20,
     };
     let report = check_sources(&sources, &options);
     diags.extend(report.diagnostics);
@@ -68,6 +69,7 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         cycle_time,
         program: args.program.clone(),
         watchdog,
+        max_data_bytes: (args.max_data_mib as usize) << 20,
         ..Options::default()
     })
 }

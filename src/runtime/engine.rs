@@ -33,6 +33,10 @@ pub struct Options {
     pub watchdog: Option<Duration>,
     /// FUNCTIONs and FUNCTION_BLOCKs implemented by the host (none by default).
     pub hosts: HostBlocks,
+    /// Most bytes of program data (variables, FB instances, constants) the
+    /// compiled program may hold (default 512 MiB); larger programs are
+    /// refused with E120.
+    pub max_data_bytes: usize,
 }
 
 impl Default for Options {
@@ -42,6 +46,7 @@ impl Default for Options {
             program: None,
             watchdog: Some(Duration::from_secs(1)),
             hosts: HostBlocks::default(),
+            max_data_bytes: crate::sema::DEFAULT_MAX_DATA_BYTES,
         }
     }
 }
@@ -171,6 +176,7 @@ impl Plc {
             cycle_time: options.cycle_time,
             check_only: false,
             host_pous: options.hosts.names(),
+            max_data_bytes: options.max_data_bytes,
         };
         let image = driver::compile(&sources, &build, &mut diags);
         match image {

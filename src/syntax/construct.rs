@@ -11,7 +11,8 @@ use crate::diagnostics::Diagnostic;
 use crate::source::{FileId, Span};
 use crate::syntax::ast::*;
 use crate::syntax::depth::{
-    MAX_EXPR_DEPTH, MAX_INIT_DEPTH, MAX_STMT_DEPTH, expr_depth, init_depth, stmt_depth, type_depth,
+    MAX_EXPR_DEPTH, MAX_EXPR_TERMS, MAX_INIT_DEPTH, MAX_STMT_DEPTH, expr_depth, expr_height,
+    init_depth, stmt_depth, type_depth,
 };
 use crate::syntax::parser::recovery_diagnostic;
 use crate::syntax::token::Tok;
@@ -33,6 +34,9 @@ pub struct State<'t> {
     /// Lines holding an unsupported construct (E110): other syntax errors
     /// there are its consequence and are not reported.
     quiet_lines: RefCell<Vec<usize>>,
+    /// Span and height of the binary node built last: the left operand of
+    /// the next one in a chain.
+    last_binary: Cell<Option<(Span, usize)>>,
 }
 
 impl<'t> State<'t> {
@@ -49,6 +53,7 @@ impl<'t> State<'t> {
             last_error_line: Cell::new(None),
             suppressed: Cell::new(0),
             quiet_lines: RefCell::new(Vec::new()),
+            last_binary: Cell::new(None),
         }
     }
 
@@ -123,6 +128,19 @@ impl<'t> State<'t> {
         d
     }
 
+    /// E106 for a chain of more than [`MAX_EXPR_TERMS`] operands.
+    fn too_long(&self, span: Span) {
+        if !self.depth_reported.replace(true) {
+            self.error(
+                "E106",
+                span,
+                format!(
+                    "expression too long (more than {MAX_EXPR_TERMS} operands in one chain); split it up"
+                ),
+            );
+        }
+    }
+
     fn too_deep(&self, span: Span, what: &str, limit: usize) {
         if !self.depth_reported.replace(true) {
             self.error(
@@ -160,14 +178,33 @@ fn first_child(e: Expr) -> Expr {
 
 // ------------------------------------------------------------------ expressions
 
-/// `l op r`.
+/// `l op r`. The left operand was checked when it was built, so only the
+/// right one can make the node nest too deeply (a left-associative chain is
+/// flat, see [`expr_depth`]). The chain's length is bounded separately by
+/// [`MAX_EXPR_TERMS`]; the height of the left operand is remembered from the
+/// previous reduction, so that checking a chain of n terms costs O(n).
 pub fn binary(st: &State, op: BinaryOp, l: Expr, r: Expr) -> Expr {
     let span = l.span.to(r.span);
-    let node = Expr {
+    if 1 + expr_depth(&r) > MAX_EXPR_DEPTH {
+        st.too_deep(r.span, "expression", MAX_EXPR_DEPTH);
+        return l;
+    }
+    let left_height = match st.last_binary.get() {
+        Some((s, h)) if s == l.span && matches!(l.kind, ExprKind::Binary(..)) => h,
+        _ => expr_height(&l),
+    };
+    let height = 1 + left_height.max(expr_height(&r));
+    if height > MAX_EXPR_TERMS {
+        st.too_long(span);
+        // Restart from the right operand, so that the rest of an overlong
+        // chain is checked in constant time per term too.
+        return r;
+    }
+    st.last_binary.set(Some((span, height)));
+    Expr {
         kind: ExprKind::Binary(op, Box::new(l), Box::new(r)),
         span,
-    };
-    guard(st, node, first_child)
+    }
 }
 
 /// `op e`; a minus directly before an untyped number or duration literal is
