@@ -87,7 +87,7 @@ fn invalid_utf8(file: FileId, offset: usize) -> Diagnostic {
 /// stack, so that compiling never depends on the caller's stack: a host's
 /// 2 MiB worker thread compiles the same programs as the command line. The
 /// recursive walks inside are bounded by the nesting limits of
-/// [`crate::syntax::depth`] and [`crate::sema::MAX_TYPE_NESTING`], which fit
+/// [`crate::syntax::depth`] and of the declaration nesting (E122), which fit
 /// in that stack with a wide margin.
 pub(crate) fn compile(
     sources: &SourceMap,

@@ -26,6 +26,7 @@ mod const_order;
 mod decl_consts;
 mod declare;
 mod layout;
+mod nesting;
 mod sfc;
 mod type_decl;
 
@@ -96,6 +97,11 @@ pub fn compile(
     options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
+    if let Some(too_deep) = nesting::check(units) {
+        // The declaration phase would recurse that deep: refuse first.
+        diags.push(too_deep);
+        return None;
+    }
     let mut declarer = declare::Declarer::new(units, diags);
     declarer.set_host_pous(&options.host_pous);
     declarer.set_data_limit(options.max_data_slots());

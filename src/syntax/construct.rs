@@ -135,7 +135,7 @@ impl<'t> State<'t> {
                 "E106",
                 span,
                 format!(
-                    "expression too long (more than {MAX_EXPR_TERMS} operands in one chain); split it up"
+                    "expression too long (a chain of more than {MAX_EXPR_TERMS} operands); split it up"
                 ),
             );
         }

@@ -22,7 +22,7 @@ fn arg_expr(a: &Arg) -> &Expr {
 /// Most operands in one expression counted along its longest path from
 /// the root (a flat chain `a OR b OR ... ` of that many terms): later stages
 /// walk expressions recursively, and this bounds how deep they go.
-pub const MAX_EXPR_TERMS: usize = 50_000;
+pub const MAX_EXPR_TERMS: usize = 20_000;
 
 /// Nesting depth of an expression (a leaf is 1). The left operand of a
 /// binary operator does not nest: `a + b + c` is a flat chain of depth 2
