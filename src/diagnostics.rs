@@ -127,7 +127,7 @@ fn excerpt(text: &str, col: usize, end_col: usize) -> (String, usize, usize) {
     let lead = 40;
     let first = col.saturating_sub(1).saturating_sub(lead);
     let mut window: String = text.chars().skip(first).take(MAX_EXCERPT_CHARS).collect();
-    let more_after = text.chars().skip(first + MAX_EXCERPT_CHARS).next().is_some();
+    let more_after = text.chars().nth(first + MAX_EXCERPT_CHARS).is_some();
     let (mut col, mut end_col) = (col - first, end_col.saturating_sub(first));
     if first > 0 {
         window.insert_str(0, "...");

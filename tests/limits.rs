@@ -86,9 +86,18 @@ fn fb_chain(n: usize) -> String {
     let mut s = String::new();
     for i in 0..n {
         if i + 1 < n {
-            writeln!(s, "FUNCTION_BLOCK F{i} VAR inner : F{}; END_VAR inner(); END_FUNCTION_BLOCK", i + 1).unwrap();
+            writeln!(
+                s,
+                "FUNCTION_BLOCK F{i} VAR inner : F{}; END_VAR inner(); END_FUNCTION_BLOCK",
+                i + 1
+            )
+            .unwrap();
         } else {
-            writeln!(s, "FUNCTION_BLOCK F{i} VAR v : INT; END_VAR v := v + 1; END_FUNCTION_BLOCK").unwrap();
+            writeln!(
+                s,
+                "FUNCTION_BLOCK F{i} VAR v : INT; END_VAR v := v + 1; END_FUNCTION_BLOCK"
+            )
+            .unwrap();
         }
     }
     s + &program_with("f : F0;", "f();")
@@ -156,7 +165,11 @@ fn struct_chain_20000_deep_in_reverse_order_compiles_on_a_2_mib_stack() {
 
 #[test]
 fn declarations_nested_deeper_than_the_limit_are_e122() {
-    for src in [struct_chain(200_000), alias_chain(200_000), fb_chain(30_000)] {
+    for src in [
+        struct_chain(200_000),
+        alias_chain(200_000),
+        fb_chain(30_000),
+    ] {
         let codes = compile_codes(src.clone());
         assert_eq!(codes, vec!["E122".to_string()]);
     }
@@ -176,7 +189,10 @@ fn fb_instance_cycle_through_three_types_is_named_as_a_cycle() {
     let messages = compile_messages(&src);
     assert!(!messages.is_empty());
     let all = format!("{messages:?}");
-    assert!(all.contains('A') && all.contains('B') && all.contains('C'), "{all}");
+    assert!(
+        all.contains('A') && all.contains('B') && all.contains('C'),
+        "{all}"
+    );
     accept_or_coded("fb cycle", &compile_codes(src.clone()));
     assert_eq!(cli_no_crash("fb_cycle", &src).0, 1);
 }
@@ -203,7 +219,11 @@ fn recursion_chain_of_2000_functions_does_not_overflow() {
     let mut src = String::new();
     for i in 0..n {
         let callee = (i + 1) % n;
-        writeln!(src, "FUNCTION G{i} : INT VAR_INPUT n : INT; END_VAR G{i} := G{callee}(n); END_FUNCTION").unwrap();
+        writeln!(
+            src,
+            "FUNCTION G{i} : INT VAR_INPUT n : INT; END_VAR G{i} := G{callee}(n); END_FUNCTION"
+        )
+        .unwrap();
     }
     src += &program_with("x : INT;", "x := G0(1);");
     let codes = compile_codes(src.clone());
@@ -228,7 +248,15 @@ fn flat_chain(op: &str, n: usize, ty: &str) -> String {
 
 #[test]
 fn flat_chains_of_10000_terms_compile_on_a_2_mib_stack() {
-    for (op, ty) in [("OR", "BOOL"), ("AND", "BOOL"), ("&", "BOOL"), ("XOR", "WORD"), ("+", "DINT"), ("*", "LREAL"), ("-", "INT")] {
+    for (op, ty) in [
+        ("OR", "BOOL"),
+        ("AND", "BOOL"),
+        ("&", "BOOL"),
+        ("XOR", "WORD"),
+        ("+", "DINT"),
+        ("*", "LREAL"),
+        ("-", "INT"),
+    ] {
         let src = flat_chain(op, 10_000, ty);
         let codes = compile_codes(src.clone());
         assert!(codes.is_empty(), "{op}: {codes:?}");
@@ -272,14 +300,23 @@ fn flat_chain_computes_the_right_value() {
 
 #[test]
 fn expressions_nested_10000_deep_are_e106() {
-    let src = program_with("r : INT;", &format!("r := {}1{};", "(".repeat(10_000), ")".repeat(10_000)));
+    let src = program_with(
+        "r : INT;",
+        &format!("r := {}1{};", "(".repeat(10_000), ")".repeat(10_000)),
+    );
     let codes = compile_codes(src.clone());
     assert!(codes.contains(&"E106".to_string()), "{codes:?}");
     assert_eq!(cli_no_crash("nested_expr", &src).0, 1);
-    let src = program_with("r : INT;", &format!("r := {}1{};", "-(".repeat(10_000), ")".repeat(10_000)));
+    let src = program_with(
+        "r : INT;",
+        &format!("r := {}1{};", "-(".repeat(10_000), ")".repeat(10_000)),
+    );
     assert!(compile_codes(src).contains(&"E106".to_string()));
     // Right-leaning chains are nesting: 1 + (1 + (1 + ...)).
-    let src = program_with("r : INT;", &format!("r := {}1{};", "1 + (".repeat(10_000), ")".repeat(10_000)));
+    let src = program_with(
+        "r : INT;",
+        &format!("r := {}1{};", "1 + (".repeat(10_000), ")".repeat(10_000)),
+    );
     assert!(compile_codes(src).contains(&"E106".to_string()));
 }
 
@@ -287,7 +324,11 @@ fn expressions_nested_10000_deep_are_e106() {
 fn statements_nested_10000_deep_are_e106() {
     let src = program_with(
         "b : BOOL;",
-        &format!("{}b := TRUE;{}", "IF b THEN ".repeat(10_000), " END_IF;".repeat(10_000)),
+        &format!(
+            "{}b := TRUE;{}",
+            "IF b THEN ".repeat(10_000),
+            " END_IF;".repeat(10_000)
+        ),
     );
     let codes = compile_codes(src.clone());
     assert!(codes.contains(&"E106".to_string()), "{codes:?}");
@@ -302,12 +343,20 @@ fn an_integer_literal_with_10000_digits_is_a_coded_error() {
     accept_or_coded("huge int", &codes);
     let (code, stderr) = cli_no_crash("huge_int", &src);
     assert_eq!(code, 1);
-    assert!(stderr.len() < 4000, "the excerpt must stay short: {} bytes", stderr.len());
+    assert!(
+        stderr.len() < 4000,
+        "the excerpt must stay short: {} bytes",
+        stderr.len()
+    );
 }
 
 #[test]
 fn a_real_literal_overflowing_to_infinity_is_a_coded_error() {
-    for lit in ["1.0E400", "1.0E999999999", &format!("{}.0", "9".repeat(400))] {
+    for lit in [
+        "1.0E400",
+        "1.0E999999999",
+        &format!("{}.0", "9".repeat(400)),
+    ] {
         let src = program_with("r : LREAL;", &format!("r := {lit};"));
         let codes = compile_codes(src);
         assert!(!codes.is_empty(), "{lit} was accepted");
@@ -317,7 +366,11 @@ fn a_real_literal_overflowing_to_infinity_is_a_coded_error() {
 
 #[test]
 fn a_time_literal_overflowing_is_a_coded_error() {
-    for lit in ["T#9999999999999999999999d", "T#106751991167301d", "LTIME#99999999999999999999999999ms"] {
+    for lit in [
+        "T#9999999999999999999999d",
+        "T#106751991167301d",
+        "LTIME#99999999999999999999999999ms",
+    ] {
         let src = program_with("t : LTIME;", &format!("t := {lit};"));
         let codes = compile_codes(src);
         assert!(!codes.is_empty(), "{lit} was accepted");
@@ -390,7 +443,11 @@ fn a_10_mb_single_line_keeps_excerpts_short() {
     let src = program_with("x : DINT;", &line);
     let (code, stderr) = cli_no_crash("long_line", &src);
     assert_eq!(code, 1);
-    assert!(stderr.contains("E201"), "{}", &stderr[..stderr.len().min(1000)]);
+    assert!(
+        stderr.contains("E201"),
+        "{}",
+        &stderr[..stderr.len().min(1000)]
+    );
     assert!(stderr.len() < 4000, "excerpt of {} bytes", stderr.len());
 }
 
@@ -461,5 +518,9 @@ fn repeated_diagnostics_are_capped() {
     let (code, stderr) = cli_no_crash("many_errors", &src);
     assert_eq!(code, 1);
     assert!(stderr.len() < 200_000, "{} bytes of errors", stderr.len());
-    assert!(stderr.contains("more E201"), "{}", &stderr[stderr.len().saturating_sub(500)..]);
+    assert!(
+        stderr.contains("more E201"),
+        "{}",
+        &stderr[stderr.len().saturating_sub(500)..]
+    );
 }

@@ -96,7 +96,9 @@ fn init_names(init: &Initializer, out: &mut Vec<String>) {
     while let Some(i) = inits.pop() {
         match i {
             Initializer::Expr(e) => exprs.push(e),
-            Initializer::Array(elems, _) => inits.extend(elems.iter().filter_map(|e| e.value.as_ref())),
+            Initializer::Array(elems, _) => {
+                inits.extend(elems.iter().filter_map(|e| e.value.as_ref()))
+            }
             Initializer::Struct(fields, _) => inits.extend(fields.iter().map(|(_, i)| i)),
         }
     }
@@ -104,9 +106,10 @@ fn init_names(init: &Initializer, out: &mut Vec<String>) {
         match &e.kind {
             ExprKind::Name(id) => out.push(id.key()),
             ExprKind::Literal(_) | ExprKind::Direct(_) => {}
-            ExprKind::Member(b, _) | ExprKind::BitAccess(b, _) | ExprKind::Unary(_, b) | ExprKind::Paren(b) => {
-                exprs.push(b)
-            }
+            ExprKind::Member(b, _)
+            | ExprKind::BitAccess(b, _)
+            | ExprKind::Unary(_, b)
+            | ExprKind::Paren(b) => exprs.push(b),
             ExprKind::Index(b, idx) => {
                 exprs.push(b);
                 exprs.extend(idx.iter());
@@ -116,7 +119,9 @@ fn init_names(init: &Initializer, out: &mut Vec<String>) {
                 exprs.push(b);
             }
             ExprKind::Call(c) => exprs.extend(c.args.iter().map(|a| match a {
-                Arg::Positional(e) | Arg::Input { value: e, .. } | Arg::Output { target: e, .. } => e,
+                Arg::Positional(e)
+                | Arg::Input { value: e, .. }
+                | Arg::Output { target: e, .. } => e,
             })),
         }
     }

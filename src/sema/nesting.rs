@@ -34,7 +34,12 @@ pub fn check(units: &[CompilationUnit]) -> Option<Diagnostic> {
         .collect();
     let edges: Vec<Vec<usize>> = nodes
         .iter()
-        .map(|n| n.uses.iter().filter_map(|u| index.get(u.as_str()).copied()).collect())
+        .map(|n| {
+            n.uses
+                .iter()
+                .filter_map(|u| index.get(u.as_str()).copied())
+                .collect()
+        })
         .collect();
     let depth = longest_chains(&edges);
     let (worst, &d) = depth.iter().enumerate().max_by_key(|&(_, d)| *d)?;
@@ -147,7 +152,10 @@ mod tests {
     #[test]
     fn chains_are_measured_in_nodes() {
         assert_eq!(longest_chains(&[vec![1], vec![2], vec![]]), vec![3, 2, 1]);
-        assert_eq!(longest_chains(&[vec![], vec![0], vec![1, 0]]), vec![1, 2, 3]);
+        assert_eq!(
+            longest_chains(&[vec![], vec![0], vec![1, 0]]),
+            vec![1, 2, 3]
+        );
     }
 
     #[test]
@@ -159,7 +167,9 @@ mod tests {
     #[test]
     fn a_long_chain_costs_no_stack() {
         let n = 1_000_000;
-        let edges: Vec<Vec<usize>> = (0..n).map(|i| if i + 1 < n { vec![i + 1] } else { vec![] }).collect();
+        let edges: Vec<Vec<usize>> = (0..n)
+            .map(|i| if i + 1 < n { vec![i + 1] } else { vec![] })
+            .collect();
         assert_eq!(longest_chains(&edges)[0], n);
     }
 }

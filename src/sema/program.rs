@@ -166,7 +166,7 @@ impl Program {
 /// `bytes` as KiB, MiB or GiB when a whole number of them, else bytes.
 pub(super) fn format_bytes(bytes: usize) -> String {
     for (unit, shift) in [("GiB", 30), ("MiB", 20), ("KiB", 10)] {
-        if bytes >= 1 << shift && bytes % (1 << shift) == 0 {
+        if bytes >= 1 << shift && bytes.is_multiple_of(1 << shift) {
             return format!("{} {unit}", bytes >> shift);
         }
     }

@@ -41,6 +41,10 @@ pub fn expr_depth(e: &Expr) -> usize {
 /// Height of an expression tree (a leaf is 1), without recursion: the
 /// number of nested calls a recursive walk over it makes.
 pub fn expr_height(e: &Expr) -> usize {
+    // Most operands are small: measure them without allocating.
+    if let Some(h) = small_height(e, 8) {
+        return h;
+    }
     let mut highest = 0;
     let mut stack = vec![(e, 1usize)];
     while let Some((node, h)) = stack.pop() {
@@ -66,6 +70,36 @@ pub fn expr_height(e: &Expr) -> usize {
         }
     }
     highest
+}
+
+/// The height of `e` if it is at most `budget`, by a recursion at most
+/// `budget` deep; `None` for a higher tree.
+fn small_height(e: &Expr, budget: usize) -> Option<usize> {
+    let budget = budget.checked_sub(1)?;
+    let below = |c: &Expr| small_height(c, budget);
+    let children = match &e.kind {
+        ExprKind::Literal(_) | ExprKind::Name(_) | ExprKind::Direct(_) => 0,
+        ExprKind::Member(b, _)
+        | ExprKind::BitAccess(b, _)
+        | ExprKind::Unary(_, b)
+        | ExprKind::Paren(b) => below(b)?,
+        ExprKind::Index(b, idx) => {
+            let mut h = below(b)?;
+            for i in idx {
+                h = h.max(below(i)?);
+            }
+            h
+        }
+        ExprKind::Binary(_, a, b) => below(a)?.max(below(b)?),
+        ExprKind::Call(c) => {
+            let mut h = below(&c.callee)?;
+            for a in &c.args {
+                h = h.max(below(arg_expr(a))?);
+            }
+            h
+        }
+    };
+    Some(1 + children)
 }
 
 /// [`expr_depth`] of a node that is not a binary operation.
