@@ -9,6 +9,8 @@ use crate::sema;
 /// What to build from the sources (the program to run, the implicit
 /// task's cycle time, check only).
 pub(crate) use crate::sema::CompileOptions;
+/// Default limit of a program's data (512 MiB), beyond which E120.
+pub(crate) use crate::sema::DEFAULT_MAX_DATA_BYTES;
 use crate::source::{FileId, SourceMap, Span};
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -46,7 +46,7 @@ impl Default for Options {
             program: None,
             watchdog: Some(Duration::from_secs(1)),
             hosts: HostBlocks::default(),
-            max_data_bytes: crate::sema::DEFAULT_MAX_DATA_BYTES,
+            max_data_bytes: crate::driver::DEFAULT_MAX_DATA_BYTES,
         }
     }
 }
