@@ -37,6 +37,9 @@ pub struct State<'t> {
     /// Span and height of the binary node built last: the left operand of
     /// the next one in a chain.
     last_binary: Cell<Option<(Span, usize)>>,
+    /// An overlong chain was cut (E106): later chains in the file are not
+    /// built either.
+    chain_cut: Cell<bool>,
 }
 
 impl<'t> State<'t> {
@@ -54,6 +57,7 @@ impl<'t> State<'t> {
             suppressed: Cell::new(0),
             quiet_lines: RefCell::new(Vec::new()),
             last_binary: Cell::new(None),
+            chain_cut: Cell::new(false),
         }
     }
 
@@ -130,6 +134,7 @@ impl<'t> State<'t> {
 
     /// E106 for a chain of more than [`MAX_EXPR_TERMS`] operands.
     fn too_long(&self, span: Span) {
+        self.chain_cut.set(true);
         if !self.depth_reported.replace(true) {
             self.error(
                 "E106",
@@ -160,6 +165,37 @@ fn guard(st: &State, node: Expr, fallback: impl FnOnce(Expr) -> Expr) -> Expr {
         fallback(node)
     } else {
         node
+    }
+}
+
+/// Drops an expression tree of any height with a work list (the default
+/// drop recurses once per level).
+fn dismantle(e: Expr) {
+    let mut work = vec![e];
+    while let Some(mut node) = work.pop() {
+        let span = node.span;
+        let leaf = || Expr {
+            kind: ExprKind::Literal(Literal {
+                value: LiteralValue::Bool(false),
+                type_prefix: None,
+            }),
+            span,
+        };
+        match &mut node.kind {
+            ExprKind::Binary(_, a, b) => {
+                work.push(std::mem::replace(a.as_mut(), leaf()));
+                work.push(std::mem::replace(b.as_mut(), leaf()));
+            }
+            ExprKind::Member(b, _)
+            | ExprKind::BitAccess(b, _)
+            | ExprKind::Unary(_, b)
+            | ExprKind::Paren(b) => work.push(std::mem::replace(b.as_mut(), leaf())),
+            ExprKind::Index(b, idx) => {
+                work.push(std::mem::replace(b.as_mut(), leaf()));
+                work.append(idx);
+            }
+            _ => {}
+        }
     }
 }
 
@@ -194,10 +230,12 @@ pub fn binary(st: &State, op: BinaryOp, l: Expr, r: Expr) -> Expr {
         _ => expr_height(&l),
     };
     let height = 1 + left_height.max(expr_height(&r));
-    if height > MAX_EXPR_TERMS {
+    if height > MAX_EXPR_TERMS || (st.chain_cut.get() && left_height > 1) {
         st.too_long(span);
-        // Restart from the right operand, so that the rest of an overlong
-        // chain is checked in constant time per term too.
+        // Keep only the right operand (the rest of an overlong chain then
+        // costs constant time per term and builds nothing), and take the
+        // long left operand apart without recursion.
+        dismantle(l);
         return r;
     }
     st.last_binary.set(Some((span, height)));
