@@ -286,7 +286,7 @@ fn a_chain_longer_than_the_limit_is_e106() {
 
 #[test]
 fn flat_chain_computes_the_right_value() {
-    let n = 11_990;
+    let n = 10_000;
     let mut e = String::from("1");
     for _ in 1..n {
         e.push_str(" + 1");
@@ -527,7 +527,7 @@ fn repeated_diagnostics_are_capped() {
 
 #[test]
 fn a_chain_at_the_limit_parses_and_drops_on_a_2_mib_stack() {
-    let n = 14_000;
+    let n = 11_990;
     let src = format!("PROGRAM p x := a{}; END_PROGRAM", " + a".repeat(n));
     let worker = std::thread::Builder::new()
         .stack_size(HOST_STACK)
