@@ -79,10 +79,11 @@ impl Diagnostic {
             Severity::Error => "error",
             Severity::Warning => "warning",
         };
-        let text = file.line_text(line);
+        let (text, col, end_col) = excerpt(file.line_text(line), col, end_col);
+        let text = text.as_str();
         let width = line.to_string().len();
         let mut out = String::new();
-        let _ = writeln!(out, "{kind}[{}]: {}", self.code, self.message);
+        let _ = writeln!(out, "{kind}[{}]: {}", self.code, short(&self.message));
         let _ = writeln!(out, "{:width$}--> {}:{}:{}", "", file.name, line, col);
         let _ = writeln!(out, "{:width$} |", "");
         let _ = writeln!(out, "{line} | {text}");
@@ -104,6 +105,47 @@ impl Diagnostic {
             let _ = writeln!(out, "{:width$} = note: {note}", "");
         }
         out
+    }
+}
+
+/// Longest source excerpt printed under a diagnostic, in characters: a
+/// 10 MB line is shown as a window around the reported column.
+pub const MAX_EXCERPT_CHARS: usize = 160;
+
+/// At most this many diagnostics of one code are rendered; the rest are
+/// counted in one summary line (one root cause can repeat thousands of times).
+pub const MAX_RENDERED_PER_CODE: usize = 100;
+
+/// The part of `text` shown under a diagnostic at columns `col..end_col`
+/// (1-based, characters) and those columns within it. Lines of at most
+/// [`MAX_EXCERPT_CHARS`] are shown whole; longer ones as a window starting a
+/// little before `col`, with `...` marking the cut ends.
+fn excerpt(text: &str, col: usize, end_col: usize) -> (String, usize, usize) {
+    if text.len() <= MAX_EXCERPT_CHARS || text.chars().nth(MAX_EXCERPT_CHARS).is_none() {
+        return (text.to_string(), col, end_col);
+    }
+    let lead = 40;
+    let first = col.saturating_sub(1).saturating_sub(lead);
+    let mut window: String = text.chars().skip(first).take(MAX_EXCERPT_CHARS).collect();
+    let more_after = text.chars().nth(first + MAX_EXCERPT_CHARS).is_some();
+    let (mut col, mut end_col) = (col - first, end_col.saturating_sub(first));
+    if first > 0 {
+        window.insert_str(0, "...");
+        col += 3;
+        end_col += 3;
+    }
+    if more_after {
+        window.push_str("...");
+    }
+    (window, col, end_col.min(col + MAX_EXCERPT_CHARS))
+}
+
+/// `message` cut to [`MAX_EXCERPT_CHARS`] characters (a message may quote a
+/// 10 000-digit literal).
+fn short(message: &str) -> std::borrow::Cow<'_, str> {
+    match message.char_indices().nth(MAX_EXCERPT_CHARS) {
+        None => message.into(),
+        Some((cut, _)) => format!("{}...", &message[..cut]).into(),
     }
 }
 
@@ -183,9 +225,23 @@ impl Diagnostics {
     /// Renders every diagnostic (sorted), followed by a summary line.
     pub fn render(&self, sources: &SourceMap) -> String {
         let mut out = String::new();
+        let mut per_code: std::collections::BTreeMap<&str, usize> = Default::default();
         for d in self.sorted() {
-            out.push_str(&d.render(sources));
-            out.push('\n');
+            let seen = per_code.entry(d.code).or_default();
+            *seen += 1;
+            if *seen <= MAX_RENDERED_PER_CODE {
+                out.push_str(&d.render(sources));
+                out.push('\n');
+            }
+        }
+        for (code, seen) in per_code {
+            if seen > MAX_RENDERED_PER_CODE {
+                let _ = writeln!(
+                    out,
+                    "... and {} more {code} (only the first {MAX_RENDERED_PER_CODE} of each code are shown)",
+                    seen - MAX_RENDERED_PER_CODE
+                );
+            }
         }
         let errors = self.error_count();
         let warnings = self.items.len() - errors;

@@ -9,6 +9,8 @@ use crate::sema;
 /// What to build from the sources (the program to run, the implicit
 /// task's cycle time, check only).
 pub(crate) use crate::sema::CompileOptions;
+/// Default limit of a program's data (512 MiB), beyond which E120.
+pub(crate) use crate::sema::DEFAULT_MAX_DATA_BYTES;
 use crate::source::{FileId, SourceMap, Span};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -82,7 +84,47 @@ fn invalid_utf8(file: FileId, offset: usize) -> Diagnostic {
 
 /// Parses and checks every file of `sources`, reporting into `diags`;
 /// returns the linked image when there is no error.
+///
+/// The work runs on a thread of its own with a [`COMPILE_STACK`]-byte
+/// stack, so that compiling never depends on the caller's stack: a host's
+/// 2 MiB worker thread compiles the same programs as the command line. The
+/// recursive walks inside are bounded by the nesting limits of
+/// [`crate::syntax::depth`] and of the declaration nesting (E122), which fit
+/// in that stack with a wide margin.
 pub(crate) fn compile(
+    sources: &SourceMap,
+    options: &CompileOptions,
+    diags: &mut Diagnostics,
+) -> Option<VerifiedImage> {
+    std::thread::scope(|scope| {
+        let worker = std::thread::Builder::new()
+            .name("plcrun-compile".into())
+            .stack_size(COMPILE_STACK)
+            .spawn_scoped(scope, || {
+                let mut own = Diagnostics::new();
+                let image = compile_here(sources, options, &mut own);
+                (image, own)
+            });
+        match worker {
+            Ok(handle) => match handle.join() {
+                Ok((image, own)) => {
+                    diags.extend(own);
+                    if diags.has_errors() { None } else { image }
+                }
+                Err(panic) => std::panic::resume_unwind(panic),
+            },
+            // No thread available (resource limits): compile on this one.
+            Err(_) => compile_here(sources, options, diags),
+        }
+    })
+}
+
+/// Stack of the compiling thread: 256 MiB of address space, of which only
+/// the pages a deep program touches are ever used.
+pub const COMPILE_STACK: usize = 256 << 20;
+
+/// [`compile`] on the current thread.
+fn compile_here(
     sources: &SourceMap,
     options: &CompileOptions,
     diags: &mut Diagnostics,
@@ -112,6 +154,9 @@ pub struct CheckOptions {
     /// Check charts for IEC 60848 evolution (`--grafcet`): forcing orders
     /// are accepted.
     pub grafcet: bool,
+    /// Most bytes of program data; 0 means the default (512 MiB). Beyond
+    /// it: E120.
+    pub max_data_bytes: usize,
 }
 
 /// The outcome of [`check`].
@@ -141,6 +186,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         check_only: !options.ir_listing,
         host_pous: Vec::new(),
         grafcet: options.grafcet,
+        max_data_bytes: options.max_data_bytes,
     };
     let image = compile(sources, &build, &mut diagnostics);
     let ir_listing = match (options.ir_listing, image) {

@@ -165,6 +165,11 @@ pub struct RunArgs {
         requires = "modbus"
     )]
     pub modbus_idle_timeout: String,
+    /// Most MiB of program data (variables, FB instances) the program may
+    /// hold; a larger one is refused with E120.
+    #[arg(long, value_name = "MIB", default_value_t = 512,
+          value_parser = clap::value_parser!(u64).range(1..=2048))]
+    pub max_data_mib: u64,
 }
 
 /// `plcrun check FILES...`: parse and check only.
@@ -182,6 +187,11 @@ pub struct CheckArgs {
     /// Check charts for IEC 60848 GRAFCET evolution (forcing orders allowed).
     #[arg(long)]
     pub grafcet: bool,
+    /// Most MiB of program data (variables, FB instances) the program may
+    /// hold; a larger one is refused with E120.
+    #[arg(long, value_name = "MIB", default_value_t = 512,
+          value_parser = clap::value_parser!(u64).range(1..=2048))]
+    pub max_data_mib: u64,
 }
 
 /// `plcrun export --plcopen FILES... [-o OUT.xml]`.

@@ -29,9 +29,8 @@ pub fn draw(args: &DrawArgs) -> i32 {
         // Charts are drawn whatever their evolution rules: a chart with
         // GRAFCET forcing orders draws as well as an IEC one.
         &CheckOptions {
-            program: None,
-            ir_listing: false,
             grafcet: true,
+            ..CheckOptions::default()
         },
     );
     diags.extend(report.diagnostics);

@@ -30,6 +30,7 @@ pub fn check(args: &CheckArgs) -> i32 {
         program: args.program.clone(),
         ir_listing: args.dump_ir,
         grafcet: args.grafcet,
+        max_data_bytes: (args.max_data_mib as usize) << 20,
     };
     let report = check_sources(&sources, &options);
     diags.extend(report.diagnostics);
@@ -70,6 +71,7 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         program: args.program.clone(),
         watchdog,
         grafcet: args.grafcet,
+        max_data_bytes: (args.max_data_mib as usize) << 20,
         ..Options::default()
     })
 }

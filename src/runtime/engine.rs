@@ -37,6 +37,10 @@ pub struct Options {
     /// forcing orders of partial grafcets) instead of IEC 61131-3 SFC
     /// evolution (default `false`; see docs/grafcet.md).
     pub grafcet: bool,
+    /// Most bytes of program data (variables, FB instances, constants) the
+    /// compiled program may hold (default 512 MiB); larger programs are
+    /// refused with E120.
+    pub max_data_bytes: usize,
 }
 
 impl Default for Options {
@@ -47,6 +51,7 @@ impl Default for Options {
             watchdog: Some(Duration::from_secs(1)),
             hosts: HostBlocks::default(),
             grafcet: false,
+            max_data_bytes: crate::driver::DEFAULT_MAX_DATA_BYTES,
         }
     }
 }
@@ -177,6 +182,7 @@ impl Plc {
             check_only: false,
             host_pous: options.hosts.names(),
             grafcet: options.grafcet,
+            max_data_bytes: options.max_data_bytes,
         };
         let image = driver::compile(&sources, &build, &mut diags);
         match image {

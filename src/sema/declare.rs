@@ -43,6 +43,8 @@ pub(super) struct Declarer<'a> {
     /// Enumeration TYPEs, in resolution order, while TYPE declarations are
     /// being resolved (empty afterwards).
     pub(super) pending_enums: Vec<String>,
+    /// The POUs being laid out, outermost first (to name an instance cycle).
+    pub(super) layout_path: Vec<usize>,
 }
 
 /// What the declaration phase hands to the linker.
@@ -98,6 +100,7 @@ impl<'a> Declarer<'a> {
             type_decls: HashMap::new(),
             type_state: HashMap::new(),
             pending_enums: Vec::new(),
+            layout_path: Vec::new(),
         }
     }
 
@@ -119,6 +122,12 @@ impl<'a> Declarer<'a> {
     /// Selects IEC 60848 evolution for every chart.
     pub(super) fn set_grafcet(&mut self, grafcet: bool) {
         self.model.grafcet = grafcet;
+    }
+
+    /// Sets the data limit (in slots) checked by array types and memory
+    /// allocation (E120).
+    pub(super) fn set_data_limit(&mut self, slots: usize) {
+        self.out.data_limit_slots = slots;
     }
 
     pub(super) fn finish(mut self) -> Declared {
@@ -340,7 +349,26 @@ impl Declarer<'_> {
         }
     }
 
-    /// Declares the globals of one VAR_GLOBAL block: storage, initial value.
+    /// E121: constants whose initial values depend on each other in a ring.
+    pub(super) fn report_constant_cycle(&mut self, block: &VarBlock, cycle: &[usize]) {
+        let names: Vec<&str> = cycle
+            .iter()
+            .filter_map(|&d| block.decls[d].names.first())
+            .map(|n| n.name.as_str())
+            .collect();
+        let first = names.first().copied().unwrap_or_default();
+        self.diags.error(
+            super::const_order::CONSTANT_CYCLE,
+            block.decls[cycle[0]].span,
+            format!(
+                "constants defined in terms of each other: {} -> {first}",
+                names.join(" -> ")
+            ),
+        );
+    }
+
+    /// Declares the globals of one VAR_GLOBAL block: storage, initial value,
+    /// constants after the constants they are computed from.
     fn declare_globals(&mut self, block: &VarBlock) {
         use crate::ir::type_table::Retention;
         let retained = matches!(
@@ -354,7 +382,11 @@ impl Declarer<'_> {
                 "RETAIN and PERSISTENT cannot apply here: a CONSTANT never changes",
             );
         }
-        for decl in &block.decls {
+        let (order, cycles) = super::const_order::dependency_order(block);
+        for cycle in cycles {
+            self.report_constant_cycle(block, &cycle);
+        }
+        for decl in order.iter().map(|&d| &block.decls[d]) {
             let ty = self.resolve_type(&decl.ty, None);
             if matches!(self.types.get(ty).kind, TypeKind::Pou { program: true, .. }) {
                 self.diags.error(

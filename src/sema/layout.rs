@@ -70,14 +70,18 @@ impl Declarer<'_> {
             LayoutState::Done => return,
             LayoutState::InProgress => {
                 let span = self.model.pous[p].span;
-                self.diags.error(
-                    "E204",
-                    span,
-                    format!(
-                        "`{}` contains an instance of itself (directly or through another block)",
-                        self.model.pous[p].name
-                    ),
+                let from = self.layout_path.iter().position(|&q| q == p).unwrap_or(0);
+                let mut ring: Vec<&str> = self.layout_path[from..]
+                    .iter()
+                    .map(|&q| self.model.pous[q].name.as_str())
+                    .collect();
+                ring.push(&self.model.pous[p].name);
+                let message = format!(
+                    "`{}` contains an instance of itself (directly or through another block: {})",
+                    self.model.pous[p].name,
+                    ring.join(" contains ")
                 );
+                self.diags.error("E204", span, message);
                 return;
             }
             LayoutState::Pending => {}
@@ -87,6 +91,7 @@ impl Declarer<'_> {
         let Item::Pou(pou) = &self.units[u].items[i] else {
             return;
         };
+        self.layout_path.push(p);
         let mut frame = Frame::default();
         if pou.kind == PouKind::Function {
             self.layout_result(p, pou, &mut frame);
@@ -104,6 +109,7 @@ impl Declarer<'_> {
             );
         }
         self.finish_layout(p, pou, frame);
+        self.layout_path.pop();
         self.pou_state[p] = LayoutState::Done;
     }
 
@@ -151,7 +157,13 @@ impl Declarer<'_> {
             );
             return;
         }
-        for decl in &block.decls {
+        // A CONSTANT block's declarations in dependency order (E121 for a
+        // cycle); any other block's as written.
+        let (order, cycles) = super::const_order::dependency_order(block);
+        for cycle in cycles {
+            self.report_constant_cycle(block, &cycle);
+        }
+        for decl in order.iter().map(|&d| &block.decls[d]) {
             self.layout_decl(pou, block, decl, frame);
         }
     }

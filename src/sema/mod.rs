@@ -22,9 +22,11 @@ pub mod model;
 mod program;
 
 // Phase 1: declarations.
+mod const_order;
 mod decl_consts;
 mod declare;
 mod layout;
+mod nesting;
 mod sfc;
 mod type_decl;
 
@@ -71,6 +73,25 @@ pub struct CompileOptions {
     /// Charts follow IEC 60848 GRAFCET evolution (search for stability,
     /// forcing orders) instead of IEC 61131-3 SFC evolution.
     pub grafcet: bool,
+    /// Most bytes of program data (variables, instances, constants) the
+    /// image may hold; 0 means [`DEFAULT_MAX_DATA_BYTES`]. Beyond it: E120.
+    pub max_data_bytes: usize,
+}
+
+/// Default limit of a program's data: 512 MiB (one instance or structure
+/// may hold up to [`MAX_FRAME_SLOTS`], which is as much).
+pub const DEFAULT_MAX_DATA_BYTES: usize = 512 << 20;
+
+impl CompileOptions {
+    /// The data limit in 8-byte slots (never above [`MAX_MEMORY_SLOTS`]).
+    pub(crate) fn max_data_slots(&self) -> usize {
+        let bytes = if self.max_data_bytes == 0 {
+            DEFAULT_MAX_DATA_BYTES
+        } else {
+            self.max_data_bytes
+        };
+        (bytes / 8).clamp(1, MAX_MEMORY_SLOTS)
+    }
 }
 
 /// Checks and lowers parsed files into a verified image. Returns `None` when
@@ -80,9 +101,15 @@ pub fn compile(
     options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
+    if let Some(too_deep) = nesting::check(units) {
+        // The declaration phase would recurse that deep: refuse first.
+        diags.push(too_deep);
+        return None;
+    }
     let mut declarer = declare::Declarer::new(units, diags);
     declarer.set_host_pous(&options.host_pous);
     declarer.set_grafcet(options.grafcet);
+    declarer.set_data_limit(options.max_data_slots());
     declarer.declare_all();
     let declared = declarer.finish();
     let image = link::link(units, declared, options, diags);

@@ -21,6 +21,9 @@ pub(crate) struct Program {
     pub memory: Vec<u64>,
     /// Memory exhaustion has been reported.
     memory_exhausted: bool,
+    /// Most slots of absolute memory (the configurable data limit); 0
+    /// until set, meaning [`super::DEFAULT_MAX_DATA_BYTES`].
+    pub(super) data_limit_slots: usize,
     /// Located addresses (`%IX0.1`) with their slot and type.
     pub located: IndexMap<String, (u32, TypeId)>,
     /// String variables and temporaries (index = string id).
@@ -47,15 +50,16 @@ impl Program {
     /// Reserves `size` slots of absolute memory.
     pub(super) fn alloc_abs(&mut self, diags: &mut Diagnostics, size: u32) -> u32 {
         let at = self.memory.len();
-        if at + size as usize > super::MAX_MEMORY_SLOTS {
+        let limit = self.data_limit();
+        if at.saturating_add(size as usize) > limit {
             if !self.memory_exhausted {
                 self.memory_exhausted = true;
                 diags.error(
-                    "E206",
+                    "E120",
                     Span::default(),
                     format!(
-                        "the program needs more than {} MiB of PLC memory",
-                        (super::MAX_MEMORY_SLOTS * 8) >> 20
+                        "the program needs more than {} of data, the memory limit",
+                        format_bytes(limit * 8)
                     ),
                 );
             }
@@ -64,6 +68,15 @@ impl Program {
         }
         self.memory.resize(at + size as usize, 0);
         at as u32
+    }
+
+    /// The data limit in slots.
+    pub(super) fn data_limit(&self) -> usize {
+        if self.data_limit_slots == 0 {
+            super::DEFAULT_MAX_DATA_BYTES / 8
+        } else {
+            self.data_limit_slots
+        }
     }
 
     /// Interns a 64-bit constant.
@@ -147,5 +160,23 @@ impl Program {
         let addr = self.alloc_abs(diags, 1);
         self.located.insert(key, (addr, ty));
         Some(addr)
+    }
+}
+
+/// `bytes` as KiB, MiB or GiB when a whole number of them, else bytes.
+pub(super) fn format_bytes(bytes: usize) -> String {
+    for (unit, shift) in [("GiB", 30), ("MiB", 20), ("KiB", 10)] {
+        if bytes >= 1 << shift && bytes.is_multiple_of(1 << shift) {
+            return format!("{} {unit}", bytes >> shift);
+        }
+    }
+    format!("{bytes} bytes")
+}
+
+/// [`format_bytes`] of a count that may exceed `usize`.
+pub(super) fn format_bytes_u64(bytes: u64) -> String {
+    match usize::try_from(bytes) {
+        Ok(b) => format_bytes(b),
+        Err(_) => format!("{bytes} bytes"),
     }
 }

@@ -195,6 +195,18 @@ impl Declarer<'_> {
                 );
                 return TypeTable::error();
             }
+            let limit = self.out.data_limit();
+            if h.saturating_sub(l).saturating_add(1) > limit as i128 {
+                self.diags.error(
+                    "E120",
+                    lo.span.to(hi.span),
+                    format!(
+                        "array bounds [{l}..{h}] give more elements than the memory limit of {} holds",
+                        super::program::format_bytes(limit * 8)
+                    ),
+                );
+                return TypeTable::error();
+            }
             dims.push(Dim {
                 lo: l as i64,
                 hi: h as i64,
@@ -208,6 +220,19 @@ impl Declarer<'_> {
         if size > super::MAX_FRAME_SLOTS as u64 {
             self.diags
                 .error("E206", span, "array too large (more than 64 Mi slots)");
+            return TypeTable::error();
+        }
+        let limit = self.out.data_limit();
+        if size > limit as u64 {
+            self.diags.error(
+                "E120",
+                span,
+                format!(
+                    "this array needs {} of data, over the memory limit of {}",
+                    super::program::format_bytes_u64(size.saturating_mul(8)),
+                    super::program::format_bytes(limit * 8)
+                ),
+            );
             return TypeTable::error();
         }
         let dims_text: Vec<String> = dims.iter().map(|d| format!("{}..{}", d.lo, d.hi)).collect();

@@ -11,7 +11,8 @@ use crate::diagnostics::Diagnostic;
 use crate::source::{FileId, Span};
 use crate::syntax::ast::*;
 use crate::syntax::depth::{
-    MAX_EXPR_DEPTH, MAX_INIT_DEPTH, MAX_STMT_DEPTH, expr_depth, init_depth, stmt_depth, type_depth,
+    MAX_EXPR_DEPTH, MAX_EXPR_TERMS, MAX_INIT_DEPTH, MAX_STMT_DEPTH, expr_depth, expr_height,
+    init_depth, stmt_depth, type_depth,
 };
 use crate::syntax::parser::recovery_diagnostic;
 use crate::syntax::token::Tok;
@@ -33,6 +34,12 @@ pub struct State<'t> {
     /// Lines holding an unsupported construct (E110): other syntax errors
     /// there are its consequence and are not reported.
     quiet_lines: RefCell<Vec<usize>>,
+    /// Span and height of the binary node built last: the left operand of
+    /// the next one in a chain.
+    last_binary: Cell<Option<(Span, usize)>>,
+    /// An overlong chain was cut (E106): later chains in the file are not
+    /// built either.
+    chain_cut: Cell<bool>,
 }
 
 impl<'t> State<'t> {
@@ -49,6 +56,8 @@ impl<'t> State<'t> {
             last_error_line: Cell::new(None),
             suppressed: Cell::new(0),
             quiet_lines: RefCell::new(Vec::new()),
+            last_binary: Cell::new(None),
+            chain_cut: Cell::new(false),
         }
     }
 
@@ -123,6 +132,20 @@ impl<'t> State<'t> {
         d
     }
 
+    /// E106 for a chain of more than [`MAX_EXPR_TERMS`] operands.
+    fn too_long(&self, span: Span) {
+        self.chain_cut.set(true);
+        if !self.depth_reported.replace(true) {
+            self.error(
+                "E106",
+                span,
+                format!(
+                    "expression too long (a chain of more than {MAX_EXPR_TERMS} operands); split it up"
+                ),
+            );
+        }
+    }
+
     fn too_deep(&self, span: Span, what: &str, limit: usize) {
         if !self.depth_reported.replace(true) {
             self.error(
@@ -145,6 +168,37 @@ fn guard(st: &State, node: Expr, fallback: impl FnOnce(Expr) -> Expr) -> Expr {
     }
 }
 
+/// Drops an expression tree of any height with a work list (the default
+/// drop recurses once per level).
+fn dismantle(e: Expr) {
+    let mut work = vec![e];
+    while let Some(mut node) = work.pop() {
+        let span = node.span;
+        let leaf = || Expr {
+            kind: ExprKind::Literal(Literal {
+                value: LiteralValue::Bool(false),
+                type_prefix: None,
+            }),
+            span,
+        };
+        match &mut node.kind {
+            ExprKind::Binary(_, a, b) => {
+                work.push(std::mem::replace(a.as_mut(), leaf()));
+                work.push(std::mem::replace(b.as_mut(), leaf()));
+            }
+            ExprKind::Member(b, _)
+            | ExprKind::BitAccess(b, _)
+            | ExprKind::Unary(_, b)
+            | ExprKind::Paren(b) => work.push(std::mem::replace(b.as_mut(), leaf())),
+            ExprKind::Index(b, idx) => {
+                work.push(std::mem::replace(b.as_mut(), leaf()));
+                work.append(idx);
+            }
+            _ => {}
+        }
+    }
+}
+
 fn first_child(e: Expr) -> Expr {
     match e.kind {
         ExprKind::Member(b, _)
@@ -160,14 +214,35 @@ fn first_child(e: Expr) -> Expr {
 
 // ------------------------------------------------------------------ expressions
 
-/// `l op r`.
+/// `l op r`. The left operand was checked when it was built, so only the
+/// right one can make the node nest too deeply (a left-associative chain is
+/// flat, see [`expr_depth`]). The chain's length is bounded separately by
+/// [`MAX_EXPR_TERMS`]; the height of the left operand is remembered from the
+/// previous reduction, so that checking a chain of n terms costs O(n).
 pub fn binary(st: &State, op: BinaryOp, l: Expr, r: Expr) -> Expr {
     let span = l.span.to(r.span);
-    let node = Expr {
+    if 1 + expr_depth(&r) > MAX_EXPR_DEPTH {
+        st.too_deep(r.span, "expression", MAX_EXPR_DEPTH);
+        return l;
+    }
+    let left_height = match st.last_binary.get() {
+        Some((s, h)) if s == l.span && matches!(l.kind, ExprKind::Binary(..)) => h,
+        _ => expr_height(&l),
+    };
+    let height = 1 + left_height.max(expr_height(&r));
+    if height > MAX_EXPR_TERMS || (st.chain_cut.get() && left_height > 1) {
+        st.too_long(span);
+        // Keep only the right operand (the rest of an overlong chain then
+        // costs constant time per term and builds nothing), and take the
+        // long left operand apart without recursion.
+        dismantle(l);
+        return r;
+    }
+    st.last_binary.set(Some((span, height)));
+    Expr {
         kind: ExprKind::Binary(op, Box::new(l), Box::new(r)),
         span,
-    };
-    guard(st, node, first_child)
+    }
 }
 
 /// `op e`; a minus directly before an untyped number or duration literal is

@@ -19,8 +19,94 @@ fn arg_expr(a: &Arg) -> &Expr {
     }
 }
 
-/// Nesting depth of an expression (a leaf is 1).
+/// Most operands in one expression counted along its longest path from
+/// the root (a flat chain `a OR b OR ... ` of that many terms): later stages
+/// walk expressions recursively, and this bounds how deep they go. The
+/// value lets a syntax tree at the limit be dropped (a recursion per level)
+/// on a 2 MiB stack even in a debug build (14 000 measured fine there,
+/// 20 000 not).
+pub const MAX_EXPR_TERMS: usize = 12_000;
+
+/// Nesting depth of an expression (a leaf is 1). The left operand of a
+/// binary operator does not nest: `a + b + c` is a flat chain of depth 2
+/// however long, while `a + (b + (c + d))` nests. The chain's left spine is
+/// walked in a loop, so a long chain costs no stack here.
 pub fn expr_depth(e: &Expr) -> usize {
+    let mut deepest = 0;
+    let mut node = e;
+    while let ExprKind::Binary(_, left, right) = &node.kind {
+        deepest = deepest.max(1 + expr_depth(right));
+        node = left;
+    }
+    deepest.max(nested_depth(node))
+}
+
+/// Height of an expression tree (a leaf is 1), without recursion: the
+/// number of nested calls a recursive walk over it makes.
+pub fn expr_height(e: &Expr) -> usize {
+    // Most operands are small: measure them without allocating.
+    if let Some(h) = small_height(e, 8) {
+        return h;
+    }
+    let mut highest = 0;
+    let mut stack = vec![(e, 1usize)];
+    while let Some((node, h)) = stack.pop() {
+        highest = highest.max(h);
+        match &node.kind {
+            ExprKind::Literal(_) | ExprKind::Name(_) | ExprKind::Direct(_) => {}
+            ExprKind::Member(b, _)
+            | ExprKind::BitAccess(b, _)
+            | ExprKind::Unary(_, b)
+            | ExprKind::Paren(b) => stack.push((b, h + 1)),
+            ExprKind::Index(b, idx) => {
+                stack.push((b, h + 1));
+                stack.extend(idx.iter().map(|i| (i, h + 1)));
+            }
+            ExprKind::Binary(_, a, b) => {
+                stack.push((a, h + 1));
+                stack.push((b, h + 1));
+            }
+            ExprKind::Call(c) => {
+                stack.push((&c.callee, h + 1));
+                stack.extend(c.args.iter().map(|a| (arg_expr(a), h + 1)));
+            }
+        }
+    }
+    highest
+}
+
+/// The height of `e` if it is at most `budget`, by a recursion at most
+/// `budget` deep; `None` for a higher tree.
+fn small_height(e: &Expr, budget: usize) -> Option<usize> {
+    let budget = budget.checked_sub(1)?;
+    let below = |c: &Expr| small_height(c, budget);
+    let children = match &e.kind {
+        ExprKind::Literal(_) | ExprKind::Name(_) | ExprKind::Direct(_) => 0,
+        ExprKind::Member(b, _)
+        | ExprKind::BitAccess(b, _)
+        | ExprKind::Unary(_, b)
+        | ExprKind::Paren(b) => below(b)?,
+        ExprKind::Index(b, idx) => {
+            let mut h = below(b)?;
+            for i in idx {
+                h = h.max(below(i)?);
+            }
+            h
+        }
+        ExprKind::Binary(_, a, b) => below(a)?.max(below(b)?),
+        ExprKind::Call(c) => {
+            let mut h = below(&c.callee)?;
+            for a in &c.args {
+                h = h.max(below(arg_expr(a))?);
+            }
+            h
+        }
+    };
+    Some(1 + children)
+}
+
+/// [`expr_depth`] of a node that is not a binary operation.
+fn nested_depth(e: &Expr) -> usize {
     let children = match &e.kind {
         ExprKind::Literal(_) | ExprKind::Name(_) | ExprKind::Direct(_) => 0,
         ExprKind::Member(b, _)

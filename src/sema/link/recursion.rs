@@ -1,4 +1,5 @@
-//! Recursion check over the call graph (IEC 61131-3 forbids recursion).
+//! Recursion check over the call graph (IEC 61131-3 forbids recursion),
+//! with an explicit stack; the diagnostic names the whole cycle of calls.
 
 use super::Linker;
 use crate::source::Span;
@@ -34,13 +35,18 @@ impl Linker<'_> {
                         1 if !reported => {
                             reported = true;
                             let name = self.out.codes[to].name.clone();
-                            self.diags.error(
-                                "E409",
-                                span,
-                                format!(
-                                    "recursive call of `{name}`: IEC 61131-3 forbids recursion"
-                                ),
+                            // The calls on the stack from `to` back to it.
+                            let from = stack.iter().position(|&(c, _)| c == to).unwrap_or(0);
+                            let mut ring: Vec<&str> = stack[from..]
+                                .iter()
+                                .map(|&(c, _)| self.out.codes[c].name.as_str())
+                                .collect();
+                            ring.push(&name);
+                            let message = format!(
+                                "recursive call of `{name}` (calls {}): IEC 61131-3 forbids recursion",
+                                ring.join(" -> ")
                             );
+                            self.diags.error("E409", span, message);
                         }
                         _ => {}
                     }
