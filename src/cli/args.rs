@@ -40,6 +40,8 @@ pub enum Command {
     /// Run two programs side by side and compare their outputs
     /// (`plcrun compare A_FILES... -- B_FILES... --cycles N`).
     Compare(Box<super::compare::CompareArgs>),
+    /// Run the unit tests written in IEC (`plcrun test FILES...`; docs/testing.md).
+    Test(super::test::TestArgs),
 }
 
 /// `plcrun draw FILES... [--program P] [-o OUT.svg]`.

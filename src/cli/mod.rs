@@ -2,12 +2,13 @@
 //! Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.
 
 mod args;
-mod draw;
 mod compare;
+mod draw;
 mod online;
 mod reload;
 mod retain;
 mod run;
+mod test;
 
 use clap::Parser;
 
@@ -28,6 +29,7 @@ pub fn main() -> i32 {
             Some(args::Command::Compare(a)) => compare::compare(&a),
             Some(args::Command::Run(a)) => run::run(&a),
             Some(args::Command::Draw(a)) => draw::draw(&a),
+            Some(args::Command::Test(a)) => test::test(&a),
             None => run::run(&cli.run),
         },
         Err(e) => usage(e),
