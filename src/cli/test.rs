@@ -90,10 +90,10 @@ pub fn test(args: &TestArgs) -> i32 {
         }
     };
     print!("{}", report.to_text());
-    if let Some(path) = &args.junit {
-        if let Err(e) = std::fs::write(path, report.to_junit("plcrun")) {
-            return usage_error(format!("cannot write `{}`: {e}", path.display()));
-        }
+    if let Some(path) = &args.junit
+        && let Err(e) = std::fs::write(path, report.to_junit("plcrun"))
+    {
+        return usage_error(format!("cannot write `{}`: {e}", path.display()));
     }
     if report.all_passed() {
         EXIT_OK
