@@ -108,6 +108,15 @@ impl BodyBuilder<'_> {
             return None;
         }
         let family = Family::of(&id.key())?;
+        // An error is reported here; the call is not resolved again.
+        Some(
+            self.lower_assert(family, id, call, want)
+                .unwrap_or_else(Val::error),
+        )
+    }
+
+    /// Lowers assertion `call` of `family`; `None` after an error.
+    fn lower_assert(&mut self, family: Family, id: &Ident, call: &Call, want: bool) -> Option<Val> {
         let args = self.assert_args(family, id, call)?;
         let span = call.span;
         let loc = literal(
@@ -275,18 +284,27 @@ impl BodyBuilder<'_> {
             } else {
                 ElemType::Lint
             }),
-            (ie, ia) => {
+            _ => {
                 // Let the values' own errors show first.
-                if [ie, ia].iter().flatten().any(|(id, _)| self.is_error(*id)) {
+                // (An array or a structure is no value, but a variable.)
+                let broken = |s: &mut Self, t: Ty, x: &Expr| {
+                    t.id().is_some_and(|id| s.is_error(id))
+                        && s.probe(x, true).id().is_none_or(|id| s.is_error(id))
+                };
+                if broken(self, te, e) || broken(self, ta, a) {
                     self.expr(e, None);
                     self.expr(a, None);
                     return None;
                 }
-                let name = |s: &Self, t: Ty| match t.id() {
+                let name = |s: &mut Self, t: Ty, x: &Expr| match t.id() {
+                    Some(id) if s.is_error(id) => {
+                        let id = s.probe(x, true).id().unwrap_or(id);
+                        s.types.name(id).to_string()
+                    }
                     Some(id) => s.types.name(id).to_string(),
                     None => "an untyped literal".to_string(),
                 };
-                let (ne, na) = (name(self, te), name(self, ta));
+                let (ne, na) = (name(self, te, e), name(self, ta, a));
                 self.diags.error(
                     E_TYPES,
                     span,
