@@ -33,7 +33,7 @@ fn failures_and_faults_give_status_1_with_text_and_junit() {
     assert!(out.contains("PASS  TEST_Half_even ("), "{out}");
     assert!(out.contains("FAIL  TEST_Half_odd ("), "{out}");
     assert!(
-        out.contains("half_test.st:3:71: cycle 0: expected 3, actual 2: rounds up?\n"),
+        out.contains("half_test.st:3:68: cycle 0: expected 3, actual 2: rounds up?\n"),
         "{out}"
     );
     assert!(out.contains("ERROR TEST_Half_zero ("), "{out}");
