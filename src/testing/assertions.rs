@@ -3,7 +3,7 @@
 //! `sema::assert_calls`), each recording its failures into a shared log.
 
 use crate::elementary::ElemType;
-use crate::runtime::host_blocks::{HostBlocks, HostIo, HostResult, HostSignature};
+use crate::runtime::host_blocks::{HostBlocks, HostDeclError, HostIo, HostResult, HostSignature};
 use crate::sema::assert_calls::{ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX, ASSERT_TRUE_HOST};
 use std::sync::{Arc, Mutex};
 
@@ -79,7 +79,7 @@ fn is_real(t: ElemType) -> bool {
 }
 
 /// Registers every assertion host function, recording into `log`.
-pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), crate::HostDeclError> {
+pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError> {
     for t in ElemType::ALL {
         let name = format!("{ASSERT_EQ_PREFIX}{}", t.name());
         let sig = HostSignature::function(&name, ElemType::Bool)
