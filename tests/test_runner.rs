@@ -498,3 +498,27 @@ fn seed_cmd_monitor_passes_its_timing_tests() {
     assert_eq!(latched.outcome(), TestOutcome::Failed, "{}", r.to_text());
     assert_eq!(latched.failures[0].cycle, 13);
 }
+
+#[test]
+fn a_program_ends_with_test_done_and_il_calls_assertions_too() {
+    let r = report(
+        "PROGRAM TEST_Count VAR TEST_DONE : BOOL; n : INT; END_VAR
+           n := n + 1;
+           TEST_DONE := n = 4;
+           AssertTrue(n <= 4, 'never past the end');
+         END_PROGRAM
+         FUNCTION_BLOCK TEST_Il
+         VAR x : INT := 3; ok : BOOL; END_VAR
+           LD INT#3
+           AssertEquals x
+           ST ok
+           LD INT#4
+           AssertEquals x
+         END_FUNCTION_BLOCK",
+    );
+    assert_eq!(r.cases[0].outcome(), TestOutcome::Passed, "{}", r.to_text());
+    assert_eq!(r.cases[0].cycles, 4);
+    let f = &r.cases[1].failures;
+    assert_eq!(f.len(), 1, "{}", r.to_text());
+    assert_eq!((f[0].expected.as_str(), f[0].actual.as_str()), ("4", "3"));
+}
