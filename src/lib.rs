@@ -47,6 +47,7 @@ mod source;
 pub(crate) mod stdlib;
 #[doc(hidden)]
 pub mod syntax;
+mod testing;
 mod value;
 pub(crate) mod vm;
 
@@ -101,6 +102,10 @@ pub use runtime::variables::{ChartState, Direction, VarInfo, VarShape};
 pub use runtime::watchdog::{UnknownTask, WatchdogTrip};
 pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use syntax::plcopen::export::{ExportError, export_plcopen};
+pub use testing::{
+    AssertionFailure, TEST_PREFIX, TestCase, TestError, TestOptions, TestOutcome, TestReport,
+    run_tests,
+};
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind, HostFailure, UnstableCycle};
 

@@ -71,6 +71,20 @@ const ALLOWED: &[(&str, &[&str])] = &[
     // Runs two programs through the runtime's public face; reads the
     // program instances' inputs from the image.
     ("compare", &["runtime", "ir", "elementary", "value"]),
+    // The unit-test runner: finds tests in the parsed sources, runs them
+    // through the runtime with host-function assertions whose names the
+    // checker (sema) rewrites calls into.
+    (
+        "testing",
+        &[
+            "source",
+            "diagnostics",
+            "elementary",
+            "syntax",
+            "sema",
+            "runtime",
+        ],
+    ),
 ];
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {

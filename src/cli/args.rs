@@ -42,6 +42,8 @@ pub enum Command {
     Compare(Box<super::compare::CompareArgs>),
     /// Write textual sources (IL, ST, SFC) in another format (PLCopen XML).
     Export(ExportArgs),
+    /// Run the unit tests written in IEC (`plcrun test FILES...`; docs/testing.md).
+    Test(super::test::TestArgs),
 }
 
 /// `plcrun draw FILES... [--program P] [-o OUT.svg]`.

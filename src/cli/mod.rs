@@ -10,6 +10,7 @@ mod online;
 mod reload;
 mod retain;
 mod run;
+mod test;
 
 use clap::Parser;
 
@@ -31,6 +32,7 @@ pub fn main() -> i32 {
             Some(args::Command::Run(a)) => run::run(&a),
             Some(args::Command::Draw(a)) => draw::draw(&a),
             Some(args::Command::Export(a)) => export::export(&a),
+            Some(args::Command::Test(a)) => test::test(&a),
             None => run::run(&cli.run),
         },
         Err(e) => usage(e),

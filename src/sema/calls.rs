@@ -122,6 +122,9 @@ impl BodyBuilder<'_> {
             }
             return self.user_function_call(p, call, want);
         }
+        if let Some(v) = self.assert_call(id, call, want) {
+            return v;
+        }
         if let Some(v) = self.std_call(id, &call.args, call.span, expect) {
             return v;
         }

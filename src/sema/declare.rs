@@ -220,7 +220,13 @@ impl Declarer<'_> {
                 }
             }
         }
-        for p in 0..self.model.pous.len() {
+        // Host POUs first: a body may be emitted while laying out a later
+        // POU, and the test assertions call host functions it cannot name.
+        let is_host =
+            |m: &Model, p: usize| m.host_pous.contains(&m.pous[p].name.to_ascii_uppercase());
+        let n = self.model.pous.len();
+        let hosts: Vec<usize> = (0..n).filter(|&p| is_host(&self.model, p)).collect();
+        for p in hosts.into_iter().chain(0..n) {
             self.layout_pou(p);
         }
     }

@@ -104,7 +104,7 @@ pub struct PlaceRef {
 }
 
 /// Loop bookkeeping for EXIT and CONTINUE.
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
 pub struct LoopCtx {
     /// Jumps to patch to the loop's end.
     pub exits: Vec<usize>,
@@ -114,7 +114,7 @@ pub struct LoopCtx {
 
 /// Emission state of one code block (a POU body or one of its SFC blocks),
 /// owned by the body builder while the block is emitted.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Fcx {
     /// POU index.
     pub pou: usize,

@@ -1,0 +1,103 @@
+//! `plcrun test FILES...`: runs the unit tests written in IEC (see
+//! docs/testing.md). Exit status: 0 every test passed, 1 a test failed or
+//! errored, compile errors or no test found, 2 usage errors.
+
+use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};
+use clap::Args;
+use plcrun::{Diagnostics, TestError, TestOptions, load_files, parse_time_literal, run_tests};
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// Exit status when a test failed or errored.
+const EXIT_FAILED: i32 = 1;
+
+/// `plcrun test FILES... [options]`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "A test is a PROGRAM or FUNCTION_BLOCK whose name starts with TEST_. Exit status: 0 every test passed, 1 a test failed, compile errors or no test, 2 usage errors. See docs/testing.md."
+)]
+pub struct TestArgs {
+    /// Source files: the code under test and the tests.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Run only the tests whose name contains PATTERN (ignoring case).
+    #[arg(long, value_name = "PATTERN")]
+    pub filter: Option<String>,
+    /// Cycle time of the virtual clock (e.g. 10ms, T#100ms).
+    #[arg(long, default_value = "10ms")]
+    pub cycle_time: String,
+    /// Write a JUnit XML report to FILE.
+    #[arg(long, value_name = "FILE")]
+    pub junit: Option<PathBuf>,
+    /// Wall-clock limit of one cycle of a test (e.g. 1s, 250ms); 0 disables it.
+    #[arg(long, default_value = "1s")]
+    pub watchdog: String,
+}
+
+fn usage_error(msg: impl std::fmt::Display) -> i32 {
+    eprintln!("error: {msg}");
+    EXIT_USAGE
+}
+
+fn options(args: &TestArgs) -> Result<TestOptions, String> {
+    let cycle_time = match parse_time_literal(&args.cycle_time) {
+        Ok(ns) if ns > 0 => ns,
+        Ok(_) => return Err("--cycle-time must be positive".into()),
+        Err(e) => return Err(format!("--cycle-time: {e}")),
+    };
+    let text = if args.watchdog.trim() == "0" {
+        "0s"
+    } else {
+        args.watchdog.as_str()
+    };
+    let watchdog = match parse_time_literal(text) {
+        Ok(0) => None,
+        Ok(ns) if ns > 0 => Some(Duration::from_nanos(ns as u64)),
+        Ok(_) => return Err("--watchdog must not be negative".into()),
+        Err(e) => return Err(format!("--watchdog: {e}")),
+    };
+    Ok(TestOptions {
+        filter: args.filter.clone(),
+        cycle_time,
+        watchdog,
+    })
+}
+
+/// `plcrun test FILES...`
+pub fn test(args: &TestArgs) -> i32 {
+    let options = match options(args) {
+        Ok(o) => o,
+        Err(e) => return usage_error(e),
+    };
+    let mut diags = Diagnostics::new();
+    let sources = match load_files(&args.files, &mut diags) {
+        Ok(s) => s,
+        Err(e) => return usage_error(e),
+    };
+    if diags.has_errors() {
+        eprint!("{}", diags.render(&sources));
+        return EXIT_COMPILE;
+    }
+    let report = match run_tests(&sources, &options) {
+        Ok(r) => r,
+        Err(TestError::Compile(e)) => {
+            eprint!("{e}");
+            return EXIT_COMPILE;
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_FAILED;
+        }
+    };
+    print!("{}", report.to_text());
+    if let Some(path) = &args.junit
+        && let Err(e) = std::fs::write(path, report.to_junit("plcrun"))
+    {
+        return usage_error(format!("cannot write `{}`: {e}", path.display()));
+    }
+    if report.all_passed() {
+        EXIT_OK
+    } else {
+        EXIT_FAILED
+    }
+}

@@ -1,0 +1,148 @@
+//! The assertion functions as host functions: one typed function per
+//! elementary type (the checker picks it from the values' type, see
+//! `sema::assert_calls`), each recording its failures into a shared log.
+
+use crate::elementary::ElemType;
+use crate::runtime::host_blocks::{HostBlocks, HostDeclError, HostIo, HostResult, HostSignature};
+use crate::sema::assert_calls::{ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX, ASSERT_TRUE_HOST};
+use std::sync::{Arc, Mutex};
+
+/// Most failures kept per test (a failing assertion in a loop stays readable).
+pub(crate) const MAX_FAILURES: usize = 100;
+
+/// One failed assertion, as the host function saw it.
+#[derive(Debug, Clone)]
+pub(crate) struct Recorded {
+    /// The encoded position of the call (`sema::assert_calls::encode_location`).
+    pub(crate) loc: i64,
+    /// The expected value as an IEC literal.
+    pub(crate) expected: String,
+    /// The actual value as an IEC literal.
+    pub(crate) actual: String,
+    /// The element index, for `AssertArrayEquals`.
+    pub(crate) index: Option<i64>,
+    /// The assertion's message.
+    pub(crate) message: String,
+}
+
+/// Failures of the cycle being run, shared with the host functions.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Log {
+    /// Failures not yet collected by the runner.
+    pub(crate) failures: Arc<Mutex<Vec<Recorded>>>,
+    /// Failures dropped beyond [`MAX_FAILURES`].
+    pub(crate) dropped: Arc<Mutex<usize>>,
+}
+
+impl Log {
+    fn push(&self, r: Recorded) {
+        let mut list = self.failures.lock().unwrap_or_else(|p| p.into_inner());
+        if list.len() < MAX_FAILURES {
+            list.push(r);
+        } else {
+            *self.dropped.lock().unwrap_or_else(|p| p.into_inner()) += 1;
+        }
+    }
+
+    /// Takes the failures recorded so far.
+    pub(crate) fn take(&self) -> Vec<Recorded> {
+        std::mem::take(&mut *self.failures.lock().unwrap_or_else(|p| p.into_inner()))
+    }
+
+    /// How many failures were not kept.
+    pub(crate) fn dropped(&self) -> usize {
+        *self.dropped.lock().unwrap_or_else(|p| p.into_inner())
+    }
+}
+
+/// Records a failure from the pins `Expected`, `Actual`, `Message`, `Loc`
+/// (and `IsElement`/`Index` when present); sets the result to FALSE.
+fn fail(io: &mut HostIo<'_>, log: &Log, result: &str, element: bool) -> HostResult {
+    let index = if element && io.get_bool("IsElement")? {
+        Some(io.get_i64("Index")?)
+    } else {
+        None
+    };
+    log.push(Recorded {
+        loc: io.get_i64("Loc")?,
+        expected: io.get("Expected")?.to_literal(),
+        actual: io.get("Actual")?.to_literal(),
+        index,
+        message: io.get_str("Message")?,
+    });
+    io.set_bool(result, false)?;
+    Ok(())
+}
+
+fn is_real(t: ElemType) -> bool {
+    matches!(t, ElemType::Real | ElemType::Lreal)
+}
+
+/// Registers every assertion host function, recording into `log`.
+pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError> {
+    for t in ElemType::ALL {
+        let name = format!("{ASSERT_EQ_PREFIX}{}", t.name());
+        let sig = HostSignature::function(&name, ElemType::Bool)
+            .input("Expected", t)
+            .input("Actual", t)
+            .input("Message", ElemType::String)
+            .input("Loc", ElemType::Lint)
+            .input("IsElement", ElemType::Bool)
+            .input("Index", ElemType::Lint);
+        let log = log.clone();
+        let result = name.clone();
+        hosts.function(sig, move |io| {
+            let same = if is_real(t) {
+                io.get_f64("Expected")? == io.get_f64("Actual")?
+            } else {
+                io.get("Expected")? == io.get("Actual")?
+            };
+            if same {
+                io.set_bool(&result, true)?;
+                Ok(())
+            } else {
+                fail(io, &log, &result, true)
+            }
+        })?;
+    }
+    for t in [ElemType::Real, ElemType::Lreal] {
+        let name = format!("{ASSERT_NEAR_PREFIX}{}", t.name());
+        let sig = HostSignature::function(&name, ElemType::Bool)
+            .input("Expected", t)
+            .input("Actual", t)
+            .input("Delta", t)
+            .input("Message", ElemType::String)
+            .input("Loc", ElemType::Lint);
+        let log = log.clone();
+        let result = name.clone();
+        hosts.function(sig, move |io| {
+            let (e, a, d) = (
+                io.get_f64("Expected")?,
+                io.get_f64("Actual")?,
+                io.get_f64("Delta")?,
+            );
+            // NaN anywhere fails: `<=` is false for it.
+            if (e - a).abs() <= d.abs() {
+                io.set_bool(&result, true)?;
+                Ok(())
+            } else {
+                fail(io, &log, &result, false)
+            }
+        })?;
+    }
+    let sig = HostSignature::function(ASSERT_TRUE_HOST, ElemType::Bool)
+        .input("Expected", ElemType::Bool)
+        .input("Actual", ElemType::Bool)
+        .input("Message", ElemType::String)
+        .input("Loc", ElemType::Lint);
+    let log = log.clone();
+    hosts.function(sig, move |io| {
+        if io.get_bool("Expected")? == io.get_bool("Actual")? {
+            io.set_bool(ASSERT_TRUE_HOST, true)?;
+            Ok(())
+        } else {
+            fail(io, &log, ASSERT_TRUE_HOST, false)
+        }
+    })?;
+    Ok(())
+}

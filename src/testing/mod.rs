@@ -1,0 +1,222 @@
+//! The unit-test runner behind `plcrun test`: finds the test PROGRAMs and
+//! FUNCTION_BLOCKs (names starting with `TEST_`), runs each on a fresh
+//! [`crate::Plc`] in virtual time with the assertion functions
+//! (`AssertEquals`, `AssertTrue`, ...) built in, and reports the outcome
+//! as text or JUnit XML. docs/testing.md describes the convention.
+
+mod assertions;
+mod discover;
+mod junit;
+mod run_one;
+mod text;
+
+use crate::diagnostics::Diagnostics;
+use crate::runtime::engine::{CompileError, RuntimeFault};
+use crate::runtime::host_blocks::HostDeclError;
+use crate::source::SourceMap;
+use std::fmt;
+use std::time::{Duration, Instant};
+
+pub use discover::TEST_PREFIX;
+
+/// How to run the tests.
+#[derive(Debug, Clone)]
+pub struct TestOptions {
+    /// Run only the tests whose name contains this text (ignoring case).
+    pub filter: Option<String>,
+    /// Cycle time of the virtual clock, in nanoseconds (default 10 ms).
+    pub cycle_time: i64,
+    /// Wall-clock limit of one cycle of a test (default 1 s); `None`
+    /// disables it. A test that exceeds it fails with fault R008.
+    pub watchdog: Option<Duration>,
+}
+
+impl Default for TestOptions {
+    fn default() -> Self {
+        TestOptions {
+            filter: None,
+            cycle_time: 10_000_000,
+            watchdog: Some(Duration::from_secs(1)),
+        }
+    }
+}
+
+/// One failed assertion.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct AssertionFailure {
+    /// `file:line:column` of the assertion call.
+    pub location: String,
+    /// The expected value, as an IEC literal.
+    pub expected: String,
+    /// The actual value, as an IEC literal.
+    pub actual: String,
+    /// The array index of the first differing element (`AssertArrayEquals`).
+    pub index: Option<i64>,
+    /// The assertion's message.
+    pub message: String,
+    /// The cycle it failed in (from 0).
+    pub cycle: u64,
+}
+
+/// The verdict on one test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TestOutcome {
+    /// Every assertion held and the test ran to its end.
+    Passed,
+    /// An assertion failed, or the test never set `TEST_DONE`.
+    Failed,
+    /// The test stopped on a runtime fault (JUnit `<error>`).
+    Errored,
+}
+
+/// What happened in one test.
+#[derive(Debug, Clone)]
+pub struct TestCase {
+    /// The test POU's name.
+    pub name: String,
+    /// The file declaring it.
+    pub file: String,
+    /// Cycles run (including a faulting one).
+    pub cycles: u64,
+    /// Wall-clock time spent, compile included.
+    pub elapsed: Duration,
+    /// The failed assertions, in order (at most 100 kept).
+    pub failures: Vec<AssertionFailure>,
+    /// Failed assertions beyond those kept.
+    pub more_failures: usize,
+    /// The runtime fault that stopped it.
+    pub fault: Option<RuntimeFault>,
+    /// It declares `TEST_DONE` and had not set it when its cycles ran out.
+    pub unfinished: bool,
+}
+
+impl TestCase {
+    /// The verdict.
+    pub fn outcome(&self) -> TestOutcome {
+        if self.fault.is_some() {
+            TestOutcome::Errored
+        } else if !self.failures.is_empty() || self.unfinished {
+            TestOutcome::Failed
+        } else {
+            TestOutcome::Passed
+        }
+    }
+}
+
+/// The outcome of [`run_tests`].
+#[derive(Debug, Clone)]
+pub struct TestReport {
+    /// Every test run, in file and declaration order.
+    pub cases: Vec<TestCase>,
+    /// Wall-clock time of the whole run.
+    pub elapsed: Duration,
+}
+
+impl TestReport {
+    /// How many tests had outcome `o`.
+    pub fn count(&self, o: TestOutcome) -> usize {
+        self.cases.iter().filter(|c| c.outcome() == o).count()
+    }
+
+    /// True when there was at least one test and every test passed.
+    pub fn all_passed(&self) -> bool {
+        !self.cases.is_empty() && self.count(TestOutcome::Passed) == self.cases.len()
+    }
+
+    /// The human-readable report: one line per test, the details of each
+    /// failure, and a summary line.
+    pub fn to_text(&self) -> String {
+        text::render(self)
+    }
+
+    /// The report as JUnit XML (one `<testsuite>` named `suite`).
+    pub fn to_junit(&self, suite: &str) -> String {
+        junit::render(self, suite)
+    }
+}
+
+/// Why the tests could not be run at all.
+#[derive(Debug)]
+pub enum TestError {
+    /// The sources (with the assertions declared) do not compile.
+    Compile(CompileError),
+    /// No test matched (none declared, or none passed the filter).
+    NoTests,
+    /// The assertion functions could not be declared (an internal error).
+    Host(HostDeclError),
+}
+
+impl fmt::Display for TestError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TestError::Compile(e) => e.fmt(f),
+            TestError::NoTests => write!(
+                f,
+                "no test found: a test is a PROGRAM or FUNCTION_BLOCK whose name starts with {TEST_PREFIX}"
+            ),
+            TestError::Host(e) => write!(f, "cannot declare the assertions: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for TestError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            TestError::Compile(e) => Some(e),
+            TestError::NoTests => None,
+            TestError::Host(e) => Some(e),
+        }
+    }
+}
+
+/// Finds the tests of `sources` and runs each on its own fresh runtime.
+///
+/// ```
+/// use plcrun::{SourceMap, TestOptions, TestOutcome, run_tests};
+///
+/// let mut sources = SourceMap::new();
+/// sources.add("add_test.st", "
+/// FUNCTION Add3 : INT VAR_INPUT a, b, c : INT; END_VAR
+///   Add3 := a + b + c;
+/// END_FUNCTION
+/// PROGRAM TEST_Add3
+///   AssertEquals(INT#6, Add3(1, 2, 3), 'small numbers');
+///   AssertEquals(INT#7, Add3(1, 2, 3), 'deliberately wrong');
+/// END_PROGRAM
+/// ");
+/// let report = run_tests(&sources, &TestOptions::default())?;
+/// let case = &report.cases[0];
+/// assert_eq!(case.outcome(), TestOutcome::Failed);
+/// assert_eq!(case.failures[0].location, "add_test.st:7:3");
+/// assert_eq!((case.failures[0].expected.as_str(), case.failures[0].actual.as_str()), ("7", "6"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestReport, TestError> {
+    let start = Instant::now();
+    let mut diags = Diagnostics::new();
+    let found = discover::find_tests(sources, &mut diags);
+    if diags.has_errors() {
+        return Err(TestError::Compile(CompileError {
+            diagnostics: diags,
+            sources: sources.clone(),
+        }));
+    }
+    let wanted = |name: &str| {
+        options
+            .filter
+            .as_ref()
+            .is_none_or(|f| name.to_ascii_lowercase().contains(&f.to_ascii_lowercase()))
+    };
+    let tests: Vec<_> = found.into_iter().filter(|t| wanted(&t.name)).collect();
+    if tests.is_empty() {
+        return Err(TestError::NoTests);
+    }
+    let mut cases = Vec::with_capacity(tests.len());
+    for test in &tests {
+        cases.push(run_one::run(sources, test, options)?);
+    }
+    Ok(TestReport {
+        cases,
+        elapsed: start.elapsed(),
+    })
+}

@@ -1,0 +1,74 @@
+//! The human-readable test report.
+
+use super::{AssertionFailure, TestCase, TestOutcome, TestReport};
+use std::fmt::Write;
+
+/// One failed assertion on one line:
+/// `file:line:col: cycle N: [element [i]: ]expected E, actual A[: message]`.
+pub(crate) fn failure_line(f: &AssertionFailure) -> String {
+    let mut s = format!("{}: cycle {}: ", f.location, f.cycle);
+    if let Some(i) = f.index {
+        let _ = write!(s, "element [{i}]: ");
+    }
+    let _ = write!(s, "expected {}, actual {}", f.expected, f.actual);
+    if !f.message.is_empty() {
+        let _ = write!(s, ": {}", f.message);
+    }
+    s
+}
+
+/// The detail lines of a test that did not pass (empty when it passed).
+pub(crate) fn details(case: &TestCase) -> Vec<String> {
+    let mut lines: Vec<String> = case.failures.iter().map(failure_line).collect();
+    if case.more_failures > 0 {
+        lines.push(format!(
+            "... and {} more failed assertions",
+            case.more_failures
+        ));
+    }
+    if case.unfinished {
+        lines.push(format!(
+            "TEST_DONE was not set within {} cycles",
+            case.cycles
+        ));
+    }
+    if let Some(fault) = &case.fault {
+        lines.extend(fault.to_string().lines().map(str::to_string));
+    }
+    lines
+}
+
+fn plural(n: u64, one: &str) -> String {
+    format!("{n} {one}{}", if n == 1 { "" } else { "s" })
+}
+
+pub(super) fn render(report: &TestReport) -> String {
+    let mut out = String::new();
+    for case in &report.cases {
+        let verdict = match case.outcome() {
+            TestOutcome::Passed => "PASS ",
+            TestOutcome::Failed => "FAIL ",
+            TestOutcome::Errored => "ERROR",
+        };
+        let _ = writeln!(
+            out,
+            "{verdict} {} ({}, {})",
+            case.name,
+            case.file,
+            plural(case.cycles, "cycle")
+        );
+        for line in details(case) {
+            let _ = writeln!(out, "      {line}");
+        }
+    }
+    let _ = writeln!(
+        out,
+        "{}: {} passed, {} failed, {} errored in {:.3} s",
+        plural(report.cases.len() as u64, "test"),
+        report.count(TestOutcome::Passed),
+        report.count(TestOutcome::Failed),
+        report.count(TestOutcome::Errored),
+        report.elapsed.as_secs_f64()
+    );
+    out
+}
