@@ -522,3 +522,14 @@ fn a_program_ends_with_test_done_and_il_calls_assertions_too() {
     assert_eq!(f.len(), 1, "{}", r.to_text());
     assert_eq!((f[0].expected.as_str(), f[0].actual.as_str()), ("4", "3"));
 }
+
+#[test]
+fn test_cycles_set_by_anything_but_a_literal_is_refused_not_ignored() {
+    let errors = compile_errors(
+        "PROGRAM TEST_Named
+           VAR CONSTANT N : INT := 50; TEST_CYCLES : INT := N; END_VAR
+           AssertTrue(TRUE);
+         END_PROGRAM",
+    );
+    assert_eq!(errors, ["E483"]);
+}

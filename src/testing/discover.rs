@@ -2,8 +2,8 @@
 //! whose name starts with `TEST_` (any case), with how long each runs
 //! (`TEST_CYCLES`) and whether it says when it is done (`TEST_DONE`).
 
-use crate::diagnostics::Diagnostics;
-use crate::source::{FileId, SourceMap};
+use crate::diagnostics::{Diagnostic, Diagnostics};
+use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::ast::{ExprKind, Initializer, Item, LiteralValue, Pou, PouKind};
 
 /// The name prefix that makes a POU a test (compared ignoring case).
@@ -44,11 +44,15 @@ pub(crate) fn is_test_name(name: &str) -> bool {
         .is_some_and(|p| p.eq_ignore_ascii_case(TEST_PREFIX))
 }
 
-/// The integer literal a declaration of `name` in `pou` starts with.
-fn declared(pou: &Pou, name: &str) -> Option<Option<i128>> {
+/// Diagnostic code of a `TEST_CYCLES` that is not set by an integer literal.
+const CYCLES_NOT_LITERAL: &str = "E483";
+
+/// The integer literal a declaration of `name` in `pou` starts with, and
+/// where the name is declared.
+fn declared(pou: &Pou, name: &str) -> Option<(Option<i128>, Span)> {
     for block in &pou.var_blocks {
         for decl in &block.decls {
-            if decl.names.iter().any(|n| n.name.eq_ignore_ascii_case(name)) {
+            if let Some(ident) = decl.names.iter().find(|n| n.name.eq_ignore_ascii_case(name)) {
                 let value = match &decl.init {
                     Some(Initializer::Expr(e)) => match &e.kind {
                         ExprKind::Literal(l) => match l.value {
@@ -59,7 +63,7 @@ fn declared(pou: &Pou, name: &str) -> Option<Option<i128>> {
                     },
                     _ => None,
                 };
-                return Some(value);
+                return Some((value, ident.span));
             }
         }
     }
@@ -77,13 +81,29 @@ pub(crate) fn find_tests(sources: &SourceMap, diags: &mut Diagnostics) -> Vec<Fo
             if pou.kind == PouKind::Function || !is_test_name(&pou.name.name) {
                 continue;
             }
+            // The runner reads the cycle count before compiling: anything
+            // but a literal would be ignored, so it is refused instead.
+            let cycles = match declared(pou, "TEST_CYCLES") {
+                Some((Some(v), _)) => Some(v.clamp(1, u64::MAX as i128) as u64),
+                Some((None, span)) => {
+                    diags.push(Diagnostic::error(
+                        CYCLES_NOT_LITERAL,
+                        span,
+                        format!(
+                            "`TEST_CYCLES` of test `{}` must be initialised with an integer \
+                             literal (e.g. `TEST_CYCLES : INT := 50;`)",
+                            pou.name.name
+                        ),
+                    ));
+                    None
+                }
+                None => None,
+            };
             found.push(Found {
                 name: pou.name.name.clone(),
                 file: file.name.clone(),
                 is_block: pou.kind == PouKind::FunctionBlock,
-                cycles: declared(pou, "TEST_CYCLES")
-                    .flatten()
-                    .map(|v| v.clamp(1, u64::MAX as i128) as u64),
+                cycles,
                 has_done: declared(pou, "TEST_DONE").is_some(),
             });
         }

@@ -64,6 +64,7 @@ fn compile(
         program: Some(program),
         watchdog: options.watchdog,
         hosts,
+        ..Options::default()
     };
     Plc::compile(sources, &plc_options).map_err(TestError::Compile)
 }
