@@ -52,7 +52,11 @@ const CYCLES_NOT_LITERAL: &str = "E483";
 fn declared(pou: &Pou, name: &str) -> Option<(Option<i128>, Span)> {
     for block in &pou.var_blocks {
         for decl in &block.decls {
-            if let Some(ident) = decl.names.iter().find(|n| n.name.eq_ignore_ascii_case(name)) {
+            if let Some(ident) = decl
+                .names
+                .iter()
+                .find(|n| n.name.eq_ignore_ascii_case(name))
+            {
                 let value = match &decl.init {
                     Some(Initializer::Expr(e)) => match &e.kind {
                         ExprKind::Literal(l) => match l.value {
