@@ -96,6 +96,13 @@ pub(crate) fn compile(
     options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
+    // A source this small cannot nest deeply enough to need the big stack
+    // (a few hundred levels at most fit in it), and a thread with a 256 MiB
+    // stack is not free: under valgrind each one costs about half a second.
+    let bytes: usize = sources.files().iter().map(|f| f.text.len()).sum();
+    if bytes <= INLINE_COMPILE_BYTES {
+        return compile_here(sources, options, diags);
+    }
     std::thread::scope(|scope| {
         let worker = std::thread::Builder::new()
             .name("plcrun-compile".into())
@@ -122,6 +129,11 @@ pub(crate) fn compile(
 /// Stack of the compiling thread: 256 MiB of address space, of which only
 /// the pages a deep program touches are ever used.
 pub const COMPILE_STACK: usize = 256 << 20;
+
+/// Sources of at most this many bytes in all compile on the caller's
+/// thread: even a chain of one-line alias types this long nests less than
+/// a 2 MiB stack holds (tests/limits.rs checks it on such a thread).
+const INLINE_COMPILE_BYTES: usize = 2 << 10;
 
 /// [`compile`] on the current thread.
 fn compile_here(

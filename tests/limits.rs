@@ -540,3 +540,25 @@ fn a_chain_at_the_limit_parses_and_drops_on_a_2_mib_stack() {
         .expect("spawn");
     assert!(!worker.join().expect("parse and drop must not crash"));
 }
+
+/// Sources of at most 2 KiB compile on the caller's thread (no 256 MiB
+/// compile thread): the deepest chains that fit in 2 KiB must still compile
+/// on a host's 2 MiB stack.
+#[test]
+fn the_deepest_chains_of_a_small_source_compile_on_a_2_mib_stack() {
+    type Shape = fn(usize) -> String;
+    for (name, shape) in [
+        ("fb_chain", fb_chain as Shape),
+        ("alias_chain", alias_chain as Shape),
+        ("struct_chain", struct_chain as Shape),
+    ] {
+        let n = (2..)
+            .take_while(|&n| shape(n).len() <= 2048)
+            .last()
+            .unwrap_or(2);
+        let src = shape(n);
+        assert!(src.len() <= 2048 && n > 10, "{name}: {n} levels");
+        let codes = compile_codes(src);
+        assert!(codes.is_empty(), "{name} {n} deep: {codes:?}");
+    }
+}
