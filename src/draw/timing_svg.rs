@@ -493,16 +493,7 @@ fn draw_logic(w: &mut SvgWriter, spans: &[(f64, f64, &Change)], top: f64, h: f64
         pts.push((x0, y));
         pts.push((x1, y));
     }
-    if !pts.is_empty() {
-        w.empty(
-            Element::new("polyline")
-                .attr("class", "wave")
-                .points(&pts)
-                .attr("fill", "none")
-                .attr("stroke", "#0040a0")
-                .num("stroke-width", 1.5),
-        );
-    }
+    wave(w, &pts, "#0040a0");
 }
 
 fn draw_number(w: &mut SvgWriter, spans: &[(f64, f64, &Change)], top: f64, h: f64) {
@@ -520,16 +511,7 @@ fn draw_number(w: &mut SvgWriter, spans: &[(f64, f64, &Change)], top: f64, h: f6
         pts.push((x0, y));
         pts.push((x1, y));
     }
-    if !pts.is_empty() {
-        w.empty(
-            Element::new("polyline")
-                .attr("class", "wave")
-                .points(&pts)
-                .attr("fill", "none")
-                .attr("stroke", "#a04000")
-                .num("stroke-width", 1.5),
-        );
-    }
+    wave(w, &pts, "#a04000");
     values_written(w, spans, top + 10.0);
 }
 
@@ -571,4 +553,19 @@ fn draw_label(w: &mut SvgWriter, spans: &[(f64, f64, &Change)], top: f64, h: f64
         );
     }
     values_written(w, spans, ym + 4.0);
+}
+
+/// The line of one variable's wave (BOOL or number), when it has points.
+fn wave(w: &mut SvgWriter, pts: &[(f64, f64)], stroke: &str) {
+    if pts.is_empty() {
+        return;
+    }
+    w.empty(
+        Element::new("polyline")
+            .attr("class", "wave")
+            .points(pts)
+            .attr("fill", "none")
+            .attr("stroke", stroke)
+            .num("stroke-width", 1.5),
+    );
 }
