@@ -10,6 +10,9 @@
 use crate::source::{SourceMap, Span};
 use std::fmt::Write;
 
+mod strict;
+pub use strict::{STRICT_NOTE, is_compatibility_code};
+
 /// How serious a diagnostic is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Severity {

@@ -3,7 +3,7 @@
 //! here; the runtime, the command line and embedders call these functions
 //! instead of assembling the stages themselves.
 
-use crate::diagnostics::{Diagnostic, Diagnostics};
+use crate::diagnostics::Diagnostics;
 use crate::ir::verify::VerifiedImage;
 use crate::sema;
 /// What to build from the sources (the program to run, the implicit
@@ -11,12 +11,13 @@ use crate::sema;
 pub(crate) use crate::sema::CompileOptions;
 /// Default limit of a program's data (512 MiB), beyond which E120.
 pub(crate) use crate::sema::DEFAULT_MAX_DATA_BYTES;
-use crate::source::{FileId, SourceMap, Span};
+use crate::source::encoding::SourceEncoding;
+use crate::source::{FileId, SourceMap};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-/// Diagnostic code of a file that is not valid UTF-8.
-const INVALID_UTF8: &str = "E011";
+mod source_bytes;
+pub use source_bytes::add_source_bytes;
 
 /// Diagnostic code of "several PROGRAMs and none chosen".
 pub(crate) const AMBIGUOUS_PROGRAM: &str = "E208";
@@ -42,12 +43,22 @@ impl std::error::Error for LoadError {
     }
 }
 
-/// Reads every file into a source map, named by its path as given. A file
-/// that is not valid UTF-8 is kept (invalid bytes replaced by U+FFFD) and
-/// reported as an `E011` diagnostic in `diags`, so that its other errors are
-/// still found; a file that cannot be read at all is a [`LoadError`].
+/// Reads every file into a source map, named by its path as given, each
+/// in the encoding detected from its bytes (see [`load_files_with`]).
 pub fn load_files<P: AsRef<Path>>(
     paths: &[P],
+    diags: &mut Diagnostics,
+) -> Result<SourceMap, LoadError> {
+    load_files_with(paths, SourceEncoding::Detect, diags)
+}
+
+/// Reads every file into a source map, named by its path as given and read
+/// in `encoding` ([`add_source_bytes`] says what is reported: W020 for a
+/// file detected as Windows-1252, E011 for one that should be UTF-8 and is
+/// not); a file that cannot be read at all is a [`LoadError`].
+pub fn load_files_with<P: AsRef<Path>>(
+    paths: &[P],
+    encoding: SourceEncoding,
     diags: &mut Diagnostics,
 ) -> Result<SourceMap, LoadError> {
     let mut sources = SourceMap::new();
@@ -57,29 +68,15 @@ pub fn load_files<P: AsRef<Path>>(
             path: path.to_path_buf(),
             error,
         })?;
-        let name = path.display().to_string();
-        match String::from_utf8(bytes) {
-            Ok(text) => {
-                sources.add(name, text);
-            }
-            Err(e) => {
-                let offset = e.utf8_error().valid_up_to();
-                let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
-                let id = sources.add(name, text);
-                diags.push(invalid_utf8(id, offset));
-            }
-        }
+        add_source_bytes(
+            &mut sources,
+            path.display().to_string(),
+            &bytes,
+            encoding,
+            diags,
+        );
     }
     Ok(sources)
-}
-
-/// The diagnostic for a file that is not valid UTF-8 at byte `offset`.
-fn invalid_utf8(file: FileId, offset: usize) -> Diagnostic {
-    Diagnostic::error(
-        INVALID_UTF8,
-        Span::new(file, offset, offset + 1),
-        "the file is not valid UTF-8 (invalid bytes replaced by U+FFFD)",
-    )
 }
 
 /// Parses and checks every file of `sources`, reporting into `diags`;
@@ -143,14 +140,12 @@ fn compile_here(
 ) -> Option<VerifiedImage> {
     let mut units = Vec::with_capacity(sources.files().len());
     for (i, file) in sources.files().iter().enumerate() {
-        units.push(crate::syntax::parse_file(
-            FileId(i as u32),
-            &file.name,
-            &file.text,
-            diags,
-        ));
+        units.push(crate::syntax::parse_source(FileId(i as u32), file, diags));
     }
     let image = sema::compile(&units, options, diags);
+    if options.strict {
+        diags.make_strict();
+    }
     if diags.has_errors() { None } else { image }
 }
 
@@ -169,6 +164,9 @@ pub struct CheckOptions {
     /// Most bytes of program data; 0 means the default (512 MiB). Beyond
     /// it: E120.
     pub max_data_bytes: usize,
+    /// Pure IEC 61131-3 (`--strict`): every compatibility-extension
+    /// warning (`W300`-`W399`) is an error with the same code.
+    pub strict: bool,
 }
 
 /// The outcome of [`check`].
@@ -199,6 +197,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         host_pous: Vec::new(),
         grafcet: options.grafcet,
         max_data_bytes: options.max_data_bytes,
+        strict: options.strict,
     };
     let image = compile(sources, &build, &mut diagnostics);
     let ir_listing = match (options.ir_listing, image) {

@@ -56,12 +56,14 @@ pub use compare::{
     Mismatch, OutputDifference, Pair, PairedVar, Pairing, RandomStimulus, SeedsOutcome, Shrunk,
     Side, StimulusSource, parse_map, run_seeds,
 };
-pub use diagnostics::{Diagnostic, Diagnostics, Severity};
+pub use diagnostics::{Diagnostic, Diagnostics, STRICT_NOTE, Severity, is_compatibility_code};
 pub use draw::{
     ActionLine, ChartModel, ChartPicture, DrawError, MAX_CHANGES, StepNode, TimingDiagram,
     TransitionNode, draw_chart,
 };
-pub use driver::{CheckOptions, CheckReport, LoadError, check, load_files};
+pub use driver::{
+    CheckOptions, CheckReport, LoadError, add_source_bytes, check, load_files, load_files_with,
+};
 pub use elementary::ElemType;
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::clock::Clock;
@@ -100,6 +102,7 @@ pub use runtime::trace_vcd::{VcdSignal, VcdTimescale};
 pub use runtime::var_error::{PathProblem, ReadOnlyReason, ValueProblem, VarError};
 pub use runtime::variables::{ChartState, Direction, VarInfo, VarShape};
 pub use runtime::watchdog::{UnknownTask, WatchdogTrip};
+pub use source::encoding::{Decoded, SourceEncoding, TextEncoding, UnknownEncoding, decode_source};
 pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use syntax::plcopen::export::{ExportError, export_plcopen};
 pub use testing::{

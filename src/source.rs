@@ -2,7 +2,12 @@
 //!
 //! Every AST node, diagnostic and runtime fault points back into the text the
 //! user wrote through a [`Span`]; [`SourceMap`] turns a span into
-//! `file:line:column` and an excerpt.
+//! `file:line:column` and an excerpt. [`encoding`] reads a file's bytes
+//! into that text.
+
+pub mod encoding;
+
+use encoding::TextEncoding;
 
 /// Index of a file inside a [`SourceMap`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
@@ -47,6 +52,7 @@ pub struct SourceFile {
     /// The full text.
     pub text: String,
     line_starts: Vec<usize>,
+    encoding: TextEncoding,
 }
 
 impl SourceFile {
@@ -59,7 +65,22 @@ impl SourceFile {
             name: name.into(),
             text,
             line_starts,
+            encoding: TextEncoding::Utf8,
         }
+    }
+
+    /// The same file, marked as read from `encoding` (a STRING literal of
+    /// a Windows-1252 file keeps the file's bytes, see
+    /// [`TextEncoding::string_byte`]).
+    pub fn with_encoding(mut self, encoding: TextEncoding) -> SourceFile {
+        self.encoding = encoding;
+        self
+    }
+
+    /// The encoding the file's bytes were read in (UTF-8 for text given
+    /// as a `&str`).
+    pub fn encoding(&self) -> TextEncoding {
+        self.encoding
     }
 
     /// 1-based line and column (in characters) of a byte offset.
@@ -112,6 +133,18 @@ impl SourceMap {
     /// Adds a file and returns its id.
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<String>) -> FileId {
         self.files.push(SourceFile::new(name, text));
+        FileId((self.files.len() - 1) as u32)
+    }
+
+    /// Adds a file whose text was read in `encoding`, and returns its id.
+    pub fn add_encoded(
+        &mut self,
+        name: impl Into<String>,
+        text: impl Into<String>,
+        encoding: TextEncoding,
+    ) -> FileId {
+        self.files
+            .push(SourceFile::new(name, text).with_encoding(encoding));
         FileId((self.files.len() - 1) as u32)
     }
 

@@ -172,6 +172,14 @@ pub struct RunArgs {
     #[arg(long, value_name = "MIB", default_value_t = 512,
           value_parser = clap::value_parser!(u64).range(1..=2048))]
     pub max_data_mib: u64,
+    /// Pure IEC 61131-3: every compatibility-extension warning (W300-W399)
+    /// is an error with the same code.
+    #[arg(long)]
+    pub strict: bool,
+    /// How the source files are encoded: utf-8, windows-1252, latin-1, or
+    /// detect (UTF-8 if valid, else Windows-1252 with warning W020).
+    #[arg(long, value_name = "ENCODING", default_value = "detect")]
+    pub encoding: plcrun::SourceEncoding,
 }
 
 /// `plcrun check FILES...`: parse and check only.
@@ -194,6 +202,14 @@ pub struct CheckArgs {
     #[arg(long, value_name = "MIB", default_value_t = 512,
           value_parser = clap::value_parser!(u64).range(1..=2048))]
     pub max_data_mib: u64,
+    /// Pure IEC 61131-3: every compatibility-extension warning (W300-W399)
+    /// is an error with the same code.
+    #[arg(long)]
+    pub strict: bool,
+    /// How the source files are encoded: utf-8, windows-1252, latin-1, or
+    /// detect (UTF-8 if valid, else Windows-1252 with warning W020).
+    #[arg(long, value_name = "ENCODING", default_value = "detect")]
+    pub encoding: plcrun::SourceEncoding,
 }
 
 /// `plcrun export --plcopen FILES... [-o OUT.xml]`.

@@ -5,7 +5,7 @@ use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
 use plcrun::{
     CheckOptions, Diagnostics, LiveStimulus, ModbusExchange, Options, Plc, RunError, Session,
     TaskRunner, TraceFormat, TraceWriter, VcdTimescale, check as check_sources, format_stats_table,
-    load_files, parse_stimulus, parse_time_literal,
+    load_files_with, parse_stimulus, parse_time_literal,
 };
 use std::io::{Read, Write};
 use std::time::Duration;
@@ -22,7 +22,7 @@ fn usage_error(msg: impl std::fmt::Display) -> i32 {
 /// `plcrun check FILES...`
 pub fn check(args: &CheckArgs) -> i32 {
     let mut diags = Diagnostics::new();
-    let sources = match load_files(&args.files, &mut diags) {
+    let sources = match load_files_with(&args.files, args.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
@@ -31,6 +31,7 @@ pub fn check(args: &CheckArgs) -> i32 {
         ir_listing: args.dump_ir,
         grafcet: args.grafcet,
         max_data_bytes: (args.max_data_mib as usize) << 20,
+        strict: args.strict,
     };
     let report = check_sources(&sources, &options);
     diags.extend(report.diagnostics);
@@ -72,6 +73,8 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         watchdog,
         grafcet: args.grafcet,
         max_data_bytes: (args.max_data_mib as usize) << 20,
+        strict: args.strict,
+        encoding: args.encoding,
         ..Options::default()
     })
 }
@@ -79,10 +82,15 @@ fn options(args: &RunArgs) -> Result<Options, String> {
 /// Compiles the files; on failure, the exit status after printing why.
 fn compile(args: &RunArgs, options: &Options) -> Result<Plc, i32> {
     let mut diags = Diagnostics::new();
-    let sources = load_files(&args.files, &mut diags).map_err(usage_error)?;
+    let sources =
+        load_files_with(&args.files, options.encoding, &mut diags).map_err(usage_error)?;
     if diags.has_errors() {
         eprint!("{}", diags.render(&sources));
         return Err(EXIT_COMPILE);
+    }
+    // Warnings of loading (an encoding assumed): shown before the program's.
+    if !diags.is_empty() {
+        eprint!("{}", diags.render(&sources));
     }
     let plc = Plc::compile(sources, options).map_err(|e| {
         eprint!("{e}");

@@ -13,6 +13,7 @@ use crate::diagnostics::Diagnostics;
 use crate::driver::{self, CompileOptions};
 use crate::ir::image::Image;
 use crate::ir::verify::VerifiedImage;
+use crate::source::encoding::SourceEncoding;
 use crate::source::{SourceMap, Span};
 use crate::vm::{Fault, HostLink, Machine};
 use std::fmt;
@@ -41,6 +42,12 @@ pub struct Options {
     /// compiled program may hold (default 512 MiB); larger programs are
     /// refused with E120.
     pub max_data_bytes: usize,
+    /// Pure IEC 61131-3 (`--strict`): every compatibility-extension
+    /// warning (`W300`-`W399`) is an error with the same code (default
+    /// `false`).
+    pub strict: bool,
+    /// How [`Plc::compile_bytes`] reads its files (default: detected).
+    pub encoding: SourceEncoding,
 }
 
 impl Default for Options {
@@ -52,6 +59,8 @@ impl Default for Options {
             hosts: HostBlocks::default(),
             grafcet: false,
             max_data_bytes: crate::driver::DEFAULT_MAX_DATA_BYTES,
+            strict: false,
+            encoding: SourceEncoding::Detect,
         }
     }
 }
@@ -170,9 +179,42 @@ impl Plc {
         Plc::compile(sources, options)
     }
 
-    /// Compiles every file of `sources`.
-    pub fn compile(mut sources: SourceMap, options: &Options) -> Result<Plc, CompileError> {
+    /// Compiles files given as bytes, each read in `options.encoding`
+    /// (detected by default: UTF-8, or Windows-1252 with warning W020).
+    ///
+    /// ```
+    /// use plcrun::{Options, Plc};
+    /// let src = b"PROGRAM P (* Z\xe4hler *) VAR n : INT; END_VAR n := n + 1; END_PROGRAM";
+    /// let plc = Plc::compile_bytes(&[("p.st", &src[..])], &Options::default())?;
+    /// assert_eq!(plc.warnings().iter().next().map(|d| d.code), Some("W020"));
+    /// # Ok::<(), plcrun::CompileError>(())
+    /// ```
+    pub fn compile_bytes(files: &[(&str, &[u8])], options: &Options) -> Result<Plc, CompileError> {
+        let mut sources = SourceMap::new();
         let mut diags = Diagnostics::new();
+        for (name, bytes) in files {
+            driver::add_source_bytes(&mut sources, *name, bytes, options.encoding, &mut diags);
+        }
+        if diags.has_errors() {
+            return Err(CompileError {
+                diagnostics: diags,
+                sources,
+            });
+        }
+        Plc::compile_reported(sources, options, diags)
+    }
+
+    /// Compiles every file of `sources`.
+    pub fn compile(sources: SourceMap, options: &Options) -> Result<Plc, CompileError> {
+        Plc::compile_reported(sources, options, Diagnostics::new())
+    }
+
+    /// [`Plc::compile`] after `diags` were reported (by loading the files).
+    fn compile_reported(
+        mut sources: SourceMap,
+        options: &Options,
+        mut diags: Diagnostics,
+    ) -> Result<Plc, CompileError> {
         if !options.hosts.is_empty() {
             sources.add(HOST_SOURCE, options.hosts.declarations());
         }
@@ -183,6 +225,7 @@ impl Plc {
             host_pous: options.hosts.names(),
             grafcet: options.grafcet,
             max_data_bytes: options.max_data_bytes,
+            strict: options.strict,
         };
         let image = driver::compile(&sources, &build, &mut diags);
         match image {

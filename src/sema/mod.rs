@@ -77,6 +77,9 @@ pub struct CompileOptions {
     /// Most bytes of program data (variables, instances, constants) the
     /// image may hold; 0 means [`DEFAULT_MAX_DATA_BYTES`]. Beyond it: E120.
     pub max_data_bytes: usize,
+    /// Compatibility-extension warnings (`W300`-`W399`) are errors
+    /// (`--strict`).
+    pub strict: bool,
 }
 
 /// Default limit of a program's data: 512 MiB (one instance or structure

@@ -3,7 +3,8 @@
 //! going). Line breaks become [`Tok::Eol`]; [`crate::syntax::il_lines`] decides
 //! where they matter.
 
-use crate::diagnostics::Diagnostics;
+use crate::diagnostics::{Diagnostic, Diagnostics};
+use crate::source::encoding::TextEncoding;
 use crate::source::{FileId, Span};
 use crate::syntax::ast::{AddrSize, Area, DirectAddress, Ident, Literal, LiteralValue};
 use crate::syntax::literal::decode_typed_body;
@@ -20,6 +21,17 @@ pub type Spanned = (usize, Tok, usize);
 /// Lexes `text`. Never fails: bad input is reported into `diags` and either
 /// skipped or turned into a harmless placeholder token.
 pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
+    lex_in(file, text, TextEncoding::Utf8, diags)
+}
+
+/// [`lex`] of text read from a file in `encoding`: a STRING literal of a
+/// Windows-1252 file keeps the file's bytes ([`TextEncoding::string_byte`]).
+pub fn lex_in(
+    file: FileId,
+    text: &str,
+    encoding: TextEncoding,
+    diags: &mut Diagnostics,
+) -> Vec<Spanned> {
     let mut out = Vec::with_capacity(text.len() / 4);
     let mut lexer = Raw::lexer(text);
     let mut bad_run: Option<(usize, usize)> = None;
@@ -102,7 +114,10 @@ pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
             }
             Raw::SString | Raw::DString => {
                 let wide = raw == Raw::DString;
-                let value = string(file, slice, r.start, wide, diags);
+                let mut value = string(file, slice, r.start, wide, diags);
+                if !wide && encoding == TextEncoding::Windows1252 {
+                    value = as_file_bytes(&value, encoding);
+                }
                 lit(LiteralValue::String { value, wide }, None)
             }
             Raw::Direct => match direct(file, slice, r.start) {
@@ -145,11 +160,45 @@ pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
             Raw::Gt => Tok::Gt,
             Raw::Ge => Tok::Ge,
             Raw::Bar => Tok::Bar,
+            Raw::EmbeddedC => {
+                if embedded_c(span(r.start, r.end), slice, diags) {
+                    Tok::Eol
+                } else {
+                    continue;
+                }
+            }
         };
         out.push((r.start, tok, r.end));
     }
     flush_bad(file, text, &mut bad_run, diags);
     out
+}
+
+/// Reports matiec's `{{ ... }}` at `span` (its text `slice`): a warning
+/// that it is ignored, or an error when it has no closing `}}`. True when
+/// it spans lines (it then ends an IL line, as a comment does).
+fn embedded_c(span: Span, slice: &str, diags: &mut Diagnostics) -> bool {
+    if slice.len() >= 4 && slice.ends_with("}}") {
+        let code = slice[2..slice.len() - 2].trim();
+        let shown: String = code.chars().take(40).collect();
+        let more = if shown.len() < code.len() { "..." } else { "" };
+        diags.push(
+            Diagnostic::warning(
+                "W360",
+                span,
+                format!("embedded C code `{{{{ {shown}{more} }}}}` (a matiec pragma) ignored: it does not run"),
+            )
+            .with_note("plcrun runs IEC 61131-3 code only; write the effect in ST or as a host block"),
+        );
+    } else {
+        let start = Span::new(span.file, span.start as usize, span.start as usize + 2);
+        diags.error(
+            "E020",
+            start,
+            "unterminated embedded-C pragma: `{{` has no closing `}}`",
+        );
+    }
+    slice.contains('\n')
 }
 
 fn flush_bad(file: FileId, text: &str, run: &mut Option<(usize, usize)>, diags: &mut Diagnostics) {
@@ -202,6 +251,15 @@ fn string(file: FileId, slice: &str, start: usize, wide: bool, diags: &mut Diagn
             String::new()
         }
     }
+}
+
+/// A STRING literal's characters as the bytes the file held: STRING is a
+/// string of bytes, so `€` of a Windows-1252 file is byte 0x80 (as `'$80'`).
+fn as_file_bytes(value: &str, encoding: TextEncoding) -> String {
+    value
+        .chars()
+        .map(|c| encoding.string_byte(c).map_or(c, char::from))
+        .collect()
 }
 
 /// True when the final quote of `slice` is not escaped by `$` (counting

@@ -15,16 +15,28 @@ pub mod s7;
 pub mod token;
 
 use crate::diagnostics::{Diagnostics, Severity};
-use crate::source::FileId;
+use crate::source::encoding::TextEncoding;
+use crate::source::{FileId, SourceFile};
 use ast::{Literal, LiteralValue};
 use token::Tok;
 
 /// Parses one file. Never panics, on any input. Reports every syntax error it can (recover, don't stop at the first).
 pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> ast::CompilationUnit {
+    parse_in(file, text, TextEncoding::Utf8, diags)
+}
+
+/// [`parse`] of text read from a file in `encoding` (which decides the
+/// bytes of its STRING literals).
+fn parse_in(
+    file: FileId,
+    text: &str,
+    encoding: TextEncoding,
+    diags: &mut Diagnostics,
+) -> ast::CompilationUnit {
     if plcopen::is_plcopen(text) {
         return plcopen::parse(file, text, diags);
     }
-    let tokens = lexer::lex(file, text, diags);
+    let tokens = lexer::lex_in(file, text, encoding, diags);
     let tokens = il_lines::keep_il_lines(tokens);
     parser::parse_tokens(construct::State::new(file, text), tokens, diags)
 }
@@ -41,6 +53,18 @@ pub fn parse_file(
         return s7::parse(file, text, diags);
     }
     parse(file, text, diags)
+}
+
+/// [`parse_file`] of a loaded source file, in the encoding it was read in.
+pub fn parse_source(
+    file: FileId,
+    source: &SourceFile,
+    diags: &mut Diagnostics,
+) -> ast::CompilationUnit {
+    if s7::recognise(&source.name, &source.text) {
+        return s7::parse(file, &source.text, diags);
+    }
+    parse_in(file, &source.text, source.encoding(), diags)
 }
 
 /// Parses one standalone IEC literal as written on a command line / stimulus cell:

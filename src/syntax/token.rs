@@ -128,6 +128,11 @@ pub enum Raw {
     /// `|` (Moeller CAL output list separator).
     #[token("|")]
     Bar,
+    // --- source: matiec's embedded C ---
+    /// `{{ ... }}`: matiec's embedded-C pragma, up to the first `}}`; the
+    /// body is consumed by the callback.
+    #[token("{{", embedded_c)]
+    EmbeddedC,
 }
 
 /// Consumes a block comment body up to and including the first `*)`
@@ -150,6 +155,15 @@ fn slash_comment(lex: &mut Lexer<Raw>) {
 fn pragma(lex: &mut Lexer<Raw>) {
     let rest = lex.remainder();
     let n = rest.find('}').map(|i| i + 1).unwrap_or(rest.len());
+    lex.bump(n);
+}
+
+/// Consumes an embedded-C body up to and including `}}` (it may hold
+/// anything else, single braces and line breaks included), or to the end
+/// of input when unterminated.
+fn embedded_c(lex: &mut Lexer<Raw>) {
+    let rest = lex.remainder();
+    let n = rest.find("}}").map(|i| i + 2).unwrap_or(rest.len());
     lex.bump(n);
 }
 
