@@ -82,12 +82,15 @@ impl Diagnostic {
             Severity::Error => "error",
             Severity::Warning => "warning",
         };
+        // The header gives the column in the line; the caret, the one in
+        // the excerpt (a window of a long line).
+        let header = format!("{}:{}:{}", file.name, line, col);
         let (text, col, end_col) = excerpt(file.line_text(line), col, end_col);
         let text = text.as_str();
         let width = line.to_string().len();
         let mut out = String::new();
         let _ = writeln!(out, "{kind}[{}]: {}", self.code, short(&self.message));
-        let _ = writeln!(out, "{:width$}--> {}:{}:{}", "", file.name, line, col);
+        let _ = writeln!(out, "{:width$}--> {header}", "");
         let _ = writeln!(out, "{:width$} |", "");
         let _ = writeln!(out, "{line} | {text}");
         let line_chars = text.chars().count();

@@ -14,7 +14,7 @@ use super::{Diagnostics, Severity};
 /// use plcrun::is_compatibility_code;
 /// assert!(is_compatibility_code("W360"));
 /// assert!(!is_compatibility_code("W020"));
-/// assert!(!is_compatibility_code("E360"));
+/// assert!(!is_compatibility_code("E011"));
 /// ```
 pub fn is_compatibility_code(code: &str) -> bool {
     let b = code.as_bytes();

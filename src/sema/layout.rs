@@ -277,6 +277,13 @@ impl Declarer<'_> {
         ty: TypeId,
         frame: &mut Frame,
     ) -> Option<(Storage, Option<String>)> {
+        if let Some(a) = decl.location.as_ref().filter(|a| a.fields.is_empty()) {
+            // `AT %I*`: an instance variable, completed per instance by VAR_CONFIG.
+            let location = self.incomplete_address(pou, block, a, ty)?;
+            let s = Storage::Frame(frame.offset);
+            frame.offset = self.grow(frame.offset, self.types.size(ty), name.span);
+            return Some((s, Some(location)));
+        }
         if let Some(a) = &decl.location {
             if pou.kind != PouKind::Program {
                 self.diags.error(

@@ -25,6 +25,7 @@ mod program;
 mod const_order;
 mod decl_consts;
 mod declare;
+mod incomplete_address;
 mod layout;
 mod nesting;
 mod sfc;

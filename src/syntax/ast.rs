@@ -787,7 +787,27 @@ pub struct Configuration {
     /// Resources; a configuration that declares tasks and programs directly
     /// gets one implicit resource (with `name` equal to the configuration's).
     pub resources: Vec<Resource>,
+    /// `VAR_CONFIG` lines: addresses and initial values of variables
+    /// inside program instances.
+    pub var_config: Vec<ConfigInit>,
     /// Where.
+    pub span: Span,
+}
+
+/// One line of `VAR_CONFIG`:
+/// `Res.Prog.inst.var AT %QX1.0 : BOOL := init;`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConfigInit {
+    /// The dotted path: resource (may be left out with an implicit
+    /// resource), program instance, FB instances, variable.
+    pub path: Vec<Ident>,
+    /// `AT %...`: the address completing an `AT %I*`-style declaration.
+    pub location: Option<DirectAddress>,
+    /// The type, as the variable is declared.
+    pub ty: TypeSpec,
+    /// `:= ...` initial value of this one instance's variable.
+    pub init: Option<Initializer>,
+    /// The whole line.
     pub span: Span,
 }
 

@@ -765,6 +765,8 @@ pub enum ConfElem {
     Program(ProgramInstance),
     /// A recovered syntax error.
     Error,
+    /// `VAR_CONFIG ... END_VAR` (only directly in a configuration).
+    VarConfig(Vec<ConfigInit>),
 }
 
 /// `CONFIGURATION`; tasks and programs given directly go to an implicit
@@ -779,6 +781,7 @@ pub fn configuration(
     let span = st.span(l, r);
     let mut globals = Vec::new();
     let mut resources = Vec::new();
+    let mut var_config = Vec::new();
     let mut implicit = Resource {
         name: name.clone(),
         on: None,
@@ -793,6 +796,7 @@ pub fn configuration(
             ConfElem::Resource(res) => resources.push(res),
             ConfElem::Task(t) => implicit.tasks.push(t),
             ConfElem::Program(p) => implicit.programs.push(p),
+            ConfElem::VarConfig(v) => var_config.extend(v),
             ConfElem::Error => {}
         }
     }
@@ -803,6 +807,7 @@ pub fn configuration(
         name,
         globals,
         resources,
+        var_config,
         span,
     }
 }
@@ -829,7 +834,7 @@ pub fn resource(
             ConfElem::Globals(g) => res.globals.push(g),
             ConfElem::Task(t) => res.tasks.push(t),
             ConfElem::Program(p) => res.programs.push(p),
-            ConfElem::Resource(_) | ConfElem::Error => {}
+            ConfElem::Resource(_) | ConfElem::VarConfig(_) | ConfElem::Error => {}
         }
     }
     res

@@ -385,10 +385,11 @@ pub enum Kw {
     From,
     Action,
     EndAction,
+    VarConfig,
 }
 
 /// Every keyword with its spelling.
-pub const KEYWORDS: [(&str, Kw); 67] = [
+pub const KEYWORDS: [(&str, Kw); 68] = [
     ("PROGRAM", Kw::Program),
     ("END_PROGRAM", Kw::EndProgram),
     ("FUNCTION", Kw::Function),
@@ -456,6 +457,7 @@ pub const KEYWORDS: [(&str, Kw); 67] = [
     ("FROM", Kw::From),
     ("ACTION", Kw::Action),
     ("END_ACTION", Kw::EndAction),
+    ("VAR_CONFIG", Kw::VarConfig),
 ];
 
 impl Kw {

@@ -7,6 +7,7 @@ mod init;
 mod recursion;
 mod retained;
 mod schedule;
+mod var_config;
 
 use super::CompileOptions;
 use super::decl_consts::DeclConsts;
@@ -102,7 +103,8 @@ impl Linker<'_> {
         self.initialise_globals();
         let (tasks, programs) = self.schedule(options)?;
         let instances = self.instantiate_programs(programs);
-        let roots = self.root_vars(&instances)?;
+        let mut roots = self.root_vars(&instances)?;
+        roots.extend(self.apply_var_config(options.program.is_none(), &instances));
         let retained = self.retained_vars(&instances);
         for c in &mut self.out.codes {
             crate::ir::fuse::fuse_loops(&mut c.ops);
