@@ -43,13 +43,16 @@ impl std::error::Error for LoadError {
     }
 }
 
-/// Reads every file into a source map, named by its path as given, each
-/// in the encoding detected from its bytes (see [`load_files_with`]).
+/// Reads every file into a source map, named by its path as given, as
+/// UTF-8: a file that is not is kept (invalid bytes replaced by U+FFFD)
+/// and reported as an `E011` diagnostic, so that its other errors are
+/// still found. [`load_files_with`] reads other encodings or detects them
+/// (as the command line does).
 pub fn load_files<P: AsRef<Path>>(
     paths: &[P],
     diags: &mut Diagnostics,
 ) -> Result<SourceMap, LoadError> {
-    load_files_with(paths, SourceEncoding::Detect, diags)
+    load_files_with(paths, SourceEncoding::Utf8, diags)
 }
 
 /// Reads every file into a source map, named by its path as given and read

@@ -49,12 +49,13 @@ pub fn add_source_bytes(
             Span::new(id, at, at + 1),
             "the file is not valid UTF-8 (invalid bytes replaced by U+FFFD)",
         );
-        if encoding == SourceEncoding::Detect {
-            d = d.with_note(
-                "it also holds valid UTF-8 sequences, so it was not taken for Windows-1252; \
-                 `--encoding windows-1252` or `latin-1` reads it in a single-byte code page",
-            );
-        }
+        d = d.with_note(if encoding == SourceEncoding::Detect {
+            "it also holds valid UTF-8 sequences, so it was not taken for Windows-1252; \
+             `--encoding windows-1252` or `latin-1` reads it in a single-byte code page"
+        } else {
+            "if it is in a single-byte code page, `--encoding windows-1252` or `latin-1` \
+             (plcrun run and check) reads it"
+        });
         diags.push(d);
     }
     id

@@ -114,10 +114,8 @@ pub fn lex_in(
             }
             Raw::SString | Raw::DString => {
                 let wide = raw == Raw::DString;
-                let mut value = string(file, slice, r.start, wide, diags);
-                if !wide && encoding == TextEncoding::Windows1252 {
-                    value = as_file_bytes(&value, encoding);
-                }
+                let value =
+                    as_file_bytes(string(file, slice, r.start, wide, diags), wide, encoding);
                 lit(LiteralValue::String { value, wide }, None)
             }
             Raw::Direct => match direct(file, slice, r.start) {
@@ -160,13 +158,9 @@ pub fn lex_in(
             Raw::Gt => Tok::Gt,
             Raw::Ge => Tok::Ge,
             Raw::Bar => Tok::Bar,
-            Raw::EmbeddedC => {
-                if embedded_c(span(r.start, r.end), slice, diags) {
-                    Tok::Eol
-                } else {
-                    continue;
-                }
-            }
+            // Spanning lines, it ends an IL line as a comment does.
+            Raw::EmbeddedC if embedded_c(span(r.start, r.end), slice, diags) => Tok::Eol,
+            Raw::EmbeddedC => continue,
         };
         out.push((r.start, tok, r.end));
     }
@@ -176,7 +170,7 @@ pub fn lex_in(
 
 /// Reports matiec's `{{ ... }}` at `span` (its text `slice`): a warning
 /// that it is ignored, or an error when it has no closing `}}`. True when
-/// it spans lines (it then ends an IL line, as a comment does).
+/// it spans lines.
 fn embedded_c(span: Span, slice: &str, diags: &mut Diagnostics) -> bool {
     if slice.len() >= 4 && slice.ends_with("}}") {
         let code = slice[2..slice.len() - 2].trim();
@@ -255,7 +249,11 @@ fn string(file: FileId, slice: &str, start: usize, wide: bool, diags: &mut Diagn
 
 /// A STRING literal's characters as the bytes the file held: STRING is a
 /// string of bytes, so `€` of a Windows-1252 file is byte 0x80 (as `'$80'`).
-fn as_file_bytes(value: &str, encoding: TextEncoding) -> String {
+/// A WSTRING literal holds characters and is left as it is.
+fn as_file_bytes(value: String, wide: bool, encoding: TextEncoding) -> String {
+    if wide || encoding != TextEncoding::Windows1252 {
+        return value;
+    }
     value
         .chars()
         .map(|c| encoding.string_byte(c).map_or(c, char::from))
