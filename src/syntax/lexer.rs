@@ -96,6 +96,7 @@ pub fn lex_in(
                     continue;
                 }
             }
+            Raw::Word if library_list(&mut lexer, span(r.start, r.end), text, diags) => Tok::Eol,
             Raw::Word => word(slice),
             Raw::Typed => typed(file, slice, r.start, diags),
             Raw::Int | Raw::Based => {
@@ -166,6 +167,45 @@ pub fn lex_in(
     }
     flush_bad(file, text, &mut bad_run, diags);
     out
+}
+
+/// Skips the `LIBRARY ... END_LIBRARY` list a CoDeSys 2.3 export ends
+/// with (the libraries the project referenced, as free text) when `lexer`
+/// has just read `LIBRARY` (at `word`) at the start of a line, with a W021
+/// warning; true when it did.
+fn library_list(
+    lexer: &mut logos::Lexer<'_, Raw>,
+    word: Span,
+    text: &str,
+    diags: &mut Diagnostics,
+) -> bool {
+    // Cheap tests first: this runs for every word.
+    let start = word.start as usize;
+    let rest = lexer.remainder();
+    if lexer.slice() != "LIBRARY"
+        || !(start == 0 || text[..start].ends_with('\n'))
+        || !rest.starts_with(['\r', '\n'])
+    {
+        return false;
+    }
+    let Some(end) = rest.find("\nEND_LIBRARY") else {
+        return false;
+    };
+    let end = end + "\nEND_LIBRARY".len();
+    let first = rest
+        .trim_start()
+        .lines()
+        .next()
+        .unwrap_or("")
+        .trim()
+        .to_string();
+    lexer.bump(end);
+    diags.warning(
+        "W021",
+        word,
+        format!("CoDeSys export's library list skipped (first: `{first}`): plcrun brings its own standard functions"),
+    );
+    true
 }
 
 /// Reports matiec's `{{ ... }}` at `span` (its text `slice`): a warning
