@@ -31,6 +31,7 @@ mod sfc;
 mod type_decl;
 
 // Phase 2: one body builder per POU.
+mod aggregate_copy;
 pub(crate) mod assert_calls;
 mod binary;
 mod body;
