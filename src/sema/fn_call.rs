@@ -245,6 +245,14 @@ impl BodyBuilder<'_> {
         if ret == TypeTable::void() {
             return Val::None(TypeTable::void());
         }
+        if matches!(
+            self.types.get(ret).kind,
+            TypeKind::Array { .. } | TypeKind::Struct { .. }
+        ) {
+            // An array or structure: the address of the result in the
+            // callee's frame (struct_returns.rs copies it out).
+            return self.aggregate_result_address(p, ret);
+        }
         let t = self.block.temp();
         let at = self.block.emit(Op::LoadAbs { d: t, abs: 0 });
         self.block.fixups.push((at, p));
@@ -258,7 +266,7 @@ impl BodyBuilder<'_> {
             self.diags.error(
                 "E302",
                 span,
-                "functions returning arrays or structures are not supported yet",
+                format!("a function cannot return a {}", self.types.name(ret)),
             );
             Val::error()
         }

@@ -54,6 +54,7 @@ mod std_strings;
 mod std_typed_names;
 mod stdfuncs;
 mod stmt;
+mod struct_returns;
 mod typeck;
 
 // Phase 3: linking.
