@@ -61,7 +61,7 @@ impl BodyBuilder<'_> {
     /// True when the callee is a name that is not an FB instance variable:
     /// then it names a function (a variable called `sel` does not hide the
     /// function `SEL`; a call is not a variable).
-    fn calls_a_function(&self, call: &Call) -> bool {
+    pub(super) fn calls_a_function(&self, call: &Call) -> bool {
         let ExprKind::Name(id) = &call.callee.kind else {
             return false;
         };
@@ -98,7 +98,7 @@ impl BodyBuilder<'_> {
         Val::error()
     }
 
-    fn call_function(&mut self, call: &Call, expect: Option<TypeId>, want: bool) -> Val {
+    pub(super) fn call_function(&mut self, call: &Call, expect: Option<TypeId>, want: bool) -> Val {
         let ExprKind::Name(id) = &call.callee.kind else {
             return Val::error();
         };

@@ -251,16 +251,14 @@ impl Declarer<'_> {
             );
             return;
         }
-        if stdlib::lookup_native(&p.name.name).is_some()
-            || super::stdfuncs::is_standard_function(&p.name.name)
-        {
+        if super::stdfuncs::is_standard_function(&p.name.name) {
+            // The user's definition wins (OSCAT defines its own TIME_TO_TOD).
+            self.diags.push(super::std_shadow::shadow_warning(p));
+        } else if stdlib::lookup_native(&p.name.name).is_some() {
             self.diags.error(
                 "E202",
                 p.name.span,
-                format!(
-                    "`{}` is the name of a standard function or function block",
-                    p.name.name
-                ),
+                format!("`{}` is the name of a standard function block", p.name.name),
             );
             return;
         }

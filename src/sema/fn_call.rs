@@ -20,8 +20,8 @@ enum Ready {
     Scalar(Slot),
     /// The address of a VAR_IN_OUT variable.
     Pointer(Slot),
-    /// The address and size of an array or structure passed by value.
-    Aggregate(Slot, u32),
+    /// The address and type of an array or structure passed by value.
+    Aggregate(Slot, crate::ir::type_table::TypeId),
 }
 
 /// The parameters of function `callee`, in interface order.
@@ -149,16 +149,8 @@ impl BodyBuilder<'_> {
             self.mismatch(e.span, Ty::T(src.ty), prm.ty, what);
             return None;
         }
-        if self.contains_strings(prm.ty) {
-            self.diags.error(
-                "E302",
-                e.span,
-                "passing arrays or structures that contain strings by value is not supported yet",
-            );
-            return None;
-        }
         let a = self.address_of(&src);
-        Some(Ready::Aggregate(a, self.types.size(prm.ty)))
+        Some(Ready::Aggregate(a, prm.ty))
     }
 
     /// A scalar or string argument, kept in a temporary the next argument
@@ -235,14 +227,14 @@ impl BodyBuilder<'_> {
                 });
                 self.block.fixups.push((at, p));
             }
-            Ready::Aggregate(a, n) => {
+            Ready::Aggregate(a, ty) => {
                 let d = self.block.temp();
                 let at = self.block.emit(Op::LoadI {
                     d,
                     imm: prm.offset as i32,
                 });
                 self.block.fixups.push((at, p));
-                self.block.emit(Op::MemCopy { d, s: a, n });
+                self.copy_value(d, a, ty);
             }
         }
     }
@@ -252,6 +244,14 @@ impl BodyBuilder<'_> {
         let ret = self.model.pous[p].ret;
         if ret == TypeTable::void() {
             return Val::None(TypeTable::void());
+        }
+        if matches!(
+            self.types.get(ret).kind,
+            TypeKind::Array { .. } | TypeKind::Struct { .. }
+        ) {
+            // An array or structure: the address of the result in the
+            // callee's frame (struct_returns.rs copies it out).
+            return self.aggregate_result_address(p, ret);
         }
         let t = self.block.temp();
         let at = self.block.emit(Op::LoadAbs { d: t, abs: 0 });
@@ -266,7 +266,7 @@ impl BodyBuilder<'_> {
             self.diags.error(
                 "E302",
                 span,
-                "functions returning arrays or structures are not supported yet",
+                format!("a function cannot return a {}", self.types.name(ret)),
             );
             Val::error()
         }

@@ -32,11 +32,13 @@ mod sfc;
 mod type_decl;
 
 // Phase 2: one body builder per POU.
+mod aggregate_copy;
 pub(crate) mod assert_calls;
 mod binary;
 mod body;
 mod bounds;
 mod calls;
+mod compat_typing;
 mod emit;
 mod expr;
 mod fn_call;
@@ -46,10 +48,14 @@ mod il;
 mod place;
 mod sfc_emit;
 mod std_convert;
+mod std_convert_dates;
 mod std_numeric;
+mod std_shadow;
 mod std_strings;
+mod std_typed_names;
 mod stdfuncs;
 mod stmt;
+mod struct_returns;
 mod typeck;
 
 // Phase 3: linking.

@@ -57,6 +57,7 @@ impl BodyBuilder<'_> {
             ExprKind::Direct(a) => self.place_direct(a),
             ExprKind::Member(base, name) => self.place_member(base, name),
             ExprKind::Index(base, indexes) => self.place_index(e, base, indexes),
+            ExprKind::Call(call) => self.call_place(call),
             _ => {
                 self.diags
                     .error("E402", e.span, "this expression is not a variable");

@@ -115,7 +115,14 @@ impl BodyBuilder<'_> {
     }
 
     /// `FROM_TO_TO` conversion of a value already of type `from`.
-    fn convert(&mut self, v: Val, from: ElemType, to: ElemType, span: Span, fname: &str) -> Val {
+    pub(super) fn convert(
+        &mut self,
+        v: Val,
+        from: ElemType,
+        to: ElemType,
+        span: Span,
+        fname: &str,
+    ) -> Val {
         use ElemType as E;
         let rt = TypeTable::elem(to);
         let shift = super::typeck::shift_of(to);
@@ -152,6 +159,9 @@ impl BodyBuilder<'_> {
             let d = self.block.temp();
             self.block.emit(Op::FromStr { d, a, ty: idx });
             return Val::Slot(d, rt);
+        }
+        if let Some(v) = self.extra_convert(&v, from, to, span, fname) {
+            return v;
         }
         let conv = match (ff, tf) {
             _ if to == E::Bool && int_like(ff) => Some(Conv::ToBool),

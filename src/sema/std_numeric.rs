@@ -183,6 +183,7 @@ impl BodyBuilder<'_> {
         let (b, _) = vals.pop().unwrap_or((Val::error(), span));
         let (a, _) = vals.pop().unwrap_or((Val::error(), span));
         let (g, gs) = vals.pop().unwrap_or((Val::error(), span));
+        let g = self.sel_selector(g, gs);
         if g.ty() != Ty::T(bool_t) {
             self.diags.error("E301", gs, "SEL: G must be BOOL");
             return Val::error();

@@ -4,6 +4,7 @@
 
 use super::body::BodyBuilder;
 use super::emit::Val;
+use super::std_typed_names::Alias;
 use crate::elementary::{ElemType, Family};
 use crate::ir::op::{MathFn, Op, ShiftKind, StrFn};
 use crate::ir::type_table::TypeTable;
@@ -41,8 +42,34 @@ fn elem(name: &str) -> Option<ElemType> {
 
 fn classify(name: &str) -> Option<Std> {
     let n = name.to_ascii_uppercase();
+    classify_own(&n).or_else(|| classify_own(super::std_typed_names::alias(&n)?.target()))
+}
+
+/// The compatibility spelling `name` is, when it is not a standard name of
+/// its own.
+fn compat_alias(name: &str) -> Option<Alias> {
+    let n = name.to_ascii_uppercase();
+    match classify_own(&n) {
+        Some(_) => None,
+        None => super::std_typed_names::alias(&n),
+    }
+}
+
+/// True if argument `i` of typed function `std` is one of its overloaded
+/// inputs (fixed to the type in the name): not SEL's G, MUX's K, a
+/// shift's N, nor EXPT's exponent.
+fn typed_input(std: Std, i: usize) -> bool {
+    match std {
+        Std::Sel | Std::Mux => i > 0,
+        Std::Shift(_) | Std::Binary(BinaryOp::Pow, _) => i == 0,
+        _ => true,
+    }
+}
+
+/// Classifies an upper-case name that is a standard function of its own.
+fn classify_own(n: &str) -> Option<Std> {
     use BinaryOp as B;
-    let direct = match n.as_str() {
+    let direct = match n {
         "ADD" => Some(Std::Binary(B::Add, true)),
         "MUL" => Some(Std::Binary(B::Mul, true)),
         "SUB" => Some(Std::Binary(B::Sub, false)),
@@ -254,22 +281,73 @@ impl BodyBuilder<'_> {
             );
             return Some(Val::error());
         }
+        let typed = self.compat_name_warning(id, span);
         // Evaluate in order.
         let mut vals: Vec<(Val, Span)> = Vec::new();
-        for e in &given {
+        for (i, e) in given.iter().enumerate() {
+            let fixed = typed.filter(|_| typed_input(std, i)).map(TypeTable::elem);
             let hint = match std {
-                Std::Binary(..) | Std::MinMax(_) | Std::Move | Std::Sel | Std::Limit | Std::Mux => {
-                    expect
-                }
+                _ if fixed.is_some() => fixed,
+                // SEL's G and MUX's K are not of the result's type.
+                Std::Sel | Std::Mux if i == 0 => None,
+                Std::Binary(..)
+                | Std::MinMax(_)
+                | Std::Move
+                | Std::Sel
+                | Std::Limit
+                | Std::Mux
+                | Std::Abs
+                | Std::Not => expect,
+                Std::Shift(_) if i == 0 => expect,
+                // `INT_TO_WORD(TRUNC(x))`: the argument is an INT.
+                Std::Convert(Some(from), _) => Some(TypeTable::elem(from)),
                 _ => None,
             };
-            let v = self.expr(e, hint);
+            let mut v = self.expr(e, hint);
+            if let Some(t) = fixed {
+                v = self.coerce(v, t, e.span, &fname);
+            }
             if v.is_error() {
                 return Some(Val::error());
             }
             vals.push((v, e.span));
         }
+        let expect = match (typed, std) {
+            (Some(_), Std::Compare(_)) | (None, _) => expect,
+            (Some(t), _) => Some(TypeTable::elem(t)),
+        };
         Some(self.std_emit(std, &fname, vals, span, expect))
+    }
+
+    /// Warns (W340 typed, W341 edition 1) about a compatibility spelling of a standard function
+    /// and returns the type a typed name (`ADD_INT`) fixes.
+    fn compat_name_warning(&mut self, id: &Ident, span: Span) -> Option<ElemType> {
+        let alias = compat_alias(&id.name)?;
+        let (code, msg, ty) = match alias {
+            Alias::Typed { generic, ty } => (
+                "W340",
+                format!(
+                    "`{}` is a typed name of the standard function {generic} (matiec); edition 3 writes {generic} with {ty} arguments",
+                    id.name
+                ),
+                Some(ty),
+            ),
+            Alias::Legacy { current } => (
+                "W341",
+                format!(
+                    "`{}` is the edition-1 name of the standard function {current}",
+                    id.name
+                ),
+                None,
+            ),
+        };
+        let at = if id.span.end > id.span.start {
+            id.span
+        } else {
+            span
+        };
+        self.diags.warning(code, at, msg);
+        ty
     }
 
     /// Emits standard function `std` on its evaluated arguments.
@@ -295,7 +373,10 @@ impl BodyBuilder<'_> {
             Std::Compare(op) => self.std_compare(op, vals, span),
             Std::Shift(kind) => self.std_shift(kind, vals, fname, span),
             Std::Convert(from, to) => self.std_convert(from, to, vals, fname),
-            Std::BcdTo(to) => self.std_bcd_to(to, vals, fname),
+            Std::BcdTo(to) => {
+                let to = self.bcd_result_type(fname, to, expect, span);
+                self.std_bcd_to(to, vals, fname)
+            }
             Std::ToBcd(to) => self.std_to_bcd(to, vals, fname),
             Std::ConcatDateTod => self.std_concat_date_tod(vals, fname, span),
             Std::Clock => {

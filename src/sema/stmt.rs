@@ -458,18 +458,12 @@ impl BodyBuilder<'_> {
         src: &super::emit::PlaceRef,
         span: Span,
     ) {
-        if self.contains_strings(dst.ty) {
-            self.diags.error(
-                "E302",
-                span,
-                "copying arrays or structures that contain strings is not supported yet",
-            );
-            return;
-        }
-        let n = self.types.size(dst.ty);
+        // A fault in the copy is reported at the assignment.
+        let saved = std::mem::replace(&mut self.block.span, span);
         let d = self.address_of(dst);
         let s = self.address_of(src);
-        self.block.emit(Op::MemCopy { d, s, n });
+        self.copy_value(d, s, dst.ty);
+        self.block.span = saved;
     }
 
     /// True if a value of `t` holds string slots.

@@ -76,6 +76,16 @@ pub enum Conv {
     DtToDate,
     /// DT to TOD (keep the time of day).
     DtToTod,
+    /// REAL to BOOL: TRUE unless the value is 0.0 or -0.0 (a NaN is TRUE).
+    F32ToBool,
+    /// LREAL to BOOL, as [`Conv::F32ToBool`].
+    F64ToBool,
+    /// Nanoseconds since 1970 to whole seconds, rounded down (a DT or
+    /// DATE as the count CODESYS gives: `DT_TO_UDINT`).
+    NsToSecs,
+    /// Seconds since 1970 to nanoseconds (`UDINT_TO_DT`); faults beyond
+    /// the range of the 64-bit nanosecond count.
+    SecsToNs,
 }
 
 /// Why a conversion cannot be done.
@@ -167,6 +177,7 @@ fn from_bcd(mut v: u64) -> Result<u64, ConvError> {
 }
 
 const NS_PER_MS: i64 = 1_000_000;
+const NS_PER_S: i64 = 1_000_000_000;
 const DAY_NS: i64 = 86_400_000_000_000;
 
 /// Applies conversion `c` to slot value `x`.
@@ -229,6 +240,12 @@ pub fn convert(c: Conv, x: u64) -> Result<u64, ConvError> {
             .checked_mul(DAY_NS)
             .ok_or(ConvError::Overflow)? as u64,
         Conv::DtToTod => (x as i64).rem_euclid(DAY_NS) as u64,
+        Conv::F32ToBool => (f32v() != 0.0) as u64,
+        Conv::F64ToBool => (f64v() != 0.0) as u64,
+        Conv::NsToSecs => (x as i64).div_euclid(NS_PER_S) as u64,
+        Conv::SecsToNs => (x as i64)
+            .checked_mul(NS_PER_S)
+            .ok_or(ConvError::Overflow)? as u64,
     })
 }
 

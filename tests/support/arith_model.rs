@@ -314,8 +314,62 @@ pub fn convert(f: E, t: E, x: u64) -> Option<Out> {
         (K::Dur, K::Real) => Out::V(t, real_slot(t, num(f, x) as f64 / MS as f64)),
         (K::Real, K::Dur) => real_ms_to_time(t, real(f, x)),
         (K::Date, K::Date) => return date_convert(f, t, x),
+        // Beyond edition 3 (CODESYS): REAL to BOOL is "not zero" (NaN is
+        // not zero), so are durations and dates.
+        (K::Real, K::Bool) => bool_of(real(f, x) != 0.0),
+        (K::Dur | K::Date, K::Bool) => bool_of(x != 0),
+        // A date converts as its count (seconds, milliseconds or
+        // nanoseconds), which converts like a LINT.
+        (K::Date, _) if int_like(t) || kt == K::Real => {
+            return convert(E::Lint, t, date_count(f, x as i64) as u64);
+        }
+        (_, K::Date) if int_like(f) || kf == K::Real => match convert(f, E::Lint, x)? {
+            Out::V(_, n) => date_of_count(t, i128::from(n as i64)),
+            fault => fault,
+        },
+        (K::Date, K::Dur) if matches!(f, E::Tod | E::Ltod) => Out::V(t, x),
+        (K::Dur, K::Date) if matches!(t, E::Tod | E::Ltod) => {
+            Out::V(t, (x as i64).rem_euclid(DAY) as u64)
+        }
         _ => return None,
     })
+}
+
+fn bool_of(b: bool) -> Out {
+    Out::V(E::Bool, u64::from(b))
+}
+
+/// Nanoseconds in one count of date type `t`: a second for DATE and DT,
+/// a millisecond for TOD, one for the long forms.
+fn count_unit(t: E) -> i128 {
+    match t {
+        E::Date | E::Dt => 1_000_000_000,
+        E::Tod => i128::from(MS),
+        _ => 1,
+    }
+}
+
+/// The count date `t` (nanoseconds `ns`) converts as, rounded down.
+fn date_count(t: E, ns: i64) -> i128 {
+    i128::from(ns).div_euclid(count_unit(t))
+}
+
+/// Date `t` at `n` counts: a date rounded down to its midnight, a time of
+/// day wrapped around midnight; beyond 64-bit nanoseconds is R004.
+fn date_of_count(t: E, n: i128) -> Out {
+    let ns = n * count_unit(t);
+    let fit = |v: i128| match i64::try_from(v) {
+        Ok(v) => Out::V(t, v as u64),
+        Err(_) => Out::Fault("R004"),
+    };
+    if i64::try_from(ns).is_err() {
+        return Out::Fault("R004");
+    }
+    match t {
+        E::Date | E::Ldate => fit(ns.div_euclid(i128::from(DAY)) * i128::from(DAY)),
+        E::Tod | E::Ltod => fit(ns.rem_euclid(i128::from(DAY))),
+        _ => fit(ns),
+    }
 }
 
 fn to_real(t: E, v: i128) -> u64 {

@@ -1,0 +1,125 @@
+//! Copying arrays and structures by value. A STRING slot holds the id of
+//! its own string buffer, so a byte copy would make two variables share
+//! one buffer: strings are copied by text (`StrMov` between the two
+//! buffers), the slots around them by `MemCopy`. Arrays of more than a few
+//! string-holding elements copy in a loop, so the code stays small.
+
+use super::body::BodyBuilder;
+use crate::ir::op::{Op, Slot};
+use crate::ir::type_table::{TypeId, TypeKind};
+
+/// Elements of a string-holding array copied one by one without a loop.
+const UNROLL_ELEMS: u64 = 4;
+
+impl BodyBuilder<'_> {
+    /// Copies a value of type `ty` from the address in slot `s` to the
+    /// address in slot `d` (both aggregates of that type).
+    pub(super) fn copy_value(&mut self, d: Slot, s: Slot, ty: TypeId) {
+        if !self.contains_strings(ty) {
+            let n = self.types.size(ty);
+            self.block.emit(Op::MemCopy { d, s, n });
+            return;
+        }
+        self.copy_at(d, s, ty, 0);
+    }
+
+    /// Copies the `ty` at offset `off` from the addresses in `d` and `s`.
+    fn copy_at(&mut self, d: Slot, s: Slot, ty: TypeId, off: u32) {
+        match self.types.get(ty).kind.clone() {
+            _ if !self.contains_strings(ty) => {
+                let n = self.types.size(ty);
+                self.copy_plain(d, s, off, n);
+            }
+            TypeKind::Str { .. } => {
+                let (di, si) = (self.block.temp(), self.block.temp());
+                self.block.emit(Op::LoadInd { d: di, p: d, off });
+                self.block.emit(Op::LoadInd { d: si, p: s, off });
+                self.block.emit(Op::StrMov { d: di, s: si });
+            }
+            TypeKind::Struct { fields } => {
+                // Runs of string-free fields are copied in one MemCopy.
+                let mut run: Option<(u32, u32)> = None;
+                for f in &fields {
+                    let size = self.types.size(f.ty);
+                    if self.contains_strings(f.ty) {
+                        if let Some((at, n)) = run.take() {
+                            self.copy_plain(d, s, off + at, n);
+                        }
+                        self.copy_at(d, s, f.ty, off + f.offset);
+                    } else {
+                        run = match run {
+                            Some((at, n)) if at + n == f.offset => Some((at, n + size)),
+                            Some((at, n)) => {
+                                self.copy_plain(d, s, off + at, n);
+                                Some((f.offset, size))
+                            }
+                            None => Some((f.offset, size)),
+                        };
+                    }
+                }
+                if let Some((at, n)) = run {
+                    self.copy_plain(d, s, off + at, n);
+                }
+            }
+            TypeKind::Array { dims, elem } => {
+                let count: u64 = dims.iter().map(|d| d.len()).product();
+                let stride = self.types.size(elem);
+                if count <= UNROLL_ELEMS {
+                    for i in 0..count as u32 {
+                        self.copy_at(d, s, elem, off + i * stride);
+                    }
+                } else {
+                    self.copy_loop(d, s, elem, off, count, stride);
+                }
+            }
+            _ => {
+                let n = self.types.size(ty);
+                self.copy_plain(d, s, off, n);
+            }
+        }
+    }
+
+    /// `MemCopy` of `n` string-free slots at offset `off`.
+    fn copy_plain(&mut self, d: Slot, s: Slot, off: u32, n: u32) {
+        if n == 0 {
+            return;
+        }
+        let (da, sa) = (self.block.temp(), self.block.temp());
+        self.block.emit(Op::AddrAdd { d: da, p: d, off });
+        self.block.emit(Op::AddrAdd { d: sa, p: s, off });
+        self.block.emit(Op::MemCopy { d: da, s: sa, n });
+    }
+
+    /// Copies `count` elements of `elem` (`stride` slots apart) from
+    /// offset `off` in a loop over two moving addresses.
+    fn copy_loop(&mut self, d: Slot, s: Slot, elem: TypeId, off: u32, count: u64, stride: u32) {
+        let (dp, sp, left) = (self.block.temp(), self.block.temp(), self.block.temp());
+        self.block.emit(Op::AddrAdd { d: dp, p: d, off });
+        self.block.emit(Op::AddrAdd { d: sp, p: s, off });
+        // Arrays are at most MAX_FRAME_SLOTS long, well inside an i32.
+        let n = i32::try_from(count).unwrap_or(i32::MAX);
+        self.block.emit(Op::LoadI { d: left, imm: n });
+        self.block.last_def = None;
+        let top = self.block.here();
+        self.copy_at(dp, sp, elem, 0);
+        self.block.emit(Op::AddrAdd {
+            d: dp,
+            p: dp,
+            off: stride,
+        });
+        self.block.emit(Op::AddrAdd {
+            d: sp,
+            p: sp,
+            off: stride,
+        });
+        self.block.emit(Op::AddSI {
+            d: left,
+            a: left,
+            imm: -1,
+            shift: 0,
+        });
+        self.block.last_def = None;
+        self.block.emit(Op::Jnz { c: left, t: top });
+        self.block.here();
+    }
+}
