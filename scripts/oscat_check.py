@@ -148,7 +148,7 @@ class Unit:
     also_names: list = field(default_factory=list)  # further types of one TYPE block
 
 
-def analyse_names(toks, kind_of_unit: str):
+def analyse_names(toks):
     """Names used, and variable names declared, by a unit's tokens."""
     used, declared, typed = set(), set(), set()
     in_var = False
@@ -202,7 +202,7 @@ def cut_st(data: bytes, origin: str) -> list[Unit]:
             line=text.count("\n", 0, start) + 1,
             data=data[start:end_off] + b"\n",
         )
-        unit.refs, unit.declared = analyse_names(body, kind)
+        unit.refs, unit.declared = analyse_names(body)
         if kind == "TYPE":
             unit.also_names = type_names(body)
         elif kind == "VAR_GLOBAL":
@@ -274,7 +274,7 @@ def cut_xml(text: str, origin: str) -> list[Unit]:
         for cm in XML_TEXT.finditer(code):
             chunk = cm.group(1) if cm.group(1) is not None else xml_unescape(cm.group(2))
             body_toks.extend(tokens(chunk))
-        body_used, _ = analyse_names(body_toks, kind)
+        body_used, _ = analyse_names(body_toks)
         types_used = {m.upper() for m in re.findall(r"<derived\s+name=\"([^\"]+)\"", code)}
         types_used |= {m.upper() for m in re.findall(r"\btypeName=\"([^\"]+)\"", code)}
         unit = Unit(
@@ -813,8 +813,13 @@ def update_doc(doc: Path, form: str, section: str) -> int:
 
 def find_plcrun(explicit: str | None) -> str:
     if explicit:
+        if not os.access(explicit, os.X_OK):
+            sys.exit("oscat_check: %s is not an executable plcrun" % explicit)
         return explicit
-    rc = subprocess.run(["cargo", "build", "--release", "--quiet", "--bin", "plcrun"], cwd=REPO).returncode
+    try:
+        rc = subprocess.run(["cargo", "build", "--release", "--quiet", "--bin", "plcrun"], cwd=REPO).returncode
+    except FileNotFoundError:
+        rc = -1
     if rc != 0:
         sys.exit("oscat_check: `cargo build --release` failed; pass --plcrun BINARY")
     return str(REPO / "target" / "release" / "plcrun")
