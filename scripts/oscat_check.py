@@ -573,6 +573,7 @@ def run_tests(plcrun: str, units: list[Unit], test_dir: Path, jobs: int, transco
         deps = closure(t, index)
         files = [str(ws.files[id(d)]) for d in deps] + [str(p)]
         rc, out = run([plcrun, "test"] + files)
+        out = out.replace(str(tdir) + os.sep, "")  # temporary paths would make the report differ run to run
         subject = subject_of(t.name, index)
         outcome, detail = "ERROR", ""
         for line in out.splitlines():
