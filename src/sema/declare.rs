@@ -15,7 +15,8 @@ use crate::ir::type_table::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib;
 use crate::syntax::ast::{
-    AddrSize, Area, CompilationUnit, DirectAddress, Item, Pou, TypeDecl, TypeSpec, VarBlock,
+    AddrSize, Area, CompilationUnit, DirectAddress, Item, Pou, PouKind, TypeDecl, TypeSpec,
+    VarBlock,
 };
 use indexmap::IndexMap;
 use std::collections::HashMap;
@@ -226,7 +227,14 @@ impl Declarer<'_> {
             |m: &Model, p: usize| m.host_pous.contains(&m.pous[p].name.to_ascii_uppercase());
         let n = self.model.pous.len();
         let hosts: Vec<usize> = (0..n).filter(|&p| is_host(&self.model, p)).collect();
-        for p in hosts.into_iter().chain(0..n) {
+        // Then the FUNCTIONs' interfaces (laying one out emits no body): an
+        // FB body emitted while laying out an earlier POU may call a
+        // function declared after it (OSCAT does), and binds its arguments
+        // to the parameters.
+        let functions: Vec<usize> = (0..n)
+            .filter(|&p| self.model.pous[p].kind == PouKind::Function)
+            .collect();
+        for p in hosts.into_iter().chain(functions).chain(0..n) {
             self.layout_pou(p);
         }
     }
