@@ -161,3 +161,27 @@ fn a_malformed_partial_access_keeps_a_lexical_error() {
     let got = codes_at(&program("", "w : WORD; x : BOOL;", "x := w.%X;"));
     assert!(got.iter().any(|c| c.starts_with("E009@6:8")), "{got:?}");
 }
+
+/// CODESYS's bit access with an integer constant: `w.en` with
+/// `en : INT := 3` is bit 3 (W323).
+const BIT_CONSTANTS: &str = "VAR_GLOBAL CONSTANT en : INT := 3; big : INT := 16; END_VAR TYPE S : STRUCT en : BOOL; END_STRUCT; END_TYPE";
+
+#[test]
+fn a_bit_named_by_a_constant_is_read_and_written() {
+    let decls = "w : WORD := 16#0008; x : BOOL; y : WORD; s : S;";
+    let body = "x := w.en;\ny.en := TRUE;\ns.en := TRUE;";
+    let plc = run_once(&program(BIT_CONSTANTS, decls, body));
+    assert_eq!(lit(&plc, "x"), "TRUE");
+    assert_eq!(lit(&plc, "y"), "16#8");
+    // A field of that name stays a field.
+    assert_eq!(lit(&plc, "s.en"), "TRUE");
+}
+
+#[test]
+fn a_bit_named_by_a_constant_warns_w323_and_is_checked_against_the_width() {
+    let decls = "w : WORD; x : BOOL; s : S;";
+    let got = codes_at(&program(BIT_CONSTANTS, decls, "x := w.en;\ns.en := x;"));
+    assert_eq!(got, vec!["W323@6:8"], "{got:?}");
+    let got = codes_at(&program(BIT_CONSTANTS, decls, "x := w.big;"));
+    assert_eq!(got, vec!["W323@6:8", "E423@6:6"], "{got:?}");
+}

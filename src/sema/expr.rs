@@ -44,7 +44,7 @@ impl BodyBuilder<'_> {
             ExprKind::BitAccess(..)
             | ExprKind::Member(..)
             | ExprKind::Index(..)
-            | ExprKind::Direct(_) => match super::partial_access::part_target(e) {
+            | ExprKind::Direct(_) => match self.part_of(e) {
                 Some((base, sel)) => self.read_part(base, sel),
                 None => self.place_value(e),
             },

@@ -759,7 +759,7 @@ impl BodyBuilder<'_> {
 
     /// Stores a value into the place `target` (ST, S, R); `w.3` stores one bit.
     fn store_value(&mut self, target: &Expr, v: Val) {
-        if let Some((base, sel)) = super::partial_access::part_target(target) {
+        if let Some((base, sel)) = self.part_of(target) {
             self.store_part(base, sel, v, target.span);
             return;
         }

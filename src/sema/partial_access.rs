@@ -14,6 +14,7 @@
 //! integers are sign-extended again so the slot stays canonical).
 
 use super::body::BodyBuilder;
+use super::consts::{Const, slot_to_int};
 use super::emit::Val;
 use crate::elementary::ElemType;
 use crate::ir::op::{Op, ShiftKind};
@@ -130,6 +131,53 @@ pub(super) fn part_target(e: &Expr) -> Option<(&Expr, PartSel)> {
     }
 }
 
+/// The variable and bit of `v.C`, CODESYS's bit access with an integer
+/// constant `C` (`VAR_GLOBAL CONSTANT enable : INT := 2; ... w.enable`),
+/// when `v` is a bit string or an integer and `C` no member of it.
+fn const_bit(b: &BodyBuilder<'_>, e: &Expr) -> Option<u64> {
+    let ExprKind::Member(base, name) = &e.kind else {
+        return None;
+    };
+    let var = b.lookup_var(&name.key())?;
+    if !var.constant {
+        return None;
+    }
+    let el = b.scalar(var.ty).filter(|e| e.is_int() || e.is_bit())?;
+    let n = match var.value.as_ref()? {
+        Const::Int(i) => *i,
+        Const::Bits(bits) => slot_to_int(*bits, el),
+        _ => return None,
+    };
+    let base_ty = static_type(b, base)?;
+    match b.types.get(base_ty).kind {
+        TypeKind::Elem(t) if t.is_int() || (t.is_bit() && t != ElemType::Bool) => {
+            Some(u64::try_from(n).unwrap_or(u64::MAX))
+        }
+        _ => None,
+    }
+}
+
+/// The type of a variable reference, found without emitting code: names,
+/// members and array elements (`None` for anything else).
+fn static_type(b: &BodyBuilder<'_>, e: &Expr) -> Option<TypeId> {
+    match &e.kind {
+        ExprKind::Name(id) => b.lookup_var(&id.key()).map(|v| v.ty),
+        ExprKind::Paren(x) => static_type(b, x),
+        ExprKind::Index(base, _) => match &b.types.get(static_type(b, base)?).kind {
+            TypeKind::Array { elem, .. } => Some(*elem),
+            _ => None,
+        },
+        ExprKind::Member(base, name) => match &b.types.get(static_type(b, base)?).kind {
+            TypeKind::Struct { fields: ms } | TypeKind::Pou { members: ms, .. } => ms
+                .iter()
+                .find(|m| m.name.eq_ignore_ascii_case(&name.name))
+                .map(|m| m.ty),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
 /// All ones in the low `bits` bits.
 fn low_mask(bits: u32) -> u64 {
     if bits >= 64 {
@@ -140,6 +188,35 @@ fn low_mask(bits: u32) -> u64 {
 }
 
 impl BodyBuilder<'_> {
+    /// The variable and part of a partial access: `w.3`, `w.%B1`, or
+    /// `w.C` with an integer constant `C` (CODESYS, W323).
+    pub(super) fn part_of<'e>(&mut self, e: &'e Expr) -> Option<(&'e Expr, PartSel)> {
+        if let Some(found) = part_target(e) {
+            return Some(found);
+        }
+        let index = const_bit(self, e)?;
+        let ExprKind::Member(base, name) = &e.kind else {
+            return None;
+        };
+        self.diags.warning(
+            "W323",
+            name.span,
+            format!(
+                "bit access with the constant `{}` is a CODESYS extension (IEC 61131-3 \
+                 writes the bit number: `.%X{index}`)",
+                name.name
+            ),
+        );
+        Some((
+            base,
+            PartSel {
+                size: PartSize::Bit,
+                index,
+                span: e.span,
+            },
+        ))
+    }
+
     /// Reads part `sel` of the value of `base`.
     pub(super) fn read_part(&mut self, base: &Expr, sel: PartSel) -> Val {
         let v = self.expr(base, None);

@@ -298,7 +298,7 @@ impl BodyBuilder<'_> {
     }
 
     fn assign(&mut self, target: &Expr, value: &Expr, span: Span) {
-        if let Some((base, sel)) = super::partial_access::part_target(target) {
+        if let Some((base, sel)) = self.part_of(target) {
             let v = self.expr(value, Some(TypeTable::elem(sel.size.elem())));
             self.store_part(base, sel, v, value.span);
             return;
