@@ -314,7 +314,8 @@ pub enum ExprKind {
     Literal(Literal),
     /// A plain name (variable, constant, enum value, step name...).
     Name(Ident),
-    /// `base.member` (struct member, FB output, `step.X`, `inst.S3.X`).
+    /// `base.member` (struct member, FB output, `step.X`, `inst.S3.X`); an
+    /// edition-3 partial access `w.%B1` has the member name `%B1`.
     Member(Box<Expr>, Ident),
     /// `base.%X3` bit access on an ANY_BIT value (e.g. `w.3`).
     BitAccess(Box<Expr>, u32),
