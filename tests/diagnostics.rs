@@ -102,7 +102,7 @@ const INC: &str =
     "5:11"
 )]
 #[case("E108", prog("w : WORD; b : BOOL;", "b := w.64;"), "5:8")]
-#[case("E110", prog("x : BOOL R_EDGE;", ""), "3:10")]
+#[case("E426", prog("x : BOOL R_EDGE;", ""), "3:1")]
 #[case("E110", "METHOD M\nEND_METHOD\n".to_string(), "1:1")]
 #[case("E111", "VAR x : INT; END_VAR\nPROGRAM P\nEND_PROGRAM\n".to_string(), "1:1")]
 // ---- E2xx: names and declarations
@@ -600,14 +600,22 @@ fn oversized_declarations_are_reported() {
     assert!(codes.iter().all(|c| c == "E206"), "{codes:?}");
 }
 
-/// Edition-3 partial access is named as such until it is supported, not
-/// reported as a malformed direct address.
+/// Edition-3 partial access is supported (tests/partial_access.rs), not
+/// reported as a malformed direct address; a malformed one is named as a
+/// partial access.
 #[test]
 fn partial_access_is_named_in_its_message() {
     let mut sources = plcrun::SourceMap::new();
     sources.add(
         "p.st",
         "PROGRAM P VAR b : BYTE; x : BOOL; END_VAR x := b.%X0; END_PROGRAM",
+    );
+    let report = plcrun::check(&sources, &plcrun::CheckOptions::default());
+    assert!(report.diagnostics.is_empty(), "{:?}", report.diagnostics);
+    let mut sources = plcrun::SourceMap::new();
+    sources.add(
+        "p.st",
+        "PROGRAM P VAR b : BYTE; x : BOOL; END_VAR x := b.%X; END_PROGRAM",
     );
     let report = plcrun::check(&sources, &plcrun::CheckOptions::default());
     let e009: Vec<&str> = report
@@ -617,7 +625,7 @@ fn partial_access_is_named_in_its_message() {
         .map(|d| d.message.as_str())
         .collect();
     assert_eq!(e009.len(), 1, "{e009:?}");
-    assert!(e009[0].starts_with("partial access `.%X0`"), "{}", e009[0]);
+    assert!(e009[0].starts_with("partial access `.%X`"), "{}", e009[0]);
     // A direct address elsewhere keeps its own message.
     let mut sources = plcrun::SourceMap::new();
     sources.add("q.st", "PROGRAM Q VAR x AT %Z0 : BOOL; END_VAR END_PROGRAM");

@@ -78,6 +78,7 @@ impl<'a> BodyBuilder<'a> {
             let id = crate::ir::op::HostIdx::new(id as u32);
             self.block.emit(Op::CallHost { id });
         } else {
+            self.emit_edge_inputs(pou);
             match &pou.body {
                 Body::St(stmts) => self.stmts(stmts),
                 Body::Il(lines) => {

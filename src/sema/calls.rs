@@ -412,6 +412,7 @@ impl BodyBuilder<'_> {
             );
             return;
         }
+        self.note_input_write(&arg, e.span);
         let a = self.address_of(&arg);
         let ptr_place = PlaceRef {
             ty: TypeTable::elem(ElemType::Ulint),
@@ -490,6 +491,7 @@ impl BodyBuilder<'_> {
             );
             return;
         }
+        self.note_input_write(&t, target.span);
         let v = self.read_place(src);
         let v = if negated {
             if src.ty != TypeTable::elem(ElemType::Bool) {

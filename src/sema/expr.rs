@@ -6,7 +6,7 @@ use super::consts::{Const, literal_to_slot, literal_type, slot_to_int, slot_to_r
 use super::emit::{Ty, Val};
 use super::typeck::shift_of;
 use crate::elementary::{ElemType, Family};
-use crate::ir::op::{Op, ShiftKind};
+use crate::ir::op::Op;
 use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{Expr, ExprKind, Literal, LiteralValue, UnaryOp};
@@ -41,56 +41,13 @@ impl BodyBuilder<'_> {
                 }
                 self.place_value(e)
             }
-            ExprKind::Member(..) | ExprKind::Index(..) | ExprKind::Direct(_) => self.place_value(e),
-            ExprKind::BitAccess(base, bit) => {
-                let v = self.expr(base, None);
-                let Some(t) = v.ty().id() else {
-                    return Val::error();
-                };
-                let Some(el) = self
-                    .scalar(t)
-                    .filter(|e| e.is_bit() && *e != ElemType::Bool)
-                else {
-                    if !v.is_error() {
-                        self.diags.error(
-                            "E302",
-                            e.span,
-                            format!(
-                                "bit access needs a bit string, found {}",
-                                self.types.name(t)
-                            ),
-                        );
-                    }
-                    return Val::error();
-                };
-                if *bit >= el.bits() {
-                    self.diags.error(
-                        "E304",
-                        e.span,
-                        format!("bit {bit} does not exist in a {el}"),
-                    );
-                    return Val::error();
-                }
-                let a = self.materialize(&v);
-                let n = self.block.temp();
-                self.block.emit(Op::LoadI {
-                    d: n,
-                    imm: *bit as i32,
-                });
-                let d = self.block.temp();
-                self.block.emit(Op::Shift {
-                    d,
-                    a,
-                    b: n,
-                    kind: ShiftKind::Shr,
-                    bits: el.bits() as u8,
-                });
-                let one = self.block.temp();
-                self.block.emit(Op::LoadI { d: one, imm: 1 });
-                let r = self.block.temp();
-                self.block.emit(Op::And { d: r, a: d, b: one });
-                Val::Slot(r, TypeTable::elem(ElemType::Bool))
-            }
+            ExprKind::BitAccess(..)
+            | ExprKind::Member(..)
+            | ExprKind::Index(..)
+            | ExprKind::Direct(_) => match self.part_of(e) {
+                Some((base, sel)) => self.read_part(base, sel),
+                None => self.place_value(e),
+            },
             ExprKind::Unary(op, x) => self.unary(*op, x, e.span, expect),
             ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e.span, expect),
             ExprKind::Call(call) => self.call_expr(call, expect),

@@ -119,6 +119,7 @@ impl BodyBuilder<'_> {
                     );
                     return None;
                 }
+                self.note_input_write(&arg, e.span);
                 Some(Ready::Pointer(self.address_of(&arg)))
             }
             (MemberKind::InOut, None) => {

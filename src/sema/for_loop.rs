@@ -142,6 +142,7 @@ impl BodyBuilder<'_> {
                 .error("E401", var.span, "the FOR control variable is read-only");
             return None;
         }
+        self.note_input_write(&p, var.span);
         Some((i, e, p.ty))
     }
 

@@ -118,13 +118,14 @@ impl BodyBuilder<'_> {
         }
         for line in lines {
             if let Some(l) = &line.label {
-                let at = self.block.here();
                 // The CR type at a label: what falls through, else what jumps bring.
                 let jumped = st
                     .pending
                     .iter()
                     .find(|(_, id, _)| id.key() == l.key())
                     .and_then(|(_, _, t)| *t);
+                self.type_literal_at_join(&mut st, jumped);
+                let at = self.block.here();
                 if st.cr_ty.is_none() {
                     st.cr_ty = jumped;
                 }
@@ -161,6 +162,25 @@ impl BodyBuilder<'_> {
         }
         self.block.il_cr = None;
         (st.cr, st.cr_ty)
+    }
+
+    /// An untyped literal falling into a label that a jump reaches with a
+    /// typed CR takes the jump's type (`LD 0` before `L: ST out`), converted
+    /// before the label so both paths arrive with one type.
+    fn type_literal_at_join(&mut self, st: &mut IlState, jumped: Option<TypeId>) {
+        let (Some(lit), Some(t)) = (st.cr_lit.clone(), jumped) else {
+            return;
+        };
+        if st.cr_ty == Some(t) {
+            return;
+        }
+        let v = self.coerce(lit, t, self.block.span, "current result");
+        if v.is_error() {
+            return;
+        }
+        let s = self.materialize(&v);
+        self.block.mov(st.cr, s);
+        st.cr_ty = Some(t);
     }
 
     fn cr_val(&mut self, st: &IlState, span: Span, what: &str) -> Option<Val> {
@@ -739,8 +759,8 @@ impl BodyBuilder<'_> {
 
     /// Stores a value into the place `target` (ST, S, R); `w.3` stores one bit.
     fn store_value(&mut self, target: &Expr, v: Val) {
-        if let ExprKind::BitAccess(base, bit) = &target.kind {
-            self.store_bit(base, *bit, v, target.span, target.span);
+        if let Some((base, sel)) = self.part_of(target) {
+            self.store_part(base, sel, v, target.span);
             return;
         }
         let Some(p) = self.place(target) else {

@@ -197,6 +197,7 @@ impl Declarer<'_> {
             .init
             .as_ref()
             .and_then(|i| self.consts().resolve_init(i, ty, Some(&frame.vars)));
+        let edge = self.edge_input_ok(pou, block, decl, ty);
         for name in &decl.names {
             let key = name.key();
             if frame.vars.contains_key(&key) {
@@ -210,6 +211,15 @@ impl Declarer<'_> {
             let Some((storage, location)) = self.var_storage(pou, block, decl, name, ty, frame)
             else {
                 continue;
+            };
+            // An edge input: the body reads two hidden slots (edge_inputs.rs).
+            let (storage, raw) = match storage {
+                Storage::Frame(o) if edge => {
+                    let seen = frame.offset;
+                    frame.offset = self.grow(frame.offset, 2, name.span);
+                    (Storage::Frame(seen), Some(o))
+                }
+                _ => (storage, None),
             };
             if let (Storage::Abs(a), Some(_), Retention::Retain | Retention::Persistent) =
                 (storage, &decl.location, retention(block))
@@ -228,7 +238,7 @@ impl Declarer<'_> {
                 frame.members.push(Member {
                     name: name.name.clone(),
                     ty,
-                    offset: o,
+                    offset: raw.unwrap_or(o),
                     kind: var.kind,
                     constant: block.constant,
                     retain: retention(block),

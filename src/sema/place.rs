@@ -15,7 +15,7 @@ use crate::ir::type_table::{
     Dim, Member, MemberKind, TypeDef, TypeId, TypeKind, TypeTable, step_layout,
 };
 use crate::source::Span;
-use crate::syntax::ast::{DirectAddress, Expr, ExprKind, Ident};
+use crate::syntax::ast::{DirectAddress, Expr, ExprKind, Ident, PouKind};
 
 /// The shape of an indexed array for element access.
 #[derive(Clone, Copy)]
@@ -86,13 +86,14 @@ impl BodyBuilder<'_> {
                 off: 0,
             },
         };
-        let function_input = self.model.pous.get(self.block.pou).is_some_and(|p| {
-            p.kind == crate::syntax::ast::PouKind::Function && var.kind == MemberKind::Input
-        });
+        let own_input = var.kind == MemberKind::Input
+            && self
+                .model
+                .pous
+                .get(self.block.pou)
+                .is_some_and(|p| matches!(p.kind, PouKind::Function | PouKind::FunctionBlock));
         let reason = if var.constant {
             Some("it is a CONSTANT")
-        } else if function_input {
-            Some("it is an input of the function")
         } else if var.kind == MemberKind::Step {
             Some("step flags are read-only")
         } else if var.kind == MemberKind::Action {
@@ -104,7 +105,7 @@ impl BodyBuilder<'_> {
             place,
             ty: var.ty,
             writable: reason.is_none(),
-            readonly_reason: reason,
+            readonly_reason: reason.or(own_input.then_some(super::input_write::OWN_INPUT)),
             input_image: var.location.as_deref().is_some_and(|l| l.starts_with("%I")),
         })
     }
@@ -257,19 +258,13 @@ impl BodyBuilder<'_> {
                     MemberKind::Action => Some("action flags are read-only"),
                     _ => b.readonly_reason,
                 };
-                Some((m.offset, m.ty, ro.is_none() && b.writable, ro))
-            }
-            Some(_) => {
-                self.diags.error(
-                    "E201",
-                    name.span,
-                    format!(
-                        "`{}` is internal to {}: only inputs and outputs are visible from outside",
-                        name.name, def.name
-                    ),
+                let own = matches!(
+                    m.kind,
+                    MemberKind::Output | MemberKind::Step | MemberKind::Action
                 );
-                None
+                Some((m.offset, m.ty, !own && b.writable, ro))
             }
+            Some(m) => self.fb_member_outside(def, m, name),
             None => {
                 self.diags.error(
                     "E201",

@@ -298,9 +298,9 @@ impl BodyBuilder<'_> {
     }
 
     fn assign(&mut self, target: &Expr, value: &Expr, span: Span) {
-        if let ExprKind::BitAccess(base, bit) = &target.kind {
-            let v = self.expr(value, Some(TypeTable::elem(ElemType::Bool)));
-            self.store_bit(base, *bit, v, target.span, value.span);
+        if let Some((base, sel)) = self.part_of(target) {
+            let v = self.expr(value, Some(TypeTable::elem(sel.size.elem())));
+            self.store_part(base, sel, v, value.span);
             return;
         }
         let Some(p) = self.place(target) else {
@@ -342,82 +342,6 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// `w.n := v`: replaces bit `n` of the bit string `w` by the BOOL `v`
-    /// (read, clear the bit, OR in the new one, write back).
-    pub(super) fn store_bit(
-        &mut self,
-        base: &Expr,
-        bit: u32,
-        v: Val,
-        span: Span,
-        value_span: Span,
-    ) {
-        let Some(p) = self.place(base) else { return };
-        let Some(e) = self
-            .scalar(p.ty)
-            .filter(|e| e.family() == crate::elementary::Family::Bits && !self.is_enum(p.ty))
-        else {
-            if p.ty != TypeTable::error() {
-                let n = self.types.name(p.ty).to_string();
-                self.diags.error(
-                    "E302",
-                    span,
-                    format!("bit access needs a bit string (BYTE..LWORD), found {n}"),
-                );
-            }
-            return;
-        };
-        if bit >= e.bits() {
-            self.diags
-                .error("E304", span, format!("bit {bit} does not exist in a {e}"));
-            return;
-        }
-        if !self.check_writable(&p, span) {
-            return;
-        }
-        let v = self.coerce(
-            v,
-            TypeTable::elem(ElemType::Bool),
-            value_span,
-            "bit assignment",
-        );
-        if v.is_error() {
-            return;
-        }
-        let s = self.materialize(&v);
-        let Val::Slot(cur, _) = self.read_place(&p) else {
-            return;
-        };
-        let width = if e.bits() == 64 {
-            u64::MAX
-        } else {
-            (1u64 << e.bits()) - 1
-        };
-        let keep = self.block.const_slot(!(1u64 << bit) & width);
-        let n = self.block.const_slot(bit as u64);
-        let cleared = self.block.temp();
-        self.block.emit(Op::And {
-            d: cleared,
-            a: cur,
-            b: keep,
-        });
-        let moved = self.block.temp();
-        self.block.emit(Op::Shift {
-            d: moved,
-            a: s,
-            b: n,
-            kind: crate::ir::op::ShiftKind::Shl,
-            bits: e.bits() as u8,
-        });
-        let out = self.block.temp();
-        self.block.emit(Op::Or {
-            d: out,
-            a: cleared,
-            b: moved,
-        });
-        self.write_place(&p, out);
-    }
-
     /// Reports why `p` cannot be written here (E401: read-only, or the
     /// control variable of an enclosing FOR), and warns when a program
     /// writes a `%I` input (W202). Returns whether the write may proceed.
@@ -425,7 +349,7 @@ impl BodyBuilder<'_> {
         if !p.writable {
             let why = p.readonly_reason.unwrap_or("it is read-only");
             self.diags.error(
-                "E401",
+                super::fb_member_read::write_refusal_code(p.readonly_reason),
                 span,
                 format!("cannot assign to this variable: {why}"),
             );
@@ -441,6 +365,7 @@ impl BodyBuilder<'_> {
             );
             return false;
         }
+        self.note_input_write(p, span);
         if p.input_image {
             self.diags.warning(
                 "W202",

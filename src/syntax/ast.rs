@@ -140,6 +140,18 @@ pub struct VarDecl {
     pub init: Option<Initializer>,
     /// The whole declaration.
     pub span: Span,
+    /// `R_EDGE` / `F_EDGE` after the type of a VAR_INPUT (edition 3).
+    pub edge: Option<EdgeQualifier>,
+}
+
+/// The edge qualifier of a BOOL input: the input reads TRUE only on the
+/// rising (`R_EDGE`) or falling (`F_EDGE`) edge of what the caller passes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EdgeQualifier {
+    /// `R_EDGE`: FALSE -> TRUE.
+    Rising,
+    /// `F_EDGE`: TRUE -> FALSE.
+    Falling,
 }
 
 /// Memory area of a direct address.
@@ -302,7 +314,8 @@ pub enum ExprKind {
     Literal(Literal),
     /// A plain name (variable, constant, enum value, step name...).
     Name(Ident),
-    /// `base.member` (struct member, FB output, `step.X`, `inst.S3.X`).
+    /// `base.member` (struct member, FB output, `step.X`, `inst.S3.X`); an
+    /// edition-3 partial access `w.%B1` has the member name `%B1`.
     Member(Box<Expr>, Ident),
     /// `base.%X3` bit access on an ANY_BIT value (e.g. `w.3`).
     BitAccess(Box<Expr>, u32),

@@ -839,3 +839,38 @@ pub fn resource(
     }
     res
 }
+
+/// `a, b : BOOL R_EDGE`: a declaration with an edge qualifier (anything
+/// else after the type is E425).
+pub fn edge_decl(
+    st: &State,
+    names: Vec<Ident>,
+    ty: TypeSpec,
+    q: Ident,
+    l: usize,
+    r: usize,
+) -> VarDecl {
+    let edge = match q.key().as_str() {
+        "R_EDGE" => Some(EdgeQualifier::Rising),
+        "F_EDGE" => Some(EdgeQualifier::Falling),
+        _ => {
+            st.error(
+                "E425",
+                q.span,
+                format!(
+                    "`{}` after the type: only R_EDGE or F_EDGE may follow it",
+                    q.name
+                ),
+            );
+            None
+        }
+    };
+    VarDecl {
+        names,
+        location: None,
+        ty,
+        init: None,
+        span: st.span(l, r),
+        edge,
+    }
+}

@@ -121,12 +121,16 @@ pub fn lex_in(
             }
             Raw::Direct => match direct(file, slice, r.start) {
                 Ok(d) => Tok::Direct(d),
+                // `w.%B1`: the member name `%B1`, decoded by sema (partial_access.rs).
+                Err(_) if is_partial_access(text, r.start, slice) && is_part_number(slice) => {
+                    Tok::Ident(slice.to_string())
+                }
                 Err(m) => {
                     let m = if is_partial_access(text, r.start, slice) {
                         format!(
-                            "partial access `.{slice}` (edition 3: a bit, byte, word or double \
-                             word of a variable) is not supported yet; use SHR and AND, or \
-                             the bit as `.n` on a bit string"
+                            "partial access `.{slice}` needs a size letter and a part number: \
+                             `.%X3` (bit), `.%B1` (byte), `.%W0` (word), `.%D1` (double word), \
+                             `.%L0` (long word)"
                         )
                     } else {
                         m
@@ -366,6 +370,13 @@ fn typed(file: FileId, slice: &str, start: usize, diags: &mut Diagnostics) -> To
 fn is_partial_access(text: &str, start: usize, slice: &str) -> bool {
     let size = slice[1..].chars().next().map(|c| c.to_ascii_uppercase());
     text[..start].ends_with('.') && matches!(size, Some('X' | 'B' | 'W' | 'D' | 'L'))
+}
+
+/// True for `%X3`, `%B1`, `%W0`, `%D1`, `%L0`: a size letter and a part
+/// number, nothing else.
+fn is_part_number(slice: &str) -> bool {
+    let digits = &slice[2.min(slice.len())..];
+    slice.len() > 2 && digits.bytes().all(|b| b.is_ascii_digit())
 }
 
 /// Decodes `%IX0.3`, `%QW4`, `%I0.0.0.0.1`, `%MD12`, `%I*`.

@@ -23,9 +23,7 @@ lalrpop_util::lalrpop_mod!(
 
 /// Words that other dialects use and plcrun does not support; named
 /// explicitly in messages (`E110`).
-const UNSUPPORTED: [&str; 16] = [
-    "R_EDGE",
-    "F_EDGE",
+const UNSUPPORTED: [&str; 14] = [
     "VAR_ACCESS",
     "VAR_CONFIG",
     "METHOD",
