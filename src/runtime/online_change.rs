@@ -125,6 +125,9 @@ impl Plc {
         std::mem::swap(&mut self.machine.mem, &mut new.machine.mem);
         std::mem::swap(&mut self.machine.strings, &mut new.machine.strings);
         std::mem::swap(&mut self.machine.host, &mut new.machine.host);
+        // References are not carried (they start NULL): the objects the
+        // old ones designated belong to the old layout.
+        std::mem::swap(&mut self.machine.refs, &mut new.machine.refs);
         self.machine.now = new.machine.now;
         std::mem::swap(&mut self.scheduler, &mut new.scheduler);
         std::mem::swap(&mut self.sources, &mut new.sources);

@@ -33,6 +33,9 @@ impl BodyBuilder<'_> {
                 {
                     return v;
                 }
+                if key == "NULL" && self.lookup_var(&key).is_none() {
+                    return self.null_value();
+                }
                 if let Some(var) = self.lookup_var(&key)
                     && var.constant
                     && let Some(c) = var.value.clone()
@@ -41,7 +44,10 @@ impl BodyBuilder<'_> {
                 }
                 self.place_value(e)
             }
-            ExprKind::Member(..) | ExprKind::Index(..) | ExprKind::Direct(_) => self.place_value(e),
+            ExprKind::Member(..)
+            | ExprKind::Index(..)
+            | ExprKind::Direct(_)
+            | ExprKind::Deref(_) => self.place_value(e),
             ExprKind::BitAccess(base, bit) => {
                 let v = self.expr(base, None);
                 let Some(t) = v.ty().id() else {

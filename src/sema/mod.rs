@@ -43,6 +43,7 @@ mod for_loop;
 mod grafcet_forcing;
 mod il;
 mod place;
+mod refs;
 mod sfc_emit;
 mod std_convert;
 mod std_numeric;

@@ -331,6 +331,7 @@ impl BodyBuilder<'_> {
                 );
             }
             _ => {
+                self.check_ref_escape(target, value);
                 let v = self.expr(value, Some(p.ty));
                 let v = self.coerce(v, p.ty, value.span, "assignment");
                 if v.is_error() {

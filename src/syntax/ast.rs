@@ -235,6 +235,26 @@ pub enum TypeSpec {
         /// Where.
         span: Span,
     },
+    /// `REF_TO T`, `POINTER TO T`, `REFERENCE TO T`.
+    Ref {
+        /// Which of the three.
+        kind: RefKind,
+        /// The type referred to.
+        target: Box<TypeSpec>,
+        /// Where.
+        span: Span,
+    },
+}
+
+/// The flavour of a reference type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum RefKind {
+    /// IEC 61131-3 edition 3 `REF_TO`: explicit `^`, no arithmetic.
+    RefTo,
+    /// CODESYS `POINTER TO`: explicit `^`, byte arithmetic, `ADR`.
+    Pointer,
+    /// CODESYS `REFERENCE TO`: an alias dereferenced implicitly.
+    Reference,
 }
 
 impl TypeSpec {
@@ -246,7 +266,8 @@ impl TypeSpec {
             | TypeSpec::Array { span, .. }
             | TypeSpec::Subrange { span, .. }
             | TypeSpec::Enum { span, .. }
-            | TypeSpec::Struct { span, .. } => *span,
+            | TypeSpec::Struct { span, .. }
+            | TypeSpec::Ref { span, .. } => *span,
         }
     }
 }
@@ -318,6 +339,8 @@ pub enum ExprKind {
     Call(Call),
     /// Parenthesised expression (kept so messages can point at it).
     Paren(Box<Expr>),
+    /// `r^`: the variable a reference or pointer designates.
+    Deref(Box<Expr>),
 }
 
 /// Unary operators.

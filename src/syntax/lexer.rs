@@ -145,10 +145,12 @@ pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
             Raw::Gt => Tok::Gt,
             Raw::Ge => Tok::Ge,
             Raw::Bar => Tok::Bar,
+            Raw::Caret => Tok::Caret,
         };
         out.push((r.start, tok, r.end));
     }
     flush_bad(file, text, &mut bad_run, diags);
+    crate::syntax::ref_words::merge(&mut out);
     out
 }
 

@@ -23,7 +23,7 @@ lalrpop_util::lalrpop_mod!(
 
 /// Words that other dialects use and plcrun does not support; named
 /// explicitly in messages (`E110`).
-const UNSUPPORTED: [&str; 16] = [
+const UNSUPPORTED: [&str; 14] = [
     "R_EDGE",
     "F_EDGE",
     "VAR_ACCESS",
@@ -35,8 +35,6 @@ const UNSUPPORTED: [&str; 16] = [
     "CLASS",
     "EXTENDS",
     "IMPLEMENTS",
-    "POINTER",
-    "REF_TO",
     "NAMESPACE",
     "USING",
     "OVERLAP",

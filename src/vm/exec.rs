@@ -776,6 +776,29 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                     },
                 )?
             }
+            // --- refs: checked references and pointers ---
+            Op::RefMake { d, p, len: n } => match m.refs.make(r!(p), n, len) {
+                Ok(v) => w!(d, v),
+                Err(kind) => fault!(kind),
+            },
+            Op::RefAddr { d, r, width } => match m.refs.address(r!(r), width) {
+                Ok(a) => w!(d, a as u64),
+                Err(kind) => fault!(kind),
+            },
+            Op::RefIndex { d, idx, desc } => {
+                // SAFETY: descriptor indexes are verified at link time.
+                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
+                match super::refs::index(r!(d), r!(idx), ad) {
+                    Ok(v) => w!(d, v),
+                    Err(kind) => fault!(kind),
+                }
+            }
+            Op::PtrAdd { d, b, unit, slots } => {
+                w!(d, super::refs::add_bytes(r!(d), r!(b), unit, slots))
+            }
+            Op::RefValid { d, r, width } => {
+                w!(d, m.refs.address(r!(r), width).is_ok() as u64)
+            }
         }
     }
 }
