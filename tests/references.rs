@@ -243,3 +243,111 @@ fn reference_words_stay_usable_as_names() {
     run(&mut plc, 1);
     assert_eq!(lit(&plc, "P.ref_to"), "9");
 }
+
+#[test]
+fn an_online_change_restarts_references_from_null() {
+    let v1 = program("", "x : INT; r : REF_TO INT;", "r := REF(x); r^ := r^ + 1;");
+    let v2 = program(
+        "",
+        "x : INT; r : REF_TO INT; seen_null : BOOL; extra : INT;",
+        "seen_null := r = NULL; r := REF(extra); r^ := r^ + 1;",
+    );
+    let mut plc = compile(&v1);
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "P.x"), "3");
+    let report = plc
+        .online_change_files(&[("v2.st", &v2)], &plcrun::Options::default())
+        .expect("online change applies");
+    assert!(report.initialised.contains(&"P.r".to_string()), "{report}");
+    assert!(report.kept.contains(&"P.x".to_string()), "{report}");
+    run(&mut plc, 2);
+    assert_eq!(
+        lit(&plc, "P.seen_null"),
+        "FALSE",
+        "set again in the first new cycle"
+    );
+    assert_eq!(lit(&plc, "P.x"), "3");
+    assert_eq!(lit(&plc, "P.extra"), "2");
+}
+
+#[test]
+fn the_first_cycle_after_an_online_change_sees_null() {
+    let v1 = program("", "x : INT; r : REF_TO INT;", "r := REF(x);");
+    let v2 = program(
+        "",
+        "x : INT; r : REF_TO INT; seen_null : BOOL;",
+        "seen_null := r = NULL;",
+    );
+    let mut plc = compile(&v1);
+    run(&mut plc, 1);
+    plc.online_change_files(&[("v2.st", &v2)], &plcrun::Options::default())
+        .expect("online change applies");
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.seen_null"), "TRUE");
+}
+
+#[test]
+fn reference_to_names_its_target_once_bound() {
+    let src = "
+FUNCTION_BLOCK Counter
+VAR_INPUT target : REFERENCE TO INT; END_VAR
+target := target + 1;
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR
+  a : INT := 10; b : INT; r : REFERENCE TO INT; c : Counter;
+  before, after : BOOL; seen : INT;
+END_VAR
+before := __ISVALIDREF(r);
+r REF= a;
+after := __ISVALIDREF(r);
+r := r * 2;
+seen := r;
+c.target REF= b;
+c();
+c();
+END_PROGRAM";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.a"), "20");
+    assert_eq!(lit(&plc, "P.seen"), "20");
+    assert_eq!(lit(&plc, "P.b"), "2");
+    assert_eq!(lit(&plc, "P.before"), "FALSE");
+    assert_eq!(lit(&plc, "P.after"), "TRUE");
+}
+
+#[test]
+fn an_unbound_reference_to_faults_r030() {
+    let src = program("", "r : REFERENCE TO DINT; x : DINT;", "x := r;");
+    let f = first_fault(&src);
+    assert_eq!(f.fault.kind, FaultKind::NullReference);
+    assert_eq!(line_col(&f.location), (6, 6), "{}", f.location);
+}
+
+#[test]
+fn ref_binding_is_checked() {
+    let cases: &[(&str, &str, &str)] = &[
+        ("x : INT; y : INT;", "x REF= y;", "E255"),
+        ("r : REFERENCE TO INT; y : REAL;", "r REF= y;", "E301"),
+    ];
+    for (decls, body, code) in cases {
+        let src = program("", decls, body);
+        let errs = error_codes(&[("test.st", &src)]);
+        assert_eq!(
+            errs.first().map(|(c, _)| c.as_str()),
+            Some(*code),
+            "{body}: {errs:?}"
+        );
+    }
+}
+
+#[test]
+fn references_are_not_values_from_outside() {
+    let src = program("", "x : INT; r : REF_TO INT;", "r := REF(x);");
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert!(
+        plc.read("P.r").is_err(),
+        "a reference cannot be read or forged by name"
+    );
+}

@@ -311,6 +311,12 @@ impl Carry<'_> {
                 self.copy_slots(o.1, n.1, step_layout::SIZE);
                 true
             }
+            // A reference designates an object of the old layout: it
+            // starts again from NULL (docs/semantics.md §11).
+            (TypeKind::Ref { .. }, TypeKind::Ref { .. }) => {
+                self.entries.push(Entry::Initialised(path.to_string()));
+                false
+            }
             _ if same_type(self.old, o.0, self.new, n.0) => {
                 // Scalars, enumerations, subranges and standard FB
                 // instances (pins and hidden state) are plain slots.

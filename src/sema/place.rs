@@ -52,8 +52,15 @@ impl BodyBuilder<'_> {
         self.read_place(&p)
     }
 
-    /// Resolves an expression that denotes a storage location.
+    /// Resolves an expression that denotes a storage location (a
+    /// `REFERENCE TO` variable denotes the variable it is bound to).
     pub(super) fn place(&mut self, e: &Expr) -> Option<PlaceRef> {
+        let p = self.place_raw(e)?;
+        Some(self.implicit_deref(p))
+    }
+
+    /// As [`Self::place`], but a `REFERENCE TO` variable is itself.
+    pub(super) fn place_raw(&mut self, e: &Expr) -> Option<PlaceRef> {
         match &e.kind {
             ExprKind::Paren(x) => self.place(x),
             ExprKind::Name(id) => self.place_name(id),

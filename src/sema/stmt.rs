@@ -82,6 +82,7 @@ impl BodyBuilder<'_> {
         self.block.span = s.span;
         match &s.kind {
             StmtKind::Assign { target, value } => self.assign(target, value, s.span),
+            StmtKind::RefAssign { target, value } => self.ref_bind(target, value),
             StmtKind::Call(call) => self.call_stmt(call),
             StmtKind::If {
                 branches,

@@ -555,6 +555,13 @@ pub enum StmtKind {
     Return,
     /// `;` alone.
     Empty,
+    /// `target REF= value;` (CODESYS): binds a `REFERENCE TO` variable.
+    RefAssign {
+        /// The reference bound.
+        target: Expr,
+        /// The variable it is bound to.
+        value: Expr,
+    },
 }
 
 /// One CASE alternative: `1, 3..5, Red: statements`.

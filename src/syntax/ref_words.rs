@@ -15,6 +15,13 @@ pub fn merge(toks: &mut Vec<Spanned>) {
             continue;
         };
         let upper = word.to_ascii_uppercase();
+        if upper == "REF" && is_binding(toks, i) {
+            toks[i].1 = Tok::RefAssign;
+            toks[i].2 = toks[i + 1].2;
+            toks.remove(i + 1);
+            i += 1;
+            continue;
+        }
         let wants_to = match upper.as_str() {
             "REF_TO" => false,
             "POINTER" | "REFERENCE" => true,
@@ -61,6 +68,17 @@ fn in_type_position(toks: &[Spanned], i: usize) -> bool {
     )
 }
 
+/// `REF=` written without a space after the end of a variable (a name,
+/// `]` or `^`): the CODESYS binding `r REF= x`.
+fn is_binding(toks: &[Spanned], i: usize) -> bool {
+    let adjacent_eq = toks
+        .get(i + 1)
+        .is_some_and(|t| t.1 == Tok::Eq && t.0 == toks[i].2);
+    let after_variable =
+        i > 0 && matches!(toks[i - 1].1, Tok::Ident(_) | Tok::RBracket | Tok::Caret);
+    adjacent_eq && after_variable
+}
+
 fn next_significant(toks: &[Spanned], from: usize) -> Option<usize> {
     (from..toks.len()).find(|&j| toks[j].1 != Tok::Eol)
 }
@@ -89,5 +107,8 @@ mod tests {
         assert_eq!(t.iter().filter(|x| **x == Tok::PointerTo).count(), 1);
         let r = toks("r : ARRAY[0..1] OF REFERENCE\nTO BOOL;");
         assert!(r.contains(&Tok::ReferenceTo));
+        let b = toks("r REF= x; IF ref=1 THEN a := ref = 2; END_IF");
+        assert_eq!(b[1], Tok::RefAssign);
+        assert_eq!(b.iter().filter(|x| **x == Tok::RefAssign).count(), 1);
     }
 }

@@ -521,6 +521,8 @@ pub enum Tok {
     PointerTo,
     /// `REFERENCE TO` where a type is written.
     ReferenceTo,
+    /// `REF=` after a variable (CODESYS reference binding).
+    RefAssign,
     /// End of an IL line.
     Eol,
     /// `name` of `name:` at the start of an IL line.
@@ -576,6 +578,7 @@ impl fmt::Display for Tok {
             Tok::RefTo => p(f, "REF_TO"),
             Tok::PointerTo => p(f, "POINTER TO"),
             Tok::ReferenceTo => p(f, "REFERENCE TO"),
+            Tok::RefAssign => p(f, "REF="),
             Tok::Eol => write!(f, "end of line"),
             Tok::IlLabel(s) => write!(f, "label `{s}`"),
             Tok::IlOp(_) | Tok::IlJmp(_) | Tok::IlCal(_) | Tok::IlRet(_) => {

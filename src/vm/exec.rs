@@ -776,28 +776,18 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                     },
                 )?
             }
-            // --- refs: checked references and pointers ---
-            Op::RefMake { d, p, len: n } => match m.refs.make(r!(p), n, len) {
-                Ok(v) => w!(d, v),
-                Err(kind) => fault!(kind),
-            },
-            Op::RefAddr { d, r, width } => match m.refs.address(r!(r), width) {
-                Ok(a) => w!(d, a as u64),
-                Err(kind) => fault!(kind),
-            },
-            Op::RefIndex { d, idx, desc } => {
-                // SAFETY: descriptor indexes are verified at link time.
-                let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
-                match super::refs::index(r!(d), r!(idx), ad) {
-                    Ok(v) => w!(d, v),
-                    Err(kind) => fault!(kind),
+            // --- refs: checked references and pointers (out of line, so the
+            // dispatch loop keeps its registers) ---
+            Op::RefMake { .. }
+            | Op::RefAddr { .. }
+            | Op::RefIndex { .. }
+            | Op::PtrAdd { .. }
+            | Op::RefValid { .. } => {
+                // SAFETY: the instruction's frame operands lie inside the
+                // frame at fp (verified at link time).
+                if let Err(kind) = unsafe { super::refs::run(&mut m.refs, img, fp, len, op) } {
+                    fault!(kind);
                 }
-            }
-            Op::PtrAdd { d, b, unit, slots } => {
-                w!(d, super::refs::add_bytes(r!(d), r!(b), unit, slots))
-            }
-            Op::RefValid { d, r, width } => {
-                w!(d, m.refs.address(r!(r), width).is_ok() as u64)
             }
         }
     }

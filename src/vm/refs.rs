@@ -8,9 +8,42 @@
 //! was taken from, whatever arithmetic was done on it.
 
 use super::FaultKind;
-use crate::ir::image::ArrayDesc;
+use crate::ir::image::{ArrayDesc, Image};
+use crate::ir::op::Op;
 use crate::ir::refs;
 use std::collections::HashMap;
+
+/// Runs one reference instruction on the frame at `fp` in a memory of
+/// `mem_len` slots.
+///
+/// # Safety
+/// `op`'s frame operands lie inside the frame at `fp` and its descriptor
+/// index inside `img.arrays` (the verifier checked both at link time).
+#[inline(never)]
+pub(super) unsafe fn run(
+    table: &mut RefTable,
+    img: &Image,
+    fp: *mut u64,
+    mem_len: usize,
+    op: &Op,
+) -> Result<(), FaultKind> {
+    // SAFETY: frame operands are inside the frame (caller's contract).
+    let r = |s: crate::ir::op::Slot| unsafe { *fp.add(s.index()) };
+    let (d, v) = match *op {
+        Op::RefMake { d, p, len } => (d, table.make(r(p), len, mem_len)?),
+        Op::RefAddr { d, r: s, width } => (d, table.address(r(s), width)? as u64),
+        Op::RefIndex { d, idx, desc } => {
+            let ad = img.arrays.get(desc.index()).ok_or(FaultKind::BadAddress)?;
+            (d, index(r(d), r(idx), ad)?)
+        }
+        Op::PtrAdd { d, b, unit, slots } => (d, add_bytes(r(d), r(b), unit, slots)),
+        Op::RefValid { d, r: s, width } => (d, table.address(r(s), width).is_ok() as u64),
+        _ => return Ok(()),
+    };
+    // SAFETY: as for `r`.
+    unsafe { *fp.add(d.index()) = v };
+    Ok(())
+}
 
 /// One object a reference designates: where it starts and how many slots
 /// it has.

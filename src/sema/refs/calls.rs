@@ -142,7 +142,18 @@ impl BodyBuilder<'_> {
 
     /// `__ISVALIDREF(r)`: TRUE if `r^` would not fault.
     fn is_valid_ref(&mut self, r: &Expr) -> Val {
-        let v = self.expr(r, None);
+        // A REFERENCE TO variable is asked about itself, not its target.
+        let v = if let ExprKind::Name(_) = &r.kind {
+            let Some(p) = self.place_raw(r) else {
+                return Val::error();
+            };
+            match ref_parts(self.types, p.ty) {
+                Some(_) => self.read_place(&p),
+                None => Val::None(p.ty),
+            }
+        } else {
+            self.expr(r, None)
+        };
         if v.is_error() {
             return v;
         }
@@ -179,13 +190,23 @@ impl BodyBuilder<'_> {
         let Some(Arg::Positional(x)) = call.args.first() else {
             return;
         };
+        self.check_escape_of(target, x, value.span);
+    }
+
+    /// E253 when `target` would keep a reference to `x` past its life.
+    pub(in crate::sema) fn check_escape_of(
+        &mut self,
+        target: &Expr,
+        x: &Expr,
+        span: crate::source::Span,
+    ) {
         let (Some(src), Some(dst)) = (root_name(x), root_name(target)) else {
             return;
         };
         if self.is_temporary(&src.key()) && !self.is_temporary(&dst.key()) {
             self.diags.error(
                 "E253",
-                value.span,
+                span,
                 format!(
                     "`{}` lives only during this call: a reference to it cannot be stored in `{}`",
                     src.name, dst.name

@@ -14,6 +14,7 @@
 mod calls;
 mod ops;
 mod place;
+mod reference;
 mod types;
 
 use crate::elementary::ElemType;

@@ -44,7 +44,7 @@ impl BodyBuilder<'_> {
     }
 
     /// The checked address of the `width` slots reference `r` designates.
-    fn checked_address(&mut self, r: Slot, width: u32) -> Slot {
+    pub(super) fn checked_address(&mut self, r: Slot, width: u32) -> Slot {
         let d = self.block.temp();
         self.block.emit(Op::RefAddr { d, r, width });
         self.block.last_def = None;

@@ -9,8 +9,8 @@ use crate::syntax::ast::{RefKind, TypeSpec};
 use indexmap::IndexMap;
 
 impl Declarer<'_> {
-    /// `REF_TO T` / `POINTER TO T`; `POINTER TO` is a CODESYS extension
-    /// (W300). `REFERENCE TO` is refused (E255).
+    /// `REF_TO T`, `POINTER TO T` (a CODESYS extension: W300) or
+    /// `REFERENCE TO T` (CODESYS: W304).
     pub(in crate::sema) fn ref_type(
         &mut self,
         kind: RefKind,
@@ -30,12 +30,12 @@ impl Declarer<'_> {
                 RefFlavor::Pointer
             }
             RefKind::Reference => {
-                self.diags.error(
-                    "E255",
+                self.diags.warning(
+                    "W304",
                     span,
-                    "`REFERENCE TO` is not supported yet: use `REF_TO` (or `POINTER TO`) and `^`",
+                    "`REFERENCE TO` is a CODESYS extension (IEC 61131-3 edition 3 has `REF_TO`)",
                 );
-                return TypeTable::error();
+                RefFlavor::Reference
             }
         };
         if t == TypeTable::error() {
