@@ -532,14 +532,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             | Op::StrConst { .. }
             | Op::StrCall { .. }
             | Op::ToStr { .. }
-            | Op::FromStr { .. }
-            // refs: the reference instructions share this out-of-line arm,
-            // so the dispatch loop's code is what it was without them.
-            | Op::RefMake { .. }
-            | Op::RefAddr { .. }
-            | Op::RefIndex { .. }
-            | Op::PtrAdd { .. }
-            | Op::RefValid { .. } => {
+            | Op::FromStr { .. } => {
                 // SAFETY: the instruction's frame operands lie inside the
                 // frame at fp (verified at link time).
                 if let Err(kind) = unsafe { string_ops::run(m, img, fp, op) } {
@@ -782,6 +775,19 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                         pc: (pc!() - 1) as u32,
                     },
                 )?
+            }
+            // --- refs: checked references and pointers (out of line, so the
+            // dispatch loop keeps its registers) ---
+            Op::RefMake { .. }
+            | Op::RefAddr { .. }
+            | Op::RefIndex { .. }
+            | Op::PtrAdd { .. }
+            | Op::RefValid { .. } => {
+                // SAFETY: the instruction's frame operands lie inside the
+                // frame at fp (verified at link time).
+                if let Err(kind) = unsafe { super::refs::run(&mut m.refs, img, fp, len, op) } {
+                    fault!(kind);
+                }
             }
         }
     }

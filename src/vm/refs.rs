@@ -14,12 +14,12 @@ use crate::ir::refs;
 use std::collections::HashMap;
 
 /// Runs one reference instruction on the frame at `fp` in a memory of
-/// `mem_len` slots (called from the out-of-line string arm of the
-/// dispatch loop, `string_ops::run`).
+/// `mem_len` slots.
 ///
 /// # Safety
 /// `op`'s frame operands lie inside the frame at `fp` and its descriptor
 /// index inside `img.arrays` (the verifier checked both at link time).
+#[inline(never)]
 pub(super) unsafe fn run(
     table: &mut RefTable,
     img: &Image,

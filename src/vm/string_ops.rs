@@ -7,8 +7,7 @@ use crate::ir::image::Image;
 use crate::ir::op::{Op, Slot};
 
 /// Runs one string instruction (`CmpStr`, `StrMov`, `StrConst`, `StrCall`,
-/// `ToStr`, `FromStr`) on the frame at `fp`; the reference instructions go
-/// on to [`super::refs::run`], anything else does nothing.
+/// `ToStr`, `FromStr`; anything else does nothing) on the frame at `fp`.
 ///
 /// # Safety
 /// Every frame operand of `op` (and the four argument slots of `StrCall`)
@@ -59,8 +58,7 @@ pub(super) unsafe fn run(
                 None => return Err(FaultKind::ConversionOverflow),
             }
         }
-        // SAFETY: the same contract (frame operands inside the frame).
-        _ => return unsafe { super::refs::run(&mut m.refs, img, fp, m.mem.len(), op) },
+        _ => {}
     }
     Ok(())
 }
