@@ -8,12 +8,8 @@
 //! object the reference came from: an offset is only ever an offset, never
 //! an address.
 //!
-//! ```
-//! use plcrun::ir::refs;
-//! let r = refs::pack(3, 2);
-//! assert_eq!((refs::object(r), refs::offset(r)), (3, 2));
-//! assert_eq!(refs::object(refs::NULL), 0);
-//! ```
+//! For example `pack(3, 2)` is slot 2 of object 3, and `NULL` is object 0
+//! (the unit tests below check both).
 
 /// The slot value of `NULL` (and of every reference variable at start).
 pub const NULL: u64 = 0;
@@ -46,4 +42,17 @@ pub fn offset(r: u64) -> u32 {
 #[inline(always)]
 pub fn moved(r: u64, delta: i64) -> u64 {
     pack(object(r), offset(r).wrapping_add(delta as u32))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packing() {
+        let r = pack(3, 2);
+        assert_eq!((object(r), offset(r)), (3, 2));
+        assert_eq!(object(NULL), 0);
+        assert_eq!(offset(moved(r, -3)), u32::MAX);
+    }
 }
