@@ -7,6 +7,7 @@ pub mod index;
 pub mod op;
 mod op_list;
 pub mod operands;
+pub mod refs;
 pub mod retained;
 pub mod type_table;
 pub mod verify;

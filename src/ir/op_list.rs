@@ -290,6 +290,26 @@ macro_rules! for_each_op {
             /// (entry `id` of `Image::hosts`): runs the host's code on the
             /// current frame (the FB instance or the function's frame).
             CallHost { id: HostIdx => Host };
+
+            // --- refs: references and pointers (`crate::ir::refs`) ---
+            /// `d := a reference to the object of `len` slots at the absolute
+            /// address in `p`` (`REF(x)`, `ADR(x)`): the machine numbers the object.
+            RefMake { d: Slot => Out, p: Slot => In, len: u32 => Data };
+            /// `d := the absolute address of the `width` slots reference `r`
+            /// designates`; faults on NULL (R030), outside its object (R031) or
+            /// an object of an earlier memory layout (R032).
+            RefAddr { d: Slot => Out, r: Slot => In, width: u32 => Data };
+            /// `d := reference `d` moved to element `idx` of the array `desc`
+            /// describes` (bounds checked against the declared array; the
+            /// dereference that follows checks the object).
+            RefIndex { d: Slot => InOut, idx: Slot => In, desc: ArrayIdx => Array(Any) };
+            /// `d := pointer `d` moved by `b` bytes`: `b / unit` elements of
+            /// `slots` slots each; a `b` that is not a multiple of `unit` makes a
+            /// pointer that faults when dereferenced.
+            PtrAdd { d: Slot => InOut, b: Slot => In, unit: u16 => Data, slots: u16 => Data };
+            /// `d := TRUE if `r` designates `width` slots inside a live object`
+            /// (`__ISVALIDREF`).
+            RefValid { d: Slot => Out, r: Slot => In, width: u32 => Data };
         }
     };
 }

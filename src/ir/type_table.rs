@@ -144,6 +144,26 @@ pub enum TypeKind {
     Void,
     /// Placeholder after an error (suppresses follow-up diagnostics).
     Error,
+    /// A reference or pointer (one slot: see [`crate::ir::refs`]).
+    Ref {
+        /// The type of the variable it designates.
+        target: TypeId,
+        /// `REF_TO`, `POINTER TO` or `REFERENCE TO`.
+        flavor: RefFlavor,
+    },
+}
+
+/// Which reference type a [`TypeKind::Ref`] is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum RefFlavor {
+    /// IEC 61131-3 edition 3 `REF_TO`.
+    RefTo,
+    /// CODESYS `POINTER TO` (byte arithmetic).
+    Pointer,
+    /// CODESYS `REFERENCE TO` (dereferenced implicitly).
+    Reference,
+    /// The type of `NULL`, assignable to every reference type.
+    Null,
 }
 
 /// A type with its name and size.

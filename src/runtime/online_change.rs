@@ -125,6 +125,9 @@ impl Plc {
         std::mem::swap(&mut self.machine.mem, &mut new.machine.mem);
         std::mem::swap(&mut self.machine.strings, &mut new.machine.strings);
         std::mem::swap(&mut self.machine.host, &mut new.machine.host);
+        // References are not carried (they start NULL): the objects the
+        // old ones designated belong to the old layout.
+        std::mem::swap(&mut self.machine.refs, &mut new.machine.refs);
         self.machine.now = new.machine.now;
         std::mem::swap(&mut self.scheduler, &mut new.scheduler);
         std::mem::swap(&mut self.sources, &mut new.sources);
@@ -307,6 +310,12 @@ impl Carry<'_> {
             (TypeKind::Step, TypeKind::Step) => {
                 self.copy_slots(o.1, n.1, step_layout::SIZE);
                 true
+            }
+            // A reference designates an object of the old layout: it
+            // starts again from NULL (docs/semantics.md §11).
+            (TypeKind::Ref { .. }, TypeKind::Ref { .. }) => {
+                self.entries.push(Entry::Initialised(path.to_string()));
+                false
             }
             _ if same_type(self.old, o.0, self.new, n.0) => {
                 // Scalars, enumerations, subranges and standard FB

@@ -41,6 +41,9 @@ impl BodyBuilder<'_> {
         if va.is_error() || vb.is_error() {
             return Val::error();
         }
+        if let Some(v) = self.ref_binary(op, &va, &vb, span) {
+            return v;
+        }
         let op_name = binary_name(op);
         // Time and date arithmetic has its own typing rules.
         if let Some(v) = self.time_arith(op, &va, &vb, span) {

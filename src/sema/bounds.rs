@@ -45,9 +45,10 @@ fn leaves_alone(op: &Op, i: Slot) -> bool {
     let mut copy = *op;
     let writes_i = writes(&mut copy).slot.is_some_and(|s| *s == i);
     let escapes = matches!(*op, Op::AddrOf { off, .. } if off == i);
+    // A dereference may write `i` through a reference taken earlier.
     let user_call = matches!(
         op,
-        Op::CallFb { .. } | Op::CallFbInd { .. } | Op::Sfc { .. }
+        Op::CallFb { .. } | Op::CallFbInd { .. } | Op::Sfc { .. } | Op::RefAddr { .. }
     );
     !writes_i && !escapes && !user_call
 }

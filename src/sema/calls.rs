@@ -87,6 +87,9 @@ impl BodyBuilder<'_> {
 
     /// A call used in an expression: must be a function.
     pub(super) fn call_expr(&mut self, call: &Call, expect: Option<TypeId>) -> Val {
+        if let Some(v) = self.ref_call(call) {
+            return v;
+        }
         if self.calls_a_function(call) {
             return self.call_function(call, expect, true);
         }

@@ -109,7 +109,8 @@ fn init_names(init: &Initializer, out: &mut Vec<String>) {
             ExprKind::Member(b, _)
             | ExprKind::BitAccess(b, _)
             | ExprKind::Unary(_, b)
-            | ExprKind::Paren(b) => exprs.push(b),
+            | ExprKind::Paren(b)
+            | ExprKind::Deref(b) => exprs.push(b),
             ExprKind::Index(b, idx) => {
                 exprs.push(b);
                 exprs.extend(idx.iter());

@@ -33,6 +33,9 @@ impl BodyBuilder<'_> {
                 {
                     return v;
                 }
+                if key == "NULL" && self.lookup_var(&key).is_none() {
+                    return self.null_value();
+                }
                 if let Some(var) = self.lookup_var(&key)
                     && var.constant
                     && let Some(c) = var.value.clone()
@@ -48,6 +51,7 @@ impl BodyBuilder<'_> {
                 Some((base, sel)) => self.read_part(base, sel),
                 None => self.place_value(e),
             },
+            ExprKind::Deref(_) => self.place_value(e),
             ExprKind::Unary(op, x) => self.unary(*op, x, e.span, expect),
             ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e.span, expect),
             ExprKind::Call(call) => self.call_expr(call, expect),

@@ -261,7 +261,9 @@ impl BodyBuilder<'_> {
             let st = self.string_temp(max, wide);
             self.block.emit(Op::StrMov { d: st, s: t });
             Val::Slot(st, ret)
-        } else if self.types.scalar(ret).is_some() {
+        } else if self.types.scalar(ret).is_some()
+            || matches!(self.types.get(ret).kind, TypeKind::Ref { .. })
+        {
             Val::Slot(t, ret)
         } else {
             self.diags.error(

@@ -50,6 +50,7 @@ mod il;
 mod input_write;
 mod partial_access;
 mod place;
+mod refs;
 mod sfc_emit;
 mod std_convert;
 mod std_convert_dates;

@@ -106,6 +106,8 @@ fn spec_names(spec: &TypeSpec, out: &mut Vec<String>) {
             TypeSpec::Array { elem, .. } => work.push(elem),
             TypeSpec::Struct { fields, .. } => work.extend(fields.iter().map(|f| &f.ty)),
             TypeSpec::String { .. } => {}
+            // A reference does not contain its target: no nesting.
+            TypeSpec::Ref { .. } => {}
         }
     }
 }

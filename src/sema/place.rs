@@ -36,7 +36,10 @@ impl BodyBuilder<'_> {
         let Some(p) = self.place(e) else {
             return Val::error();
         };
-        if !self.types.get(p.ty).kind.is_value_type() || self.types.scalar(p.ty).is_none() {
+        let is_ref = matches!(self.types.get(p.ty).kind, TypeKind::Ref { .. });
+        if !is_ref
+            && (!self.types.get(p.ty).kind.is_value_type() || self.types.scalar(p.ty).is_none())
+        {
             if p.ty != TypeTable::error() {
                 self.diags.error(
                     "E302",
@@ -49,8 +52,15 @@ impl BodyBuilder<'_> {
         self.read_place(&p)
     }
 
-    /// Resolves an expression that denotes a storage location.
+    /// Resolves an expression that denotes a storage location (a
+    /// `REFERENCE TO` variable denotes the variable it is bound to).
     pub(super) fn place(&mut self, e: &Expr) -> Option<PlaceRef> {
+        let p = self.place_raw(e)?;
+        Some(self.implicit_deref(p))
+    }
+
+    /// As [`Self::place`], but a `REFERENCE TO` variable is itself.
+    pub(super) fn place_raw(&mut self, e: &Expr) -> Option<PlaceRef> {
         match &e.kind {
             ExprKind::Paren(x) => self.place(x),
             ExprKind::Name(id) => self.place_name(id),
@@ -58,6 +68,7 @@ impl BodyBuilder<'_> {
             ExprKind::Member(base, name) => self.place_member(base, name),
             ExprKind::Index(base, indexes) => self.place_index(e, base, indexes),
             ExprKind::Call(call) => self.call_place(call),
+            ExprKind::Deref(r) => self.place_deref(r),
             _ => {
                 self.diags
                     .error("E402", e.span, "this expression is not a variable");
@@ -278,6 +289,10 @@ impl BodyBuilder<'_> {
 
     /// An array element: `base[i, j, ...]`.
     fn place_index(&mut self, e: &Expr, base: &Expr, indexes: &[Expr]) -> Option<PlaceRef> {
+        if let ExprKind::Deref(r) = &base.kind {
+            // Checked element by element against the referenced object.
+            return self.place_deref_index(e, r, indexes);
+        }
         let b = self.place(base)?;
         let TypeKind::Array { dims, elem } = self.types.get(b.ty).kind.clone() else {
             if b.ty != TypeTable::error() {
@@ -327,7 +342,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Evaluates array indexes (integers, not enumerations).
-    fn index_values(&mut self, indexes: &[Expr]) -> Option<Vec<(Val, Span)>> {
+    pub(super) fn index_values(&mut self, indexes: &[Expr]) -> Option<Vec<(Val, Span)>> {
         let mut vals = Vec::new();
         for ix in indexes {
             let v = self.expr(ix, None);
@@ -380,7 +395,7 @@ impl BodyBuilder<'_> {
 
     /// The element number of dynamic indexes in a slot: the index itself for
     /// one dimension, else a linearisation checked per dimension.
-    fn dynamic_index(&mut self, vals: &[(Val, Span)], dims: &[Dim]) -> Slot {
+    pub(super) fn dynamic_index(&mut self, vals: &[(Val, Span)], dims: &[Dim]) -> Slot {
         if dims.len() == 1 {
             let v = vals[0].0.clone();
             self.materialize(&v)

@@ -82,6 +82,7 @@ impl BodyBuilder<'_> {
         self.block.span = s.span;
         match &s.kind {
             StmtKind::Assign { target, value } => self.assign(target, value, s.span),
+            StmtKind::RefAssign { target, value } => self.ref_bind(target, value),
             StmtKind::Call(call) => self.call_stmt(call),
             StmtKind::If {
                 branches,
@@ -331,6 +332,7 @@ impl BodyBuilder<'_> {
                 );
             }
             _ => {
+                self.check_ref_escape(target, value);
                 let v = self.expr(value, Some(p.ty));
                 let v = self.coerce(v, p.ty, value.span, "assignment");
                 if v.is_error() {

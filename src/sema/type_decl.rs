@@ -85,6 +85,7 @@ impl Declarer<'_> {
             }
             TypeSpec::Enum { base, values, span } => self.enum_type(base, values, *span, local),
             TypeSpec::Struct { fields, span: _ } => self.struct_type(fields, local),
+            TypeSpec::Ref { kind, target, span } => self.ref_type(*kind, target, *span, local),
         }
     }
 

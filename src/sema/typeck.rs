@@ -174,6 +174,9 @@ impl BodyBuilder<'_> {
         if v.is_error() || to == TypeTable::error() {
             return Val::error();
         }
+        if let Some(c) = self.const_as_ref(&v, to, span, what) {
+            return c;
+        }
         match &v {
             Val::Const(c, from) => {
                 if let Ty::T(ft) = from
@@ -268,6 +271,7 @@ impl BodyBuilder<'_> {
         }
         let (fk, tk) = (&self.types.get(from).kind, &self.types.get(to).kind);
         match (fk, tk) {
+            (TypeKind::Ref { .. }, _) | (_, TypeKind::Ref { .. }) => self.ref_assignable(from, to),
             (TypeKind::Enum { .. }, _) | (_, TypeKind::Enum { .. }) => false,
             (TypeKind::Str { wide: a, .. }, TypeKind::Str { wide: b, .. }) => a == b,
             (TypeKind::Array { dims: d1, elem: e1 }, TypeKind::Array { dims: d2, elem: e2 }) => {

@@ -247,6 +247,26 @@ pub enum TypeSpec {
         /// Where.
         span: Span,
     },
+    /// `REF_TO T`, `POINTER TO T`, `REFERENCE TO T`.
+    Ref {
+        /// Which of the three.
+        kind: RefKind,
+        /// The type referred to.
+        target: Box<TypeSpec>,
+        /// Where.
+        span: Span,
+    },
+}
+
+/// The flavour of a reference type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum RefKind {
+    /// IEC 61131-3 edition 3 `REF_TO`: explicit `^`, no arithmetic.
+    RefTo,
+    /// CODESYS `POINTER TO`: explicit `^`, byte arithmetic, `ADR`.
+    Pointer,
+    /// CODESYS `REFERENCE TO`: an alias dereferenced implicitly.
+    Reference,
 }
 
 impl TypeSpec {
@@ -258,7 +278,8 @@ impl TypeSpec {
             | TypeSpec::Array { span, .. }
             | TypeSpec::Subrange { span, .. }
             | TypeSpec::Enum { span, .. }
-            | TypeSpec::Struct { span, .. } => *span,
+            | TypeSpec::Struct { span, .. }
+            | TypeSpec::Ref { span, .. } => *span,
         }
     }
 }
@@ -331,6 +352,8 @@ pub enum ExprKind {
     Call(Call),
     /// Parenthesised expression (kept so messages can point at it).
     Paren(Box<Expr>),
+    /// `r^`: the variable a reference or pointer designates.
+    Deref(Box<Expr>),
 }
 
 /// Unary operators.
@@ -545,6 +568,13 @@ pub enum StmtKind {
     Return,
     /// `;` alone.
     Empty,
+    /// `target REF= value;` (CODESYS): binds a `REFERENCE TO` variable.
+    RefAssign {
+        /// The reference bound.
+        target: Expr,
+        /// The variable it is bound to.
+        value: Expr,
+    },
 }
 
 /// One CASE alternative: `1, 3..5, Red: statements`.

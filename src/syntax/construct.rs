@@ -189,7 +189,8 @@ fn dismantle(e: Expr) {
             ExprKind::Member(b, _)
             | ExprKind::BitAccess(b, _)
             | ExprKind::Unary(_, b)
-            | ExprKind::Paren(b) => work.push(std::mem::replace(b.as_mut(), leaf())),
+            | ExprKind::Paren(b)
+            | ExprKind::Deref(b) => work.push(std::mem::replace(b.as_mut(), leaf())),
             ExprKind::Index(b, idx) => {
                 work.push(std::mem::replace(b.as_mut(), leaf()));
                 work.append(idx);
@@ -205,6 +206,7 @@ fn first_child(e: Expr) -> Expr {
         | ExprKind::BitAccess(b, _)
         | ExprKind::Unary(_, b)
         | ExprKind::Paren(b)
+        | ExprKind::Deref(b)
         | ExprKind::Index(b, _)
         | ExprKind::Binary(_, b, _) => *b,
         ExprKind::Call(c) => *c.callee,
@@ -872,5 +874,23 @@ pub fn edge_decl(
         init: None,
         span: st.span(l, r),
         edge,
+// --- refs: dereference and reference types ---
+
+/// `b^`.
+pub fn deref(st: &State, b: Expr, r: usize) -> Expr {
+    let span = b.span.to(st.span(r, r));
+    let node = Expr {
+        kind: ExprKind::Deref(Box::new(b)),
+        span,
+    };
+    guard(st, node, first_child)
+}
+
+/// `REF_TO T`, `POINTER TO T`, `REFERENCE TO T`.
+pub fn ref_type(st: &State, kind: RefKind, target: TypeSpec, l: usize, r: usize) -> TypeSpec {
+    TypeSpec::Ref {
+        kind,
+        target: Box::new(target),
+        span: st.span(l, r),
     }
 }

@@ -57,7 +57,8 @@ pub fn expr_height(e: &Expr) -> usize {
             ExprKind::Member(b, _)
             | ExprKind::BitAccess(b, _)
             | ExprKind::Unary(_, b)
-            | ExprKind::Paren(b) => stack.push((b, h + 1)),
+            | ExprKind::Paren(b)
+            | ExprKind::Deref(b) => stack.push((b, h + 1)),
             ExprKind::Index(b, idx) => {
                 stack.push((b, h + 1));
                 stack.extend(idx.iter().map(|i| (i, h + 1)));
@@ -85,7 +86,8 @@ fn small_height(e: &Expr, budget: usize) -> Option<usize> {
         ExprKind::Member(b, _)
         | ExprKind::BitAccess(b, _)
         | ExprKind::Unary(_, b)
-        | ExprKind::Paren(b) => below(b)?,
+        | ExprKind::Paren(b)
+        | ExprKind::Deref(b) => below(b)?,
         ExprKind::Index(b, idx) => {
             let mut h = below(b)?;
             for i in idx {
@@ -112,7 +114,8 @@ fn nested_depth(e: &Expr) -> usize {
         ExprKind::Member(b, _)
         | ExprKind::BitAccess(b, _)
         | ExprKind::Unary(_, b)
-        | ExprKind::Paren(b) => expr_depth(b),
+        | ExprKind::Paren(b)
+        | ExprKind::Deref(b) => expr_depth(b),
         ExprKind::Index(b, idx) => idx.iter().map(expr_depth).fold(expr_depth(b), usize::max),
         ExprKind::Binary(_, a, b) => expr_depth(a).max(expr_depth(b)),
         ExprKind::Call(c) => c

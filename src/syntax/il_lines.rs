@@ -121,7 +121,15 @@ fn looks_like_il(tokens: &[Spanned], i: usize) -> bool {
     }
     let st_only = matches!(
         next,
-        Some(Tok::Assign | Tok::Dot | Tok::LBracket | Tok::Arrow | Tok::Semi)
+        Some(
+            Tok::Assign
+                | Tok::Dot
+                | Tok::LBracket
+                | Tok::Arrow
+                | Tok::Semi
+                | Tok::Caret
+                | Tok::RefAssign
+        )
     );
     match il_retag(tok) {
         Some(Tok::IlOp(code)) => {

@@ -166,10 +166,12 @@ pub fn lex_in(
             // Spanning lines, it ends an IL line as a comment does.
             Raw::EmbeddedC if embedded_c(span(r.start, r.end), slice, diags) => Tok::Eol,
             Raw::EmbeddedC => continue,
+            Raw::Caret => Tok::Caret,
         };
         out.push((r.start, tok, r.end));
     }
     flush_bad(file, text, &mut bad_run, diags);
+    crate::syntax::ref_words::merge(&mut out);
     out
 }
 

@@ -23,7 +23,7 @@ lalrpop_util::lalrpop_mod!(
 
 /// Words that other dialects use and plcrun does not support; named
 /// explicitly in messages (`E110`).
-const UNSUPPORTED: [&str; 14] = [
+const UNSUPPORTED: [&str; 12] = [
     "VAR_ACCESS",
     "VAR_CONFIG",
     "METHOD",
@@ -33,8 +33,6 @@ const UNSUPPORTED: [&str; 14] = [
     "CLASS",
     "EXTENDS",
     "IMPLEMENTS",
-    "POINTER",
-    "REF_TO",
     "NAMESPACE",
     "USING",
     "OVERLAP",

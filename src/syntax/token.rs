@@ -133,6 +133,9 @@ pub enum Raw {
     /// body is consumed by the callback.
     #[token("{{", embedded_c)]
     EmbeddedC,
+    /// `^` (postfix dereference).
+    #[token("^")]
+    Caret,
 }
 
 /// Consumes a block comment body up to and including the first `*)`
@@ -527,6 +530,15 @@ pub enum Tok {
     Gt,
     Ge,
     Bar,
+    Caret,
+    /// `REF_TO` where a type is written.
+    RefTo,
+    /// `POINTER TO` where a type is written.
+    PointerTo,
+    /// `REFERENCE TO` where a type is written.
+    ReferenceTo,
+    /// `REF=` after a variable (CODESYS reference binding).
+    RefAssign,
     /// End of an IL line.
     Eol,
     /// `name` of `name:` at the start of an IL line.
@@ -578,6 +590,11 @@ impl fmt::Display for Tok {
             Tok::Gt => p(f, ">"),
             Tok::Ge => p(f, ">="),
             Tok::Bar => p(f, "|"),
+            Tok::Caret => p(f, "^"),
+            Tok::RefTo => p(f, "REF_TO"),
+            Tok::PointerTo => p(f, "POINTER TO"),
+            Tok::ReferenceTo => p(f, "REFERENCE TO"),
+            Tok::RefAssign => p(f, "REF="),
             Tok::Eol => write!(f, "end of line"),
             Tok::IlLabel(s) => write!(f, "label `{s}`"),
             Tok::IlOp(_) | Tok::IlJmp(_) | Tok::IlCal(_) | Tok::IlRet(_) => {

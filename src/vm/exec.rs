@@ -776,6 +776,19 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                     },
                 )?
             }
+            // --- refs: checked references and pointers (out of line, so the
+            // dispatch loop keeps its registers) ---
+            Op::RefMake { .. }
+            | Op::RefAddr { .. }
+            | Op::RefIndex { .. }
+            | Op::PtrAdd { .. }
+            | Op::RefValid { .. } => {
+                // SAFETY: the instruction's frame operands lie inside the
+                // frame at fp (verified at link time).
+                if let Err(kind) = unsafe { super::refs::run(&mut m.refs, img, fp, len, op) } {
+                    fault!(kind);
+                }
+            }
         }
     }
 }

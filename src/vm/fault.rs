@@ -53,6 +53,22 @@ pub enum FaultKind {
     /// its bound: the chart's transitions keep firing (boxed: faults stay
     /// small).
     UnstableChart(Box<UnstableCycle>),
+    /// A dereference of `NULL` (R030).
+    NullReference,
+    /// A dereference outside the object the reference or pointer was
+    /// taken from (R031).
+    OutsideObject {
+        /// The reference's offset in its object, in slots.
+        offset: i64,
+        /// The slots the dereference reads or writes.
+        width: u32,
+        /// The object's size in slots.
+        len: u32,
+    },
+    /// A reference taken before the memory was laid out anew (R032).
+    StaleReference,
+    /// More distinct objects referenced than a reference can number (R033).
+    TooManyReferencedObjects,
 }
 
 /// A chart that did not reach a stable situation under IEC 60848 evolution.
@@ -116,6 +132,10 @@ impl FaultKind {
             FaultKind::Aborted => "R009",
             FaultKind::HostFunction(_) => "R010",
             FaultKind::UnstableChart(_) => "R020",
+            FaultKind::NullReference => "R030",
+            FaultKind::OutsideObject { .. } => "R031",
+            FaultKind::StaleReference => "R032",
+            FaultKind::TooManyReferencedObjects => "R033",
             FaultKind::BadAddress => "R999",
         }
     }
@@ -146,6 +166,19 @@ impl fmt::Display for FaultKind {
             FaultKind::Watchdog => write!(f, "watchdog: cycle exceeded its time limit"),
             FaultKind::Aborted => write!(f, "aborted: the cycle was interrupted by a stop handle"),
             FaultKind::BadAddress => write!(f, "internal error: computed address outside memory"),
+            FaultKind::NullReference => write!(f, "dereference of a NULL reference"),
+            FaultKind::OutsideObject { offset, width, len } => write!(
+                f,
+                "dereference outside the object the reference was taken from \
+                 (slot {offset}, {width} slot(s) wide, object of {len} slot(s))"
+            ),
+            FaultKind::StaleReference => write!(
+                f,
+                "dereference of a reference taken before an online change"
+            ),
+            FaultKind::TooManyReferencedObjects => {
+                write!(f, "too many distinct objects referenced")
+            }
             FaultKind::HostFunction(h) => {
                 write!(f, "host function `{}` failed: {}", h.name, h.message)
             }

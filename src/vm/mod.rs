@@ -16,6 +16,7 @@ mod fault;
 mod grafcet;
 mod host;
 mod interrupt;
+mod refs;
 mod string_ops;
 mod strings;
 
@@ -42,6 +43,8 @@ pub struct Machine {
     interrupt: Arc<Interrupt>,
     /// Runs the bodies of host-registered POUs (`Op::CallHost`).
     pub(crate) host: HostLink,
+    /// The objects references were taken from (`REF`, `ADR`).
+    pub(crate) refs: refs::RefTable,
 }
 
 impl Machine {
@@ -57,6 +60,7 @@ impl Machine {
             now: 0,
             interrupt: Arc::default(),
             host: HostLink::default(),
+            refs: refs::RefTable::default(),
         }
     }
 

@@ -177,5 +177,6 @@ pub fn sx(e: &Expr) -> String {
         ExprKind::Binary(op, a, b) => format!("({} {} {})", bin(*op), sx(a), sx(b)),
         ExprKind::Call(c) => format!("{}({})", sx(&c.callee), args(&c.args)),
         ExprKind::Paren(x) => format!("(paren {})", sx(x)),
+        ExprKind::Deref(x) => format!("(deref {})", sx(x)),
     }
 }

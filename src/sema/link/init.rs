@@ -102,6 +102,11 @@ impl Linker<'_> {
                     }
                 }
             }
+            TypeKind::Ref { .. } => {
+                if let Some(slot) = buf.get_mut(at) {
+                    *slot = crate::ir::refs::NULL;
+                }
+            }
             TypeKind::Step | TypeKind::Void | TypeKind::Error => {}
         }
     }

@@ -128,7 +128,8 @@ impl Linker<'_> {
                     ));
                 }
             }
-            TypeKind::Step | TypeKind::Void | TypeKind::Error => {}
+            // References are not retained: they start NULL after a restart.
+            TypeKind::Step | TypeKind::Void | TypeKind::Error | TypeKind::Ref { .. } => {}
         }
     }
 

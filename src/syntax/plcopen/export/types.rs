@@ -122,6 +122,13 @@ impl Exporter<'_> {
                 }
                 w.close("struct");
             }
+            TypeSpec::Ref { target, .. } => {
+                w.open("pointer", &[]);
+                w.open("baseType", &[]);
+                self.type_spec(w, target)?;
+                w.close("baseType");
+                w.close("pointer");
+            }
         }
         Ok(())
     }

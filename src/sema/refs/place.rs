@@ -1,0 +1,125 @@
+//! `r^` and `r^[i]` as places.
+
+use super::ref_parts;
+use crate::ir::image::ArrayDesc;
+use crate::ir::op::{Op, Slot};
+use crate::ir::type_table::{RefFlavor, TypeId, TypeKind, TypeTable};
+use crate::sema::body::BodyBuilder;
+use crate::sema::emit::{Place, PlaceRef, Val};
+use crate::syntax::ast::Expr;
+
+impl BodyBuilder<'_> {
+    /// The reference `r` evaluates to, in a slot, with its target type;
+    /// E250 when `r` is not a reference.
+    fn reference_operand(&mut self, r: &Expr) -> Option<(Slot, TypeId)> {
+        let v = self.expr(r, None);
+        if v.is_error() {
+            return None;
+        }
+        let Some(t) = v.ty().id() else {
+            self.not_a_reference(r, &v);
+            return None;
+        };
+        match ref_parts(self.types, t) {
+            Some((_, RefFlavor::Null)) => {
+                self.diags
+                    .error("E250", r.span, "`NULL` cannot be dereferenced");
+                None
+            }
+            Some((target, _)) => Some((self.materialize(&v), target)),
+            None => {
+                self.not_a_reference(r, &v);
+                None
+            }
+        }
+    }
+
+    fn not_a_reference(&mut self, r: &Expr, v: &Val) {
+        let name = self.ty_name(v.ty());
+        self.diags.error(
+            "E250",
+            r.span,
+            format!("`^` needs a reference or pointer, found {name}"),
+        );
+    }
+
+    /// The checked address of the `width` slots reference `r` designates.
+    pub(super) fn checked_address(&mut self, r: Slot, width: u32) -> Slot {
+        let d = self.block.temp();
+        self.block.emit(Op::RefAddr { d, r, width });
+        self.block.last_def = None;
+        d
+    }
+
+    fn deref_place(p: Slot, ty: TypeId) -> PlaceRef {
+        PlaceRef {
+            place: Place::Ind { p, off: 0 },
+            ty,
+            writable: true,
+            readonly_reason: None,
+            input_image: false,
+        }
+    }
+
+    /// `r^`: the whole target, checked against the object.
+    pub(in crate::sema) fn place_deref(&mut self, r: &Expr) -> Option<PlaceRef> {
+        let (slot, target) = self.reference_operand(r)?;
+        let width = self.types.size(target).max(1);
+        let p = self.checked_address(slot, width);
+        Some(Self::deref_place(p, target))
+    }
+
+    /// `r^[i, ...]`: the element only is checked against the object, so a
+    /// pointer to a long array may walk a shorter one.
+    pub(in crate::sema) fn place_deref_index(
+        &mut self,
+        e: &Expr,
+        r: &Expr,
+        indexes: &[Expr],
+    ) -> Option<PlaceRef> {
+        let (slot, target) = self.reference_operand(r)?;
+        let TypeKind::Array { dims, elem } = self.types.get(target).kind.clone() else {
+            if target != TypeTable::error() {
+                let name = self.types.name(target).to_string();
+                self.diags.error(
+                    "E302",
+                    e.span,
+                    format!("`[...]` needs an array, found {name}"),
+                );
+            }
+            return None;
+        };
+        if indexes.len() != dims.len() {
+            self.diags.error(
+                "E404",
+                e.span,
+                format!(
+                    "array has {} dimension(s), {} index(es) given",
+                    dims.len(),
+                    indexes.len()
+                ),
+            );
+            return None;
+        }
+        let vals = self.index_values(indexes)?;
+        let idx = self.dynamic_index(&vals, &dims);
+        let stride = self.types.size(elem).max(1);
+        let desc = self.out.array_desc(ArrayDesc {
+            offset: 0,
+            lo: if dims.len() == 1 { dims[0].lo } else { 0 },
+            len: dims.iter().map(|d| d.len()).product(),
+            stride,
+            span: e.span,
+        });
+        let moved = self.block.temp();
+        self.block.emit(Op::Mov { d: moved, s: slot });
+        self.block.emit(Op::RefIndex {
+            d: moved,
+            idx,
+            desc,
+        });
+        self.block.last_def = None;
+        let p = self.checked_address(moved, stride);
+        Some(Self::deref_place(p, elem))
+    }
+}
