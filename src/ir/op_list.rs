@@ -290,6 +290,9 @@ macro_rules! for_each_op {
             /// (entry `id` of `Image::hosts`): runs the host's code on the
             /// current frame (the FB instance or the function's frame).
             CallHost { id: HostIdx => Host };
+            /// A call through an interface variable that holds no instance
+            /// (no implementing type matched its type id): fault R080.
+            FaultNullItf;
         }
     };
 }

@@ -621,6 +621,7 @@ pub fn pou(
         var_blocks,
         body,
         span: st.span(l, r),
+        oop: None,
     }
 }
 

@@ -85,6 +85,8 @@ pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
                 }
             }
             Raw::Word => word(slice),
+            Raw::ThisDeref => Tok::Kw(Kw::ThisDeref),
+            Raw::SuperDeref => Tok::Kw(Kw::SuperDeref),
             Raw::Typed => typed(file, slice, r.start, diags),
             Raw::Int | Raw::Based => {
                 let value = parse_int_text(slice).unwrap_or_else(|m| {

@@ -776,6 +776,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                     },
                 )?
             }
+            Op::FaultNullItf => fault!(FaultKind::NullInterface),
         }
     }
 }

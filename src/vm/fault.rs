@@ -53,6 +53,9 @@ pub enum FaultKind {
     /// its bound: the chart's transitions keep firing (boxed: faults stay
     /// small).
     UnstableChart(Box<UnstableCycle>),
+    /// A method was called through an interface variable that holds no
+    /// instance (never assigned, or assigned 0).
+    NullInterface,
 }
 
 /// A chart that did not reach a stable situation under IEC 60848 evolution.
@@ -117,6 +120,7 @@ impl FaultKind {
             FaultKind::HostFunction(_) => "R010",
             FaultKind::UnstableChart(_) => "R020",
             FaultKind::BadAddress => "R999",
+            FaultKind::NullInterface => "R080",
         }
     }
 }
@@ -146,6 +150,10 @@ impl fmt::Display for FaultKind {
             FaultKind::Watchdog => write!(f, "watchdog: cycle exceeded its time limit"),
             FaultKind::Aborted => write!(f, "aborted: the cycle was interrupted by a stop handle"),
             FaultKind::BadAddress => write!(f, "internal error: computed address outside memory"),
+            FaultKind::NullInterface => write!(
+                f,
+                "method called through an interface variable that holds no instance (assign an instance first, or test `itf <> 0`)"
+            ),
             FaultKind::HostFunction(h) => {
                 write!(f, "host function `{}` failed: {}", h.name, h.message)
             }
