@@ -241,25 +241,8 @@ impl BodyBuilder<'_> {
         let allowed = match v.mods.access() {
             Access::Public | Access::Internal => true,
             Access::Private => on_this && origin.as_deref() == Some(v.origin.as_str()),
-            Access::Protected => {
-                on_this
-                    && origin.is_some_and(|o| {
-                        let fbs = &self.model.oop.fbs;
-                        let mut at = Some(o);
-                        let mut steps = 0;
-                        while let Some(a) = at {
-                            if a == v.origin {
-                                return true;
-                            }
-                            steps += 1;
-                            if steps > fbs.len() {
-                                break;
-                            }
-                            at = fbs.get(&a).and_then(|f| f.parent.clone());
-                        }
-                        false
-                    })
-            }
+            // Code of the FB's hierarchy calling on its own instance.
+            Access::Protected => on_this,
         };
         if !allowed {
             let which = match v.mods.access() {
@@ -718,7 +701,7 @@ impl BodyBuilder<'_> {
                     "E914",
                     value.span,
                     format!(
-                        "an interface `{}` holds an instance of an FB that implements it, not a {found}",
+                        "an interface `{}` holds an instance of an FB that implements it, not a value of type {found}",
                         self.model.oop.interfaces[itf].name
                     ),
                 );
