@@ -106,8 +106,10 @@ fn an_unassigned_interface_called_faults_r080_at_the_call() {
     let src = program(SHAPES, "sh : IShape; a : REAL;", "a := sh.Area();");
     let mut plc = compile(&src);
     let f = plc.run_cycle().expect_err("faults");
-    assert_eq!(f.kind.code(), "R080");
-    assert!(f.location.ends_with(":44:6"), "{}", f.location);
+    assert_eq!(f.code(), "R080");
+    // `a := sh.Area();` is the body's line (34); the call starts at column 6.
+    assert!(f.location.ends_with("test.st:34:6"), "{}", f.location);
+    assert_eq!(f.pou, "P");
 }
 
 #[test]
@@ -181,17 +183,17 @@ fn this_and_unqualified_calls_reach_the_override_in_inherited_code() {
         "
 FUNCTION_BLOCK Base
   VAR_OUTPUT log : INT; END_VAR
-  METHOD Step : INT
-    Step := 1;
+  METHOD Part : INT
+    Part := 1;
   END_METHOD
   METHOD Run
-    log := log * 10 + Step() + THIS^.Step();
+    log := log * 10 + Part() + THIS^.Part();
   END_METHOD
   log := log + 1000;
 END_FUNCTION_BLOCK
 FUNCTION_BLOCK Child EXTENDS Base
-  METHOD Step : INT
-    Step := 4;
+  METHOD Part : INT
+    Part := 4;
   END_METHOD
   SUPER^();
   THIS^.log := THIS^.log + 1;
@@ -290,14 +292,14 @@ fn the_child_layout_starts_with_the_parents_variables() {
     "f : F;",
     "f.N();",
     "E900",
-    "13:3"
+    "7:3"
 )]
 #[case::abstract_instance(
     "FUNCTION_BLOCK ABSTRACT F METHOD ABSTRACT M END_METHOD END_FUNCTION_BLOCK",
     "f : F;",
     "",
     "E901",
-    "12:5"
+    "5:5"
 )]
 #[case::extends_a_non_fb("FUNCTION_BLOCK F EXTENDS INT END_FUNCTION_BLOCK", "", "", "E902", "2:26")]
 #[case::extends_cycle(
@@ -375,21 +377,21 @@ fn the_child_layout_starts_with_the_parents_variables() {
     "f : F;",
     "f.M();",
     "E913",
-    "13:1"
+    "7:1"
 )]
 #[case::protected_from_outside(
     "FUNCTION_BLOCK F METHOD PROTECTED M END_METHOD END_FUNCTION_BLOCK",
     "f : F;",
     "f.M();",
     "E913",
-    "13:1"
+    "7:1"
 )]
 #[case::assigning_a_non_implementing_instance(
     "INTERFACE I METHOD M END_METHOD END_INTERFACE\nFUNCTION_BLOCK F METHOD M END_METHOD END_FUNCTION_BLOCK",
     "f : F; i : I;",
     "i := f;",
     "E914",
-    "14:6"
+    "8:6"
 )]
 #[case::in_out_in_a_method(
     "FUNCTION_BLOCK F METHOD M VAR_IN_OUT x : INT; END_VAR END_METHOD END_FUNCTION_BLOCK",
@@ -412,14 +414,14 @@ fn the_child_layout_starts_with_the_parents_variables() {
     "E917",
     "2:20"
 )]
-#[case::this_outside_an_fb("", "x : INT;", "THIS^.x := 1;", "E918", "")]
-#[case::no_result("FUNCTION_BLOCK F METHOD M END_METHOD END_FUNCTION_BLOCK", "f : F; x : INT;", "x := f.M();", "E919", "13:6")]
+#[case::this_outside_an_fb("", "x : INT;", "THIS^.x := 1;", "E918", "7:1")]
+#[case::no_result("FUNCTION_BLOCK F METHOD M END_METHOD END_FUNCTION_BLOCK", "f : F; x : INT;", "x := f.M();", "E919", "7:6")]
 #[case::interface_compared_with_a_number(
     "INTERFACE I METHOD M END_METHOD END_INTERFACE",
     "i : I; b : BOOL;",
     "b := i = 1;",
     "E920",
-    "13:10"
+    "7:10"
 )]
 fn misuse_is_a_coded_diagnostic(
     #[case] prelude: &str,
@@ -466,4 +468,31 @@ fn a_long_extends_chain_compiles_without_deep_recursion() {
 fn namespaces_stay_unsupported_by_name() {
     let codes = error_codes(&[("t.st", "NAMESPACE N\nEND_NAMESPACE\n")]);
     assert!(codes.iter().any(|(c, l)| c == "E110" && l == "1:1"), "{codes:?}");
+}
+
+fn read(path: &str) -> String {
+    std::fs::read_to_string(format!("{}/{path}", env!("CARGO_MANIFEST_DIR"))).expect("readable")
+}
+
+fn run_machine_tests(model: &str) -> plcrun::TestReport {
+    let mut sources = plcrun::SourceMap::new();
+    sources.add("oop_machine.st", model);
+    sources.add(
+        "oop_machine_test.st",
+        read("tests/plc/oop_machine_test.st").as_str(),
+    );
+    plcrun::run_tests(&sources, &plcrun::TestOptions::default()).expect("compiles")
+}
+
+#[test]
+fn the_machine_example_passes_its_st_tests_and_they_catch_a_broken_press() {
+    let model = read("programs/oop_machine.st");
+    let r = run_machine_tests(&model);
+    assert_eq!(r.cases.len(), 4);
+    assert!(r.all_passed(), "{}", r.to_text());
+    // A press whose Reset forgets the parent's (SUPER^) part stays faulted.
+    let broken = model.replace("    SUPER^.Reset();\n", "");
+    assert_ne!(broken, model);
+    let r = run_machine_tests(&broken);
+    assert!(!r.all_passed(), "the tests must see the missing SUPER^ call");
 }

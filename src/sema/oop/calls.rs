@@ -815,3 +815,19 @@ impl BodyBuilder<'_> {
         self.oop_call(&call, false).is_some()
     }
 }
+
+impl BodyBuilder<'_> {
+    /// `THIS^` is allowed in the code of a FUNCTION_BLOCK only (E918).
+    pub(in crate::sema) fn this_allowed(&mut self, span: Span) -> bool {
+        let in_fb = self
+            .model
+            .pous
+            .get(self.block.pou)
+            .is_some_and(|p| p.kind == crate::syntax::ast::PouKind::FunctionBlock);
+        if !in_fb {
+            self.diags
+                .error("E918", span, "`THIS^` can only be used in a FUNCTION_BLOCK");
+        }
+        in_fb
+    }
+}
