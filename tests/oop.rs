@@ -77,7 +77,11 @@ fn a_child_overrides_and_calls_its_parent_through_super() {
     let mut plc = compile(&src);
     run(&mut plc, 1);
     assert_eq!(lit(&plc, "P.a"), "1016.0");
-    assert_eq!(lit(&plc, "P.w"), "2.0", "the inherited method runs on the child");
+    assert_eq!(
+        lit(&plc, "P.w"),
+        "2.0",
+        "the inherited method runs on the child"
+    );
     assert_eq!(lit(&plc, "P.s.calls"), "1", "SUPER^.Area ran once");
 }
 
@@ -204,7 +208,11 @@ END_FUNCTION_BLOCK",
     let mut plc = compile(&src);
     run(&mut plc, 1);
     assert_eq!(lit(&plc, "P.x"), "2");
-    assert_eq!(lit(&plc, "P.y"), "1009", "8 from Run, 1000 from SUPER^(), 1 from Child");
+    assert_eq!(
+        lit(&plc, "P.y"),
+        "1009",
+        "8 from Run, 1000 from SUPER^(), 1 from Child"
+    );
 }
 
 #[test]
@@ -301,7 +309,13 @@ fn the_child_layout_starts_with_the_parents_variables() {
     "E901",
     "5:5"
 )]
-#[case::extends_a_non_fb("FUNCTION_BLOCK F EXTENDS INT END_FUNCTION_BLOCK", "", "", "E902", "2:26")]
+#[case::extends_a_non_fb(
+    "FUNCTION_BLOCK F EXTENDS INT END_FUNCTION_BLOCK",
+    "",
+    "",
+    "E902",
+    "2:26"
+)]
 #[case::extends_cycle(
     "FUNCTION_BLOCK F EXTENDS G END_FUNCTION_BLOCK\nFUNCTION_BLOCK G EXTENDS F END_FUNCTION_BLOCK",
     "",
@@ -415,7 +429,13 @@ fn the_child_layout_starts_with_the_parents_variables() {
     "2:20"
 )]
 #[case::this_outside_an_fb("", "x : INT;", "THIS^.x := 1;", "E918", "7:1")]
-#[case::no_result("FUNCTION_BLOCK F METHOD M END_METHOD END_FUNCTION_BLOCK", "f : F; x : INT;", "x := f.M();", "E919", "7:6")]
+#[case::no_result(
+    "FUNCTION_BLOCK F METHOD M END_METHOD END_FUNCTION_BLOCK",
+    "f : F; x : INT;",
+    "x := f.M();",
+    "E919",
+    "7:6"
+)]
 #[case::interface_compared_with_a_number(
     "INTERFACE I METHOD M END_METHOD END_INTERFACE",
     "i : I; b : BOOL;",
@@ -451,7 +471,9 @@ fn a_method_calling_itself_is_recursion() {
 
 #[test]
 fn a_long_extends_chain_compiles_without_deep_recursion() {
-    let mut src = String::from("FUNCTION_BLOCK F0 VAR_OUTPUT v : INT; END_VAR METHOD M : INT M := 0; END_METHOD END_FUNCTION_BLOCK\n");
+    let mut src = String::from(
+        "FUNCTION_BLOCK F0 VAR_OUTPUT v : INT; END_VAR METHOD M : INT M := 0; END_METHOD END_FUNCTION_BLOCK\n",
+    );
     for i in 1..200 {
         src.push_str(&format!(
             "FUNCTION_BLOCK F{i} EXTENDS F{} END_FUNCTION_BLOCK\n",
@@ -467,7 +489,10 @@ fn a_long_extends_chain_compiles_without_deep_recursion() {
 #[test]
 fn namespaces_stay_unsupported_by_name() {
     let codes = error_codes(&[("t.st", "NAMESPACE N\nEND_NAMESPACE\n")]);
-    assert!(codes.iter().any(|(c, l)| c == "E110" && l == "1:1"), "{codes:?}");
+    assert!(
+        codes.iter().any(|(c, l)| c == "E110" && l == "1:1"),
+        "{codes:?}"
+    );
 }
 
 fn read(path: &str) -> String {
@@ -494,5 +519,8 @@ fn the_machine_example_passes_its_st_tests_and_they_catch_a_broken_press() {
     let broken = model.replace("    SUPER^.Reset();\n", "");
     assert_ne!(broken, model);
     let r = run_machine_tests(&broken);
-    assert!(!r.all_passed(), "the tests must see the missing SUPER^ call");
+    assert!(
+        !r.all_passed(),
+        "the tests must see the missing SUPER^ call"
+    );
 }

@@ -42,10 +42,12 @@ impl Linker<'_> {
             .out
             .oop_offsets
             .iter()
-            .map(|(p, key)| match model.pous[*p].vars.get(key).map(|v| v.storage) {
-                Some(Storage::Frame(o)) => o,
-                _ => 0,
-            })
+            .map(
+                |(p, key)| match model.pous[*p].vars.get(key).map(|v| v.storage) {
+                    Some(Storage::Frame(o)) => o,
+                    _ => 0,
+                },
+            )
             .collect();
         for code in &mut self.out.codes {
             for op in &mut code.ops {

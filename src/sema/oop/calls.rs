@@ -114,7 +114,10 @@ impl BodyBuilder<'_> {
 
     /// The OOP FB (key) a type is an instance of.
     fn oop_fb_of(&self, ty: TypeId) -> Option<String> {
-        if !matches!(self.types.get(ty).kind, TypeKind::Pou { program: false, .. }) {
+        if !matches!(
+            self.types.get(ty).kind,
+            TypeKind::Pou { program: false, .. }
+        ) {
             return None;
         }
         let key = self.types.get(ty).name.to_ascii_uppercase();
@@ -249,11 +252,8 @@ impl BodyBuilder<'_> {
                 Access::Private => "PRIVATE: only its own FB's code may call it",
                 _ => "PROTECTED: only its FB and the FBs that extend it may call it, on THIS^",
             };
-            self.diags.error(
-                "E913",
-                span,
-                format!("method `{}` is {which}", v.name.name),
-            );
+            self.diags
+                .error("E913", span, format!("method `{}` is {which}", v.name.name));
         }
     }
 
@@ -356,7 +356,10 @@ impl BodyBuilder<'_> {
             self.diags.error(
                 "E919",
                 span,
-                format!("method `{}` has no result: call it as a statement", name.name),
+                format!(
+                    "method `{}` has no result: call it as a statement",
+                    name.name
+                ),
             );
             return Val::error();
         };
@@ -432,36 +435,7 @@ impl BodyBuilder<'_> {
             );
             return Val::error();
         };
-        let sig_ty = model.type_ids.get(&info.sig_type).copied();
-        let field_ty = |types: &TypeTable, key: &str| -> Option<(TypeId, u32)> {
-            match &types.get(sig_ty?).kind {
-                TypeKind::Struct { fields } => fields
-                    .iter()
-                    .find(|f| f.name.eq_ignore_ascii_case(key))
-                    .map(|f| (f.ty, f.offset)),
-                _ => None,
-            }
-        };
-        let params: Vec<Param> = im
-            .params
-            .iter()
-            .filter_map(|s| {
-                let (ty, _) = field_ty(self.types, &s.hidden)?;
-                Some(Param {
-                    name: s.name.clone(),
-                    aliases: &[],
-                    kind: if s.input {
-                        MemberKind::Input
-                    } else {
-                        MemberKind::Output
-                    },
-                    ty,
-                    offset: 0,
-                    default: None,
-                })
-            })
-            .collect();
-        let ret_ty = im.ret.as_ref().and_then(|r| field_ty(self.types, r)).map(|x| x.0);
+        let (params, ret_ty) = self.itf_params(im, &info.sig_type);
         let Some(b) = self.bind(&params, &call.args, &m.name, call.span) else {
             return Val::error();
         };
@@ -535,7 +509,6 @@ impl BodyBuilder<'_> {
             .collect();
         impls.sort_by_key(|(_, f)| f.tid);
         let mut ends = Vec::new();
-        let caller = self.current_code();
         for (key, f) in impls {
             let Some(&vi) = f.dispatch.get(&m.key()) else {
                 continue;
@@ -550,41 +523,13 @@ impl BodyBuilder<'_> {
                 cmp: Cmp::Eq,
                 t: Target::UNPATCHED,
             });
-            for (i, prm) in params.iter().enumerate() {
-                let Some(hidden) = v.params.iter().find(|s| s.name.eq_ignore_ascii_case(&prm.name)) else {
-                    continue;
-                };
-                if !hidden.input {
-                    continue;
-                }
-                let dst = self.late_member(addr, p, &hidden.hidden, prm.ty);
-                match args[i] {
-                    Some(s) => self.write_place(&dst, s),
-                    None => {
-                        let init = model.pous[p].vars.get(&hidden.hidden).and_then(|x| x.init.clone());
-                        self.store_default(&dst, init.as_ref());
-                    }
-                }
-            }
             let code = f.codes[vi];
-            self.block.emit(Op::CallFbInd { code, p: addr });
-            self.out.calls.push((caller, code, call.span));
-            self.block.last_def = None;
-            for &(i, negated, target) in &b.outputs {
-                let Some(hidden) = v.params.iter().find(|s| s.name.eq_ignore_ascii_case(&params[i].name)) else {
-                    continue;
-                };
-                let src = self.late_member(addr, p, &hidden.hidden, params[i].ty);
-                self.store_output(&src, negated, target, &params[i].name);
+            if !self.itf_branch(p, v, code, (&params, &args, &b), addr, result, call.span) {
+                return Val::error();
             }
-            if let (Some((r, ty)), Some(rk)) = (result, &v.ret) {
-                let src = self.late_member(addr, p, rk, ty);
-                let Val::Slot(s, _) = self.read_place(&src) else {
-                    return Val::error();
-                };
-                self.set_result(r, s, ty);
-            }
-            ends.push(self.block.emit(Op::Jmp { t: Target::UNPATCHED }));
+            ends.push(self.block.emit(Op::Jmp {
+                t: Target::UNPATCHED,
+            }));
             let here = self.block.here();
             self.block.patch(next, here);
         }
@@ -773,7 +718,10 @@ impl BodyBuilder<'_> {
                 let at = match p.place {
                     Place::Frame(o) => Place::Frame(o.offset(field)),
                     Place::Abs(x) => Place::Abs(x + field),
-                    Place::Ind { p, off } => Place::Ind { p, off: off + field },
+                    Place::Ind { p, off } => Place::Ind {
+                        p,
+                        off: off + field,
+                    },
                     Place::Elem { .. } => return None,
                 };
                 return Some(self.read_place(&place_ref(at, ty)));
@@ -803,7 +751,12 @@ impl BodyBuilder<'_> {
 
 impl BodyBuilder<'_> {
     /// `CAL inst.M(...)` in IL (handled here: `true`).
-    pub(in crate::sema) fn oop_il_call(&mut self, instance: &Expr, args: &[Arg], span: Span) -> bool {
+    pub(in crate::sema) fn oop_il_call(
+        &mut self,
+        instance: &Expr,
+        args: &[Arg],
+        span: Span,
+    ) -> bool {
         if self.model.oop.is_empty() {
             return false;
         }
@@ -829,5 +782,116 @@ impl BodyBuilder<'_> {
                 .error("E918", span, "`THIS^` can only be used in a FUNCTION_BLOCK");
         }
         in_fb
+    }
+}
+
+impl BodyBuilder<'_> {
+    /// The parameters of an interface method, typed by the interface's
+    /// signature structure, and its result type.
+    fn itf_params(
+        &self,
+        im: &super::model::ItfMethod,
+        sig_type: &str,
+    ) -> (Vec<Param>, Option<TypeId>) {
+        let model = self.model;
+        let info_sig_type = sig_type;
+        let sig_ty = model.type_ids.get(info_sig_type).copied();
+        let field_ty = |types: &TypeTable, key: &str| -> Option<(TypeId, u32)> {
+            match &types.get(sig_ty?).kind {
+                TypeKind::Struct { fields } => fields
+                    .iter()
+                    .find(|f| f.name.eq_ignore_ascii_case(key))
+                    .map(|f| (f.ty, f.offset)),
+                _ => None,
+            }
+        };
+        let params: Vec<Param> = im
+            .params
+            .iter()
+            .filter_map(|s| {
+                let (ty, _) = field_ty(self.types, &s.hidden)?;
+                Some(Param {
+                    name: s.name.clone(),
+                    aliases: &[],
+                    kind: if s.input {
+                        MemberKind::Input
+                    } else {
+                        MemberKind::Output
+                    },
+                    ty,
+                    offset: 0,
+                    default: None,
+                })
+            })
+            .collect();
+        let ret_ty = im
+            .ret
+            .as_ref()
+            .and_then(|r| field_ty(self.types, r))
+            .map(|x| x.0);
+        (params, ret_ty)
+    }
+
+    /// One implementing FB's branch of an interface call: the arguments
+    /// stored into its version's inputs, the call, the outputs and the
+    /// result copied out (`false` after an error).
+    #[allow(clippy::too_many_arguments)]
+    fn itf_branch(
+        &mut self,
+        p: usize,
+        v: &Version,
+        code: CodeIdx,
+        (params, args, b): (&[Param], &[Option<Slot>], &Bound),
+        addr: Slot,
+        result: Option<(Slot, TypeId)>,
+        span: Span,
+    ) -> bool {
+        let model = self.model;
+        let caller = self.current_code();
+        for (i, prm) in params.iter().enumerate() {
+            let Some(hidden) = v
+                .params
+                .iter()
+                .find(|s| s.name.eq_ignore_ascii_case(&prm.name))
+            else {
+                continue;
+            };
+            if !hidden.input {
+                continue;
+            }
+            let dst = self.late_member(addr, p, &hidden.hidden, prm.ty);
+            match args[i] {
+                Some(s) => self.write_place(&dst, s),
+                None => {
+                    let init = model.pous[p]
+                        .vars
+                        .get(&hidden.hidden)
+                        .and_then(|x| x.init.clone());
+                    self.store_default(&dst, init.as_ref());
+                }
+            }
+        }
+        self.block.emit(Op::CallFbInd { code, p: addr });
+        self.out.calls.push((caller, code, span));
+        self.block.last_def = None;
+        for &(i, negated, target) in &b.outputs {
+            let Some(hidden) = v
+                .params
+                .iter()
+                .find(|s| s.name.eq_ignore_ascii_case(&params[i].name))
+            else {
+                continue;
+            };
+            let src = self.late_member(addr, p, &hidden.hidden, params[i].ty);
+            self.store_output(&src, negated, target, &params[i].name);
+        }
+        if let (Some((r, ty)), Some(rk)) = (result, &v.ret) {
+            let src = self.late_member(addr, p, rk, ty);
+            let Val::Slot(s, _) = self.read_place(&src) else {
+                return false;
+            };
+            self.set_result(r, s, ty);
+        }
+        true
     }
 }

@@ -121,7 +121,10 @@ impl Lowering<'_> {
                     self.diags.error(
                         "E903",
                         e.span,
-                        format!("interface `{}` extends itself through `{}`", x.name.name, e.name),
+                        format!(
+                            "interface `{}` extends itself through `{}`",
+                            x.name.name, e.name
+                        ),
                     );
                     continue;
                 }
@@ -245,7 +248,10 @@ impl Lowering<'_> {
                 self.diags.error(
                     "E902",
                     ext.span,
-                    format!("`{}` is not a FUNCTION_BLOCK: only function blocks can be extended", ext.name),
+                    format!(
+                        "`{}` is not a FUNCTION_BLOCK: only function blocks can be extended",
+                        ext.name
+                    ),
                 );
                 continue;
             };
@@ -369,7 +375,10 @@ impl Lowering<'_> {
                 self.diags.error(
                     "E916",
                     m.name.span,
-                    format!("method `{}` is declared twice in `{}`", m.name.name, pou.name.name),
+                    format!(
+                        "method `{}` is declared twice in `{}`",
+                        m.name.name, pou.name.name
+                    ),
                 );
                 continue;
             }
@@ -381,7 +390,11 @@ impl Lowering<'_> {
                     self.diags.error(
                         "E905",
                         m.name.span,
-                        format!("method `{}` is FINAL in `{}`: it cannot be overridden", m.name.name, self.name_of(&o.origin)),
+                        format!(
+                            "method `{}` is FINAL in `{}`: it cannot be overridden",
+                            m.name.name,
+                            self.name_of(&o.origin)
+                        ),
                     );
                 }
                 if o.sig != v.sig {
@@ -401,7 +414,10 @@ impl Lowering<'_> {
                 self.diags.error(
                     "E908",
                     m.name.span,
-                    format!("method `{}` is ABSTRACT but `{}` is not: declare the FB ABSTRACT", m.name.name, pou.name.name),
+                    format!(
+                        "method `{}` is ABSTRACT but `{}` is not: declare the FB ABSTRACT",
+                        m.name.name, pou.name.name
+                    ),
                 );
             }
             dispatch.insert(mk, versions.len());
@@ -417,11 +433,10 @@ impl Lowering<'_> {
                         }
                     }
                 }
-                None => self.diags.error(
-                    "E911",
-                    i.span,
-                    format!("`{}` is not an interface", i.name),
-                ),
+                None => {
+                    self.diags
+                        .error("E911", i.span, format!("`{}` is not an interface", i.name))
+                }
             }
         }
         if !oop.mods.is_abstract {

@@ -168,7 +168,10 @@ impl Exporter<'_> {
                 }
                 Item::Interface(x) => return Err(self.refuse("an INTERFACE", x.span)),
                 Item::Pou(p) if p.oop.is_some() => {
-                    return Err(self.refuse("a FUNCTION_BLOCK with METHODs, EXTENDS or IMPLEMENTS", p.span));
+                    return Err(self.refuse(
+                        "a FUNCTION_BLOCK with METHODs, EXTENDS or IMPLEMENTS",
+                        p.span,
+                    ));
                 }
                 _ => {}
             }
