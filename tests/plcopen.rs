@@ -253,6 +253,16 @@ fn every_program_runs_identically_after_export_and_import() {
         if name.starts_with("grafcet_") {
             continue;
         }
+        // The OOP examples: the export refuses METHODs and INTERFACEs by
+        // name (the TC6 XML export has no form for them yet).
+        if name.starts_with("oop_") {
+            let path = format!("{}/programs/{name}", env!("CARGO_MANIFEST_DIR"));
+            let mut sources = SourceMap::new();
+            sources.add(&name, std::fs::read_to_string(path).expect("readable"));
+            let e = export_plcopen(&sources).expect_err("refused");
+            assert!(e.to_string().contains("INTERFACE"), "{e}");
+            continue;
+        }
         if [".il", ".st", ".sfc"].iter().any(|e| name.ends_with(e)) {
             let path = format!("programs/{name}");
             assert!(

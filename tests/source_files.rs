@@ -137,6 +137,7 @@ fn no_comment_is_closed_early() {
                 "FUNCTION",
                 "FUNCTION_BLOCK",
                 "CONFIGURATION",
+                "INTERFACE",
                 "TYPE"
             ]
             .contains(&first),

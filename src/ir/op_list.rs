@@ -310,6 +310,9 @@ macro_rules! for_each_op {
             /// `d := TRUE if `r` designates `width` slots inside a live object`
             /// (`__ISVALIDREF`).
             RefValid { d: Slot => Out, r: Slot => In, width: u32 => Data };
+            /// A call through an interface variable that holds no instance
+            /// (no implementing type matched its type id): fault R080.
+            FaultNullItf;
         }
     };
 }

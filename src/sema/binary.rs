@@ -22,6 +22,9 @@ impl BodyBuilder<'_> {
         span: Span,
         expect: Option<TypeId>,
     ) -> Val {
+        if let Some(v) = self.oop_compare(op, a, b, span) {
+            return v;
+        }
         let hint = match op {
             BinaryOp::Eq
             | BinaryOp::Ne

@@ -33,6 +33,8 @@ pub(super) struct BodyBuilder<'a> {
     pub(super) pending_blocks: Vec<(CodeIdx, IndexSet<u64>, u32)>,
     /// SFC blocks of this POU (they share its frame size).
     pub(super) owned_blocks: Vec<CodeIdx>,
+    /// The FB and method being emitted, in an FB with methods.
+    pub(super) oop: Option<super::oop::methods::Scope>,
 }
 
 /// What an emitted body tells the declarations: its frame.
@@ -60,12 +62,14 @@ impl<'a> BodyBuilder<'a> {
             block: Fcx::new(p, model.pous[p].vars_size),
             pending_blocks: Vec::new(),
             owned_blocks: Vec::new(),
+            oop: None,
         }
     }
 
     /// Emits the body of the POU into its code block (and SFC blocks).
     pub(super) fn build(mut self, pou: &Pou) -> BuiltBody {
         let p = self.block.pou;
+        self.enter_oop_body();
         let host = self
             .model
             .host_pous
@@ -87,6 +91,7 @@ impl<'a> BodyBuilder<'a> {
                 Body::Sfc(elems) => self.emit_chart(pou, elems),
             }
         }
+        self.emit_oop_methods();
         let mut f = std::mem::replace(&mut self.block, Fcx::new(p, 0));
         let end = f.here();
         for j in std::mem::take(&mut f.returns) {

@@ -75,6 +75,9 @@ impl BodyBuilder<'_> {
 
     /// A call used as a statement.
     pub(super) fn call_stmt(&mut self, call: &Call) {
+        if self.oop_call(call, false).is_some() {
+            return;
+        }
         if self.calls_a_function(call) {
             self.call_function(call, None, false);
             return;
@@ -88,6 +91,9 @@ impl BodyBuilder<'_> {
     /// A call used in an expression: must be a function.
     pub(super) fn call_expr(&mut self, call: &Call, expect: Option<TypeId>) -> Val {
         if let Some(v) = self.ref_call(call) {
+            return v;
+        }
+        if let Some(v) = self.oop_call(call, true) {
             return v;
         }
         if self.calls_a_function(call) {
@@ -451,7 +457,10 @@ impl BodyBuilder<'_> {
     }
 
     /// Evaluates an input argument into a parameter place.
-    fn store_arg(&mut self, dst: &PlaceRef, e: &Expr, name: &str) {
+    pub(super) fn store_arg(&mut self, dst: &PlaceRef, e: &Expr, name: &str) {
+        if self.oop_store(dst, e) {
+            return;
+        }
         let what = format!("argument `{name}`");
         match self.types.get(dst.ty).kind {
             TypeKind::Array { .. } | TypeKind::Struct { .. } => {

@@ -196,7 +196,7 @@ impl Declarer<'_> {
                 match item {
                     Item::Pou(p) => self.register_pou(p, (u, i)),
                     Item::Types(decls) => self.register_types(decls, u, i),
-                    Item::Configuration(_) | Item::Globals(_) => {}
+                    Item::Configuration(_) | Item::Globals(_) | Item::Interface(_) => {}
                 }
             }
         }

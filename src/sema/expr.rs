@@ -141,6 +141,9 @@ impl BodyBuilder<'_> {
         {
             return Some(cr);
         }
+        if let Some(v) = self.oop_local(key) {
+            return Some(v);
+        }
         self.model
             .pous
             .get(self.block.pou)

@@ -372,7 +372,9 @@ impl BodyBuilder<'_> {
                         })
                     }
                 };
-                self.il_fb_call(st, instance, args, outputs, span);
+                if !(outputs.is_empty() && self.oop_il_call(instance, args, span)) {
+                    self.il_fb_call(st, instance, args, outputs, span);
+                }
                 if let Some(j) = skip {
                     let end = self.block.here();
                     self.block.patch(j, end);

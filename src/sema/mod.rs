@@ -65,6 +65,7 @@ mod typeck;
 
 // Phase 3: linking.
 mod link;
+mod oop;
 
 use crate::diagnostics::Diagnostics;
 use crate::ir::verify::VerifiedImage;
@@ -117,6 +118,8 @@ pub fn compile(
     options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
+    let lowered = oop::lower::lower(units, diags);
+    let units = lowered.as_ref().map_or(units, |(u, _)| u.as_slice());
     if let Some(too_deep) = nesting::check(units) {
         // The declaration phase would recurse that deep: refuse first.
         diags.push(too_deep);
@@ -126,6 +129,9 @@ pub fn compile(
     declarer.set_host_pous(&options.host_pous);
     declarer.set_grafcet(options.grafcet);
     declarer.set_data_limit(options.max_data_slots());
+    if let Some((_, info)) = lowered.as_ref() {
+        oop::methods::allocate(&mut declarer, info.clone());
+    }
     declarer.declare_all();
     let declared = declarer.finish();
     let image = link::link(units, declared, options, diags);

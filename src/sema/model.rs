@@ -120,6 +120,8 @@ pub(crate) struct Model {
     /// Charts follow IEC 60848 evolution (`--grafcet`) instead of IEC
     /// 61131-3's.
     pub grafcet: bool,
+    /// Methods, inheritance and interfaces (empty without OOP).
+    pub oop: super::oop::OopInfo,
 }
 
 impl Model {

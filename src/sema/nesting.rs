@@ -80,7 +80,7 @@ fn collect(units: &[CompilationUnit]) -> Vec<Node> {
                         uses,
                     });
                 }
-                Item::Configuration(_) | Item::Globals(_) => {}
+                Item::Configuration(_) | Item::Globals(_) | Item::Interface(_) => {}
             }
         }
     }

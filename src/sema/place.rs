@@ -142,6 +142,11 @@ impl BodyBuilder<'_> {
 
     /// A member of a structure or an instance: `base.name`.
     fn place_member(&mut self, base: &Expr, name: &Ident) -> Option<PlaceRef> {
+        if super::oop::calls::is_this(base) {
+            return self
+                .this_allowed(base.span)
+                .then(|| self.place_name(name))?;
+        }
         let b = self.place(base)?;
         let def = self.types.get(b.ty).clone();
         let (offset, ty, writable, reason) = match &def.kind {

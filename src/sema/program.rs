@@ -44,6 +44,9 @@ pub(crate) struct Program {
     pub fixups: Vec<(CodeIdx, usize, usize)>,
     /// Step tables of chart bodies.
     pub charts: Vec<Chart>,
+    /// Hidden method variables reached through interfaces, whose offsets
+    /// the linker fills in: (FB's POU, variable key) (`sema/oop/calls.rs`).
+    pub oop_offsets: Vec<(usize, String)>,
 }
 
 impl Program {

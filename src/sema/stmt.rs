@@ -304,6 +304,9 @@ impl BodyBuilder<'_> {
             self.store_part(base, sel, v, value.span);
             return;
         }
+        if self.oop_assign(target, value) {
+            return;
+        }
         let Some(p) = self.place(target) else {
             // Still check the right-hand side for its own errors.
             self.expr(value, None);

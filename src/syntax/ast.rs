@@ -39,6 +39,8 @@ pub enum Item {
     Configuration(Configuration),
     /// A top-level `VAR_GLOBAL ... END_VAR` block (CODESYS-style global list).
     Globals(VarBlock),
+    /// `INTERFACE ... END_INTERFACE` (edition 3).
+    Interface(crate::syntax::oop::Interface),
 }
 
 /// Kind of program organisation unit.
@@ -68,6 +70,8 @@ pub struct Pou {
     pub body: Body,
     /// Span of the whole POU (keyword to END_ keyword).
     pub span: Span,
+    /// Methods, EXTENDS, IMPLEMENTS and modifiers of an edition-3 FB.
+    pub oop: Option<Box<crate::syntax::oop::PouOop>>,
 }
 
 /// The body of a POU, action or transition.

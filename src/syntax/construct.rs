@@ -623,6 +623,7 @@ pub fn pou(
         var_blocks,
         body,
         span: st.span(l, r),
+        oop: None,
     }
 }
 
@@ -874,6 +875,9 @@ pub fn edge_decl(
         init: None,
         span: st.span(l, r),
         edge,
+    }
+}
+
 // --- refs: dereference and reference types ---
 
 /// `b^`.

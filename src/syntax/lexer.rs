@@ -98,6 +98,8 @@ pub fn lex_in(
             }
             Raw::Word if library_list(&mut lexer, span(r.start, r.end), text, diags) => Tok::Eol,
             Raw::Word => word(slice),
+            Raw::ThisDeref => Tok::Kw(Kw::ThisDeref),
+            Raw::SuperDeref => Tok::Kw(Kw::SuperDeref),
             Raw::Typed => typed(file, slice, r.start, diags),
             Raw::Int | Raw::Based => {
                 let value = parse_int_text(slice).unwrap_or_else(|m| {

@@ -9,6 +9,7 @@ pub mod depth;
 pub mod il_lines;
 pub mod lexer;
 pub mod literal;
+pub mod oop;
 pub mod parser;
 pub mod plcopen;
 pub mod ref_words;

@@ -136,6 +136,12 @@ pub enum Raw {
     /// `^` (postfix dereference).
     #[token("^")]
     Caret,
+    /// `THIS^` (edition 3: the current instance), spaces allowed before `^`.
+    #[regex(r"[Tt][Hh][Ii][Ss][ \t]*\^")]
+    ThisDeref,
+    /// `SUPER^` (edition 3: the parent FB's view of the current instance).
+    #[regex(r"[Ss][Uu][Pp][Ee][Rr][ \t]*\^")]
+    SuperDeref,
 }
 
 /// Consumes a block comment body up to and including the first `*)`
@@ -389,10 +395,26 @@ pub enum Kw {
     Action,
     EndAction,
     VarConfig,
+    Method,
+    EndMethod,
+    Interface,
+    EndInterface,
+    Extends,
+    Implements,
+    Abstract,
+    Final,
+    Public,
+    Private,
+    Protected,
+    Internal,
+    /// `THIS^` (one token: the word and the caret).
+    ThisDeref,
+    /// `SUPER^` (one token: the word and the caret).
+    SuperDeref,
 }
 
 /// Every keyword with its spelling.
-pub const KEYWORDS: [(&str, Kw); 68] = [
+pub const KEYWORDS: [(&str, Kw); 82] = [
     ("PROGRAM", Kw::Program),
     ("END_PROGRAM", Kw::EndProgram),
     ("FUNCTION", Kw::Function),
@@ -461,6 +483,20 @@ pub const KEYWORDS: [(&str, Kw); 68] = [
     ("ACTION", Kw::Action),
     ("END_ACTION", Kw::EndAction),
     ("VAR_CONFIG", Kw::VarConfig),
+    ("METHOD", Kw::Method),
+    ("END_METHOD", Kw::EndMethod),
+    ("INTERFACE", Kw::Interface),
+    ("END_INTERFACE", Kw::EndInterface),
+    ("EXTENDS", Kw::Extends),
+    ("IMPLEMENTS", Kw::Implements),
+    ("ABSTRACT", Kw::Abstract),
+    ("FINAL", Kw::Final),
+    ("PUBLIC", Kw::Public),
+    ("PRIVATE", Kw::Private),
+    ("PROTECTED", Kw::Protected),
+    ("INTERNAL", Kw::Internal),
+    ("THIS^", Kw::ThisDeref),
+    ("SUPER^", Kw::SuperDeref),
 ];
 
 impl Kw {

@@ -782,7 +782,8 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             | Op::RefAddr { .. }
             | Op::RefIndex { .. }
             | Op::PtrAdd { .. }
-            | Op::RefValid { .. } => {
+            | Op::RefValid { .. }
+            | Op::FaultNullItf => {
                 // SAFETY: the instruction's frame operands lie inside the
                 // frame at fp (verified at link time).
                 if let Err(kind) = unsafe { super::refs::run(&mut m.refs, img, fp, len, op) } {

@@ -69,6 +69,9 @@ pub enum FaultKind {
     StaleReference,
     /// More distinct objects referenced than a reference can number (R033).
     TooManyReferencedObjects,
+    /// A method was called through an interface variable that holds no
+    /// instance (never assigned, or assigned 0).
+    NullInterface,
 }
 
 /// A chart that did not reach a stable situation under IEC 60848 evolution.
@@ -137,6 +140,7 @@ impl FaultKind {
             FaultKind::StaleReference => "R032",
             FaultKind::TooManyReferencedObjects => "R033",
             FaultKind::BadAddress => "R999",
+            FaultKind::NullInterface => "R080",
         }
     }
 }
@@ -179,6 +183,10 @@ impl fmt::Display for FaultKind {
             FaultKind::TooManyReferencedObjects => {
                 write!(f, "too many distinct objects referenced")
             }
+            FaultKind::NullInterface => write!(
+                f,
+                "method called through an interface variable that holds no instance (assign an instance first, or test `itf <> 0`)"
+            ),
             FaultKind::HostFunction(h) => {
                 write!(f, "host function `{}` failed: {}", h.name, h.message)
             }

@@ -128,16 +128,29 @@ impl Linker<'_> {
     /// Entry resets of a POU's VAR_TEMP (FBs, programs) or of all its
     /// non-input variables (functions).
     pub(super) fn entry_resets(&mut self, p: usize) -> EntryResets {
+        self.entry_resets_of(p, None)
+    }
+
+    /// Entry resets of the variables of POU `p` whose keys are in `only`
+    /// (a method's temporaries), or as [`Self::entry_resets`] says.
+    pub(super) fn entry_resets_of(&mut self, p: usize, only: Option<&[String]>) -> EntryResets {
         let kind = self.model.pous[p].kind;
         let size = self.model.pous[p].vars_size as usize;
         let mut buf = vec![0u64; size];
         let mut strs = Vec::new();
         let mut slots = Vec::new();
-        let vars: Vec<_> = self.model.pous[p].vars.values().cloned().collect();
-        for var in vars {
-            let reset = match kind {
-                PouKind::Function => !matches!(var.kind, MemberKind::Input | MemberKind::InOut),
-                _ => var.kind == MemberKind::Temp,
+        let vars: Vec<_> = self.model.pous[p]
+            .vars
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        for (key, var) in vars {
+            let reset = match (only, kind) {
+                (Some(keys), _) => keys.contains(&key),
+                (None, PouKind::Function) => {
+                    !matches!(var.kind, MemberKind::Input | MemberKind::InOut)
+                }
+                (None, _) => var.kind == MemberKind::Temp,
             };
             let Storage::Frame(o) = var.storage else {
                 continue;

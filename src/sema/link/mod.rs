@@ -4,6 +4,7 @@
 //! the [`Image`]. Reads the declarations; consumes the output tables.
 
 mod init;
+mod oop_resets;
 mod recursion;
 mod retained;
 mod schedule;
@@ -98,6 +99,7 @@ impl Linker<'_> {
         }
         self.place_function_frames();
         self.set_entry_resets();
+        self.fill_oop_offsets();
         self.relocate_frame_addresses();
         self.check_recursion();
         self.initialise_globals();
@@ -174,6 +176,7 @@ impl Linker<'_> {
             self.out.codes[code].entry_init = init;
             self.out.codes[code].entry_strings = strings;
         }
+        self.set_method_resets();
     }
 
     /// Adds the callee's frame address to instructions addressing a

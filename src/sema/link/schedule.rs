@@ -440,5 +440,6 @@ fn item_span(i: &Item) -> Span {
         Item::Types(t) => t.first().map(|d| d.name.span).unwrap_or_default(),
         Item::Configuration(c) => c.name.span,
         Item::Globals(b) => b.span,
+        Item::Interface(x) => x.name.span,
     }
 }

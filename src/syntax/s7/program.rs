@@ -161,6 +161,7 @@ pub(super) fn build(
         var_blocks: vec![vars],
         body: Body::St(body),
         span: whole,
+        oop: None,
     })];
     if uses_support {
         let support = crate::syntax::parse(file, SUPPORT_ST, diags);

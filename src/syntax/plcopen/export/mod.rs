@@ -166,6 +166,13 @@ impl Exporter<'_> {
                         self.refuse("a VAR_GLOBAL list outside a CONFIGURATION", block.span)
                     );
                 }
+                Item::Interface(x) => return Err(self.refuse("an INTERFACE", x.span)),
+                Item::Pou(p) if p.oop.is_some() => {
+                    return Err(self.refuse(
+                        "a FUNCTION_BLOCK with METHODs, EXTENDS or IMPLEMENTS",
+                        p.span,
+                    ));
+                }
                 _ => {}
             }
         }
