@@ -199,6 +199,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         host_pous: Vec::new(),
         grafcet: options.grafcet,
         max_data_bytes: options.max_data_bytes,
+        unoptimized: false,
     };
     let image = compile(sources, &build, &mut diagnostics);
     let ir_listing = match (options.ir_listing, image) {

@@ -172,6 +172,11 @@ pub struct RunArgs {
     #[arg(long, value_name = "MIB", default_value_t = 512,
           value_parser = clap::value_parser!(u64).range(1..=2048))]
     pub max_data_mib: u64,
+    /// Run on the plain instruction forms only: no fused
+    /// superinstructions, no bounds checks dropped (same results, slower;
+    /// for checking the optimizations).
+    #[arg(long)]
+    pub no_optimize: bool,
 }
 
 /// `plcrun check FILES...`: parse and check only.

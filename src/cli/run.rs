@@ -72,6 +72,7 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         watchdog,
         grafcet: args.grafcet,
         max_data_bytes: (args.max_data_mib as usize) << 20,
+        optimize: !args.no_optimize,
         ..Options::default()
     })
 }

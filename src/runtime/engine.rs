@@ -41,6 +41,12 @@ pub struct Options {
     /// compiled program may hold (default 512 MiB); larger programs are
     /// refused with E120.
     pub max_data_bytes: usize,
+    /// Emit the fused superinstructions (loop pairs, compare-and-branch,
+    /// multiply-add...) and drop the bounds checks that a FOR loop's
+    /// constant range proves (default `true`). Off, the same program runs
+    /// on the plain instruction forms only, with the same results: the
+    /// fuzzer compares both (docs/robustness.md, "Fuzzing").
+    pub optimize: bool,
 }
 
 impl Default for Options {
@@ -52,6 +58,7 @@ impl Default for Options {
             hosts: HostBlocks::default(),
             grafcet: false,
             max_data_bytes: crate::driver::DEFAULT_MAX_DATA_BYTES,
+            optimize: true,
         }
     }
 }
@@ -183,6 +190,7 @@ impl Plc {
             host_pous: options.hosts.names(),
             grafcet: options.grafcet,
             max_data_bytes: options.max_data_bytes,
+            unoptimized: !options.optimize,
         };
         let image = driver::compile(&sources, &build, &mut diags);
         match image {

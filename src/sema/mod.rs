@@ -77,6 +77,10 @@ pub struct CompileOptions {
     /// Most bytes of program data (variables, instances, constants) the
     /// image may hold; 0 means [`DEFAULT_MAX_DATA_BYTES`]. Beyond it: E120.
     pub max_data_bytes: usize,
+    /// Emit only the plain instruction forms: no fused superinstructions
+    /// and no bounds proofs (`Options::optimize` off), so that a program
+    /// can be run both ways and the traces compared.
+    pub unoptimized: bool,
 }
 
 /// Default limit of a program's data: 512 MiB (one instance or structure
@@ -111,6 +115,7 @@ pub fn compile(
     declarer.set_host_pous(&options.host_pous);
     declarer.set_grafcet(options.grafcet);
     declarer.set_data_limit(options.max_data_slots());
+    declarer.set_unoptimized(options.unoptimized);
     declarer.declare_all();
     let declared = declarer.finish();
     let image = link::link(units, declared, options, diags);

@@ -120,6 +120,10 @@ pub(crate) struct Model {
     /// Charts follow IEC 60848 evolution (`--grafcet`) instead of IEC
     /// 61131-3's.
     pub grafcet: bool,
+    /// Emit only the plain instruction forms: no fused superinstructions,
+    /// no bounds checks dropped by the FOR loop range (`Options::optimize`
+    /// off).
+    pub unoptimized: bool,
 }
 
 impl Model {

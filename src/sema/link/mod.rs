@@ -104,8 +104,10 @@ impl Linker<'_> {
         let instances = self.instantiate_programs(programs);
         let roots = self.root_vars(&instances)?;
         let retained = self.retained_vars(&instances);
-        for c in &mut self.out.codes {
-            crate::ir::fuse::fuse_loops(&mut c.ops);
+        if !options.unoptimized {
+            for c in &mut self.out.codes {
+                crate::ir::fuse::fuse_loops(&mut c.ops);
+            }
         }
         let image = Image {
             codes: std::mem::take(&mut self.out.codes),
