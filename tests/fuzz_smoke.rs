@@ -230,6 +230,7 @@ fn generated_programs_run_the_same_optimized_and_unoptimized() {
     let (mut agreed, mut refused, mut faults) = (0usize, 0usize, 0usize);
     let mut fused = [0usize; differential::FUSED.len()];
     let mut refusals = std::collections::BTreeMap::<String, usize>::new();
+    let mut example = std::collections::BTreeMap::<String, String>::new();
     while start.elapsed() < budget() || agreed + refused < 100 {
         let len = 64 + rng.below(4096);
         let data = rng.bytes(len);
@@ -249,7 +250,9 @@ fn generated_programs_run_the_same_optimized_and_unoptimized() {
             }
             differential::Verdict::Refused { codes } => {
                 refused += 1;
-                *refusals.entry(codes.join(",")).or_default() += 1;
+                let key = codes.join(",");
+                *refusals.entry(key.clone()).or_default() += 1;
+                example.entry(key).or_insert(program.source);
             }
             differential::Verdict::Watchdog => {}
         }
@@ -265,7 +268,7 @@ fn generated_programs_run_the_same_optimized_and_unoptimized() {
     // constant expression that overflows or divides by zero.
     assert!(
         refused * 10 <= agreed,
-        "too many generated programs refused: {refusals:?}"
+        "too many generated programs refused: {refusals:?}\n{example:#?}"
     );
     // The optimizations are reached (the fused forms that the generator's
     // shapes produce).

@@ -560,10 +560,24 @@ impl Gen<'_, '_> {
     /// An index into `a`: the innermost loop variable, a constant (in
     /// range or just outside), or any INT expression.
     fn index(&mut self, a: &Array, s: &Scope) -> Result<String> {
+        let ints: Vec<&String> = s
+            .read
+            .iter()
+            .filter(|(t, _)| *t == Ty::Int)
+            .map(|(_, n)| n)
+            .collect();
         Ok(match self.u.int_in_range(0..=5)? {
             0..=2 if self.depth > 0 => s.for_vars[self.depth - 1].to_string(),
-            3 => lit_int(self.u.int_in_range(a.lo - 1..=a.lo + a.len)?),
-            4 => self.expr(Ty::Int, s, MAX_EXPR_DEPTH - 1)?,
+            // A variable: folded into the range, or as it is (may fault).
+            3 if !ints.is_empty() => {
+                let v = self.u.choose(&ints)?.to_string();
+                if self.u.ratio(1, 4)? {
+                    v
+                } else {
+                    format!("{} + ABS({v} MOD {})", lit_int(a.lo), a.len)
+                }
+            }
+            // Constant indexes are checked at compile time: in range only.
             _ => lit_int(self.u.int_in_range(a.lo..=a.lo + a.len - 1)?),
         })
     }
@@ -586,7 +600,7 @@ impl Gen<'_, '_> {
         Ok(match ty {
             Ty::Bool => (if self.u.arbitrary()? { "TRUE" } else { "FALSE" }).into(),
             Ty::Int => {
-                let v: i16 = if self.u.ratio(3, 4)? {
+                let v: i16 = if self.u.ratio(9, 10)? {
                     self.u.int_in_range(-20..=20)?
                 } else {
                     self.u.arbitrary()?
@@ -594,7 +608,7 @@ impl Gen<'_, '_> {
                 lit_int(v.into())
             }
             Ty::Dint => {
-                let v: i32 = if self.u.ratio(3, 4)? {
+                let v: i32 = if self.u.ratio(9, 10)? {
                     self.u.int_in_range(-100..=100)?
                 } else {
                     self.u.arbitrary()?
