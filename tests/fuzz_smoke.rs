@@ -295,7 +295,7 @@ fn the_programs_and_benches_run_the_same_unoptimized() {
     for path in &files {
         let program = st_gen::GenProgram {
             source: std::fs::read_to_string(path).expect("source"),
-            cycles: vec![Vec::new(); 20],
+            cycles: vec![Vec::new(); 3],
         };
         match differential::check(&program) {
             differential::Verdict::Agree { fused: f, .. } => fused += f.iter().sum::<usize>(),

@@ -3,7 +3,7 @@
 //! fed the same inputs; every cycle's variables and faults must agree.
 
 use crate::st_gen::GenProgram;
-use plcrun::{Options, Plc, RuntimeFault};
+use plcrun::{Options, Plc, RuntimeFault, VarRef};
 use std::time::Duration;
 
 /// What running a generated program both ways gave.
@@ -75,13 +75,25 @@ fn codes(e: &plcrun::CompileError) -> Vec<String> {
     v
 }
 
-/// Every variable of `plc`, as `path=value`.
-fn snapshot(plc: &Plc) -> Vec<String> {
+/// Every variable of `plc` with its handle (resolved once: a program may
+/// have tens of thousands of elements).
+fn handles(plc: &Plc) -> Vec<(String, Option<VarRef>)> {
     plc.variables()
-        .iter()
-        .map(|v| match plc.read(&v.path) {
-            Ok(value) => format!("{}={}", v.path, value.to_literal()),
-            Err(e) => format!("{}: {e}", v.path),
+        .into_iter()
+        .map(|v| {
+            let r = plc.resolve(&v.path).ok();
+            (v.path, r)
+        })
+        .collect()
+}
+
+/// The value of every variable of `vars`, as `path=value`.
+fn snapshot(plc: &Plc, vars: &[(String, Option<VarRef>)]) -> Vec<String> {
+    vars.iter()
+        .map(|(path, r)| match r.as_ref().map(|r| plc.get(r)) {
+            Some(Ok(value)) => format!("{path}={}", value.to_literal()),
+            Some(Err(e)) => format!("{path}: {e}"),
+            None => format!("{path}: unresolved"),
         })
         .collect()
 }
@@ -120,6 +132,7 @@ pub fn check(p: &GenProgram) -> Verdict {
         assert_eq!(count(&plain), Some(0), "{name} in the unoptimized build");
         fused.push(count(&fast).unwrap_or(0));
     }
+    let (fast_vars, plain_vars) = (handles(&fast), handles(&plain));
     for (n, writes) in p.cycles.iter().enumerate() {
         for (name, value) in writes {
             let a = fast.write(name, value).map_err(|e| e.to_string());
@@ -138,7 +151,7 @@ pub fn check(p: &GenProgram) -> Verdict {
             "cycle {n}: the faults differ (optimized vs unoptimized):\n{}",
             p.source
         );
-        let (sa, sb) = (snapshot(&fast), snapshot(&plain));
+        let (sa, sb) = (snapshot(&fast, &fast_vars), snapshot(&plain, &plain_vars));
         if sa != sb {
             let diff: Vec<String> = sa
                 .iter()
