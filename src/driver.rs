@@ -201,6 +201,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         grafcet: options.grafcet,
         max_data_bytes: options.max_data_bytes,
         strict: options.strict,
+        unoptimized: false,
     };
     let image = compile(sources, &build, &mut diagnostics);
     let ir_listing = match (options.ir_listing, image) {

@@ -180,6 +180,11 @@ pub struct RunArgs {
     /// detect (UTF-8 if valid, else Windows-1252 with warning W020).
     #[arg(long, value_name = "ENCODING", default_value = "detect")]
     pub encoding: plcrun::SourceEncoding,
+    /// Run on the plain instruction forms only: no fused
+    /// superinstructions, no bounds checks dropped (same results, slower;
+    /// for checking the optimizations).
+    #[arg(long)]
+    pub no_optimize: bool,
 }
 
 /// `plcrun check FILES...`: parse and check only.

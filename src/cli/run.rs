@@ -75,6 +75,7 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         max_data_bytes: (args.max_data_mib as usize) << 20,
         strict: args.strict,
         encoding: args.encoding,
+        optimize: !args.no_optimize,
         ..Options::default()
     })
 }

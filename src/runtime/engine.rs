@@ -48,6 +48,12 @@ pub struct Options {
     pub strict: bool,
     /// How [`Plc::compile_bytes`] reads its files (default: detected).
     pub encoding: SourceEncoding,
+    /// Emit the fused superinstructions (loop pairs, compare-and-branch,
+    /// multiply-add...) and drop the bounds checks that a FOR loop's
+    /// constant range proves (default `true`). Off, the same program runs
+    /// on the plain instruction forms only, with the same results: the
+    /// fuzzer compares both (docs/robustness.md, "Fuzzing").
+    pub optimize: bool,
 }
 
 impl Default for Options {
@@ -61,6 +67,7 @@ impl Default for Options {
             max_data_bytes: crate::driver::DEFAULT_MAX_DATA_BYTES,
             strict: false,
             encoding: SourceEncoding::Detect,
+            optimize: true,
         }
     }
 }
@@ -226,6 +233,7 @@ impl Plc {
             grafcet: options.grafcet,
             max_data_bytes: options.max_data_bytes,
             strict: options.strict,
+            unoptimized: !options.optimize,
         };
         let image = driver::compile(&sources, &build, &mut diags);
         match image {

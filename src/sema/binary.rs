@@ -102,11 +102,13 @@ impl BodyBuilder<'_> {
         }
         let xb = self.coerce(vb, ct, span, "operand");
         let b = self.materialize(&xb);
-        if let Some(v) = fuse_not_operand(&mut self.block, op, a, b, ct, e) {
-            return v;
-        }
-        if let Some(v) = fuse_mul_add(&mut self.block, op, a, b, ct, e) {
-            return v;
+        if !self.model.unoptimized {
+            if let Some(v) = fuse_not_operand(&mut self.block, op, a, b, ct, e) {
+                return v;
+            }
+            if let Some(v) = fuse_mul_add(&mut self.block, op, a, b, ct, e) {
+                return v;
+            }
         }
         if op == BinaryOp::Pow && e.is_unsigned_int() {
             return self.unsigned_pow(a, b, ct, e);

@@ -125,6 +125,11 @@ impl<'a> Declarer<'a> {
         self.model.grafcet = grafcet;
     }
 
+    /// Turns the fusions and the bounds proofs off (or on again).
+    pub(super) fn set_unoptimized(&mut self, unoptimized: bool) {
+        self.model.unoptimized = unoptimized;
+    }
+
     /// Sets the data limit (in slots) checked by array types and memory
     /// allocation (E120).
     pub(super) fn set_data_limit(&mut self, slots: usize) {

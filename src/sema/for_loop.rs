@@ -78,6 +78,7 @@ impl BodyBuilder<'_> {
         }
         let fl = self.for_bounds(i, e, &vlim, &vstep, step_const);
         if step_const == Some(1)
+            && !self.model.unoptimized
             && e.is_signed_int()
             && let Some(lim) = fl.lim_imm
         {
@@ -96,6 +97,7 @@ impl BodyBuilder<'_> {
         // (below): the body sees only start..=limit.
         if let (Some(st), Some(l), Val::Const(Const::Bits(b0), _)) = (step_const, fl.lim_imm, &v0)
             && e.is_signed_int()
+            && !self.model.unoptimized
             && i16::try_from(st).is_ok()
             && let Ok(s0) = i64::try_from(slot_to_int(*b0, e))
         {

@@ -93,6 +93,10 @@ pub struct CompileOptions {
     /// Compatibility-extension warnings (`W300`-`W399`) are errors
     /// (`--strict`).
     pub strict: bool,
+    /// Emit only the plain instruction forms: no fused superinstructions
+    /// and no bounds proofs (`Options::optimize` off), so that a program
+    /// can be run both ways and the traces compared.
+    pub unoptimized: bool,
 }
 
 /// Default limit of a program's data: 512 MiB (one instance or structure
@@ -132,6 +136,7 @@ pub fn compile(
     if let Some((_, info)) = lowered.as_ref() {
         oop::methods::allocate(&mut declarer, info.clone());
     }
+    declarer.set_unoptimized(options.unoptimized);
     declarer.declare_all();
     let declared = declarer.finish();
     let image = link::link(units, declared, options, diags);

@@ -122,6 +122,10 @@ pub(crate) struct Model {
     pub grafcet: bool,
     /// Methods, inheritance and interfaces (empty without OOP).
     pub oop: super::oop::OopInfo,
+    /// Emit only the plain instruction forms: no fused superinstructions,
+    /// no bounds checks dropped by the FOR loop range (`Options::optimize`
+    /// off).
+    pub unoptimized: bool,
 }
 
 impl Model {

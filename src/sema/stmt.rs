@@ -135,7 +135,9 @@ impl BodyBuilder<'_> {
                 self.block.patch(to_cond, cont);
                 self.block.span = cond.span;
                 self.cond_branch_to(cond, true, top);
-                fuse_step_and_test(&mut self.block, cont.index(), top);
+                if !self.model.unoptimized {
+                    fuse_step_and_test(&mut self.block, cont.index(), top);
+                }
                 self.block.end_loop(cont, Vec::new());
             }
             StmtKind::Repeat { body, until } => {
@@ -220,6 +222,7 @@ impl BodyBuilder<'_> {
     /// Jump on a BOOL slot, fusing a just-computed integer comparison.
     fn branch_on_slot(&mut self, s: Slot, when: bool, target: Target) -> usize {
         if let Some((at, d)) = self.block.last_def
+            && !self.model.unoptimized
             && d == s
             && self.block.is_temp(s)
             && at + 1 == self.block.ops.len()

@@ -108,8 +108,10 @@ impl Linker<'_> {
         let mut roots = self.root_vars(&instances)?;
         roots.extend(self.apply_var_config(options.program.is_none(), &instances));
         let retained = self.retained_vars(&instances);
-        for c in &mut self.out.codes {
-            crate::ir::fuse::fuse_loops(&mut c.ops);
+        if !options.unoptimized {
+            for c in &mut self.out.codes {
+                crate::ir::fuse::fuse_loops(&mut c.ops);
+            }
         }
         let image = Image {
             codes: std::mem::take(&mut self.out.codes),

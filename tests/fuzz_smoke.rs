@@ -1,0 +1,307 @@
+//! The fuzz smoke on stable Rust: the bodies of the libFuzzer targets
+//! (`fuzz/src/targets.rs`, included here as they are) run over the seed
+//! corpus, over mutants of it and over programs from the structure-aware
+//! generator, each generated program run optimized and unoptimized and
+//! compared. Time-boxed (`PLCRUN_FUZZ_SECONDS`, default 25 s per test) so
+//! that CI stays short; scripts/fuzz.sh runs the real fuzzer
+//! (docs/robustness.md, "Fuzzing").
+
+#[allow(dead_code)]
+#[path = "../fuzz/src/differential.rs"]
+mod differential;
+#[allow(dead_code)]
+#[path = "../fuzz/src/seeds.rs"]
+mod seeds;
+#[allow(dead_code)]
+#[path = "../fuzz/src/st_gen.rs"]
+mod st_gen;
+#[allow(dead_code)]
+#[path = "../fuzz/src/targets.rs"]
+mod targets;
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// The time each time-boxed test may take.
+fn budget() -> Duration {
+    let secs = std::env::var("PLCRUN_FUZZ_SECONDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(25);
+    Duration::from_secs(secs)
+}
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A small deterministic generator (xorshift64*), so that a failure
+/// reproduces.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+
+    fn bytes(&mut self, n: usize) -> Vec<u8> {
+        (0..n).map(|_| self.next() as u8).collect()
+    }
+}
+
+/// The target bodies by name.
+fn target(name: &str) -> fn(&[u8]) {
+    match name {
+        "lex" => targets::lex,
+        "parse" => targets::parse,
+        "plcopen" => targets::plcopen,
+        "s7" => targets::s7,
+        "check" => targets::check,
+        "run" => targets::run,
+        _ => targets::gen_diff,
+    }
+}
+
+#[test]
+fn every_target_takes_every_seed() {
+    let seeds = seeds::collect(root());
+    // Source files and the programs inside the Rust tests.
+    assert!(seeds.len() > 200, "only {} seeds found", seeds.len());
+    for kind in [
+        seeds::Kind::Iec,
+        seeds::Kind::Il,
+        seeds::Kind::S7,
+        seeds::Kind::PlcOpen,
+    ] {
+        assert!(seeds.iter().any(|s| s.kind == kind), "no {kind:?} seed");
+    }
+    let corpora = seeds::corpora(&seeds);
+    // scripts/fuzz.sh writes the libFuzzer corpora through this test.
+    if let Ok(dir) = std::env::var("PLCRUN_FUZZ_CORPUS") {
+        for (t, name, bytes) in &corpora {
+            let d = Path::new(&dir).join(t);
+            std::fs::create_dir_all(&d).expect("corpus directory");
+            std::fs::write(d.join(name), bytes).expect("corpus file");
+        }
+    }
+    for (t, name, bytes) in &corpora {
+        let run = target(t);
+        let outcome = std::panic::catch_unwind(|| run(bytes));
+        assert!(outcome.is_ok(), "target {t} panicked on seed {name}");
+    }
+}
+
+/// Bytes that often matter to the front-ends, spliced into mutants.
+const DICTIONARY: &[&str] = &[
+    ";",
+    ":=",
+    "(",
+    ")",
+    "[",
+    "]",
+    "..",
+    ",",
+    ".",
+    "^",
+    "#",
+    "'",
+    "\"",
+    "(*",
+    "*)",
+    "{",
+    "}",
+    "//",
+    "\n",
+    "END_IF",
+    "END_FOR",
+    "END_VAR",
+    "VAR",
+    "IF",
+    "THEN",
+    "FOR",
+    "TO",
+    "BY",
+    "DO",
+    "WHILE",
+    "CASE",
+    "OF",
+    "ARRAY[1..3] OF ",
+    "STRING[",
+    "16#",
+    "2#",
+    "T#",
+    "TIME#",
+    "D#",
+    "TOD#",
+    "LD ",
+    "ST ",
+    "JMP ",
+    "CAL ",
+    "%IX0.0",
+    "%QW",
+    "STEP ",
+    "TRANSITION",
+    "<pou",
+    "</",
+    "/>",
+    "<",
+    ">",
+    "NETWORK",
+    "=",
+    "-",
+    "1",
+    "0",
+    "32767",
+    "-2147483648",
+    "1E308",
+    "\u{FFFD}",
+    "\u{0}",
+];
+
+/// One random change to `input` (byte flip, deletion, duplication, a
+/// dictionary word, a splice of `other`).
+fn mutate(rng: &mut Rng, input: &[u8], other: &[u8]) -> Vec<u8> {
+    let mut v = input.to_vec();
+    let at = rng.below(v.len() + 1);
+    match rng.below(6) {
+        0 if !v.is_empty() => {
+            let i = rng.below(v.len());
+            v[i] ^= 1 << rng.below(8);
+        }
+        1 if !v.is_empty() => {
+            let end = (at + 1 + rng.below(16)).min(v.len());
+            v.drain(at.min(end)..end);
+        }
+        2 => {
+            let end = (at + 1 + rng.below(64)).min(v.len());
+            let piece = v[at.min(end)..end].to_vec();
+            v.splice(at..at, piece);
+        }
+        3 if !other.is_empty() => {
+            let from = rng.below(other.len());
+            let end = (from + 1 + rng.below(256)).min(other.len());
+            v.splice(at..at, other[from..end].iter().copied());
+        }
+        _ => {
+            let word = DICTIONARY[rng.below(DICTIONARY.len())];
+            v.splice(at..at, word.bytes());
+        }
+    }
+    v
+}
+
+#[test]
+fn mutants_of_the_seeds_do_not_crash_any_target() {
+    let seeds = seeds::collect(root());
+    let corpora = seeds::corpora(&seeds);
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    let start = Instant::now();
+    let mut runs = 0usize;
+    while start.elapsed() < budget() || runs < 500 {
+        let (t, name, bytes) = &corpora[rng.below(corpora.len())];
+        let (_, _, other) = &corpora[rng.below(corpora.len())];
+        let mut input = bytes.clone();
+        for _ in 0..1 + rng.below(4) {
+            input = mutate(&mut rng, &input, other);
+        }
+        let run = target(t);
+        let outcome = std::panic::catch_unwind(|| run(&input));
+        assert!(
+            outcome.is_ok(),
+            "target {t} panicked on a mutant of {name}:\n{}",
+            String::from_utf8_lossy(&input)
+        );
+        runs += 1;
+    }
+    eprintln!("{runs} mutants in {:.1} s", start.elapsed().as_secs_f64());
+}
+
+#[test]
+fn generated_programs_run_the_same_optimized_and_unoptimized() {
+    let mut rng = Rng(0xD1B5_4A32_D192_ED03);
+    let start = Instant::now();
+    let (mut agreed, mut refused, mut faults) = (0usize, 0usize, 0usize);
+    let mut fused = [0usize; differential::FUSED.len()];
+    let mut refusals = std::collections::BTreeMap::<String, usize>::new();
+    let mut example = std::collections::BTreeMap::<String, String>::new();
+    while start.elapsed() < budget() || agreed + refused < 100 {
+        let len = 64 + rng.below(4096);
+        let data = rng.bytes(len);
+        let mut u = arbitrary::Unstructured::new(&data);
+        let Ok(program) = st_gen::generate(&mut u) else {
+            continue;
+        };
+        match differential::check(&program) {
+            differential::Verdict::Agree {
+                fault, fused: f, ..
+            } => {
+                agreed += 1;
+                faults += usize::from(fault.is_some());
+                for (total, n) in fused.iter_mut().zip(f) {
+                    *total += n;
+                }
+            }
+            differential::Verdict::Refused { codes } => {
+                refused += 1;
+                let key = codes.join(",");
+                *refusals.entry(key.clone()).or_default() += 1;
+                example.entry(key).or_insert(program.source);
+            }
+            differential::Verdict::Watchdog => {}
+        }
+    }
+    eprintln!(
+        "{agreed} generated programs agreed ({faults} ended in a fault), {refused} refused {refusals:?}, in {:.1} s",
+        start.elapsed().as_secs_f64()
+    );
+    for (name, n) in differential::FUSED.iter().zip(fused) {
+        eprintln!("  {name}: {n}");
+    }
+    // The generator writes type-correct programs: a refusal can only be a
+    // constant expression that overflows or divides by zero.
+    assert!(
+        refused * 10 <= agreed,
+        "too many generated programs refused: {refusals:?}\n{example:#?}"
+    );
+    // The optimizations are reached (the fused forms that the generator's
+    // shapes produce).
+    for (name, n) in differential::FUSED.iter().zip(fused) {
+        if !matches!(*name, "JnCmpF32" | "JnCmpF64" | "OrN") {
+            assert!(n > 0, "no generated program used {name}");
+        }
+    }
+}
+
+#[test]
+fn the_programs_and_benches_run_the_same_unoptimized() {
+    let mut files = Vec::new();
+    for dir in ["benches/programs", "programs"] {
+        for entry in std::fs::read_dir(root().join(dir)).expect("directory") {
+            let path = entry.expect("entry").path();
+            if path.extension().is_some_and(|e| e == "st") {
+                files.push(path);
+            }
+        }
+    }
+    files.sort();
+    let mut fused = 0;
+    for path in &files {
+        let program = st_gen::GenProgram {
+            source: std::fs::read_to_string(path).expect("source"),
+            cycles: vec![Vec::new(); 3],
+        };
+        match differential::check(&program) {
+            differential::Verdict::Agree { fused: f, .. } => fused += f.iter().sum::<usize>(),
+            other => panic!("{}: {other:?}", path.display()),
+        }
+    }
+    // The benchmarks use the fused forms (a fill, a sieve, scans).
+    assert!(fused > 0, "no fused instruction in {files:?}");
+}
