@@ -33,6 +33,7 @@ mod type_decl;
 // Phase 2: one body builder per POU.
 pub(crate) mod assert_calls;
 mod binary;
+mod bits_arith;
 mod body;
 mod bounds;
 mod calls;

@@ -1,0 +1,99 @@
+//! CODESYS behaviours beyond IEC 61131-3 edition 3 that real libraries
+//! (OSCAT among them) rely on: each is accepted with its compatibility
+//! warning (W350-W359) and computes as worked out by hand beside each case.
+
+#[path = "support/plc.rs"]
+mod plc;
+
+use plc::{compile, error_codes, lit, program, run};
+
+/// Compiles `decls`/`body` as a program, runs `cycles` cycles and checks
+/// `(variable, literal)`; returns the warning codes.
+fn check(
+    prelude: &str,
+    decls: &str,
+    body: &str,
+    cycles: u64,
+    expect: &[(&str, &str)],
+) -> Vec<String> {
+    let mut plc = compile(&program(prelude, decls, body));
+    run(&mut plc, cycles);
+    for (name, value) in expect {
+        assert_eq!(lit(&plc, name), *value, "{name}\n{body}");
+    }
+    plc.warnings().iter().map(|d| d.code.to_string()).collect()
+}
+
+#[test]
+fn bit_strings_compute_as_unsigned_integers_of_their_width() {
+    let w = check(
+        "",
+        "b : BYTE := 250; w : WORD := 16#FFFF; d : DWORD := 7; l : LWORD := 0;
+         r1 : BYTE; r2 : WORD; r3, r4 : DWORD; r5 : LWORD; r6 : BYTE;",
+        // 250 + 10 = 260 wraps to 4; 65535 + 2 wraps to 1; 7 MOD 4 = 3,
+        // 3 * 3 = 9, 9 / 2 = 4, 4 - 1 = 3; 0 - 1 wraps to 2^32 - 1;
+        // LWORD 0 - 1 wraps to 2^64 - 1; 250 / 7 = 35.
+        "r1 := b + 10; r2 := w + 2; r3 := d MOD 4 * 3 / 2 - 1; r4 := r3 - r3 - 1;
+         r5 := l - 1; r6 := b / BYTE#7;",
+        1,
+        &[
+            ("r1", "16#4"),
+            ("r2", "16#1"),
+            ("r3", "16#3"),
+            ("r4", "16#FFFFFFFF"),
+            ("r5", "16#FFFFFFFFFFFFFFFF"),
+            ("r6", "16#23"),
+        ],
+    );
+    assert!(w.iter().all(|c| c == "W350"), "{w:?}");
+    assert_eq!(w.len(), 10, "{w:?}"); // one per operator
+}
+
+#[test]
+fn bit_strings_mix_with_unsigned_and_wider_signed_integers() {
+    let w = check(
+        "",
+        "w : WORD := 65000; u : UINT := 1000; b : BYTE := 200; i : INT := -300;
+         r1 : UINT; r2 : INT; r3 : INT; r4 : UDINT; r5 : WORD;",
+        // WORD + UINT computes in UINT: 66000 wraps to 464; BYTE + INT in
+        // INT: 200 - 300 = -100; BYTE into INT keeps 200; WORD into UDINT
+        // keeps 65000; UINT into WORD keeps 1000.
+        "r1 := w + u; r2 := b + i; r3 := b; r4 := w; r5 := u;",
+        1,
+        &[
+            ("r1", "464"),
+            ("r2", "-100"),
+            ("r3", "200"),
+            ("r4", "65000"),
+            ("r5", "16#3E8"),
+        ],
+    );
+    assert_eq!(w, ["W350", "W350", "W351", "W351", "W351"]);
+}
+
+#[test]
+fn narrowing_and_signed_mixes_stay_errors() {
+    // BYTE into SINT could lose values; WORD + INT has no common type
+    // holding both; a bit string does not narrow into a shorter one.
+    for (decls, body) in [
+        ("b : BYTE; s : SINT;", "s := b;"),
+        ("w : WORD; i : INT; r : INT;", "r := w + i;"),
+        ("d : DWORD; u : UINT;", "u := d;"),
+    ] {
+        let codes = error_codes(&[("t.st", &program("", decls, body))]);
+        assert!(!codes.is_empty(), "{body} must not compile");
+    }
+}
+
+#[test]
+fn shift_counts_may_be_expressions_and_bit_strings() {
+    let w = check(
+        "",
+        "d : DWORD := 16#12345678; n : INT := 1; b : BYTE := 2; r1, r2 : DWORD;",
+        // SHL by n + 1 = 2: 0x48D159E0; SHR by SHL(b, 2) = 8: 0x00123456.
+        "r1 := SHL(d, n + 1); r2 := SHR(d, SHL(b, 2));",
+        1,
+        &[("r1", "16#48D159E0"), ("r2", "16#123456")],
+    );
+    assert_eq!(w, ["W352"]);
+}
