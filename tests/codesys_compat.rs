@@ -97,3 +97,43 @@ fn shift_counts_may_be_expressions_and_bit_strings() {
     );
     assert_eq!(w, ["W352"]);
 }
+
+#[test]
+fn constant_inputs_are_set_by_the_caller_and_never_folded() {
+    let prelude = "FUNCTION SCALE2 : INT
+VAR_INPUT x : INT; END_VAR
+VAR_INPUT CONSTANT k : INT := 3; lim : INT; END_VAR
+SCALE2 := LIMIT(-lim, x * k, lim);
+END_FUNCTION
+FUNCTION_BLOCK ACC
+VAR_INPUT CONSTANT inc : INT := 1; END_VAR
+VAR_OUTPUT total : INT; END_VAR
+total := total + inc;
+END_FUNCTION_BLOCK";
+    // 5 * 3 = 15 (k defaults to 3); 5 * 10 = 50 limited to 20; the FB
+    // counts by 4 twice = 8 and by its default 1 twice = 2.
+    let w = check(
+        prelude,
+        "r1, r2, t1, t2 : INT; a, b : ACC;",
+        "r1 := SCALE2(x := 5, lim := 100); r2 := SCALE2(x := 5, k := 10, lim := 20);
+         a(inc := 4); b(); t1 := a.total; t2 := b.total;",
+        2,
+        &[("r1", "15"), ("r2", "20"), ("t1", "8"), ("t2", "2")],
+    );
+    assert_eq!(w, ["W353", "W353", "W353"]);
+}
+
+#[test]
+fn a_constant_input_is_not_written_in_the_body() {
+    let src = "FUNCTION_BLOCK F
+VAR_INPUT CONSTANT k : INT := 3; END_VAR
+k := 4;
+END_FUNCTION_BLOCK
+PROGRAM P VAR f : F; END_VAR f(); END_PROGRAM";
+    let codes = error_codes(&[("t.st", src)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E401"),
+        "{codes:?}"
+    );
+}

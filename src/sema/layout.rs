@@ -355,12 +355,27 @@ impl Declarer<'_> {
         location: Option<String>,
         init: &Option<ConstInit>,
     ) -> VarInfo {
-        let value = if block.constant {
+        // A VAR_INPUT CONSTANT (CODESYS) is set by the caller: its initial
+        // value is only a default, so it is never folded; the body still
+        // may not write it.
+        let input = block.kind == VarKind::Input;
+        if block.constant && input {
+            self.diags.warning(
+                "W353",
+                name.span,
+                format!(
+                    "`{}`: VAR_INPUT CONSTANT is a CODESYS extension (an input the body may not write)",
+                    name.name
+                ),
+            );
+        }
+        let value = if block.constant && !input {
             init.as_ref().and_then(init_const)
         } else {
             None
         };
         if block.constant
+            && !input
             && value.is_none()
             && block.kind != VarKind::External
             && !self.is_aggregate(ty)
