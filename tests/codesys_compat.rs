@@ -137,3 +137,22 @@ PROGRAM P VAR f : F; END_VAR f(); END_PROGRAM";
         "{codes:?}"
     );
 }
+
+#[test]
+fn time_without_arguments_is_the_clock_the_timers_see() {
+    let prelude = "FUNCTION NOW_MS : DWORD
+VAR tx : TIME; END_VAR
+tx := TIME();
+NOW_MS := TIME_TO_DWORD(tx);
+END_FUNCTION";
+    // The default cycle is 10 ms; the clock reads 0, 10, 20 ms in cycles
+    // 1..3, and a TON started in cycle 1 has run the same 20 ms.
+    let w = check(
+        prelude,
+        "ms : DWORD; t : TIME; tm : TON; et : TIME;",
+        "ms := NOW_MS(); t := TIME(); tm(IN := TRUE, PT := T#1s); et := tm.ET;",
+        3,
+        &[("ms", "16#14"), ("t", "T#20ms"), ("et", "T#20ms")],
+    );
+    assert_eq!(w, ["W354", "W354"]);
+}
