@@ -156,3 +156,27 @@ END_FUNCTION";
     );
     assert_eq!(w, ["W354", "W354"]);
 }
+
+#[test]
+fn array_initial_values_may_omit_the_brackets() {
+    let prelude = "TYPE MONTHS : STRUCT
+    days : ARRAY[1..4] OF INT := 0, 31, 59, 90;
+    names : ARRAY[0..2] OF STRING(3) := 'jan', 'feb', 'mar';
+END_STRUCT
+END_TYPE";
+    // Element by element as written; `2(7)` repeats 7 twice.
+    let w = check(
+        prelude,
+        "m : MONTHS; a : ARRAY[0..4] OF INT := 1, 2(7), 3, 4; d3, a1, a2, a4 : INT; n2 : STRING(3);",
+        "d3 := m.days[3]; a1 := a[1]; a2 := a[2]; a4 := a[4]; n2 := m.names[2];",
+        1,
+        &[
+            ("d3", "59"),
+            ("a1", "7"),
+            ("a2", "7"),
+            ("a4", "4"),
+            ("n2", "'mar'"),
+        ],
+    );
+    assert_eq!(w, ["W355", "W355", "W355"]);
+}
