@@ -180,3 +180,37 @@ END_TYPE";
     );
     assert_eq!(w, ["W355", "W355", "W355"]);
 }
+
+#[test]
+fn on_and_step_are_names_where_no_name_follows() {
+    let prelude = "FUNCTION_BLOCK RAMP
+VAR_INPUT on : BOOL; step : INT := 1; END_VAR
+VAR_OUTPUT y : INT; END_VAR
+IF on THEN y := y + step; END_IF
+END_FUNCTION_BLOCK";
+    // Two cycles with ON = TRUE and STEP = 5: y = 10; FOR 0..10 BY 5
+    // runs 3 times.
+    let w = check(
+        prelude,
+        "r : RAMP; ON : BOOL := TRUE; Step : INT := 5; i, n, y : INT;",
+        "r(on := ON, step := Step); y := r.y;
+         n := 0; FOR i := 0 TO 10 BY Step DO n := n + 1; END_FOR",
+        2,
+        &[("y", "10"), ("n", "3")],
+    );
+    assert!(!w.is_empty() && w.iter().all(|c| c == "W356"), "{w:?}");
+}
+
+#[test]
+fn step_stays_a_keyword_in_charts() {
+    let src = "PROGRAM P
+VAR step : INT; END_VAR
+INITIAL_STEP s0 : END_STEP
+TRANSITION FROM s0 TO s1 := TRUE; END_TRANSITION
+STEP s1 : END_STEP
+TRANSITION FROM s1 TO s0 := TRUE; END_TRANSITION
+END_PROGRAM";
+    let mut plc = plc::compile(src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "s1.X"), "TRUE");
+}

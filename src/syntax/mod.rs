@@ -12,6 +12,7 @@ pub mod literal;
 pub mod parser;
 pub mod plcopen;
 pub mod s7;
+mod soft_keywords;
 pub mod token;
 
 use crate::diagnostics::{Diagnostics, Severity};
@@ -25,6 +26,7 @@ pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> ast::Compilat
         return plcopen::parse(file, text, diags);
     }
     let tokens = lexer::lex(file, text, diags);
+    let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
     let tokens = il_lines::keep_il_lines(tokens);
     parser::parse_tokens(construct::State::new(file, text), tokens, diags)
 }
