@@ -214,3 +214,20 @@ END_PROGRAM";
     run(&mut plc, 1);
     assert_eq!(lit(&plc, "s1.X"), "TRUE");
 }
+
+#[test]
+fn functionblock_is_read_as_function_block() {
+    let prelude = "FUNCTIONBLOCK COUNTER
+VAR_OUTPUT n : INT; END_VAR
+n := n + 1;
+END_FUNCTIONBLOCK";
+    // Three calls count to 3.
+    let w = check(
+        prelude,
+        "c : COUNTER; k : INT;",
+        "c(); k := c.n;",
+        3,
+        &[("k", "3")],
+    );
+    assert_eq!(w, ["W357", "W357"]);
+}

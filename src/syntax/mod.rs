@@ -4,6 +4,7 @@
 //! line orientation) → [`parser`] (lalrpop grammar, error recovery) → [`ast`].
 
 pub mod ast;
+mod codesys_spellings;
 pub mod construct;
 pub mod depth;
 pub mod il_lines;
@@ -27,6 +28,7 @@ pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> ast::Compilat
     }
     let tokens = lexer::lex(file, text, diags);
     let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
+    let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
     let tokens = il_lines::keep_il_lines(tokens);
     parser::parse_tokens(construct::State::new(file, text), tokens, diags)
 }
