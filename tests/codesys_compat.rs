@@ -231,3 +231,23 @@ END_FUNCTIONBLOCK";
     );
     assert_eq!(w, ["W357", "W357"]);
 }
+
+#[test]
+fn a_local_constant_sizes_an_array_declared_above_it() {
+    let prelude = "FUNCTION_BLOCK RING
+VAR_INPUT x : INT; END_VAR
+VAR_OUTPUT top : INT; END_VAR
+VAR buf : ARRAY[0..n] OF INT; i : INT; END_VAR
+VAR CONSTANT n : INT := 3; END_VAR
+buf[i] := x + i; top := buf[n]; i := (i + 1) MOD (n + 1);
+END_FUNCTION_BLOCK";
+    // The array has n + 1 = 4 elements; the 4th call writes buf[3] = 7 + 3
+    // (an index beyond the array would fault).
+    check(
+        prelude,
+        "r : RING; k : INT;",
+        "r(x := 7); k := r.top;",
+        4,
+        &[("k", "10")],
+    );
+}

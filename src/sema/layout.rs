@@ -96,7 +96,7 @@ impl Declarer<'_> {
         if pou.kind == PouKind::Function {
             self.layout_result(p, pou, &mut frame);
         }
-        for block in &pou.var_blocks {
+        for block in blocks_in_layout_order(&pou.var_blocks) {
             self.layout_block(pou, block, &mut frame);
         }
         if let crate::syntax::ast::Body::Sfc(elems) = &pou.body {
@@ -439,4 +439,31 @@ impl Declarer<'_> {
         info.vars_size = frame.offset;
         info.ty = ty;
     }
+}
+
+/// The POU's variable blocks in the order they are laid out: as written,
+/// except that when an array or string is declared before a local
+/// `VAR CONSTANT` block, the constant blocks come first so that their
+/// names can size it (CODESYS accepts a bound declared further down).
+fn blocks_in_layout_order(blocks: &[VarBlock]) -> Vec<&VarBlock> {
+    let local_constant = |b: &VarBlock| b.constant && b.kind == VarKind::Local;
+    let sized = |b: &VarBlock| {
+        b.decls.iter().any(|d| {
+            matches!(
+                d.ty,
+                crate::syntax::ast::TypeSpec::Array { .. }
+                    | crate::syntax::ast::TypeSpec::String { .. }
+            )
+        })
+    };
+    let hoist = blocks
+        .iter()
+        .position(|b| !local_constant(b) && sized(b))
+        .is_some_and(|first| blocks[first..].iter().any(local_constant));
+    if !hoist {
+        return blocks.iter().collect();
+    }
+    let (constants, rest): (Vec<&VarBlock>, Vec<&VarBlock>) =
+        blocks.iter().partition(|b| local_constant(b));
+    constants.into_iter().chain(rest).collect()
 }
