@@ -251,3 +251,16 @@ END_FUNCTION_BLOCK";
         &[("k", "10")],
     );
 }
+
+#[test]
+fn bit_strings_mix_with_reals_and_index_arrays() {
+    let w = check(
+        "",
+        "b : BYTE := 3; r : REAL := 0.5; x : REAL; a : ARRAY[0..3] OF INT := [10, 20, 30, 40]; k : INT;",
+        // 0.5 * 3 = 1.5 (BYTE as USINT widens to REAL); a[3] = 40.
+        "x := r * b; k := a[b];",
+        1,
+        &[("x", "1.5"), ("k", "40")],
+    );
+    assert_eq!(w, ["W350", "W358"]);
+}

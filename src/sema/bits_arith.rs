@@ -105,20 +105,33 @@ impl BodyBuilder<'_> {
         })
     }
 
+    /// CODESYS indexes arrays with a bit string (BYTE..LWORD) too; warns
+    /// W358 when `v` is one.
+    pub(super) fn codesys_bit_string_index(&mut self, v: &Val, span: Span) -> bool {
+        if self.bit_string(v.ty()).is_none() {
+            return false;
+        }
+        self.diags.warning(
+            "W358",
+            span,
+            "a bit string (BYTE..LWORD) as an array index is a CODESYS extension",
+        );
+        true
+    }
+
     /// An operand retyped for integer arithmetic: a bit string as the
     /// unsigned integer of its width, or (beside a wider signed integer)
     /// as that signed type. `None` when the pair does not mix.
     fn as_integer(&self, v: &Val, bits: Option<ElemType>, other: Ty) -> Option<Val> {
         let Some(bits) = bits else {
-            // The other operand: an unsigned or signed integer, a literal,
-            // or a bit string.
+            // The other operand: an integer, a real, a literal, or a bit
+            // string.
             return match v.ty() {
-                Ty::AnyInt => Some(v.clone()),
+                Ty::AnyInt | Ty::AnyReal => Some(v.clone()),
                 Ty::T(t) => {
                     let e = self.scalar(t)?;
-                    (e.is_int() || unsigned_of(e).is_some()).then(|| v.clone())
+                    (e.is_num() || unsigned_of(e).is_some()).then(|| v.clone())
                 }
-                Ty::AnyReal => None,
             };
         };
         let unsigned = unsigned_of(bits)?;
