@@ -48,6 +48,9 @@ impl BodyBuilder<'_> {
             return v;
         }
         let op_name = binary_name(op);
+        if let Some(v) = self.bit_string_arith(op, &va, &vb, span) {
+            return v;
+        }
         // Time and date arithmetic has its own typing rules.
         if let Some(v) = self.time_arith(op, &va, &vb, span) {
             return v;

@@ -96,7 +96,7 @@ impl Declarer<'_> {
         if pou.kind == PouKind::Function {
             self.layout_result(p, pou, &mut frame);
         }
-        for block in &pou.var_blocks {
+        for block in blocks_in_layout_order(&pou.var_blocks) {
             self.layout_block(pou, block, &mut frame);
         }
         if let crate::syntax::ast::Body::Sfc(elems) = &pou.body {
@@ -372,12 +372,27 @@ impl Declarer<'_> {
         location: Option<String>,
         init: &Option<ConstInit>,
     ) -> VarInfo {
-        let value = if block.constant {
+        // A VAR_INPUT CONSTANT (CODESYS) is set by the caller: its initial
+        // value is only a default, so it is never folded; the body still
+        // may not write it.
+        let input = block.kind == VarKind::Input;
+        if block.constant && input {
+            self.diags.warning(
+                "W353",
+                name.span,
+                format!(
+                    "`{}`: VAR_INPUT CONSTANT is a CODESYS extension (an input the body may not write)",
+                    name.name
+                ),
+            );
+        }
+        let value = if block.constant && !input {
             init.as_ref().and_then(init_const)
         } else {
             None
         };
         if block.constant
+            && !input
             && value.is_none()
             && block.kind != VarKind::External
             && !self.is_aggregate(ty)
@@ -441,4 +456,31 @@ impl Declarer<'_> {
         info.vars_size = frame.offset;
         info.ty = ty;
     }
+}
+
+/// The POU's variable blocks in the order they are laid out: as written,
+/// except that when an array or string is declared before a local
+/// `VAR CONSTANT` block, the constant blocks come first so that their
+/// names can size it (CODESYS accepts a bound declared further down).
+fn blocks_in_layout_order(blocks: &[VarBlock]) -> Vec<&VarBlock> {
+    let local_constant = |b: &VarBlock| b.constant && b.kind == VarKind::Local;
+    let sized = |b: &VarBlock| {
+        b.decls.iter().any(|d| {
+            matches!(
+                d.ty,
+                crate::syntax::ast::TypeSpec::Array { .. }
+                    | crate::syntax::ast::TypeSpec::String { .. }
+            )
+        })
+    };
+    let hoist = blocks
+        .iter()
+        .position(|b| !local_constant(b) && sized(b))
+        .is_some_and(|first| blocks[first..].iter().any(local_constant));
+    if !hoist {
+        return blocks.iter().collect();
+    }
+    let (constants, rest): (Vec<&VarBlock>, Vec<&VarBlock>) =
+        blocks.iter().partition(|b| local_constant(b));
+    constants.into_iter().chain(rest).collect()
 }

@@ -35,6 +35,7 @@ mod type_decl;
 mod aggregate_copy;
 pub(crate) mod assert_calls;
 mod binary;
+mod bits_arith;
 mod body;
 mod bounds;
 mod calls;

@@ -355,7 +355,7 @@ impl BodyBuilder<'_> {
                 Ty::AnyInt => true,
                 Ty::T(t) => self.scalar(t).is_some_and(|e| e.is_int()) && !self.is_enum(t),
                 Ty::AnyReal => false,
-            };
+            } || self.codesys_bit_string_index(&v, ix.span);
             if !ok {
                 if !v.is_error() {
                     self.diags.error(

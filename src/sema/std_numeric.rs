@@ -351,7 +351,21 @@ impl BodyBuilder<'_> {
             Ty::T(t) => self.scalar(t).is_some_and(|e| e.is_int()),
             _ => false,
         };
-        if !n_ok {
+        // CODESYS also counts with a bit string (BYTE..LWORD).
+        let n_bits = match n.ty() {
+            Ty::T(t) => {
+                !self.is_enum(t) && self.scalar(t).is_some_and(|e| e.family() == Family::Bits)
+            }
+            _ => false,
+        };
+        if n_bits {
+            self.diags.warning(
+                "W352",
+                ns,
+                format!("{fname}: a bit string as the shift count N is a CODESYS extension"),
+            );
+        }
+        if !n_ok && !n_bits {
             self.diags
                 .error("E301", ns, format!("{fname}: N must be an integer"));
             return Val::error();

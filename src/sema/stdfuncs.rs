@@ -202,6 +202,9 @@ impl BodyBuilder<'_> {
         span: Span,
         expect: Option<crate::ir::type_table::TypeId>,
     ) -> Option<Val> {
+        if args.is_empty() && id.name.eq_ignore_ascii_case("TIME") {
+            return Some(self.codesys_time_call(span));
+        }
         let std = classify(&id.name)?;
         let fname = id.name.to_ascii_uppercase();
         // Order the argument expressions by parameter.
@@ -379,13 +382,27 @@ impl BodyBuilder<'_> {
             }
             Std::ToBcd(to) => self.std_to_bcd(to, vals, fname),
             Std::ConcatDateTod => self.std_concat_date_tod(vals, fname, span),
-            Std::Clock => {
-                let d = self.block.temp();
-                self.block.emit(Op::Clock { d });
-                Val::Slot(d, TypeTable::elem(ElemType::Time))
-            }
+            Std::Clock => self.clock_value(),
             Std::Concat => self.std_concat(vals, fname),
             Std::Str(func) => self.string_fn(func, vals, fname),
         }
+    }
+
+    /// CODESYS's `TIME()`: the PLC's clock as TIME, the same value as
+    /// PLC_CLOCK (in virtual time, the time the timers see).
+    fn codesys_time_call(&mut self, span: Span) -> Val {
+        self.diags.warning(
+            "W354",
+            span,
+            "`TIME()` (the PLC's clock) is a CODESYS extension; PLC_CLOCK() is plcrun's name for it",
+        );
+        self.clock_value()
+    }
+
+    /// The task's clock now, as TIME.
+    fn clock_value(&mut self) -> Val {
+        let d = self.block.temp();
+        self.block.emit(Op::Clock { d });
+        Val::Slot(d, TypeTable::elem(ElemType::Time))
     }
 }

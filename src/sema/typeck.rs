@@ -181,6 +181,7 @@ impl BodyBuilder<'_> {
             Val::Const(c, from) => {
                 if let Ty::T(ft) = from
                     && !self.assignable(*ft, to)
+                    && !self.codesys_widening(*ft, to, span)
                 {
                     self.mismatch(span, *from, to, what);
                     return Val::error();
@@ -197,7 +198,7 @@ impl BodyBuilder<'_> {
                 if *from == to {
                     return v;
                 }
-                if !self.assignable(*from, to) {
+                if !self.assignable(*from, to) && !self.codesys_widening(*from, to, span) {
                     self.mismatch(span, Ty::T(*from), to, what);
                     return Val::error();
                 }
@@ -282,6 +283,30 @@ impl BodyBuilder<'_> {
                 _ => false,
             },
         }
+    }
+
+    /// Whether CODESYS converts `from` to `to` implicitly where IEC does
+    /// not (see `bits_arith`); warns W351 when it does.
+    fn codesys_widening(&mut self, from: TypeId, to: TypeId, span: Span) -> bool {
+        if self.is_enum(from) || self.is_enum(to) {
+            return false;
+        }
+        let (Some(f), Some(t)) = (self.types.scalar(from), self.types.scalar(to)) else {
+            return false;
+        };
+        if !super::bits_arith::codesys_widens(f, t) {
+            return false;
+        }
+        self.diags.warning(
+            "W351",
+            span,
+            format!(
+                "implicit conversion of {} to {} is a CODESYS extension",
+                f.name(),
+                t.name()
+            ),
+        );
+        true
     }
 
     /// Reports a type mismatch.

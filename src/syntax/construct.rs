@@ -593,6 +593,25 @@ pub fn array_init(st: &State, elems: Vec<ArrayInitElem>, l: usize, r: usize) -> 
     guard_init(st, Initializer::Array(elems, span), span)
 }
 
+/// `1, 2, 3` as a declaration's initial value: CODESYS's array initial
+/// value without brackets (W355).
+pub fn bare_array_init(
+    st: &State,
+    first: ArrayInitElem,
+    mut rest: Vec<ArrayInitElem>,
+    l: usize,
+    r: usize,
+) -> Initializer {
+    let span = st.span(l, r);
+    st.diags.borrow_mut().push(Diagnostic::warning(
+        "W355",
+        span,
+        "an array initial value without brackets is a CODESYS extension; IEC writes [1, 2, 3]",
+    ));
+    rest.insert(0, first);
+    array_init(st, rest, l, r)
+}
+
 /// `(a := x, b := y)`.
 pub fn struct_init(
     st: &State,

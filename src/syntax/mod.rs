@@ -4,6 +4,7 @@
 //! line orientation) → [`parser`] (lalrpop grammar, error recovery) → [`ast`].
 
 pub mod ast;
+mod codesys_spellings;
 pub mod construct;
 pub mod depth;
 pub mod il_lines;
@@ -14,6 +15,7 @@ pub mod parser;
 pub mod plcopen;
 pub mod ref_words;
 pub mod s7;
+mod soft_keywords;
 pub mod token;
 
 use crate::diagnostics::{Diagnostics, Severity};
@@ -39,6 +41,8 @@ fn parse_in(
         return plcopen::parse(file, text, diags);
     }
     let tokens = lexer::lex_in(file, text, encoding, diags);
+    let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
+    let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
     let tokens = il_lines::keep_il_lines(tokens);
     parser::parse_tokens(construct::State::new(file, text), tokens, diags)
 }
