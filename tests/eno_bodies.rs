@@ -174,3 +174,29 @@ fn en_reads_true_in_a_function_body() {
          PROGRAM P\nVAR r : INT; END_VAR\nr := Twice(a := 21);\nEND_PROGRAM\n";
     assert_eq!(lit(&run_once(src), "r"), "42");
 }
+
+#[test]
+fn instances_in_an_array_report_their_eno() {
+    // Element i fails when v > 10; element 2 is skipped.
+    let src = format!(
+        "{LIMITER_IL}PROGRAM P\nVAR fs : ARRAY[1..3] OF Limiter; ok : ARRAY[1..3] OF BOOL; i : INT; END_VAR\n\
+         FOR i := 1 TO 3 DO fs[i](EN := i <> 2, v := i * 10, ENO => ok[i]); END_FOR;\nEND_PROGRAM\n"
+    );
+    let plc = run_once(&src);
+    assert_eq!(lit(&plc, "ok[1]"), "TRUE");
+    assert_eq!(lit(&plc, "ok[2]"), "FALSE");
+    assert_eq!(lit(&plc, "ok[3]"), "FALSE");
+    assert_eq!(lit(&plc, "fs[3].q"), "30");
+    assert_eq!(lit(&plc, "fs[2].q"), "0");
+}
+
+#[test]
+fn il_set_makes_eno_true_again() {
+    let src = "FUNCTION_BLOCK Retry\nVAR_INPUT fail : BOOL; again : BOOL; END_VAR\n\
+         LD fail\nR ENO\nLD again\nS ENO\nEND_FUNCTION_BLOCK\n\
+         PROGRAM P\nVAR r : Retry; a : BOOL := TRUE; b : BOOL; END_VAR\n\
+         r(fail := TRUE, ENO => a);\nr(fail := TRUE, again := TRUE, ENO => b);\nEND_PROGRAM\n";
+    let plc = run_once(src);
+    assert_eq!(lit(&plc, "a"), "FALSE");
+    assert_eq!(lit(&plc, "b"), "TRUE");
+}

@@ -338,6 +338,13 @@ impl BodyBuilder<'_> {
             }
             _ => None,
         };
+        // An instance reached through an address (array element, VAR_IN_OUT)
+        // has its address computed only on the called path: a skipped call
+        // cannot reset its ENO there.
+        let callee_eno = callee_eno.map(|c| PlaceRef {
+            writable: c.writable && matches!(at, InstanceAt::Frame(_)),
+            ..c
+        });
         self.finish_en(skip, b.eno, callee_eno);
     }
 
