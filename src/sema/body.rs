@@ -83,6 +83,7 @@ impl<'a> BodyBuilder<'a> {
             self.block.emit(Op::CallHost { id });
         } else {
             self.emit_edge_inputs(pou);
+            self.emit_eno_start(pou);
             match &pou.body {
                 Body::St(stmts) => self.stmts(stmts),
                 Body::Il(lines) => {

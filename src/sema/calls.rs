@@ -341,7 +341,20 @@ impl BodyBuilder<'_> {
             };
             self.store_output(&src, negated, target, &p.name);
         }
-        self.finish_en(skip, b.eno);
+        let callee_eno = match &def.kind {
+            TypeKind::Pou { members, .. } if skip.is_some() || b.eno.is_some() => {
+                self.fb_eno(members, |off| at.member(off))
+            }
+            _ => None,
+        };
+        // An instance reached through an address (array element, VAR_IN_OUT)
+        // has its address computed only on the called path: a skipped call
+        // cannot reset its ENO there.
+        let callee_eno = callee_eno.map(|c| PlaceRef {
+            writable: c.writable && matches!(at, InstanceAt::Frame(_)),
+            ..c
+        });
+        self.finish_en(skip, b.eno, callee_eno);
     }
 
     /// The call interface of an FB type (`None` for what cannot be called).
@@ -526,16 +539,58 @@ impl BodyBuilder<'_> {
         self.write_place(&t, s);
     }
 
-    /// Closes an EN-guarded call: ENO := TRUE on the called path, FALSE when skipped.
-    pub(super) fn finish_en(&mut self, skip: Option<usize>, eno: Option<&Expr>) {
-        let Some(eno) = eno else {
-            if let Some(j) = skip {
-                let end = self.block.here();
-                self.block.patch(j, end);
-            }
+    /// Closes an EN-guarded call: `ENO =>` gets the callee's ENO output
+    /// (`callee_eno`, TRUE when it has none) on the called path and FALSE
+    /// when the call was skipped; a skipped instance's own ENO (a writable
+    /// `callee_eno`) is reset too.
+    pub(super) fn finish_en(
+        &mut self,
+        skip: Option<usize>,
+        eno: Option<&Expr>,
+        callee_eno: Option<PlaceRef>,
+    ) {
+        let target = eno.and_then(|e| self.eno_target(e));
+        let instance_eno = callee_eno.filter(|c| c.writable);
+        if let Some(t) = &target {
+            let v = match &callee_eno {
+                Some(c) => {
+                    let v = self.read_place(c);
+                    self.materialize(&v)
+                }
+                None => {
+                    let one = self.block.temp();
+                    self.block.emit(Op::LoadI { d: one, imm: 1 });
+                    one
+                }
+            };
+            self.write_place(t, v);
+        }
+        let Some(j) = skip else { return };
+        if target.is_none() && instance_eno.is_none() {
+            let end = self.block.here();
+            self.block.patch(j, end);
             return;
-        };
-        let Some(t) = self.place(eno) else { return };
+        }
+        let over = self.block.emit(Op::Jmp {
+            t: Target::UNPATCHED,
+        });
+        let at = self.block.here();
+        self.block.patch(j, at);
+        let zero = self.block.temp();
+        self.block.emit(Op::LoadI { d: zero, imm: 0 });
+        if let Some(c) = &instance_eno {
+            self.write_place(c, zero);
+        }
+        if let Some(t) = &target {
+            self.write_place(t, zero);
+        }
+        let end = self.block.here();
+        self.block.patch(over, end);
+    }
+
+    /// The BOOL variable an `ENO =>` stores into (`None` after an error).
+    fn eno_target(&mut self, eno: &Expr) -> Option<PlaceRef> {
+        let t = self.place(eno)?;
         if t.ty != TypeTable::elem(ElemType::Bool) {
             self.mismatch(
                 eno.span,
@@ -543,22 +598,8 @@ impl BodyBuilder<'_> {
                 TypeTable::elem(ElemType::Bool),
                 "ENO",
             );
-            return;
+            return None;
         }
-        let one = self.block.temp();
-        self.block.emit(Op::LoadI { d: one, imm: 1 });
-        self.write_place(&t, one);
-        if let Some(j) = skip {
-            let over = self.block.emit(Op::Jmp {
-                t: Target::UNPATCHED,
-            });
-            let at = self.block.here();
-            self.block.patch(j, at);
-            let zero = self.block.temp();
-            self.block.emit(Op::LoadI { d: zero, imm: 0 });
-            self.write_place(&t, zero);
-            let end = self.block.here();
-            self.block.patch(over, end);
-        }
+        Some(t)
     }
 }

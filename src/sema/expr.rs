@@ -28,6 +28,9 @@ impl BodyBuilder<'_> {
             ExprKind::Name(id) => {
                 // Enumeration value names come after variables.
                 let key = id.key();
+                if let Some(v) = self.en_in_body(&key) {
+                    return v;
+                }
                 if self.lookup_var(&key).is_none()
                     && let Some(v) = self.enum_value(&key, expect)
                 {

@@ -86,7 +86,11 @@ impl BodyBuilder<'_> {
         let result = self.function_result(p, call.span);
         self.read_function_outputs(p, &params, &b);
         if skip.is_some() || b.eno.is_some() {
-            self.finish_en(skip, b.eno);
+            let callee_eno = match b.eno {
+                Some(_) => self.function_eno(p),
+                None => None,
+            };
+            self.finish_en(skip, b.eno, callee_eno);
         }
         if !want {
             return Val::None(TypeTable::void());

@@ -42,6 +42,8 @@ mod calls;
 mod compat_typing;
 mod edge_inputs;
 mod emit;
+mod eno_body;
+mod eno_uses;
 mod expr;
 mod fb_member_read;
 mod fn_call;
@@ -130,6 +132,9 @@ pub fn compile(
         diags.push(too_deep);
         return None;
     }
+    // POUs whose body uses ENO declare it (a copy only when one does).
+    let with_eno = eno_body::with_implicit_eno(units, diags);
+    let units = with_eno.as_deref().unwrap_or(units);
     let mut declarer = declare::Declarer::new(units, diags);
     declarer.set_host_pous(&options.host_pous);
     declarer.set_grafcet(options.grafcet);
