@@ -151,6 +151,7 @@ fn compile_here(
         ));
     }
     let image = sema::compile(&units, options, diags);
+    crate::syntax::recovery::drop_cascades(sources, &units, diags);
     if diags.has_errors() { None } else { image }
 }
 

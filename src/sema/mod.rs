@@ -42,6 +42,7 @@ mod fn_call;
 mod for_loop;
 mod grafcet_forcing;
 mod il;
+mod il_recovery;
 mod place;
 mod sfc_emit;
 mod std_convert;
@@ -49,7 +50,9 @@ mod std_numeric;
 mod std_strings;
 mod stdfuncs;
 mod stmt;
+mod suggest;
 mod typeck;
+mod undeclared;
 
 // Phase 3: linking.
 mod link;
