@@ -11,6 +11,7 @@ pub mod lexer;
 pub mod literal;
 pub mod parser;
 pub mod plcopen;
+pub mod pragma_meaning;
 pub mod recovery;
 pub mod s7;
 pub mod token;
