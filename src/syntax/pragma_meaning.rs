@@ -19,7 +19,7 @@ pub fn named(text: &str) -> Option<(&'static str, String)> {
                 .unwrap_or("")
                 .trim()
                 .to_string();
-            Some(attribute(&name))
+            attribute(&name)
         }
         "if" | "elsif" | "else" | "end_if" | "define" | "undefine" => Some((
             "W152",
@@ -46,8 +46,8 @@ pub fn named(text: &str) -> Option<(&'static str, String)> {
 }
 
 /// The warning for `{attribute 'name'}`.
-fn attribute(name: &str) -> (&'static str, String) {
-    match name.to_ascii_lowercase().as_str() {
+fn attribute(name: &str) -> Option<(&'static str, String)> {
+    Some(match name.to_ascii_lowercase().as_str() {
         "qualified_only" => (
             "W150",
             "attribute 'qualified_only' ignored: plcrun does not require the names of this \
@@ -60,14 +60,27 @@ fn attribute(name: &str) -> (&'static str, String) {
                 "attribute '{name}' ignored: plcrun calls no method at initialisation or online change"
             ),
         ),
-        _ => (
+        other if LAYOUT_ATTRIBUTES.contains(&other) => (
             "W153",
             format!(
-                "attribute '{name}' ignored: it may change the meaning of this code in CODESYS"
+                "attribute '{name}' ignored: it changes layout, initialisation or access in CODESYS"
             ),
         ),
-    }
+        _ => return None,
+    })
 }
+
+/// Attributes that change layout, initialisation or access in CODESYS.
+const LAYOUT_ATTRIBUTES: [&str; 8] = [
+    "pack_mode",
+    "no_init",
+    "noinit",
+    "no_copy",
+    "no_assign",
+    "global_init_slot",
+    "init_namespace",
+    "hide",
+];
 
 /// `text` cut to 40 characters.
 fn short(text: &str) -> String {
@@ -91,6 +104,11 @@ mod tests {
         assert_eq!(code("{attribute 'pack_mode' := '1'}"), Some("W153"));
         assert_eq!(code("{error 'not for this PLC'}"), Some("W154"));
         assert_eq!(code("{ a pragma }"), None);
+        assert_eq!(
+            code("{attribute 'x'}"),
+            None,
+            "an unknown attribute stays W001"
+        );
         let (_, m) = named("{attribute 'pack_mode' := '1'}").unwrap();
         assert!(m.contains("'pack_mode'"), "{m}");
         let (_, m) = named("{IF defined(SIMULATION)}").unwrap();

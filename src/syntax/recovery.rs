@@ -27,6 +27,12 @@ pub fn salvage_decl(
     r: usize,
 ) -> Option<VarDecl> {
     st.recover(e);
+    salvage_names(st, l, r)
+}
+
+/// The declaration salvaged from the text `l..r` skipped after a syntax
+/// error already recorded (see [`salvage_decl`]).
+pub fn salvage_names(st: &State, l: usize, r: usize) -> Option<VarDecl> {
     let region = st.text().get(l..r)?;
     let mut scratch = Diagnostics::new();
     let toks: Vec<(usize, Tok, usize)> = lexer::lex(st.file(), region, &mut scratch)
@@ -82,27 +88,19 @@ pub fn salvage_decl(
 }
 
 /// A compound statement (IF, CASE, FOR, WHILE) whose header had a syntax
-/// error: the error is recorded and the statement, body included, is
+/// error (recorded by the grammar's `Recovered`): the statement, body included, is
 /// skipped (its body is checked once the header is fixed).
-pub fn skipped_stmt(st: &State, e: ErrorRecovery<usize, Tok, ()>, l: usize, r: usize) -> Stmt {
-    st.recover(e);
+pub fn skipped_stmt(st: &State, l: usize, r: usize) -> Stmt {
     Stmt {
         kind: StmtKind::Empty,
         span: st.span(l, r),
     }
 }
 
-/// A step with a syntax error: the error is recorded and the step kept
+/// A step with a syntax error (recorded by the grammar's `Recovered`): kept
 /// under its name (the first name after `STEP`), without actions, so
 /// that transitions naming it are not reported too.
-pub fn broken_step(
-    st: &State,
-    e: ErrorRecovery<usize, Tok, ()>,
-    initial: bool,
-    l: usize,
-    r: usize,
-) -> Step {
-    st.recover(e);
+pub fn broken_step(st: &State, initial: bool, l: usize, r: usize) -> Step {
     let region = st.text().get(l..r).unwrap_or("");
     let mut scratch = Diagnostics::new();
     let name = lexer::lex(st.file(), region, &mut scratch)
@@ -141,6 +139,11 @@ const OPENERS: [&str; 4] = [";", ",", "(", ":="];
 pub fn error_span(st: &State, expected: &[String], l: usize, r: usize) -> Span {
     let fallback = Span::new(st.file(), l, r.max(l));
     if !expected.iter().any(|e| TERMINATORS.contains(&e.as_str())) {
+        return fallback;
+    }
+    // Before `END_...` or at an IL line end, the place is already right.
+    let found = st.text().get(l..r).unwrap_or("");
+    if found.is_empty() || found.contains('\n') || found.to_ascii_uppercase().starts_with("END_") {
         return fallback;
     }
     let Some((pl, pr)) = st.token_before(l) else {
@@ -214,8 +217,10 @@ pub fn drop_cascades(sources: &SourceMap, units: &[CompilationUnit], diags: &mut
     let all: Vec<Diagnostic> = diags.iter().cloned().collect();
     diags.truncate(0);
     for d in all {
+        // Lexical (E0xx) and syntax (E1xx) errors are causes, never dropped.
+        let semantic = d.code.as_bytes().get(1).is_some_and(|&b| b >= b'2');
         let cascade = d.severity == Severity::Error
-            && !is_syntax(&d)
+            && semantic
             && (line(&d).is_some_and(|at| broken.contains(&at)) || explained(&d));
         if !cascade {
             diags.push(d);
