@@ -65,14 +65,14 @@ pub fn salvage_names(st: &State, l: usize, r: usize) -> Option<VarDecl> {
         i += 2;
     }
     let ty = match (toks.get(i), toks.get(i + 1), toks.get(i + 2)) {
-        (Some((_, Tok::Colon, _)), Some((a, Tok::Ident(ty), b)), Some((_, end, _)))
-            if matches!(end, Tok::Semi | Tok::Assign) =>
-        {
-            TypeSpec::Named(Ident {
-                name: ty.clone(),
-                span: st.span(*a, *b),
-            })
-        }
+        (
+            Some((_, Tok::Colon, _)),
+            Some((a, Tok::Ident(ty), b)),
+            Some((_, Tok::Semi | Tok::Assign, _)),
+        ) => TypeSpec::Named(Ident {
+            name: ty.clone(),
+            span: st.span(*a, *b),
+        }),
         _ => TypeSpec::Named(Ident {
             name: UNKNOWN_TYPE.to_string(),
             span: st.span(l, l),
