@@ -146,6 +146,7 @@ fn compile_here(
         units.push(crate::syntax::parse_source(FileId(i as u32), file, diags));
     }
     let image = sema::compile(&units, options, diags);
+    crate::syntax::recovery::drop_cascades(sources, &units, diags);
     if options.strict {
         diags.make_strict();
     }

@@ -157,8 +157,11 @@ impl BodyBuilder<'_> {
                 ),
             );
         } else {
-            self.diags
-                .error("E201", id.span, format!("unknown function `{}`", id.name));
+            let message = format!("unknown function `{}`", id.name);
+            let names = self.model.pous.iter().map(|p| p.name.as_str());
+            let names = names.chain(super::suggest::STANDARD_FUNCTIONS.iter().copied());
+            let message = super::suggest::with_suggestion(message, &id.name, names);
+            self.diags.error("E201", id.span, message);
         }
         Val::error()
     }
@@ -247,11 +250,14 @@ impl BodyBuilder<'_> {
                             ok = false;
                         }
                         None => {
-                            self.diags.error(
-                                "E403",
-                                name.span,
-                                format!("`{callee}` has no input `{}`", name.name),
-                            );
+                            if !self.pou_broken(callee) {
+                                let message = format!("`{callee}` has no input `{}`", name.name);
+                                let inputs = params.iter().filter(|p| p.kind != MemberKind::Output);
+                                let names = inputs.map(|p| p.name.as_str());
+                                let message =
+                                    super::suggest::with_suggestion(message, &name.name, names);
+                                self.diags.error("E403", name.span, message);
+                            }
                             ok = false;
                         }
                     }
@@ -270,11 +276,15 @@ impl BodyBuilder<'_> {
                             b.outputs.push((i, *negated, target));
                         }
                         _ => {
-                            self.diags.error(
-                                "E403",
-                                name.span,
-                                format!("`{callee}` has no output `{}`", name.name),
-                            );
+                            if !self.pou_broken(callee) {
+                                let message = format!("`{callee}` has no output `{}`", name.name);
+                                let outputs =
+                                    params.iter().filter(|p| p.kind == MemberKind::Output);
+                                let names = outputs.map(|p| p.name.as_str());
+                                let message =
+                                    super::suggest::with_suggestion(message, &name.name, names);
+                                self.diags.error("E403", name.span, message);
+                            }
                             ok = false;
                         }
                     }

@@ -105,11 +105,10 @@ impl BodyBuilder<'_> {
             LiteralValue::EnumValue(id) => match self.enum_value(&id.key(), expect) {
                 Some(v) => v,
                 None => {
-                    self.diags.error(
-                        "E201",
-                        span,
-                        format!("unknown enumeration value `{}`", id.name),
-                    );
+                    let message = format!("unknown enumeration value `{}`", id.name);
+                    let names = self.model.enum_values.keys().map(String::as_str);
+                    let message = super::suggest::with_suggestion(message, &id.name, names);
+                    self.diags.error("E201", span, message);
                     Val::error()
                 }
             },

@@ -84,6 +84,8 @@ struct IlState {
     stack: Vec<Deferred>,
     labels: HashMap<String, (Target, Option<TypeId>)>,
     pending: Vec<(usize, Ident, Option<TypeId>)>,
+    /// A line of the body had a syntax error: `(` and `)` may not match.
+    after_error: bool,
 }
 
 impl BodyBuilder<'_> {
@@ -100,7 +102,11 @@ impl BodyBuilder<'_> {
             stack: Vec::new(),
             labels: HashMap::new(),
             pending: Vec::new(),
+            after_error: false,
         };
+        // After a line with a syntax error the CR is unknown: messages are
+        // held back until a label or a load at the outer level.
+        let mut poisoned = false;
         // Collect labels first so forward jumps know their targets exist.
         let mut declared: HashMap<String, Span> = HashMap::new();
         for line in lines {
@@ -117,7 +123,12 @@ impl BodyBuilder<'_> {
             }
         }
         for line in lines {
+            if line.label.is_none() && line.instr.is_none() {
+                (poisoned, st.after_error) = (true, true);
+                continue;
+            }
             if let Some(l) = &line.label {
+                poisoned = false;
                 // The CR type at a label: what falls through, else what jumps bring.
                 let jumped = st
                     .pending
@@ -139,11 +150,20 @@ impl BodyBuilder<'_> {
             if let Some(instr) = &line.instr {
                 let mark = self.block.temp_next;
                 self.block.span = instr.span;
+                poisoned &= !super::il_recovery::is_load(instr) || !st.stack.is_empty();
+                let reported = self.diags.len();
                 self.il_instr(&mut st, instr);
+                if poisoned {
+                    self.diags.truncate(reported);
+                }
+                // An instruction in error, or a CR of no known type (an
+                // undeclared operand), leaves the CR unknown too.
+                poisoned |= st.cr_ty == Some(TypeTable::error())
+                    || super::il_recovery::has_error_since(self.diags, reported);
                 self.block.temp_next = mark.max(self.block.temp_base);
             }
         }
-        for d in &st.stack {
+        for d in st.stack.iter().filter(|_| !st.after_error) {
             self.diags.error(
                 "E501",
                 d.span,
@@ -432,8 +452,10 @@ impl BodyBuilder<'_> {
     /// `)`: the deferred operator applied to the saved CR and the inner CR.
     fn il_close(&mut self, st: &mut IlState, span: Span) {
         let Some(d) = st.stack.pop() else {
-            self.diags
-                .error("E501", span, "`)` without a matching `OP(`");
+            if !st.after_error {
+                self.diags
+                    .error("E501", span, "`)` without a matching `OP(`");
+            }
             return;
         };
         let Some(inner) = self.cr_val(st, span, "`)`") else {

@@ -52,6 +52,7 @@ mod grafcet_forcing;
 mod il;
 mod input_write;
 mod partial_access;
+mod il_recovery;
 mod place;
 mod refs;
 mod sfc_emit;
@@ -64,7 +65,9 @@ mod std_typed_names;
 mod stdfuncs;
 mod stmt;
 mod struct_returns;
+mod suggest;
 mod typeck;
+mod undeclared;
 
 // Phase 3: linking.
 mod link;

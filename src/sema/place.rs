@@ -81,12 +81,12 @@ impl BodyBuilder<'_> {
     fn place_name(&mut self, id: &Ident) -> Option<PlaceRef> {
         let key = id.key();
         let Some(var) = self.lookup_var(&key).cloned() else {
-            let what = if self.model.pou_index.contains_key(&key) {
-                format!("`{}` is a POU, not a variable", id.name)
+            if self.model.pou_index.contains_key(&key) {
+                let what = format!("`{}` is a POU, not a variable", id.name);
+                self.diags.error("E201", id.span, what);
             } else {
-                format!("undeclared variable `{}`", id.name)
-            };
-            self.diags.error("E201", id.span, what);
+                self.undeclared_variable(id);
+            }
             return None;
         };
         let place = match var.storage {
@@ -199,11 +199,10 @@ impl BodyBuilder<'_> {
         match m {
             Some(m) => Some((m.offset, m.ty, b.writable, b.readonly_reason)),
             None => {
-                self.diags.error(
-                    "E201",
-                    name.span,
-                    format!("`{}` has no field `{}`", def.name, name.name),
-                );
+                let message = format!("`{}` has no field `{}`", def.name, name.name);
+                let names = fields.iter().map(|m| m.name.as_str());
+                let message = super::suggest::with_suggestion(message, &name.name, names);
+                self.diags.error("E201", name.span, message);
                 None
             }
         }
@@ -237,11 +236,13 @@ impl BodyBuilder<'_> {
                 ))
             }
             _ => {
-                self.diags.error(
-                    "E201",
-                    name.span,
-                    format!("{} has no input or output `{}`", def.name, name.name),
-                );
+                let message = format!("{} has no input or output `{}`", def.name, name.name);
+                let names = params
+                    .iter()
+                    .filter(|p| p.dir != crate::stdlib::ParamDir::Hidden)
+                    .map(|p| p.name);
+                let message = super::suggest::with_suggestion(message, &name.name, names);
+                self.diags.error("E201", name.span, message);
                 None
             }
         }
@@ -282,11 +283,10 @@ impl BodyBuilder<'_> {
             }
             Some(m) => self.fb_member_outside(def, m, name),
             None => {
-                self.diags.error(
-                    "E201",
-                    name.span,
-                    format!("{} has no member `{}`", def.name, name.name),
-                );
+                let message = format!("{} has no member `{}`", def.name, name.name);
+                let names = members.iter().map(|m| m.name.as_str());
+                let message = super::suggest::with_suggestion(message, &name.name, names);
+                self.diags.error("E201", name.span, message);
                 None
             }
         }

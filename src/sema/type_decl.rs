@@ -92,6 +92,10 @@ impl Declarer<'_> {
     /// A named type: elementary, user TYPE, standard FB or user FB/PROGRAM
     /// (whose layout, and for an FB its body, comes first).
     fn named_type(&mut self, id: &Ident) -> TypeId {
+        if id.name == crate::syntax::recovery::UNKNOWN_TYPE {
+            // A declaration salvaged after a syntax error (already reported).
+            return TypeTable::error();
+        }
         if let Some(e) = ElemType::from_name(&id.name) {
             return TypeTable::elem(e);
         }
@@ -127,8 +131,19 @@ impl Declarer<'_> {
                 }
             };
         }
-        self.diags
-            .error("E203", id.span, format!("unknown type `{}`", id.name));
+        let message = format!("unknown type `{}`", id.name);
+        let elementary = ElemType::ALL.iter().map(|e| e.name());
+        let user = self
+            .model
+            .pous
+            .iter()
+            .filter(|p| p.kind == PouKind::FunctionBlock);
+        let names = elementary
+            .chain(user.map(|p| p.name.as_str()))
+            .chain(self.model.type_ids.keys().map(String::as_str))
+            .chain(super::suggest::STANDARD_FBS.iter().copied());
+        let message = super::suggest::with_suggestion(message, &id.name, names);
+        self.diags.error("E203", id.span, message);
         TypeTable::error()
     }
 

@@ -40,6 +40,8 @@ pub struct State<'t> {
     /// An overlong chain was cut (E106): later chains in the file are not
     /// built either.
     chain_cut: Cell<bool>,
+    /// Byte ranges of the tokens parsed (for [`crate::syntax::recovery`]).
+    token_spans: Vec<(usize, usize)>,
 }
 
 impl<'t> State<'t> {
@@ -58,7 +60,19 @@ impl<'t> State<'t> {
             quiet_lines: RefCell::new(Vec::new()),
             last_binary: Cell::new(None),
             chain_cut: Cell::new(false),
+            token_spans: Vec::new(),
         }
+    }
+
+    /// Remembers the byte ranges of the tokens about to be parsed.
+    pub fn set_token_spans(&mut self, spans: Vec<(usize, usize)>) {
+        self.token_spans = spans;
+    }
+
+    /// The range of the last token that ends at or before byte `at`.
+    pub fn token_before(&self, at: usize) -> Option<(usize, usize)> {
+        let n = self.token_spans.partition_point(|&(_, r)| r <= at);
+        n.checked_sub(1).map(|i| self.token_spans[i])
     }
 
     /// The span `l..r` in this file.

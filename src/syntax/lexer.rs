@@ -75,7 +75,11 @@ pub fn lex_in(
             }
             Raw::LineComment => continue,
             Raw::Pragma => {
-                if slice.ends_with('}') {
+                if slice.ends_with('}')
+                    && let Some((code, message)) = super::pragma_meaning::named(slice)
+                {
+                    diags.warning(code, span(r.start, r.end), message);
+                } else if slice.ends_with('}') {
                     let shown: String = slice.chars().take(40).collect();
                     let more = if shown.len() < slice.len() { "..." } else { "" };
                     diags.warning(

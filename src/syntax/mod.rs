@@ -14,6 +14,8 @@ pub mod oop;
 pub mod parser;
 pub mod plcopen;
 pub mod ref_words;
+pub mod pragma_meaning;
+pub mod recovery;
 pub mod s7;
 mod soft_keywords;
 pub mod token;

@@ -41,7 +41,7 @@ const UNSUPPORTED: [&str; 12] = [
 /// Parses a token stream whose line breaks were kept or dropped by
 /// [`crate::syntax::il_lines`] (`text` is the source it came from).
 pub fn parse_tokens(
-    st: State<'_>,
+    mut st: State<'_>,
     tokens: Vec<Spanned>,
     diags: &mut Diagnostics,
 ) -> CompilationUnit {
@@ -58,6 +58,7 @@ pub fn parse_tokens(
             ));
         }
     }
+    st.set_token_spans(tokens.iter().map(|(l, _, r)| (*l, *r)).collect());
     let parser = grammar::UnitParser::new();
     let result = parser.parse(&st, tokens.into_iter().map(Ok::<Spanned, ()>));
     let unit = match result {
@@ -175,7 +176,7 @@ pub fn recovery_diagnostic(st: &State, e: ParseError<usize, Tok, ()>) -> Diagnos
             }
             let d = Diagnostic::error(
                 "E101",
-                span(l, r),
+                crate::syntax::recovery::error_span(st, &expected, l, r),
                 format!(
                     "expected {}, found {}",
                     expected_text(&expected),
