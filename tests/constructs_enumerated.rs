@@ -181,8 +181,10 @@ const ROWS: &[Row] = &[
     // Words other dialects use: each runs or is refused by name.
     Row {
         covers: &["R_EDGE", "F_EDGE"],
-        source: "PROGRAM P\nVAR\n  x : BOOL R_EDGE;\n  y : BOOL F_EDGE;\nEND_VAR\nEND_PROGRAM\n",
-        expect: &[],
+        // x toggles every cycle: TRUE, FALSE, TRUE: two rising edges, one falling.
+        source: "FUNCTION_BLOCK E\nVAR_INPUT\n  r : BOOL R_EDGE;\n  f : BOOL F_EDGE;\nEND_VAR\nVAR_OUTPUT\n  nr : INT; nf : INT;\nEND_VAR\nIF r THEN nr := nr + 1; END_IF;\nIF f THEN nf := nf + 1; END_IF;\nEND_FUNCTION_BLOCK\n\
+            PROGRAM P\nVAR\n  e : E; x : BOOL; a : INT; b : INT;\nEND_VAR\nx := NOT x;\ne(r := x, f := x);\na := e.nr;\nb := e.nf;\nEND_PROGRAM\n",
+        expect: &[("a", "2"), ("b", "1")],
     },
     Row {
         covers: &["VAR_ACCESS"],
@@ -191,18 +193,20 @@ const ROWS: &[Row] = &[
     },
     Row {
         covers: &["VAR_CONFIG"],
-        source: "PROGRAM P\nVAR\n  x : INT;\nEND_VAR\nx := 1;\nEND_PROGRAM\nCONFIGURATION C\nRESOURCE R ON PLC\nPROGRAM p1 : P;\nEND_RESOURCE\nVAR_CONFIG\n  p1.x : INT := 5;\nEND_VAR\nEND_CONFIGURATION\n",
-        expect: &[],
+        // VAR_CONFIG gives p1.x its initial value 5; three cycles add 3.
+        source: "PROGRAM P\nVAR\n  x : INT;\nEND_VAR\nx := x + 1;\nEND_PROGRAM\nCONFIGURATION C\nRESOURCE R ON PLC\nPROGRAM p1 : P;\nEND_RESOURCE\nVAR_CONFIG\n  p1.x : INT := 5;\nEND_VAR\nEND_CONFIGURATION\n",
+        expect: &[("p1.x", "8")],
     },
     Row {
         covers: &["METHOD", "END_METHOD"],
         source: "FUNCTION_BLOCK F\nVAR\n  n : INT;\nEND_VAR\nMETHOD Inc : INT\nn := n + 1;\nInc := n;\nEND_METHOD\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  f : F; v : INT;\nEND_VAR\nv := f.Inc();\nEND_PROGRAM\n",
-        expect: &[],
+        expect: &[("v", "3")],
     },
     Row {
-        covers: &["INTERFACE", "IMPLEMENTS"],
-        source: "INTERFACE I\nMETHOD M : INT\nEND_METHOD\nEND_INTERFACE\nFUNCTION_BLOCK F IMPLEMENTS I\nMETHOD M : INT\nM := 1;\nEND_METHOD\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  f : F;\nEND_VAR\nEND_PROGRAM\n",
-        expect: &[],
+        covers: &["INTERFACE", "END_INTERFACE", "IMPLEMENTS"],
+        // A call through the interface variable reaches F's method.
+        source: "INTERFACE I\nMETHOD M : INT\nEND_METHOD\nEND_INTERFACE\nFUNCTION_BLOCK F IMPLEMENTS I\nVAR\n  n : INT;\nEND_VAR\nMETHOD M : INT\nn := n + 1;\nM := n;\nEND_METHOD\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  f : F; itf : I; v : INT;\nEND_VAR\nitf := f;\nv := itf.M();\nEND_PROGRAM\n",
+        expect: &[("v", "3")],
     },
     Row {
         covers: &["PROPERTY"],
@@ -215,14 +219,30 @@ const ROWS: &[Row] = &[
         expect: &[],
     },
     Row {
-        covers: &["EXTENDS"],
-        source: "FUNCTION_BLOCK A\nVAR\n  n : INT;\nEND_VAR\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  b : B;\nEND_VAR\nb();\nEND_PROGRAM\n",
-        expect: &[],
+        covers: &[
+            "EXTENDS",
+            "ABSTRACT",
+            "FINAL",
+            "PUBLIC",
+            "PRIVATE",
+            "PROTECTED",
+            "INTERNAL",
+            "SUPER^",
+            "THIS^",
+        ],
+        // B's Bump adds 100 to A's (SUPER^); Get reads the inherited n
+        // through THIS^ and adds the private Hidden (1) and protected Base (10).
+        source: "FUNCTION_BLOCK ABSTRACT A\nVAR\n  n : INT;\nEND_VAR\nMETHOD PUBLIC Bump : INT\nn := n + 1;\nBump := n;\nEND_METHOD\nMETHOD PROTECTED Base : INT\nBase := 10;\nEND_METHOD\nEND_FUNCTION_BLOCK\n\
+            FUNCTION_BLOCK FINAL B EXTENDS A\nMETHOD PUBLIC Bump : INT\nBump := SUPER^.Bump() + 100;\nEND_METHOD\nMETHOD PRIVATE Hidden : INT\nHidden := 1;\nEND_METHOD\nMETHOD INTERNAL Get : INT\nGet := THIS^.n + Hidden() + Base();\nEND_METHOD\nEND_FUNCTION_BLOCK\n\
+            PROGRAM P\nVAR\n  b : B; v : INT; g : INT;\nEND_VAR\nv := b.Bump();\ng := b.Get();\nEND_PROGRAM\n",
+        expect: &[("v", "103"), ("g", "14")],
     },
     Row {
-        covers: &["POINTER", "REF_TO"],
-        source: "PROGRAM P\nVAR\n  x : INT;\n  p : POINTER TO INT;\n  r : REF_TO INT;\nEND_VAR\nEND_PROGRAM\n",
-        expect: &[],
+        covers: &["POINTER", "REF_TO", "Expr::Deref", "Stmt::RefAssign"],
+        // Each cycle adds 1 through r^ and 1 through rr: x is 6 after three;
+        // y was read through p^ between the two (x = 5).
+        source: "PROGRAM P\nVAR\n  x : INT;\n  p : POINTER TO INT;\n  r : REF_TO INT;\n  rr : REFERENCE TO INT;\n  y : INT;\nEND_VAR\nr := REF(x);\nr^ := r^ + 1;\np := ADR(x);\ny := p^ * 10;\nrr REF= x;\nrr := rr + 1;\nEND_PROGRAM\n",
+        expect: &[("x", "6"), ("y", "50")],
     },
     Row {
         covers: &["NAMESPACE", "USING"],

@@ -28,7 +28,9 @@ pub(super) fn body_mentions_eno(body: &Body) -> bool {
 
 fn stmt(s: &Stmt) -> bool {
     match &s.kind {
-        StmtKind::Assign { target, value } => expr(target) || expr(value),
+        StmtKind::Assign { target, value } | StmtKind::RefAssign { target, value } => {
+            expr(target) || expr(value)
+        }
         StmtKind::Call(c) => expr(&c.callee) || args(&c.args),
         StmtKind::If {
             branches,
@@ -104,7 +106,7 @@ fn expr(e: &Expr) -> bool {
         // `inst.ENO` names another instance's output, not our own.
         ExprKind::Member(base, _) | ExprKind::BitAccess(base, _) => expr(base),
         ExprKind::Index(base, idx) => expr(base) || idx.iter().any(expr),
-        ExprKind::Unary(_, x) | ExprKind::Paren(x) => expr(x),
+        ExprKind::Unary(_, x) | ExprKind::Paren(x) | ExprKind::Deref(x) => expr(x),
         ExprKind::Binary(_, a, b) => expr(a) || expr(b),
         ExprKind::Call(c) => expr(&c.callee) || args(&c.args),
     }

@@ -74,32 +74,8 @@ pub fn lex_in(
                 }
             }
             Raw::LineComment => continue,
-            Raw::Pragma => {
-                if slice.ends_with('}')
-                    && let Some((code, message)) = super::pragma_meaning::named(slice)
-                {
-                    diags.warning(code, span(r.start, r.end), message);
-                } else if slice.ends_with('}') {
-                    let shown: String = slice.chars().take(40).collect();
-                    let more = if shown.len() < slice.len() { "..." } else { "" };
-                    diags.warning(
-                        "W001",
-                        span(r.start, r.end),
-                        format!("pragma `{shown}{more}` ignored"),
-                    );
-                } else {
-                    diags.error(
-                        "E010",
-                        span(r.start, r.start + 1),
-                        "unterminated pragma: `{` has no closing `}`",
-                    );
-                }
-                if slice.contains('\n') {
-                    Tok::Eol
-                } else {
-                    continue;
-                }
-            }
+            Raw::Pragma if pragma(span(r.start, r.end), slice, diags) => Tok::Eol,
+            Raw::Pragma => continue,
             Raw::Word if library_list(&mut lexer, span(r.start, r.end), text, diags) => Tok::Eol,
             Raw::Word => word(slice),
             Raw::ThisDeref => Tok::Kw(Kw::ThisDeref),
@@ -179,6 +155,28 @@ pub fn lex_in(
     flush_bad(file, text, &mut bad_run, diags);
     crate::syntax::ref_words::merge(&mut out);
     out
+}
+
+/// Reports a `{...}` pragma: named when other tools give it a meaning,
+/// W001 otherwise, E010 when unterminated. True when it spans lines (it
+/// then ends an IL line, as a comment does).
+fn pragma(at: Span, slice: &str, diags: &mut Diagnostics) -> bool {
+    if slice.ends_with('}')
+        && let Some((code, message)) = super::pragma_meaning::named(slice)
+    {
+        diags.warning(code, at, message);
+    } else if slice.ends_with('}') {
+        let shown: String = slice.chars().take(40).collect();
+        let more = if shown.len() < slice.len() { "..." } else { "" };
+        diags.warning("W001", at, format!("pragma `{shown}{more}` ignored"));
+    } else {
+        diags.error(
+            "E010",
+            Span::new(at.file, at.start as usize, at.start as usize + 1),
+            "unterminated pragma: `{` has no closing `}`",
+        );
+    }
+    slice.contains('\n')
 }
 
 /// Skips the `LIBRARY ... END_LIBRARY` list a CoDeSys 2.3 export ends

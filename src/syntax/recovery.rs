@@ -84,6 +84,7 @@ pub fn salvage_names(st: &State, l: usize, r: usize) -> Option<VarDecl> {
         ty,
         init: None,
         span: st.span(l, r),
+        edge: None,
     })
 }
 

@@ -446,10 +446,10 @@ impl Lowering<'_> {
         fb.versions = versions;
         fb.dispatch = dispatch;
         fb.interfaces = interfaces;
-        if pou.oop.is_some() {
-            if let Item::Pou(p) = &mut self.units[at.0].items[at.1] {
-                p.var_blocks = flat.clone();
-            }
+        if pou.oop.is_some()
+            && let Item::Pou(p) = &mut self.units[at.0].items[at.1]
+        {
+            p.var_blocks = flat.clone();
         }
         self.flat.insert(key.to_string(), flat);
     }
@@ -560,6 +560,7 @@ impl Lowering<'_> {
                     ty: d.ty.clone(),
                     init: d.init.clone(),
                     span: d.span,
+                    edge: None,
                 });
             }
             blocks.push(VarBlock {
@@ -592,6 +593,7 @@ impl Lowering<'_> {
                     ty: t.clone(),
                     init: None,
                     span: m.name.span,
+                    edge: None,
                 }],
                 span: m.name.span,
             });
@@ -677,5 +679,6 @@ fn field(name: &str, ty: &str, span: Span) -> VarDecl {
         }),
         init: None,
         span,
+        edge: None,
     }
 }
