@@ -312,7 +312,7 @@ impl Carry<'_> {
                 true
             }
             // A reference designates an object of the old layout: it
-            // starts again from NULL (docs/semantics.md §11).
+            // starts again from NULL (docs/semantics.md §16).
             (TypeKind::Ref { .. }, TypeKind::Ref { .. }) => {
                 self.entries.push(Entry::Initialised(path.to_string()));
                 false
