@@ -6,25 +6,8 @@
 #[path = "support/plc.rs"]
 mod plc;
 
-use plc::{compile, error_codes, lit, program, run};
+use plc::{compile, error_codes, first_fault, line_col, lit, program, run};
 use plcrun::FaultKind;
-
-fn first_fault(src: &str) -> plcrun::RuntimeFault {
-    let mut plc = compile(src);
-    for _ in 0..10 {
-        if let Err(f) = plc.run_cycle() {
-            return f;
-        }
-    }
-    panic!("no fault in 10 cycles");
-}
-
-fn line_col(location: &str) -> (usize, usize) {
-    let mut it = location.rsplitn(3, ':');
-    let col = it.next().unwrap().parse().unwrap();
-    let line = it.next().unwrap().parse().unwrap();
-    (line, col)
-}
 
 fn warning_codes(src: &str) -> Vec<String> {
     let plc = compile(src);

@@ -6,7 +6,7 @@
 #[path = "support/plc.rs"]
 mod plc;
 
-use plc::{compile, program};
+use plc::{first_fault, line_col, program};
 use plcrun::FaultKind;
 use plcrun::{Options, Plc};
 use rstest::rstest;
@@ -19,24 +19,6 @@ fn faulty(decls: &str, stmt: &str) -> String {
         &format!("c : INT; {decls}"),
         &format!("c := c + 1; IF c = 3 THEN {stmt} END_IF;"),
     )
-}
-
-fn first_fault(src: &str) -> plcrun::RuntimeFault {
-    let mut plc = compile(src);
-    for _ in 0..10 {
-        if let Err(f) = plc.run_cycle() {
-            return f;
-        }
-    }
-    panic!("no fault in 10 cycles");
-}
-
-/// The `line:col` of a `file:line:col` location.
-fn line_col(location: &str) -> (usize, usize) {
-    let mut it = location.rsplitn(3, ':');
-    let col = it.next().unwrap().parse().unwrap();
-    let line = it.next().unwrap().parse().unwrap();
-    (line, col)
 }
 
 #[rstest]

@@ -63,3 +63,23 @@ pub fn error_codes(files: &[(&str, &str)]) -> Vec<(String, String)> {
             .collect(),
     }
 }
+
+/// Runs `src` for up to ten cycles and returns its first runtime fault
+/// (panics when none comes).
+pub fn first_fault(src: &str) -> plcrun::RuntimeFault {
+    let mut plc = compile(src);
+    for _ in 0..10 {
+        if let Err(f) = plc.run_cycle() {
+            return f;
+        }
+    }
+    panic!("no fault in 10 cycles");
+}
+
+/// The `line:col` of a `file:line:col` location.
+pub fn line_col(location: &str) -> (usize, usize) {
+    let mut it = location.rsplitn(3, ':');
+    let col = it.next().unwrap().parse().unwrap();
+    let line = it.next().unwrap().parse().unwrap();
+    (line, col)
+}
