@@ -23,16 +23,10 @@ lalrpop_util::lalrpop_mod!(
 
 /// Words that other dialects use and plcrun does not support; named
 /// explicitly in messages (`E110`).
-const UNSUPPORTED: [&str; 12] = [
+const UNSUPPORTED: [&str; 6] = [
     "VAR_ACCESS",
-    "VAR_CONFIG",
-    "METHOD",
-    "END_METHOD",
-    "INTERFACE",
     "PROPERTY",
     "CLASS",
-    "EXTENDS",
-    "IMPLEMENTS",
     "NAMESPACE",
     "USING",
     "OVERLAP",
