@@ -292,6 +292,40 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// The dimensions and element type of the array type `ty` indexed by
+    /// `given` indexes in `e` (E302 when it is not an array, E404 when the
+    /// count differs).
+    pub(in crate::sema) fn array_shape(
+        &mut self,
+        e: &Expr,
+        ty: TypeId,
+        given: usize,
+    ) -> Option<(Vec<Dim>, TypeId)> {
+        let TypeKind::Array { dims, elem } = self.types.get(ty).kind.clone() else {
+            if ty != TypeTable::error() {
+                self.diags.error(
+                    "E302",
+                    e.span,
+                    format!("`[...]` needs an array, found {}", self.types.name(ty)),
+                );
+            }
+            return None;
+        };
+        if given != dims.len() {
+            self.diags.error(
+                "E404",
+                e.span,
+                format!(
+                    "array has {} dimension(s), {} index(es) given",
+                    dims.len(),
+                    given
+                ),
+            );
+            return None;
+        }
+        Some((dims, elem))
+    }
+
     /// An array element: `base[i, j, ...]`.
     fn place_index(&mut self, e: &Expr, base: &Expr, indexes: &[Expr]) -> Option<PlaceRef> {
         if let ExprKind::Deref(r) = &base.kind {
@@ -299,28 +333,7 @@ impl BodyBuilder<'_> {
             return self.place_deref_index(e, r, indexes);
         }
         let b = self.place(base)?;
-        let TypeKind::Array { dims, elem } = self.types.get(b.ty).kind.clone() else {
-            if b.ty != TypeTable::error() {
-                self.diags.error(
-                    "E302",
-                    e.span,
-                    format!("`[...]` needs an array, found {}", self.types.name(b.ty)),
-                );
-            }
-            return None;
-        };
-        if indexes.len() != dims.len() {
-            self.diags.error(
-                "E404",
-                e.span,
-                format!(
-                    "array has {} dimension(s), {} index(es) given",
-                    dims.len(),
-                    indexes.len()
-                ),
-            );
-            return None;
-        }
+        let (dims, elem) = self.array_shape(e, b.ty, indexes.len())?;
         let elem_size = self.types.size(elem);
         let vals = self.index_values(indexes)?;
         // All indexes constant: a static offset, checked now.

@@ -3,7 +3,7 @@
 use super::ref_parts;
 use crate::ir::image::ArrayDesc;
 use crate::ir::op::{Op, Slot};
-use crate::ir::type_table::{RefFlavor, TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{RefFlavor, TypeId};
 use crate::sema::body::BodyBuilder;
 use crate::sema::emit::{Place, PlaceRef, Val};
 use crate::syntax::ast::Expr;
@@ -78,29 +78,7 @@ impl BodyBuilder<'_> {
         indexes: &[Expr],
     ) -> Option<PlaceRef> {
         let (slot, target) = self.reference_operand(r)?;
-        let TypeKind::Array { dims, elem } = self.types.get(target).kind.clone() else {
-            if target != TypeTable::error() {
-                let name = self.types.name(target).to_string();
-                self.diags.error(
-                    "E302",
-                    e.span,
-                    format!("`[...]` needs an array, found {name}"),
-                );
-            }
-            return None;
-        };
-        if indexes.len() != dims.len() {
-            self.diags.error(
-                "E404",
-                e.span,
-                format!(
-                    "array has {} dimension(s), {} index(es) given",
-                    dims.len(),
-                    indexes.len()
-                ),
-            );
-            return None;
-        }
+        let (dims, elem) = self.array_shape(e, target, indexes.len())?;
         let vals = self.index_values(indexes)?;
         let idx = self.dynamic_index(&vals, &dims);
         let stride = self.types.size(elem).max(1);
