@@ -60,8 +60,18 @@ fn create(name: &str, text: &str) -> PlcHandle {
         name: name.as_ptr(),
         text: text.as_ptr(),
     };
+    // No wall-clock watchdog unless a test sets one: these tests are about
+    // the entry points, and scripts/memcheck runs them under valgrind, where
+    // a cycle can take seconds.
+    let mut options = PlcOptions {
+        cycle_time_ns: 0,
+        program: null(),
+        watchdog_ns: 0,
+    };
+    assert_eq!(unsafe { plc_options_init(&mut options) }, PLC_OK);
+    options.watchdog_ns = 0;
     let mut plc = PlcHandle { id: 0 };
-    let status = unsafe { plc_create(&source, 1, null(), &mut plc) };
+    let status = unsafe { plc_create(&source, 1, &options, &mut plc) };
     assert_eq!(status, PLC_OK, "{}", last_error());
     plc
 }
