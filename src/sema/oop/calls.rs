@@ -628,12 +628,9 @@ impl BodyBuilder<'_> {
                 );
                 return;
             };
-            let f = &self.model.oop.fbs[&fb];
-            if !f.interfaces.iter().any(|i| i == itf) {
-                self.not_implementing(value.span, &f.name.clone(), itf);
+            let Some(tid) = self.implementing_tid(value.span, &fb, itf) else {
                 return;
-            }
-            let tid = f.tid;
+            };
             let this = place_ref(Place::Frame(Slot::new(0)), ulint);
             (self.address_of(&this), tid)
         } else {
@@ -652,12 +649,9 @@ impl BodyBuilder<'_> {
                 );
                 return;
             };
-            let f = &self.model.oop.fbs[&fb];
-            if !f.interfaces.iter().any(|i| i == itf) {
-                self.not_implementing(value.span, &f.name.clone(), itf);
+            let Some(tid) = self.implementing_tid(value.span, &fb, itf) else {
                 return;
-            }
-            let tid = f.tid;
+            };
             (self.address_of(&src), tid)
         };
         let member = |off: u32| match dst.place {
@@ -679,13 +673,20 @@ impl BodyBuilder<'_> {
         self.write_place(&place_ref(member(1), udint), t);
     }
 
-    fn not_implementing(&mut self, span: Span, fb: &str, itf: &str) {
-        let name = self.model.oop.interfaces[itf].name.clone();
+    /// The type id of FB `fb` stored with it in interface `itf`; E914 at
+    /// `span` when `fb` does not implement `itf`.
+    fn implementing_tid(&mut self, span: Span, fb: &str, itf: &str) -> Option<u32> {
+        let f = &self.model.oop.fbs[fb];
+        if f.interfaces.iter().any(|i| i == itf) {
+            return Some(f.tid);
+        }
+        let (fb_name, name) = (f.name.clone(), self.model.oop.interfaces[itf].name.clone());
         self.diags.error(
             "E914",
             span,
-            format!("`{fb}` does not implement `{name}`: it cannot be assigned to it"),
+            format!("`{fb_name}` does not implement `{name}`: it cannot be assigned to it"),
         );
+        None
     }
 
     /// `itf = 0`, `itf <> 0`, `itf1 = itf2` (the same instance).
