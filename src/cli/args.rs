@@ -172,6 +172,19 @@ pub struct RunArgs {
     #[arg(long, value_name = "MIB", default_value_t = 512,
           value_parser = clap::value_parser!(u64).range(1..=2048))]
     pub max_data_mib: u64,
+    /// How the sources are read and how strictly they are checked.
+    #[command(flatten)]
+    pub reading: ReadingArgs,
+    /// Run on the plain instruction forms only: no fused
+    /// superinstructions, no bounds checks dropped (same results, slower;
+    /// for checking the optimizations).
+    #[arg(long)]
+    pub no_optimize: bool,
+}
+
+/// How `run` and `check` read the sources and how strictly they check them.
+#[derive(Debug, Args)]
+pub struct ReadingArgs {
     /// Pure IEC 61131-3: every compatibility-extension warning (W300-W399)
     /// is an error with the same code.
     #[arg(long)]
@@ -180,11 +193,6 @@ pub struct RunArgs {
     /// detect (UTF-8 if valid, else Windows-1252 with warning W020).
     #[arg(long, value_name = "ENCODING", default_value = "detect")]
     pub encoding: plcrun::SourceEncoding,
-    /// Run on the plain instruction forms only: no fused
-    /// superinstructions, no bounds checks dropped (same results, slower;
-    /// for checking the optimizations).
-    #[arg(long)]
-    pub no_optimize: bool,
 }
 
 /// `plcrun check FILES...`: parse and check only.
@@ -207,14 +215,9 @@ pub struct CheckArgs {
     #[arg(long, value_name = "MIB", default_value_t = 512,
           value_parser = clap::value_parser!(u64).range(1..=2048))]
     pub max_data_mib: u64,
-    /// Pure IEC 61131-3: every compatibility-extension warning (W300-W399)
-    /// is an error with the same code.
-    #[arg(long)]
-    pub strict: bool,
-    /// How the source files are encoded: utf-8, windows-1252, latin-1, or
-    /// detect (UTF-8 if valid, else Windows-1252 with warning W020).
-    #[arg(long, value_name = "ENCODING", default_value = "detect")]
-    pub encoding: plcrun::SourceEncoding,
+    /// How the sources are read and how strictly they are checked.
+    #[command(flatten)]
+    pub reading: ReadingArgs,
 }
 
 /// `plcrun export --plcopen FILES... [-o OUT.xml]`.

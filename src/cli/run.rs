@@ -22,7 +22,7 @@ fn usage_error(msg: impl std::fmt::Display) -> i32 {
 /// `plcrun check FILES...`
 pub fn check(args: &CheckArgs) -> i32 {
     let mut diags = Diagnostics::new();
-    let sources = match load_files_with(&args.files, args.encoding, &mut diags) {
+    let sources = match load_files_with(&args.files, args.reading.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
@@ -31,7 +31,7 @@ pub fn check(args: &CheckArgs) -> i32 {
         ir_listing: args.dump_ir,
         grafcet: args.grafcet,
         max_data_bytes: (args.max_data_mib as usize) << 20,
-        strict: args.strict,
+        strict: args.reading.strict,
     };
     let report = check_sources(&sources, &options);
     diags.extend(report.diagnostics);
@@ -73,8 +73,8 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         watchdog,
         grafcet: args.grafcet,
         max_data_bytes: (args.max_data_mib as usize) << 20,
-        strict: args.strict,
-        encoding: args.encoding,
+        strict: args.reading.strict,
+        encoding: args.reading.encoding,
         optimize: !args.no_optimize,
         ..Options::default()
     })
