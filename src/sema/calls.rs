@@ -297,6 +297,9 @@ impl BodyBuilder<'_> {
 
     /// Checks and emits a call of the FB instance at `inst`.
     pub(super) fn fb_call(&mut self, inst: &PlaceRef, args: &[Arg], span: Span) {
+        if self.class_instance_called(inst.ty, span) {
+            return;
+        }
         let def = self.types.get(inst.ty).clone();
         let Some(params) = self.fb_params(&def, span) else {
             return;

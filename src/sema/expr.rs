@@ -22,6 +22,9 @@ impl BodyBuilder<'_> {
     }
 
     fn expr_inner(&mut self, e: &Expr, expect: Option<TypeId>) -> Val {
+        if let Some(v) = self.property_read(e) {
+            return v;
+        }
         match &e.kind {
             ExprKind::Literal(l) => self.literal(l, e.span, expect),
             ExprKind::Paren(x) => self.expr(x, expect),

@@ -28,6 +28,9 @@ impl BodyBuilder<'_> {
         m: &Member,
         name: &Ident,
     ) -> Option<(u32, TypeId, bool, Option<&'static str>)> {
+        if let Some(seen) = self.var_access_outside(def, m, name) {
+            return seen;
+        }
         match m.kind {
             MemberKind::Local => {
                 self.diags.warning(

@@ -783,6 +783,9 @@ impl BodyBuilder<'_> {
 
     /// Stores a value into the place `target` (ST, S, R); `w.3` stores one bit.
     fn store_value(&mut self, target: &Expr, v: Val) {
+        if self.property_write_val(target, &v) {
+            return;
+        }
         if let Some((base, sel)) = self.part_of(target) {
             self.store_part(base, sel, v, target.span);
             return;

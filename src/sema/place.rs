@@ -89,6 +89,7 @@ impl BodyBuilder<'_> {
             }
             return None;
         };
+        self.check_inherited_private(id);
         let place = match var.storage {
             Storage::Frame(o) => Place::Frame(Slot::new(o)),
             Storage::Abs(a) => Place::Abs(a),

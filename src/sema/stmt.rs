@@ -307,7 +307,7 @@ impl BodyBuilder<'_> {
             self.store_part(base, sel, v, value.span);
             return;
         }
-        if self.oop_assign(target, value) {
+        if self.oop_assign(target, value) || self.property_write(target, value) {
             return;
         }
         let Some(p) = self.place(target) else {

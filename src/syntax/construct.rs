@@ -42,6 +42,8 @@ pub struct State<'t> {
     chain_cut: Cell<bool>,
     /// Byte ranges of the tokens parsed (for [`crate::syntax::recovery`]).
     token_spans: Vec<(usize, usize)>,
+    /// `VAR PRIVATE`-style sections seen (for [`crate::syntax::oop_var_access`]).
+    pub(crate) var_access: RefCell<Vec<(Span, crate::syntax::oop::Access)>>,
 }
 
 impl<'t> State<'t> {
@@ -61,6 +63,7 @@ impl<'t> State<'t> {
             last_binary: Cell::new(None),
             chain_cut: Cell::new(false),
             token_spans: Vec::new(),
+            var_access: RefCell::new(Vec::new()),
         }
     }
 

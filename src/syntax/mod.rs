@@ -11,6 +11,9 @@ pub mod il_lines;
 pub mod lexer;
 pub mod literal;
 pub mod oop;
+pub mod oop_class;
+pub mod oop_property;
+pub mod oop_var_access;
 pub mod parser;
 pub mod plcopen;
 pub mod pragma_meaning;
@@ -44,6 +47,7 @@ fn parse_in(
     }
     let tokens = lexer::lex_in(file, text, encoding, diags);
     let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
+    let tokens = oop_property::accessor_words(tokens);
     let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
     let tokens = il_lines::keep_il_lines(tokens);
     parser::parse_tokens(construct::State::new(file, text), tokens, diags)

@@ -77,6 +77,9 @@ pub struct Method {
     pub body: Body,
     /// Span from `METHOD` to `END_METHOD`.
     pub span: Span,
+    /// For a `PROPERTY`: its GET and SET accessors as methods (replaced by
+    /// them in the FB or interface, see [`crate::syntax::oop_property`]).
+    pub property: Option<Vec<Method>>,
 }
 
 /// What a FUNCTION_BLOCK declares beyond edition 2.
@@ -90,6 +93,11 @@ pub struct PouOop {
     pub implements: Vec<Ident>,
     /// Methods in source order.
     pub methods: Vec<Method>,
+    /// Declared `CLASS ... END_CLASS` (an FB without a body).
+    pub is_class: bool,
+    /// Variable sections with an access specifier (`VAR PRIVATE`): the
+    /// section's span and its access.
+    pub var_access: Vec<(Span, Access)>,
 }
 
 /// `INTERFACE name [EXTENDS i, ...] METHOD ... END_METHOD ... END_INTERFACE`.
@@ -143,7 +151,8 @@ pub fn fb(
         mods: Modifiers::from_words(&mods),
         extends,
         implements: implements.unwrap_or_default(),
-        methods,
+        methods: crate::syntax::oop_property::expand(st, methods, false),
+        ..PouOop::default()
     }));
     pou
 }
@@ -167,6 +176,7 @@ pub fn method(
         var_blocks,
         body,
         span: st.span(l, r),
+        property: None,
     }
 }
 
@@ -182,7 +192,7 @@ pub fn interface(
     Interface {
         name,
         extends,
-        methods,
+        methods: crate::syntax::oop_property::expand(st, methods, true),
         span: st.span(l, r),
     }
 }

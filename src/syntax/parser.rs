@@ -23,10 +23,8 @@ lalrpop_util::lalrpop_mod!(
 
 /// Words that other dialects use and plcrun does not support; named
 /// explicitly in messages (`E110`).
-const UNSUPPORTED: [&str; 6] = [
+const UNSUPPORTED: [&str; 4] = [
     "VAR_ACCESS",
-    "PROPERTY",
-    "CLASS",
     "NAMESPACE",
     "USING",
     "OVERLAP",
@@ -55,7 +53,7 @@ pub fn parse_tokens(
     st.set_token_spans(tokens.iter().map(|(l, _, r)| (*l, *r)).collect());
     let parser = grammar::UnitParser::new();
     let result = parser.parse(&st, tokens.into_iter().map(Ok::<Spanned, ()>));
-    let unit = match result {
+    let mut unit = match result {
         Ok(unit) => unit,
         Err(e) => {
             let d = recovery_diagnostic(&st, e);
@@ -63,6 +61,7 @@ pub fn parse_tokens(
             CompilationUnit::default()
         }
     };
+    crate::syntax::oop_var_access::attach(&st, &mut unit);
     for d in st.finish() {
         diags.push(d);
     }

@@ -411,10 +411,20 @@ pub enum Kw {
     ThisDeref,
     /// `SUPER^` (one token: the word and the caret).
     SuperDeref,
+    Property,
+    EndProperty,
+    /// `GET` of a property (a name elsewhere: see `syntax::oop_property`).
+    Get,
+    EndGet,
+    /// `SET` of a property (a name elsewhere: see `syntax::oop_property`).
+    Set,
+    EndSet,
+    Class,
+    EndClass,
 }
 
 /// Every keyword with its spelling.
-pub const KEYWORDS: [(&str, Kw); 82] = [
+pub const KEYWORDS: [(&str, Kw); 88] = [
     ("PROGRAM", Kw::Program),
     ("END_PROGRAM", Kw::EndProgram),
     ("FUNCTION", Kw::Function),
@@ -497,6 +507,12 @@ pub const KEYWORDS: [(&str, Kw); 82] = [
     ("INTERNAL", Kw::Internal),
     ("THIS^", Kw::ThisDeref),
     ("SUPER^", Kw::SuperDeref),
+    ("PROPERTY", Kw::Property),
+    ("END_PROPERTY", Kw::EndProperty),
+    ("END_GET", Kw::EndGet),
+    ("END_SET", Kw::EndSet),
+    ("CLASS", Kw::Class),
+    ("END_CLASS", Kw::EndClass),
 ];
 
 impl Kw {
@@ -511,6 +527,12 @@ impl Kw {
 
     /// The keyword as written in the standard.
     pub fn as_str(self) -> &'static str {
+        // Not in the table: the lexer never makes them from a word.
+        match self {
+            Kw::Get => return "GET",
+            Kw::Set => return "SET",
+            _ => {}
+        }
         KEYWORDS
             .iter()
             .find(|(_, k)| *k == self)

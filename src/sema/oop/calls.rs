@@ -44,7 +44,7 @@ pub(crate) fn is_this(e: &Expr) -> bool {
     matches!(&e.kind, ExprKind::Name(id) if id.name == THIS)
 }
 
-fn is_super(e: &Expr) -> bool {
+pub(super) fn is_super(e: &Expr) -> bool {
     matches!(&e.kind, ExprKind::Name(id) if id.name == SUPER)
 }
 
@@ -60,7 +60,7 @@ fn place_ref(place: Place, ty: TypeId) -> PlaceRef {
 
 impl BodyBuilder<'_> {
     /// The FB being emitted, if it has methods.
-    fn this_fb(&self) -> Option<&FbOop> {
+    pub(super) fn this_fb(&self) -> Option<&FbOop> {
         self.model.oop.fbs.get(&self.oop.as_ref()?.fb)
     }
 
@@ -73,7 +73,7 @@ impl BodyBuilder<'_> {
     }
 
     /// The static type of a variable path, found without emitting code.
-    fn static_type(&self, e: &Expr) -> Option<TypeId> {
+    pub(super) fn static_type(&self, e: &Expr) -> Option<TypeId> {
         match &e.kind {
             ExprKind::Name(id) => self.lookup_var(&id.key()).map(|v| v.ty),
             ExprKind::Paren(x) => self.static_type(x),
@@ -113,7 +113,7 @@ impl BodyBuilder<'_> {
     }
 
     /// The OOP FB (key) a type is an instance of.
-    fn oop_fb_of(&self, ty: TypeId) -> Option<String> {
+    pub(super) fn oop_fb_of(&self, ty: TypeId) -> Option<String> {
         if !matches!(
             self.types.get(ty).kind,
             TypeKind::Pou { program: false, .. }

@@ -45,6 +45,9 @@ pub(crate) fn lower(
         l.lower_fb(&key);
     }
     l.check_abstract_instances();
+    super::class::collect(units, &mut l.info, l.diags);
+    super::var_access::collect(units, &mut l.info);
+    super::property::check_names(units, &l.info, l.diags);
     Some((l.units, l.info))
 }
 
@@ -577,6 +580,10 @@ impl Lowering<'_> {
             let hidden = hidden_name(origin, &m.name.name, &m.name.name);
             let hk = hidden.to_ascii_uppercase();
             locals.insert(m.name.key(), hk.clone());
+            // A property's GET writes its result through the property's name.
+            if let Some((p, true)) = crate::syntax::oop_property::property_of(&m.name.name) {
+                locals.insert(p.to_ascii_uppercase(), hk.clone());
+            }
             resets.push(hk.clone());
             ret = Some(hk);
             ret_text = spec_text(t);

@@ -20,8 +20,11 @@
 //!   match (an unassigned interface) is fault R080.
 
 pub(super) mod calls;
+pub(super) mod class;
 pub(super) mod lower;
 pub(super) mod methods;
 pub(super) mod model;
+pub(super) mod property;
+pub(super) mod var_access;
 
 pub(super) use model::OopInfo;

@@ -24,6 +24,11 @@ pub(crate) struct OopInfo {
     pub fbs: HashMap<String, FbOop>,
     /// Interfaces by case-folded name.
     pub interfaces: HashMap<String, ItfInfo>,
+    /// Classes (FBs without a body) by case-folded name.
+    pub classes: std::collections::HashSet<String>,
+    /// Variables with an access specifier: FB key -> variable key ->
+    /// (key of the FB that declares it, its access).
+    pub var_access: HashMap<String, HashMap<String, (String, crate::syntax::oop::Access)>>,
 }
 
 impl OopInfo {
