@@ -209,14 +209,22 @@ const ROWS: &[Row] = &[
         expect: &[("v", "3")],
     },
     Row {
-        covers: &["PROPERTY"],
-        source: "FUNCTION_BLOCK F\nVAR\n  n : INT;\nEND_VAR\nPROPERTY Value : INT\nGET\nValue := n;\nEND_GET\nEND_PROPERTY\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  f : F;\nEND_VAR\nEND_PROGRAM\n",
-        expect: &[],
+        covers: &[
+            "PROPERTY",
+            "END_PROPERTY",
+            "GET",
+            "END_GET",
+            "SET",
+            "END_SET",
+        ],
+        // SET stores twice the value written, GET reads it back halved plus one.
+        source: "FUNCTION_BLOCK F\nVAR\n  n : INT;\nEND_VAR\nPROPERTY Value : INT\nGET\nValue := n / 2 + 1;\nEND_GET\nSET\nn := Value * 2;\nEND_SET\nEND_PROPERTY\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  f : F; v : INT;\nEND_VAR\nf.Value := 20;\nv := f.Value;\nEND_PROGRAM\n",
+        expect: &[("v", "21"), ("f.n", "40")],
     },
     Row {
-        covers: &["CLASS"],
-        source: "CLASS C\nVAR\n  n : INT;\nEND_VAR\nEND_CLASS\nPROGRAM P\nVAR\n  x : INT;\nEND_VAR\nEND_PROGRAM\n",
-        expect: &[],
+        covers: &["CLASS", "END_CLASS"],
+        source: "CLASS C\nVAR\n  n : INT;\nEND_VAR\nMETHOD Inc : INT\nn := n + 1;\nInc := n;\nEND_METHOD\nEND_CLASS\nPROGRAM P\nVAR\n  c : C; x : INT;\nEND_VAR\nx := c.Inc();\nEND_PROGRAM\n",
+        expect: &[("x", "3")],
     },
     Row {
         covers: &[

@@ -40,7 +40,10 @@ pub fn accessor_name(name: &str, get: bool) -> String {
 
 /// The property a method name is an accessor of, and whether it is GET.
 pub fn property_of(method: &str) -> Option<(&str, bool)> {
-    let upper = method.len().checked_sub(4).and_then(|at| method.get(at..))?;
+    let upper = method
+        .len()
+        .checked_sub(4)
+        .and_then(|at| method.get(at..))?;
     let base = &method[..method.len() - 4];
     if upper.eq_ignore_ascii_case(GET) {
         Some((base, true))
@@ -198,7 +201,10 @@ pub fn expand(st: &State, methods: Vec<Method>, prototypes: bool) -> Vec<Method>
             );
             continue;
         }
-        let ty = m.return_type.clone().unwrap_or(TypeSpec::Named(m.name.clone()));
+        let ty = m
+            .return_type
+            .clone()
+            .unwrap_or(TypeSpec::Named(m.name.clone()));
         for get in [true, false] {
             let a = Accessor {
                 get,

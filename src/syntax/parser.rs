@@ -23,12 +23,7 @@ lalrpop_util::lalrpop_mod!(
 
 /// Words that other dialects use and plcrun does not support; named
 /// explicitly in messages (`E110`).
-const UNSUPPORTED: [&str; 4] = [
-    "VAR_ACCESS",
-    "NAMESPACE",
-    "USING",
-    "OVERLAP",
-];
+const UNSUPPORTED: [&str; 4] = ["VAR_ACCESS", "NAMESPACE", "USING", "OVERLAP"];
 
 /// Parses a token stream whose line breaks were kept or dropped by
 /// [`crate::syntax::il_lines`] (`text` is the source it came from).

@@ -74,7 +74,12 @@ pub(crate) fn check_names(units: &[CompilationUnit], info: &OopInfo, diags: &mut
         let mut steps = 0;
         while let Some(a) = at {
             if let Some(p) = pous.get(&a) {
-                vars.extend(p.var_blocks.iter().flat_map(|b| &b.decls).flat_map(|d| &d.names));
+                vars.extend(
+                    p.var_blocks
+                        .iter()
+                        .flat_map(|b| &b.decls)
+                        .flat_map(|d| &d.names),
+                );
             }
             steps += 1;
             if steps > info.fbs.len() {
@@ -99,7 +104,9 @@ pub(crate) fn check_names(units: &[CompilationUnit], info: &OopInfo, diags: &mut
                 .versions
                 .iter()
                 .filter(|w| w.origin == *key)
-                .find(|w| property_of(&w.name.name).is_some_and(|(p, _)| p.eq_ignore_ascii_case(prop)))
+                .find(|w| {
+                    property_of(&w.name.name).is_some_and(|(p, _)| p.eq_ignore_ascii_case(prop))
+                })
                 .is_some_and(|w| !std::ptr::eq(w, v))
             {
                 continue;
@@ -107,7 +114,10 @@ pub(crate) fn check_names(units: &[CompilationUnit], info: &OopInfo, diags: &mut
             diags.error(
                 "E924",
                 v.name.span,
-                format!("property `{prop}` of `{}` has the name of {clash} of it", fb.name),
+                format!(
+                    "property `{prop}` of `{}` has the name of {clash} of it",
+                    fb.name
+                ),
             );
         }
     }
@@ -129,9 +139,11 @@ impl BodyBuilder<'_> {
                 }
                 (None, id, Owner::Fb(self.oop.as_ref()?.fb.clone()))
             }
-            ExprKind::Member(b, n) if is_this(b) || is_super(b) => {
-                (Some((**b).clone()), n, Owner::Fb(self.oop.as_ref()?.fb.clone()))
-            }
+            ExprKind::Member(b, n) if is_this(b) || is_super(b) => (
+                Some((**b).clone()),
+                n,
+                Owner::Fb(self.oop.as_ref()?.fb.clone()),
+            ),
             ExprKind::Member(b, n) => {
                 let ty = self.static_type(b)?;
                 let owner = match self.interface_of(ty) {
@@ -171,7 +183,8 @@ impl BodyBuilder<'_> {
 
     /// A property read in an expression (`None`: `e` is no property).
     pub(in crate::sema) fn property_read(&mut self, e: &Expr) -> Option<Val> {
-        if self.model.oop.is_empty() || !matches!(e.kind, ExprKind::Name(_) | ExprKind::Member(..)) {
+        if self.model.oop.is_empty() || !matches!(e.kind, ExprKind::Name(_) | ExprKind::Member(..))
+        {
             return None;
         }
         let p = self.property_use(e)?;
@@ -179,7 +192,10 @@ impl BodyBuilder<'_> {
             self.diags.error(
                 "E921",
                 p.name.span,
-                format!("property `{}` has no GET: it can be written, not read", p.name.name),
+                format!(
+                    "property `{}` has no GET: it can be written, not read",
+                    p.name.name
+                ),
             );
             return Some(Val::error());
         }

@@ -148,8 +148,16 @@ impl BodyBuilder<'_> {
             .get(origin)
             .map_or(origin.to_string(), |f| f.name.clone());
         let (code, which) = match access {
-            Access::Private => ("E929", format!("PRIVATE to `{owner}`: only code written in `{owner}` can use it")),
-            _ => ("E930", format!("PROTECTED in `{owner}`: only code of `{owner}` and of the FBs that extend it can use it")),
+            Access::Private => (
+                "E929",
+                format!("PRIVATE to `{owner}`: only code written in `{owner}` can use it"),
+            ),
+            _ => (
+                "E930",
+                format!(
+                    "PROTECTED in `{owner}`: only code of `{owner}` and of the FBs that extend it can use it"
+                ),
+            ),
         };
         self.diags.error(
             code,
