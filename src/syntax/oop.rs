@@ -200,6 +200,17 @@ pub fn interface(
 /// A METHOD outside any FUNCTION_BLOCK (E110: plcrun has no CLASS or
 /// separate method objects).
 pub fn stray_method(st: &State, m: &Method) {
+    if m.property.is_some() {
+        st.error(
+            "E110",
+            m.span,
+            format!(
+                "a PROPERTY outside a FUNCTION_BLOCK, CLASS or INTERFACE is not supported by plcrun: declare `{}` in one",
+                m.name.name
+            ),
+        );
+        return;
+    }
     st.error(
         "E110",
         m.span,
