@@ -434,6 +434,13 @@ fn a_private_variable_is_used_by_its_own_code_on_any_instance() {
     "2:18"
 )]
 #[case::access_in_a_program("", "x : INT;", "", "E928", "")]
+#[case::property_outside_an_fb(
+    "PROPERTY P : INT GET P := 1; END_GET END_PROPERTY",
+    "",
+    "",
+    "E110",
+    "2:1"
+)]
 #[case::private_variable_from_outside(
     "FUNCTION_BLOCK F VAR PRIVATE n : INT; END_VAR END_FUNCTION_BLOCK",
     "f : F; x : INT;",
