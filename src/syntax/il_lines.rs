@@ -129,6 +129,7 @@ fn looks_like_il(tokens: &[Spanned], i: usize) -> bool {
                 | Tok::Semi
                 | Tok::Caret
                 | Tok::RefAssign
+                | Tok::AssignAttempt
         )
     );
     match il_retag(tok) {

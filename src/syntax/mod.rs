@@ -3,6 +3,7 @@
 //! Pipeline: [`lexer`] (logos scanner + literal decoding) → [`il_lines`] (IL
 //! line orientation) → [`parser`] (lalrpop grammar, error recovery) → [`ast`].
 
+pub mod assign_attempt;
 pub mod ast;
 mod codesys_spellings;
 pub mod construct;

@@ -51,7 +51,8 @@ impl Linker<'_> {
             .collect();
         for code in &mut self.out.codes {
             for op in &mut code.ops {
-                if let Op::LoadInd { off, .. } | Op::StoreInd { off, .. } = op
+                if let Op::LoadInd { off, .. } | Op::StoreInd { off, .. } | Op::AddrAdd { off, .. } =
+                    op
                     && *off & mark != 0
                 {
                     *off = offsets.get((*off & !mark) as usize).copied().unwrap_or(0);

@@ -216,6 +216,7 @@ impl Lowering<'_> {
                     name: x.name.name.clone(),
                     methods,
                     sig_type: sig_name.to_ascii_uppercase(),
+                    ancestors: self.itf_closure.get(key).cloned().unwrap_or_default(),
                 },
             );
         }

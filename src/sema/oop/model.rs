@@ -112,6 +112,9 @@ pub(crate) struct ItfInfo {
     pub methods: IndexMap<String, ItfMethod>,
     /// Key of the structure type whose fields type the parameters.
     pub sig_type: String,
+    /// Keys of this interface and of every interface it extends, directly
+    /// or not (a value of this interface may be assigned to any of them).
+    pub ancestors: Vec<String>,
 }
 
 /// One method prototype of an interface.
