@@ -44,7 +44,7 @@ impl Linker<'_> {
             .iter()
             .map(
                 |(p, key)| match model.pous[*p].vars.get(key).map(|v| v.storage) {
-                    Some(Storage::Frame(o)) => o,
+                    Some(Storage::Frame(o) | Storage::Ref(o)) => o,
                     _ => 0,
                 },
             )

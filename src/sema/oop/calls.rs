@@ -48,6 +48,15 @@ fn is_super(e: &Expr) -> bool {
     matches!(&e.kind, ExprKind::Name(id) if id.name == SUPER)
 }
 
+/// How a method parameter is passed.
+fn param_kind(s: &ParamSig) -> MemberKind {
+    match (s.in_out, s.input) {
+        (true, _) => MemberKind::InOut,
+        (false, true) => MemberKind::Input,
+        (false, false) => MemberKind::Output,
+    }
+}
+
 pub(super) fn place_ref(place: Place, ty: TypeId) -> PlaceRef {
     PlaceRef {
         place,
@@ -265,17 +274,13 @@ impl BodyBuilder<'_> {
             .iter()
             .filter_map(|s| {
                 let var = vars.get(&s.hidden)?;
-                let Storage::Frame(o) = var.storage else {
+                let (Storage::Frame(o) | Storage::Ref(o)) = var.storage else {
                     return None;
                 };
                 Some(Param {
                     name: s.name.clone(),
                     aliases: &[],
-                    kind: if s.input {
-                        MemberKind::Input
-                    } else {
-                        MemberKind::Output
-                    },
+                    kind: param_kind(s),
                     ty: var.ty,
                     offset: o,
                     default: var.init.clone(),
@@ -308,12 +313,14 @@ impl BodyBuilder<'_> {
         };
         self.no_en(&b, call.span);
         for (i, prm) in params.iter().enumerate() {
-            if prm.kind != MemberKind::Input {
+            if prm.kind == MemberKind::Output {
                 continue;
             }
             let dst = place_ref(at.member(prm.offset), prm.ty);
             match b.inputs.iter().find(|(j, _)| *j == i) {
+                Some((_, e)) if prm.kind == MemberKind::InOut => self.connect_in_out(prm, &dst, e),
                 Some((_, e)) => self.store_arg(&dst, e, &prm.name),
+                None if prm.kind == MemberKind::InOut => self.unconnected(prm, &v.name, call.span),
                 None => self.store_default(&dst, prm.default.as_ref()),
             }
         }
@@ -439,8 +446,21 @@ impl BodyBuilder<'_> {
         self.no_en(&b, call.span);
         // Arguments first, once, in order.
         let mut args: Vec<Option<Slot>> = vec![None; params.len()];
+        for (i, prm) in params.iter().enumerate() {
+            if prm.kind == MemberKind::InOut && !b.inputs.iter().any(|(j, _)| *j == i) {
+                self.unconnected(prm, m, call.span);
+                return Val::error();
+            }
+        }
         for &(i, e) in &b.inputs {
             let ty = params[i].ty;
+            if params[i].kind == MemberKind::InOut {
+                let Some(a) = self.in_out_address(&params[i], e) else {
+                    return Val::error();
+                };
+                args[i] = Some(a);
+                continue;
+            }
             if self.is_aggregate_type(ty) {
                 let Some(a) = self.aggregate_arg(ty, e, &params[i].name) else {
                     return Val::error();
@@ -705,11 +725,7 @@ impl BodyBuilder<'_> {
                 Some(Param {
                     name: s.name.clone(),
                     aliases: &[],
-                    kind: if s.input {
-                        MemberKind::Input
-                    } else {
-                        MemberKind::Output
-                    },
+                    kind: param_kind(s),
                     ty,
                     offset: 0,
                     default: None,
@@ -753,6 +769,13 @@ impl BodyBuilder<'_> {
             }
             let dst = self.late_member(addr, p, &hidden.hidden, prm.ty);
             match args[i] {
+                Some(s) if prm.kind == MemberKind::InOut => {
+                    let ptr = PlaceRef {
+                        ty: TypeTable::elem(ElemType::Ulint),
+                        ..dst
+                    };
+                    self.write_place(&ptr, s);
+                }
                 Some(s) if self.is_aggregate_type(prm.ty) => {
                     let d = self.address_of(&dst);
                     self.copy_value(d, s, prm.ty);

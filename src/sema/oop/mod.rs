@@ -27,6 +27,7 @@ mod assign_attempt;
 pub(super) mod calls;
 mod itf_values;
 pub(super) mod lower;
+mod method_vars;
 pub(super) mod methods;
 pub(super) mod model;
 

@@ -72,6 +72,9 @@ pub(crate) struct ParamSig {
     pub input: bool,
     /// Key of the hidden variable (or signature field) holding it.
     pub hidden: String,
+    /// VAR_IN_OUT (then `input` is true too): the hidden variable holds the
+    /// address of the caller's variable.
+    pub in_out: bool,
 }
 
 /// A method's signature as text, for override and implementation checks:
