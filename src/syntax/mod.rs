@@ -11,6 +11,8 @@ pub mod depth;
 pub mod il_lines;
 pub mod lexer;
 pub mod literal;
+mod method_bodies;
+mod method_names;
 pub mod oop;
 pub mod parser;
 pub mod plcopen;
@@ -44,6 +46,7 @@ fn parse_in(
         return plcopen::parse(file, text, diags);
     }
     let tokens = lexer::lex_in(file, text, encoding, diags);
+    let tokens = method_names::method_names(file, text, tokens, diags);
     let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
     let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
     let tokens = il_lines::keep_il_lines(tokens);
