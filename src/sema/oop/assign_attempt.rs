@@ -6,6 +6,7 @@
 //! branch per implementing FB, as a call through an interface does).
 
 use super::calls::{is_this, place_ref};
+use super::itf_values::field;
 use crate::elementary::ElemType;
 use crate::ir::op::{Cmp, Op, Slot, Target};
 use crate::ir::type_table::TypeTable;
@@ -13,17 +14,6 @@ use crate::sema::body::BodyBuilder;
 use crate::sema::consts::Const;
 use crate::sema::emit::{Place, PlaceRef, Ty, Val};
 use crate::syntax::ast::{Expr, ExprKind, LiteralValue};
-
-/// The place of field `off` of an interface value at `p`.
-fn field(p: &PlaceRef, off: u32, ty: crate::ir::type_table::TypeId) -> Option<PlaceRef> {
-    let at = match p.place {
-        Place::Frame(o) => Place::Frame(o.offset(off)),
-        Place::Abs(a) => Place::Abs(a + off),
-        Place::Ind { p, off: o } => Place::Ind { p, off: o + off },
-        Place::Elem { .. } => return None,
-    };
-    Some(place_ref(at, ty))
-}
 
 impl BodyBuilder<'_> {
     /// `target ?= value;`.

@@ -17,6 +17,26 @@ use crate::sema::consts::Const;
 use crate::sema::emit::{Place, PlaceRef, Ty, Val};
 use crate::syntax::ast::{Call, Expr, ExprKind, LiteralValue, PouKind};
 
+/// What gives an interface its value.
+enum ItfSrc {
+    /// An instance's address (in a slot) and its FB's type id.
+    Pair(Slot, u32),
+    /// An interface value stored somewhere.
+    Place(PlaceRef),
+}
+
+/// The place of field `off` (0: address, 1: type id) of the interface
+/// value at `p`.
+pub(super) fn field(p: &PlaceRef, off: u32, ty: TypeId) -> Option<PlaceRef> {
+    let at = match p.place {
+        Place::Frame(o) => Place::Frame(o.offset(off)),
+        Place::Abs(a) => Place::Abs(a + off),
+        Place::Ind { p, off: o } => Place::Ind { p, off: o + off },
+        Place::Elem { .. } => return None,
+    };
+    Some(place_ref(at, ty))
+}
+
 impl BodyBuilder<'_> {
     /// `itf := value;` (handled here: `true`), and `itf ?= value;`.
     pub(in crate::sema) fn oop_assign(&mut self, target: &Expr, value: &Expr) -> bool {
@@ -36,9 +56,7 @@ impl BodyBuilder<'_> {
         if !self.check_writable(&dst, target.span) {
             return true;
         }
-        if let Some(src) = self.itf_place(&itf, value) {
-            self.copy_aggregate(&dst, &src, value.span);
-        }
+        self.store_itf_value(&dst, &itf, value);
         true
     }
 
@@ -48,9 +66,7 @@ impl BodyBuilder<'_> {
         let Some(itf) = self.interface_of(dst.ty) else {
             return false;
         };
-        if let Some(src) = self.itf_place(&itf, e) {
-            self.copy_aggregate(dst, &src, e.span);
-        }
+        self.store_itf_value(dst, &itf, e);
         true
     }
 
@@ -58,11 +74,37 @@ impl BodyBuilder<'_> {
     /// pair of temporaries when `e` is an instance, `THIS^` or `0`).
     pub(in crate::sema) fn itf_place(&mut self, itf: &str, e: &Expr) -> Option<PlaceRef> {
         let ty = *self.model.type_ids.get(itf)?;
+        Some(match self.itf_source(itf, e)? {
+            ItfSrc::Pair(addr, tid) => self.itf_pair(addr, tid, ty),
+            ItfSrc::Place(p) => p,
+        })
+    }
+
+    /// Stores the value of interface `itf` denoted by `e` into `dst` (an
+    /// instance's address and type id are stored straight into its fields).
+    fn store_itf_value(&mut self, dst: &PlaceRef, itf: &str, e: &Expr) {
+        match self.itf_source(itf, e) {
+            Some(ItfSrc::Pair(addr, tid)) => {
+                let (Some(a), Some(t)) = (field(dst, 0, ty_ulint()), field(dst, 1, ty_udint()))
+                else {
+                    return;
+                };
+                self.write_place(&a, addr);
+                let k = self.materialize(&Val::Const(Const::Bits(tid as u64), Ty::T(ty_udint())));
+                self.write_place(&t, k);
+            }
+            Some(ItfSrc::Place(src)) => self.copy_aggregate(dst, &src, e.span),
+            None => {}
+        }
+    }
+
+    /// What `e` gives an interface `itf`.
+    fn itf_source(&mut self, itf: &str, e: &Expr) -> Option<ItfSrc> {
         if let ExprKind::Literal(l) = &e.kind
             && matches!(l.value, LiteralValue::Int(0))
         {
             let z = self.materialize(&Val::Const(Const::Bits(0), Ty::T(ty_ulint())));
-            return Some(self.itf_pair(z, 0, ty));
+            return Some(ItfSrc::Pair(z, 0));
         }
         if is_this(e) {
             if !self.this_allowed(e.span) {
@@ -72,13 +114,13 @@ impl BodyBuilder<'_> {
             let tid = self.implementing_tid(e.span, &fb, itf)?;
             let this = place_ref(Place::Frame(Slot::new(0)), ty_ulint());
             let addr = self.address_of(&this);
-            return Some(self.itf_pair(addr, tid, ty));
+            return Some(ItfSrc::Pair(addr, tid));
         }
         let src = self.place(e)?;
         if let Some(from) = self.interface_of(src.ty) {
             let ancestors = &self.model.oop.interfaces[&from].ancestors;
             if from == itf || ancestors.iter().any(|a| a == itf) {
-                return Some(src);
+                return Some(ItfSrc::Place(src));
             }
             let (to, from) = (
                 self.model.oop.interfaces[itf].name.clone(),
@@ -107,7 +149,7 @@ impl BodyBuilder<'_> {
         };
         let tid = self.implementing_tid(e.span, &fb, itf)?;
         let addr = self.address_of(&src);
-        Some(self.itf_pair(addr, tid, ty))
+        Some(ItfSrc::Pair(addr, tid))
     }
 
     /// An interface value of type `ty` in two fresh temporaries.
