@@ -50,7 +50,7 @@ impl BodyBuilder<'_> {
             .oop
             .fbs
             .values()
-            .filter(|f| !f.is_abstract && f.interfaces.iter().any(|i| *i == itf))
+            .filter(|f| !f.is_abstract && f.interfaces.contains(&itf))
             .map(|f| f.tid)
             .collect();
         tids.sort_unstable();
