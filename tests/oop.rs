@@ -407,8 +407,8 @@ fn the_child_layout_starts_with_the_parents_variables() {
     "E914",
     "8:6"
 )]
-#[case::in_out_in_a_method(
-    "FUNCTION_BLOCK F METHOD M VAR_IN_OUT x : INT; END_VAR END_METHOD END_FUNCTION_BLOCK",
+#[case::global_block_in_a_method(
+    "FUNCTION_BLOCK F METHOD M VAR_GLOBAL x : INT; END_VAR END_METHOD END_FUNCTION_BLOCK",
     "",
     "",
     "E915",

@@ -20,14 +20,14 @@ pub(crate) const ASSERT_EQ_PREFIX: &str = "PLCRUN_ASSERT_EQ_";
 /// Prefix of the REAL/LREAL with-delta host functions.
 pub(crate) const ASSERT_NEAR_PREFIX: &str = "PLCRUN_ASSERT_NEAR_";
 /// Largest array `AssertArrayEquals` compares (it unrolls per element).
-const MAX_ARRAY_ELEMENTS: i64 = 4096;
+pub(super) const MAX_ARRAY_ELEMENTS: i64 = 4096;
 
 /// Diagnostic: the two values of an assertion differ in type, or are not elementary.
 const E_TYPES: &str = "E480";
 /// Diagnostic: missing, unknown or repeated assertion argument.
 const E_ARGS: &str = "E481";
 /// Diagnostic: arrays that `AssertArrayEquals` cannot compare.
-const E_ARRAYS: &str = "E482";
+pub(super) const E_ARRAYS: &str = "E482";
 
 /// The assertion families.
 #[derive(Clone, Copy, PartialEq)]
@@ -67,7 +67,7 @@ pub(crate) fn encode_location(span: Span) -> i64 {
     ((span.file.0 as i64) << 32) | span.start as i64
 }
 
-fn name_expr(name: &str, span: Span) -> Expr {
+pub(super) fn name_expr(name: &str, span: Span) -> Expr {
     Expr {
         kind: ExprKind::Name(Ident {
             name: name.to_string(),
@@ -77,7 +77,7 @@ fn name_expr(name: &str, span: Span) -> Expr {
     }
 }
 
-fn literal(value: LiteralValue, prefix: Option<&str>, span: Span) -> Expr {
+pub(super) fn literal(value: LiteralValue, prefix: Option<&str>, span: Span) -> Expr {
     Expr {
         kind: ExprKind::Literal(Literal {
             value,
@@ -90,7 +90,7 @@ fn literal(value: LiteralValue, prefix: Option<&str>, span: Span) -> Expr {
     }
 }
 
-fn formal(name: &str, value: Expr) -> Arg {
+pub(super) fn formal(name: &str, value: Expr) -> Arg {
     Arg::Input {
         name: Ident {
             name: name.to_string(),
@@ -216,7 +216,14 @@ impl BodyBuilder<'_> {
     }
 
     /// The formal arguments of an equality host function.
-    fn eq_args(&self, e: Expr, a: Expr, message: Expr, loc: Expr, index: Option<i64>) -> Vec<Arg> {
+    pub(super) fn eq_args(
+        &self,
+        e: Expr,
+        a: Expr,
+        message: Expr,
+        loc: Expr,
+        index: Option<i64>,
+    ) -> Vec<Arg> {
         let span = loc.span;
         vec![
             formal("Expected", e),
@@ -235,11 +242,18 @@ impl BodyBuilder<'_> {
                     span,
                 ),
             ),
+            formal("Element", string_literal("", span)),
         ]
     }
 
     /// Calls host function `name` with `args`.
-    fn host_assert(&mut self, name: &str, args: Vec<Arg>, span: Span, want: bool) -> Val {
+    pub(super) fn host_assert(
+        &mut self,
+        name: &str,
+        args: Vec<Arg>,
+        span: Span,
+        want: bool,
+    ) -> Val {
         let Some(&p) = self.model.pou_index.get(&name.to_ascii_uppercase()) else {
             self.diags
                 .error(E_TYPES, span, format!("no assertion `{name}` is available"));
@@ -322,7 +336,7 @@ impl BodyBuilder<'_> {
     }
 
     /// The elementary type of `id` (any STRING length is STRING).
-    fn elementary(&self, id: TypeId) -> Option<ElemType> {
+    pub(super) fn elementary(&self, id: TypeId) -> Option<ElemType> {
         match &self.types.get(id).kind {
             TypeKind::Elem(e) => Some(*e),
             TypeKind::Str { wide: false, .. } => Some(ElemType::String),
@@ -351,6 +365,11 @@ impl BodyBuilder<'_> {
         };
         let (te, ta) = (self.probe(&e, true), self.probe(&a, true));
         let (se, sa) = (shape(self, te), shape(self, ta));
+        if let (Some(x), Some(y)) = (te.id(), ta.id())
+            && self.nested_shape(x, y)
+        {
+            return self.nested_array_equals(x, (e, a), message, loc, span, want);
+        }
         let (dims, elem) = match (se, sa) {
             (Some((d1, Some(t1))), Some((d2, Some(t2)))) if d1 == d2 && t1 == t2 => (d1, t1),
             _ => {
@@ -409,4 +428,16 @@ impl BodyBuilder<'_> {
         }
         Val::None(TypeTable::void())
     }
+}
+
+/// A STRING literal `'text'`.
+pub(super) fn string_literal(text: &str, span: Span) -> Expr {
+    literal(
+        LiteralValue::String {
+            value: text.to_string(),
+            wide: false,
+        },
+        None,
+        span,
+    )
 }

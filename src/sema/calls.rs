@@ -403,7 +403,7 @@ impl BodyBuilder<'_> {
                         matches!(
                             m.kind,
                             MemberKind::Input | MemberKind::Output | MemberKind::InOut
-                        )
+                        ) && !self.is_method_in_out(&def.name, &m.name)
                     })
                     .map(|m| Param {
                         name: m.name.clone(),
@@ -426,7 +426,7 @@ impl BodyBuilder<'_> {
 
     /// Connects VAR_IN_OUT `p` of an FB instance to the variable `e`: the
     /// variable's address goes into the pointer slot `slot_place`.
-    fn connect_in_out(&mut self, p: &Param, slot_place: &PlaceRef, e: &Expr) {
+    pub(super) fn connect_in_out(&mut self, p: &Param, slot_place: &PlaceRef, e: &Expr) {
         let Some(arg) = self.place(e) else {
             return;
         };

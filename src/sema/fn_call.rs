@@ -149,6 +149,10 @@ impl BodyBuilder<'_> {
 
     /// An array or structure passed by value: its address (copied later).
     fn aggregate_argument(&mut self, prm: &Param, e: &Expr, what: &str) -> Option<Ready> {
+        if let Some(itf) = self.interface_of(prm.ty) {
+            let src = self.itf_place(&itf, e)?;
+            return Some(Ready::Aggregate(self.address_of(&src), prm.ty));
+        }
         let src = self.place(e)?;
         if !self.assignable(src.ty, prm.ty) {
             self.mismatch(e.span, Ty::T(src.ty), prm.ty, what);

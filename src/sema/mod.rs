@@ -34,6 +34,7 @@ mod type_decl;
 // Phase 2: one body builder per POU.
 mod aggregate_copy;
 pub(crate) mod assert_calls;
+mod assert_nested;
 mod binary;
 mod bits_arith;
 mod body;

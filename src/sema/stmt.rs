@@ -220,7 +220,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Jump on a BOOL slot, fusing a just-computed integer comparison.
-    fn branch_on_slot(&mut self, s: Slot, when: bool, target: Target) -> usize {
+    pub(super) fn branch_on_slot(&mut self, s: Slot, when: bool, target: Target) -> usize {
         if let Some((at, d)) = self.block.last_def
             && !self.model.unoptimized
             && d == s

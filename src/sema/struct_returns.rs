@@ -4,6 +4,7 @@
 //!   into temporaries of the caller at once, so that a second call of the
 //!   same function in the same statement (`G(F(1), F(2))`) cannot
 //!   overwrite it; strings in it get string temporaries of their own;
+//! - a METHOD returning an array or a structure, the same way;
 //! - `inst(...).Q`: the instance is called, then the expression denotes
 //!   the instance, whose outputs are read (CODESYS accepts this; W345).
 
@@ -16,7 +17,8 @@ use crate::syntax::ast::Call;
 impl BodyBuilder<'_> {
     /// The place call `call` denotes (`None` after an error).
     pub(super) fn call_place(&mut self, call: &Call) -> Option<PlaceRef> {
-        if !self.calls_a_function(call) {
+        let method = self.oop_call(call, true);
+        if method.is_none() && !self.calls_a_function(call) {
             let inst = self.place(&call.callee)?;
             self.fb_call(&inst, &call.args, call.span);
             self.diags.warning(
@@ -30,7 +32,7 @@ impl BodyBuilder<'_> {
                 ..inst
             });
         }
-        let v = self.call_function(call, None, true);
+        let v = method.unwrap_or_else(|| self.call_function(call, None, true));
         match v {
             Val::Slot(addr, ty) if self.is_aggregate(ty) => Some(self.result_copy(addr, ty)),
             v => {

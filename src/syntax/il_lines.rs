@@ -129,6 +129,7 @@ fn looks_like_il(tokens: &[Spanned], i: usize) -> bool {
                 | Tok::Semi
                 | Tok::Caret
                 | Tok::RefAssign
+                | Tok::AssignAttempt
         )
     );
     match il_retag(tok) {
@@ -174,7 +175,16 @@ fn il_regions(tokens: &[Spanned]) -> Vec<(usize, usize)> {
                             | Kw::Type
                     )
                 });
-                let start = body_start(tokens, i, end);
+                let start = match crate::syntax::method_bodies::classify_methods(
+                    tokens,
+                    i,
+                    end,
+                    &mut |s, e, r| classify_body(tokens, s, e, r),
+                    &mut regions,
+                ) {
+                    Some(after_methods) => after_methods,
+                    None => body_start(tokens, i, end),
+                };
                 classify_body(tokens, start, end, &mut regions);
                 i = if matches!(
                     kw_at(tokens, end),
@@ -192,7 +202,7 @@ fn il_regions(tokens: &[Spanned]) -> Vec<(usize, usize)> {
 }
 
 /// First token of a POU body: after the last END_VAR, else after the header.
-fn body_start(tokens: &[Spanned], pou: usize, end: usize) -> usize {
+pub(crate) fn body_start(tokens: &[Spanned], pou: usize, end: usize) -> usize {
     if let Some(last) = (pou..end)
         .rev()
         .find(|&j| kw_at(tokens, j) == Some(Kw::EndVar))

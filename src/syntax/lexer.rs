@@ -149,6 +149,7 @@ pub fn lex_in(
             Raw::EmbeddedC if embedded_c(span(r.start, r.end), slice, diags) => Tok::Eol,
             Raw::EmbeddedC => continue,
             Raw::Caret => Tok::Caret,
+            Raw::AssignAttempt => Tok::AssignAttempt,
         };
         out.push((r.start, tok, r.end));
     }

@@ -3,6 +3,7 @@
 //! Pipeline: [`lexer`] (logos scanner + literal decoding) → [`il_lines`] (IL
 //! line orientation) → [`parser`] (lalrpop grammar, error recovery) → [`ast`].
 
+pub mod assign_attempt;
 pub mod ast;
 mod codesys_spellings;
 pub mod construct;
@@ -10,6 +11,8 @@ pub mod depth;
 pub mod il_lines;
 pub mod lexer;
 pub mod literal;
+mod method_bodies;
+mod method_names;
 pub mod oop;
 pub mod oop_class;
 pub mod oop_property;
@@ -46,6 +49,7 @@ fn parse_in(
         return plcopen::parse(file, text, diags);
     }
     let tokens = lexer::lex_in(file, text, encoding, diags);
+    let tokens = method_names::method_names(file, text, tokens, diags);
     let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
     let tokens = oop_property::accessor_words(tokens);
     let tokens = codesys_spellings::iec_keywords(file, tokens, diags);

@@ -142,6 +142,9 @@ pub enum Raw {
     /// `SUPER^` (edition 3: the parent FB's view of the current instance).
     #[regex(r"[Ss][Uu][Pp][Ee][Rr][ \t]*\^")]
     SuperDeref,
+    /// `?=` (assignment attempt, edition 3)
+    #[token("?=")]
+    AssignAttempt,
 }
 
 /// Consumes a block comment body up to and including the first `*)`
@@ -613,6 +616,8 @@ pub enum Tok {
     IlFbIn(String),
     /// Any other word in operator position: a function call.
     IlFun(String),
+    /// `?=`: the assignment attempt (edition 3).
+    AssignAttempt,
 }
 
 impl fmt::Display for Tok {
@@ -653,6 +658,7 @@ impl fmt::Display for Tok {
             Tok::PointerTo => p(f, "POINTER TO"),
             Tok::ReferenceTo => p(f, "REFERENCE TO"),
             Tok::RefAssign => p(f, "REF="),
+            Tok::AssignAttempt => p(f, "?="),
             Tok::Eol => write!(f, "end of line"),
             Tok::IlLabel(s) => write!(f, "label `{s}`"),
             Tok::IlOp(_) | Tok::IlJmp(_) | Tok::IlCal(_) | Tok::IlRet(_) => {

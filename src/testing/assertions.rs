@@ -21,6 +21,9 @@ pub(crate) struct Recorded {
     pub(crate) actual: String,
     /// The element index, for `AssertArrayEquals`.
     pub(crate) index: Option<i64>,
+    /// The element's path (`[2,3]`, `[1].x`), for `AssertArrayEquals` of
+    /// a multi-dimensional array or an array of structures.
+    pub(crate) element: Option<String>,
     /// The assertion's message.
     pub(crate) message: String,
 }
@@ -63,11 +66,17 @@ fn fail(io: &mut HostIo<'_>, log: &Log, result: &str, element: bool) -> HostResu
     } else {
         None
     };
+    let path = if element {
+        Some(io.get_str("Element")?).filter(|p| !p.is_empty())
+    } else {
+        None
+    };
     log.push(Recorded {
         loc: io.get_i64("Loc")?,
         expected: io.get("Expected")?.to_literal(),
         actual: io.get("Actual")?.to_literal(),
         index,
+        element: path,
         message: io.get_str("Message")?,
     });
     io.set_bool(result, false)?;
@@ -88,7 +97,8 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
             .input("Message", ElemType::String)
             .input("Loc", ElemType::Lint)
             .input("IsElement", ElemType::Bool)
-            .input("Index", ElemType::Lint);
+            .input("Index", ElemType::Lint)
+            .input("Element", ElemType::String);
         let log = log.clone();
         let result = name.clone();
         hosts.function(sig, move |io| {

@@ -52,6 +52,9 @@ pub struct AssertionFailure {
     pub actual: String,
     /// The array index of the first differing element (`AssertArrayEquals`).
     pub index: Option<i64>,
+    /// The path of the first differing element of a multi-dimensional
+    /// array or an array of structures (`[2,3]`, `[1].x`; `AssertArrayEquals`).
+    pub element: Option<String>,
     /// The assertion's message.
     pub message: String,
     /// The cycle it failed in (from 0).

@@ -31,6 +31,7 @@ fn failure(sources: &SourceMap, r: Recorded, cycle: u64) -> AssertionFailure {
         expected: r.expected,
         actual: r.actual,
         index: r.index,
+        element: r.element,
         message: r.message,
         cycle,
     }

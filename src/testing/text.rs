@@ -10,6 +10,9 @@ pub(crate) fn failure_line(f: &AssertionFailure) -> String {
     if let Some(i) = f.index {
         let _ = write!(s, "element [{i}]: ");
     }
+    if let Some(path) = &f.element {
+        let _ = write!(s, "element {path}: ");
+    }
     let _ = write!(s, "expected {}, actual {}", f.expected, f.actual);
     if !f.message.is_empty() {
         let _ = write!(s, ": {}", f.message);

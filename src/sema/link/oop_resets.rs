@@ -44,14 +44,15 @@ impl Linker<'_> {
             .iter()
             .map(
                 |(p, key)| match model.pous[*p].vars.get(key).map(|v| v.storage) {
-                    Some(Storage::Frame(o)) => o,
+                    Some(Storage::Frame(o) | Storage::Ref(o)) => o,
                     _ => 0,
                 },
             )
             .collect();
         for code in &mut self.out.codes {
             for op in &mut code.ops {
-                if let Op::LoadInd { off, .. } | Op::StoreInd { off, .. } = op
+                if let Op::LoadInd { off, .. } | Op::StoreInd { off, .. } | Op::AddrAdd { off, .. } =
+                    op
                     && *off & mark != 0
                 {
                     *off = offsets.get((*off & !mark) as usize).copied().unwrap_or(0);

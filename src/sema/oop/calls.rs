@@ -48,7 +48,16 @@ pub(super) fn is_super(e: &Expr) -> bool {
     matches!(&e.kind, ExprKind::Name(id) if id.name == SUPER)
 }
 
-fn place_ref(place: Place, ty: TypeId) -> PlaceRef {
+/// How a method parameter is passed.
+fn param_kind(s: &ParamSig) -> MemberKind {
+    match (s.in_out, s.input) {
+        (true, _) => MemberKind::InOut,
+        (false, true) => MemberKind::Input,
+        (false, false) => MemberKind::Output,
+    }
+}
+
+pub(super) fn place_ref(place: Place, ty: TypeId) -> PlaceRef {
     PlaceRef {
         place,
         ty,
@@ -98,6 +107,7 @@ impl BodyBuilder<'_> {
                 TypeKind::Array { elem, .. } => Some(*elem),
                 _ => None,
             },
+            ExprKind::Call(c) => self.call_type(c),
             _ => None,
         }
     }
@@ -264,17 +274,13 @@ impl BodyBuilder<'_> {
             .iter()
             .filter_map(|s| {
                 let var = vars.get(&s.hidden)?;
-                let Storage::Frame(o) = var.storage else {
+                let (Storage::Frame(o) | Storage::Ref(o)) = var.storage else {
                     return None;
                 };
                 Some(Param {
                     name: s.name.clone(),
                     aliases: &[],
-                    kind: if s.input {
-                        MemberKind::Input
-                    } else {
-                        MemberKind::Output
-                    },
+                    kind: param_kind(s),
                     ty: var.ty,
                     offset: o,
                     default: var.init.clone(),
@@ -307,12 +313,14 @@ impl BodyBuilder<'_> {
         };
         self.no_en(&b, call.span);
         for (i, prm) in params.iter().enumerate() {
-            if prm.kind != MemberKind::Input {
+            if prm.kind == MemberKind::Output {
                 continue;
             }
             let dst = place_ref(at.member(prm.offset), prm.ty);
             match b.inputs.iter().find(|(j, _)| *j == i) {
+                Some((_, e)) if prm.kind == MemberKind::InOut => self.connect_in_out(prm, &dst, e),
                 Some((_, e)) => self.store_arg(&dst, e, &prm.name),
+                None if prm.kind == MemberKind::InOut => self.unconnected(prm, &v.name, call.span),
                 None => self.store_default(&dst, prm.default.as_ref()),
             }
         }
@@ -367,6 +375,10 @@ impl BodyBuilder<'_> {
     }
 
     fn copy_result(&mut self, src: &PlaceRef) -> Val {
+        if self.is_aggregate_type(src.ty) {
+            // Like a function's: the address, copied out by `call_place`.
+            return Val::Slot(self.address_of(src), src.ty);
+        }
         let Val::Slot(s, ty) = self.read_place(src) else {
             return Val::error();
         };
@@ -375,14 +387,6 @@ impl BodyBuilder<'_> {
                 let t = self.string_temp(max, wide);
                 self.block.emit(Op::StrMov { d: t, s });
                 Val::Slot(t, ty)
-            }
-            TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                self.diags.error(
-                    "E915",
-                    Span::default(),
-                    "a METHOD result of a structured type is not supported by plcrun",
-                );
-                Val::error()
             }
             _ => {
                 let t = self.block.temp();
@@ -442,18 +446,27 @@ impl BodyBuilder<'_> {
         self.no_en(&b, call.span);
         // Arguments first, once, in order.
         let mut args: Vec<Option<Slot>> = vec![None; params.len()];
+        for (i, prm) in params.iter().enumerate() {
+            if prm.kind == MemberKind::InOut && !b.inputs.iter().any(|(j, _)| *j == i) {
+                self.unconnected(prm, m, call.span);
+                return Val::error();
+            }
+        }
         for &(i, e) in &b.inputs {
             let ty = params[i].ty;
-            if matches!(
-                self.types.get(ty).kind,
-                TypeKind::Array { .. } | TypeKind::Struct { .. }
-            ) {
-                self.diags.error(
-                    "E915",
-                    e.span,
-                    "structured arguments cannot be passed through an interface by plcrun",
-                );
-                return Val::error();
+            if params[i].kind == MemberKind::InOut {
+                let Some(a) = self.in_out_address(&params[i], e) else {
+                    return Val::error();
+                };
+                args[i] = Some(a);
+                continue;
+            }
+            if self.is_aggregate_type(ty) {
+                let Some(a) = self.aggregate_arg(ty, e, &params[i].name) else {
+                    return Val::error();
+                };
+                args[i] = Some(a);
+                continue;
             }
             let v = self.expr(e, Some(ty));
             let v = self.coerce(v, ty, e.span, &format!("argument `{}`", params[i].name));
@@ -571,111 +584,9 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// `itf := inst;`, `itf := THIS^;`, `itf := 0;` (handled here: `true`).
-    pub(in crate::sema) fn oop_assign(&mut self, target: &Expr, value: &Expr) -> bool {
-        if self.model.oop.interfaces.is_empty() {
-            return false;
-        }
-        let Some(itf) = self.static_type(target).and_then(|t| self.interface_of(t)) else {
-            return false;
-        };
-        if self
-            .static_type(value)
-            .is_some_and(|t| self.interface_of(t).as_deref() == Some(itf.as_str()))
-        {
-            return false; // same interface: the structure copy
-        }
-        let Some(dst) = self.place(target) else {
-            return true;
-        };
-        if !self.check_writable(&dst, target.span) {
-            return true;
-        }
-        self.store_itf(&dst, &itf, value);
-        true
-    }
-
-    /// An argument for an interface parameter (handled here: `true`).
-    pub(in crate::sema) fn oop_store(&mut self, dst: &PlaceRef, e: &Expr) -> bool {
-        let Some(itf) = self.interface_of(dst.ty) else {
-            return false;
-        };
-        if self
-            .static_type(e)
-            .is_some_and(|t| self.interface_of(t).as_deref() == Some(itf.as_str()))
-        {
-            return false;
-        }
-        self.store_itf(dst, &itf, e);
-        true
-    }
-
-    /// Stores a reference to the instance `value` into interface place `dst`.
-    fn store_itf(&mut self, dst: &PlaceRef, itf: &str, value: &Expr) {
-        let ulint = TypeTable::elem(ElemType::Ulint);
-        let udint = TypeTable::elem(ElemType::Udint);
-        let (addr, tid) = if let ExprKind::Literal(l) = &value.kind
-            && matches!(l.value, LiteralValue::Int(0))
-        {
-            let z = self.materialize(&Val::Const(Const::Bits(0), Ty::T(ulint)));
-            (z, 0)
-        } else if is_this(value) {
-            let Some(fb) = self.oop.as_ref().map(|s| s.fb.clone()) else {
-                self.diags.error(
-                    "E918",
-                    value.span,
-                    "`THIS^` can only be used in a FUNCTION_BLOCK",
-                );
-                return;
-            };
-            let Some(tid) = self.implementing_tid(value.span, &fb, itf) else {
-                return;
-            };
-            let this = place_ref(Place::Frame(Slot::new(0)), ulint);
-            (self.address_of(&this), tid)
-        } else {
-            let Some(src) = self.place(value) else {
-                return;
-            };
-            let Some(fb) = self.oop_fb_of(src.ty) else {
-                let found = self.types.name(src.ty).to_string();
-                self.diags.error(
-                    "E914",
-                    value.span,
-                    format!(
-                        "an interface `{}` holds an instance of an FB that implements it, not a value of type {found}",
-                        self.model.oop.interfaces[itf].name
-                    ),
-                );
-                return;
-            };
-            let Some(tid) = self.implementing_tid(value.span, &fb, itf) else {
-                return;
-            };
-            (self.address_of(&src), tid)
-        };
-        let member = |off: u32| match dst.place {
-            Place::Frame(o) => Place::Frame(o.offset(off)),
-            Place::Abs(a) => Place::Abs(a + off),
-            Place::Ind { p, off: o } => Place::Ind { p, off: o + off },
-            other => other,
-        };
-        if matches!(dst.place, Place::Elem { .. }) {
-            self.diags.error(
-                "E915",
-                value.span,
-                "assigning to an element of an array of interfaces is not supported by plcrun",
-            );
-            return;
-        }
-        self.write_place(&place_ref(member(0), ulint), addr);
-        let t = self.materialize(&Val::Const(Const::Bits(tid as u64), Ty::T(udint)));
-        self.write_place(&place_ref(member(1), udint), t);
-    }
-
     /// The type id of FB `fb` stored with it in interface `itf`; E914 at
     /// `span` when `fb` does not implement `itf`.
-    fn implementing_tid(&mut self, span: Span, fb: &str, itf: &str) -> Option<u32> {
+    pub(super) fn implementing_tid(&mut self, span: Span, fb: &str, itf: &str) -> Option<u32> {
         let f = &self.model.oop.fbs[fb];
         if f.interfaces.iter().any(|i| i == itf) {
             return Some(f.tid);
@@ -789,7 +700,7 @@ impl BodyBuilder<'_> {
 impl BodyBuilder<'_> {
     /// The parameters of an interface method, typed by the interface's
     /// signature structure, and its result type.
-    fn itf_params(
+    pub(super) fn itf_params(
         &self,
         im: &super::model::ItfMethod,
         sig_type: &str,
@@ -814,11 +725,7 @@ impl BodyBuilder<'_> {
                 Some(Param {
                     name: s.name.clone(),
                     aliases: &[],
-                    kind: if s.input {
-                        MemberKind::Input
-                    } else {
-                        MemberKind::Output
-                    },
+                    kind: param_kind(s),
                     ty,
                     offset: 0,
                     default: None,
@@ -862,6 +769,17 @@ impl BodyBuilder<'_> {
             }
             let dst = self.late_member(addr, p, &hidden.hidden, prm.ty);
             match args[i] {
+                Some(s) if prm.kind == MemberKind::InOut => {
+                    let ptr = PlaceRef {
+                        ty: TypeTable::elem(ElemType::Ulint),
+                        ..dst
+                    };
+                    self.write_place(&ptr, s);
+                }
+                Some(s) if self.is_aggregate_type(prm.ty) => {
+                    let d = self.address_of(&dst);
+                    self.copy_value(d, s, prm.ty);
+                }
                 Some(s) => self.write_place(&dst, s),
                 None => {
                     let init = model.pous[p]
@@ -888,6 +806,12 @@ impl BodyBuilder<'_> {
         }
         if let (Some((r, ty)), Some(rk)) = (result, &v.ret) {
             let src = self.late_member(addr, p, rk, ty);
+            if self.is_aggregate_type(ty) {
+                // The result's address, copied out by `call_place`.
+                let a = self.address_of(&src);
+                self.block.mov(r, a);
+                return true;
+            }
             let Val::Slot(s, _) = self.read_place(&src) else {
                 return false;
             };

@@ -170,7 +170,7 @@ impl Lowering<'_> {
                         );
                     }
                     let (v, blocks) = self.method_version(&owner.name.name, m);
-                    for b in blocks {
+                    for b in blocks.into_iter().filter(|b| b.kind != VarKind::External) {
                         fields.extend(b.decls);
                     }
                     methods.insert(
@@ -219,6 +219,7 @@ impl Lowering<'_> {
                     name: x.name.name.clone(),
                     methods,
                     sig_type: sig_name.to_ascii_uppercase(),
+                    ancestors: self.itf_closure.get(key).cloned().unwrap_or_default(),
                 },
             );
         }
@@ -425,7 +426,9 @@ impl Lowering<'_> {
             }
             dispatch.insert(mk, versions.len());
             versions.push(v);
-            flat.extend(blocks);
+            for b in blocks {
+                push_method_block(&mut flat, b);
+            }
         }
         for i in &oop.implements {
             match self.itf_closure.get(&i.key()) {
@@ -518,19 +521,25 @@ impl Lowering<'_> {
         let mut sig = Vec::new();
         let mut blocks = Vec::new();
         for b in &m.var_blocks {
+            if b.kind == VarKind::External {
+                // The globals keep their names; the FB declares each once.
+                blocks.push(b.clone());
+                continue;
+            }
             let input = match b.kind {
-                VarKind::Input => Some(true),
+                VarKind::Input | VarKind::InOut => Some(true),
                 VarKind::Output => Some(false),
                 VarKind::Local | VarKind::Temp => None,
                 _ => {
                     self.diags.error(
                         "E915",
                         b.span,
-                        "a METHOD may declare VAR_INPUT, VAR_OUTPUT, VAR and VAR_TEMP only (VAR_IN_OUT and VAR_EXTERNAL in methods are not supported by plcrun)",
+                        "a METHOD may declare VAR_INPUT, VAR_OUTPUT, VAR_IN_OUT, VAR_EXTERNAL, VAR and VAR_TEMP only",
                     );
                     continue;
                 }
             };
+            let in_out = b.kind == VarKind::InOut;
             let mut decls = Vec::new();
             for d in &b.decls {
                 let mut names = Vec::new();
@@ -544,8 +553,13 @@ impl Lowering<'_> {
                                 name: n.name.clone(),
                                 input: inp,
                                 hidden: hk.clone(),
+                                in_out,
                             });
-                            sig.push((n.key(), inp, spec_text(&d.ty)));
+                            let ty = match in_out {
+                                true => format!("VAR_IN_OUT {}", spec_text(&d.ty)),
+                                false => spec_text(&d.ty),
+                            };
+                            sig.push((n.key(), inp, ty));
                             if !inp {
                                 resets.push(hk);
                             }
@@ -567,7 +581,11 @@ impl Lowering<'_> {
                 });
             }
             blocks.push(VarBlock {
-                kind: VarKind::Local,
+                kind: if in_out {
+                    VarKind::InOut
+                } else {
+                    VarKind::Local
+                },
                 constant: b.constant,
                 retain: None,
                 decls,
@@ -688,4 +706,25 @@ fn field(name: &str, ty: &str, span: Span) -> VarDecl {
         span,
         edge: None,
     }
+}
+
+/// Adds a method's variable block to its FB's flattened blocks; a
+/// VAR_EXTERNAL the FB (or another method) declares already is not
+/// declared again (the same global, one name).
+fn push_method_block(flat: &mut Vec<VarBlock>, mut b: VarBlock) {
+    if b.kind == VarKind::External {
+        let known: HashSet<String> = flat
+            .iter()
+            .filter(|f| f.kind == VarKind::External)
+            .flat_map(|f| f.decls.iter().flat_map(|d| d.names.iter().map(Ident::key)))
+            .collect();
+        for d in &mut b.decls {
+            d.names.retain(|n| !known.contains(&n.key()));
+        }
+        b.decls.retain(|d| !d.names.is_empty());
+        if b.decls.is_empty() {
+            return;
+        }
+    }
+    flat.push(b);
 }

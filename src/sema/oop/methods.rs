@@ -5,6 +5,7 @@
 //! instance keeps its temporaries).
 
 use super::OopInfo;
+use crate::diagnostics::Diagnostic;
 use crate::ir::image::{CodeBlock, CodeKind};
 use crate::ir::op::{CodeIdx, Op};
 use crate::sema::body::BodyBuilder;
@@ -25,6 +26,9 @@ pub(crate) struct Scope {
     pub version: Option<usize>,
     /// The code block (for the call graph).
     pub code: CodeIdx,
+    /// Diagnostics reported before this FB's code was emitted (those after
+    /// are checked for copies: inherited code is compiled once per FB).
+    pub diags_before: usize,
 }
 
 /// Gives every method version a code block (an empty one until its FB is
@@ -63,6 +67,7 @@ impl BodyBuilder<'_> {
                 origin: key,
                 version: None,
                 code: self.model.pous[p].code,
+                diags_before: self.diags.len(),
             });
         }
     }
@@ -97,6 +102,7 @@ impl BodyBuilder<'_> {
                 origin: v.origin.clone(),
                 version: Some(vi),
                 code,
+                diags_before: scope.diags_before,
             });
             match &v.body {
                 Body::St(stmts) => self.stmts(stmts),
@@ -127,7 +133,27 @@ impl BodyBuilder<'_> {
             block.ops = sub.ops;
             block.spans = sub.spans;
         }
-        self.oop = Some(scope);
         self.block.temp_max = top;
+        self.drop_inherited_copies(scope.diags_before);
+        self.oop = Some(scope);
+    }
+
+    /// Code an FB inherits is compiled in every FB that has it, so an error
+    /// in it would be reported by the parent and by each child: the copies
+    /// (same code, same place) reported since `before` are dropped.
+    fn drop_inherited_copies(&mut self, before: usize) {
+        if self.diags.len() == before {
+            return;
+        }
+        let all: Vec<Diagnostic> = self.diags.iter().cloned().collect();
+        self.diags.truncate(before);
+        for (i, d) in all.iter().enumerate().skip(before) {
+            let copy = all[..i]
+                .iter()
+                .any(|o| o.code == d.code && o.span == d.span);
+            if !copy {
+                self.diags.push(d.clone());
+            }
+        }
     }
 }

@@ -18,10 +18,17 @@
 //!   through an interface compares the value's type id with each
 //!   implementing FB's id and calls that FB's version (`CallFbInd`); no
 //!   match (an unassigned interface) is fault R080.
+//! * Interface values ([`itf_values`]) go wherever a structure goes
+//!   (arguments, results, array elements), an interface receives one of an
+//!   interface extending it; `?=` ([`assign_attempt`]) tries the other
+//!   way at run time.
 
+mod assign_attempt;
 pub(super) mod calls;
 pub(super) mod class;
+mod itf_values;
 pub(super) mod lower;
+mod method_vars;
 pub(super) mod methods;
 pub(super) mod model;
 pub(super) mod property;

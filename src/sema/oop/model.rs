@@ -77,6 +77,9 @@ pub(crate) struct ParamSig {
     pub input: bool,
     /// Key of the hidden variable (or signature field) holding it.
     pub hidden: String,
+    /// VAR_IN_OUT (then `input` is true too): the hidden variable holds the
+    /// address of the caller's variable.
+    pub in_out: bool,
 }
 
 /// A method's signature as text, for override and implementation checks:
@@ -117,6 +120,9 @@ pub(crate) struct ItfInfo {
     pub methods: IndexMap<String, ItfMethod>,
     /// Key of the structure type whose fields type the parameters.
     pub sig_type: String,
+    /// Keys of this interface and of every interface it extends, directly
+    /// or not (a value of this interface may be assigned to any of them).
+    pub ancestors: Vec<String>,
 }
 
 /// One method prototype of an interface.
