@@ -34,8 +34,10 @@ mod type_decl;
 // Phase 2: one body builder per POU.
 mod aggregate_copy;
 pub(crate) mod assert_calls;
+mod bcd_width;
 mod binary;
 mod bits_arith;
+mod bits_neg;
 mod body;
 mod bounds;
 mod calls;
@@ -51,6 +53,7 @@ mod for_loop;
 mod grafcet_forcing;
 mod il;
 mod il_recovery;
+mod in_out_read;
 mod input_write;
 mod partial_access;
 mod place;
