@@ -28,6 +28,7 @@ mod declare;
 mod incomplete_address;
 mod layout;
 mod nesting;
+mod self_ref_types;
 mod sfc;
 mod type_decl;
 
