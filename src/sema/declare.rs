@@ -417,9 +417,11 @@ impl Declarer<'_> {
                 );
                 continue;
             }
+            let no_value = self.static_reference_init(decl, ty, "a global variable");
             let init = decl
                 .init
                 .as_ref()
+                .filter(|_| !no_value)
                 .and_then(|i| self.consts().resolve_init(i, ty, None));
             for name in &decl.names {
                 let key = name.key();

@@ -58,6 +58,7 @@ mod in_out_read;
 mod input_write;
 mod partial_access;
 mod place;
+mod ref_inits;
 mod refs;
 mod sfc_emit;
 mod std_convert;

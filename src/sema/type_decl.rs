@@ -381,9 +381,11 @@ impl Declarer<'_> {
         let mut offset = 0u32;
         for decl in fields {
             let fty = self.resolve_type(&decl.ty, local);
+            let no_value = self.static_reference_init(decl, fty, "a structure field");
             let init = decl
                 .init
                 .as_ref()
+                .filter(|_| !no_value)
                 .and_then(|i| self.consts().resolve_init(i, fty, local));
             for name in &decl.names {
                 if members
