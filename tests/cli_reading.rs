@@ -85,6 +85,8 @@ fn compare_reads_both_programs_with_the_encoding_and_strict() {
         &a,
         "--cycles",
         "2",
+        "--random",
+        "1",
         "--encoding",
         "utf-8",
         "--",
@@ -92,9 +94,11 @@ fn compare_reads_both_programs_with_the_encoding_and_strict() {
     ]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("E011"), "{err}");
-    let (code, _, err) = plcrun(&["compare", &a, "--cycles", "2", "--", &a]);
+    let (code, _, err) = plcrun(&["compare", &a, "--cycles", "2", "--random", "1", "--", &a]);
     assert_eq!(code, 0, "{err}");
-    let (code, _, err) = plcrun(&["compare", &a, "--cycles", "2", "--strict", "--", &b]);
+    let (code, _, err) = plcrun(&[
+        "compare", &a, "--cycles", "2", "--random", "1", "--strict", "--", &b,
+    ]);
     assert_ne!(code, 0, "{err}");
     assert!(err.contains("W324"), "{err}");
 }

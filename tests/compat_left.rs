@@ -293,7 +293,10 @@ fn reference_initial_values_where_no_body_runs_them_are_refused_by_name() {
     // NULL is every reference's initial value: accepted anywhere.
     let ok = "VAR_GLOBAL g : REF_TO INT := NULL; END_VAR TYPE S : STRUCT r : REF_TO INT := NULL; \
               END_STRUCT END_TYPE";
-    assert_eq!(error_codes(&program(ok, "s : S;", "")), Vec::<String>::new());
+    assert_eq!(
+        error_codes(&program(ok, "s : S;", "")),
+        Vec::<String>::new()
+    );
 }
 
 #[test]

@@ -17,7 +17,7 @@ impl BodyBuilder<'_> {
     /// The result type of `<int>_TO_BCD`: `to` when the name gives it,
     /// else the bit string the context expects (W347 when that is not the
     /// source's width), else `None` (the source's width).
-    pub(super) fn to_bcd_result_type(
+    pub(super) fn bcd_target_type(
         &mut self,
         fname: &str,
         to: Option<ElemType>,

@@ -16,6 +16,7 @@
 //!   (which resets references, semantics §16). The evaluation happens at
 //!   the instance's first call after that, before its body: until then a
 //!   reference read from outside the instance is still NULL.
+//!
 //! An initial value on a VAR_INPUT, VAR_IN_OUT or VAR_EXTERNAL (set by
 //! the caller or elsewhere) is refused, E429. `:= NULL` is every
 //! reference's initial value already: accepted anywhere, nothing to run.

@@ -385,7 +385,7 @@ impl BodyBuilder<'_> {
                     .first()
                     .and_then(|(v, _)| v.ty().id())
                     .and_then(|t| self.scalar(t));
-                let to = self.to_bcd_result_type(fname, to, bits.map(|e| e.bits()), expect, span);
+                let to = self.bcd_target_type(fname, to, bits.map(|e| e.bits()), expect, span);
                 self.std_to_bcd(to, vals, fname)
             }
             Std::ConcatDateTod => self.std_concat_date_tod(vals, fname, span),
