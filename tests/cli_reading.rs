@@ -10,7 +10,8 @@ use cli::{plcrun, temp_file};
 /// A program whose comment holds a Windows-1252 byte (0xE9, `é`) and that
 /// uses one compatibility extension (W324, unary `-` on a DWORD).
 fn latin_program() -> Vec<u8> {
-    let mut src = b"PROGRAM P\nVAR d : DWORD := 1; r : DWORD; END_VAR\n(* caf".to_vec();
+    let mut src =
+        b"PROGRAM P\nVAR d : DWORD := 1; END_VAR\nVAR_OUTPUT r : DWORD; END_VAR (* caf".to_vec();
     src.push(0xE9);
     src.extend_from_slice(b" *)\nr := -d;\nEND_PROGRAM\n");
     src
@@ -18,7 +19,8 @@ fn latin_program() -> Vec<u8> {
 
 /// A clean program of pure IEC with the same Windows-1252 comment.
 fn latin_pure() -> Vec<u8> {
-    let mut src = b"PROGRAM P\nVAR d : DINT := 1; r : DINT; END_VAR\n(* caf".to_vec();
+    let mut src =
+        b"PROGRAM P\nVAR d : DINT := 1; END_VAR\nVAR_OUTPUT r : DINT; END_VAR (* caf".to_vec();
     src.push(0xE9);
     src.extend_from_slice(b" *)\nr := -d;\nEND_PROGRAM\n");
     src

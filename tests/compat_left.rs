@@ -318,3 +318,44 @@ fn an_online_change_evaluates_the_reference_initial_values_again() {
     // x was 7 after two cycles and kept: y reads 7.
     assert_eq!(lit(&plc, "y"), "7");
 }
+
+#[test]
+fn a_literal_too_large_for_the_other_operand_widens_the_operation() {
+    // OSCAT's CALENDAR_CALC: off * 60000 with off : INT is done in DINT
+    // (2 * 60000 = 120000, more than an INT holds); W348.
+    let src = program(
+        "",
+        "off : INT := 2; d : DINT; big : BOOL;",
+        "d := off * 60000 + 5; big := off < 40000;",
+    );
+    assert_eq!(codes_at(&src), vec!["W348@6:6", "W348@6:30"]);
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "d"), "120005");
+    assert_eq!(lit(&plc, "big"), "TRUE");
+    // A literal that fits keeps the IEC typing (INT, no warning); an INT
+    // result assigned from the widened DINT is refused as any DINT would be.
+    let src = program("", "off : INT := 2; i : INT;", "i := off * 600;");
+    assert_eq!(codes_at(&src), Vec::<String>::new());
+    let src = program("", "off : INT := 2; i : INT;", "i := off * 60000;");
+    assert_eq!(error_codes(&src), vec!["E301"]);
+}
+
+#[test]
+fn an_il_call_of_a_function_returning_a_structure_is_refused_by_name() {
+    // Before, the CR was left at 0 and `ST p` stored 0 into p.x silently.
+    let src = "TYPE Pt : STRUCT x : INT; y : INT; END_STRUCT END_TYPE\n\
+               FUNCTION MakePt : Pt\nVAR_INPUT a : INT; END_VAR\nMakePt.x := a; MakePt.y := a * 2;\nEND_FUNCTION\n\
+               PROGRAM P\nVAR p : Pt; END_VAR\n  LD 3\n  MakePt\n  ST p\nEND_PROGRAM\n";
+    assert_eq!(codes_at(src), vec!["E431@9:3"]);
+    // ST calls it.
+    let st = program(
+        "TYPE Pt : STRUCT x : INT; y : INT; END_STRUCT END_TYPE\n\
+         FUNCTION MakePt : Pt VAR_INPUT a : INT; END_VAR MakePt.x := a; MakePt.y := a * 2; END_FUNCTION",
+        "p : Pt; y : INT;",
+        "p := MakePt(3); y := p.y;",
+    );
+    let mut plc = compile(&st);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "y"), "6");
+}
