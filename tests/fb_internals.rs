@@ -1,6 +1,6 @@
 //! Reading a function block instance's internal variables from outside
 //! (`x := inst.count;`), as CoDeSys 2.3 and matiec accept: W320, read-only
-//! (a write is E420); VAR_TEMP (E421) and VAR_IN_OUT (E422) stay hidden.
+//! (a write is E420); VAR_TEMP (E421) stays hidden, a VAR_IN_OUT reads its bound variable (W325).
 
 #[path = "support/access_diags.rs"]
 mod access_diags;
@@ -68,7 +68,7 @@ fn writing_an_internal_from_outside_is_e420() {
 }
 
 #[test]
-fn a_temporary_is_e421_and_an_in_out_e422() {
+fn a_temporary_is_e421_and_an_in_out_read_is_w325() {
     let got = codes_at(&prog("c : Counter; n : INT;", "n := c.t;"));
     assert_eq!(got, vec!["E421@6:8"], "{got:?}");
     let io = "FUNCTION_BLOCK Io VAR_IN_OUT r : INT; END_VAR r := r + 1; END_FUNCTION_BLOCK";
@@ -76,7 +76,14 @@ fn a_temporary_is_e421_and_an_in_out_e422() {
         "{io}\nPROGRAM P\nVAR\nb : Io; v : INT; n : INT;\nEND_VAR\nb(r := v);\nn := b.r;\nEND_PROGRAM\n"
     );
     let got = codes_at(&src);
-    assert_eq!(got, vec!["E422@7:8"], "{got:?}");
+    // Issue #11: reading an in-out from outside reads the bound variable
+    // (W325, tests/in_out_outside.rs); writing it from outside stays E422.
+    assert_eq!(got, vec!["W325@7:8"], "{got:?}");
+    let src = format!(
+        "{io}\nPROGRAM P\nVAR\nb : Io; v : INT;\nEND_VAR\nb(r := v);\nb.r := 1;\nEND_PROGRAM\n"
+    );
+    let got = codes_at(&src);
+    assert_eq!(got, vec!["W325@7:3", "E422@7:1"], "{got:?}");
 }
 
 #[test]

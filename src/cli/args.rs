@@ -59,6 +59,9 @@ pub struct DrawArgs {
     /// Write the SVG to FILE instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,
+    /// How the sources are read and how strictly they are checked.
+    #[command(flatten)]
+    pub reading: ReadingArgs,
 }
 
 /// `plcrun [run] FILES... --cycles N [options]`.
@@ -182,7 +185,8 @@ pub struct RunArgs {
     pub no_optimize: bool,
 }
 
-/// How `run` and `check` read the sources and how strictly they check them.
+/// How every subcommand that reads sources reads them and how strictly it
+/// checks them.
 #[derive(Debug, Args)]
 pub struct ReadingArgs {
     /// Pure IEC 61131-3: every compatibility-extension warning (W300-W399)
@@ -232,6 +236,9 @@ pub struct ExportArgs {
     /// Write to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
+    /// How the sources are read and how strictly they are checked.
+    #[command(flatten)]
+    pub reading: ReadingArgs,
 }
 
 /// How `--stats` prints the statistics.

@@ -3,11 +3,12 @@
 //! Exit status: 0 equivalent, 1 a difference found, 2 usage or compile
 //! errors.
 
+use super::args::ReadingArgs;
 use super::{EXIT_OK, EXIT_USAGE};
 use clap::Args;
 use plcrun::{
     CompareOptions, CompareReport, Diagnostics, InputPlan, Options, Pair, Plc, RandomStimulus,
-    SourceMap, StimulusSource, load_files, parse_map, parse_time_literal, run_seeds,
+    SourceMap, StimulusSource, load_files_with, parse_map, parse_time_literal, run_seeds,
 };
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -62,6 +63,9 @@ pub struct CompareArgs {
     /// B may follow A by up to K cycles (see docs/compare.md).
     #[arg(long, default_value_t = 0, value_name = "K")]
     pub lag: u64,
+    /// How the sources of both programs are read and how strictly they are checked.
+    #[command(flatten)]
+    pub reading: ReadingArgs,
     /// Write the shrunk counterexample to FILE as a stimulus CSV.
     #[arg(long, value_name = "FILE")]
     pub counterexample: Option<PathBuf>,
@@ -116,11 +120,18 @@ struct Program {
 }
 
 impl Program {
-    fn load(files: &[PathBuf], program: &Option<String>, cycle_time: i64) -> Result<Program, i32> {
+    fn load(
+        files: &[PathBuf],
+        program: &Option<String>,
+        cycle_time: i64,
+        reading: &ReadingArgs,
+    ) -> Result<Program, i32> {
         let mut diags = Diagnostics::new();
-        let sources = load_files(files, &mut diags).map_err(usage_error)?;
-        if diags.has_errors() {
+        let sources = load_files_with(files, reading.encoding, &mut diags).map_err(usage_error)?;
+        if !diags.is_empty() {
             eprint!("{}", diags.render(&sources));
+        }
+        if diags.has_errors() {
             return Err(EXIT_USAGE);
         }
         let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
@@ -130,6 +141,8 @@ impl Program {
             options: Options {
                 cycle_time,
                 program: program.clone(),
+                strict: reading.strict,
+                encoding: reading.encoding,
                 ..Options::default()
             },
         })
@@ -163,8 +176,8 @@ fn prepare(args: &CompareArgs) -> Result<(Program, Program, CompareOptions, Pair
             "give the stimulus: --stimulus FILE, or --random SEED (with --seeds K)",
         ));
     }
-    let a = Program::load(&args.a_files, &args.program_a, cycle_time)?;
-    let b = Program::load(&args.b_files, &args.program_b, cycle_time)?;
+    let a = Program::load(&args.a_files, &args.program_a, cycle_time, &args.reading)?;
+    let b = Program::load(&args.b_files, &args.program_b, cycle_time, &args.reading)?;
     let mut map = Vec::new();
     for item in &args.map {
         map.push(parse_map(item).map_err(usage_error)?);

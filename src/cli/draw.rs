@@ -5,7 +5,7 @@ use super::args::{DrawArgs, RunArgs};
 use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};
 use plcrun::{
     ChartPicture, CheckOptions, Diagnostics, Session, TimingDiagram, check as check_sources,
-    load_files,
+    load_files_with,
 };
 use std::path::Path;
 use std::sync::{Arc, Mutex, PoisonError};
@@ -17,7 +17,7 @@ fn write_file(path: &Path, text: &str) -> Result<(), String> {
 /// `plcrun draw FILES... [--program P] [-o OUT.svg]`
 pub fn draw(args: &DrawArgs) -> i32 {
     let mut diags = Diagnostics::new();
-    let sources = match load_files(&args.files, &mut diags) {
+    let sources = match load_files_with(&args.files, args.reading.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => {
             eprintln!("error: {e}");
@@ -30,6 +30,7 @@ pub fn draw(args: &DrawArgs) -> i32 {
         // GRAFCET forcing orders draws as well as an IEC one.
         &CheckOptions {
             grafcet: true,
+            strict: args.reading.strict,
             ..CheckOptions::default()
         },
     );

@@ -2,20 +2,33 @@
 
 use super::args::ExportArgs;
 use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};
-use plcrun::{Diagnostics, ExportError, export_plcopen, load_files};
+use plcrun::{
+    CheckOptions, Diagnostics, ExportError, check as check_sources, export_plcopen, load_files_with,
+};
 
 /// `plcrun export --plcopen FILES... [-o OUT.xml]`.
 pub fn export(args: &ExportArgs) -> i32 {
     let mut diags = Diagnostics::new();
-    let sources = match load_files(&args.files, &mut diags) {
+    let sources = match load_files_with(&args.files, args.reading.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => {
             eprintln!("error: {e}");
             return EXIT_USAGE;
         }
     };
-    if diags.has_errors() {
+    // `--strict`: sources that use a compatibility extension (W300-W399)
+    // are not exported as IEC 61131-3.
+    if args.reading.strict {
+        let options = CheckOptions {
+            strict: true,
+            ..CheckOptions::default()
+        };
+        diags.extend(check_sources(&sources, &options).diagnostics);
+    }
+    if !diags.is_empty() {
         eprint!("{}", diags.render(&sources));
+    }
+    if diags.has_errors() {
         return EXIT_COMPILE;
     }
     let xml = match export_plcopen(&sources) {

@@ -1,7 +1,7 @@
 //! `--online-change-at N:FILE`: a run that loads new versions of the
 //! program at given cycles, for tests and demonstrations of online change.
 
-use plcrun::{Diagnostics, Options, Plc, RunError, Session, TraceWriter, load_files};
+use plcrun::{Diagnostics, Options, Plc, RunError, Session, TraceWriter, load_files_with};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -56,7 +56,11 @@ pub(super) fn run<W: Write>(
 fn apply(session: &mut Session, change: &PlannedChange, options: &Options) {
     let at = session.plc().cycle();
     let mut diags = Diagnostics::new();
-    let sources = match load_files(std::slice::from_ref(&change.file), &mut diags) {
+    let sources = match load_files_with(
+        std::slice::from_ref(&change.file),
+        options.encoding,
+        &mut diags,
+    ) {
         Ok(s) => s,
         Err(e) => {
             eprintln!("online change before cycle {at} refused: {e}");

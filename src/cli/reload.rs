@@ -10,7 +10,7 @@
 //! the version was refused — goes to standard error; a refused version
 //! leaves the running program as it is.
 
-use plcrun::{Diagnostics, Options, Plc, Session, load_files};
+use plcrun::{Diagnostics, Options, Plc, Session, load_files_with};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -81,7 +81,7 @@ fn watch(files: &[PathBuf], options: &Options, tx: &Sender<Version>, done: &Atom
 /// Loads and compiles the files as they are now.
 fn compile(files: &[PathBuf], options: &Options) -> Version {
     let mut diags = Diagnostics::new();
-    let sources = match load_files(files, &mut diags) {
+    let sources = match load_files_with(files, options.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => return Version::Refused(format!("error: {e}\n")),
     };

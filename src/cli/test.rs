@@ -2,9 +2,10 @@
 //! docs/testing.md). Exit status: 0 every test passed, 1 a test failed or
 //! errored, compile errors or no test found, 2 usage errors.
 
+use super::args::ReadingArgs;
 use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};
 use clap::Args;
-use plcrun::{Diagnostics, TestError, TestOptions, load_files, parse_time_literal, run_tests};
+use plcrun::{Diagnostics, TestError, TestOptions, load_files_with, parse_time_literal, run_tests};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -32,6 +33,9 @@ pub struct TestArgs {
     /// Wall-clock limit of one cycle of a test (e.g. 1s, 250ms); 0 disables it.
     #[arg(long, default_value = "1s")]
     pub watchdog: String,
+    /// How the sources are read and how strictly they are checked.
+    #[command(flatten)]
+    pub reading: ReadingArgs,
 }
 
 fn usage_error(msg: impl std::fmt::Display) -> i32 {
@@ -60,6 +64,7 @@ fn options(args: &TestArgs) -> Result<TestOptions, String> {
         filter: args.filter.clone(),
         cycle_time,
         watchdog,
+        strict: args.reading.strict,
     })
 }
 
@@ -70,12 +75,14 @@ pub fn test(args: &TestArgs) -> i32 {
         Err(e) => return usage_error(e),
     };
     let mut diags = Diagnostics::new();
-    let sources = match load_files(&args.files, &mut diags) {
+    let sources = match load_files_with(&args.files, args.reading.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
-    if diags.has_errors() {
+    if !diags.is_empty() {
         eprint!("{}", diags.render(&sources));
+    }
+    if diags.has_errors() {
         return EXIT_COMPILE;
     }
     let report = match run_tests(&sources, &options) {

@@ -75,6 +75,7 @@ impl BodyBuilder<'_> {
             self.bad_operand(span, op_name, common);
             return Val::error();
         }
+        let common = self.widen_for_literal(&va, &vb, common, span);
         // Constant folding.
         if let (Val::Const(ca, _), Val::Const(cb, _)) = (&va, &vb) {
             match self.fold(op, ca, va.ty(), cb, vb.ty(), common) {

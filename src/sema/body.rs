@@ -84,6 +84,7 @@ impl<'a> BodyBuilder<'a> {
         } else {
             self.emit_edge_inputs(pou);
             self.emit_eno_start(pou);
+            self.emit_reference_inits(pou);
             match &pou.body {
                 Body::St(stmts) => self.stmts(stmts),
                 Body::Il(lines) => {

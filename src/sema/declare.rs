@@ -46,6 +46,9 @@ pub(super) struct Declarer<'a> {
     pub(super) pending_enums: Vec<String>,
     /// The POUs being laid out, outermost first (to name an instance cycle).
     pub(super) layout_path: Vec<usize>,
+    /// Ids given to STRUCT TYPEs before their fields are resolved (so a
+    /// field may refer to its own structure: `self_ref_types.rs`).
+    pub(super) reserved_structs: HashMap<String, TypeId>,
 }
 
 /// What the declaration phase hands to the linker.
@@ -102,6 +105,7 @@ impl<'a> Declarer<'a> {
             type_state: HashMap::new(),
             pending_enums: Vec::new(),
             layout_path: Vec::new(),
+            reserved_structs: HashMap::new(),
         }
     }
 
@@ -413,9 +417,11 @@ impl Declarer<'_> {
                 );
                 continue;
             }
+            let no_value = self.static_reference_init(decl, ty, "a global variable");
             let init = decl
                 .init
                 .as_ref()
+                .filter(|_| !no_value)
                 .and_then(|i| self.consts().resolve_init(i, ty, None));
             for name in &decl.names {
                 let key = name.key();

@@ -170,6 +170,9 @@ impl BodyBuilder<'_> {
                 v
             }
             UnaryOp::Neg => {
+                if let Some(r) = self.bit_string_neg(&v, span) {
+                    return r;
+                }
                 let ty = v.ty();
                 let ok = self.is_numeric(ty)
                     || ty

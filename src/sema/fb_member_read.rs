@@ -6,9 +6,9 @@
 //! variables (`VAR`), and library code (OSCAT) relies on it. plcrun reads
 //! them with a compatibility warning (W320) and refuses to write them
 //! (E420): the block owns its state, as in CODESYS. Temporaries (E421)
-//! exist only during a call, and an in-out (E422) refers to whatever the
-//! last caller passed, which may be a variable that no longer exists, so
-//! neither is visible from outside.
+//! exist only during a call, so they are not visible from outside. An
+//! in-out reads the variable the last call bound (`in_out_read.rs`, W325;
+//! writing it from outside is E422).
 
 use super::body::BodyBuilder;
 use crate::ir::type_table::{Member, MemberKind, TypeDef, TypeId};
@@ -56,18 +56,6 @@ impl BodyBuilder<'_> {
                 );
                 None
             }
-            MemberKind::InOut => {
-                self.diags.error(
-                    "E422",
-                    name.span,
-                    format!(
-                        "`{}` is a VAR_IN_OUT of {}: it refers to the variable of the last call, \
-                         which may no longer exist; read that variable itself",
-                        m.name, def.name
-                    ),
-                );
-                None
-            }
             _ => {
                 self.diags.error(
                     "E201",
@@ -88,6 +76,8 @@ impl BodyBuilder<'_> {
 pub(super) fn write_refusal_code(reason: Option<&str>) -> &'static str {
     if reason == Some(FB_INTERNAL) {
         "E420"
+    } else if reason == Some(super::in_out_read::IN_OUT_OUTSIDE) {
+        "E422"
     } else {
         "E401"
     }

@@ -548,6 +548,10 @@ impl BodyBuilder<'_> {
 
     /// A function call in IL: the CR is the first argument of an informal call.
     fn il_function_call(&mut self, st: &mut IlState, name: &Ident, args: &[Arg], span: Span) {
+        if self.il_refuses_aggregate_result(name, span) {
+            (st.cr_ty, st.cr_lit) = (Some(TypeTable::error()), None);
+            return;
+        }
         self.expose_cr(st);
         // Formal calls name every input; informal ones take the CR first.
         let formal = args.iter().any(|a| matches!(a, Arg::Input { .. }));

@@ -79,7 +79,15 @@ impl Declarer<'_> {
             );
             return None;
         }
-        let elem = self.types.scalar(ty);
+        // An array of scalars too: VAR_CONFIG gives each element its
+        // address (`link/config_elements.rs`).
+        let elem = self
+            .types
+            .scalar(ty)
+            .or_else(|| match &self.types.get(ty).kind {
+                crate::ir::type_table::TypeKind::Array { elem, .. } => self.types.scalar(*elem),
+                _ => None,
+            });
         if elem.is_none() || (a.explicit_size && !address_fits(a.size, elem)) {
             self.diags.error(
                 "E207",

@@ -106,6 +106,10 @@ pub(crate) struct Model {
     pub enum_values: HashMap<String, Vec<(TypeId, i64)>>,
     /// Globals by case-folded name, in declaration order.
     pub globals: IndexMap<String, VarInfo>,
+    /// Per POU (case-folded name) whose references are initialised once
+    /// per initialisation: the frame slot that says it was done, and its
+    /// type (`ref_inits.rs`).
+    pub ref_init_guards: HashMap<String, (u32, TypeId)>,
     /// The retention of each global declared RETAIN, NON_RETAIN or
     /// PERSISTENT, by case-folded name.
     pub global_retention: HashMap<String, crate::ir::type_table::Retention>,

@@ -153,7 +153,12 @@ impl BodyBuilder<'_> {
         let (offset, ty, writable, reason) = match &def.kind {
             TypeKind::Struct { fields } => self.struct_field(&def, fields, name, &b)?,
             TypeKind::NativeFb(fb) => self.native_pin(&def, *fb, name, &b)?,
-            TypeKind::Pou { members, .. } => self.pou_member(&def, members, name, &b)?,
+            TypeKind::Pou { members, .. } => {
+                if let Some(p) = self.in_out_from_outside(&def, members, name, &b) {
+                    return Some(p);
+                }
+                self.pou_member(&def, members, name, &b)?
+            }
             TypeKind::Step => {
                 let (off, ty) = match name.key().as_str() {
                     "X" => (step_layout::X, TypeTable::elem(ElemType::Bool)),
@@ -533,7 +538,7 @@ impl BodyBuilder<'_> {
     }
 
     /// `place + offset`, turning element places into pointers when needed.
-    fn offset_place(&mut self, place: Place, off: u32) -> Place {
+    pub(super) fn offset_place(&mut self, place: Place, off: u32) -> Place {
         match place {
             Place::Frame(o) => Place::Frame(o.offset(off)),
             Place::Abs(a) => Place::Abs(a + off),

@@ -380,7 +380,14 @@ impl BodyBuilder<'_> {
                 let to = self.bcd_result_type(fname, to, expect, span);
                 self.std_bcd_to(to, vals, fname)
             }
-            Std::ToBcd(to) => self.std_to_bcd(to, vals, fname),
+            Std::ToBcd(to) => {
+                let bits = vals
+                    .first()
+                    .and_then(|(v, _)| v.ty().id())
+                    .and_then(|t| self.scalar(t));
+                let to = self.bcd_target_type(fname, to, bits.map(|e| e.bits()), expect, span);
+                self.std_to_bcd(to, vals, fname)
+            }
             Std::ConcatDateTod => self.std_concat_date_tod(vals, fname, span),
             Std::Clock => self.clock_value(),
             Std::Concat => self.std_concat(vals, fname),

@@ -35,13 +35,14 @@ impl Declarer<'_> {
             return None;
         };
         let decl = &decls[d];
+        self.reserve_struct_id(key, &decl.name.name, &decl.ty);
         let base = self.resolve_type(&decl.ty, None);
         // A named type gets its own identity for enums and structs; aliases share.
         let ty = match &decl.ty {
             TypeSpec::Enum { .. } | TypeSpec::Struct { .. } => {
                 let mut def = self.types.get(base).clone();
                 def.name = decl.name.name.clone();
-                let id = self.types.add(def);
+                let id = self.place_named_type(key, def);
                 // Field defaults belong to the named type too.
                 if let Some(ci) = self.model.type_inits.get(&base).cloned() {
                     self.model.type_inits.insert(id, ci);
@@ -380,9 +381,11 @@ impl Declarer<'_> {
         let mut offset = 0u32;
         for decl in fields {
             let fty = self.resolve_type(&decl.ty, local);
+            let no_value = self.static_reference_init(decl, fty, "a structure field");
             let init = decl
                 .init
                 .as_ref()
+                .filter(|_| !no_value)
                 .and_then(|i| self.consts().resolve_init(i, fty, local));
             for name in &decl.names {
                 if members

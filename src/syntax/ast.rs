@@ -848,6 +848,9 @@ pub struct ConfigInit {
     /// The dotted path: resource (may be left out with an implicit
     /// resource), program instance, FB instances, variable.
     pub path: Vec<Ident>,
+    /// Subscripts after path segments (`valves[2]`): (segment position,
+    /// index expressions).
+    pub subscripts: Vec<(usize, Vec<Expr>)>,
     /// `AT %...`: the address completing an `AT %I*`-style declaration.
     pub location: Option<DirectAddress>,
     /// The type, as the variable is declared.

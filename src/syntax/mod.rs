@@ -6,6 +6,7 @@
 pub mod assign_attempt;
 pub mod ast;
 mod codesys_spellings;
+pub mod config_path;
 pub mod construct;
 pub mod depth;
 pub mod il_lines;

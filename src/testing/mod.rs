@@ -29,6 +29,9 @@ pub struct TestOptions {
     /// Wall-clock limit of one cycle of a test (default 1 s); `None`
     /// disables it. A test that exceeds it fails with fault R008.
     pub watchdog: Option<Duration>,
+    /// Pure IEC 61131-3: every compatibility-extension warning (W300-W399)
+    /// is an error (default false).
+    pub strict: bool,
 }
 
 impl Default for TestOptions {
@@ -37,6 +40,7 @@ impl Default for TestOptions {
             filter: None,
             cycle_time: 10_000_000,
             watchdog: Some(Duration::from_secs(1)),
+            strict: false,
         }
     }
 }

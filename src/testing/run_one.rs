@@ -64,6 +64,7 @@ fn compile(
         cycle_time: options.cycle_time,
         program: Some(program),
         watchdog: options.watchdog,
+        strict: options.strict,
         hosts,
         ..Options::default()
     };

@@ -3,6 +3,7 @@
 //! function-frame addresses, checks for recursion, builds the tasks and
 //! the [`Image`]. Reads the declarations; consumes the output tables.
 
+mod config_elements;
 mod init;
 mod oop_resets;
 mod recursion;

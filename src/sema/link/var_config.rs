@@ -87,6 +87,25 @@ impl Linker<'_> {
     ) -> Option<Target> {
         let model = self.model;
         let (res, rest) = self.config_resource(cfg, &line.path)?;
+        // Subscripts by position in `rest` (none on the resource or the
+        // program instance).
+        let skipped = line.path.len() - rest.len();
+        let subscripts = |i: usize| {
+            line.subscripts
+                .iter()
+                .find(|(at, _)| *at == i + skipped)
+                .map(|(_, ix)| ix.as_slice())
+        };
+        if let Some((at, ix)) = line.subscripts.iter().find(|(at, _)| *at <= skipped) {
+            let span = ix.first().map_or(line.span, |e| e.span);
+            let what = line.path.get(*at).map_or("", |i| i.name.as_str());
+            self.diags.error(
+                UNKNOWN_PATH,
+                span,
+                format!("`{what}` is a resource or program instance: it has no elements"),
+            );
+            return None;
+        }
         let [prog, inner @ .., last] = rest else {
             let span = line.path.last().map_or(line.span, |i| i.span);
             self.diags.error(
@@ -96,6 +115,9 @@ impl Linker<'_> {
             );
             return None;
         };
+        if let Some(e) = line.subscripts.first().and_then(|(_, ix)| ix.first()) {
+            self.warn_config_elements(e.span);
+        }
         let declared = res.programs.iter().any(|p| p.name.key() == prog.key());
         let inst = instances
             .iter()
@@ -114,12 +136,25 @@ impl Linker<'_> {
         let mut p = model.pous.iter().position(|x| x.code == inst.code)?;
         let mut addr = inst.base;
         let mut name = inst.name.clone();
-        for seg in inner {
+        for (i, seg) in inner.iter().enumerate() {
             let var = model.pous[p].vars.get(&seg.key());
-            let next = var.and_then(|v| match v.storage {
-                Storage::Frame(o) => self.fb_pou(v.ty).map(|q| (o, q)),
-                _ => None,
-            });
+            let mut seg_name = seg.name.clone();
+            let var = match (var, subscripts(i + 1)) {
+                (Some(v), Some(ix)) => {
+                    let (off, ty, text) = self.config_element(v.ty, ix, &seg.name, seg.span)?;
+                    seg_name = text;
+                    match v.storage {
+                        Storage::Frame(o) => Some((o + off, ty)),
+                        _ => None,
+                    }
+                }
+                (Some(v), None) => match v.storage {
+                    Storage::Frame(o) => Some((o, v.ty)),
+                    _ => None,
+                },
+                (None, _) => None,
+            };
+            let next = var.and_then(|(o, ty)| self.fb_pou(ty).map(|q| (o, q)));
             let Some((offset, q)) = next else {
                 self.diags.error(
                     UNKNOWN_PATH,
@@ -133,7 +168,7 @@ impl Linker<'_> {
             };
             addr += offset;
             p = q;
-            name = format!("{name}.{}", seg.name);
+            name = format!("{name}.{seg_name}");
         }
         let var = model.pous[p].vars.get(&last.key());
         let Some((var, Storage::Frame(offset))) = var.map(|v| (v, v.storage)) else {
@@ -147,10 +182,18 @@ impl Linker<'_> {
             );
             return None;
         };
+        let Some(ix) = subscripts(rest.len() - 1) else {
+            return Some(Target {
+                name: format!("{name}.{}", var.name),
+                var: var.clone(),
+                addr: addr + offset,
+            });
+        };
+        let (off, ty, text) = self.config_element(var.ty, ix, &var.name, last.span)?;
         Some(Target {
-            name: format!("{name}.{}", var.name),
-            var: var.clone(),
-            addr: addr + offset,
+            name: format!("{name}.{text}"),
+            var: VarInfo { ty, ..var.clone() },
+            addr: addr + offset + off,
         })
     }
 
@@ -182,7 +225,7 @@ impl Linker<'_> {
     }
 
     /// The POU of a function block instance type.
-    fn fb_pou(&self, ty: TypeId) -> Option<usize> {
+    pub(super) fn fb_pou(&self, ty: TypeId) -> Option<usize> {
         match &self.types.get(ty).kind {
             TypeKind::Pou {
                 code,
@@ -306,7 +349,7 @@ impl Linker<'_> {
     /// E710 for every incomplete address in the instance of POU `p` at
     /// `base` (named `path`) and in the FB instances inside it that
     /// `completed` does not hold.
-    fn report_uncompleted(
+    pub(super) fn report_uncompleted(
         &mut self,
         p: usize,
         base: u32,
@@ -324,6 +367,10 @@ impl Linker<'_> {
                 continue;
             };
             let here = format!("{path}.{}", var.name);
+            if self.array_elements(var.ty).is_some() {
+                self.report_uncompleted_elements(p, var, base + offset, &here, completed, depth);
+                continue;
+            }
             match (&var.location, self.fb_pou(var.ty)) {
                 (Some(l), _) if is_incomplete(l) && !completed.contains(&(base + offset)) => {
                     let span = self.address_span(p, &var.name);
@@ -349,7 +396,7 @@ impl Linker<'_> {
     }
 
     /// Where the address of variable `name` of POU `p` is written.
-    fn address_span(&self, p: usize, name: &str) -> Span {
+    pub(super) fn address_span(&self, p: usize, name: &str) -> Span {
         let (u, i) = self.model.pous[p].ast;
         let Some(Item::Pou(pou)) = self.units.get(u).and_then(|u| u.items.get(i)) else {
             return Span::default();

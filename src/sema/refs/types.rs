@@ -18,7 +18,10 @@ impl Declarer<'_> {
         span: Span,
         local: Option<&IndexMap<String, VarInfo>>,
     ) -> TypeId {
-        let t = self.resolve_type(target, local);
+        let t = match self.reference_to_unfinished(target) {
+            Some(t) => t,
+            None => self.resolve_type(target, local),
+        };
         let flavor = match kind {
             RefKind::RefTo => RefFlavor::RefTo,
             RefKind::Pointer => {

@@ -37,12 +37,16 @@ fn configuration(em: &mut Emitter, node: Node) {
             "resource" | "documentation" => {}
             "addData" => add_data(em, c),
             "accessVars" => em.refuse(c, "VAR_ACCESS is not supported"),
-            "configVars" => em.refuse(c, "VAR_CONFIG is not supported"),
+            "configVars" => {}
             _ => em.unknown(c, "configuration"),
         }
     }
     for r in elements(node).filter(|c| c.tag_name().name() == "resource") {
         resource(em, r);
+    }
+    // After the resources: its paths name their program instances.
+    for v in elements(node).filter(|c| c.tag_name().name() == "configVars") {
+        super::config_vars::config_vars(em, v);
     }
     em.synth("END_CONFIGURATION", em.end_of(node));
 }

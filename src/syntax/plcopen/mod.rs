@@ -13,6 +13,7 @@
 pub mod body;
 pub mod codes;
 pub mod config;
+pub mod config_vars;
 pub mod emit;
 pub mod export;
 pub mod interface;

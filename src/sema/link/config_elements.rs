@@ -1,0 +1,190 @@
+//! Array elements in `VAR_CONFIG` paths: `R.main.valves[2].coil` (an
+//! element of an array of function block instances) and
+//! `R.main.fb.lamps[3]` (an element of an array declared `AT %Q*`, whose
+//! elements each get their own address). Edition 3 names only variables
+//! and FB instances in a VAR_CONFIG path; the elements are a CODESYS form,
+//! W326.
+
+use super::Linker;
+use crate::diagnostics::Diagnostic;
+use crate::ir::type_table::{Dim, TypeId, TypeKind};
+use crate::sema::incomplete_address::is_incomplete;
+use crate::sema::model::VarInfo;
+use crate::source::Span;
+use crate::syntax::ast::Expr;
+use std::collections::HashSet;
+
+/// A VAR_CONFIG path that names nothing (as in `var_config.rs`).
+const UNKNOWN_PATH: &str = "E711";
+
+impl Linker<'_> {
+    /// W326 once for a VAR_CONFIG line whose path goes through array
+    /// elements (`first` is the first subscript).
+    pub(super) fn warn_config_elements(&mut self, first: Span) {
+        self.diags.warning(
+            "W326",
+            first,
+            "an array element in a VAR_CONFIG path is a CODESYS form (edition 3 names \
+             variables and FB instances)",
+        );
+    }
+
+    /// The offset (in slots) and type of element `index` of the array type
+    /// `ty`, named `name` in messages; E711 when `ty` is not an array, the
+    /// count of indexes differs or one is outside its bounds.
+    pub(super) fn config_element(
+        &mut self,
+        ty: TypeId,
+        index: &[Expr],
+        name: &str,
+        span: Span,
+    ) -> Option<(u32, TypeId, String)> {
+        let TypeKind::Array { dims, elem } = self.types.get(ty).kind.clone() else {
+            self.diags.error(
+                UNKNOWN_PATH,
+                span,
+                format!("`{name}` is not an array: VAR_CONFIG cannot index it"),
+            );
+            return None;
+        };
+        if dims.len() != index.len() {
+            self.diags.error(
+                UNKNOWN_PATH,
+                span,
+                format!(
+                    "`{name}` has {} dimension(s), {} index(es) given",
+                    dims.len(),
+                    index.len()
+                ),
+            );
+            return None;
+        }
+        let mut values = Vec::with_capacity(index.len());
+        for e in index {
+            values.push(self.consts().const_int(e, None)?);
+        }
+        let Some(linear) = linear_index(&dims, &values) else {
+            self.diags.error(
+                UNKNOWN_PATH,
+                span,
+                format!("an index of `{name}` is outside the array's bounds"),
+            );
+            return None;
+        };
+        let stride = u64::from(self.types.size(elem));
+        let offset = u32::try_from(linear * stride).ok()?;
+        let text: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+        Some((offset, elem, format!("{name}[{}]", text.join(","))))
+    }
+
+    /// The element type, element count and stride of an array type.
+    pub(super) fn array_elements(&self, ty: TypeId) -> Option<(TypeId, u64, u32)> {
+        let TypeKind::Array { dims, elem } = &self.types.get(ty).kind else {
+            return None;
+        };
+        let count = dims.iter().map(Dim::len).product();
+        Some((*elem, count, self.types.size(*elem)))
+    }
+}
+
+impl Linker<'_> {
+    /// E710 for the elements of array variable `var` (of POU `p`, at
+    /// absolute slot `at`, named `here`) that no VAR_CONFIG line
+    /// completed: once for an array declared `AT %Q*` (naming the first
+    /// element left), and inside each element of an array of FB instances.
+    pub(super) fn report_uncompleted_elements(
+        &mut self,
+        p: usize,
+        var: &VarInfo,
+        at: u32,
+        here: &str,
+        completed: &HashSet<u32>,
+        depth: usize,
+    ) {
+        let Some((elem, count, stride)) = self.array_elements(var.ty) else {
+            return;
+        };
+        let TypeKind::Array { dims, .. } = self.types.get(var.ty).kind.clone() else {
+            return;
+        };
+        let slot = |k: u64| at as u64 + k * u64::from(stride);
+        if let Some(l) = var.location.as_deref().filter(|l| is_incomplete(l)) {
+            let missing: Vec<u64> = (0..count)
+                .filter(|&k| u32::try_from(slot(k)).is_ok_and(|s| !completed.contains(&s)))
+                .collect();
+            if let Some(&first) = missing.first() {
+                let span = self.address_span(p, &var.name);
+                self.diags.push(
+                    Diagnostic::error(
+                        "E710",
+                        span,
+                        format!(
+                            "`{here}` is declared AT {l}: {} of its {count} elements have no \
+                             VAR_CONFIG address, the first `{}`",
+                            missing.len(),
+                            element_name(here, &dims, first)
+                        ),
+                    )
+                    .with_note(format!(
+                        "give each element its own line: `VAR_CONFIG <resource>.{} AT ... : {}; END_VAR`",
+                        element_name(here, &dims, first),
+                        self.types.name(elem)
+                    )),
+                );
+            }
+            return;
+        }
+        if let Some(q) = self.fb_pou(elem) {
+            for k in 0..count {
+                let Ok(s) = u32::try_from(slot(k)) else {
+                    return;
+                };
+                let name = element_name(here, &dims, k);
+                self.report_uncompleted(q, s, &name, completed, depth + 1);
+            }
+        }
+    }
+}
+
+/// `name[i,j]` for row-major element number `k` of an array of `dims`.
+fn element_name(name: &str, dims: &[Dim], mut k: u64) -> String {
+    let mut index = vec![0i64; dims.len()];
+    for (i, d) in dims.iter().enumerate().rev() {
+        let n = d.len().max(1);
+        index[i] = d.lo + (k % n) as i64;
+        k /= n;
+    }
+    let text: Vec<String> = index.iter().map(|v| v.to_string()).collect();
+    format!("{name}[{}]", text.join(","))
+}
+
+/// The row-major element number of `values` in `dims`, if every index is
+/// inside its bounds.
+fn linear_index(dims: &[Dim], values: &[i128]) -> Option<u64> {
+    let mut linear: u64 = 0;
+    for (d, &v) in dims.iter().zip(values) {
+        if v < i128::from(d.lo) || v > i128::from(d.hi) {
+            return None;
+        }
+        linear = linear
+            .checked_mul(d.len())?
+            .checked_add((v - i128::from(d.lo)) as u64)?;
+    }
+    Some(linear)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::linear_index;
+    use crate::ir::type_table::Dim;
+
+    #[test]
+    fn row_major_element_numbers() {
+        let dims = [Dim { lo: 1, hi: 3 }, Dim { lo: 0, hi: 1 }];
+        assert_eq!(linear_index(&dims, &[1, 0]), Some(0));
+        assert_eq!(linear_index(&dims, &[2, 1]), Some(3));
+        assert_eq!(linear_index(&dims, &[3, 1]), Some(5));
+        assert_eq!(linear_index(&dims, &[4, 0]), None);
+        assert_eq!(linear_index(&dims, &[0, 0]), None);
+    }
+}
