@@ -16,6 +16,7 @@ pub mod plcopen;
 pub mod pragma_meaning;
 pub mod recovery;
 pub mod ref_words;
+pub mod repair;
 pub mod s7;
 mod soft_keywords;
 pub mod token;
@@ -45,8 +46,7 @@ fn parse_in(
     let tokens = lexer::lex_in(file, text, encoding, diags);
     let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
     let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
-    let tokens = il_lines::keep_il_lines(tokens);
-    parser::parse_tokens(construct::State::new(file, text), tokens, diags)
+    repair::parse_repairing(file, text, tokens, diags)
 }
 
 /// Parses one file named `name`: S7-200 STL when [`s7::recognise`] says
