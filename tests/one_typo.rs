@@ -8,7 +8,7 @@
 mod one_typo;
 
 /// The threshold this test holds: issue #13 asks for 90 %. The sampled
-/// figure is 94.0 % (81.0 % before single-token repair, see
+/// figure is 93.8 % (81.0 % before single-token repair, see
 /// `src/syntax/repair.rs` and docs/robustness.md).
 const TARGET_PERCENT: f64 = 90.0;
 
