@@ -22,6 +22,17 @@ use std::cell::{Cell, RefCell};
 /// Most syntax errors recorded per file; the rest are counted.
 const MAX_SYNTAX_ERRORS: usize = 200;
 
+/// The first place the parser could not go on from.
+#[derive(Debug, Clone)]
+pub struct Failure {
+    /// Byte offset of the token it could not take.
+    pub at: usize,
+    /// The terminals it expected there, as the grammar names them.
+    pub expected: Vec<String>,
+    /// The syntax error reported for it.
+    pub diagnostic: Diagnostic,
+}
+
 /// Mutable state shared by all grammar actions of one parse.
 pub struct State<'t> {
     file: FileId,
@@ -44,6 +55,10 @@ pub struct State<'t> {
     token_spans: Vec<(usize, usize)>,
     /// `VAR PRIVATE`-style sections seen (for [`crate::syntax::oop_var_access`]).
     pub(crate) var_access: RefCell<Vec<(Span, crate::syntax::oop::Access)>>,
+    /// Where the parser first had to recover, and what it expected there
+    /// (for [`crate::syntax::repair`]); and how many times it recovered.
+    first_failure: RefCell<Option<Failure>>,
+    failures: Cell<usize>,
 }
 
 impl<'t> State<'t> {
@@ -64,6 +79,8 @@ impl<'t> State<'t> {
             chain_cut: Cell::new(false),
             token_spans: Vec::new(),
             var_access: RefCell::new(Vec::new()),
+            first_failure: RefCell::new(None),
+            failures: Cell::new(0),
         }
     }
 
@@ -129,7 +146,46 @@ impl<'t> State<'t> {
 
     /// Records a recovered parse error.
     pub fn recover(&self, e: ErrorRecovery<usize, Tok, ()>) {
-        self.syntax_error(recovery_diagnostic(self, e.error));
+        let d = self.note_failure(e.error);
+        self.syntax_error(d);
+    }
+
+    /// Counts a parse error, remembers the first one (place, expected
+    /// tokens, message) and returns its diagnostic.
+    pub fn note_failure(&self, e: lalrpop_util::ParseError<usize, Tok, ()>) -> Diagnostic {
+        use lalrpop_util::ParseError as P;
+        self.failures.set(self.failures.get() + 1);
+        let place = match &e {
+            P::UnrecognizedToken {
+                token: (l, _, _),
+                expected,
+            } => (*l, expected.clone()),
+            // Reported at the end of the text (see `recovery_diagnostic`).
+            P::UnrecognizedEof { expected, .. } => (self.text.len(), expected.clone()),
+            P::ExtraToken { token: (l, _, _) } => (*l, Vec::new()),
+            P::InvalidToken { location } => (*location, Vec::new()),
+            P::User { .. } => (self.text.len(), Vec::new()),
+        };
+        let d = recovery_diagnostic(self, e);
+        if self.first_failure.borrow().is_none() {
+            *self.first_failure.borrow_mut() = Some(Failure {
+                at: place.0,
+                expected: place.1,
+                diagnostic: d.clone(),
+            });
+        }
+        d
+    }
+
+    /// How many times the parser had to recover so far.
+    pub fn failures(&self) -> usize {
+        self.failures.get()
+    }
+
+    /// Where the parser first had to recover (byte offset of the token it
+    /// could not take) and the terminals it expected there.
+    pub fn first_failure(&self) -> Option<Failure> {
+        self.first_failure.borrow().clone()
     }
 
     /// Takes the collected diagnostics.

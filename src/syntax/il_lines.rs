@@ -18,8 +18,9 @@ use crate::syntax::token::{IlOpCode, Kw, Tok};
 
 /// Keeps or drops line breaks and retags IL operator words; see the module
 /// documentation.
-pub fn keep_il_lines(tokens: Vec<Spanned>) -> Vec<Spanned> {
-    let regions = il_regions(&tokens);
+pub fn keep_il_lines(tokens: impl AsRef<[Spanned]>) -> Vec<Spanned> {
+    let tokens = tokens.as_ref();
+    let regions = il_regions(tokens);
     let mut out = Vec::with_capacity(tokens.len());
     let mut next_region = regions.iter().peekable();
     let mut i = 0;

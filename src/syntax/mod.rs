@@ -23,6 +23,7 @@ pub mod plcopen;
 pub mod pragma_meaning;
 pub mod recovery;
 pub mod ref_words;
+pub mod repair;
 pub mod s7;
 mod soft_keywords;
 pub mod token;
@@ -54,8 +55,7 @@ fn parse_in(
     let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
     let tokens = oop_property::accessor_words(tokens);
     let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
-    let tokens = il_lines::keep_il_lines(tokens);
-    parser::parse_tokens(construct::State::new(file, text), tokens, diags)
+    repair::parse_repairing(file, text, tokens, diags)
 }
 
 /// Parses one file named `name`: S7-200 STL when [`s7::recognise`] says

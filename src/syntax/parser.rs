@@ -4,7 +4,7 @@
 use crate::diagnostics::{Diagnostic, Diagnostics};
 use crate::source::Span;
 use crate::syntax::ast::CompilationUnit;
-use crate::syntax::construct::State;
+use crate::syntax::construct::{Failure, State};
 use crate::syntax::lexer::Spanned;
 use crate::syntax::token::Tok;
 use lalrpop_util::ParseError;
@@ -28,10 +28,20 @@ const UNSUPPORTED: [&str; 4] = ["VAR_ACCESS", "NAMESPACE", "USING", "OVERLAP"];
 /// Parses a token stream whose line breaks were kept or dropped by
 /// [`crate::syntax::il_lines`] (`text` is the source it came from).
 pub fn parse_tokens(
-    mut st: State<'_>,
+    st: State<'_>,
     tokens: Vec<Spanned>,
     diags: &mut Diagnostics,
 ) -> CompilationUnit {
+    parse_tokens_noting(st, tokens, diags).0
+}
+
+/// [`parse_tokens`], which also returns where the parser first failed
+/// (for [`crate::syntax::repair`]).
+pub fn parse_tokens_noting(
+    mut st: State<'_>,
+    tokens: Vec<Spanned>,
+    diags: &mut Diagnostics,
+) -> (CompilationUnit, Option<Failure>) {
     // Name unsupported constructs wherever they stand (e.g. `REF_TO INT`,
     // where the grammar would only see an unexpected `INT`).
     for (l, tok, r) in &tokens {
@@ -51,16 +61,30 @@ pub fn parse_tokens(
     let mut unit = match result {
         Ok(unit) => unit,
         Err(e) => {
-            let d = recovery_diagnostic(&st, e);
+            let d = st.note_failure(e);
             st.syntax_error(d);
             CompilationUnit::default()
         }
     };
     crate::syntax::oop_var_access::attach(&st, &mut unit);
+    let failure = st.first_failure();
     for d in st.finish() {
         diags.push(d);
     }
-    unit
+    (unit, failure)
+}
+
+/// True when `tokens` parse with no error at all (the parse stops at the
+/// first one): a trial of [`crate::syntax::repair`].
+pub fn parses_cleanly(st: &State<'_>, tokens: Vec<Spanned>) -> bool {
+    let stream = tokens.into_iter().map(|t| {
+        if st.failures() > 0 {
+            Err(())
+        } else {
+            Ok::<Spanned, ()>(t)
+        }
+    });
+    grammar::UnitParser::new().parse(st, stream).is_ok() && st.failures() == 0
 }
 
 /// How a found token is named in messages.

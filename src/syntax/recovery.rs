@@ -166,6 +166,9 @@ const NAME_CODES: [&str; 10] = [
     "E201", "E203", "E403", "E501", "E505", "E506", "E602", "E610", "E613", "E615",
 ];
 
+/// Of [`NAME_CODES`], the names an SFC chart declares (steps, actions).
+const CHART_NAME_CODES: [&str; 4] = ["E602", "E610", "E613", "E615"];
+
 /// Drops the semantic errors that a syntax error explains: those on the
 /// same line, and errors about names later in the same POU. The syntax
 /// error is the cause, the rest its consequence; once it is fixed, a
@@ -175,7 +178,7 @@ pub fn drop_cascades(sources: &SourceMap, units: &[CompilationUnit], diags: &mut
         let file = sources.files().get(d.span.file.0 as usize)?;
         Some((d.span.file, file.line_col(d.span.start).0))
     };
-    let is_syntax = |d: &Diagnostic| SYNTAX_CODES.contains(&d.code);
+    let is_syntax = |d: &Diagnostic| parse_error_code(d.code);
     let broken: Vec<_> = diags
         .iter()
         .filter(|d| is_syntax(d))
@@ -204,15 +207,18 @@ pub fn drop_cascades(sources: &SourceMap, units: &[CompilationUnit], diags: &mut
                 .any(|s| s.file == f && s.start >= a && s.start < b)
         })
         .collect();
+    // A chart names its steps and actions anywhere in its body: a step
+    // lost to a syntax error explains a transition before it as well.
+    let anywhere = |d: &Diagnostic| CHART_NAME_CODES.contains(&d.code);
     let explained = |d: &Diagnostic| {
         NAME_CODES.contains(&d.code)
             && broken_pous.iter().any(|&(f, a, b)| {
                 d.span.file == f
                     && d.span.start >= a
                     && d.span.start < b
-                    && syntax
-                        .iter()
-                        .any(|s| s.file == f && s.start >= a && s.start <= d.span.start)
+                    && syntax.iter().any(|s| {
+                        s.file == f && s.start >= a && (s.start <= d.span.start || anywhere(d))
+                    })
             })
     };
     let all: Vec<Diagnostic> = diags.iter().cloned().collect();
@@ -231,3 +237,11 @@ pub fn drop_cascades(sources: &SourceMap, units: &[CompilationUnit], diags: &mut
 
 /// Codes of syntax errors.
 pub const SYNTAX_CODES: [&str; 3] = ["E101", "E102", "E110"];
+
+/// True for the codes the parser reports (E100–E149): the syntax errors
+/// above, and the forms it reads but refuses (`x;` alone, E103, ...).
+fn parse_error_code(code: &str) -> bool {
+    code.strip_prefix("E1")
+        .and_then(|n| n.parse::<u32>().ok())
+        .is_some_and(|n| n < 50)
+}
