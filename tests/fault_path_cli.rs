@@ -67,7 +67,7 @@ fn test_reports_the_callers_of_a_faulting_test() {
         "{out}"
     );
     assert!(
-        out.contains(&format!("= note: called from TEST_Line at {tests}:1:45")),
+        out.contains(&format!("= note: called from TEST_Line at {tests}:1:44")),
         "{out}"
     );
 }
