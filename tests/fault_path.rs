@@ -10,7 +10,7 @@ use plcrun::{FaultFrame, FaultKind, Options, Plc, RuntimeFault};
 
 /// `(instance, pou, line)` of each caller.
 fn chain(f: &RuntimeFault) -> Vec<(String, String, usize)> {
-    f.callers
+    f.callers()
         .iter()
         .map(|c: &FaultFrame| (c.instance.clone(), c.pou.clone(), line_col(&c.location).0))
         .collect()
@@ -45,7 +45,7 @@ fn a_fault_three_fbs_deep_names_the_instance_and_every_caller() {
     let f = first_fault(LINE);
     assert_eq!(f.fault.kind, FaultKind::DivisionByZero);
     assert_eq!(f.pou, "MOTOR");
-    assert_eq!(f.instance, "Main.line.conveyor1.motor");
+    assert_eq!(f.instance(), "Main.line.conveyor1.motor");
     assert_eq!(line_col(&f.location).0, 4);
     assert_eq!(
         chain(&f),
@@ -56,7 +56,7 @@ fn a_fault_three_fbs_deep_names_the_instance_and_every_caller() {
         ])
     );
     // Each caller's location is the call itself.
-    assert_eq!(f.callers[0].location, "test.st:8:1");
+    assert_eq!(f.callers()[0].location, "test.st:8:1");
     let shown = f.to_string();
     assert!(
         shown.starts_with(
@@ -78,8 +78,8 @@ fn a_fault_three_fbs_deep_names_the_instance_and_every_caller() {
 #[test]
 fn a_fault_in_the_program_body_has_no_callers_and_the_same_message_as_before() {
     let f = first_fault(&program("", "a, z : INT;", "a := a / z;"));
-    assert_eq!(f.instance, "P");
-    assert!(f.callers.is_empty());
+    assert_eq!(f.instance(), "P");
+    assert!(f.callers().is_empty());
     let shown = f.to_string();
     assert!(shown.contains("(in P): division by zero"), "{shown}");
     assert!(!shown.contains("note:"), "{shown}");
@@ -103,7 +103,7 @@ grid[1, 2](d := 0);
 END_PROGRAM";
     let f = first_fault(src);
     assert_eq!(f.pou, "Ratio");
-    assert_eq!(f.instance, "Ratio");
+    assert_eq!(f.instance(), "Ratio");
     assert_eq!(
         chain(&f),
         owned(&[("P.grid[1,2]", "Scaler", 8), ("P", "P", 13)])
@@ -131,7 +131,7 @@ VAR z, r : INT; END_VAR
 r := Outer(z);
 END_PROGRAM";
     let f = first_fault(src);
-    assert_eq!(f.instance, "Inner");
+    assert_eq!(f.instance(), "Inner");
     assert_eq!(chain(&f), owned(&[("Outer", "Outer", 7), ("P", "P", 11)]));
 }
 
@@ -162,7 +162,7 @@ END_PROGRAM";
 fn a_method_called_through_an_interface_names_the_instance_behind_it() {
     let f = first_fault(MACHINE);
     assert_eq!(f.pou, "Drive.Start");
-    assert_eq!(f.instance, "P.cell.d2.Start");
+    assert_eq!(f.instance(), "P.cell.d2.Start");
     assert_eq!(chain(&f), owned(&[("P.cell", "Cell", 17), ("P", "P", 21)]));
     assert!(
         f.to_string()
@@ -187,7 +187,7 @@ VAR ax : ARRAY[1..2] OF Axis; END_VAR
 ax[2].Home();
 END_PROGRAM";
     let f = first_fault(src);
-    assert_eq!(f.instance, "P.ax[2].Move");
+    assert_eq!(f.instance(), "P.ax[2].Move");
     assert_eq!(
         chain(&f),
         owned(&[("P.ax[2].Home", "Axis.Home", 7), ("P", "P", 12)])
@@ -218,7 +218,7 @@ END_CONFIGURATION";
 fn a_fault_in_a_configuration_task_names_the_program_instance() {
     let f = first_fault(PLANT);
     assert_eq!(f.pou, "Valve");
-    assert_eq!(f.instance, "tank2.inlet");
+    assert_eq!(f.instance(), "tank2.inlet");
     assert_eq!(chain(&f), owned(&[("tank2", "Filling", 9)]));
     let shown = f.to_string();
     assert!(shown.contains("(in tank2.inlet : Valve)"), "{shown}");
@@ -247,7 +247,7 @@ CONFIGURATION Plant
   END_RESOURCE
 END_CONFIGURATION";
     let f = first_fault(src);
-    assert_eq!(f.instance, "shared");
+    assert_eq!(f.instance(), "shared");
     assert_eq!(chain(&f), owned(&[("tank1", "Filling", 8)]));
 }
 
@@ -268,7 +268,7 @@ STEP Done : END_STEP
 TRANSITION FROM Idle TO Done := FALSE; END_TRANSITION
 END_PROGRAM";
     let f = first_fault(src);
-    assert_eq!(f.instance, "Seq.pump");
+    assert_eq!(f.instance(), "Seq.pump");
     let rows = chain(&f);
     assert_eq!(rows[0].0, "Seq.Fill");
     assert_eq!(rows[0].1, "Seq.Fill");
@@ -286,8 +286,8 @@ TRANSITION Check FROM Idle TO Done := a / z > 1; END_TRANSITION
 END_PROGRAM";
     let f = first_fault(src);
     assert_eq!(f.pou, "Seq.Check");
-    assert_eq!(f.instance, "Seq.Check");
-    assert_eq!(f.callers.last().map(|c| c.instance.as_str()), Some("Seq"));
+    assert_eq!(f.instance(), "Seq.Check");
+    assert_eq!(f.callers().last().map(|c| c.instance.as_str()), Some("Seq"));
 }
 
 #[test]
@@ -298,8 +298,8 @@ fn the_chain_is_the_same_when_the_fault_repeats_and_after_a_reset() {
     assert_eq!(plc.run_cycle().expect_err("still faulted"), first);
     plc.reset_cold();
     let again = plc.run_cycle().expect_err("faults again");
-    assert_eq!(again.callers, first.callers);
-    assert_eq!(again.instance, first.instance);
+    assert_eq!(again.callers(), first.callers());
+    assert_eq!(again.instance(), first.instance());
 }
 
 #[test]
@@ -319,7 +319,7 @@ END_PROGRAM";
     let mut plc = Plc::compile_files(&[("test.st", src)], &options).expect("compiles");
     let f = plc.run_cycle().expect_err("watchdog");
     assert_eq!(f.code(), "R008");
-    assert_eq!(f.instance, "P.s");
+    assert_eq!(f.instance(), "P.s");
     assert_eq!(chain(&f), owned(&[("P", "P", 7)]));
 }
 
@@ -337,7 +337,7 @@ END_PROGRAM";
     let mut plc = compile_files(&[("lib.st", lib), ("main.st", main)]);
     let f = plc.run_cycle().expect_err("faults");
     assert!(f.location.starts_with("lib.st:4:"), "{}", f.location);
-    assert_eq!(f.callers[0].location, "main.st:3:1");
+    assert_eq!(f.callers()[0].location, "main.st:3:1");
 }
 
 #[test]
@@ -357,7 +357,7 @@ END_PROGRAM",
     );
     let report = plcrun::run_tests(&sources, &plcrun::TestOptions::default()).expect("runs");
     let fault = report.cases[0].fault.as_ref().expect("faulted");
-    assert_eq!(fault.instance, "TEST_Avg.a");
+    assert_eq!(fault.instance(), "TEST_Avg.a");
     let text = report.to_text();
     assert!(
         text.contains("(in TEST_Avg.a : Avg): division by zero"),

@@ -3,7 +3,7 @@
 
 use super::clock::Clock;
 use super::default_trace;
-use super::fault_path::{self, FaultFrame};
+use super::fault_path::{self, FaultFrame, FaultPlace};
 use super::forcing::Forces;
 use super::host_blocks::{HOST_SOURCE, HostBlocks, HostDispatcher};
 use super::process_image::ProcessImage;
@@ -118,23 +118,45 @@ pub struct RuntimeFault {
     /// For a watchdog fault: the task, its limit and the time spent
     /// (boxed: other faults do not pay for it).
     pub watchdog: Option<Box<WatchdogTrip>>,
-    /// The instance path of the POU that faulted, from its program
-    /// instance down: `Main.line.conveyor1.motor` for an FB instance
-    /// (array elements as `motors[2]`), the instance path and the method,
-    /// action or transition name (`Main.line.motor.Start`,
-    /// `Main.Fill`) for those; for a FUNCTION, its name (the instance that
-    /// called it is the first of [`Self::callers`]).
-    pub instance: String,
-    /// The calls that led to the fault, innermost first: the caller of the
-    /// faulting POU first, the program instance the task ran last. Empty
-    /// for a fault in a program's own body.
-    pub callers: Vec<FaultFrame>,
+    /// Where in the running program it happened (boxed: the fault stays
+    /// small enough to return by value; see [`Self::instance`],
+    /// [`Self::callers`]).
+    pub(crate) place: Box<FaultPlace>,
 }
 
 impl RuntimeFault {
     /// The fault's stable code (`R001`...; see [`crate::FaultKind::code`]).
     pub fn code(&self) -> &'static str {
         self.fault.kind.code()
+    }
+
+    /// The instance path of the POU that faulted, from its program
+    /// instance down: `Main.line.conveyor1.motor` for an FB instance
+    /// (array elements as `motors[2]`), the instance path and the method,
+    /// action or transition name (`Main.line.motor.Start`, `Main.Fill`)
+    /// for those; for a FUNCTION, its name (the instance that called it is
+    /// the first of [`Self::callers`]).
+    ///
+    /// ```
+    /// use plcrun::{Options, Plc};
+    /// let src = "FUNCTION_BLOCK Div VAR_INPUT a, b : INT; END_VAR VAR_OUTPUT q : INT; END_VAR
+    ///            q := a / b; END_FUNCTION_BLOCK
+    ///            PROGRAM P VAR d : ARRAY[1..2] OF Div; END_VAR d[2](a := 1, b := 0); END_PROGRAM";
+    /// let mut plc = Plc::compile_files(&[("p.st", src)], &Options::default())?;
+    /// let fault = plc.run_cycle().unwrap_err();
+    /// assert_eq!((fault.pou.as_str(), fault.instance()), ("Div", "P.d[2]"));
+    /// assert_eq!(fault.callers()[0].instance, "P");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn instance(&self) -> &str {
+        &self.place.instance
+    }
+
+    /// The calls that led to the fault, innermost first: the caller of the
+    /// faulting POU first, the program instance the task ran last; empty
+    /// for a fault in a program's own body.
+    pub fn callers(&self) -> &[FaultFrame] {
+        &self.place.callers
     }
 
     /// `instance`, with the POU's type when the name does not say it
@@ -157,7 +179,7 @@ impl fmt::Display for RuntimeFault {
             self.code(),
             self.cycle,
             self.location,
-            Self::place(&self.instance, &self.pou)
+            Self::place(self.instance(), &self.pou)
         )?;
         match &self.watchdog {
             Some(trip) => write!(f, "{trip}")?,
@@ -165,7 +187,7 @@ impl fmt::Display for RuntimeFault {
         }
         write!(f, "\n    {}", self.excerpt.trim())?;
         // One note per caller, innermost first, as rustc shows a chain.
-        for c in &self.callers {
+        for c in self.callers() {
             write!(
                 f,
                 "\n  = note: called from {} at {}",
@@ -476,8 +498,7 @@ impl Plc {
             cycle: self.cycle,
             fault,
             watchdog: None,
-            instance,
-            callers,
+            place: Box::new(FaultPlace { instance, callers }),
         }
     }
 

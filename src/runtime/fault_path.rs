@@ -29,6 +29,16 @@ pub struct FaultFrame {
     pub location: String,
 }
 
+/// Where a fault happened: the faulting instance and the calls that led
+/// there (kept boxed in [`crate::RuntimeFault`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct FaultPlace {
+    /// See [`crate::RuntimeFault::instance`].
+    pub instance: String,
+    /// See [`crate::RuntimeFault::callers`].
+    pub callers: Vec<FaultFrame>,
+}
+
 /// A block that ran: its code, the instruction, and the frame base.
 #[derive(Debug, Clone, Copy)]
 struct Frame {
