@@ -68,6 +68,7 @@ pub use elementary::ElemType;
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::clock::Clock;
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
+pub use runtime::fault_path::FaultFrame;
 pub use runtime::forcing::Force;
 pub use runtime::host_blocks::{
     HOST_SOURCE, HostBlocks, HostDeclError, HostIo, HostIoError, HostPin, HostResult,

@@ -3,6 +3,7 @@
 
 use super::clock::Clock;
 use super::default_trace;
+use super::fault_path::{self, FaultFrame, FaultPlace};
 use super::forcing::Forces;
 use super::host_blocks::{HOST_SOURCE, HostBlocks, HostDispatcher};
 use super::process_image::ProcessImage;
@@ -109,19 +110,63 @@ pub struct RuntimeFault {
     pub location: String,
     /// The source line.
     pub excerpt: String,
-    /// Name of the POU.
+    /// Name of the POU: a PROGRAM, FUNCTION_BLOCK or FUNCTION name,
+    /// `FB.Method` for a method, `P.Action` for an SFC action or transition.
     pub pou: String,
     /// Cycle number (from 0).
     pub cycle: u64,
     /// For a watchdog fault: the task, its limit and the time spent
     /// (boxed: other faults do not pay for it).
     pub watchdog: Option<Box<WatchdogTrip>>,
+    /// Where in the running program it happened (boxed: the fault stays
+    /// small enough to return by value; see [`Self::instance`],
+    /// [`Self::callers`]).
+    pub(crate) place: Box<FaultPlace>,
 }
 
 impl RuntimeFault {
     /// The fault's stable code (`R001`...; see [`crate::FaultKind::code`]).
     pub fn code(&self) -> &'static str {
         self.fault.kind.code()
+    }
+
+    /// The instance path of the POU that faulted, from its program
+    /// instance down: `Main.line.conveyor1.motor` for an FB instance
+    /// (array elements as `motors[2]`), the instance path and the method,
+    /// action or transition name (`Main.line.motor.Start`, `Main.Fill`)
+    /// for those; for a FUNCTION, its name (the instance that called it is
+    /// the first of [`Self::callers`]).
+    ///
+    /// ```
+    /// use plcrun::{Options, Plc};
+    /// let src = "FUNCTION_BLOCK Div VAR_INPUT a, b : INT; END_VAR VAR_OUTPUT q : INT; END_VAR
+    ///            q := a / b; END_FUNCTION_BLOCK
+    ///            PROGRAM P VAR d : ARRAY[1..2] OF Div; END_VAR d[2](a := 1, b := 0); END_PROGRAM";
+    /// let mut plc = Plc::compile_files(&[("p.st", src)], &Options::default())?;
+    /// let fault = plc.run_cycle().unwrap_err();
+    /// assert_eq!((fault.pou.as_str(), fault.instance()), ("Div", "P.d[2]"));
+    /// assert_eq!(fault.callers()[0].instance, "P");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn instance(&self) -> &str {
+        &self.place.instance
+    }
+
+    /// The calls that led to the fault, innermost first: the caller of the
+    /// faulting POU first, the program instance the task ran last; empty
+    /// for a fault in a program's own body.
+    pub fn callers(&self) -> &[FaultFrame] {
+        &self.place.callers
+    }
+
+    /// `instance`, with the POU's type when the name does not say it
+    /// (`Main.line.motor : MOTOR`).
+    fn place(instance: &str, pou: &str) -> String {
+        if instance.eq_ignore_ascii_case(pou) {
+            instance.to_string()
+        } else {
+            format!("{instance} : {pou}")
+        }
     }
 }
 
@@ -134,13 +179,23 @@ impl fmt::Display for RuntimeFault {
             self.code(),
             self.cycle,
             self.location,
-            self.pou
+            Self::place(self.instance(), &self.pou)
         )?;
         match &self.watchdog {
             Some(trip) => write!(f, "{trip}")?,
             None => write!(f, "{}", self.fault.kind)?,
         }
-        write!(f, "\n    {}", self.excerpt.trim())
+        write!(f, "\n    {}", self.excerpt.trim())?;
+        // One note per caller, innermost first, as rustc shows a chain.
+        for c in self.callers() {
+            write!(
+                f,
+                "\n  = note: called from {} at {}",
+                Self::place(&c.instance, &c.pou),
+                c.location
+            )?;
+        }
+        Ok(())
     }
 }
 
@@ -407,7 +462,7 @@ impl Plc {
             self.machine.mem[to as usize] = self.machine.mem[from as usize];
         }
         if let Err(fault) = self.machine.run(&self.image, code, base) {
-            return Err(self.fail(fault));
+            return Err(self.fail(fault, base as usize));
         }
         let inst = &self.image.programs[p];
         for &(from, to) in &inst.outputs {
@@ -419,22 +474,31 @@ impl Plc {
         Ok(())
     }
 
-    pub(super) fn locate(&self, fault: Fault) -> RuntimeFault {
-        let block = &self.image.codes[fault.code.index()];
-        let span: Span = block
-            .spans
-            .get(fault.pc as usize)
-            .copied()
-            .unwrap_or_default();
+    /// Gives a fault of the program instance at `program_base` its source
+    /// location, instance path and callers (the calls the machine noted
+    /// while the fault unwound).
+    pub(super) fn locate(&mut self, fault: Fault, program_base: usize) -> RuntimeFault {
+        let callers = self.machine.take_callers();
+        let image = self.image.image();
+        let span: Span = fault_path::span_of(image, fault.code, fault.pc);
         let file = self.sources.file(span.file);
         let (line, _) = file.line_col(span.start);
+        let (instance, callers) = fault_path::trace(
+            image,
+            &self.sources,
+            &self.machine.mem,
+            (fault.code, fault.pc),
+            &callers,
+            program_base,
+        );
         RuntimeFault {
             location: self.sources.location(span),
             excerpt: file.line_text(line).to_string(),
-            pou: block.name.clone(),
+            pou: image.codes[fault.code.index()].name.clone(),
             cycle: self.cycle,
             fault,
             watchdog: None,
+            place: Box::new(FaultPlace { instance, callers }),
         }
     }
 

@@ -86,11 +86,12 @@ impl Plc {
         self.stop.clear();
     }
 
-    /// Records a fault raised by the executor: locates it, adds the
-    /// watchdog's account for a watchdog fault, and stops the PLC.
+    /// Records a fault raised by the executor in the program instance at
+    /// `program_base`: locates it, adds the watchdog's account for a
+    /// watchdog fault, and stops the PLC.
     #[cold]
-    pub(super) fn fail(&mut self, fault: Fault) -> RuntimeFault {
-        let mut located = self.locate(fault);
+    pub(super) fn fail(&mut self, fault: Fault, program_base: usize) -> RuntimeFault {
+        let mut located = self.locate(fault, program_base);
         if located.fault.kind == FaultKind::Watchdog {
             let tasks = &self.image.tasks;
             located.watchdog = self.watchdog.trip(|k| tasks[k].name.clone()).map(Box::new);

@@ -19,6 +19,7 @@
 //!   with its [`change_report`];
 //! - [`stop`]: asking a run to end from another thread;
 //! - [`life_cycle`]: the faulted STOP state and the resets;
+//! - [`fault_path`]: a fault's instance path and chain of callers;
 //! - [`watchdog`]: per-task cycle-time limits and the thread enforcing them;
 //! - [`retain`]: RETAIN and PERSISTENT values kept over a restart in a file;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
@@ -37,6 +38,7 @@ pub mod change_report;
 pub mod clock;
 pub mod default_trace;
 pub mod engine;
+pub mod fault_path;
 pub mod forcing;
 pub mod host_blocks;
 pub mod io_address;

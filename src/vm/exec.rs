@@ -209,12 +209,16 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
         m.strings[id].set(&img.str_consts[k.index()]);
     }
     let ops = &block.ops[..];
-    // The instruction pointer; `pc()` recovers the index for faults and jumps.
+    // The instruction pointer: it points at the running instruction until
+    // the end of its arm, which moves it on (a jump sets it and skips
+    // that). One pointer, not the instruction and the next one: the loop
+    // then keeps a register free for the memory pointer (see
+    // docs/performance.md, "The dispatch loop's registers").
     let start: *const Op = ops.as_ptr();
     let mut ip: *const Op = start;
     macro_rules! pc {
         () => {
-            // SAFETY: ip always points into `ops` (or one past an executed op).
+            // SAFETY: ip always points into `ops`.
             unsafe { ip.offset_from(start) as usize }
         };
     }
@@ -223,7 +227,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             return Err(Fault {
                 kind: $kind,
                 code,
-                pc: (pc!() - 1) as u32,
+                pc: pc!() as u32,
             })
         };
     }
@@ -257,7 +261,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
     // the one running).
     macro_rules! tick {
         () => {
-            tick!(pc!() - 1)
+            tick!(pc!())
         };
         ($pc:expr) => {{
             // SAFETY: see `irq`.
@@ -273,23 +277,22 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             }
         }};
     }
+    // Jumps (and skips the move to the next instruction).
     macro_rules! jump {
         ($t:expr) => {{
             // SAFETY: jump targets are inside the block (verified).
             let target = unsafe { start.add($t.index()) };
-            if target < ip {
+            if target <= ip {
                 tick!();
             }
             ip = target;
+            continue;
         }};
     }
     loop {
         // SAFETY: blocks end with Ret and jump targets are inside the block
         // (verified), so ip never leaves `ops`.
         let op = unsafe { &*ip };
-        // SAFETY: the block ends with Ret, so the next position is in `ops`
-        // or one past an instruction that returns or jumps.
-        ip = unsafe { ip.add(1) };
         match *op {
             Op::Nop => {}
             Op::LoadK { d, k } => w!(d, img.consts[k.index()]),
@@ -463,17 +466,16 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                 Err(e) => fault!(FaultKind::from(e)),
             },
             Op::MulAddF32 { d, a, b } => {
-                let here: *const Op = op;
                 // SAFETY: the verifier checked that the operand word follows.
-                let c = operand_word(unsafe { here.add(1) });
-                ip = unsafe { here.add(2) };
+                let c = operand_word(unsafe { ip.add(1) });
+                // The operand word is skipped: the arm's end moves past it.
+                ip = unsafe { ip.add(1) };
                 w!(d, of_f32(f32_of(r!(a)) * f32_of(r!(b)) + f32_of(r!(c))));
             }
             Op::MulAddF64 { d, a, b } => {
-                let here: *const Op = op;
                 // SAFETY: as above.
-                let c = operand_word(unsafe { here.add(1) });
-                ip = unsafe { here.add(2) };
+                let c = operand_word(unsafe { ip.add(1) });
+                ip = unsafe { ip.add(1) };
                 w!(d, of_f64(f64_of(r!(a)) * f64_of(r!(b)) + f64_of(r!(c))));
             }
             Op::Operand { .. } => {}
@@ -653,7 +655,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                 let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 // SAFETY: the verifier checked that the AddBr stepping `idx`
                 // back to this instruction follows it.
-                let (b, imm, cmp, shift) = match unsafe { *ip } {
+                let (b, imm, cmp, shift) = match unsafe { *ip.add(1) } {
                     Op::AddBr {
                         b, imm, cmp, shift, ..
                     } => (b, imm, cmp, shift),
@@ -678,9 +680,10 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                         break;
                     }
                     // The AddBr's jump back: a watchdog fault names it.
-                    tick!(pc!());
+                    tick!(pc!() + 1);
                 }
-                // SAFETY: the AddBr is not the block's last instruction (Ret is).
+                // SAFETY: the AddBr is not the block's last instruction (Ret
+                // is); the arm's end moves past it.
                 ip = unsafe { ip.add(1) };
             }
             Op::ForScan {
@@ -695,6 +698,9 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                 // SAFETY: descriptor indexes are verified at link time.
                 let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
                 let mut v = r!(i);
+                // Where the scan goes on: after this instruction, or at the
+                // element test `t` (a bad index) or just past it (found).
+                let mut resume = None;
                 loop {
                     let go;
                     (v, go) = for_next(v, step as i16, lim as i64, shift);
@@ -706,21 +712,34 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                     let k = (v as i64).wrapping_sub(ad.lo) as u64;
                     if k >= ad.len {
                         // The element test at `t` reports the bad index.
-                        // SAFETY: t + 1 < block length (verified with the partner test).
-                        ip = unsafe { start.add(t.index()) };
+                        resume = Some(t.index());
                         break;
                     }
                     if (r_at!(ad.offset as u64 + k * ad.stride as u64) != 0) == when {
-                        // SAFETY: as above.
-                        ip = unsafe { start.add(t.index() + 1) };
+                        resume = Some(t.index() + 1);
                         break;
                     }
                 }
+                if let Some(at) = resume {
+                    // SAFETY: t + 1 < block length (verified with the partner test).
+                    ip = unsafe { start.add(at) };
+                    continue;
+                }
             }
-            Op::CallFb { code: c, inst } => run(m, img, c, base + inst.index())?,
+            // A fault unwinding through a call notes the caller's block,
+            // instruction and base: nothing the normal path keeps for it.
+            Op::CallFb { code: c, inst } => {
+                if let Err(f) = run(m, img, c, base + inst.index()) {
+                    m.unwound(code, pc!(), base);
+                    return Err(f);
+                }
+            }
             Op::CallFbInd { code: c, p } => {
                 let at = r!(p) as usize;
-                run(m, img, c, at)?
+                if let Err(f) = run(m, img, c, at) {
+                    m.unwound(code, pc!(), base);
+                    return Err(f);
+                }
             }
             Op::CallNative { fb, inst } => {
                 // SAFETY: inst + pins(fb) <= frame_size (verified), so the
@@ -738,7 +757,10 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             }
             Op::CallFn { code: c } => {
                 let frame = img.codes[c.index()].frame as usize;
-                run(m, img, c, frame)?
+                if let Err(f) = run(m, img, c, frame) {
+                    m.unwound(code, pc!(), base);
+                    return Err(f);
+                }
             }
             Op::Clock { d } => w!(d, m.now as u64),
             Op::MemCopy { d, s, n } => {
@@ -755,7 +777,10 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             }
             Op::Ret => return Ok(()),
             Op::Sfc { chart } => {
-                super::chart::run(m, img, chart, base)?;
+                if let Err(f) = super::chart::run(m, img, chart, base) {
+                    m.unwound(code, pc!(), base);
+                    return Err(f);
+                }
                 // The chart runtime indexes memory through references:
                 // take fresh pointers (same buffer, same length).
                 mem = m.mem.as_mut_ptr();
@@ -772,7 +797,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                     |kind| Fault {
                         kind,
                         code,
-                        pc: (pc!() - 1) as u32,
+                        pc: pc!() as u32,
                     },
                 )?
             }
@@ -791,6 +816,9 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
                 }
             }
         }
+        // SAFETY: the block ends with Ret, so an instruction that neither
+        // returns nor jumps has a next one in `ops`.
+        ip = unsafe { ip.add(1) };
     }
 }
 

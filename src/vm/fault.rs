@@ -212,3 +212,20 @@ pub struct Fault {
     /// Instruction index inside the block.
     pub(crate) pc: u32,
 }
+
+/// A call that was under way when a fault unwound through it: the calling
+/// block, its call instruction and the caller's own frame base. Recorded
+/// only while a fault unwinds (see [`Machine::take_callers`]), innermost
+/// first, so the normal path pays nothing for it; the callee's base follows
+/// from the call instruction (`runtime::fault_path`).
+///
+/// [`Machine::take_callers`]: super::Machine::take_callers
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct CallSite {
+    /// The calling block.
+    pub code: crate::ir::op::CodeIdx,
+    /// The call instruction's index in it.
+    pub pc: u32,
+    /// The frame base the caller ran at.
+    pub base: usize,
+}

@@ -20,6 +20,7 @@ mod refs;
 mod string_ops;
 mod strings;
 
+pub(crate) use fault::CallSite;
 pub use fault::{Fault, FaultKind, HostFailure, UnstableCycle};
 pub(crate) use host::{HostDispatch, HostFrame, HostLink};
 pub(crate) use interrupt::Interrupt;
@@ -45,6 +46,9 @@ pub struct Machine {
     pub(crate) host: HostLink,
     /// The objects references were taken from (`REF`, `ADR`).
     pub(crate) refs: refs::RefTable,
+    /// The calls a fault unwound through, innermost first (filled on the
+    /// error path only; see [`Self::take_callers`]).
+    unwind: Vec<CallSite>,
 }
 
 impl Machine {
@@ -61,6 +65,7 @@ impl Machine {
             interrupt: Arc::default(),
             host: HostLink::default(),
             refs: refs::RefTable::default(),
+            unwind: Vec::new(),
         }
     }
 
@@ -68,6 +73,7 @@ impl Machine {
     /// strings the machine had when it was built from `image`).
     pub(crate) fn reinitialise(&mut self, image: &VerifiedImage) {
         // Same image, same sizes: the buffers are reused.
+        self.unwind.clear();
         self.mem.clear();
         self.mem.extend_from_slice(&image.memory);
         self.strings.truncate(image.strings.len());
@@ -88,9 +94,30 @@ impl Machine {
     }
 
     /// Runs code block `code` with frame base `base` (a frame outside
-    /// memory faults with `BadAddress`).
+    /// memory faults with `BadAddress`). After a fault, the calls it
+    /// unwound through wait in [`Self::take_callers`].
     pub fn run(&mut self, image: &VerifiedImage, code: CodeIdx, base: u32) -> Result<(), Fault> {
         exec::run(self, image.image(), code, base as usize)
+    }
+
+    /// The calls the last fault unwound through, innermost first (the
+    /// caller of the faulting block first, the block `run` was given
+    /// last); empties the list for the next fault.
+    pub(crate) fn take_callers(&mut self) -> Vec<CallSite> {
+        std::mem::take(&mut self.unwind)
+    }
+
+    /// Notes, while a fault unwinds, the call at `pc` of `code` running at
+    /// `base`. Out of line and cold: the dispatch loop pays for it on the
+    /// error path only, with values it keeps anyway.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn unwound(&mut self, code: CodeIdx, pc: usize, base: usize) {
+        self.unwind.push(CallSite {
+            code,
+            pc: pc as u32,
+            base,
+        });
     }
 }
 
