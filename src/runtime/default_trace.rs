@@ -212,19 +212,19 @@ fn walk(image: &Image, name: String, ty: TypeId, leaf: &mut dyn FnMut(String) ->
             | TypeKind::Str { .. }
             | TypeKind::Enum { .. }
             | TypeKind::Subrange { .. } => {
-                if !leaf(name) {
+                let go_on = leaf(name);
+                if !go_on {
                     return false;
                 }
             }
-            TypeKind::Array { dims, elem } => {
-                if dims.iter().all(|d| d.hi >= d.lo) {
-                    work.push(Visit::Elements {
-                        name,
-                        elem: *elem,
-                        dims,
-                        index: dims.iter().map(|d| d.lo).collect(),
-                    });
-                }
+            // An empty dimension: no elements.
+            TypeKind::Array { dims, elem } if dims.iter().all(|d| d.hi >= d.lo) => {
+                work.push(Visit::Elements {
+                    name,
+                    elem: *elem,
+                    dims,
+                    index: dims.iter().map(|d| d.lo).collect(),
+                });
             }
             TypeKind::Struct { fields } => {
                 for f in fields {
