@@ -13,7 +13,7 @@
 #
 # Plateau (docs/robustness.md): libFuzzer's edge coverage (`cov:`) has not
 # grown during the last quarter of the run, and the run is at least MIN
-# seconds long. The coverage is sampled every 10 s into
+# seconds long, both counted from the end of the seed corpus (INITED). The coverage is sampled every 10 s into
 # fuzz/logs/TARGET.curve (seconds, cov, ft, corpus, execs); the fuzzer's
 # own output goes to fuzz/logs/TARGET.log, crashes and hangs to
 # fuzz/artifacts/TARGET/. FUZZ_TIMEOUT (default 10) is libFuzzer's
@@ -94,10 +94,15 @@ plateau() {
     "$bin" "fuzz/corpus/$target" -artifact_prefix="fuzz/artifacts/$target/" \
         -max_total_time="$max" -rss_limit_mb=2048 \
         -timeout="${FUZZ_TIMEOUT:-10}" -print_final_stats=1 $(extra_flags "$target") >"$log" 2>&1 &
-    local pid=$! start elapsed last_cov=-1 changed=0 stats
-    start=$(date +%s)
+    local pid=$! start=loading elapsed last_cov=-1 changed=0 stats
     while kill -0 "$pid" 2>/dev/null; do
         sleep 10
+        # The clock starts once the seed corpus is loaded (INITED): a
+        # slow seed must not pass for a plateau.
+        if [ "$start" = loading ]; then
+            grep -a -q INITED "$log" && start=$(date +%s)
+            continue
+        fi
         elapsed=$(($(date +%s) - start))
         stats=$(last_stats "$log")
         [ -n "$stats" ] || continue
