@@ -683,9 +683,9 @@ fn survey_extends_chain_10000_deep_child_first_is_e180() {
 
 #[test]
 fn an_extends_chain_at_the_limit_compiles_and_runs() {
-    let (codes, read) = survey("extends_at_limit", extends_chain(101));
+    let (codes, read) = survey("extends_at_limit", extends_chain(257));
     assert!(codes.is_empty() && read > 0, "{codes:?}");
-    let (codes, _) = survey("extends_over_limit", extends_chain(102));
+    let (codes, _) = survey("extends_over_limit", extends_chain(258));
     assert_eq!(codes, vec!["E180".to_string()]);
 }
 

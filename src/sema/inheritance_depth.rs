@@ -12,7 +12,7 @@ use std::collections::HashMap;
 
 /// Most levels of `EXTENDS`: far beyond any real class hierarchy, and a
 /// chain this deep lowers in a fraction of a second.
-pub const MAX_EXTENDS_DEPTH: usize = 100;
+pub const MAX_EXTENDS_DEPTH: usize = 256;
 
 /// Diagnostic code of an inheritance chain deeper than the limit.
 pub const TOO_DEEP: &str = "E180";
