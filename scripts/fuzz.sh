@@ -5,7 +5,19 @@
 #   scripts/fuzz.sh seeds                 (re)collect the seed corpora into fuzz/corpus/
 #   scripts/fuzz.sh run TARGET [SECONDS]  fuzz one target (default 300 s), one job
 #   scripts/fuzz.sh all [SECONDS]         every target, one after the other
+#   scripts/fuzz.sh plateau TARGET [MIN] [MAX]
+#                                         fuzz one target until its coverage
+#                                         plateaus (below), at least MIN s
+#                                         (default 300), at most MAX s (1800)
 #   scripts/fuzz.sh list                  the targets
+#
+# Plateau (docs/robustness.md): libFuzzer's edge coverage (`cov:`) has not
+# grown during the last quarter of the run, and the run is at least MIN
+# seconds long, both counted from the end of the seed corpus (INITED). The coverage is sampled every 10 s into
+# fuzz/logs/TARGET.curve (seconds, cov, ft, corpus, execs); the fuzzer's
+# own output goes to fuzz/logs/TARGET.log, crashes and hangs to
+# fuzz/artifacts/TARGET/. FUZZ_TIMEOUT (default 10) is libFuzzer's
+# -timeout in seconds; FUZZ_NO_BUILD=1 skips the build.
 #
 # cargo-fuzz wants a nightly compiler for `-Zsanitizer`; RUSTC_BOOTSTRAP=1
 # lets the stable one accept it (the AddressSanitizer runtime ships with
@@ -18,7 +30,7 @@ cd "$(dirname "$0")/.."
 root=$PWD
 export RUSTC_BOOTSTRAP=1
 sanitizer=${FUZZ_SANITIZER:-address}
-targets=(lex parse plcopen s7 check run gen_diff)
+targets=(lex parse plcopen s7 check run gen_diff gen_il_diff)
 
 ensure_cargo_fuzz() {
     if ! cargo fuzz --version >/dev/null 2>&1; then
@@ -27,6 +39,9 @@ ensure_cargo_fuzz() {
 }
 
 build() {
+    # FUZZ_NO_BUILD=1: use the binaries as they are (a long series of runs
+    # while the sources change).
+    [ "${FUZZ_NO_BUILD:-0}" = 1 ] && return 0
     ensure_cargo_fuzz
     (cd fuzz && cargo fuzz build -s "$sanitizer" --codegen-units 16 "$@")
 }
@@ -46,22 +61,78 @@ run() {
     # output in fuzz-0.log): the machine is shared. -rss_limit_mb: the data
     # budget of the targets is 1 MiB, so 2 GiB means a runaway allocation.
     # The generator's input is choices, not text: long inputs from the start.
-    local extra=()
-    [ "$target" = gen_diff ] && extra=(-len_control=0 -max_len=4096)
     (cd fuzz && cargo fuzz run -s "$sanitizer" --codegen-units 16 "$target" \
         "corpus/$target" -- -max_total_time="$seconds" \
-        -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 "${extra[@]}")
+        -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 $(extra_flags "$target"))
+}
+
+# The generators' input is choices, not text: long inputs from the start.
+extra_flags() {
+    case "$1" in
+        gen_diff | gen_il_diff) echo "-len_control=0 -max_len=4096" ;;
+    esac
+}
+
+# The last `cov: ft: corp:` of a libFuzzer log and its exec count, as
+# "execs cov ft corp" (zeros before the first report).
+last_stats() {
+    grep -a -o '^#[0-9]*[[:space:]]*[A-Za-z]*[[:space:]]*cov: [0-9]* ft: [0-9]* corp: [0-9]*' "$1" \
+        | tail -n 1 \
+        | sed -E 's/^#([0-9]+)[^c]*cov: ([0-9]+) ft: ([0-9]+) corp: ([0-9]+)/\1 \2 \3 \4/' \
+        || true
+}
+
+plateau() {
+    local target=$1 min=${2:-300} max=${3:-1800}
+    local bin="fuzz/target/x86_64-unknown-linux-gnu/release/$target"
+    local log="fuzz/logs/$target.log" curve="fuzz/logs/$target.curve"
+    mkdir -p "fuzz/corpus/$target" "fuzz/artifacts/$target" fuzz/logs
+    : >"$curve"
+    # The binary itself (not cargo), so that its pid is the fuzzer's: it is
+    # stopped with SIGINT, on which libFuzzer prints its final stats.
+    # shellcheck disable=SC2046
+    "$bin" "fuzz/corpus/$target" -artifact_prefix="fuzz/artifacts/$target/" \
+        -max_total_time="$max" -rss_limit_mb=2048 \
+        -timeout="${FUZZ_TIMEOUT:-10}" -print_final_stats=1 $(extra_flags "$target") >"$log" 2>&1 &
+    local pid=$! start=loading elapsed last_cov=-1 changed=0 stats
+    while kill -0 "$pid" 2>/dev/null; do
+        sleep 10
+        # The clock starts once the seed corpus is loaded (INITED): a
+        # slow seed must not pass for a plateau.
+        if [ "$start" = loading ]; then
+            grep -a -q INITED "$log" && start=$(date +%s)
+            continue
+        fi
+        elapsed=$(($(date +%s) - start))
+        stats=$(last_stats "$log")
+        [ -n "$stats" ] || continue
+        set -- $stats
+        echo "$elapsed $2 $3 $4 $1" >>"$curve"
+        if [ "$2" != "$last_cov" ]; then
+            last_cov=$2
+            changed=$elapsed
+        fi
+        if [ "$elapsed" -ge "$min" ] && [ $((4 * (elapsed - changed))) -ge "$elapsed" ]; then
+            echo "plateau: cov $last_cov unchanged since ${changed} s of ${elapsed} s"
+            kill -INT "$pid"
+            break
+        fi
+    done
+    wait "$pid" || true
+    grep -a -E '^stat::|^Done|^==[0-9]+== libFuzzer|^SUMMARY|ERROR' "$log" || true
+    echo "curve: $curve (seconds cov ft corpus execs)"
 }
 
 case "${1:-}" in
     build) build ;;
     seeds) seeds ;;
     run) shift; build "$1"; run "$@" ;;
+    plateau) shift; build "$1"; plateau "$@" ;;
     all)
         build
         [ -d fuzz/corpus ] || seeds
         for t in "${targets[@]}"; do run "$t" "${2:-300}"; done
         ;;
     list) printf '%s\n' "${targets[@]}" ;;
-    *) sed -n '2,9p' "$0"; exit 2 ;;
+    *) sed -n '2,20p' "$0"; exit 2 ;;
 esac

@@ -8,6 +8,9 @@
 #[path = "../fuzz/src/differential.rs"]
 mod differential;
 #[allow(dead_code)]
+#[path = "../fuzz/src/il_gen.rs"]
+mod il_gen;
+#[allow(dead_code)]
 #[path = "../fuzz/src/st_gen.rs"]
 mod st_gen;
 #[allow(dead_code)]
@@ -26,6 +29,7 @@ fn target(name: &str) -> Option<fn(&[u8])> {
         "check" => targets::check,
         "run" => targets::run,
         "gen_diff" => targets::gen_diff,
+        "gen_il_diff" => targets::gen_il_diff,
         _ => return None,
     })
 }

@@ -1,14 +1,18 @@
 //! The fuzz smoke on stable Rust: the bodies of the libFuzzer targets
 //! (`fuzz/src/targets.rs`, included here as they are) run over the seed
 //! corpus, over mutants of it and over programs from the structure-aware
-//! generator, each generated program run optimized and unoptimized and
-//! compared. Time-boxed (`PLCRUN_FUZZ_SECONDS`, default 25 s per test) so
-//! that CI stays short; scripts/fuzz.sh runs the real fuzzer
+//! ST and IL generators, each generated program run optimized and
+//! unoptimized and compared. Time-boxed (`PLCRUN_FUZZ_SECONDS`, default
+//! 25 s for the mutants and 25 s shared by the two generators) so that CI
+//! stays short; scripts/fuzz.sh runs the real fuzzer
 //! (docs/robustness.md, "Fuzzing").
 
 #[allow(dead_code)]
 #[path = "../fuzz/src/differential.rs"]
 mod differential;
+#[allow(dead_code)]
+#[path = "../fuzz/src/il_gen.rs"]
+mod il_gen;
 #[allow(dead_code)]
 #[path = "../fuzz/src/seeds.rs"]
 mod seeds;
@@ -65,6 +69,7 @@ fn target(name: &str) -> fn(&[u8]) {
         "s7" => targets::s7,
         "check" => targets::check,
         "run" => targets::run,
+        "gen_il_diff" => targets::gen_il_diff,
         _ => targets::gen_diff,
     }
 }
@@ -223,60 +228,106 @@ fn mutants_of_the_seeds_do_not_crash_any_target() {
     eprintln!("{runs} mutants in {:.1} s", start.elapsed().as_secs_f64());
 }
 
-#[test]
-fn generated_programs_run_the_same_optimized_and_unoptimized() {
-    let mut rng = Rng(0xD1B5_4A32_D192_ED03);
+/// What one generator's programs gave through the differential check.
+#[derive(Default)]
+struct GenStats {
+    agreed: usize,
+    refused: usize,
+    faults: std::collections::BTreeMap<&'static str, usize>,
+    fused: [usize; differential::FUSED.len()],
+    refusals: std::collections::BTreeMap<String, usize>,
+    example: std::collections::BTreeMap<String, String>,
+}
+
+type Generator = fn(&mut arbitrary::Unstructured<'_>) -> arbitrary::Result<st_gen::GenProgram>;
+
+/// Programs of `generate` through the differential check for `budget`
+/// (and at least 100 programs); fails on a disagreement (in the check)
+/// or when more than one in ten is refused (a generator bug).
+fn run_generator(name: &str, seed: u64, generate: Generator, budget: Duration) -> GenStats {
+    let mut rng = Rng(seed);
     let start = Instant::now();
-    let (mut agreed, mut refused, mut faults) = (0usize, 0usize, 0usize);
-    let mut fused = [0usize; differential::FUSED.len()];
-    let mut refusals = std::collections::BTreeMap::<String, usize>::new();
-    let mut example = std::collections::BTreeMap::<String, String>::new();
-    while start.elapsed() < budget() || agreed + refused < 100 {
+    let mut st = GenStats::default();
+    while start.elapsed() < budget || st.agreed + st.refused < 100 {
         let len = 64 + rng.below(4096);
         let data = rng.bytes(len);
         let mut u = arbitrary::Unstructured::new(&data);
-        let Ok(program) = st_gen::generate(&mut u) else {
+        let Ok(program) = generate(&mut u) else {
             continue;
         };
         match differential::check(&program) {
             differential::Verdict::Agree {
                 fault, fused: f, ..
             } => {
-                agreed += 1;
-                faults += usize::from(fault.is_some());
-                for (total, n) in fused.iter_mut().zip(f) {
+                st.agreed += 1;
+                if let Some(code) = fault {
+                    *st.faults.entry(code).or_default() += 1;
+                }
+                for (total, n) in st.fused.iter_mut().zip(f) {
                     *total += n;
                 }
             }
             differential::Verdict::Refused { codes } => {
-                refused += 1;
+                st.refused += 1;
                 let key = codes.join(",");
-                *refusals.entry(key.clone()).or_default() += 1;
-                example.entry(key).or_insert(program.source);
+                *st.refusals.entry(key.clone()).or_default() += 1;
+                st.example.entry(key).or_insert(program.source);
             }
             differential::Verdict::Watchdog => {}
         }
     }
     eprintln!(
-        "{agreed} generated programs agreed ({faults} ended in a fault), {refused} refused {refusals:?}, in {:.1} s",
+        "{name}: {} generated programs agreed ({} ended in a fault: {:?}), {} refused {:?}, in {:.1} s",
+        st.agreed,
+        st.faults.values().sum::<usize>(),
+        st.faults,
+        st.refused,
+        st.refusals,
         start.elapsed().as_secs_f64()
     );
-    for (name, n) in differential::FUSED.iter().zip(fused) {
-        eprintln!("  {name}: {n}");
+    for (fused, n) in differential::FUSED.iter().zip(st.fused) {
+        eprintln!("  {fused}: {n}");
     }
-    // The generator writes type-correct programs: a refusal can only be a
+    if std::env::var_os("PLCRUN_FUZZ_VERBOSE").is_some() {
+        for (codes, source) in &st.example {
+            eprintln!("--- refused with {codes}:\n{source}");
+        }
+    }
+    // The generators write type-correct programs: a refusal can only be a
     // constant expression that overflows or divides by zero.
     assert!(
-        refused * 10 <= agreed,
-        "too many generated programs refused: {refusals:?}\n{example:#?}"
+        st.refused * 10 <= st.agreed,
+        "{name}: too many generated programs refused: {:?}\n{:#?}",
+        st.refusals,
+        st.example
     );
+    st
+}
+
+#[test]
+fn generated_programs_run_the_same_optimized_and_unoptimized() {
+    let st = run_generator("ST", 0xD1B5_4A32_D192_ED03, st_gen::generate, budget() / 2);
     // The optimizations are reached (the fused forms that the generator's
     // shapes produce).
-    for (name, n) in differential::FUSED.iter().zip(fused) {
+    for (name, n) in differential::FUSED.iter().zip(st.fused) {
         if !matches!(*name, "JnCmpF32" | "JnCmpF64" | "OrN") {
             assert!(n > 0, "no generated program used {name}");
         }
     }
+}
+
+#[test]
+fn generated_il_programs_run_the_same_optimized_and_unoptimized() {
+    let st = run_generator("IL", 0x8CB9_2BA7_2F3D_8DD7, il_gen::generate, budget() / 2);
+    // The fused forms IL lowering reaches: `ANDN`/`ORN` (and `AND(` over
+    // a negated operand) become AndN/OrN.
+    for name in ["AndN", "OrN"] {
+        let at = differential::FUSED.iter().position(|f| *f == name);
+        let n = at.map_or(0, |i| st.fused[i]);
+        assert!(n > 0, "no generated IL program used {name}");
+    }
+    // Most IL programs run to the end or to a fault both builds agree on.
+    assert!(st.agreed >= 90, "only {} IL programs ran", st.agreed);
 }
 
 #[test]

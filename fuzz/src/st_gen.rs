@@ -33,7 +33,8 @@ pub enum Ty {
 impl Ty {
     const ALL: [Ty; 5] = [Ty::Bool, Ty::Int, Ty::Dint, Ty::Real, Ty::Lreal];
 
-    fn name(self) -> &'static str {
+    /// The IEC name of the type.
+    pub fn name(self) -> &'static str {
         match self {
             Ty::Bool => "BOOL",
             Ty::Int => "INT",

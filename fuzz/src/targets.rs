@@ -108,3 +108,12 @@ pub fn gen_diff(data: &[u8]) {
         crate::differential::check(&program);
     }
 }
+
+/// A generated, type-correct IL program run optimized and unoptimized,
+/// compared cycle by cycle (see [`crate::il_gen`]).
+pub fn gen_il_diff(data: &[u8]) {
+    let mut u = arbitrary::Unstructured::new(data);
+    if let Ok(program) = crate::il_gen::generate(&mut u) {
+        crate::differential::check(&program);
+    }
+}

@@ -5,8 +5,9 @@
 //! instance (`t.Q`) — since a trace column holds one value.
 
 use crate::ir::image::Image;
-use crate::ir::type_table::{MemberKind, TypeId, TypeKind};
+use crate::ir::type_table::{Dim, MemberKind, TypeId, TypeKind};
 use crate::stdlib::{ParamDir, interface};
+use std::collections::HashMap;
 
 /// A variable expanding into more columns than this is left out of the
 /// default trace (named with a note), so that a large array output does not
@@ -105,76 +106,160 @@ fn leaves(image: &Image, name: String, ty: TypeId, out: &mut Vec<String>) -> boo
 }
 
 /// How many single values a variable of `ty` holds (saturating), without
-/// enumerating them.
+/// enumerating them: each type counted once, children first, on a work
+/// list (types nest tens of thousands of levels deep, and a structure
+/// holding the same type twice at every level would take exponential time
+/// counted as a tree).
 fn count(image: &Image, ty: TypeId) -> usize {
-    match &image.types.get(ty).kind {
-        TypeKind::Elem(_)
-        | TypeKind::Str { .. }
-        | TypeKind::Enum { .. }
-        | TypeKind::Subrange { .. } => 1,
-        TypeKind::Array { dims, elem } => dims
-            .iter()
-            .map(|d| usize::try_from(d.len()).unwrap_or(usize::MAX))
-            .fold(count(image, *elem), usize::saturating_mul),
-        TypeKind::Struct { fields } => fields
-            .iter()
-            .fold(0, |n, f| n.saturating_add(count(image, f.ty))),
-        TypeKind::Pou { members, .. } => members
-            .iter()
-            .filter(|m| m.kind == MemberKind::Output)
-            .fold(0, |n, m| n.saturating_add(count(image, m.ty))),
-        TypeKind::NativeFb(fb) => interface(*fb)
-            .iter()
-            .filter(|p| p.dir == ParamDir::Output)
-            .count(),
-        _ => 0,
+    let mut counted: HashMap<TypeId, usize> = HashMap::new();
+    let mut work = vec![(ty, false)];
+    while let Some((t, children_done)) = work.pop() {
+        if counted.contains_key(&t) {
+            continue;
+        }
+        let kind = &image.types.get(t).kind;
+        if !children_done {
+            work.push((t, true));
+            work.extend(parts(kind).map(|c| (c, false)));
+            continue;
+        }
+        let sum = |counted: &HashMap<TypeId, usize>| {
+            parts(kind).fold(0usize, |n, c| {
+                n.saturating_add(counted.get(&c).copied().unwrap_or(0))
+            })
+        };
+        let n = match kind {
+            TypeKind::Elem(_)
+            | TypeKind::Str { .. }
+            | TypeKind::Enum { .. }
+            | TypeKind::Subrange { .. } => 1,
+            TypeKind::Array { dims, .. } => dims
+                .iter()
+                .map(|d| usize::try_from(d.len()).unwrap_or(usize::MAX))
+                .fold(sum(&counted), usize::saturating_mul),
+            TypeKind::Struct { .. } | TypeKind::Pou { .. } => sum(&counted),
+            TypeKind::NativeFb(fb) => interface(*fb)
+                .iter()
+                .filter(|p| p.dir == ParamDir::Output)
+                .count(),
+            _ => 0,
+        };
+        counted.insert(t, n);
+    }
+    counted.get(&ty).copied().unwrap_or(0)
+}
+
+/// The types whose values a value of `kind` is made of, as the default
+/// trace sees it: an array's element, a structure's fields, an FB
+/// instance's outputs.
+fn parts(kind: &TypeKind) -> Box<dyn Iterator<Item = TypeId> + '_> {
+    match kind {
+        TypeKind::Array { elem, .. } => Box::new(std::iter::once(*elem)),
+        TypeKind::Struct { fields } => Box::new(fields.iter().map(|f| f.ty)),
+        TypeKind::Pou { members, .. } => Box::new(
+            members
+                .iter()
+                .filter(|m| m.kind == MemberKind::Output)
+                .map(|m| m.ty),
+        ),
+        _ => Box::new(std::iter::empty()),
     }
 }
 
+/// What is left to visit: a value, or the rest of an array's elements
+/// (enumerated lazily: the walk may stop long before the end).
+enum Visit<'a> {
+    Value(String, TypeId),
+    Elements {
+        name: String,
+        elem: TypeId,
+        dims: &'a [Dim],
+        index: Vec<i64>,
+    },
+}
+
 /// Calls `leaf` with the name of every single value inside `name`, in
-/// declaration order, until it returns false; false when stopped.
+/// declaration order, until it returns false; false when stopped. A work
+/// list, not recursion: the types may nest tens of thousands of levels.
 fn walk(image: &Image, name: String, ty: TypeId, leaf: &mut dyn FnMut(String) -> bool) -> bool {
-    match &image.types.get(ty).kind {
-        TypeKind::Elem(_)
-        | TypeKind::Str { .. }
-        | TypeKind::Enum { .. }
-        | TypeKind::Subrange { .. } => leaf(name),
-        TypeKind::Array { dims, elem } => {
-            let mut index: Vec<i64> = dims.iter().map(|d| d.lo).collect();
-            if dims.iter().any(|d| d.hi < d.lo) {
-                return true;
-            }
-            loop {
+    let mut work = vec![Visit::Value(name, ty)];
+    while let Some(visit) = work.pop() {
+        let (name, ty) = match visit {
+            Visit::Value(name, ty) => (name, ty),
+            Visit::Elements {
+                name,
+                elem,
+                dims,
+                mut index,
+            } => {
                 let text: Vec<String> = index.iter().map(i64::to_string).collect();
-                if !walk(image, format!("{name}[{}]", text.join(",")), *elem, leaf) {
+                let element = format!("{name}[{}]", text.join(","));
+                if next_index(dims, &mut index) {
+                    work.push(Visit::Elements {
+                        name,
+                        elem,
+                        dims,
+                        index,
+                    });
+                }
+                work.push(Visit::Value(element, elem));
+                continue;
+            }
+        };
+        let at = work.len();
+        match &image.types.get(ty).kind {
+            TypeKind::Elem(_)
+            | TypeKind::Str { .. }
+            | TypeKind::Enum { .. }
+            | TypeKind::Subrange { .. } => {
+                let go_on = leaf(name);
+                if !go_on {
                     return false;
                 }
-                // The last index runs fastest, as in memory.
-                let mut k = dims.len();
-                loop {
-                    if k == 0 {
-                        return true;
-                    }
-                    k -= 1;
-                    if index[k] < dims[k].hi {
-                        index[k] += 1;
-                        break;
-                    }
-                    index[k] = dims[k].lo;
+            }
+            // An empty dimension: no elements.
+            TypeKind::Array { dims, elem } if dims.iter().all(|d| d.hi >= d.lo) => {
+                work.push(Visit::Elements {
+                    name,
+                    elem: *elem,
+                    dims,
+                    index: dims.iter().map(|d| d.lo).collect(),
+                });
+            }
+            TypeKind::Struct { fields } => {
+                for f in fields {
+                    work.push(Visit::Value(format!("{name}.{}", f.name), f.ty));
                 }
             }
+            TypeKind::Pou { members, .. } => {
+                for m in members.iter().filter(|m| m.kind == MemberKind::Output) {
+                    work.push(Visit::Value(format!("{name}.{}", m.name), m.ty));
+                }
+            }
+            TypeKind::NativeFb(fb) => {
+                for p in interface(*fb).iter().filter(|p| p.dir == ParamDir::Output) {
+                    if !leaf(format!("{name}.{}", p.name)) {
+                        return false;
+                    }
+                }
+            }
+            _ => {}
         }
-        TypeKind::Struct { fields } => fields
-            .iter()
-            .all(|f| walk(image, format!("{name}.{}", f.name), f.ty, leaf)),
-        TypeKind::Pou { members, .. } => members
-            .iter()
-            .filter(|m| m.kind == MemberKind::Output)
-            .all(|m| walk(image, format!("{name}.{}", m.name), m.ty, leaf)),
-        TypeKind::NativeFb(fb) => interface(*fb)
-            .iter()
-            .filter(|p| p.dir == ParamDir::Output)
-            .all(|p| leaf(format!("{name}.{}", p.name))),
-        _ => true,
+        // Pushed in order, popped in reverse: turn them around.
+        work[at..].reverse();
     }
+    true
+}
+
+/// Steps `index` to the next element (the last index runs fastest, as in
+/// memory); false after the last one.
+fn next_index(dims: &[Dim], index: &mut [i64]) -> bool {
+    for k in (0..dims.len()).rev() {
+        if index[k] < dims[k].hi {
+            index[k] += 1;
+            return true;
+        }
+        index[k] = dims[k].lo;
+    }
+    false
 }

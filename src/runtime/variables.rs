@@ -130,7 +130,9 @@ impl Plc {
                 walk(image, path, m.ty, dir, &mut leaves);
             }
         }
-        let mut taken: Vec<u32> = Vec::new();
+        // A set: an S7-200 program lists tens of thousands of bytes, and a
+        // linear search per variable made the listing quadratic.
+        let mut taken: std::collections::HashSet<u32> = std::collections::HashSet::new();
         let mut out = Vec::new();
         for (path, _, dir) in leaves {
             self.push_info(path, dir, &mut taken, &mut out);
@@ -159,7 +161,7 @@ impl Plc {
         &self,
         path: String,
         dir: Direction,
-        taken: &mut Vec<u32>,
+        taken: &mut std::collections::HashSet<u32>,
         out: &mut Vec<VarInfo>,
     ) {
         let Ok(r) = names::resolve(&self.image, &path, self.id) else {
@@ -171,7 +173,7 @@ impl Plc {
         let Some(shape) = shape(&self.image, r.ty) else {
             return;
         };
-        taken.push(r.addr);
+        taken.insert(r.addr);
         let address = self
             .image
             .globals
@@ -303,7 +305,10 @@ fn shape(image: &Image, ty: TypeId) -> Option<VarShape> {
 }
 
 /// Pushes every single value inside `path` (of type `ty`, in section
-/// `dir`), with the section of the innermost member that declares it.
+/// `dir`), with the section of the innermost member that declares it, in
+/// declaration order. An explicit work list, not recursion: a structure
+/// may nest tens of thousands of levels (the declaration limit, E122),
+/// and a host may call this on a small stack.
 fn walk(
     image: &Image,
     path: String,
@@ -311,64 +316,65 @@ fn walk(
     dir: Direction,
     out: &mut Vec<(String, TypeId, Direction)>,
 ) {
-    match &image.types.get(ty).kind {
-        TypeKind::Elem(_)
-        | TypeKind::Str { .. }
-        | TypeKind::Enum { .. }
-        | TypeKind::Subrange { .. } => out.push((path, ty, dir)),
-        TypeKind::Array { dims, elem } => {
-            let total: u64 = dims.iter().map(|d| d.len()).product();
-            for k in 0..total {
-                walk(
-                    image,
-                    format!("{path}[{}]", index_text(dims, k)),
-                    *elem,
-                    dir,
-                    out,
-                );
-            }
-        }
-        TypeKind::Struct { fields } => {
-            for f in fields {
-                let d = direction(f.kind).unwrap_or(dir);
-                walk(image, format!("{path}.{}", f.name), f.ty, d, out);
-            }
-        }
-        TypeKind::Pou { members, .. } => {
-            for m in members {
-                if let Some(d) = direction(m.kind) {
-                    walk(image, format!("{path}.{}", m.name), m.ty, d, out);
+    // Children are pushed in reverse so that they pop in order.
+    let mut work = vec![(path, ty, dir)];
+    while let Some((path, ty, dir)) = work.pop() {
+        let at = work.len();
+        match &image.types.get(ty).kind {
+            TypeKind::Elem(_)
+            | TypeKind::Str { .. }
+            | TypeKind::Enum { .. }
+            | TypeKind::Subrange { .. } => out.push((path, ty, dir)),
+            TypeKind::Array { dims, elem } => {
+                let total: u64 = dims.iter().map(|d| d.len()).product();
+                for k in 0..total {
+                    let p = format!("{path}[{}]", index_text(dims, k));
+                    work.push((p, *elem, dir));
                 }
             }
-        }
-        TypeKind::NativeFb(fb) => {
-            for p in interface(*fb) {
-                let d = match p.dir {
-                    ParamDir::Input => Direction::Input,
-                    ParamDir::Output => Direction::Output,
-                    _ => continue,
-                };
-                out.push((
-                    format!("{path}.{}", p.name),
-                    crate::ir::type_table::TypeTable::elem(p.ty),
-                    d,
-                ));
+            TypeKind::Struct { fields } => {
+                for f in fields {
+                    let d = direction(f.kind).unwrap_or(dir);
+                    work.push((format!("{path}.{}", f.name), f.ty, d));
+                }
             }
-        }
-        TypeKind::Step => {
-            for flag in ["X", "T"] {
-                let ty = if flag == "X" {
-                    ElemType::Bool
-                } else {
-                    ElemType::Time
-                };
-                out.push((
-                    format!("{path}.{flag}"),
-                    crate::ir::type_table::TypeTable::elem(ty),
-                    Direction::Step,
-                ));
+            TypeKind::Pou { members, .. } => {
+                for m in members {
+                    if let Some(d) = direction(m.kind) {
+                        work.push((format!("{path}.{}", m.name), m.ty, d));
+                    }
+                }
             }
+            TypeKind::NativeFb(fb) => {
+                for p in interface(*fb) {
+                    let d = match p.dir {
+                        ParamDir::Input => Direction::Input,
+                        ParamDir::Output => Direction::Output,
+                        _ => continue,
+                    };
+                    out.push((
+                        format!("{path}.{}", p.name),
+                        crate::ir::type_table::TypeTable::elem(p.ty),
+                        d,
+                    ));
+                }
+            }
+            TypeKind::Step => {
+                for flag in ["X", "T"] {
+                    let ty = if flag == "X" {
+                        ElemType::Bool
+                    } else {
+                        ElemType::Time
+                    };
+                    out.push((
+                        format!("{path}.{flag}"),
+                        crate::ir::type_table::TypeTable::elem(ty),
+                        Direction::Step,
+                    ));
+                }
+            }
+            _ => {}
         }
-        _ => {}
+        work[at..].reverse();
     }
 }

@@ -26,6 +26,7 @@ mod const_order;
 mod decl_consts;
 mod declare;
 mod incomplete_address;
+mod inheritance_depth;
 mod layout;
 mod nesting;
 mod self_ref_types;
@@ -136,6 +137,11 @@ pub fn compile(
     options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
+    if let Some(too_deep) = inheritance_depth::check(units) {
+        // Lowering would copy the inherited members n² times: refuse first.
+        diags.push(too_deep);
+        return None;
+    }
     let lowered = oop::lower::lower(units, diags);
     let units = lowered.as_ref().map_or(units, |(u, _)| u.as_slice());
     if let Some(too_deep) = nesting::check(units) {

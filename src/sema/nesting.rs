@@ -115,7 +115,7 @@ fn spec_names(spec: &TypeSpec, out: &mut Vec<String>) {
 /// The number of nodes on the longest chain of edges from each node
 /// (memoised depth-first search with an explicit stack; an edge back into
 /// the chain being explored is a cycle, reported elsewhere, and ignored).
-fn longest_chains(edges: &[Vec<usize>]) -> Vec<usize> {
+pub(super) fn longest_chains(edges: &[Vec<usize>]) -> Vec<usize> {
     const UNSEEN: usize = 0;
     const OPEN: usize = usize::MAX;
     let mut depth = vec![UNSEEN; edges.len()];
