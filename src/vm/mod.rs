@@ -10,6 +10,7 @@
 //! accesses are sound because `ir::verify` accepted every instruction
 //! (docs/adr/0004-verified-then-unchecked-execution.md).
 
+mod byte_view;
 mod chart;
 mod exec;
 mod fault;

@@ -13,6 +13,9 @@ pub struct PlcString {
     pub max: u32,
     /// WSTRING.
     pub wide: bool,
+    /// Characters a byte view wrote past the terminating NUL (see
+    /// [`PlcString::set_byte`]); any string operation clears them.
+    pub tail: Vec<u16>,
 }
 
 impl PlcString {
@@ -22,6 +25,7 @@ impl PlcString {
             text: String::with_capacity(max as usize),
             max,
             wide,
+            tail: Vec::new(),
         };
         s.set(init);
         s
@@ -30,6 +34,7 @@ impl PlcString {
     /// Replaces the value, truncating to the capacity; reuses the buffer.
     pub fn set(&mut self, value: &str) {
         self.text.clear();
+        self.tail.clear();
         match value.char_indices().nth(self.max as usize) {
             Some((cut, _)) => self.text.push_str(&value[..cut]),
             None => self.text.push_str(value),
@@ -39,6 +44,83 @@ impl PlcString {
     /// The value.
     pub fn as_str(&self) -> &str {
         &self.text
+    }
+
+    /// Bytes per character: 1 (STRING) or 2 (WSTRING).
+    fn unit(&self) -> u32 {
+        if self.wide { 2 } else { 1 }
+    }
+
+    /// The size of the CODESYS buffer in bytes: the capacity and the
+    /// terminating NUL, `(max + 1)` characters.
+    pub fn byte_len(&self) -> u32 {
+        (self.max + 1) * self.unit()
+    }
+
+    /// Character `i` of the buffer as a code unit: the text, then its
+    /// terminating 0, then what a byte view wrote past it (else 0). A
+    /// STRING character beyond one byte (only a UTF-8 source can give one)
+    /// reads as `?`.
+    fn unit_at(&self, i: usize) -> u16 {
+        let len = if self.text.is_ascii() {
+            self.text.len()
+        } else {
+            self.text.chars().count()
+        };
+        match i.cmp(&len) {
+            std::cmp::Ordering::Less => {
+                let c = if self.text.is_ascii() {
+                    self.text.as_bytes()[i] as u32
+                } else {
+                    self.text.chars().nth(i).map_or(0, |c| c as u32)
+                };
+                code_unit(c, self.wide)
+            }
+            std::cmp::Ordering::Equal => 0,
+            std::cmp::Ordering::Greater => self.tail.get(i - len - 1).copied().unwrap_or(0),
+        }
+    }
+
+    /// Byte `k` of the buffer (little-endian characters for WSTRING);
+    /// `k` must be below [`PlcString::byte_len`].
+    pub fn byte_at(&self, k: u32) -> u8 {
+        let u = self.unit_at((k / self.unit()) as usize);
+        (u >> (8 * (k % self.unit()))) as u8
+    }
+
+    /// Writes byte `k` of the buffer as CODESYS does: a character of the
+    /// text changes, a 0 ends the text there (the characters after it are
+    /// kept past the NUL), a byte past the NUL is kept and joins the text
+    /// when the NUL before it is overwritten. The last character position
+    /// (`max`) holds the terminator: what is written there reads back 0.
+    pub fn set_byte(&mut self, k: u32, b: u8) {
+        let cap = self.max as usize + 1;
+        let mut units: Vec<u16> = (0..cap).map(|i| self.unit_at(i)).collect();
+        let (i, shift) = ((k / self.unit()) as usize, 8 * (k % self.unit()));
+        let Some(u) = units.get_mut(i) else {
+            return;
+        };
+        *u = (*u & !(0xFF << shift)) | ((b as u16) << shift);
+        units[cap - 1] = 0;
+        let end = units.iter().position(|&u| u == 0).unwrap_or(cap - 1);
+        self.text.clear();
+        for &u in &units[..end] {
+            self.text
+                .push(char::from_u32(u as u32).unwrap_or(char::REPLACEMENT_CHARACTER));
+        }
+        let mut tail = units.split_off(end + 1);
+        while tail.last() == Some(&0) {
+            tail.pop();
+        }
+        self.tail = tail;
+    }
+}
+
+/// A character as a code unit of a STRING (one byte) or WSTRING (16 bits).
+fn code_unit(c: u32, wide: bool) -> u16 {
+    match (wide, c) {
+        (false, 0..=0xFF) | (true, 0..=0xFFFF) => c as u16,
+        _ => b'?' as u16,
     }
 }
 
@@ -141,4 +223,46 @@ pub fn call(
     };
     strings[dst as usize].set(&result);
     Ok(None)
+}
+
+#[cfg(test)]
+mod byte_tests {
+    use super::PlcString;
+
+    #[test]
+    fn bytes_of_a_string_buffer() {
+        // STRING(5) 'AB': bytes A B NUL then zeros, 6 bytes in all.
+        let mut s = PlcString::new("AB", 5, false);
+        assert_eq!(s.byte_len(), 6);
+        let bytes: Vec<u8> = (0..6).map(|k| s.byte_at(k)).collect();
+        assert_eq!(bytes, [b'A', b'B', 0, 0, 0, 0]);
+        // a byte past the NUL is kept, and joins when the NUL goes
+        s.set_byte(3, b'D');
+        assert_eq!((s.as_str(), s.byte_at(3)), ("AB", b'D'));
+        s.set_byte(2, b'C');
+        assert_eq!(s.as_str(), "ABCD");
+        // a 0 ends the text; what follows stays in the buffer
+        s.set_byte(1, 0);
+        assert_eq!((s.as_str(), s.byte_at(2)), ("A", b'C'));
+        // the last position is the terminator
+        s.set_byte(1, b'B');
+        s.set_byte(4, b'E');
+        s.set_byte(5, b'F');
+        assert_eq!((s.as_str(), s.byte_at(5)), ("ABCDE", 0));
+        // a string operation leaves no old bytes behind
+        s.set("Z");
+        assert_eq!((s.byte_at(1), s.byte_at(2)), (0, 0));
+    }
+
+    #[test]
+    fn latin1_and_wide_characters() {
+        let mut s = PlcString::new("\u{e4}x", 4, false);
+        assert_eq!((s.byte_at(0), s.byte_at(1)), (0xE4, b'x'));
+        s.set_byte(1, 0xF6);
+        assert_eq!(s.as_str(), "\u{e4}\u{f6}");
+        let mut w = PlcString::new("\u{20ac}", 2, true);
+        assert_eq!((w.byte_len(), w.byte_at(0), w.byte_at(1)), (6, 0xAC, 0x20));
+        w.set_byte(2, b'a');
+        assert_eq!(w.as_str(), "\u{20ac}a");
+    }
 }
