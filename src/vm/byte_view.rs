@@ -36,22 +36,19 @@ pub(super) enum Bytes {
 }
 
 impl RefTable {
-    /// The bytes of the object view `r` designates and their count; checks
-    /// that the `width` bytes at the view's offset lie inside them.
-    pub(super) fn view_range(
+    /// The bytes of object `n` and their count.
+    fn object_bytes(
         &self,
-        r: u64,
-        width: u32,
+        n: u32,
         mem: Memory,
         strings: &[PlcString],
     ) -> Result<(Bytes, u32), FaultKind> {
-        let n = refs::object_number(r);
         if n == 0 {
             return Err(FaultKind::NullReference);
         }
         let obj = self.object(n).ok_or(FaultKind::NotFromPointer)?;
         let elem = refs::code_elem(obj.layout).ok_or(FaultKind::NoByteLayout)?;
-        let (bytes, len) = match elem {
+        Ok(match elem {
             ElemType::String | ElemType::WString => {
                 let id = mem.load(obj.start as usize)? as usize;
                 let s = strings.get(id).ok_or(FaultKind::BadAddress)?;
@@ -69,7 +66,19 @@ impl RefTable {
                     obj.len.saturating_mul(w),
                 )
             }
-        };
+        })
+    }
+
+    /// The bytes of the object view `r` designates and their count; checks
+    /// that the `width` bytes at the view's offset lie inside them.
+    pub(super) fn view_range(
+        &self,
+        r: u64,
+        width: u32,
+        mem: Memory,
+        strings: &[PlcString],
+    ) -> Result<(Bytes, u32), FaultKind> {
+        let (bytes, len) = self.object_bytes(refs::object_number(r), mem, strings)?;
         let off = refs::offset(r);
         if off as u64 + width as u64 > len as u64 {
             return Err(FaultKind::OutsideBytes {
@@ -137,7 +146,7 @@ impl RefTable {
         let view = super::refs::to_view(r, unit);
         let len = match self.object(n) {
             Some(obj) if refs::code_elem(obj.layout).is_some() => {
-                self.view_range(view, 0, mem, strings)?.1
+                self.object_bytes(n, mem, strings)?.1
             }
             Some(obj) => obj.len.saturating_mul(unit.max(1) as u32),
             // A pointer made from an integer that named no object: its

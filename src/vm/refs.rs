@@ -214,10 +214,10 @@ pub fn index(r: u64, idx: u64, ad: &ArrayDesc, unit: u16) -> Result<u64, FaultKi
 }
 
 /// Pointer `p` moved by `bytes` bytes: whole elements of `unit` bytes and
-/// `slots` slots. A byte view moves by bytes; a typed pointer to
-/// one-slot elements moved by part of an element becomes a byte view
-/// (CODESYS's `ptw := ptw + 1` over DWORDs); a pointer to larger elements
-/// so moved faults when dereferenced.
+/// `slots` slots (a pointer to an array of one elementary type moves by
+/// that type's elements: `ADR(bytes) + 5`). A byte view moves by bytes;
+/// a typed pointer moved by part of an element faults when dereferenced
+/// (make it a byte view, a `POINTER TO BYTE`, first).
 #[inline]
 pub fn add_bytes(p: u64, bytes: u64, unit: u16, slots: u16) -> u64 {
     let b = bytes as i64;
@@ -226,8 +226,11 @@ pub fn add_bytes(p: u64, bytes: u64, unit: u16, slots: u16) -> u64 {
     }
     let unit = unit.max(1) as i64;
     if b % unit != 0 {
-        if slots == 1 {
-            return refs::moved(to_view(p, unit as u16), b);
+        // An array of one elementary type moves by its elements
+        // (`ADR(bytes) + 5`); part of an element poisons the offset.
+        let per_slot = unit / (slots.max(1) as i64);
+        if per_slot > 0 && per_slot * slots as i64 == unit && b % per_slot == 0 {
+            return refs::moved(p, b / per_slot);
         }
         return refs::pack(refs::object(p), refs::MISALIGNED);
     }
@@ -293,9 +296,11 @@ mod tests {
         let p = refs::pack(1, 0);
         assert_eq!(add_bytes(p, 8, 4, 1), refs::pack(1, 2));
         assert_eq!(add_bytes(p, (-4i64) as u64, 4, 1), refs::moved(p, -1));
+        assert_eq!(refs::offset(add_bytes(p, 3, 4, 1)), refs::MISALIGNED);
         assert_eq!(refs::offset(add_bytes(p, 3, 4, 2)), refs::MISALIGNED);
-        // part of a one-slot element: a byte view, 3 bytes further
-        assert_eq!(add_bytes(refs::pack(1, 2), 3, 4, 1), refs::view(1, 11));
+        // an array of four 1-byte slots moved by 5 bytes: 5 slots
+        assert_eq!(add_bytes(p, 5, 4, 4), refs::pack(1, 5));
+        // a byte view moves by bytes
         assert_eq!(add_bytes(refs::view(1, 11), 1, 4, 1), refs::view(1, 12));
     }
 

@@ -136,7 +136,8 @@ impl BodyBuilder<'_> {
 
     /// `p1 < p2`, `p = q`, `pt < end` and `p = 0` between pointers, or a
     /// pointer and an integer: their integer images compared (W307 for
-    /// an order or an integer). `None` when this is not such a comparison.
+    /// an order or an integer). `None` when this is not such a comparison
+    /// (`p = NULL` compares the slots: NULL is 0 either way).
     pub(in crate::sema) fn pointer_compare(
         &mut self,
         op: BinaryOp,
@@ -169,20 +170,21 @@ impl BodyBuilder<'_> {
             }
         };
         let (a, b) = (side(self, va)?, side(self, vb)?);
+        let null = TypeTable::void();
+        if a.is_none() && b.is_none() || a == Some(null) || b == Some(null) {
+            // Integers, or `NULL` on a side: the ordinary rules.
+            return None;
+        }
         let pointers = a.is_some() && b.is_some();
-        if a.is_none() && b.is_none() {
-            return None;
+        if !(pointers && matches!(cmp, Cmp::Eq | Cmp::Ne)) {
+            self.diags.warning(
+                "W307",
+                span,
+                "pointers ordered or compared with an integer by their integer images (a CODESYS extension)",
+            );
         }
-        if pointers && matches!(cmp, Cmp::Eq | Cmp::Ne) {
-            // Both pointers: compared as the ordinary rules do when their
-            // element types agree (no image needed).
-            return None;
-        }
-        self.diags.warning(
-            "W307",
-            span,
-            "pointers ordered or compared with an integer by their integer images (a CODESYS extension)",
-        );
+        // Two pointers are equal when they designate the same byte, typed
+        // or viewed: their images are compared, not their slots.
         let sa = match a {
             Some(t) => self.pointer_image(va, t),
             None => self.materialize(va),
