@@ -8,6 +8,7 @@
 //! was taken from, whatever arithmetic was done on it.
 
 use super::{FaultKind, Machine};
+use crate::elementary::ElemType;
 use crate::ir::image::{ArrayDesc, Image};
 use crate::ir::op::Op;
 use crate::ir::refs;
@@ -40,7 +41,10 @@ pub(super) unsafe fn run(
             let ad = img.arrays.get(desc.index()).ok_or(FaultKind::BadAddress)?;
             (d, index(r(d), r(idx), ad, unit)?)
         }
-        Op::PtrAdd { d, b, unit, slots } => (d, add_bytes(r(d), r(b), unit, slots)),
+        Op::PtrAdd { d, b, unit, slots } => {
+            let moved = add_bytes(r(d), r(b), unit, slots);
+            (d, table.into_string_bytes(r(d), moved, r(b), unit))
+        }
         Op::RefValid { d, r: s, width } => {
             let ok = if refs::is_view(r(s)) {
                 table.view_range(r(s), 1, memory, strings).is_ok()
@@ -184,6 +188,24 @@ impl RefTable {
             });
         }
         Ok(obj.start as usize + off as usize)
+    }
+
+    /// `moved`, the typed pointer `p` moved by `bytes`, as a byte view when
+    /// it moved into a STRING's characters (`ADR(str) + 8`, as OSCAT
+    /// writes a string from its end): a string's bytes are its text.
+    fn into_string_bytes(&self, p: u64, moved: u64, bytes: u64, unit: u16) -> u64 {
+        if refs::offset(moved) != refs::MISALIGNED || refs::is_view(p) {
+            return moved;
+        }
+        let string = self
+            .object(refs::object_number(p))
+            .and_then(|o| refs::code_elem(o.layout))
+            .is_some_and(|e| matches!(e, ElemType::String | ElemType::WString));
+        if !string {
+            return moved;
+        }
+        let start = refs::offset(p).wrapping_mul(unit as u32);
+        refs::view(refs::object(p), start.wrapping_add(bytes as u32))
     }
 
     /// The object numbered `n` (view flag removed).
