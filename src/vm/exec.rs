@@ -790,8 +790,8 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             | Op::PtrToInt { .. }
             | Op::IntToPtr { .. } => {
                 // SAFETY: the instruction's frame operands lie inside the
-                // frame at fp (verified at link time); mem is the memory.
-                if let Err(kind) = unsafe { super::refs::run(m, img, mem, fp, op) } {
+                // frame at fp (verified at link time).
+                if let Err(kind) = unsafe { super::refs::run(m, img, fp, op) } {
                     fault!(kind);
                 }
             }

@@ -14,25 +14,25 @@ use crate::ir::op::Op;
 use crate::ir::refs;
 use std::collections::HashMap;
 
-/// Runs one reference instruction on the frame at `fp` of `m`, whose
-/// memory starts at `mem`.
+/// Runs one reference instruction on the frame at `fp` of `m`'s memory.
 ///
 /// # Safety
 /// `op`'s frame operands lie inside the frame at `fp` and its descriptor
-/// index inside `img.arrays` (the verifier checked both at link time);
-/// `mem` is `m.mem`'s buffer, which no reference borrows while this runs.
+/// index inside `img.arrays` (the verifier checked both at link time).
 #[inline(never)]
 pub(super) unsafe fn run(
     m: &mut Machine,
     img: &Image,
-    mem: *mut u64,
     fp: *mut u64,
     op: &Op,
 ) -> Result<(), FaultKind> {
     // SAFETY: frame operands are inside the frame (caller's contract).
     let r = |s: crate::ir::op::Slot| unsafe { *fp.add(s.index()) };
-    // SAFETY: `mem` is the memory's buffer (caller's contract).
-    let memory = unsafe { Memory::new(mem, m.mem.len()) };
+    // `Vec::as_mut_ptr` makes no reference to the buffer, so `fp` (taken
+    // the same way by the dispatch loop) stays valid beside it.
+    let len = m.mem.len();
+    // SAFETY: the pointer is to `len` slots, valid while this runs.
+    let memory = unsafe { Memory::new(m.mem.as_mut_ptr(), len) };
     let (table, strings) = (&mut m.refs, &mut m.strings);
     let (d, v) = match *op {
         Op::RefMake { d, p, len, layout } => (d, table.make(r(p), len, layout, memory.len)?),
