@@ -104,14 +104,14 @@ impl RefTable {
         let off = refs::offset(r);
         let mut v = 0u64;
         for i in (0..w).rev() {
-            v = (v << 8) | read_byte(&bytes, off + i, mem, strings)? as u64;
+            v = (v << 8) | self.read_byte(&bytes, off + i, mem, strings)? as u64;
         }
         Ok(canonical(v, w, e))
     }
 
     /// Writes `value` of type `elem` (a code) where view `r` designates.
     pub(super) fn view_store(
-        &self,
+        &mut self,
         r: u64,
         elem: u8,
         value: u64,
@@ -123,7 +123,7 @@ impl RefTable {
         let (bytes, _) = self.view_range(r, w, mem, strings)?;
         let off = refs::offset(r);
         for i in 0..w {
-            write_byte(&bytes, off + i, (value >> (8 * i)) as u8, mem, strings)?;
+            self.write_byte(&bytes, off + i, (value >> (8 * i)) as u8, mem, strings)?;
         }
         Ok(())
     }
@@ -160,36 +160,61 @@ impl RefTable {
         }
         Ok(((n as u64) << refs::IMAGE_OFFSET_BITS) | off as u64)
     }
-}
 
-fn read_byte(b: &Bytes, k: u32, mem: Memory, strings: &[PlcString]) -> Result<u8, FaultKind> {
-    Ok(match *b {
-        Bytes::Slots { start, width, .. } => {
-            let slot = mem.load(start + (k / width) as usize)?;
-            (slot >> (8 * (k % width))) as u8
+    /// The characters a byte view kept past the NUL of string `id`, if
+    /// its text is still the one they were written beside.
+    fn tail(&self, id: usize, text: &str) -> &[u16] {
+        match self.tails.get(&id) {
+            Some((t, tail)) if t == text => tail,
+            _ => &[],
         }
-        Bytes::Str(id) => strings[id].byte_at(k),
-    })
-}
+    }
 
-fn write_byte(
-    b: &Bytes,
-    k: u32,
-    byte: u8,
-    mem: Memory,
-    strings: &mut [PlcString],
-) -> Result<(), FaultKind> {
-    match *b {
-        Bytes::Slots { start, elem, width } => {
-            let a = start + (k / width) as usize;
-            let shift = 8 * (k % width);
-            let old = mem.load(a)?;
-            let new = (old & !(0xFF << shift)) | ((byte as u64) << shift);
-            mem.store(a, canonical(new, width, elem))
-        }
-        Bytes::Str(id) => {
-            strings[id].set_byte(k, byte);
-            Ok(())
+    fn read_byte(
+        &self,
+        b: &Bytes,
+        k: u32,
+        mem: Memory,
+        strings: &[PlcString],
+    ) -> Result<u8, FaultKind> {
+        Ok(match *b {
+            Bytes::Slots { start, width, .. } => {
+                let slot = mem.load(start + (k / width) as usize)?;
+                (slot >> (8 * (k % width))) as u8
+            }
+            Bytes::Str(id) => {
+                let s = &strings[id];
+                s.byte_at(k, self.tail(id, &s.text))
+            }
+        })
+    }
+
+    fn write_byte(
+        &mut self,
+        b: &Bytes,
+        k: u32,
+        byte: u8,
+        mem: Memory,
+        strings: &mut [PlcString],
+    ) -> Result<(), FaultKind> {
+        match *b {
+            Bytes::Slots { start, elem, width } => {
+                let a = start + (k / width) as usize;
+                let shift = 8 * (k % width);
+                let old = mem.load(a)?;
+                let new = (old & !(0xFF << shift)) | ((byte as u64) << shift);
+                mem.store(a, canonical(new, width, elem))
+            }
+            Bytes::Str(id) => {
+                let mut tail = self.tail(id, &strings[id].text).to_vec();
+                strings[id].set_byte(k, byte, &mut tail);
+                if tail.is_empty() {
+                    self.tails.remove(&id);
+                } else {
+                    self.tails.insert(id, (strings[id].text.clone(), tail));
+                }
+                Ok(())
+            }
         }
     }
 }

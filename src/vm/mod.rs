@@ -71,6 +71,8 @@ impl Machine {
         // Same image, same sizes: the buffers are reused.
         self.mem.clear();
         self.mem.extend_from_slice(&image.memory);
+        // Bytes byte views kept past a string's NUL go with the strings.
+        self.refs.tails.clear();
         self.strings.truncate(image.strings.len());
         for (k, init) in image.strings.iter().enumerate() {
             match self.strings.get_mut(k) {

@@ -133,6 +133,10 @@ pub struct RefObject {
 pub struct RefTable {
     objects: Vec<RefObject>,
     numbers: HashMap<RefObject, u32>,
+    /// Per string id, the characters byte views wrote past its NUL, with
+    /// the text they were written beside: a string operation that changes
+    /// the text makes them read 0 again (`vm::byte_view`).
+    pub(super) tails: HashMap<usize, (String, Vec<u16>)>,
 }
 
 impl RefTable {

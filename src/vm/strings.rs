@@ -13,9 +13,6 @@ pub struct PlcString {
     pub max: u32,
     /// WSTRING.
     pub wide: bool,
-    /// Characters a byte view wrote past the terminating NUL (see
-    /// [`PlcString::set_byte`]); any string operation clears them.
-    pub tail: Vec<u16>,
 }
 
 impl PlcString {
@@ -25,7 +22,6 @@ impl PlcString {
             text: String::with_capacity(max as usize),
             max,
             wide,
-            tail: Vec::new(),
         };
         s.set(init);
         s
@@ -34,7 +30,6 @@ impl PlcString {
     /// Replaces the value, truncating to the capacity; reuses the buffer.
     pub fn set(&mut self, value: &str) {
         self.text.clear();
-        self.tail.clear();
         match value.char_indices().nth(self.max as usize) {
             Some((cut, _)) => self.text.push_str(&value[..cut]),
             None => self.text.push_str(value),
@@ -58,10 +53,10 @@ impl PlcString {
     }
 
     /// Character `i` of the buffer as a code unit: the text, then its
-    /// terminating 0, then what a byte view wrote past it (else 0). A
-    /// STRING character beyond one byte (only a UTF-8 source can give one)
-    /// reads as `?`.
-    fn unit_at(&self, i: usize) -> u16 {
+    /// terminating 0, then `tail`, what a byte view wrote past it (else
+    /// 0). A STRING character beyond one byte (only a UTF-8 source can
+    /// give one) reads as `?`.
+    fn unit_at(&self, i: usize, tail: &[u16]) -> u16 {
         let len = if self.text.is_ascii() {
             self.text.len()
         } else {
@@ -77,14 +72,15 @@ impl PlcString {
                 code_unit(c, self.wide)
             }
             std::cmp::Ordering::Equal => 0,
-            std::cmp::Ordering::Greater => self.tail.get(i - len - 1).copied().unwrap_or(0),
+            std::cmp::Ordering::Greater => tail.get(i - len - 1).copied().unwrap_or(0),
         }
     }
 
-    /// Byte `k` of the buffer (little-endian characters for WSTRING);
-    /// `k` must be below [`PlcString::byte_len`].
-    pub fn byte_at(&self, k: u32) -> u8 {
-        let u = self.unit_at((k / self.unit()) as usize);
+    /// Byte `k` of the buffer (little-endian characters for WSTRING), with
+    /// `tail` the characters kept past the NUL; `k` must be below
+    /// [`PlcString::byte_len`].
+    pub fn byte_at(&self, k: u32, tail: &[u16]) -> u8 {
+        let u = self.unit_at((k / self.unit()) as usize, tail);
         (u >> (8 * (k % self.unit()))) as u8
     }
 
@@ -93,9 +89,10 @@ impl PlcString {
     /// kept past the NUL), a byte past the NUL is kept and joins the text
     /// when the NUL before it is overwritten. The last character position
     /// (`max`) holds the terminator: what is written there reads back 0.
-    pub fn set_byte(&mut self, k: u32, b: u8) {
+    /// `tail` holds the characters past the NUL, before and after.
+    pub fn set_byte(&mut self, k: u32, b: u8, tail: &mut Vec<u16>) {
         let cap = self.max as usize + 1;
-        let mut units: Vec<u16> = (0..cap).map(|i| self.unit_at(i)).collect();
+        let mut units: Vec<u16> = (0..cap).map(|i| self.unit_at(i, tail)).collect();
         let (i, shift) = ((k / self.unit()) as usize, 8 * (k % self.unit()));
         let Some(u) = units.get_mut(i) else {
             return;
@@ -108,11 +105,10 @@ impl PlcString {
             self.text
                 .push(char::from_u32(u as u32).unwrap_or(char::REPLACEMENT_CHARACTER));
         }
-        let mut tail = units.split_off(end + 1);
+        *tail = units.split_off(end + 1);
         while tail.last() == Some(&0) {
             tail.pop();
         }
-        self.tail = tail;
     }
 }
 
@@ -233,36 +229,38 @@ mod byte_tests {
     fn bytes_of_a_string_buffer() {
         // STRING(5) 'AB': bytes A B NUL then zeros, 6 bytes in all.
         let mut s = PlcString::new("AB", 5, false);
+        let mut tail = Vec::new();
         assert_eq!(s.byte_len(), 6);
-        let bytes: Vec<u8> = (0..6).map(|k| s.byte_at(k)).collect();
+        let bytes: Vec<u8> = (0..6).map(|k| s.byte_at(k, &tail)).collect();
         assert_eq!(bytes, [b'A', b'B', 0, 0, 0, 0]);
         // a byte past the NUL is kept, and joins when the NUL goes
-        s.set_byte(3, b'D');
-        assert_eq!((s.as_str(), s.byte_at(3)), ("AB", b'D'));
-        s.set_byte(2, b'C');
+        s.set_byte(3, b'D', &mut tail);
+        assert_eq!((s.as_str(), s.byte_at(3, &tail)), ("AB", b'D'));
+        s.set_byte(2, b'C', &mut tail);
         assert_eq!(s.as_str(), "ABCD");
         // a 0 ends the text; what follows stays in the buffer
-        s.set_byte(1, 0);
-        assert_eq!((s.as_str(), s.byte_at(2)), ("A", b'C'));
+        s.set_byte(1, 0, &mut tail);
+        assert_eq!((s.as_str(), s.byte_at(2, &tail)), ("A", b'C'));
         // the last position is the terminator
-        s.set_byte(1, b'B');
-        s.set_byte(4, b'E');
-        s.set_byte(5, b'F');
-        assert_eq!((s.as_str(), s.byte_at(5)), ("ABCDE", 0));
-        // a string operation leaves no old bytes behind
-        s.set("Z");
-        assert_eq!((s.byte_at(1), s.byte_at(2)), (0, 0));
+        s.set_byte(1, b'B', &mut tail);
+        s.set_byte(4, b'E', &mut tail);
+        s.set_byte(5, b'F', &mut tail);
+        assert_eq!((s.as_str(), s.byte_at(5, &tail)), ("ABCDE", 0));
     }
 
     #[test]
     fn latin1_and_wide_characters() {
+        let mut tail = Vec::new();
         let mut s = PlcString::new("\u{e4}x", 4, false);
-        assert_eq!((s.byte_at(0), s.byte_at(1)), (0xE4, b'x'));
-        s.set_byte(1, 0xF6);
+        assert_eq!((s.byte_at(0, &tail), s.byte_at(1, &tail)), (0xE4, b'x'));
+        s.set_byte(1, 0xF6, &mut tail);
         assert_eq!(s.as_str(), "\u{e4}\u{f6}");
         let mut w = PlcString::new("\u{20ac}", 2, true);
-        assert_eq!((w.byte_len(), w.byte_at(0), w.byte_at(1)), (6, 0xAC, 0x20));
-        w.set_byte(2, b'a');
+        assert_eq!(
+            (w.byte_len(), w.byte_at(0, &tail), w.byte_at(1, &tail)),
+            (6, 0xAC, 0x20)
+        );
+        w.set_byte(2, b'a', &mut tail);
         assert_eq!(w.as_str(), "\u{20ac}a");
     }
 }
