@@ -43,7 +43,7 @@ pub(super) unsafe fn run(
         }
         Op::PtrAdd { d, b, unit, slots } => {
             let moved = add_bytes(r(d), r(b), unit, slots);
-            (d, table.into_string_bytes(r(d), moved, r(b), unit))
+            (d, table.string_view_of(r(d), moved, r(b), unit))
         }
         Op::RefValid { d, r: s, width } => {
             let ok = if refs::is_view(r(s)) {
@@ -197,7 +197,7 @@ impl RefTable {
     /// `moved`, the typed pointer `p` moved by `bytes`, as a byte view when
     /// it moved into a STRING's characters (`ADR(str) + 8`, as OSCAT
     /// writes a string from its end): a string's bytes are its text.
-    fn into_string_bytes(&self, p: u64, moved: u64, bytes: u64, unit: u16) -> u64 {
+    fn string_view_of(&self, p: u64, moved: u64, bytes: u64, unit: u16) -> u64 {
         if refs::offset(moved) != refs::MISALIGNED || refs::is_view(p) {
             return moved;
         }
