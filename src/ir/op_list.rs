@@ -294,15 +294,18 @@ macro_rules! for_each_op {
             // --- refs: references and pointers (`crate::ir::refs`) ---
             /// `d := a reference to the object of `len` slots at the absolute
             /// address in `p`` (`REF(x)`, `ADR(x)`): the machine numbers the object.
-            RefMake { d: Slot => Out, p: Slot => In, len: u32 => Data };
+            /// `layout` is the code (`ir::refs::elem_code`) of the object's
+            /// elementary type (0: none), which gives its bytes to byte views.
+            RefMake { d: Slot => Out, p: Slot => In, len: u32 => Data, layout: u8 => Data };
             /// `d := the absolute address of the `width` slots reference `r`
             /// designates`; faults on NULL (R030), outside its object (R031) or
             /// an object of an earlier memory layout (R032).
             RefAddr { d: Slot => Out, r: Slot => In, width: u32 => Data };
             /// `d := reference `d` moved to element `idx` of the array `desc`
             /// describes` (bounds checked against the declared array; the
-            /// dereference that follows checks the object).
-            RefIndex { d: Slot => InOut, idx: Slot => In, desc: ArrayIdx => Array(Any) };
+            /// dereference that follows checks the object); a byte view moves by
+            /// `unit` bytes per element.
+            RefIndex { d: Slot => InOut, idx: Slot => In, desc: ArrayIdx => Array(Any), unit: u16 => Data };
             /// `d := pointer `d` moved by `b` bytes`: `b / unit` elements of
             /// `slots` slots each; a `b` that is not a multiple of `unit` makes a
             /// pointer that faults when dereferenced.
@@ -313,6 +316,23 @@ macro_rules! for_each_op {
             /// A call through an interface variable that holds no instance
             /// (no implementing type matched its type id): fault R080.
             FaultNullItf;
+            /// `d := the value of type `elem` (`ir::refs::elem_code`) pointer `r`
+            /// designates`: a slot of its object, or the object's bytes for a
+            /// byte view (`ir::refs::VIEW`); faults as `RefAddr` does.
+            RefLoad { d: Slot => Out, r: Slot => In, elem: u8 => Data };
+            /// `the value of type `elem` pointer `r` designates := s` (a slot of
+            /// its object, or its bytes for a byte view).
+            RefStore { r: Slot => In, s: Slot => In, elem: u8 => Data };
+            /// `d := pointer `d` as a byte view` (`POINTER TO BYTE := ADR(str)`):
+            /// a typed pointer's offset becomes `unit` bytes per slot.
+            RefView { d: Slot => InOut, unit: u16 => Data };
+            /// `d := the integer image of pointer `d`` (`dw := pt`, `pt < end`):
+            /// object number and byte offset (`ir::refs::IMAGE_OFFSET_BITS`);
+            /// a typed pointer's offset counts `unit` bytes per slot.
+            PtrToInt { d: Slot => InOut, unit: u16 => Data };
+            /// `d := the pointer whose integer image is `d`` (`pt := dw`): a byte
+            /// view of the object the image names (0 is `NULL`).
+            IntToPtr { d: Slot => InOut };
         }
     };
 }

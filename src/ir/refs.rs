@@ -11,6 +11,8 @@
 //! For example `pack(3, 2)` is slot 2 of object 3, and `NULL` is object 0
 //! (the unit tests below check both).
 
+use crate::elementary::ElemType;
+
 /// The slot value of `NULL` (and of every reference variable at start).
 pub const NULL: u64 = 0;
 
@@ -44,9 +46,82 @@ pub fn moved(r: u64, delta: i64) -> u64 {
     pack(object(r), offset(r).wrapping_add(delta as u32))
 }
 
+/// The flag, in a reference's object number, of a *byte view*: a pointer
+/// whose element type differs from the object's (`ps : POINTER TO BYTE`
+/// over a STRING, `POINTER TO DWORD` over a REAL), or that was made from
+/// an integer. Its offset counts bytes, not slots, and every dereference
+/// takes the out-of-line byte path (`vm::refs`): the bytes are those the
+/// object has in CODESYS, little-endian.
+pub const VIEW: u32 = 0x8000_0000;
+
+/// True for a byte view (see [`VIEW`]).
+#[inline(always)]
+pub fn is_view(r: u64) -> bool {
+    object(r) & VIEW != 0
+}
+
+/// The byte view of object `object` at byte `offset`.
+#[inline(always)]
+pub fn view(object: u32, offset: u32) -> u64 {
+    pack(object | VIEW, offset)
+}
+
+/// The number of the object a reference designates, view flag removed.
+#[inline(always)]
+pub fn object_number(r: u64) -> u32 {
+    object(r) & !VIEW
+}
+
+/// The integer image of a pointer (`dw := pt`) holds its object's number
+/// above this many bits and its byte offset below: objects of up to 1 MiB,
+/// 4095 objects, in a DWORD (an object starts at a multiple of 2^20, so
+/// CODESYS's alignment tests on the image hold).
+pub const IMAGE_OFFSET_BITS: u32 = 20;
+
+/// The code of an elementary type in an instruction (`RefLoad`,
+/// `RefStore`, `RefMake`'s layout): its place in [`ElemType::ALL`] plus
+/// one; 0 means "no elementary layout" (a structure, an FB, an array of
+/// strings).
+pub fn elem_code(e: ElemType) -> u8 {
+    ElemType::ALL
+        .iter()
+        .position(|x| *x == e)
+        .map_or(0, |i| i as u8 + 1)
+}
+
+/// The elementary type of a code from [`elem_code`] (`None` for 0).
+pub fn code_elem(code: u8) -> Option<ElemType> {
+    ElemType::ALL.get((code as usize).checked_sub(1)?).copied()
+}
+
+/// Bytes of one value of `e` in CODESYS's memory as plcrun models it
+/// (what `SIZEOF` says): BOOL 1, the integers and reals their width, the
+/// time and date types 8; a STRING/WSTRING character 1/2.
+pub fn elem_bytes(e: ElemType) -> u32 {
+    match e {
+        ElemType::Bool => 1,
+        ElemType::String => 1,
+        ElemType::WString => 2,
+        _ => e.bits().div_ceil(8),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn views_and_codes() {
+        let v = view(3, 7);
+        assert!(is_view(v) && !is_view(pack(3, 7)));
+        assert_eq!((object_number(v), offset(v)), (3, 7));
+        for e in ElemType::ALL {
+            assert_eq!(code_elem(elem_code(e)), Some(e));
+        }
+        assert_eq!(code_elem(0), None);
+        assert_eq!(elem_bytes(ElemType::Real), 4);
+        assert_eq!(elem_bytes(ElemType::Time), 8);
+    }
 
     #[test]
     fn packing() {

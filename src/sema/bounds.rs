@@ -48,7 +48,11 @@ fn leaves_alone(op: &Op, i: Slot) -> bool {
     // A dereference may write `i` through a reference taken earlier.
     let user_call = matches!(
         op,
-        Op::CallFb { .. } | Op::CallFbInd { .. } | Op::Sfc { .. } | Op::RefAddr { .. }
+        Op::CallFb { .. }
+            | Op::CallFbInd { .. }
+            | Op::Sfc { .. }
+            | Op::RefAddr { .. }
+            | Op::RefStore { .. }
     );
     !writes_i && !escapes && !user_call
 }

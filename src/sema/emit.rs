@@ -79,6 +79,15 @@ pub enum Place {
         /// Static offset.
         off: u32,
     },
+    /// The elementary value a `POINTER TO` in slot `r` designates, read
+    /// with `RefLoad` and written with `RefStore` (which also serve byte
+    /// views, `ir::refs::VIEW`); `elem` is its type's code.
+    View {
+        /// Frame slot holding the pointer.
+        r: Slot,
+        /// `ir::refs::elem_code` of the value's type.
+        elem: u8,
+    },
     /// A checked element of a 1-D array in the frame.
     Elem {
         /// Frame slot holding the index.
@@ -234,6 +243,7 @@ impl Fcx {
                 true
             }
             Op::StoreInd { p, .. } => !self.elem_cache.iter().any(|e| e.ptr == *p),
+            Op::RefStore { .. } => true,
             Op::AddrOf { .. } => true,
             _ => false,
         };
@@ -446,6 +456,11 @@ impl BodyBuilder<'_> {
                 self.block.emit(Op::LoadElem { d: t, idx, desc });
                 t
             }
+            Place::View { r, elem } => {
+                let t = self.block.temp();
+                self.block.emit(Op::RefLoad { d: t, r, elem });
+                t
+            }
         };
         Val::Slot(slot, p.ty)
     }
@@ -473,6 +488,9 @@ impl BodyBuilder<'_> {
             Place::Elem { idx, desc } => {
                 self.block.emit(Op::StoreElem { idx, s, desc });
             }
+            Place::View { r, elem } => {
+                self.block.emit(Op::RefStore { r, s, elem });
+            }
         }
     }
 
@@ -495,6 +513,10 @@ impl BodyBuilder<'_> {
             }
             Place::Elem { idx, desc } => {
                 self.block.emit(Op::ElemRef { d: t, idx, desc });
+            }
+            Place::View { r, .. } => {
+                // Typed pointers only: a byte view has no slot address (R034).
+                self.block.emit(Op::RefAddr { d: t, r, width: 1 });
             }
         }
         self.block.last_def = None;

@@ -549,6 +549,12 @@ impl BodyBuilder<'_> {
                 self.block.last_def = None;
                 Place::Ind { p, off }
             }
+            Place::View { r, .. } => {
+                let p = self.block.temp();
+                self.block.emit(Op::RefAddr { d: p, r, width: 1 });
+                self.block.last_def = None;
+                Place::Ind { p, off }
+            }
         }
     }
 }

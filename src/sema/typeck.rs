@@ -174,6 +174,9 @@ impl BodyBuilder<'_> {
         if v.is_error() || to == TypeTable::error() {
             return Val::error();
         }
+        if let Some(c) = self.pointer_coerce(&v, to, span) {
+            return c;
+        }
         if let Some(c) = self.const_as_ref(&v, to, span, what) {
             return c;
         }

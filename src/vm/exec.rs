@@ -808,10 +808,15 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             | Op::RefIndex { .. }
             | Op::PtrAdd { .. }
             | Op::RefValid { .. }
-            | Op::FaultNullItf => {
+            | Op::FaultNullItf
+            | Op::RefLoad { .. }
+            | Op::RefStore { .. }
+            | Op::RefView { .. }
+            | Op::PtrToInt { .. }
+            | Op::IntToPtr { .. } => {
                 // SAFETY: the instruction's frame operands lie inside the
                 // frame at fp (verified at link time).
-                if let Err(kind) = unsafe { super::refs::run(&mut m.refs, img, fp, len, op) } {
+                if let Err(kind) = unsafe { super::refs::run(m, img, fp, op) } {
                     fault!(kind);
                 }
             }

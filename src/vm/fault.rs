@@ -72,6 +72,27 @@ pub enum FaultKind {
     /// A method was called through an interface variable that holds no
     /// instance (never assigned, or assigned 0).
     NullInterface,
+    /// A byte view (a pointer of another element type than its object's)
+    /// read or wrote outside the object's bytes (R031, as for slots).
+    OutsideBytes {
+        /// The view's offset in its object, in bytes.
+        offset: i64,
+        /// The bytes the dereference reads or writes.
+        width: u32,
+        /// The object's size in bytes.
+        len: u32,
+    },
+    /// A byte view dereferenced as a STRING, structure, array or FB: only
+    /// elementary values are read and written through one (R034).
+    ByteViewAggregate,
+    /// A pointer made from an integer that no pointer gave (R035).
+    NotFromPointer,
+    /// A pointer outside its object, or into an object too large or too
+    /// many, turned into an integer (R036).
+    NoIntegerImage,
+    /// A byte view of an object without a byte layout: a structure, an FB
+    /// instance, an array of strings (R037).
+    NoByteLayout,
 }
 
 /// A chart that did not reach a stable situation under IEC 60848 evolution.
@@ -141,6 +162,11 @@ impl FaultKind {
             FaultKind::TooManyReferencedObjects => "R033",
             FaultKind::BadAddress => "R999",
             FaultKind::NullInterface => "R080",
+            FaultKind::OutsideBytes { .. } => "R031",
+            FaultKind::ByteViewAggregate => "R034",
+            FaultKind::NotFromPointer => "R035",
+            FaultKind::NoIntegerImage => "R036",
+            FaultKind::NoByteLayout => "R037",
         }
     }
 }
@@ -186,6 +212,29 @@ impl fmt::Display for FaultKind {
             FaultKind::NullInterface => write!(
                 f,
                 "method called through an interface variable that holds no instance (assign an instance first, or test `itf <> 0`)"
+            ),
+            FaultKind::OutsideBytes { offset, width, len } => write!(
+                f,
+                "dereference outside the object the pointer was taken from \
+                 (byte {offset}, {width} byte(s) wide, object of {len} byte(s))"
+            ),
+            FaultKind::ByteViewAggregate => write!(
+                f,
+                "a pointer of another element type than its object, or made from an integer, \
+                 reads and writes elementary values only (not a STRING, structure, array or FB)"
+            ),
+            FaultKind::NotFromPointer => write!(
+                f,
+                "dereference of a pointer made from an integer that no pointer gave"
+            ),
+            FaultKind::NoIntegerImage => write!(
+                f,
+                "a pointer outside its object, or into an object over 1 MiB or beyond the 4095th, \
+                 has no integer image"
+            ),
+            FaultKind::NoByteLayout => write!(
+                f,
+                "byte view of an object without a byte layout (a structure, FB instance or array of strings)"
             ),
             FaultKind::HostFunction(h) => {
                 write!(f, "host function `{}` failed: {}", h.name, h.message)

@@ -10,6 +10,7 @@
 //! accesses are sound because `ir::verify` accepted every instruction
 //! (docs/adr/0004-verified-then-unchecked-execution.md).
 
+mod byte_view;
 mod chart;
 mod exec;
 mod fault;
@@ -76,6 +77,8 @@ impl Machine {
         self.unwind.clear();
         self.mem.clear();
         self.mem.extend_from_slice(&image.memory);
+        // Bytes byte views kept past a string's NUL go with the strings.
+        self.refs.tails.clear();
         self.strings.truncate(image.strings.len());
         for (k, init) in image.strings.iter().enumerate() {
             match self.strings.get_mut(k) {

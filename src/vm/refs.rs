@@ -7,45 +7,111 @@
 //! object, so a reference can never reach memory outside the variable it
 //! was taken from, whatever arithmetic was done on it.
 
-use super::FaultKind;
+use super::{FaultKind, Machine};
+use crate::elementary::ElemType;
 use crate::ir::image::{ArrayDesc, Image};
 use crate::ir::op::Op;
 use crate::ir::refs;
 use std::collections::HashMap;
 
-/// Runs one reference instruction on the frame at `fp` in a memory of
-/// `mem_len` slots.
+/// Runs one reference instruction on the frame at `fp` of `m`'s memory.
 ///
 /// # Safety
 /// `op`'s frame operands lie inside the frame at `fp` and its descriptor
 /// index inside `img.arrays` (the verifier checked both at link time).
 #[inline(never)]
 pub(super) unsafe fn run(
-    table: &mut RefTable,
+    m: &mut Machine,
     img: &Image,
     fp: *mut u64,
-    mem_len: usize,
     op: &Op,
 ) -> Result<(), FaultKind> {
     // SAFETY: frame operands are inside the frame (caller's contract).
     let r = |s: crate::ir::op::Slot| unsafe { *fp.add(s.index()) };
+    // `Vec::as_mut_ptr` makes no reference to the buffer, so `fp` (taken
+    // the same way by the dispatch loop) stays valid beside it.
+    let len = m.mem.len();
+    // SAFETY: the pointer is to `len` slots, valid while this runs.
+    let memory = unsafe { Memory::new(m.mem.as_mut_ptr(), len) };
+    let (table, strings) = (&mut m.refs, &mut m.strings);
     let (d, v) = match *op {
-        Op::RefMake { d, p, len } => (d, table.make(r(p), len, mem_len)?),
+        Op::RefMake { d, p, len, layout } => (d, table.make(r(p), len, layout, memory.len)?),
         Op::RefAddr { d, r: s, width } => (d, table.address(r(s), width)? as u64),
-        Op::RefIndex { d, idx, desc } => {
+        Op::RefIndex { d, idx, desc, unit } => {
             let ad = img.arrays.get(desc.index()).ok_or(FaultKind::BadAddress)?;
-            (d, index(r(d), r(idx), ad)?)
+            (d, index(r(d), r(idx), ad, unit)?)
         }
-        Op::PtrAdd { d, b, unit, slots } => (d, add_bytes(r(d), r(b), unit, slots)),
-        Op::RefValid { d, r: s, width } => (d, table.address(r(s), width).is_ok() as u64),
+        Op::PtrAdd { d, b, unit, slots } => {
+            let moved = add_bytes(r(d), r(b), unit, slots);
+            (d, table.string_view_of(r(d), moved, r(b), unit))
+        }
+        Op::RefValid { d, r: s, width } => {
+            let ok = if refs::is_view(r(s)) {
+                table.view_range(r(s), 1, memory, strings).is_ok()
+            } else {
+                table.address(r(s), width).is_ok()
+            };
+            (d, ok as u64)
+        }
         // oop's call through an interface that holds no instance (R080)
         // shares this out-of-line arm: one arm less in the dispatch loop.
         Op::FaultNullItf => return Err(FaultKind::NullInterface),
+        Op::RefLoad { d, r: s, elem } => match table.address(r(s), 1) {
+            Ok(a) => (d, memory.load(a)?),
+            Err(_) if refs::is_view(r(s)) => (d, table.view_load(r(s), elem, memory, strings)?),
+            Err(e) => return Err(e),
+        },
+        Op::RefStore { r: s, s: v, elem } => {
+            match table.address(r(s), 1) {
+                Ok(a) => memory.store(a, r(v))?,
+                Err(_) if refs::is_view(r(s)) => {
+                    table.view_store(r(s), elem, r(v), memory, strings)?
+                }
+                Err(e) => return Err(e),
+            }
+            return Ok(());
+        }
+        Op::RefView { d, unit } => (d, to_view(r(d), unit)),
+        Op::PtrToInt { d, unit } => (d, table.image(r(d), unit, memory, strings)?),
+        Op::IntToPtr { d } => (d, from_image(r(d))),
         _ => return Ok(()),
     };
     // SAFETY: as for `r`.
     unsafe { *fp.add(d.index()) = v };
     Ok(())
+}
+
+/// The memory as the byte path sees it: a raw buffer and its length (no
+/// reference to it is made, so the caller's frame pointer stays valid).
+#[derive(Clone, Copy)]
+pub(super) struct Memory {
+    base: *mut u64,
+    pub(super) len: usize,
+}
+
+impl Memory {
+    /// # Safety
+    /// `base` points to `len` slots that stay valid while it is used.
+    unsafe fn new(base: *mut u64, len: usize) -> Memory {
+        Memory { base, len }
+    }
+
+    pub(super) fn load(self, a: usize) -> Result<u64, FaultKind> {
+        if a >= self.len {
+            return Err(FaultKind::BadAddress);
+        }
+        // SAFETY: a < len (see `new`).
+        Ok(unsafe { *self.base.add(a) })
+    }
+
+    pub(super) fn store(self, a: usize, v: u64) -> Result<(), FaultKind> {
+        if a >= self.len {
+            return Err(FaultKind::BadAddress);
+        }
+        // SAFETY: a < len (see `new`).
+        unsafe { *self.base.add(a) = v };
+        Ok(())
+    }
 }
 
 /// One object a reference designates: where it starts and how many slots
@@ -56,6 +122,9 @@ pub struct RefObject {
     pub start: u32,
     /// Its size in slots.
     pub len: u32,
+    /// The code of its elementary type (`ir::refs::elem_code`; 0: none),
+    /// which gives its bytes to byte views.
+    pub layout: u8,
 }
 
 /// The objects of one memory layout, numbered from 1 in the order they
@@ -64,25 +133,36 @@ pub struct RefObject {
 pub struct RefTable {
     objects: Vec<RefObject>,
     numbers: HashMap<RefObject, u32>,
+    /// Per string id, the characters byte views wrote past its NUL, with
+    /// the text they were written beside: a string operation that changes
+    /// the text makes them read 0 again (`vm::byte_view`).
+    pub(super) tails: HashMap<usize, (String, Vec<u16>)>,
 }
 
 impl RefTable {
     /// A reference to the object of `len` slots at `start`, which must lie
     /// in a memory of `mem_len` slots.
-    pub fn make(&mut self, start: u64, len: u32, mem_len: usize) -> Result<u64, FaultKind> {
+    pub fn make(
+        &mut self,
+        start: u64,
+        len: u32,
+        layout: u8,
+        mem_len: usize,
+    ) -> Result<u64, FaultKind> {
         if start > mem_len as u64 || len as u64 > mem_len as u64 - start {
             return Err(FaultKind::BadAddress);
         }
         let obj = RefObject {
             start: start as u32,
             len,
+            layout,
         };
         if let Some(&n) = self.numbers.get(&obj) {
             return Ok(refs::pack(n, 0));
         }
         let n = u32::try_from(self.objects.len() + 1)
             .ok()
-            .filter(|n| *n != u32::MAX)
+            .filter(|n| *n < refs::VIEW)
             .ok_or(FaultKind::TooManyReferencedObjects)?;
         self.objects.push(obj);
         self.numbers.insert(obj, n);
@@ -96,10 +176,13 @@ impl RefTable {
         if n == 0 {
             return Err(FaultKind::NullReference);
         }
-        let obj = self
-            .objects
-            .get(n as usize - 1)
-            .ok_or(FaultKind::StaleReference)?;
+        let Some(obj) = self.objects.get(n as usize - 1) else {
+            return Err(if refs::is_view(r) {
+                FaultKind::ByteViewAggregate
+            } else {
+                FaultKind::StaleReference
+            });
+        };
         let off = refs::offset(r);
         if off as u64 + width as u64 > obj.len as u64 {
             return Err(FaultKind::OutsideObject {
@@ -110,12 +193,36 @@ impl RefTable {
         }
         Ok(obj.start as usize + off as usize)
     }
+
+    /// `moved`, the typed pointer `p` moved by `bytes`, as a byte view when
+    /// it moved into a STRING's characters (`ADR(str) + 8`, as OSCAT
+    /// writes a string from its end): a string's bytes are its text.
+    fn string_view_of(&self, p: u64, moved: u64, bytes: u64, unit: u16) -> u64 {
+        if refs::offset(moved) != refs::MISALIGNED || refs::is_view(p) {
+            return moved;
+        }
+        let string = self
+            .object(refs::object_number(p))
+            .and_then(|o| refs::code_elem(o.layout))
+            .is_some_and(|e| matches!(e, ElemType::String | ElemType::WString));
+        if !string {
+            return moved;
+        }
+        let start = refs::offset(p).wrapping_mul(unit as u32);
+        refs::view(refs::object(p), start.wrapping_add(bytes as u32))
+    }
+
+    /// The object numbered `n` (view flag removed).
+    pub(super) fn object(&self, n: u32) -> Option<&RefObject> {
+        self.objects.get((n as usize).checked_sub(1)?)
+    }
 }
 
 /// `r` moved to element `idx` of the array `ad` describes (the index is
-/// checked against the declared bounds).
+/// checked against the declared bounds); a byte view moves `unit` bytes
+/// per element.
 #[inline]
-pub fn index(r: u64, idx: u64, ad: &ArrayDesc) -> Result<u64, FaultKind> {
+pub fn index(r: u64, idx: u64, ad: &ArrayDesc, unit: u16) -> Result<u64, FaultKind> {
     let i = (idx as i64).wrapping_sub(ad.lo) as u64;
     if i >= ad.len {
         return Err(FaultKind::IndexOutOfRange {
@@ -124,19 +231,61 @@ pub fn index(r: u64, idx: u64, ad: &ArrayDesc) -> Result<u64, FaultKind> {
             hi: ad.lo + ad.len as i64 - 1,
         });
     }
-    Ok(refs::moved(r, (i as i64).wrapping_mul(ad.stride as i64)))
+    let step = if refs::is_view(r) {
+        unit as i64
+    } else {
+        ad.stride as i64
+    };
+    Ok(refs::moved(r, (i as i64).wrapping_mul(step)))
 }
 
 /// Pointer `p` moved by `bytes` bytes: whole elements of `unit` bytes and
-/// `slots` slots; any other distance poisons the offset.
+/// `slots` slots (a pointer to an array of one elementary type moves by
+/// that type's elements: `ADR(bytes) + 5`). A byte view moves by bytes;
+/// a typed pointer moved by part of an element faults when dereferenced
+/// (make it a byte view, a `POINTER TO BYTE`, first).
 #[inline]
 pub fn add_bytes(p: u64, bytes: u64, unit: u16, slots: u16) -> u64 {
     let b = bytes as i64;
+    if refs::is_view(p) || p == refs::NULL {
+        return refs::moved(p, b);
+    }
     let unit = unit.max(1) as i64;
     if b % unit != 0 {
+        // An array of one elementary type moves by its elements
+        // (`ADR(bytes) + 5`); part of an element poisons the offset.
+        let per_slot = unit / (slots.max(1) as i64);
+        if per_slot > 0 && per_slot * slots as i64 == unit && b % per_slot == 0 {
+            return refs::moved(p, b / per_slot);
+        }
         return refs::pack(refs::object(p), refs::MISALIGNED);
     }
     refs::moved(p, (b / unit).wrapping_mul(slots as i64))
+}
+
+/// Typed pointer `p` as a byte view, its offset counting `unit` bytes per
+/// slot (`NULL` and views are left as they are).
+#[inline]
+pub fn to_view(p: u64, unit: u16) -> u64 {
+    if p == refs::NULL || refs::is_view(p) {
+        return p;
+    }
+    refs::view(
+        refs::object(p),
+        refs::offset(p).wrapping_mul(unit.max(1) as u32),
+    )
+}
+
+/// The pointer whose integer image is `v` (`pt := dw`): 0 is `NULL`, any
+/// other value a byte view of the object it names (which the dereference
+/// checks: R035 if no pointer gave that number).
+#[inline]
+pub fn from_image(v: u64) -> u64 {
+    if v == 0 {
+        return refs::NULL;
+    }
+    let n = (v >> refs::IMAGE_OFFSET_BITS).min((refs::VIEW - 1) as u64) as u32;
+    refs::view(n, (v & ((1 << refs::IMAGE_OFFSET_BITS) - 1)) as u32)
 }
 
 #[cfg(test)]
@@ -146,9 +295,9 @@ mod tests {
     #[test]
     fn same_object_same_number_and_checked_extent() {
         let mut t = RefTable::default();
-        let a = t.make(10, 4, 100).unwrap();
-        assert_eq!(t.make(10, 4, 100).unwrap(), a);
-        let b = t.make(10, 1, 100).unwrap();
+        let a = t.make(10, 4, 0, 100).unwrap();
+        assert_eq!(t.make(10, 4, 0, 100).unwrap(), a);
+        let b = t.make(10, 1, 0, 100).unwrap();
         assert_ne!(a, b);
         assert_eq!(t.address(a, 4), Ok(10));
         assert_eq!(t.address(refs::moved(a, 3), 1), Ok(13));
@@ -165,7 +314,7 @@ mod tests {
             t.address(refs::pack(9, 0), 1),
             Err(FaultKind::StaleReference)
         );
-        assert_eq!(t.make(99, 2, 100), Err(FaultKind::BadAddress));
+        assert_eq!(t.make(99, 2, 0, 100), Err(FaultKind::BadAddress));
     }
 
     #[test]
@@ -174,5 +323,18 @@ mod tests {
         assert_eq!(add_bytes(p, 8, 4, 1), refs::pack(1, 2));
         assert_eq!(add_bytes(p, (-4i64) as u64, 4, 1), refs::moved(p, -1));
         assert_eq!(refs::offset(add_bytes(p, 3, 4, 1)), refs::MISALIGNED);
+        assert_eq!(refs::offset(add_bytes(p, 3, 4, 2)), refs::MISALIGNED);
+        // an array of four 1-byte slots moved by 5 bytes: 5 slots
+        assert_eq!(add_bytes(p, 5, 4, 4), refs::pack(1, 5));
+        // a byte view moves by bytes
+        assert_eq!(add_bytes(refs::view(1, 11), 1, 4, 1), refs::view(1, 12));
+    }
+
+    #[test]
+    fn integer_images_name_objects() {
+        assert_eq!(from_image(0), refs::NULL);
+        assert_eq!(from_image((3 << 20) + 5), refs::view(3, 5));
+        assert_eq!(to_view(refs::pack(2, 3), 4), refs::view(2, 12));
+        assert_eq!(to_view(refs::NULL, 4), refs::NULL);
     }
 }

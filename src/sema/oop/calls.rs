@@ -484,7 +484,7 @@ impl BodyBuilder<'_> {
             Place::Frame(o) => Some(Place::Frame(o.offset(off))),
             Place::Abs(a) => Some(Place::Abs(a + off)),
             Place::Ind { p, off: o } => Some(Place::Ind { p, off: o + off }),
-            Place::Elem { .. } => None,
+            Place::Elem { .. } | Place::View { .. } => None,
         };
         let (Some(addr_at), Some(tid_at)) = (member(0), member(1)) else {
             self.diags.error(
@@ -634,7 +634,7 @@ impl BodyBuilder<'_> {
                         p,
                         off: off + field,
                     },
-                    Place::Elem { .. } => return None,
+                    Place::Elem { .. } | Place::View { .. } => return None,
                 };
                 return Some(self.read_place(&place_ref(at, ty)));
             }

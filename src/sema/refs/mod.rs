@@ -12,6 +12,7 @@
 //! walks a 10-byte array safely.
 
 mod calls;
+mod convert;
 mod ops;
 mod place;
 mod reference;
@@ -86,6 +87,46 @@ fn elem_bytes(e: ElemType) -> u64 {
         ElemType::WString => 510,
         _ => (e.bits() as u64).div_ceil(8),
     }
+}
+
+/// The layout code (`ir::refs::elem_code`) of an object of type `t`: its
+/// innermost element's elementary type (STRING and WSTRING included), or
+/// 0 for a structure, an FB or anything else without one byte layout.
+pub(super) fn layout_code(types: &TypeTable, t: TypeId) -> u8 {
+    let inner = innermost(types, t);
+    let e = match &types.get(inner).kind {
+        TypeKind::Str { wide: false, .. } => ElemType::String,
+        TypeKind::Str { wide: true, .. } => ElemType::WString,
+        _ => match types.scalar(inner) {
+            Some(e) => e,
+            None => return 0,
+        },
+    };
+    crate::ir::refs::elem_code(e)
+}
+
+/// Bytes per slot of the innermost element of `t`: how a typed pointer's
+/// slot offset turns into bytes (1 for anything without a byte layout).
+pub(super) fn view_unit(types: &TypeTable, t: TypeId) -> u16 {
+    let inner = innermost(types, t);
+    match types.scalar(inner) {
+        Some(e) if !matches!(e, ElemType::String | ElemType::WString) => {
+            crate::ir::refs::elem_bytes(e) as u16
+        }
+        _ => 1,
+    }
+}
+
+/// The elementary type a dereference of a `POINTER TO t` reads through
+/// `RefLoad`/`RefStore` (so that a byte view works): any elementary type
+/// but the strings; `None` for the rest, which keep the typed `RefAddr`.
+pub(super) fn viewable(types: &TypeTable, t: TypeId) -> Option<ElemType> {
+    if matches!(types.get(t).kind, TypeKind::Str { .. }) {
+        return None;
+    }
+    types
+        .scalar(t)
+        .filter(|e| !matches!(e, ElemType::String | ElemType::WString))
 }
 
 /// The innermost element type of nested arrays (`t` itself otherwise): a

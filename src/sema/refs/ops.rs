@@ -77,6 +77,9 @@ impl BodyBuilder<'_> {
         if ra.is_none() && rb.is_none() {
             return None;
         }
+        if let Some(v) = self.pointer_compare(op, va, vb, span) {
+            return Some(v);
+        }
         Some(match (op, ra, rb) {
             (BinaryOp::Eq | BinaryOp::Ne, Some(_), Some(_)) => {
                 let (a, b) = (self.materialize(va), self.materialize(vb));
@@ -115,7 +118,11 @@ impl BodyBuilder<'_> {
     fn pointer_add(&mut self, op: BinaryOp, p: &Val, n: &Val, target: TypeId, span: Span) -> Val {
         let int = match n.ty() {
             Ty::AnyInt => true,
-            Ty::T(t) => self.scalar(t).is_some_and(|e| e.is_int()) && !self.is_enum(t),
+            Ty::T(t) => {
+                self.scalar(t)
+                    .is_some_and(|e| e.is_int() || (e.is_bit() && e != ElemType::Bool))
+                    && !self.is_enum(t)
+            }
             Ty::AnyReal => false,
         };
         if !int {

@@ -1,6 +1,6 @@
 //! `r^` and `r^[i]` as places.
 
-use super::ref_parts;
+use super::{ref_parts, size_bytes, viewable};
 use crate::ir::image::ArrayDesc;
 use crate::ir::op::{Op, Slot};
 use crate::ir::type_table::{RefFlavor, TypeId};
@@ -11,7 +11,7 @@ use crate::syntax::ast::Expr;
 impl BodyBuilder<'_> {
     /// The reference `r` evaluates to, in a slot, with its target type;
     /// E250 when `r` is not a reference.
-    fn reference_operand(&mut self, r: &Expr) -> Option<(Slot, TypeId)> {
+    fn reference_operand(&mut self, r: &Expr) -> Option<(Slot, TypeId, RefFlavor)> {
         let v = self.expr(r, None);
         if v.is_error() {
             return None;
@@ -26,7 +26,7 @@ impl BodyBuilder<'_> {
                     .error("E250", r.span, "`NULL` cannot be dereferenced");
                 None
             }
-            Some((target, _)) => Some((self.materialize(&v), target)),
+            Some((target, flavor)) => Some((self.materialize(&v), target, flavor)),
             None => {
                 self.not_a_reference(r, &v);
                 None
@@ -61,9 +61,26 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// The place of an elementary value a `POINTER TO` designates: read
+    /// and written by `RefLoad`/`RefStore`, which also serve byte views.
+    fn view_place(&self, r: Slot, ty: TypeId, flavor: RefFlavor) -> Option<PlaceRef> {
+        if flavor != RefFlavor::Pointer {
+            return None;
+        }
+        let e = viewable(self.types, ty)?;
+        let elem = crate::ir::refs::elem_code(e);
+        Some(PlaceRef {
+            place: Place::View { r, elem },
+            ..Self::deref_place(r, ty)
+        })
+    }
+
     /// `r^`: the whole target, checked against the object.
     pub(in crate::sema) fn place_deref(&mut self, r: &Expr) -> Option<PlaceRef> {
-        let (slot, target) = self.reference_operand(r)?;
+        let (slot, target, flavor) = self.reference_operand(r)?;
+        if let Some(p) = self.view_place(slot, target, flavor) {
+            return Some(p);
+        }
         let width = self.types.size(target).max(1);
         let p = self.checked_address(slot, width);
         Some(Self::deref_place(p, target))
@@ -77,7 +94,7 @@ impl BodyBuilder<'_> {
         r: &Expr,
         indexes: &[Expr],
     ) -> Option<PlaceRef> {
-        let (slot, target) = self.reference_operand(r)?;
+        let (slot, target, flavor) = self.reference_operand(r)?;
         let (dims, elem) = self.array_shape(e, target, indexes.len())?;
         let vals = self.index_values(indexes)?;
         let idx = self.dynamic_index(&vals, &dims);
@@ -91,12 +108,19 @@ impl BodyBuilder<'_> {
         });
         let moved = self.block.temp();
         self.block.emit(Op::Mov { d: moved, s: slot });
+        let unit = size_bytes(self.types, elem)
+            .and_then(|b| u16::try_from(b).ok())
+            .unwrap_or(0);
         self.block.emit(Op::RefIndex {
             d: moved,
             idx,
             desc,
+            unit,
         });
         self.block.last_def = None;
+        if let Some(p) = self.view_place(moved, elem, flavor) {
+            return Some(p);
+        }
         let p = self.checked_address(moved, stride);
         Some(Self::deref_place(p, elem))
     }

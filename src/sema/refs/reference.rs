@@ -2,7 +2,7 @@
 //! is used, bound with `r REF= x`. Its value and checks are those of
 //! `REF_TO`; only the syntax differs.
 
-use super::ref_parts;
+use super::{layout_code, ref_parts};
 use crate::ir::op::Op;
 use crate::ir::type_table::RefFlavor;
 use crate::sema::body::BodyBuilder;
@@ -57,9 +57,15 @@ impl BodyBuilder<'_> {
             return;
         }
         let len = self.types.size(q.ty).max(1);
+        let layout = layout_code(self.types, q.ty);
         let addr = self.address_of(&q);
         let d = self.block.temp();
-        self.block.emit(Op::RefMake { d, p: addr, len });
+        self.block.emit(Op::RefMake {
+            d,
+            p: addr,
+            len,
+            layout,
+        });
         self.write_place(&p, d);
     }
 }
