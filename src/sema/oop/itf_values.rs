@@ -32,7 +32,7 @@ pub(super) fn field(p: &PlaceRef, off: u32, ty: TypeId) -> Option<PlaceRef> {
         Place::Frame(o) => Place::Frame(o.offset(off)),
         Place::Abs(a) => Place::Abs(a + off),
         Place::Ind { p, off: o } => Place::Ind { p, off: o + off },
-        Place::Elem { .. } => return None,
+        Place::Elem { .. } | Place::View { .. } => return None,
     };
     Some(place_ref(at, ty))
 }
