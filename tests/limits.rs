@@ -140,11 +140,19 @@ fn accept_or_coded(name: &str, codes: &[String]) {
 
 #[test]
 fn fb_types_nested_2000_deep_top_down_compile_on_a_2_mib_stack() {
-    let src = fb_chain(2000);
+    // The instances nest 2 000 deep; only the innermost is called, so the
+    // program runs (the nesting of types is not a nesting of calls).
+    let src = fb_chain(2000).replace(" inner(); ", " ");
     let codes = compile_codes(src.clone());
     assert!(codes.is_empty(), "{codes:?}");
     let (code, _) = cli_no_crash("fb_chain", &src);
     assert_eq!(code, 0);
+    // Each one calling the next is 2 000 nested calls: refused by name,
+    // still without depending on the stack.
+    assert_eq!(compile_codes(fb_chain(2000)), ["E181"]);
+    let (code, stderr) = cli_no_crash("fb_call_chain", &fb_chain(2000));
+    assert_eq!(code, 1);
+    assert!(stderr.contains("E181"), "{stderr}");
 }
 
 #[test]
@@ -845,16 +853,52 @@ fn cli_run(name: &str, src: &str) -> (i32, String) {
 }
 
 #[test]
-#[ignore = "left: the VM recurses once per call (src/vm/exec.rs), 2 000 nested FB calls overflow a 2 MiB stack"]
-fn survey_fb_calls_2000_deep_run_on_a_2_mib_stack() {
-    // Each instance calls the one it contains: 2 000 nested calls a cycle.
-    let (codes, read) = survey("fb_call_chain", fb_chain(2000));
-    assert!(codes.is_empty() && read > 0, "{codes:?}");
+fn survey_fb_calls_2000_deep_are_refused_with_e181() {
+    // Each instance calls the one it contains: 2 000 nested calls a cycle,
+    // more than the executor's native stack is sized for (E181).
+    let (codes, _) = survey("fb_call_chain", fb_chain(2000));
+    assert_eq!(codes, ["E181"], "{codes:?}");
 }
 
 #[test]
-#[ignore = "left: the VM recurses once per call (src/vm/exec.rs), 10 000 nested function calls overflow a 2 MiB stack"]
-fn survey_function_calls_10000_deep_run_on_a_2_mib_stack() {
+fn calls_nested_up_to_the_limit_run_and_one_more_is_refused() {
+    // fb_chain(n) nests n calls: the program calls F0, F0 calls F1, ...
+    let limit = 1000;
+    // A debug build uses about 28 KB of stack per level: run it on a
+    // thread sized for that (a release build needs about 400 KB).
+    let v = std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(move || {
+            let compiled =
+                Plc::compile_files(&[("t.st", fb_chain(limit).as_str())], &Options::default());
+            let mut plc = compiled.unwrap_or_else(|e| panic!("{limit} levels must compile: {e:?}"));
+            plc.run_cycle().expect("cycle");
+            plc.run_cycle().expect("cycle");
+            plc.read(&format!("f{}.v", ".inner".repeat(limit - 1)))
+        })
+        .expect("spawn")
+        .join()
+        .expect("1000 nested calls run on a 64 MiB stack")
+        .expect("read the innermost counter");
+    assert_eq!(v.to_literal(), "2");
+    let err = Plc::compile_files(
+        &[("t.st", fb_chain(limit + 1).as_str())],
+        &Options::default(),
+    )
+    .err()
+    .expect("one level more is refused");
+    let d = err.diagnostics.iter().next().expect("a diagnostic");
+    assert_eq!(d.code, "E181");
+    assert!(
+        d.message
+            .contains("calls nested 1001 deep (P -> F0 -> F1 -> F2 -> ... ->"),
+        "{}",
+        d.message
+    );
+}
+
+#[test]
+fn survey_function_calls_10000_deep_are_refused_with_e181() {
     let mut s = String::new();
     for i in 0..DEEP {
         if i + 1 < DEEP {
@@ -873,8 +917,8 @@ fn survey_function_calls_10000_deep_run_on_a_2_mib_stack() {
         }
     }
     s += &program_with("x : DINT;", "x := G0(1);");
-    let (codes, read) = survey("fn_call_chain", s);
-    assert!(codes.is_empty() && read > 0, "{codes:?}");
+    let (codes, _) = survey("fn_call_chain", s);
+    assert_eq!(codes, ["E181"], "{codes:?}");
 }
 
 #[test]

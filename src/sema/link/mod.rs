@@ -3,6 +3,7 @@
 //! function-frame addresses, checks for recursion, builds the tasks and
 //! the [`Image`]. Reads the declarations; consumes the output tables.
 
+mod call_depth;
 mod config_elements;
 mod init;
 mod oop_resets;
@@ -103,6 +104,9 @@ impl Linker<'_> {
         self.fill_oop_offsets();
         self.relocate_frame_addresses();
         self.check_recursion();
+        if !self.diags.has_errors() {
+            self.check_call_depth();
+        }
         self.initialise_globals();
         let (tasks, programs) = self.schedule(options)?;
         let instances = self.instantiate_programs(programs);
