@@ -7,7 +7,7 @@
 
 use super::body::add_data;
 use super::emit::{Emitter, elements};
-use super::types::{initial_value, missing_child, type_of};
+use super::interface::declaration_tail;
 use roxmltree::Node;
 
 /// `<configVars>`: `VAR_CONFIG ... END_VAR`.
@@ -34,31 +34,5 @@ fn config_variable(em: &mut Emitter, node: Node) {
         return;
     }
     em.lex_attr(node, "instancePathAndName");
-    if node.attribute("address").is_some() {
-        em.synth("AT", em.at(node));
-        em.lex_attr(node, "address");
-    }
-    em.synth(":", em.at(node));
-    let mut typed = false;
-    let mut init = None;
-    for c in elements(node) {
-        match c.tag_name().name() {
-            "type" => {
-                type_of(em, c);
-                typed = true;
-            }
-            "initialValue" => init = Some(c),
-            "documentation" => {}
-            "addData" => add_data(em, c),
-            _ => em.unknown(c, "configVariable"),
-        }
-    }
-    if !typed {
-        missing_child(em, node, "type");
-    }
-    if let Some(init) = init {
-        em.synth(":=", em.at(init));
-        initial_value(em, init);
-    }
-    em.synth(";", em.end_of(node));
+    declaration_tail(em, node, "configVariable");
 }

@@ -66,6 +66,13 @@ pub fn var_section(em: &mut Emitter, node: Node) {
 /// `name [AT address] : type [:= value];`.
 pub fn variable(em: &mut Emitter, node: Node) {
     em.name(node, "name");
+    declaration_tail(em, node, "variable");
+}
+
+/// What follows a declared name in a `<variable>` or `<configVariable>`:
+/// `[AT address] : type [:= value];` (`what` names the element in the
+/// message about an unknown child).
+pub fn declaration_tail(em: &mut Emitter, node: Node, what: &str) {
     if node.attribute("address").is_some() {
         em.synth("AT", em.at(node));
         em.lex_attr(node, "address");
@@ -82,7 +89,7 @@ pub fn variable(em: &mut Emitter, node: Node) {
             "initialValue" => init = Some(c),
             "documentation" => {}
             "addData" => add_data(em, c),
-            _ => em.unknown(c, "variable"),
+            _ => em.unknown(c, what),
         }
     }
     if !typed {
