@@ -26,7 +26,7 @@
 //!
 //! Shared by the `gen_il_diff` fuzz target and `tests/fuzz_smoke.rs`.
 
-use crate::st_gen::{GenProgram, Ty};
+use crate::st_gen::{Array, GenProgram, PROGRAM_ARRAYS, Ty};
 use arbitrary::{Result, Unstructured};
 
 /// Most statements in one list, most nesting of blocks and loops, of
@@ -75,15 +75,6 @@ VAR
   s0 : SR; r0 : RS; acc0, acc1 : IlAcc;
 END_VAR
 ";
-
-/// One array of a scope: `name : ARRAY[lo..lo+len-1] OF ty`.
-#[derive(Debug, Clone, Copy)]
-struct Array {
-    name: &'static str,
-    ty: Ty,
-    lo: i64,
-    len: i64,
-}
 
 /// What one POU body may use.
 #[derive(Debug, Clone)]
@@ -229,32 +220,7 @@ fn program_scope() -> Scope {
     Scope {
         read,
         write,
-        arrays: vec![
-            Array {
-                name: "ab",
-                ty: Ty::Bool,
-                lo: 1,
-                len: 10,
-            },
-            Array {
-                name: "ai",
-                ty: Ty::Int,
-                lo: 0,
-                len: 10,
-            },
-            Array {
-                name: "ad",
-                ty: Ty::Dint,
-                lo: -3,
-                len: 10,
-            },
-            Array {
-                name: "ar",
-                ty: Ty::Real,
-                lo: 1,
-                len: 8,
-            },
-        ],
+        arrays: PROGRAM_ARRAYS.to_vec(),
         counters: vec!["w0", "w1", "w2"],
         blocks: true,
         returns: false,

@@ -46,13 +46,42 @@ impl Ty {
 }
 
 /// One array of a scope: `name : ARRAY[lo..lo+len-1] OF ty`.
-#[derive(Debug, Clone)]
-struct Array {
-    name: &'static str,
-    ty: Ty,
-    lo: i64,
-    len: i64,
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Array {
+    pub(crate) name: &'static str,
+    pub(crate) ty: Ty,
+    pub(crate) lo: i64,
+    pub(crate) len: i64,
 }
+
+/// The arrays every generated PROGRAM declares (ST and IL alike: `ab`,
+/// `ai`, `ad`, `ar` of the program's VAR block).
+pub(crate) const PROGRAM_ARRAYS: [Array; 4] = [
+    Array {
+        name: "ab",
+        ty: Ty::Bool,
+        lo: 1,
+        len: 10,
+    },
+    Array {
+        name: "ai",
+        ty: Ty::Int,
+        lo: 0,
+        len: 10,
+    },
+    Array {
+        name: "ad",
+        ty: Ty::Dint,
+        lo: -3,
+        len: 10,
+    },
+    Array {
+        name: "ar",
+        ty: Ty::Real,
+        lo: 1,
+        len: 8,
+    },
+];
 
 /// The names visible in one POU body.
 #[derive(Debug, Clone)]
@@ -236,32 +265,7 @@ fn program_scope() -> Scope {
     Scope {
         read,
         write,
-        arrays: vec![
-            Array {
-                name: "ab",
-                ty: Ty::Bool,
-                lo: 1,
-                len: 10,
-            },
-            Array {
-                name: "ai",
-                ty: Ty::Int,
-                lo: 0,
-                len: 10,
-            },
-            Array {
-                name: "ad",
-                ty: Ty::Dint,
-                lo: -3,
-                len: 10,
-            },
-            Array {
-                name: "ar",
-                ty: Ty::Real,
-                lo: 1,
-                len: 8,
-            },
-        ],
+        arrays: PROGRAM_ARRAYS.to_vec(),
         for_vars: vec!["k0", "k1", "k2"],
         counters: vec!["w0", "w1", "w2"],
         blocks: true,
@@ -326,7 +330,7 @@ impl Gen<'_, '_> {
         if s.arrays.is_empty() {
             return self.assign(s, out);
         }
-        let a = self.u.choose(&s.arrays)?.clone();
+        let a = *self.u.choose(&s.arrays)?;
         let idx = self.index(&a, s)?;
         let e = self.expr(a.ty, s, 1)?;
         let _ = writeln!(out, "{}[{idx}] := {e};", a.name);
@@ -368,7 +372,7 @@ impl Gen<'_, '_> {
                     .filter(|a| a.ty == Ty::Bool)
                     .cloned()
                     .collect();
-                let a = self.u.choose(&bools)?.clone();
+                let a = *self.u.choose(&bools)?;
                 let idx = self.index(&a, s)?;
                 format!("{}[{idx}]", a.name)
             }
@@ -416,7 +420,7 @@ impl Gen<'_, '_> {
         let a = if s.arrays.is_empty() {
             None
         } else {
-            Some(self.u.choose(&s.arrays)?.clone())
+            Some(*self.u.choose(&s.arrays)?)
         };
         let (mut lo, mut hi) = match &a {
             Some(a) => (a.lo, a.lo + a.len - 1),
@@ -487,7 +491,7 @@ impl Gen<'_, '_> {
         let a = if s.arrays.is_empty() {
             None
         } else {
-            Some(self.u.choose(&s.arrays)?.clone())
+            Some(*self.u.choose(&s.arrays)?)
         };
         let (lo, hi) = match &a {
             Some(a) => (a.lo, a.lo + a.len - 1 + self.u.int_in_range(-2i64..=1)?),
@@ -758,7 +762,7 @@ impl Gen<'_, '_> {
     fn leaf(&mut self, ty: Ty, s: &Scope) -> Result<String> {
         let arrays: Vec<Array> = s.arrays.iter().filter(|a| a.ty == ty).cloned().collect();
         if !arrays.is_empty() && self.u.ratio(1, 4)? {
-            let a = self.u.choose(&arrays)?.clone();
+            let a = *self.u.choose(&arrays)?;
             let idx = self.index(&a, s)?;
             return Ok(format!("{}[{idx}]", a.name));
         }
