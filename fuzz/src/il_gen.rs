@@ -26,7 +26,7 @@
 //!
 //! Shared by the `gen_il_diff` fuzz target and `tests/fuzz_smoke.rs`.
 
-use crate::st_gen::{Array, GenProgram, PROGRAM_ARRAYS, Ty};
+use crate::st_gen::{Array, GenProgram, PROGRAM_ARRAYS, PROGRAM_WRITES, Ty};
 use arbitrary::{Result, Unstructured};
 
 /// Most statements in one list, most nesting of blocks and loops, of
@@ -182,24 +182,7 @@ fn fb_scope() -> Scope {
 }
 
 fn program_scope() -> Scope {
-    let write = vec![
-        (Ty::Bool, "xb0"),
-        (Ty::Bool, "xb1"),
-        (Ty::Bool, "xb2"),
-        (Ty::Bool, "ob0"),
-        (Ty::Int, "xi0"),
-        (Ty::Int, "xi1"),
-        (Ty::Int, "xi2"),
-        (Ty::Int, "oi0"),
-        (Ty::Dint, "xd0"),
-        (Ty::Dint, "xd1"),
-        (Ty::Dint, "xd2"),
-        (Ty::Dint, "od0"),
-        (Ty::Real, "xr0"),
-        (Ty::Real, "xr1"),
-        (Ty::Lreal, "xl0"),
-        (Ty::Lreal, "xl1"),
-    ];
+    let write = PROGRAM_WRITES.to_vec();
     let mut read: Vec<(Ty, &'static str)> = INPUTS.iter().map(|(n, t)| (*t, *n)).collect();
     read.extend(write.iter().copied());
     read.extend([

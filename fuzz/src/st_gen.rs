@@ -54,6 +54,27 @@ pub(crate) struct Array {
     pub(crate) len: i64,
 }
 
+/// The scalars every generated PROGRAM declares and may write (ST and IL
+/// alike).
+pub(crate) const PROGRAM_WRITES: [(Ty, &str); 16] = [
+    (Ty::Bool, "xb0"),
+    (Ty::Bool, "xb1"),
+    (Ty::Bool, "xb2"),
+    (Ty::Bool, "ob0"),
+    (Ty::Int, "xi0"),
+    (Ty::Int, "xi1"),
+    (Ty::Int, "xi2"),
+    (Ty::Int, "oi0"),
+    (Ty::Dint, "xd0"),
+    (Ty::Dint, "xd1"),
+    (Ty::Dint, "xd2"),
+    (Ty::Dint, "od0"),
+    (Ty::Real, "xr0"),
+    (Ty::Real, "xr1"),
+    (Ty::Lreal, "xl0"),
+    (Ty::Lreal, "xl1"),
+];
+
 /// The arrays every generated PROGRAM declares (ST and IL alike: `ab`,
 /// `ai`, `ad`, `ar` of the program's VAR block).
 pub(crate) const PROGRAM_ARRAYS: [Array; 4] = [
@@ -234,24 +255,7 @@ fn fb_scope() -> Scope {
 }
 
 fn program_scope() -> Scope {
-    let write = names(&[
-        (Ty::Bool, "xb0"),
-        (Ty::Bool, "xb1"),
-        (Ty::Bool, "xb2"),
-        (Ty::Bool, "ob0"),
-        (Ty::Int, "xi0"),
-        (Ty::Int, "xi1"),
-        (Ty::Int, "xi2"),
-        (Ty::Int, "oi0"),
-        (Ty::Dint, "xd0"),
-        (Ty::Dint, "xd1"),
-        (Ty::Dint, "xd2"),
-        (Ty::Dint, "od0"),
-        (Ty::Real, "xr0"),
-        (Ty::Real, "xr1"),
-        (Ty::Lreal, "xl0"),
-        (Ty::Lreal, "xl1"),
-    ]);
+    let write = names(&PROGRAM_WRITES);
     let mut read: Vec<(Ty, String)> = INPUTS.iter().map(|(n, t)| (*t, n.to_string())).collect();
     read.extend(write.iter().cloned());
     read.extend(names(&[
