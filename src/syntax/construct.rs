@@ -18,6 +18,7 @@ use crate::syntax::parser::recovery_diagnostic;
 use crate::syntax::token::Tok;
 use lalrpop_util::ErrorRecovery;
 use std::cell::{Cell, RefCell};
+use std::rc::Rc;
 
 /// Most syntax errors recorded per file; the rest are counted.
 const MAX_SYNTAX_ERRORS: usize = 200;
@@ -37,7 +38,10 @@ pub struct Failure {
 pub struct State<'t> {
     file: FileId,
     text: &'t str,
-    line_starts: Vec<usize>,
+    line_starts: Rc<[usize]>,
+    /// A repair trial ([`State::trial`]): only whether the parse failed
+    /// matters, so failures are counted without building their messages.
+    trial: bool,
     diags: RefCell<Vec<Diagnostic>>,
     depth_reported: Cell<bool>,
     last_error_line: Cell<Option<usize>>,
@@ -66,10 +70,22 @@ impl<'t> State<'t> {
     pub fn new(file: FileId, text: &'t str) -> State<'t> {
         let mut line_starts = vec![0];
         line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
+        State::with_lines(file, text, line_starts.into(), false)
+    }
+
+    /// State for one repair trial over the same text as `self`: it shares
+    /// the line table (a trial must not rescan a large file) and does not
+    /// word its failures.
+    pub fn trial(&self) -> State<'t> {
+        State::with_lines(self.file, self.text, self.line_starts.clone(), true)
+    }
+
+    fn with_lines(file: FileId, text: &'t str, line_starts: Rc<[usize]>, trial: bool) -> State<'t> {
         State {
             file,
             text,
             line_starts,
+            trial,
             diags: RefCell::new(Vec::new()),
             depth_reported: Cell::new(false),
             last_error_line: Cell::new(None),
@@ -155,6 +171,10 @@ impl<'t> State<'t> {
     pub fn note_failure(&self, e: lalrpop_util::ParseError<usize, Tok, ()>) -> Diagnostic {
         use lalrpop_util::ParseError as P;
         self.failures.set(self.failures.get() + 1);
+        if self.trial {
+            // The trial is abandoned at its first failure; nobody reads this.
+            return Diagnostic::error("E101", self.span(self.text.len(), self.text.len()), "");
+        }
         let place = match &e {
             P::UnrecognizedToken {
                 token: (l, _, _),

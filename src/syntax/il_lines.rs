@@ -18,9 +18,14 @@ use crate::syntax::token::{IlOpCode, Kw, Tok};
 
 /// Keeps or drops line breaks and retags IL operator words; see the module
 /// documentation.
-pub fn keep_il_lines(tokens: impl AsRef<[Spanned]>) -> Vec<Spanned> {
-    let tokens = tokens.as_ref();
-    let regions = il_regions(tokens);
+pub fn keep_il_lines(mut tokens: Vec<Spanned>) -> Vec<Spanned> {
+    let regions = il_regions(&tokens);
+    if regions.is_empty() {
+        // No IL: the line breaks go, in place (a repair trial runs this
+        // hundreds of times; nothing is cloned).
+        tokens.retain(|t| t.1 != Tok::Eol);
+        return tokens;
+    }
     let mut out = Vec::with_capacity(tokens.len());
     let mut next_region = regions.iter().peekable();
     let mut i = 0;

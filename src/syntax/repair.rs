@@ -107,8 +107,11 @@ pub fn parse_repairing(
     let mut repairs: Vec<Diagnostic> = Vec::new();
     loop {
         let mut found = Diagnostics::new();
-        let (unit, failure) =
-            parser::parse_tokens_noting(State::new(file, text), keep_il_lines(&tokens), &mut found);
+        let (unit, failure) = parser::parse_tokens_noting(
+            State::new(file, text),
+            keep_il_lines(tokens.clone()),
+            &mut found,
+        );
         let repaired = match failure {
             Some(f) if repairs.len() < MAX_REPAIRS => find_repair(file, text, &tokens, &f),
             _ => None,
@@ -162,9 +165,10 @@ fn find_repair(
     }
     let at_failure = candidates(&failure.expected);
     let anywhere = candidates(&[]);
+    let base = State::new(file, text);
     let parses = |edit: &Edit| {
         let trial = apply(&tokens[start..end], edit, start);
-        let st = State::new(file, text);
+        let st = base.trial();
         parser::parses_cleanly(&st, keep_il_lines(trial)) && st.finish().is_empty()
     };
     let at_line_end = candidates(&[
