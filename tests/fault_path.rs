@@ -373,3 +373,43 @@ END_PROGRAM",
         "{xml}"
     );
 }
+
+#[test]
+fn an_instance_local_to_a_method_is_named_method_dot_variable() {
+    let src = "FUNCTION_BLOCK Divider
+VAR_INPUT n, d : INT; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+q := n / d;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Cell
+METHOD Share : INT
+VAR_INPUT total, parts : INT; END_VAR
+VAR cut : Divider; END_VAR
+cut(n := total, d := parts);
+Share := cut.q;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR parts, r : INT; c : Cell; END_VAR
+r := c.Share(100, parts);
+END_PROGRAM";
+    let f = first_fault(src);
+    assert_eq!(f.fault.kind, FaultKind::DivisionByZero);
+    assert_eq!(f.pou, "Divider");
+    // Not the hidden member `Cell__Share__cut` the method's local lives in.
+    assert_eq!(f.instance(), "P.c.Share.cut");
+    assert_eq!(
+        chain(&f),
+        owned(&[("P.c.Share", "Cell.Share", 10), ("P", "P", 16)])
+    );
+    // The name the fault gives is one the library resolves.
+    let mut plc = compile(src);
+    plc.write("parts", "4").unwrap();
+    plc.run_cycle().unwrap();
+    assert_eq!(plc.read_i64("c.Share.cut.q").unwrap(), 25);
+    assert_eq!(plc.read_i64("c.Share.parts").unwrap(), 4);
+    let listed: Vec<String> = plc.variables().into_iter().map(|v| v.path).collect();
+    assert!(listed.contains(&"c.Share.cut.q".to_string()), "{listed:?}");
+    let err = plc.read_i64("c.Share.nothing").unwrap_err().to_string();
+    assert!(err.contains("has no member `Share`"), "{err}");
+}

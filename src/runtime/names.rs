@@ -152,10 +152,22 @@ pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError
     } else {
         find_root(image, &root)?
     };
-    for seg in segs {
+    let mut segs = segs.into_iter().peekable();
+    while let Some(seg) = segs.next() {
         match seg {
             Seg::Member(m) => {
-                let Some((off, t, why)) = member(image, ty, &m) else {
+                // `inst.Method.var`: a method's local, kept in the
+                // instance under its hidden name.
+                let mut found = member(image, ty, &m);
+                if found.is_none()
+                    && let Some(Seg::Member(var)) = segs.peek()
+                {
+                    found = method_local(image, ty, &m, var);
+                    if found.is_some() {
+                        segs.next();
+                    }
+                }
+                let Some((off, t, why)) = found else {
                     return Err(VarError::NoMember {
                         path: text.to_string(),
                         ty: image.types.name(ty).to_string(),
@@ -252,6 +264,47 @@ fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId, Option<ReadOnlyR
     Err(VarError::Unknown {
         name: name.to_string(),
     })
+}
+
+/// Offset and type of variable `var` of method `method` of the FB type
+/// `ty` (stored as a member named `Origin__method__var`, `Origin` the FB
+/// that declares the method).
+fn method_local(
+    image: &Image,
+    ty: TypeId,
+    method: &str,
+    var: &str,
+) -> Option<(u32, TypeId, Option<ReadOnlyReason>)> {
+    if !matches!(image.types.get(ty).kind, TypeKind::Pou { .. }) {
+        return None;
+    }
+    image
+        .types
+        .members(ty)
+        .iter()
+        .find(|m| {
+            method_local_name(&m.name).is_some_and(|(mm, vv)| {
+                mm.eq_ignore_ascii_case(method) && vv.eq_ignore_ascii_case(var)
+            })
+        })
+        .map(|m| (m.offset, m.ty, member_read_only(m.kind, m.constant)))
+}
+
+/// The method and variable a hidden member name `Origin__Method__var`
+/// stands for (IEC names never hold two underscores in a row).
+pub(crate) fn method_local_name(member: &str) -> Option<(&str, &str)> {
+    let mut parts = member.split("__");
+    let (_origin, method, var) = (parts.next()?, parts.next()?, parts.next()?);
+    (parts.next().is_none() && !method.is_empty() && !var.is_empty()).then_some((method, var))
+}
+
+/// A member's name as paths show it: a method's local (hidden member
+/// `Origin__Method__var`) as `Method.var`, which [`resolve`] accepts.
+pub(crate) fn shown_member(member: &str) -> std::borrow::Cow<'_, str> {
+    match method_local_name(member) {
+        Some((method, var)) => format!("{method}.{var}").into(),
+        None => member.into(),
+    }
 }
 
 /// Offset and type of member `name` of `ty`, and why it cannot be

@@ -341,7 +341,8 @@ fn walk(
             TypeKind::Pou { members, .. } => {
                 for m in members {
                     if let Some(d) = direction(m.kind) {
-                        work.push((format!("{path}.{}", m.name), m.ty, d));
+                        let name = super::names::shown_member(&m.name);
+                        work.push((format!("{path}.{name}"), m.ty, d));
                     }
                 }
             }
