@@ -47,3 +47,33 @@ fn a_literal_that_does_not_fit_the_join_type_is_still_reported() {
     let got = codes_at(&src);
     assert!(got.iter().any(|c| c.starts_with("E30")), "{got:?}");
 }
+
+/// The literal is stored before the label; the label is reached by a
+/// `JMPC` whose BOOL nobody reads after it (the next line loads).
+const STORED_BEFORE_LABEL: &str = "PROGRAM P\nVAR b : BOOL; x : INT; y : INT; END_VAR\n\
+LD b\nJMPC skip\nLD 5\nST x\nskip:\nLD 7\nST y\nEND_PROGRAM\n";
+
+#[test]
+fn a_literal_that_no_path_reads_after_the_label_is_no_error() {
+    assert_eq!(codes_at(STORED_BEFORE_LABEL), Vec::<String>::new());
+    let mut plc = compile(STORED_BEFORE_LABEL);
+    run(&mut plc, 1);
+    assert_eq!((lit(&plc, "x"), lit(&plc, "y")), ("5".into(), "7".into()));
+    let mut plc = compile(&STORED_BEFORE_LABEL.replace("b : BOOL;", "b : BOOL := TRUE;"));
+    run(&mut plc, 1);
+    assert_eq!((lit(&plc, "x"), lit(&plc, "y")), ("0".into(), "7".into()));
+}
+
+#[test]
+fn a_literal_read_after_the_label_as_the_wrong_type_is_reported_there() {
+    // The jump brings a BOOL, the literal falls through: `ST x` reads a
+    // CR that is not an INT on every path.
+    let src = "PROGRAM P\nVAR b : BOOL; x : INT; END_VAR\n\
+               LD b\nJMPC skip\nLD 5\nskip:\nST x\nEND_PROGRAM\n";
+    let got = codes_at(src);
+    assert!(!got.is_empty(), "{got:?}");
+    assert!(
+        got.iter().all(|c| c.contains("@7:")),
+        "only at `ST x`: {got:?}"
+    );
+}

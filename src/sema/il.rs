@@ -186,7 +186,10 @@ impl BodyBuilder<'_> {
 
     /// An untyped literal falling into a label that a jump reaches with a
     /// typed CR takes the jump's type (`LD 0` before `L: ST out`), converted
-    /// before the label so both paths arrive with one type.
+    /// before the label so both paths arrive with one type. When it does
+    /// not fit that type (`LD 5` falling into a label a `JMPC` reaches with
+    /// its BOOL), it keeps its own, as a typed CR falling through does: an
+    /// error only where an instruction reads the CR wrongly.
     fn type_literal_at_join(&mut self, st: &mut IlState, jumped: Option<TypeId>) {
         let (Some(lit), Some(t)) = (st.cr_lit.clone(), jumped) else {
             return;
@@ -194,8 +197,10 @@ impl BodyBuilder<'_> {
         if st.cr_ty == Some(t) {
             return;
         }
+        let reported = self.diags.len();
         let v = self.coerce(lit, t, self.block.span, "current result");
-        if v.is_error() {
+        if v.is_error() || self.diags.len() > reported {
+            self.diags.truncate(reported);
             return;
         }
         let s = self.materialize(&v);
