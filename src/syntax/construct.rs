@@ -474,18 +474,18 @@ fn is_compound(s: &Stmt) -> bool {
 
 /// Drops the `;` written after `END_IF`, `END_FOR`, ... (it terminates the
 /// compound statement and is not an empty statement of its own).
-pub fn stmt_list(stmts: Vec<Stmt>) -> Vec<Stmt> {
-    let mut out: Vec<Stmt> = Vec::with_capacity(stmts.len());
+pub fn stmt_list(mut stmts: Vec<Stmt>) -> Vec<Stmt> {
+    // In place: a body of a million statements is not held twice.
     let mut absorb = false;
-    for s in stmts {
+    stmts.retain(|s| {
         if absorb && s.kind == StmtKind::Empty {
             absorb = false;
-            continue;
+            return false;
         }
-        absorb = is_compound(&s);
-        out.push(s);
-    }
-    out
+        absorb = is_compound(s);
+        true
+    });
+    stmts
 }
 
 /// A compound statement, replaced by an empty one if nested too deeply.

@@ -102,7 +102,7 @@ pub fn lex_in(
                 lit(LiteralValue::String { value, wide }, None)
             }
             Raw::Direct => match direct(file, slice, r.start) {
-                Ok(d) => Tok::Direct(d),
+                Ok(d) => Tok::Direct(Box::new(d)),
                 // `w.%B1`: the member name `%B1`, decoded by sema (partial_access.rs).
                 Err(_) if is_partial_access(text, r.start, slice) && is_part_number(slice) => {
                     Tok::Ident(slice.to_string())
@@ -155,6 +155,9 @@ pub fn lex_in(
     }
     flush_bad(file, text, &mut bad_run, diags);
     crate::syntax::ref_words::merge(&mut out);
+    // The guess above is low for dense code: give back what doubling
+    // over-reserved (a large file's tokens live through the whole parse).
+    out.shrink_to_fit();
     out
 }
 
@@ -258,7 +261,7 @@ fn flush_bad(file: FileId, text: &str, run: &mut Option<(usize, usize)>, diags: 
 }
 
 fn lit(value: LiteralValue, type_prefix: Option<Ident>) -> Tok {
-    Tok::Lit(Literal { value, type_prefix })
+    Tok::Lit(Box::new(Literal { value, type_prefix }))
 }
 
 /// A word: keyword, `TRUE`/`FALSE`, or identifier.

@@ -103,7 +103,7 @@ pub fn parse_literal(text: &str) -> Result<ast::Literal, String> {
         _ => (0, tokens.as_slice()),
     };
     let lit = match rest {
-        [Tok::Lit(lit)] => lit.clone(),
+        [Tok::Lit(lit)] => (**lit).clone(),
         [] => return Err(format!("`{text}` is not a literal: it is empty")),
         _ => return Err(format!("`{text}` is not a single IEC literal")),
     };

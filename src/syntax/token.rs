@@ -564,9 +564,9 @@ pub enum Tok {
     /// A keyword.
     Kw(Kw),
     /// A decoded literal.
-    Lit(Literal),
+    Lit(Box<Literal>),
     /// A direct address.
-    Direct(DirectAddress),
+    Direct(Box<DirectAddress>),
     Assign,
     Arrow,
     Colon,
