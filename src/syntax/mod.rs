@@ -50,12 +50,14 @@ fn parse_in(
     if plcopen::is_plcopen(text) {
         return plcopen::parse(file, text, diags);
     }
-    let tokens = lexer::lex_in(file, text, encoding, diags);
-    let tokens = method_names::method_names(file, text, tokens, diags);
-    let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
-    let tokens = oop_property::accessor_words(tokens);
-    let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
-    repair::parse_repairing(file, text, tokens, diags)
+    let tokens_of = |diags: &mut Diagnostics| {
+        let tokens = lexer::lex_in(file, text, encoding, diags);
+        let tokens = method_names::method_names(file, text, tokens, diags);
+        let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
+        let tokens = oop_property::accessor_words(tokens);
+        codesys_spellings::iec_keywords(file, tokens, diags)
+    };
+    repair::parse_repairing(file, text, &tokens_of, diags)
 }
 
 /// Parses one file named `name`: S7-200 STL when [`s7::recognise`] says

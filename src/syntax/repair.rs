@@ -97,28 +97,36 @@ const NEVER_INSERTED: [&str; 17] = [
 
 /// Parses a file's tokens (after the lexer's passes, before the IL line
 /// pass), repairing single-token typos as described in the module comment.
+/// `tokens_of` makes the tokens: once for the parse, reporting into
+/// `diags`, and again only if a repair is searched for (so that a large
+/// file that parses is not held twice while it is parsed).
 pub fn parse_repairing(
     file: FileId,
     text: &str,
-    tokens: Vec<Spanned>,
+    tokens_of: &dyn Fn(&mut Diagnostics) -> Vec<Spanned>,
     diags: &mut Diagnostics,
 ) -> CompilationUnit {
-    let mut tokens = tokens;
+    // The tokens as edited so far, once a repair has been searched for.
+    let mut edited: Option<Vec<Spanned>> = None;
     let mut repairs: Vec<Diagnostic> = Vec::new();
     loop {
+        let tokens = match &edited {
+            Some(t) => t.clone(),
+            None => tokens_of(diags),
+        };
         let mut found = Diagnostics::new();
-        let (unit, failure) = parser::parse_tokens_noting(
-            State::new(file, text),
-            keep_il_lines(tokens.clone()),
-            &mut found,
-        );
+        let (unit, failure) =
+            parser::parse_tokens_noting(State::new(file, text), keep_il_lines(tokens), &mut found);
         let repaired = match failure {
-            Some(f) if repairs.len() < MAX_REPAIRS => find_repair(file, text, &tokens, &f),
+            Some(f) if repairs.len() < MAX_REPAIRS => {
+                let tokens = edited.get_or_insert_with(|| tokens_of(&mut Diagnostics::new()));
+                find_repair(file, text, tokens, &f)
+            }
             _ => None,
         };
         match repaired {
-            Some((edited, d)) => {
-                tokens = edited;
+            Some((next, d)) => {
+                edited = Some(next);
                 repairs.push(d);
             }
             None => {
