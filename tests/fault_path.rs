@@ -413,3 +413,20 @@ END_PROGRAM";
     let err = plc.read_i64("c.Share.nothing").unwrap_err().to_string();
     assert!(err.contains("has no member `Share`"), "{err}");
 }
+
+#[test]
+fn a_name_written_with_double_underscores_is_not_taken_for_a_methods_local() {
+    let src = "FUNCTION_BLOCK F
+VAR_OUTPUT a__b__c : INT; END_VAR
+a__b__c := 7;
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR f : F; END_VAR
+f();
+END_PROGRAM";
+    let mut plc = compile(src);
+    plc.run_cycle().unwrap();
+    let listed: Vec<String> = plc.variables().into_iter().map(|v| v.path).collect();
+    assert!(listed.contains(&"f.a__b__c".to_string()), "{listed:?}");
+    assert_eq!(plc.read_i64("f.a__b__c").unwrap(), 7);
+}

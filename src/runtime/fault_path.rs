@@ -206,7 +206,7 @@ fn descend(
                 }) else {
                     return outermost;
                 };
-                path = format!("{path}.{}", super::names::shown_member(&m.name));
+                path = format!("{path}.{}", super::names::shown_member(image, &m.name));
                 rel -= m.offset as usize;
                 ty = m.ty;
             }

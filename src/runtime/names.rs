@@ -283,7 +283,7 @@ fn method_local(
         .members(ty)
         .iter()
         .find(|m| {
-            method_local_name(&m.name).is_some_and(|(mm, vv)| {
+            method_local_name(image, &m.name).is_some_and(|(mm, vv)| {
                 mm.eq_ignore_ascii_case(method) && vv.eq_ignore_ascii_case(var)
             })
         })
@@ -291,17 +291,30 @@ fn method_local(
 }
 
 /// The method and variable a hidden member name `Origin__Method__var`
-/// stands for (IEC names never hold two underscores in a row).
-pub(crate) fn method_local_name(member: &str) -> Option<(&str, &str)> {
+/// stands for: `Origin.Method` must be a method of the program (a name
+/// the user wrote with double underscores, which IEC forbids but some
+/// tools accept, stays as it is).
+pub(crate) fn method_local_name<'m>(image: &Image, member: &'m str) -> Option<(&'m str, &'m str)> {
     let mut parts = member.split("__");
-    let (_origin, method, var) = (parts.next()?, parts.next()?, parts.next()?);
-    (parts.next().is_none() && !method.is_empty() && !var.is_empty()).then_some((method, var))
+    let (origin, method, var) = (parts.next()?, parts.next()?, parts.next()?);
+    if parts.next().is_some() || [origin, method, var].iter().any(|p| p.is_empty()) {
+        return None;
+    }
+    let is_method = |name: &str| {
+        name.split_once('.')
+            .is_some_and(|(o, m)| o.eq_ignore_ascii_case(origin) && m.eq_ignore_ascii_case(method))
+    };
+    image
+        .codes
+        .iter()
+        .any(|c| is_method(&c.name))
+        .then_some((method, var))
 }
 
 /// A member's name as paths show it: a method's local (hidden member
 /// `Origin__Method__var`) as `Method.var`, which [`resolve`] accepts.
-pub(crate) fn shown_member(member: &str) -> std::borrow::Cow<'_, str> {
-    match method_local_name(member) {
+pub(crate) fn shown_member<'m>(image: &Image, member: &'m str) -> std::borrow::Cow<'m, str> {
+    match method_local_name(image, member) {
         Some((method, var)) => format!("{method}.{var}").into(),
         None => member.into(),
     }

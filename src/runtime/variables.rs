@@ -341,7 +341,7 @@ fn walk(
             TypeKind::Pou { members, .. } => {
                 for m in members {
                     if let Some(d) = direction(m.kind) {
-                        let name = super::names::shown_member(&m.name);
+                        let name = super::names::shown_member(image, &m.name);
                         work.push((format!("{path}.{name}"), m.ty, d));
                     }
                 }
