@@ -72,7 +72,8 @@ enum plc_status {
     PLC_E_ADDRESS_OUT_OF_RANGE = -15, /* past the end of its image area */
     PLC_E_RETAIN_FILE = -16,     /* retain file unreadable, unwritable or damaged */
     PLC_E_RETAIN_MISMATCH = -17, /* retain file of other variables; nothing restored */
-    PLC_E_UNKNOWN_TASK = -18     /* no task of that name */
+    PLC_E_UNKNOWN_TASK = -18,    /* no task of that name */
+    PLC_E_NOT_PERMITTED = -19    /* the system refused a real-time setting */
 };
 
 /* A static description of a status ("unknown status" for other values). */
@@ -286,6 +287,19 @@ int plc_retain_save(plc_handle plc, const char *path);
  * *restored (restored may be NULL) gets how many values were. Unreadable
  * or damaged: PLC_E_RETAIN_FILE. */
 int plc_retain_restore(plc_handle plc, const char *path, bool partial, size_t *restored);
+
+/* ---- Real time ------------------------------------------------------------ */
+
+/* Prepares the calling thread, the one that will call plc_run_cycle on the
+ * wall clock: priority 1-99 runs it under SCHED_FIFO (0: keep the policy),
+ * cpu >= 0 pins it to that CPU (-1: keep the affinity), lock_memory locks
+ * the process's memory (mlockall) and pre-faults the thread's stack. The
+ * thread's timer slack is set to 1 ns in every case. PLC_E_NOT_PERMITTED
+ * when the system refuses the priority or the lock (plc_last_error says
+ * what would permit it; the settings before it were applied),
+ * PLC_E_INVALID_ARGUMENT for a priority over 99 or an unavailable CPU.
+ * Linux only (elsewhere only (0, -1, false) succeeds). */
+int plc_rt_setup(int priority, int cpu, bool lock_memory);
 
 /* ---- Watchdog and abort ------------------------------------------------ */
 

@@ -89,6 +89,7 @@ pub use runtime::retain::saver::RetainSaver;
 pub use runtime::retain::{
     Damage, RestoreMode, RestoreReport, RetainDiff, RetainError, RetainedVariable, TypeChange,
 };
+pub use runtime::rt_thread::{RealTimeError, RealTimeReport, RealTimeSetup};
 pub use runtime::session::{
     CycleHook, Pacing, RunError, Session, StimulusBindError, StopHook, StopHookError,
 };

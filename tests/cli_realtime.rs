@@ -173,3 +173,88 @@ fn a_stimulus_on_standard_input_is_applied_live_in_real_time() {
     let err = String::from_utf8(out.stderr).unwrap();
     assert!(err.contains("line 5") && err.contains("`x`"), "{err}");
 }
+
+#[test]
+fn a_realtime_run_pinned_to_cpu_0_runs_and_locks_its_memory_or_says_why() {
+    let program = temp_file("two.st", TWO_TASKS);
+    let (code, out, err) = plcrun(&[&program, "--realtime", "--cycles", "10", "--cpu", "0"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.lines().count(), 11);
+    // Memory is locked and the CPUs kept awake by default: either it
+    // worked (nothing said) or a note names the refusal and the way out.
+    for line in err.lines() {
+        assert!(
+            (line.starts_with("note: memory was not locked") && line.contains("--no-lock-memory"))
+                || (line.starts_with("note: the CPUs were not kept awake")
+                    && line.contains("--allow-cpu-sleep")),
+            "{err}"
+        );
+    }
+    let (code, _, err) = plcrun(&[
+        &program,
+        "--realtime",
+        "--cycles",
+        "10",
+        "--no-lock-memory",
+        "--allow-cpu-sleep",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "");
+}
+
+#[test]
+fn an_unavailable_cpu_stops_the_run_before_its_first_cycle() {
+    let program = temp_file("two.st", TWO_TASKS);
+    let (code, out, err) = plcrun(&[&program, "--realtime", "--cycles", "10", "--cpu", "4096"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("error: CPU 4096 is not available to this process"),
+        "{err}"
+    );
+    // Only the header: no cycle ran.
+    assert!(out.lines().count() <= 1, "{out}");
+}
+
+#[test]
+fn rt_priority_is_granted_or_refused_with_what_to_change() {
+    let program = temp_file("two.st", TWO_TASKS);
+    let (code, out, err) = plcrun(&[
+        &program,
+        "--realtime",
+        "--cycles",
+        "10",
+        "--rt-priority",
+        "20",
+    ]);
+    if code == 0 {
+        assert_eq!(out.lines().count(), 11, "{err}");
+    } else {
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("SCHED_FIFO priority 20 is not permitted") && err.contains("ulimit -r"),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn real_time_flags_need_realtime_and_a_priority_in_range() {
+    let program = temp_file("two.st", TWO_TASKS);
+    for args in [
+        vec!["--cycles", "5", "--rt-priority", "10"],
+        vec!["--cycles", "5", "--cpu", "0"],
+        vec!["--cycles", "5", "--no-lock-memory"],
+        vec!["--cycles", "5", "--allow-cpu-sleep"],
+    ] {
+        let mut all = vec![program.as_str()];
+        all.extend(args);
+        let (code, _, err) = plcrun(&all);
+        assert_eq!(code, 2, "{all:?}: {err}");
+        assert!(err.contains("--realtime"), "{all:?}: {err}");
+    }
+    for bad in ["0", "100"] {
+        let (code, _, err) = plcrun(&[&program, "--realtime", "--rt-priority", bad]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("--rt-priority"), "{err}");
+    }
+}

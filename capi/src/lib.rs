@@ -19,6 +19,7 @@ mod guard;
 mod handles;
 mod image;
 mod lifecycle;
+mod realtime;
 mod retain;
 mod scalar;
 mod slot_table;

@@ -47,6 +47,9 @@ pub const PLC_E_RETAIN_FILE: c_int = -16;
 pub const PLC_E_RETAIN_MISMATCH: c_int = -17;
 /// No task of the configuration has that name.
 pub const PLC_E_UNKNOWN_TASK: c_int = -18;
+/// The operating system refused a real-time setting (SCHED_FIFO, memory
+/// lock) to this process; `plc_last_error` says what would permit it.
+pub const PLC_E_NOT_PERMITTED: c_int = -19;
 
 /// Every status with its name and description, in the header's order.
 pub(crate) const STATUSES: &[(c_int, &str, &str)] = &[
@@ -137,6 +140,11 @@ pub(crate) const STATUSES: &[(c_int, &str, &str)] = &[
         "the retain file does not fit the program\0",
     ),
     (PLC_E_UNKNOWN_TASK, "PLC_E_UNKNOWN_TASK", "no such task\0"),
+    (
+        PLC_E_NOT_PERMITTED,
+        "PLC_E_NOT_PERMITTED",
+        "the system refused a real-time setting\0",
+    ),
 ];
 
 /// A static, NUL-terminated description of `status` ("unknown status" for

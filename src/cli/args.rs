@@ -110,6 +110,23 @@ pub struct RunArgs {
     /// deadlines; the program's clock is the real one.
     #[arg(long)]
     pub realtime: bool,
+    /// With --realtime: run the cycle's thread under SCHED_FIFO at this
+    /// priority (1-99; needs root, CAP_SYS_NICE or `ulimit -r`).
+    #[arg(long, value_name = "N", requires = "realtime", value_parser = clap::value_parser!(u8).range(1..=99))]
+    pub rt_priority: Option<u8>,
+    /// With --realtime: run the cycle's thread on this CPU only (0-based).
+    #[arg(long, value_name = "K", requires = "realtime")]
+    pub cpu: Option<usize>,
+    /// With --realtime: do not lock memory (by default the process's memory
+    /// is locked with mlockall and the cycle's stack pre-faulted, when the
+    /// system permits it).
+    #[arg(long, requires = "realtime")]
+    pub no_lock_memory: bool,
+    /// With --realtime: let idle CPUs enter deep sleep states (by default
+    /// /dev/cpu_dma_latency is held at 0 while the run lasts, when the
+    /// system permits it, as cyclictest does).
+    #[arg(long, requires = "realtime")]
+    pub allow_cpu_sleep: bool,
     /// Print per-task statistics (cycles, execution time, start jitter,
     /// overruns) on standard error at the end of the run.
     #[arg(long)]

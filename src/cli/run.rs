@@ -3,9 +3,9 @@
 use super::args::{CheckArgs, RunArgs, StatsFormat};
 use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
 use plcrun::{
-    CheckOptions, Diagnostics, LiveStimulus, ModbusExchange, Options, Plc, RunError, Session,
-    TaskRunner, TraceFormat, TraceWriter, VcdTimescale, check as check_sources, format_stats_table,
-    load_files_with, parse_stimulus, parse_time_literal,
+    CheckOptions, Diagnostics, LiveStimulus, ModbusExchange, Options, Plc, RealTimeSetup, RunError,
+    Session, TaskRunner, TraceFormat, TraceWriter, VcdTimescale, check as check_sources,
+    format_stats_table, load_files_with, parse_stimulus, parse_time_literal,
 };
 use std::io::{Read, Write};
 use std::time::Duration;
@@ -208,7 +208,14 @@ fn drive<W: Write>(
         return session.run(cycles.unwrap_or(0), writer).map_err(Box::new);
     }
     let mut runner = if args.realtime {
-        TaskRunner::real_time(session.plc())
+        let mut runner = TaskRunner::real_time(session.plc());
+        runner.set_real_time_setup(RealTimeSetup {
+            priority: args.rt_priority,
+            cpu: args.cpu,
+            lock_memory: !args.no_lock_memory,
+            keep_cpu_awake: !args.allow_cpu_sleep,
+        });
+        runner
     } else {
         TaskRunner::virtual_time(session.plc())
     };
@@ -227,6 +234,20 @@ fn drive<W: Write>(
         });
     }
     let result = runner.run(session, cycles, writer);
+    if let Some(report) = runner.real_time_report() {
+        if let Err(why) = &report.memory_lock {
+            eprintln!(
+                "note: memory was not locked ({why}): page faults may delay cycles; run as \
+                 root, give the binary CAP_IPC_LOCK, raise `ulimit -l`, or pass --no-lock-memory"
+            );
+        }
+        if let Err(why) = &report.cpu_awake {
+            eprintln!(
+                "note: the CPUs were not kept awake (/dev/cpu_dma_latency: {why}): waking from \
+                 idle may delay cycles; run as root, or pass --allow-cpu-sleep"
+            );
+        }
+    }
     if args.stats {
         let stats = runner.stats().snapshot();
         if args.stats_format == StatsFormat::Json {

@@ -10,6 +10,7 @@
 //! - [`tasks`]: listing tasks, one cycle of one task, timed ticks;
 //! - [`task_stats`]: per-task cycles, execution time, jitter, overruns;
 //! - [`realtime`]: running the tasks on the wall clock, on a thread;
+//! - [`rt_thread`]: preparing that thread (priority, CPU, locked memory);
 //! - [`live_stimulus`]: stimulus rows read while the program runs;
 //! - [`default_trace`]: what is traced when the user names nothing;
 //! - [`host_blocks`]: FUNCTIONs and FUNCTION_BLOCKs implemented by the host;
@@ -51,6 +52,7 @@ pub mod plc_value;
 pub mod process_image;
 pub mod realtime;
 pub mod retain;
+pub mod rt_thread;
 mod s7_names;
 pub mod scheduler;
 pub mod session;

@@ -4,13 +4,19 @@
 //! time, base tick `k` of the run has the absolute deadline `start + k ×
 //! base tick` on the monotonic clock (deadlines are computed from the
 //! start, never from the previous wake-up, so nothing drifts over hours);
-//! the runner sleeps until the deadline, then runs the tasks due at that
-//! tick in priority order, and the program's clock is the monotonic time
+//! the runner sleeps until the deadline (on Linux with one
+//! `clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME)`, so no time passes
+//! between computing how long to sleep and sleeping), then runs the tasks
+//! due at that tick in priority order, and the program's clock is the monotonic time
 //! since the start (what TON and the SFC step times see). When the tick
 //! ends after the deadline of the tick after next, the runtime has fallen
 //! behind: the ticks in between are skipped, never queued, and each
 //! activation of a task that they held is counted as an overrun of that
 //! task; the run resumes with the latest tick whose deadline has passed.
+//!
+//! Before the first tick of a real-time run, the runner prepares its own
+//! thread as [`TaskRunner::set_real_time_setup`] says (priority, CPU,
+//! locked memory; see [`crate::runtime::rt_thread`]).
 //!
 //! Per task the runner records cycles, execution time and start jitter
 //! (how late the task's first program started after the tick's deadline),
@@ -48,6 +54,7 @@
 
 use super::clock::Clock;
 use super::engine::Plc;
+use super::rt_thread::{RealTimeReport, RealTimeSetup};
 use super::session::{RunError, Session};
 use super::task_stats::{TaskRecord, TaskStatsHandle};
 use super::tasks::TickTiming;
@@ -68,6 +75,8 @@ pub struct TaskRunner {
     stats: TaskStatsHandle,
     timing: TickTiming,
     between_ticks: Option<BetweenTicks>,
+    setup: RealTimeSetup,
+    setup_report: Option<RealTimeReport>,
 }
 
 /// A hook the runner calls with the whole session after each tick (see
@@ -91,6 +100,8 @@ pub struct RunOutcome<W: Write> {
     pub trace: TraceWriter<W>,
     /// How the run ended.
     pub result: Result<(), RunError>,
+    /// What preparing the thread did (real-time runs that got that far).
+    pub real_time: Option<RealTimeReport>,
 }
 
 /// A run on its own thread (see [`TaskRunner::spawn`]).
@@ -141,6 +152,8 @@ impl TaskRunner {
             stats: TaskStatsHandle::new(records),
             timing: TickTiming::default(),
             between_ticks: None,
+            setup: RealTimeSetup::default(),
+            setup_report: None,
         }
     }
 
@@ -173,6 +186,20 @@ impl TaskRunner {
     /// ```
     pub fn set_between_ticks(&mut self, hook: impl FnMut(&mut Session) + Send + 'static) {
         self.between_ticks = Some(BetweenTicks(Box::new(hook)));
+    }
+
+    /// How a real-time run prepares the thread it runs on (applied when
+    /// [`Self::run`] starts, on that thread; ignored in virtual time). A
+    /// setting the operating system refuses ends the run before its first
+    /// tick with [`RunError::RealTime`]; a refused memory lock does not,
+    /// and [`Self::real_time_report`] says why.
+    pub fn set_real_time_setup(&mut self, setup: RealTimeSetup) {
+        self.setup = setup;
+    }
+
+    /// What preparing the thread did, once a real-time run has started.
+    pub fn real_time_report(&self) -> Option<&RealTimeReport> {
+        self.setup_report.as_ref()
     }
 
     /// True for a wall-clock runner.
@@ -211,12 +238,32 @@ impl TaskRunner {
         cycles: Option<u64>,
         out: &mut TraceWriter<W>,
     ) -> Result<(), RunError> {
+        let first_tick = session.plc().next_tick();
+        if self.real_time {
+            let report = self.setup.apply().map_err(RunError::RealTime)?;
+            self.setup_report = Some(report);
+        }
+        let result = self.ticks(session, cycles, out, first_tick);
+        // The CPUs may sleep again once the run is over.
+        if let Some(report) = &mut self.setup_report {
+            report.release();
+        }
+        result
+    }
+
+    fn ticks<W: Write>(
+        &mut self,
+        session: &mut Session,
+        cycles: Option<u64>,
+        out: &mut TraceWriter<W>,
+        first_tick: u64,
+    ) -> Result<(), RunError> {
         let stop = session.plc().stop_handle();
         let base = u64::try_from(session.plc().cycle_time())
             .unwrap_or(1)
             .max(1);
-        let first_tick = session.plc().next_tick();
         let start = Instant::now();
+        let sleeper = Sleeper::new(start);
         if self.real_time {
             out.set_streaming(true);
             // The program's clock continues the schedule's: tick k at k × base.
@@ -233,7 +280,7 @@ impl TaskRunner {
             let deadline = self
                 .real_time
                 .then(|| deadline_of(session.plc().next_tick()));
-            if deadline.is_some_and(|d| !sleep_until(d, &stop)) {
+            if deadline.is_some_and(|d| !sleeper.sleep_until(d, &stop)) {
                 break;
             }
             session.apply_live_stimulus().map_err(RunError::Stimulus)?;
@@ -273,23 +320,88 @@ impl TaskRunner {
                 session,
                 trace,
                 result,
+                real_time: self.setup_report.take(),
             }
         });
         RunThread { thread }
     }
 }
 
-/// Sleeps until `deadline`, in slices, returning false as soon as a stop
-/// is asked.
-fn sleep_until(deadline: Instant, stop: &super::stop::StopHandle) -> bool {
-    loop {
-        if stop.is_stop_requested() {
-            return false;
+/// Sleeps until deadlines given as `Instant`s, in slices of at most
+/// [`MAX_SLEEP`] so that a stop is seen soon.
+struct Sleeper {
+    #[cfg(target_os = "linux")]
+    origin: (Instant, libc::timespec),
+}
+
+impl Sleeper {
+    /// `Instant` is `CLOCK_MONOTONIC` on Linux, but it does not give its
+    /// `timespec` out: the two are read together once, and each deadline
+    /// is turned into an absolute `timespec` from its distance to `origin`.
+    fn new(origin: Instant) -> Sleeper {
+        #[cfg(target_os = "linux")]
+        {
+            let mut ts = libc::timespec {
+                tv_sec: 0,
+                tv_nsec: 0,
+            };
+            // SAFETY: `ts` is a valid timespec to write.
+            unsafe { libc::clock_gettime(libc::CLOCK_MONOTONIC, &mut ts) };
+            let origin = (origin, ts);
+            Sleeper { origin }
         }
-        let now = Instant::now();
-        if now >= deadline {
-            return true;
+        #[cfg(not(target_os = "linux"))]
+        {
+            let _ = origin;
+            Sleeper {}
         }
-        std::thread::sleep((deadline - now).min(MAX_SLEEP));
+    }
+
+    /// Sleeps until `deadline`, returning false as soon as a stop is asked.
+    fn sleep_until(&self, deadline: Instant, stop: &super::stop::StopHandle) -> bool {
+        loop {
+            if stop.is_stop_requested() {
+                return false;
+            }
+            let now = Instant::now();
+            if now >= deadline {
+                return true;
+            }
+            let wake = if deadline - now > MAX_SLEEP {
+                now + MAX_SLEEP
+            } else {
+                deadline
+            };
+            self.sleep_to(wake, now);
+        }
+    }
+
+    #[cfg(target_os = "linux")]
+    fn sleep_to(&self, wake: Instant, _now: Instant) {
+        let (instant, ts) = self.origin;
+        let after = wake.saturating_duration_since(instant);
+        let nanos = ts.tv_nsec as u64 + u64::from(after.subsec_nanos());
+        let target = libc::timespec {
+            tv_sec: ts.tv_sec
+                + after.as_secs() as libc::time_t
+                + (nanos / 1_000_000_000) as libc::time_t,
+            tv_nsec: (nanos % 1_000_000_000) as libc::c_long,
+        };
+        // SAFETY: `target` is a valid timespec; no remainder is asked for
+        // (with TIMER_ABSTIME an interrupted sleep is simply restarted by
+        // the loop above).
+        unsafe {
+            libc::clock_nanosleep(
+                libc::CLOCK_MONOTONIC,
+                libc::TIMER_ABSTIME,
+                &target,
+                std::ptr::null_mut(),
+            )
+        };
+    }
+
+    #[cfg(not(target_os = "linux"))]
+    fn sleep_to(&self, wake: Instant, now: Instant) {
+        std::thread::sleep(wake - now);
     }
 }

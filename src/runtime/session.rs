@@ -75,6 +75,8 @@ pub enum RunError {
     /// [`Session::plc_mut`] rather than [`Session::online_change`], and a
     /// traced name or stimulus column does not fit it.
     PlcChanged(SessionChangeError),
+    /// A real-time run could not prepare its thread (priority, CPU).
+    RealTime(crate::runtime::rt_thread::RealTimeError),
 }
 
 /// The error a stop hook returns.
@@ -97,6 +99,7 @@ impl fmt::Display for RunError {
                 f,
                 "the program was changed outside the session and no longer fits it: {e}"
             ),
+            RunError::RealTime(e) => e.fmt(f),
         }
     }
 }
@@ -109,6 +112,7 @@ impl std::error::Error for RunError {
             RunError::Stimulus(e) => Some(e),
             RunError::OnStop(e) => Some(e.as_ref()),
             RunError::PlcChanged(e) => Some(e),
+            RunError::RealTime(e) => Some(e),
         }
     }
 }

@@ -45,7 +45,7 @@ use super::table_rows::TableRows;
 use super::trace_vcd::{VcdSignal, VcdSink, VcdTimescale};
 use crate::elementary::ElemType;
 use crate::value::format::{format_string, json_value, write_value};
-use crate::value::literal::format_duration;
+use crate::value::literal::write_duration;
 use serde::Serialize;
 use serde::ser::{SerializeMap, Serializer};
 use std::fmt::Write as _;
@@ -213,6 +213,8 @@ pub struct TraceWriter<W: Write> {
     has_prev: bool,
     /// Scratch for the cycle number.
     cycle_text: String,
+    /// Scratch for the time column.
+    time_text: String,
     /// Scratch for one JSON line.
     line: Vec<u8>,
     table: TableBuffer,
@@ -259,6 +261,7 @@ impl<W: Write> TraceWriter<W> {
             prev: Vec::new(),
             has_prev: false,
             cycle_text: String::new(),
+            time_text: String::new(),
             line: Vec::new(),
             table,
             streaming: false,
@@ -301,6 +304,7 @@ impl<W: Write> TraceWriter<W> {
             prev: Vec::new(),
             has_prev: false,
             cycle_text: String::new(),
+            time_text: String::new(),
             line: Vec::new(),
             table: TableBuffer {
                 rows: TableRows::new(0),
@@ -422,12 +426,29 @@ impl<W: Write> TraceWriter<W> {
         }
         self.cycle_text.clear();
         let _ = write!(self.cycle_text, "{cycle}");
-        let time = format_duration(time_ns, "T#");
+        // The scratch string is lent out so that the row can borrow self.
+        let mut time = std::mem::take(&mut self.time_text);
+        time.clear();
+        write_duration(&mut time, time_ns, "T#");
+        let written = self.formatted_row(cycle, &time, cells, forced);
+        self.time_text = time;
+        written
+    }
+
+    /// Writes one row whose cycle number is in `cycle_text`.
+    #[inline(always)]
+    fn formatted_row(
+        &mut self,
+        cycle: u64,
+        time: &str,
+        cells: &[TraceCell],
+        forced: &[String],
+    ) -> io::Result<()> {
         match self.format {
-            TraceFormat::Table if self.streaming => self.stream_table_row(&time, cells),
+            TraceFormat::Table if self.streaming => self.stream_table_row(time, cells),
             TraceFormat::Table => {
                 let table = &mut self.table;
-                let texts = [self.cycle_text.as_str(), time.as_str()]
+                let texts = [self.cycle_text.as_str(), time]
                     .into_iter()
                     .chain(cells.iter().map(|c| c.text.as_str()));
                 for (width, text) in table.widths.iter_mut().zip(texts) {
@@ -453,7 +474,7 @@ impl<W: Write> TraceWriter<W> {
                 line.clear();
                 let row = JsonRow {
                     cycle,
-                    time: &time,
+                    time,
                     values: NamedCells {
                         names: &self.names,
                         cells,

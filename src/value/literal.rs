@@ -108,23 +108,34 @@ pub fn parse_duration_body(body: &str) -> Result<i64, String> {
 /// parts omitted, `T#0s` for zero, `T#-2ms` for negatives. `prefix` is `T#`
 /// or `LT#`.
 pub fn format_duration(nanos: i64, prefix: &str) -> String {
+    let mut out = String::new();
+    write_duration(&mut out, nanos, prefix);
+    out
+}
+
+/// Appends [`format_duration`]'s text to `out`, without allocating beyond
+/// `out`'s growth: the trace writes one per row.
+pub fn write_duration(out: &mut String, nanos: i64, prefix: &str) {
+    use std::fmt::Write as _;
+    out.push_str(prefix);
     if nanos == 0 {
-        return format!("{prefix}0s");
+        out.push_str("0s");
+        return;
     }
-    let mut out = String::from(prefix);
     if nanos < 0 {
         out.push('-');
     }
-    let mut rest = (nanos as i128).abs();
+    // |i64::MIN| fits in u64, and every unit's scale does too.
+    let mut rest = nanos.unsigned_abs();
     for (unit, scale) in DURATION_UNITS {
+        let scale = scale as u64;
         let n = rest / scale;
         if n > 0 {
-            out.push_str(&n.to_string());
+            let _ = write!(out, "{n}");
             out.push_str(unit);
             rest -= n * scale;
         }
     }
-    out
 }
 
 /// Parses an integer literal: decimal (`1_000`) or based (`2#1010`,
@@ -415,6 +426,23 @@ mod tests {
             format_duration(90_061_001_001_001, "LT#"),
             "LT#1d1h1m1s1ms1us1ns"
         );
+        // The extremes of LTIME: |i64::MIN| needs the unsigned magnitude.
+        assert_eq!(
+            format_duration(i64::MIN, "LT#"),
+            "LT#-106751d23h47m16s854ms775us808ns"
+        );
+        assert_eq!(
+            format_duration(i64::MAX, "LT#"),
+            "LT#106751d23h47m16s854ms775us807ns"
+        );
+    }
+
+    #[test]
+    fn durations_append_to_what_is_there() {
+        let mut out = String::from("x=");
+        write_duration(&mut out, 10_000_000, "T#");
+        write_duration(&mut out, 0, ",T#");
+        assert_eq!(out, "x=T#10ms,T#0s");
     }
 
     #[test]
