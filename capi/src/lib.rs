@@ -12,6 +12,7 @@
 
 #![warn(missing_docs)]
 
+mod addressing;
 mod cycle;
 mod failure;
 mod forcing;
@@ -27,6 +28,10 @@ mod stop;
 mod text;
 mod vars;
 
+pub use addressing::{
+    PLC_ADDRESSING_BYTE, PLC_ADDRESSING_IEC, PLC_ADDRESSING_OPENPLC, plc_addressing,
+    plc_set_addressing,
+};
 pub use cycle::{
     plc_cycle, plc_cycle_time_ns, plc_fault_message, plc_is_faulted, plc_reset_cold,
     plc_reset_warm, plc_run_cycle, plc_time_ns,

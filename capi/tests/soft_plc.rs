@@ -14,10 +14,10 @@ const IO: &str = "\
 PROGRAM Io
 VAR
     sw AT %IX0.3 : BOOL;
-    level AT %IW2 : INT;
+    level AT %IW1 : INT;
     lamp AT %QX0.1 : BOOL;
-    copy AT %QW4 : INT;
-    big AT %QL8 : LINT;
+    copy AT %QW2 : INT;
+    big AT %QL1 : LINT;
     m AT %MD0 : DINT;
     n : DINT;
     z : DINT;
@@ -102,7 +102,7 @@ fn the_image_is_read_and_written_by_address() {
     let plc = create("io.st", IO);
     unsafe {
         assert_eq!(plc_image_write_bit(plc, c"%IX0.3".as_ptr(), true), PLC_OK);
-        assert_eq!(plc_image_write_word(plc, c"%IW2".as_ptr(), 21), PLC_OK);
+        assert_eq!(plc_image_write_word(plc, c"%IW1".as_ptr(), 21), PLC_OK);
         cycle(plc);
         let (mut bit, mut byte, mut word, mut dword, mut lword) = (false, 0u8, 0u16, 0u32, 0u64);
         assert_eq!(
@@ -110,7 +110,7 @@ fn the_image_is_read_and_written_by_address() {
             PLC_OK
         );
         assert_eq!(
-            plc_image_read_word(plc, c"%QW4".as_ptr(), &mut word),
+            plc_image_read_word(plc, c"%QW2".as_ptr(), &mut word),
             PLC_OK
         );
         assert_eq!(
@@ -118,11 +118,11 @@ fn the_image_is_read_and_written_by_address() {
             PLC_OK
         );
         assert_eq!(
-            plc_image_read_dword(plc, c"%QD4".as_ptr(), &mut dword),
+            plc_image_read_dword(plc, c"%QD1".as_ptr(), &mut dword),
             PLC_OK
         );
         assert_eq!(
-            plc_image_read_lword(plc, c"%ql8".as_ptr(), &mut lword),
+            plc_image_read_lword(plc, c"%ql1".as_ptr(), &mut lword),
             PLC_OK
         );
         assert_eq!((bit, byte, word, dword, lword), (true, 42, 42, 42, 1));
@@ -189,12 +189,12 @@ fn bad_addresses_wrong_widths_and_q_writes_are_refused() {
             PLC_E_NULL_ARGUMENT
         );
         assert_eq!(
-            plc_image_read_word(plc, c"%QW4".as_ptr(), null_mut()),
+            plc_image_read_word(plc, c"%QW2".as_ptr(), null_mut()),
             PLC_E_NULL_ARGUMENT
         );
         assert_eq!(plc_image_write_bit(plc, null(), true), PLC_E_NULL_ARGUMENT);
         assert_eq!(
-            plc_image_read_word(PlcHandle { id: 0 }, c"%QW4".as_ptr(), &mut word),
+            plc_image_read_word(PlcHandle { id: 0 }, c"%QW2".as_ptr(), &mut word),
             PLC_E_INVALID_HANDLE
         );
     }
@@ -214,7 +214,7 @@ fn whole_areas_are_copied_in_and_out() {
             })
             .collect();
         assert_eq!(sizes, [4, 16, 4]);
-        // %IW2 := 7 through the area, %IX0.3 := 1.
+        // %IW1 (bytes 2-3) := 7 through the area, %IX0.3 := 1.
         assert_eq!(
             plc_image_write_area(plc, PLC_AREA_INPUT, 0, [8u8, 0, 7, 0].as_ptr(), 4),
             PLC_OK
@@ -663,8 +663,8 @@ fn every_new_entry_point_refuses_an_invalid_or_freed_handle() {
                     null_mut(),
                 ),
                 plc_image_read_bit(h, c"%QX0.1".as_ptr(), &mut bit),
-                plc_image_write_word(h, c"%IW2".as_ptr(), 1),
-                plc_image_read_word(h, c"%QW4".as_ptr(), &mut word),
+                plc_image_write_word(h, c"%IW1".as_ptr(), 1),
+                plc_image_read_word(h, c"%QW2".as_ptr(), &mut word),
                 plc_image_area_size(h, PLC_AREA_INPUT, &mut count),
                 plc_image_read_area(h, PLC_AREA_INPUT, 0, byte.as_mut_ptr(), 1),
                 plc_image_write_area(h, PLC_AREA_INPUT, 0, byte.as_ptr(), 1),

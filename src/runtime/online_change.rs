@@ -134,7 +134,7 @@ impl Plc {
         std::mem::swap(&mut self.warnings, &mut new.warnings);
         self.id = new.id;
         self.host_code = new.host_code.take();
-        self.io = ProcessImage::new(&self.image, &self.machine.mem);
+        self.io = ProcessImage::new(&self.image, &self.machine.mem, self.io.addressing());
         self.forces = forces;
     }
 }
