@@ -1,9 +1,10 @@
 //! The soft-PLC entry points of the C ABI, called as C would call them:
 //! the faulted state and the resets, forcing and soft writes, the process
 //! image, retained data, the watchdog and the stop token (an abort from
-//! another thread while a runaway cycle runs). For each, the failures C
-//! code can cause: NULL pointers, invalid and freed handles, bad
-//! addresses, wrong widths, read-only refusals, small buffers.
+//! another thread while a runaway cycle runs), the addressing convention.
+//! For each, the failures C code can cause: NULL pointers, invalid and
+//! freed handles, bad addresses, wrong widths, read-only refusals, small
+//! buffers.
 
 use plcrun_capi::status::*;
 use plcrun_capi::*;
@@ -640,6 +641,7 @@ fn every_new_entry_point_refuses_an_invalid_or_freed_handle() {
     let plc = create("io.st", IO);
     assert_eq!(plc_free(plc), PLC_OK);
     let (mut count, mut bit, mut word) = (0usize, false, 0u16);
+    let mut code: c_int = -1;
     let mut byte = [0u8; 1];
     let mut buf = [0 as c_char; 8];
     for h in [plc, PlcHandle { id: 0 }, PlcHandle { id: u64::MAX }] {
@@ -672,9 +674,96 @@ fn every_new_entry_point_refuses_an_invalid_or_freed_handle() {
                 plc_retain_restore(h, c"/tmp/never-read.json".as_ptr(), false, null_mut()),
                 plc_set_watchdog_ms(h, null(), 5),
                 plc_stop_token(h, &mut PlcStop { id: 0 }),
+                plc_set_addressing(h, PLC_ADDRESSING_OPENPLC),
+                plc_addressing(h, &mut code),
             ]
         };
-        assert_eq!(statuses, [PLC_E_INVALID_HANDLE; 18], "{:#x}", h.id);
+        assert_eq!(statuses, [PLC_E_INVALID_HANDLE; 20], "{:#x}", h.id);
     }
     assert!(!std::path::Path::new("/tmp/never-written.json").exists());
+}
+
+/// The warnings of a PLC as text.
+fn warnings(plc: PlcHandle) -> String {
+    let mut needed = 0usize;
+    assert_eq!(
+        unsafe { plc_warnings(plc, null_mut(), 0, &mut needed) },
+        PLC_E_BUFFER_TOO_SMALL
+    );
+    let mut buf = vec![0 as c_char; needed];
+    assert_eq!(
+        unsafe { plc_warnings(plc, buf.as_mut_ptr(), needed, null_mut()) },
+        PLC_OK
+    );
+    unsafe { CStr::from_ptr(buf.as_ptr()) }
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+const OPENPLC_STYLE: &str = "PROGRAM Tank
+VAR
+    pump AT %QX0.0 : BOOL;
+    level AT %QW0 : UINT;
+    echo AT %QW1 : UINT;
+    setpoint AT %MW0 : UINT;
+END_VAR
+pump := TRUE;
+level := 16#ABCD;
+echo := setpoint + 1;
+END_PROGRAM
+";
+
+#[test]
+fn the_addressing_convention_is_set_and_read_from_c() {
+    let plc = create("tank.st", OPENPLC_STYLE);
+    let mut code: c_int = -1;
+    unsafe {
+        // An ST source: iec, and %QW0 shares byte 0 with the coil.
+        assert_eq!(plc_addressing(plc, &mut code), PLC_OK);
+        assert_eq!(code, PLC_ADDRESSING_IEC);
+        assert!(warnings(plc).contains("W203"), "{}", warnings(plc));
+        assert_eq!(plc_set_addressing(plc, PLC_ADDRESSING_OPENPLC), PLC_OK);
+        assert_eq!(plc_addressing(plc, &mut code), PLC_OK);
+        assert_eq!(code, PLC_ADDRESSING_OPENPLC);
+        assert_eq!(warnings(plc), "");
+        assert_eq!(plc_image_write_word(plc, c"%MW0".as_ptr(), 41), PLC_OK);
+        cycle(plc);
+        let (mut level, mut echo, mut pump) = (0u16, 0u16, false);
+        assert_eq!(
+            plc_image_read_word(plc, c"%QW0".as_ptr(), &mut level),
+            PLC_OK
+        );
+        assert_eq!(
+            plc_image_read_word(plc, c"%QW1".as_ptr(), &mut echo),
+            PLC_OK
+        );
+        assert_eq!(
+            plc_image_read_bit(plc, c"%QX0.0".as_ptr(), &mut pump),
+            PLC_OK
+        );
+        assert_eq!((level, echo, pump), (0xABCD, 42, true));
+        // Under byte, %QW1 is bytes 1-2: the overlaps are back.
+        assert_eq!(plc_set_addressing(plc, PLC_ADDRESSING_BYTE), PLC_OK);
+        assert!(
+            warnings(plc).contains("byte addressing"),
+            "{}",
+            warnings(plc)
+        );
+        // Refusals.
+        assert_eq!(plc_set_addressing(plc, 3), PLC_E_INVALID_ARGUMENT);
+        assert!(
+            last_error().contains("PLC_ADDRESSING_OPENPLC 1"),
+            "{}",
+            last_error()
+        );
+        assert_eq!(plc_addressing(plc, null_mut()), PLC_E_NULL_ARGUMENT);
+        assert_eq!(plc_addressing(plc, &mut code), PLC_OK);
+        assert_eq!(code, PLC_ADDRESSING_BYTE);
+    }
+    plc_free(plc);
+    assert_eq!(
+        plc_set_addressing(plc, PLC_ADDRESSING_IEC),
+        PLC_E_INVALID_HANDLE
+    );
 }
