@@ -3,9 +3,10 @@
 //! double and long words; host accessors and tables; the overlap warning
 //! W203; the default chosen from the sources (S7-200 STL, PLCopen XML from
 //! the OpenPLC Editor or Beremiz); `Options::addressing` winning over the
-//! detection; `Plc::set_addressing`.
+//! detection; `Plc::set_addressing`; retained located variables across
+//! conventions.
 
-use plcrun::{Addressing, Area, Options, Plc, Severity, Width};
+use plcrun::{Addressing, Area, Options, Plc, RestoreMode, Severity, Width};
 
 fn compile_with(name: &str, src: &str, addressing: Option<Addressing>) -> Plc {
     let options = Options {
@@ -266,4 +267,30 @@ fn set_addressing_lays_the_image_out_again_and_rejudges_the_overlaps() {
     assert_eq!(plc.process_image().read_dword("%MD0"), Ok(200_000));
     plc.set_addressing(Addressing::Byte);
     assert_eq!(overlaps(&plc).len(), 4);
+}
+
+#[test]
+fn a_retained_located_variable_is_restored_by_name_under_another_convention() {
+    let src = "PROGRAM P
+VAR RETAIN kept AT %MW1 : UINT; END_VAR
+VAR n : UINT; END_VAR
+n := n + 1; IF n = 1 THEN kept := kept + 100; END_IF;
+END_PROGRAM";
+    let path = std::env::temp_dir().join(format!(
+        "plcrun-addressing-retain-{}.json",
+        std::process::id()
+    ));
+    let mut iec = compile_with("p.st", src, Some(Addressing::Iec));
+    iec.run_cycle().unwrap();
+    assert_eq!(iec.process_image().read_word("%MW1"), Ok(100));
+    assert_eq!(&iec.process_image().area(Area::Memory)[2..4], &[100, 0]);
+    iec.save_retain(&path).unwrap();
+    let mut byte = compile_with("p.st", src, Some(Addressing::Byte));
+    byte.restore_retain(&path, RestoreMode::Exact).unwrap();
+    byte.run_cycle().unwrap();
+    std::fs::remove_file(&path).unwrap();
+    // Restored by name, then incremented once; under byte %MW1 is bytes 1-2.
+    assert_eq!(byte.read("kept").unwrap().to_literal(), "200");
+    assert_eq!(byte.process_image().read_word("%MW1"), Ok(200));
+    assert_eq!(&byte.process_image().area(Area::Memory)[1..3], &[200, 0]);
 }
