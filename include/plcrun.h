@@ -241,8 +241,9 @@ int plc_force_at(plc_handle plc, size_t index, char *path_buf, size_t path_capac
  * PLC's addressing convention (below; docs/runtime.md, "Addressing"):
  * under PLC_ADDRESSING_IEC %QW4 is bytes 8-9 (little-endian), under
  * PLC_ADDRESSING_BYTE bytes 4-5, under PLC_ADDRESSING_OPENPLC word 4 of
- * a %QW table of its own (each size of each area is then a table apart;
- * the area functions below reach the byte table, %IB/%QB/%MB, only).
+ * a %QW table of its own (each size of each area is then a table apart:
+ * the area functions below reach the byte table, %IB/%QB/%MB, the table
+ * functions every one).
  * The host writes %I and %M only
  * (%Q: PLC_E_READ_ONLY). Errors: PLC_E_BAD_ADDRESS (syntax, bit > 7, a
  * non-zero leading field), PLC_E_ADDRESS_OUT_OF_RANGE (past the area's
@@ -275,6 +276,24 @@ int plc_image_area_size(plc_handle plc, int area, size_t *out);
 int plc_image_read_area(plc_handle plc, int area, size_t offset, uint8_t *buf, size_t length);
 int plc_image_write_area(plc_handle plc, int area, size_t offset, const uint8_t *data,
                          size_t length);
+
+/* The table of one size of one area (PLC_WIDTH_*): under
+ * PLC_ADDRESSING_OPENPLC each size is a table of its own (%QX, %QW, %MD...),
+ * under IEC and BYTE every size of an area is the area. Size, copies out
+ * and in (%I and %M only) as for the areas above. */
+enum plc_width {
+    PLC_WIDTH_BIT = 0,   /* X */
+    PLC_WIDTH_BYTE = 1,  /* B */
+    PLC_WIDTH_WORD = 2,  /* W */
+    PLC_WIDTH_DWORD = 3, /* D */
+    PLC_WIDTH_LWORD = 4  /* L */
+};
+
+int plc_image_table_size(plc_handle plc, int area, int width, size_t *out);
+int plc_image_read_table(plc_handle plc, int area, int width, size_t offset, uint8_t *buf,
+                         size_t length);
+int plc_image_write_table(plc_handle plc, int area, int width, size_t offset,
+                          const uint8_t *data, size_t length);
 
 /* How direct addresses are numbered. The default follows the sources:
  * BYTE for S7-200 STL, OPENPLC for PLCopen XML from the OpenPLC Editor or

@@ -19,6 +19,7 @@ mod forcing;
 mod guard;
 mod handles;
 mod image;
+mod image_tables;
 mod lifecycle;
 mod retain;
 mod scalar;
@@ -46,6 +47,10 @@ pub use image::{
     plc_image_read_bit, plc_image_read_byte, plc_image_read_dword, plc_image_read_lword,
     plc_image_read_word, plc_image_write_area, plc_image_write_bit, plc_image_write_byte,
     plc_image_write_dword, plc_image_write_lword, plc_image_write_word,
+};
+pub use image_tables::{
+    PLC_WIDTH_BIT, PLC_WIDTH_BYTE, PLC_WIDTH_DWORD, PLC_WIDTH_LWORD, PLC_WIDTH_WORD,
+    plc_image_read_table, plc_image_table_size, plc_image_write_table,
 };
 pub use lifecycle::{
     PLC_ABI_VERSION, PlcOptions, PlcSource, plc_abi_version, plc_create, plc_free,

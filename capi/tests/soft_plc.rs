@@ -767,3 +767,104 @@ fn the_addressing_convention_is_set_and_read_from_c() {
         PLC_E_INVALID_HANDLE
     );
 }
+
+#[test]
+fn the_tables_of_each_size_are_copied_in_and_out() {
+    let plc = create("tank.st", OPENPLC_STYLE);
+    let mut size = 0usize;
+    unsafe {
+        assert_eq!(plc_set_addressing(plc, PLC_ADDRESSING_OPENPLC), PLC_OK);
+        let size_of = |area, width, size: &mut usize| {
+            assert_eq!(plc_image_table_size(plc, area, width, size), PLC_OK);
+            *size
+        };
+        assert_eq!(size_of(PLC_AREA_OUTPUT, PLC_WIDTH_BIT, &mut size), 1);
+        assert_eq!(size_of(PLC_AREA_OUTPUT, PLC_WIDTH_WORD, &mut size), 4);
+        assert_eq!(size_of(PLC_AREA_MEMORY, PLC_WIDTH_WORD, &mut size), 2);
+        // The area functions reach the byte table, empty here.
+        assert_eq!(plc_image_area_size(plc, PLC_AREA_OUTPUT, &mut size), PLC_OK);
+        assert_eq!(size, 0);
+        // %MW0 := 9 through its table; the program echoes 10 to %QW1.
+        assert_eq!(
+            plc_image_write_table(
+                plc,
+                PLC_AREA_MEMORY,
+                PLC_WIDTH_WORD,
+                0,
+                [9u8, 0].as_ptr(),
+                2
+            ),
+            PLC_OK
+        );
+        cycle(plc);
+        let mut words = [0u8; 4];
+        assert_eq!(
+            plc_image_read_table(
+                plc,
+                PLC_AREA_OUTPUT,
+                PLC_WIDTH_WORD,
+                0,
+                words.as_mut_ptr(),
+                4
+            ),
+            PLC_OK
+        );
+        assert_eq!(words, [0xCD, 0xAB, 10, 0]);
+        let mut coils = [0u8; 1];
+        assert_eq!(
+            plc_image_read_table(
+                plc,
+                PLC_AREA_OUTPUT,
+                PLC_WIDTH_BIT,
+                0,
+                coils.as_mut_ptr(),
+                1
+            ),
+            PLC_OK
+        );
+        assert_eq!(coils, [1]);
+        // Refusals.
+        assert_eq!(
+            plc_image_write_table(plc, PLC_AREA_OUTPUT, PLC_WIDTH_WORD, 0, words.as_ptr(), 2),
+            PLC_E_READ_ONLY
+        );
+        assert_eq!(
+            plc_image_read_table(
+                plc,
+                PLC_AREA_OUTPUT,
+                PLC_WIDTH_WORD,
+                3,
+                words.as_mut_ptr(),
+                2
+            ),
+            PLC_E_ADDRESS_OUT_OF_RANGE
+        );
+        assert!(
+            last_error().contains("%QW addresses (4 bytes)"),
+            "{}",
+            last_error()
+        );
+        assert_eq!(
+            plc_image_table_size(plc, PLC_AREA_OUTPUT, 5, &mut size),
+            PLC_E_INVALID_ARGUMENT
+        );
+        assert_eq!(
+            plc_image_table_size(plc, PLC_AREA_OUTPUT, PLC_WIDTH_WORD, null_mut()),
+            PLC_E_NULL_ARGUMENT
+        );
+        assert_eq!(
+            plc_image_read_table(plc, PLC_AREA_OUTPUT, PLC_WIDTH_WORD, 0, null_mut(), 2),
+            PLC_E_NULL_ARGUMENT
+        );
+        // Under iec every size of an area is the area.
+        assert_eq!(plc_set_addressing(plc, PLC_ADDRESSING_IEC), PLC_OK);
+        assert_eq!(size_of(PLC_AREA_OUTPUT, PLC_WIDTH_BIT, &mut size), 4);
+        assert_eq!(plc_image_area_size(plc, PLC_AREA_OUTPUT, &mut size), PLC_OK);
+        assert_eq!(size, 4);
+    }
+    plc_free(plc);
+    assert_eq!(
+        unsafe { plc_image_table_size(plc, PLC_AREA_INPUT, PLC_WIDTH_BIT, &mut size) },
+        PLC_E_INVALID_HANDLE
+    );
+}
