@@ -294,3 +294,22 @@ END_PROGRAM";
     assert_eq!(byte.process_image().read_word("%MW1"), Ok(200));
     assert_eq!(&byte.process_image().area(Area::Memory)[1..3], &[200, 0]);
 }
+
+#[test]
+fn an_online_change_brings_the_new_versions_addressing() {
+    let src = repo_text("tests/addressing/openplc_tank.st");
+    let mut plc = compile_with("tank.st", &src, None);
+    plc.run_cycle().unwrap();
+    assert_eq!(plc.addressing(), Addressing::Iec);
+    let options = Options {
+        addressing: Some(Addressing::OpenPlc),
+        ..Options::default()
+    };
+    plc.online_change_files(&[("tank.st", &src)], &options)
+        .unwrap();
+    assert_eq!(plc.addressing(), Addressing::OpenPlc);
+    assert!(overlaps(&plc).is_empty());
+    // The carried values, in the openplc tables at once.
+    assert_eq!(plc.process_image().read_word("%QW0"), Ok(0xABCD));
+    assert_eq!(plc.process_image().table(Area::Output, Width::Bit), &[1, 1]);
+}
