@@ -36,7 +36,7 @@ VAR
     n AT %QD0 : DINT;
     q AT %QX4.0 : BOOL;
     setpoint AT %MW0 : INT;
-    echo AT %MW2 : INT;
+    echo AT %MW1 : INT;
     t : TON; i : INT; acc : DINT;
 END_VAR
 n := n + 1;

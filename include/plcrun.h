@@ -237,9 +237,15 @@ int plc_force_at(plc_handle plc, size_t index, char *path_buf, size_t path_capac
  * %I (inputs), %Q (outputs) and %M (memory) are byte areas, each as long
  * as the highest address the program uses there. Inputs are latched at
  * the start of a task's cycle, outputs published at its end. Addresses are
- * as in the language: %IX0.3 (bit 3 of byte 0), %IB2, %QW4 (bytes 4-5,
- * little-endian), %MD8, %QL8, and the Moeller form %I0.0.0.0.1 (see
- * docs/runtime.md for the mapping). The host writes %I and %M only
+ * as in the language: %IX0.3 (bit 3 of byte 0), %IB2, %QW4, %MD8, %QL8,
+ * and the Moeller form %I0.0.0.0.1; which bytes a word names follows the
+ * PLC's addressing convention (below; docs/runtime.md, "Addressing"):
+ * under PLC_ADDRESSING_IEC %QW4 is bytes 8-9 (little-endian), under
+ * PLC_ADDRESSING_BYTE bytes 4-5, under PLC_ADDRESSING_OPENPLC word 4 of
+ * a %QW table of its own (each size of each area is then a table apart:
+ * the area functions below reach the byte table, %IB/%QB/%MB, the table
+ * functions every one).
+ * The host writes %I and %M only
  * (%Q: PLC_E_READ_ONLY). Errors: PLC_E_BAD_ADDRESS (syntax, bit > 7, a
  * non-zero leading field), PLC_E_ADDRESS_OUT_OF_RANGE (past the area's
  * end), PLC_E_WRONG_TYPE (an accessor of another width than the address,
@@ -271,6 +277,41 @@ int plc_image_area_size(plc_handle plc, int area, size_t *out);
 int plc_image_read_area(plc_handle plc, int area, size_t offset, uint8_t *buf, size_t length);
 int plc_image_write_area(plc_handle plc, int area, size_t offset, const uint8_t *data,
                          size_t length);
+
+/* The table of one size of one area (PLC_WIDTH_*): under
+ * PLC_ADDRESSING_OPENPLC each size is a table of its own (%QX, %QW, %MD...),
+ * under IEC and BYTE every size of an area is the area. Size, copies out
+ * and in (%I and %M only) as for the areas above. */
+enum plc_width {
+    PLC_WIDTH_BIT = 0,   /* X */
+    PLC_WIDTH_BYTE = 1,  /* B */
+    PLC_WIDTH_WORD = 2,  /* W */
+    PLC_WIDTH_DWORD = 3, /* D */
+    PLC_WIDTH_LWORD = 4  /* L */
+};
+
+int plc_image_table_size(plc_handle plc, int area, int width, size_t *out);
+int plc_image_read_table(plc_handle plc, int area, int width, size_t offset, uint8_t *buf,
+                         size_t length);
+int plc_image_write_table(plc_handle plc, int area, int width, size_t offset,
+                          const uint8_t *data, size_t length);
+
+/* How direct addresses are numbered. The default follows the sources:
+ * BYTE for S7-200 STL, OPENPLC for PLCopen XML from the OpenPLC Editor or
+ * Beremiz, IEC otherwise. */
+enum plc_addressing {
+    PLC_ADDRESSING_IEC = 0,     /* CODESYS: %QWn is bytes 2n..2n+1 */
+    PLC_ADDRESSING_OPENPLC = 1, /* matiec: %QX, %QW, %MW, %MD, %ML separate tables */
+    PLC_ADDRESSING_BYTE = 2     /* S7: every number a byte offset */
+};
+
+/* Lays the image out again under a PLC_ADDRESSING_* convention (call it
+ * before the first cycle): located variables keep their values and the
+ * overlap warnings (W203) of plc_warnings are judged again. An unknown
+ * code: PLC_E_INVALID_ARGUMENT. */
+int plc_set_addressing(plc_handle plc, int addressing);
+/* The PLC's convention (PLC_ADDRESSING_*) into *out. */
+int plc_addressing(plc_handle plc, int *out);
 
 /* ---- Retained data -----------------------------------------------------
  * RETAIN and PERSISTENT variables, in a JSON file with IEC literals that

@@ -3,6 +3,7 @@
 //! here; the runtime, the command line and embedders call these functions
 //! instead of assembling the stages themselves.
 
+use crate::address::Addressing;
 use crate::diagnostics::Diagnostics;
 use crate::ir::verify::VerifiedImage;
 use crate::sema;
@@ -171,6 +172,32 @@ pub struct CheckOptions {
     /// Pure IEC 61131-3 (`--strict`): every compatibility-extension
     /// warning (`W300`-`W399`) is an error with the same code.
     pub strict: bool,
+    /// How direct addresses are numbered (`--addressing`), for the overlap
+    /// warning W203; `None`: chosen from the sources (`byte` for S7-200
+    /// STL, `openplc` for PLCopen XML from the OpenPLC Editor or Beremiz,
+    /// `iec` otherwise).
+    pub addressing: Option<Addressing>,
+}
+
+/// The addressing convention for `sources` when none is given
+/// (`docs/runtime.md`, "Addressing"): `byte` when a file is S7-200 STL,
+/// `openplc` when a PLCopen project comes from the OpenPLC Editor or
+/// Beremiz, `iec` otherwise.
+pub fn addressing_of(sources: &SourceMap) -> Addressing {
+    let files = sources.files();
+    if files
+        .iter()
+        .any(|f| crate::syntax::s7::recognise(&f.name, &f.text))
+    {
+        return Addressing::Byte;
+    }
+    if files.iter().any(|f| {
+        crate::syntax::plcopen::is_plcopen(&f.text)
+            && crate::syntax::plcopen::origin::written_by_matiec_tools(&f.text)
+    }) {
+        return Addressing::OpenPlc;
+    }
+    Addressing::Iec
 }
 
 /// The outcome of [`check`].
@@ -203,6 +230,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         max_data_bytes: options.max_data_bytes,
         strict: options.strict,
         unoptimized: false,
+        addressing: options.addressing.unwrap_or_else(|| addressing_of(sources)),
     };
     let image = compile(sources, &build, &mut diagnostics);
     let ir_listing = match (options.ir_listing, image) {

@@ -35,6 +35,7 @@
 
 // The stages, in pipeline order. Only what the re-exports below name is
 // the library's API; the stages themselves stay inside the crate.
+pub mod address;
 mod compare;
 mod diagnostics;
 mod draw;
@@ -51,6 +52,9 @@ mod testing;
 mod value;
 pub(crate) mod vm;
 
+pub use address::{
+    AddressError, Addressing, Area, ImageSpot, ImageTable, IoAddress, UnknownAddressing, Width,
+};
 pub use compare::{
     CompareError, CompareOptions, CompareReport, Difference, InputChange, InputKind, InputPlan,
     Mismatch, OutputDifference, Pair, PairedVar, Pairing, RandomStimulus, SeedsOutcome, Shrunk,
@@ -74,7 +78,6 @@ pub use runtime::host_blocks::{
     HOST_SOURCE, HostBlocks, HostDeclError, HostIo, HostIoError, HostPin, HostResult,
     HostSignature, PinDir,
 };
-pub use runtime::io_address::{AddressError, Area, IoAddress, Width};
 pub use runtime::life_cycle::PlcState;
 pub use runtime::live_stimulus::{LiveStimulus, LiveStimulusError};
 pub use runtime::modbus::{

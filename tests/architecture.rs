@@ -12,6 +12,10 @@ use std::path::{Path, PathBuf};
 const ALLOWED: &[(&str, &[&str])] = &[
     ("source", &[]),
     ("elementary", &[]),
+    // Direct addresses and the addressing conventions (which image bytes
+    // an address names): the checker warns of overlaps, the runtime lays
+    // out the image.
+    ("address", &[]),
     ("value", &["elementary"]),
     ("diagnostics", &["source"]),
     ("syntax", &["source", "diagnostics", "elementary", "value"]),
@@ -20,6 +24,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     (
         "sema",
         &[
+            "address",
             "source",
             "diagnostics",
             "elementary",
@@ -33,6 +38,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     (
         "driver",
         &[
+            "address",
             "source",
             "diagnostics",
             "elementary",
@@ -45,6 +51,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     (
         "runtime",
         &[
+            "address",
             "source",
             "diagnostics",
             "elementary",
@@ -77,6 +84,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     (
         "testing",
         &[
+            "address",
             "source",
             "diagnostics",
             "elementary",

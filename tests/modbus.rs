@@ -1,7 +1,9 @@
 //! The Modbus TCP server, driven from the test by `rmodbus`' client over
 //! a std `TcpStream` on 127.0.0.1 (free port): every function code, the
 //! exceptions, malformed frames, connection limits and idle timeouts,
-//! forcing, and a real-time run.
+//! forcing, and a real-time run. The program is numbered the `iec` way
+//! (the default): `%QW1` is holding register 1, `%MD2` registers 2052-2053;
+//! tests/modbus_openplc.rs serves the `openplc` convention.
 
 use plcrun::{
     ModbusConfig, ModbusExchange, ModbusServer, Options, Plc, Session, TaskRunner, TraceFormat,
@@ -18,14 +20,14 @@ PROGRAM P
 VAR
     start AT %QX0.0 : BOOL;      (* coil 0, written by the client *)
     running AT %QX0.1 : BOOL;    (* coil 1 *)
-    count AT %QW2 : INT;         (* holding register 1: cycles while start *)
-    level_copy AT %QW4 : INT;    (* holding register 2: level + 1 *)
+    count AT %QW1 : INT;         (* holding register 1: cycles while start *)
+    level_copy AT %QW2 : INT;    (* holding register 2: level + 1 *)
     setpoint AT %MW0 : INT;      (* holding register 1024, written by the client *)
-    doubled AT %MW2 : INT;       (* holding register 1025 *)
-    big AT %MD8 : DINT;          (* holding registers 2052 (high), 2053 (low) *)
-    huge AT %ML16 : LINT;        (* holding registers 4104..4107 *)
+    doubled AT %MW1 : INT;       (* holding register 1025 *)
+    big AT %MD2 : DINT;          (* holding registers 2052 (high), 2053 (low) *)
+    huge AT %ML2 : LINT;         (* holding registers 4104..4107 *)
     sensor AT %IX0.2 : BOOL;     (* discrete input 2, written by the host *)
-    level AT %IW4 : INT;         (* input register 2, written by the host *)
+    level AT %IW2 : INT;         (* input register 2, written by the host *)
 END_VAR
 running := start;
 IF start THEN count := count + 1; END_IF;
@@ -235,7 +237,7 @@ fn every_function_code_reaches_its_part_of_the_image() {
     let mut client = Client::connect(server.local_addr());
     // FC 2 and 4: the host's inputs, latched by a cycle, then published.
     plc.process_image_mut().write_bit("%IX0.2", true).unwrap();
-    plc.process_image_mut().write_word("%IW4", 1234).unwrap();
+    plc.process_image_mut().write_word("%IW2", 1234).unwrap();
     // FC 6: %MW0 (holding register 1024).
     client.set_holding(1024, 21).unwrap();
     // FC 16: two registers of the %MD block past the program's %M area:
@@ -250,9 +252,9 @@ fn every_function_code_reaches_its_part_of_the_image() {
     cycle(&mut plc, &mut exchange);
     assert_eq!(client.discretes(0, 4), Ok(vec![false, false, true, false]));
     assert_eq!(client.inputs(2, 1), Ok(vec![1234]));
-    assert_eq!(client.holdings(2, 1), Ok(vec![1235])); // level_copy, %QW4
+    assert_eq!(client.holdings(2, 1), Ok(vec![1235])); // level_copy, %QW2
     assert_eq!(client.holdings(1024, 2), Ok(vec![21, 42]));
-    // %MD8 = 100021 = 16#000186B5, most significant word first.
+    // %MD2 = 100021 = 16#000186B5, most significant word first.
     assert_eq!(client.holdings(2052, 2), Ok(vec![0x0001, 0x86B5]));
     assert_eq!(
         client.holdings(4104, 4),

@@ -2,7 +2,9 @@
 //! direct addresses to bytes and bits (Moeller's five-field form
 //! included), host access by bit, byte, word, double and long word, typed
 //! errors outside an area, inputs latched at the start of a cycle and
-//! outputs published at its end, overlapping located variables.
+//! outputs published at its end, overlapping located variables. Under the
+//! default `iec` addressing (words numbered by word); the other
+//! conventions are in tests/addressing.rs.
 
 use plcrun::{AddressError, Area, Options, Plc, Width};
 
@@ -13,11 +15,11 @@ fn compile(src: &str) -> Plc {
 const MOELLER: &str = "PROGRAM M
 VAR
     sw AT %I0.0.0.0.1 : BOOL;
-    level AT %IW2 : INT;
+    level AT %IW1 : INT;
     lamp AT %Q0.0.0.1.7 : BOOL;
-    copy AT %QW4 : INT;
-    big AT %QD8 : DINT;
-    huge AT %QL12 : LINT;
+    copy AT %QW2 : INT;
+    big AT %QD2 : DINT;
+    huge AT %QL2 : LINT;
     flag AT %M0.0.0.2.2 : BOOL;
 END_VAR
 lamp := sw;
@@ -32,8 +34,8 @@ END_PROGRAM
 fn areas_are_as_long_as_the_highest_address_used() {
     let plc = compile(MOELLER);
     let io = plc.process_image();
-    assert_eq!(io.area(Area::Input).len(), 4); // %IW2 ends at byte 4
-    assert_eq!(io.area(Area::Output).len(), 20); // %QL12 ends at byte 20
+    assert_eq!(io.area(Area::Input).len(), 4); // %IW1 is bytes 2-3
+    assert_eq!(io.area(Area::Output).len(), 24); // %QL2 is bytes 16-23
     assert_eq!(io.area(Area::Memory).len(), 3); // %M0.0.0.2.2 is byte 2
     assert!(io.unmapped().is_empty());
 }
@@ -44,7 +46,7 @@ fn moeller_addresses_map_to_their_last_two_fields() {
     plc.process_image_mut()
         .write_bit("%I0.0.0.0.1", true)
         .unwrap();
-    plc.process_image_mut().write_word("%IW2", 0xFFFE).unwrap(); // -2
+    plc.process_image_mut().write_word("%IW1", 0xFFFE).unwrap(); // -2
     plc.run_cycle().unwrap();
     assert_eq!(plc.read("sw").unwrap().to_literal(), "TRUE");
     assert_eq!(plc.read("level").unwrap().to_literal(), "-2");
@@ -53,11 +55,12 @@ fn moeller_addresses_map_to_their_last_two_fields() {
     assert!(io.read_bit("%Q0.0.0.1.7").unwrap());
     assert!(io.read_bit("%QX1.7").unwrap());
     assert_eq!(io.area(Area::Output)[1], 0x80);
-    assert_eq!(io.read_word("%QW4").unwrap(), 0xFFFE);
-    assert_eq!(io.read_dword("%QD8").unwrap(), (-2000i32) as u32);
-    assert_eq!(io.read_lword("%QL12").unwrap(), (-2000i64) as u64);
-    // Little-endian: the low byte first.
+    assert_eq!(io.read_word("%QW2").unwrap(), 0xFFFE);
+    assert_eq!(io.read_dword("%QD2").unwrap(), (-2000i32) as u32);
+    assert_eq!(io.read_lword("%QL2").unwrap(), (-2000i64) as u64);
+    // Little-endian: the low byte first; %QW2 is bytes 4-5, %QD2 8-11.
     assert_eq!(&io.area(Area::Output)[4..6], &[0xFE, 0xFF]);
+    assert_eq!(&io.area(Area::Output)[8..12], &(-2000i32).to_le_bytes());
     assert!(!io.read_bit("%M0.0.0.2.2").unwrap());
     // %IX0.1 is %I0.0.0.0.1, the input byte the host wrote.
     assert_eq!(io.area(Area::Input)[0], 0b10);
@@ -71,7 +74,7 @@ fn bulk_input_bytes_are_seen_by_the_program() {
         .copy_from_slice(&[0b10, 0, 0x34, 0x12]);
     plc.run_cycle().unwrap();
     assert_eq!(plc.read("level").unwrap().to_literal(), "4660");
-    assert_eq!(plc.process_image().read_word("%QW4").unwrap(), 0x1234);
+    assert_eq!(plc.process_image().read_word("%QW2").unwrap(), 0x1234);
     assert_eq!(plc.process_image().read_byte("%QB1").unwrap(), 0x80);
     assert!(plc.process_image().read_byte("%QX1.7").is_err()); // a bit address
 }
@@ -81,7 +84,7 @@ fn accesses_outside_an_area_or_of_the_wrong_width_are_typed_errors() {
     let mut plc = compile(MOELLER);
     let io = plc.process_image_mut();
     assert!(matches!(
-        io.read_word("%IW3"),
+        io.read_word("%IW2"),
         Err(AddressError::OutOfRange { area_size: 4, .. })
     ));
     assert!(matches!(
@@ -96,7 +99,7 @@ fn accesses_outside_an_area_or_of_the_wrong_width_are_typed_errors() {
         })
     ));
     assert!(matches!(
-        io.write_word("%QW4", 1),
+        io.write_word("%QW2", 1),
         Err(AddressError::NotWritable { .. })
     ));
     assert!(matches!(
@@ -111,8 +114,8 @@ fn accesses_outside_an_area_or_of_the_wrong_width_are_typed_errors() {
         io.read_bit("%I0.1.0.0.1"),
         Err(AddressError::LeadingField { value: 1, .. })
     ));
-    let msg = io.read_word("%IW3").unwrap_err().to_string();
-    assert!(msg.contains("%IW3") && msg.contains("4 bytes"), "{msg}");
+    let msg = io.read_word("%IW2").unwrap_err().to_string();
+    assert!(msg.contains("%IW2") && msg.contains("4 bytes"), "{msg}");
 }
 
 #[test]
@@ -131,14 +134,14 @@ fn inputs_are_latched_at_the_start_of_a_cycle() {
 #[test]
 fn outputs_are_published_at_the_end_of_the_cycle_only() {
     let mut plc = compile(MOELLER);
-    plc.process_image_mut().write_word("%IW2", 7).unwrap();
+    plc.process_image_mut().write_word("%IW1", 7).unwrap();
     plc.run_cycle().unwrap();
-    assert_eq!(plc.process_image().read_word("%QW4").unwrap(), 7);
+    assert_eq!(plc.process_image().read_word("%QW2").unwrap(), 7);
     // The new input is in the image, the output not yet.
-    plc.process_image_mut().write_word("%IW2", 8).unwrap();
-    assert_eq!(plc.process_image().read_word("%QW4").unwrap(), 7);
+    plc.process_image_mut().write_word("%IW1", 8).unwrap();
+    assert_eq!(plc.process_image().read_word("%QW2").unwrap(), 7);
     plc.run_cycle().unwrap();
-    assert_eq!(plc.process_image().read_word("%QW4").unwrap(), 8);
+    assert_eq!(plc.process_image().read_word("%QW2").unwrap(), 8);
 }
 
 #[test]
@@ -148,7 +151,7 @@ fn host_writes_by_name_reach_the_image_at_once() {
     assert!(plc.process_image().read_bit("%IX0.1").unwrap());
     assert_eq!(plc.read("sw").unwrap().to_literal(), "TRUE");
     plc.write("level", "-3").unwrap();
-    assert_eq!(plc.process_image().read_word("%IW2").unwrap(), 0xFFFD);
+    assert_eq!(plc.process_image().read_word("%IW1").unwrap(), 0xFFFD);
     plc.run_cycle().unwrap();
     assert_eq!(plc.read("copy").unwrap().to_literal(), "-3");
 }
@@ -204,18 +207,27 @@ fn overlapping_memory_variables_see_each_other_from_the_next_cycle() {
 #[test]
 fn typed_values_use_the_documented_encoding() {
     let src = "PROGRAM P
-        VAR r AT %ID0 : REAL; t AT %ID4 : TIME; out_r AT %QD0 : REAL; out_t AT %QD4 : TIME; END_VAR
+        VAR r AT %ID0 : REAL; t AT %ID1 : TIME; out_r AT %QD0 : REAL; out_t AT %QD1 : TIME;
+            neg AT %QD2 : TIME := T#-1ms; END_VAR
         out_r := r * 2.0; out_t := t + T#1s;
         END_PROGRAM";
     let mut plc = compile(src);
     let io = plc.process_image_mut();
     io.write_dword("%ID0", 1.25f32.to_bits()).unwrap();
-    io.write_dword("%ID4", 250).unwrap(); // TIME in milliseconds
+    io.write_dword("%ID1", 250).unwrap(); // TIME in milliseconds
     plc.run_cycle().unwrap();
     assert_eq!(plc.read("t").unwrap().to_literal(), "T#250ms");
     let io = plc.process_image();
     assert_eq!(f32::from_bits(io.read_dword("%QD0").unwrap()), 2.5);
-    assert_eq!(io.read_dword("%QD4").unwrap(), 1250);
+    assert_eq!(io.read_dword("%QD1").unwrap(), 1250);
+    // A negative TIME at %D: milliseconds modulo 2^32, as CODESYS' unsigned TIME.
+    assert_eq!(io.read_dword("%QD2").unwrap(), u32::MAX);
+    // A TIME past T#24d20h31m23s647ms read from the image stays positive.
+    plc.process_image_mut()
+        .write_dword("%ID1", 4_000_000_000)
+        .unwrap();
+    plc.run_cycle().unwrap();
+    assert_eq!(plc.read("t").unwrap().to_literal(), "T#46d7h6m40s");
 }
 
 #[test]

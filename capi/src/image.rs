@@ -19,7 +19,7 @@ pub const PLC_AREA_OUTPUT: c_int = 1;
 /// `PLC_AREA_MEMORY`: `%M`.
 pub const PLC_AREA_MEMORY: c_int = 2;
 
-fn area(code: c_int) -> Result<Area, Failure> {
+pub(crate) fn area(code: c_int) -> Result<Area, Failure> {
     match code {
         PLC_AREA_INPUT => Ok(Area::Input),
         PLC_AREA_OUTPUT => Ok(Area::Output),

@@ -12,12 +12,14 @@
 
 #![warn(missing_docs)]
 
+mod addressing;
 mod cycle;
 mod failure;
 mod forcing;
 mod guard;
 mod handles;
 mod image;
+mod image_tables;
 mod lifecycle;
 mod realtime;
 mod retain;
@@ -28,6 +30,10 @@ mod stop;
 mod text;
 mod vars;
 
+pub use addressing::{
+    PLC_ADDRESSING_BYTE, PLC_ADDRESSING_IEC, PLC_ADDRESSING_OPENPLC, plc_addressing,
+    plc_set_addressing,
+};
 pub use cycle::{
     plc_cycle, plc_cycle_time_ns, plc_fault_message, plc_is_faulted, plc_reset_cold,
     plc_reset_warm, plc_run_cycle, plc_time_ns,
@@ -42,6 +48,10 @@ pub use image::{
     plc_image_read_bit, plc_image_read_byte, plc_image_read_dword, plc_image_read_lword,
     plc_image_read_word, plc_image_write_area, plc_image_write_bit, plc_image_write_byte,
     plc_image_write_dword, plc_image_write_lword, plc_image_write_word,
+};
+pub use image_tables::{
+    PLC_WIDTH_BIT, PLC_WIDTH_BYTE, PLC_WIDTH_DWORD, PLC_WIDTH_LWORD, PLC_WIDTH_WORD,
+    plc_image_read_table, plc_image_table_size, plc_image_write_table,
 };
 pub use lifecycle::{
     PLC_ABI_VERSION, PlcOptions, PlcSource, plc_abi_version, plc_create, plc_free,

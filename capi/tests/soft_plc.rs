@@ -1,9 +1,10 @@
 //! The soft-PLC entry points of the C ABI, called as C would call them:
 //! the faulted state and the resets, forcing and soft writes, the process
 //! image, retained data, the watchdog and the stop token (an abort from
-//! another thread while a runaway cycle runs). For each, the failures C
-//! code can cause: NULL pointers, invalid and freed handles, bad
-//! addresses, wrong widths, read-only refusals, small buffers.
+//! another thread while a runaway cycle runs), the addressing convention.
+//! For each, the failures C code can cause: NULL pointers, invalid and
+//! freed handles, bad addresses, wrong widths, read-only refusals, small
+//! buffers.
 
 use plcrun_capi::status::*;
 use plcrun_capi::*;
@@ -14,10 +15,10 @@ const IO: &str = "\
 PROGRAM Io
 VAR
     sw AT %IX0.3 : BOOL;
-    level AT %IW2 : INT;
+    level AT %IW1 : INT;
     lamp AT %QX0.1 : BOOL;
-    copy AT %QW4 : INT;
-    big AT %QL8 : LINT;
+    copy AT %QW2 : INT;
+    big AT %QL1 : LINT;
     m AT %MD0 : DINT;
     n : DINT;
     z : DINT;
@@ -102,7 +103,7 @@ fn the_image_is_read_and_written_by_address() {
     let plc = create("io.st", IO);
     unsafe {
         assert_eq!(plc_image_write_bit(plc, c"%IX0.3".as_ptr(), true), PLC_OK);
-        assert_eq!(plc_image_write_word(plc, c"%IW2".as_ptr(), 21), PLC_OK);
+        assert_eq!(plc_image_write_word(plc, c"%IW1".as_ptr(), 21), PLC_OK);
         cycle(plc);
         let (mut bit, mut byte, mut word, mut dword, mut lword) = (false, 0u8, 0u16, 0u32, 0u64);
         assert_eq!(
@@ -110,7 +111,7 @@ fn the_image_is_read_and_written_by_address() {
             PLC_OK
         );
         assert_eq!(
-            plc_image_read_word(plc, c"%QW4".as_ptr(), &mut word),
+            plc_image_read_word(plc, c"%QW2".as_ptr(), &mut word),
             PLC_OK
         );
         assert_eq!(
@@ -118,11 +119,11 @@ fn the_image_is_read_and_written_by_address() {
             PLC_OK
         );
         assert_eq!(
-            plc_image_read_dword(plc, c"%QD4".as_ptr(), &mut dword),
+            plc_image_read_dword(plc, c"%QD1".as_ptr(), &mut dword),
             PLC_OK
         );
         assert_eq!(
-            plc_image_read_lword(plc, c"%ql8".as_ptr(), &mut lword),
+            plc_image_read_lword(plc, c"%ql1".as_ptr(), &mut lword),
             PLC_OK
         );
         assert_eq!((bit, byte, word, dword, lword), (true, 42, 42, 42, 1));
@@ -189,12 +190,12 @@ fn bad_addresses_wrong_widths_and_q_writes_are_refused() {
             PLC_E_NULL_ARGUMENT
         );
         assert_eq!(
-            plc_image_read_word(plc, c"%QW4".as_ptr(), null_mut()),
+            plc_image_read_word(plc, c"%QW2".as_ptr(), null_mut()),
             PLC_E_NULL_ARGUMENT
         );
         assert_eq!(plc_image_write_bit(plc, null(), true), PLC_E_NULL_ARGUMENT);
         assert_eq!(
-            plc_image_read_word(PlcHandle { id: 0 }, c"%QW4".as_ptr(), &mut word),
+            plc_image_read_word(PlcHandle { id: 0 }, c"%QW2".as_ptr(), &mut word),
             PLC_E_INVALID_HANDLE
         );
     }
@@ -214,7 +215,7 @@ fn whole_areas_are_copied_in_and_out() {
             })
             .collect();
         assert_eq!(sizes, [4, 16, 4]);
-        // %IW2 := 7 through the area, %IX0.3 := 1.
+        // %IW1 (bytes 2-3) := 7 through the area, %IX0.3 := 1.
         assert_eq!(
             plc_image_write_area(plc, PLC_AREA_INPUT, 0, [8u8, 0, 7, 0].as_ptr(), 4),
             PLC_OK
@@ -640,6 +641,7 @@ fn every_new_entry_point_refuses_an_invalid_or_freed_handle() {
     let plc = create("io.st", IO);
     assert_eq!(plc_free(plc), PLC_OK);
     let (mut count, mut bit, mut word) = (0usize, false, 0u16);
+    let mut code: c_int = -1;
     let mut byte = [0u8; 1];
     let mut buf = [0 as c_char; 8];
     for h in [plc, PlcHandle { id: 0 }, PlcHandle { id: u64::MAX }] {
@@ -663,8 +665,8 @@ fn every_new_entry_point_refuses_an_invalid_or_freed_handle() {
                     null_mut(),
                 ),
                 plc_image_read_bit(h, c"%QX0.1".as_ptr(), &mut bit),
-                plc_image_write_word(h, c"%IW2".as_ptr(), 1),
-                plc_image_read_word(h, c"%QW4".as_ptr(), &mut word),
+                plc_image_write_word(h, c"%IW1".as_ptr(), 1),
+                plc_image_read_word(h, c"%QW2".as_ptr(), &mut word),
                 plc_image_area_size(h, PLC_AREA_INPUT, &mut count),
                 plc_image_read_area(h, PLC_AREA_INPUT, 0, byte.as_mut_ptr(), 1),
                 plc_image_write_area(h, PLC_AREA_INPUT, 0, byte.as_ptr(), 1),
@@ -672,9 +674,197 @@ fn every_new_entry_point_refuses_an_invalid_or_freed_handle() {
                 plc_retain_restore(h, c"/tmp/never-read.json".as_ptr(), false, null_mut()),
                 plc_set_watchdog_ms(h, null(), 5),
                 plc_stop_token(h, &mut PlcStop { id: 0 }),
+                plc_set_addressing(h, PLC_ADDRESSING_OPENPLC),
+                plc_addressing(h, &mut code),
             ]
         };
-        assert_eq!(statuses, [PLC_E_INVALID_HANDLE; 18], "{:#x}", h.id);
+        assert_eq!(statuses, [PLC_E_INVALID_HANDLE; 20], "{:#x}", h.id);
     }
     assert!(!std::path::Path::new("/tmp/never-written.json").exists());
+}
+
+/// The warnings of a PLC as text.
+fn warnings(plc: PlcHandle) -> String {
+    let mut needed = 0usize;
+    assert_eq!(
+        unsafe { plc_warnings(plc, null_mut(), 0, &mut needed) },
+        PLC_E_BUFFER_TOO_SMALL
+    );
+    let mut buf = vec![0 as c_char; needed];
+    assert_eq!(
+        unsafe { plc_warnings(plc, buf.as_mut_ptr(), needed, null_mut()) },
+        PLC_OK
+    );
+    unsafe { CStr::from_ptr(buf.as_ptr()) }
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+const OPENPLC_STYLE: &str = "PROGRAM Tank
+VAR
+    pump AT %QX0.0 : BOOL;
+    level AT %QW0 : UINT;
+    echo AT %QW1 : UINT;
+    setpoint AT %MW0 : UINT;
+END_VAR
+pump := TRUE;
+level := 16#ABCD;
+echo := setpoint + 1;
+END_PROGRAM
+";
+
+#[test]
+fn the_addressing_convention_is_set_and_read_from_c() {
+    let plc = create("tank.st", OPENPLC_STYLE);
+    let mut code: c_int = -1;
+    unsafe {
+        // An ST source: iec, and %QW0 shares byte 0 with the coil.
+        assert_eq!(plc_addressing(plc, &mut code), PLC_OK);
+        assert_eq!(code, PLC_ADDRESSING_IEC);
+        assert!(warnings(plc).contains("W203"), "{}", warnings(plc));
+        assert_eq!(plc_set_addressing(plc, PLC_ADDRESSING_OPENPLC), PLC_OK);
+        assert_eq!(plc_addressing(plc, &mut code), PLC_OK);
+        assert_eq!(code, PLC_ADDRESSING_OPENPLC);
+        assert_eq!(warnings(plc), "");
+        assert_eq!(plc_image_write_word(plc, c"%MW0".as_ptr(), 41), PLC_OK);
+        cycle(plc);
+        let (mut level, mut echo, mut pump) = (0u16, 0u16, false);
+        assert_eq!(
+            plc_image_read_word(plc, c"%QW0".as_ptr(), &mut level),
+            PLC_OK
+        );
+        assert_eq!(
+            plc_image_read_word(plc, c"%QW1".as_ptr(), &mut echo),
+            PLC_OK
+        );
+        assert_eq!(
+            plc_image_read_bit(plc, c"%QX0.0".as_ptr(), &mut pump),
+            PLC_OK
+        );
+        assert_eq!((level, echo, pump), (0xABCD, 42, true));
+        // Under byte, %QW1 is bytes 1-2: the overlaps are back.
+        assert_eq!(plc_set_addressing(plc, PLC_ADDRESSING_BYTE), PLC_OK);
+        assert!(
+            warnings(plc).contains("byte addressing"),
+            "{}",
+            warnings(plc)
+        );
+        // Refusals.
+        assert_eq!(plc_set_addressing(plc, 3), PLC_E_INVALID_ARGUMENT);
+        assert!(
+            last_error().contains("PLC_ADDRESSING_OPENPLC 1"),
+            "{}",
+            last_error()
+        );
+        assert_eq!(plc_addressing(plc, null_mut()), PLC_E_NULL_ARGUMENT);
+        assert_eq!(plc_addressing(plc, &mut code), PLC_OK);
+        assert_eq!(code, PLC_ADDRESSING_BYTE);
+    }
+    plc_free(plc);
+    assert_eq!(
+        plc_set_addressing(plc, PLC_ADDRESSING_IEC),
+        PLC_E_INVALID_HANDLE
+    );
+}
+
+#[test]
+fn the_tables_of_each_size_are_copied_in_and_out() {
+    let plc = create("tank.st", OPENPLC_STYLE);
+    let mut size = 0usize;
+    unsafe {
+        assert_eq!(plc_set_addressing(plc, PLC_ADDRESSING_OPENPLC), PLC_OK);
+        let size_of = |area, width, size: &mut usize| {
+            assert_eq!(plc_image_table_size(plc, area, width, size), PLC_OK);
+            *size
+        };
+        assert_eq!(size_of(PLC_AREA_OUTPUT, PLC_WIDTH_BIT, &mut size), 1);
+        assert_eq!(size_of(PLC_AREA_OUTPUT, PLC_WIDTH_WORD, &mut size), 4);
+        assert_eq!(size_of(PLC_AREA_MEMORY, PLC_WIDTH_WORD, &mut size), 2);
+        // The area functions reach the byte table, empty here.
+        assert_eq!(plc_image_area_size(plc, PLC_AREA_OUTPUT, &mut size), PLC_OK);
+        assert_eq!(size, 0);
+        // %MW0 := 9 through its table; the program echoes 10 to %QW1.
+        assert_eq!(
+            plc_image_write_table(
+                plc,
+                PLC_AREA_MEMORY,
+                PLC_WIDTH_WORD,
+                0,
+                [9u8, 0].as_ptr(),
+                2
+            ),
+            PLC_OK
+        );
+        cycle(plc);
+        let mut words = [0u8; 4];
+        assert_eq!(
+            plc_image_read_table(
+                plc,
+                PLC_AREA_OUTPUT,
+                PLC_WIDTH_WORD,
+                0,
+                words.as_mut_ptr(),
+                4
+            ),
+            PLC_OK
+        );
+        assert_eq!(words, [0xCD, 0xAB, 10, 0]);
+        let mut coils = [0u8; 1];
+        assert_eq!(
+            plc_image_read_table(
+                plc,
+                PLC_AREA_OUTPUT,
+                PLC_WIDTH_BIT,
+                0,
+                coils.as_mut_ptr(),
+                1
+            ),
+            PLC_OK
+        );
+        assert_eq!(coils, [1]);
+        // Refusals.
+        assert_eq!(
+            plc_image_write_table(plc, PLC_AREA_OUTPUT, PLC_WIDTH_WORD, 0, words.as_ptr(), 2),
+            PLC_E_READ_ONLY
+        );
+        assert_eq!(
+            plc_image_read_table(
+                plc,
+                PLC_AREA_OUTPUT,
+                PLC_WIDTH_WORD,
+                3,
+                words.as_mut_ptr(),
+                2
+            ),
+            PLC_E_ADDRESS_OUT_OF_RANGE
+        );
+        assert!(
+            last_error().contains("%QW addresses (4 bytes)"),
+            "{}",
+            last_error()
+        );
+        assert_eq!(
+            plc_image_table_size(plc, PLC_AREA_OUTPUT, 5, &mut size),
+            PLC_E_INVALID_ARGUMENT
+        );
+        assert_eq!(
+            plc_image_table_size(plc, PLC_AREA_OUTPUT, PLC_WIDTH_WORD, null_mut()),
+            PLC_E_NULL_ARGUMENT
+        );
+        assert_eq!(
+            plc_image_read_table(plc, PLC_AREA_OUTPUT, PLC_WIDTH_WORD, 0, null_mut(), 2),
+            PLC_E_NULL_ARGUMENT
+        );
+        // Under iec every size of an area is the area.
+        assert_eq!(plc_set_addressing(plc, PLC_ADDRESSING_IEC), PLC_OK);
+        assert_eq!(size_of(PLC_AREA_OUTPUT, PLC_WIDTH_BIT, &mut size), 4);
+        assert_eq!(plc_image_area_size(plc, PLC_AREA_OUTPUT, &mut size), PLC_OK);
+        assert_eq!(size, 4);
+    }
+    plc_free(plc);
+    assert_eq!(
+        unsafe { plc_image_table_size(plc, PLC_AREA_INPUT, PLC_WIDTH_BIT, &mut size) },
+        PLC_E_INVALID_HANDLE
+    );
 }

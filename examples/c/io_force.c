@@ -18,10 +18,10 @@ static const char *const SOURCE =
     "PROGRAM Tank\n"
     "VAR\n"
     "    start AT %IX0.0 : BOOL;\n"
-    "    level AT %IW2 : INT;\n"
+    "    level AT %IW1 : INT;\n"
     "    pump AT %QX0.0 : BOOL;\n"
     "    alarm AT %QX0.1 : BOOL;\n"
-    "    shown AT %QW2 : INT;\n"
+    "    shown AT %QW1 : INT;\n"
     "END_VAR\n"
     "VAR CONSTANT high : INT := 80; END_VAR\n"
     "pump := start AND level < high;\n"
@@ -39,13 +39,13 @@ static void check(int status, const char *what) {
 /* One scan: inputs in, a cycle, outputs out. */
 static void scan(plc_handle plc, uint16_t level) {
     check(plc_image_write_bit(plc, "%IX0.0", true), "write start");
-    check(plc_image_write_word(plc, "%IW2", level), "write level");
+    check(plc_image_write_word(plc, "%IW1", level), "write level");
     check(plc_run_cycle(plc), "cycle");
     bool pump, alarm;
     uint16_t shown;
     check(plc_image_read_bit(plc, "%QX0.0", &pump), "read pump");
     check(plc_image_read_bit(plc, "%QX0.1", &alarm), "read alarm");
-    check(plc_image_read_word(plc, "%QW2", &shown), "read shown");
+    check(plc_image_read_word(plc, "%QW1", &shown), "read shown");
     printf("level=%u pump=%d alarm=%d shown=%u\n", (unsigned)level, pump, alarm,
            (unsigned)shown);
 }
@@ -82,7 +82,8 @@ int main(void) {
         scan(plc, level);
     }
 
-    /* The whole output area as bytes (%QW2 is little-endian). */
+    /* The whole output area as bytes: %QW1 is bytes 2-3 (words are numbered
+     * by word, the default `iec` addressing), little-endian. */
     uint8_t outputs[4];
     check(plc_image_read_area(plc, PLC_AREA_OUTPUT, 0, outputs, sizeof outputs), "read %Q");
     printf("%%Q bytes: %02x %02x %02x %02x\n", outputs[0], outputs[1], outputs[2], outputs[3]);

@@ -214,6 +214,12 @@ pub struct ReadingArgs {
     /// detect (UTF-8 if valid, else Windows-1252 with warning W020).
     #[arg(long, value_name = "ENCODING", default_value = "detect")]
     pub encoding: plcrun::SourceEncoding,
+    /// How direct addresses are numbered: iec (CODESYS: %QW1 is bytes
+    /// 2-3), openplc (matiec: %QX, %QW, %MW, %MD, %ML separate tables),
+    /// byte (S7: %QW1 is bytes 1-2). Default: byte for S7-200 STL, openplc
+    /// for PLCopen XML from the OpenPLC Editor or Beremiz, iec otherwise.
+    #[arg(long, value_name = "CONVENTION")]
+    pub addressing: Option<plcrun::Addressing>,
 }
 
 /// `plcrun check FILES...`: parse and check only.

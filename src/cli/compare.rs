@@ -143,6 +143,7 @@ impl Program {
                 program: program.clone(),
                 strict: reading.strict,
                 encoding: reading.encoding,
+                addressing: reading.addressing,
                 ..Options::default()
             },
         })

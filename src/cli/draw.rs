@@ -31,6 +31,7 @@ pub fn draw(args: &DrawArgs) -> i32 {
         &CheckOptions {
             grafcet: true,
             strict: args.reading.strict,
+            addressing: args.reading.addressing,
             ..CheckOptions::default()
         },
     );

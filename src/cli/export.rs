@@ -21,6 +21,7 @@ pub fn export(args: &ExportArgs) -> i32 {
     if args.reading.strict {
         let options = CheckOptions {
             strict: true,
+            addressing: args.reading.addressing,
             ..CheckOptions::default()
         };
         diags.extend(check_sources(&sources, &options).diagnostics);

@@ -32,6 +32,7 @@ pub fn check(args: &CheckArgs) -> i32 {
         grafcet: args.grafcet,
         max_data_bytes: (args.max_data_mib as usize) << 20,
         strict: args.reading.strict,
+        addressing: args.reading.addressing,
     };
     let report = check_sources(&sources, &options);
     diags.extend(report.diagnostics);
@@ -76,6 +77,7 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         strict: args.reading.strict,
         encoding: args.reading.encoding,
         optimize: !args.no_optimize,
+        addressing: args.reading.addressing,
         ..Options::default()
     })
 }

@@ -65,6 +65,7 @@ fn options(args: &TestArgs) -> Result<TestOptions, String> {
         cycle_time,
         watchdog,
         strict: args.reading.strict,
+        addressing: args.reading.addressing,
     })
 }
 

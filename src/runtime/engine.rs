@@ -10,6 +10,7 @@ use super::process_image::ProcessImage;
 use super::scheduler::Scheduler;
 use super::stop::StopHandle;
 use super::watchdog::{Watchdog, WatchdogTrip};
+use crate::address::Addressing;
 use crate::diagnostics::Diagnostics;
 use crate::driver::{self, CompileOptions};
 use crate::ir::image::Image;
@@ -55,6 +56,13 @@ pub struct Options {
     /// on the plain instruction forms only, with the same results: the
     /// fuzzer compares both (docs/robustness.md, "Fuzzing").
     pub optimize: bool,
+    /// How direct addresses are numbered (`--addressing`; see
+    /// docs/runtime.md, "Addressing"): which bytes of the process image
+    /// `%QW1` is, and which located variables overlap (W203). `None`
+    /// (the default) chooses from the sources: `byte` for S7-200 STL,
+    /// `openplc` for a PLCopen project from the OpenPLC Editor or
+    /// Beremiz, `iec` otherwise.
+    pub addressing: Option<Addressing>,
 }
 
 impl Default for Options {
@@ -69,6 +77,7 @@ impl Default for Options {
             strict: false,
             encoding: SourceEncoding::Detect,
             optimize: true,
+            addressing: None,
         }
     }
 }
@@ -289,12 +298,19 @@ impl Plc {
             max_data_bytes: options.max_data_bytes,
             strict: options.strict,
             unoptimized: !options.optimize,
+            addressing: options
+                .addressing
+                .unwrap_or_else(|| driver::addressing_of(&sources)),
         };
         let image = driver::compile(&sources, &build, &mut diags);
         match image {
-            Some(image) if !diags.has_errors() => {
-                Ok(Plc::from_image(image, sources, diags, options))
-            }
+            Some(image) if !diags.has_errors() => Ok(Plc::from_image(
+                image,
+                sources,
+                diags,
+                options,
+                build.addressing,
+            )),
             _ => Err(CompileError {
                 diagnostics: diags,
                 sources,
@@ -307,6 +323,7 @@ impl Plc {
         sources: SourceMap,
         warnings: Diagnostics,
         options: &Options,
+        addressing: Addressing,
     ) -> Plc {
         let mut machine = Machine::new(&image);
         let stop = StopHandle::interrupting(machine.interrupt().clone());
@@ -321,7 +338,7 @@ impl Plc {
             machine.host = HostLink(Some(code.clone()));
         }
         let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
-        let io = ProcessImage::new(&image, &machine.mem);
+        let io = ProcessImage::new(&image, &machine.mem, addressing);
         Plc {
             image,
             machine,

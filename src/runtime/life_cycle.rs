@@ -80,7 +80,11 @@ impl Plc {
         );
         // The image follows the variables back to their initial values, so
         // that it does not publish or latch stale bits afterwards.
-        self.io = super::process_image::ProcessImage::new(&self.image, &self.machine.mem);
+        self.io = super::process_image::ProcessImage::new(
+            &self.image,
+            &self.machine.mem,
+            self.io.addressing(),
+        );
         self.cycle = 0;
         self.faulted = None;
         self.stop.clear();

@@ -24,8 +24,9 @@
 //! - [`watchdog`]: per-task cycle-time limits and the thread enforcing them;
 //! - [`retain`]: RETAIN and PERSISTENT values kept over a restart in a file;
 //! - [`stimulus`]: reading stimulus CSV files and deciding which rows are due;
-//! - [`process_image`], [`io_address`]: the `%I`/`%Q`/`%M` byte areas and
-//!   how direct addresses map into them;
+//! - [`process_image`]: the `%I`/`%Q`/`%M` byte tables exchanged with the
+//!   located variables (addresses and conventions: `crate::address`;
+//!   `addressing`: changing the convention of a compiled PLC);
 //! - [`forcing`]: forced variables and soft writes;
 //! - [`modbus`]: a Modbus TCP server on the process image;
 //! - [`variables`]: the list of variables with their types, and chart step
@@ -34,6 +35,7 @@
 //! - [`trace_vcd`]: the trace as a VCD waveform.
 
 pub mod access;
+mod addressing;
 mod byte_view;
 pub mod change_report;
 pub mod clock;
@@ -42,7 +44,6 @@ pub mod engine;
 pub mod fault_path;
 pub mod forcing;
 pub mod host_blocks;
-pub mod io_address;
 pub mod life_cycle;
 pub mod live_stimulus;
 pub mod modbus;

@@ -132,7 +132,7 @@ pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError
         let key = normalize(&root);
         // The text as declared, else the same place in the process image
         // (`%IX0.1` names a variable declared at `%I0.0.0.0.1`).
-        let place = super::io_address::parse(&root).ok();
+        let place = crate::address::parse(&root).ok();
         let r = image
             .globals
             .iter()
@@ -142,7 +142,7 @@ pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError
                 image.globals.iter().find(|r| {
                     r.location
                         .as_deref()
-                        .is_some_and(|l| super::io_address::parse(l).ok() == Some(place))
+                        .is_some_and(|l| crate::address::parse(l).ok() == Some(place))
                 })
             })
             .ok_or_else(|| VarError::NotLocated {

@@ -118,8 +118,8 @@ impl Plc {
     /// the watchdog (the tasks are the same) stay, and so does the
     /// machine's interrupt word, which stop handles already given out and
     /// the watchdog thread hold; the process image is rebuilt for the new
-    /// located variables, the forces are `forces` (rebound to the new
-    /// version).
+    /// located variables under the new version's addressing convention,
+    /// the forces are `forces` (rebound to the new version).
     fn take_over(&mut self, mut new: Plc, forces: Forces) {
         std::mem::swap(&mut self.image, &mut new.image);
         std::mem::swap(&mut self.machine.mem, &mut new.machine.mem);
@@ -134,7 +134,9 @@ impl Plc {
         std::mem::swap(&mut self.warnings, &mut new.warnings);
         self.id = new.id;
         self.host_code = new.host_code.take();
-        self.io = ProcessImage::new(&self.image, &self.machine.mem);
+        // The new version's addressing convention, under which its
+        // warnings (W203) were judged.
+        self.io = ProcessImage::new(&self.image, &self.machine.mem, new.io.addressing());
         self.forces = forces;
     }
 }

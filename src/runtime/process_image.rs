@@ -1,5 +1,12 @@
-//! The process image: the `%I`, `%Q` and `%M` areas as byte buffers that
-//! a host exchanges with its I/O between cycles.
+//! The process image: the `%I`, `%Q` and `%M` byte tables that a host
+//! exchanges with its I/O between cycles.
+//!
+//! Which bytes an address names follows the image's [`Addressing`]
+//! (`docs/runtime.md`, "Addressing"): under `iec` and `byte` each area is
+//! one table, under `openplc` each area has one table per size (`%QX`,
+//! `%QB`, `%QW`, `%QD`, `%QL`). The convention is applied once, when the
+//! image is built: each located variable keeps its table and byte, and the
+//! cycle copies bytes from there.
 //!
 //! Every located variable of the program (`AT %IX0.1`, `%QW4`, a direct
 //! address used in code) keeps its own slot, which the program reads and
@@ -12,21 +19,24 @@
 //!   changed through an overlapping variable are picked up the same way);
 //! - at the end of the cycle, each `%Q` and `%M` variable whose value the
 //!   cycle changed is written into the image (outputs published). Where
-//!   variables overlap (`%MW0` and `%MX0.1`), those that changed are
-//!   written widest first, so that a bit written by the program lands on
-//!   top of the word around it; the other overlapping variables take the
-//!   merged bytes at the next cycle start.
+//!   variables overlap (`%MW0` and `%MX0.1` under `iec`), those that
+//!   changed are written widest first, so that a bit written by the
+//!   program lands on top of the word around it; the other overlapping
+//!   variables take the merged bytes at the next cycle start.
 //!
 //! Multi-byte values are little-endian (least significant byte first), as
 //! CODESYS lays out its image on x86 and ARM: a host on those machines can
 //! copy words straight out of the byte slices. `TIME` at a `%D` address
-//! is its value in milliseconds as a signed 32-bit integer (CODESYS' TIME);
-//! at an `%L` address, nanoseconds as a signed 64-bit integer.
+//! is its value in milliseconds as an unsigned 32-bit integer, as CODESYS
+//! stores TIME (T#0ms to T#49d17h2m47s295ms); a negative TIME, or one
+//! past that, is stored modulo 2^32 ms, as 32-bit unsigned arithmetic
+//! wraps (T#-1ms becomes 4 294 967 295, read back as T#49d17h2m47s295ms).
+//! At an `%L` address, TIME is nanoseconds as a signed 64-bit integer.
 //!
 //! A program without located variables has an empty image and pays one
 //! test per cycle for it.
 
-use super::io_address::{self, AddressError, Area, IoAddress, Width};
+use crate::address::{self, AddressError, Addressing, Area, ImageSpot, ImageTable, Width};
 use crate::elementary::{ElemType, Family};
 use crate::ir::image::Image;
 
@@ -39,19 +49,25 @@ struct Binding {
     /// Its slot in PLC memory.
     slot: u32,
     /// Where it sits in the image.
-    at: IoAddress,
+    at: ImageSpot,
+    /// `at.table.index()`, computed once.
+    table: usize,
     /// Its elementary type (for the encoding).
     ty: ElemType,
     /// Its bits as last exchanged with the image (image encoding).
     seen: u64,
 }
 
-/// The `%I`, `%Q` and `%M` byte areas of a PLC (see the module
-/// documentation for when they are exchanged with the program).
+/// The `%I`, `%Q` and `%M` byte tables of a PLC (see the module
+/// documentation for their layout and for when they are exchanged with
+/// the program).
 #[derive(Debug, Clone, Default)]
 pub struct ProcessImage {
-    /// `%I`, `%Q`, `%M`, each as long as the highest address used.
-    areas: [Vec<u8>; 3],
+    /// How addresses are numbered.
+    addressing: Addressing,
+    /// The tables by [`ImageTable::index`], each as long as the highest
+    /// address used in it (those the convention does not use stay empty).
+    tables: [Vec<u8>; ImageTable::COUNT],
     /// Located variables, widest first, then by area and address.
     bindings: Vec<Binding>,
     /// `(slot, binding index)` sorted by slot.
@@ -61,9 +77,13 @@ pub struct ProcessImage {
 }
 
 impl ProcessImage {
-    /// The image of `image`'s located variables, filled from `memory`.
-    pub(crate) fn new(image: &Image, memory: &[u64]) -> ProcessImage {
-        let mut io = ProcessImage::default();
+    /// The image of `image`'s located variables under `addressing`,
+    /// filled from `memory`.
+    pub(crate) fn new(image: &Image, memory: &[u64], addressing: Addressing) -> ProcessImage {
+        let mut io = ProcessImage {
+            addressing,
+            ..ProcessImage::default()
+        };
         let mut slots: Vec<u32> = Vec::new();
         for r in &image.globals {
             let Some(text) = &r.location else { continue };
@@ -74,10 +94,11 @@ impl ProcessImage {
             let Some(ty) = image.types.scalar(r.ty) else {
                 continue;
             };
-            match io_address::parse(text) {
+            match address::parse(text).and_then(|a| addressing.spot(&a)) {
                 Ok(at) => io.bindings.push(Binding {
                     slot: r.addr,
                     at,
+                    table: at.table.index(),
                     ty,
                     seen: 0,
                 }),
@@ -87,21 +108,21 @@ impl ProcessImage {
         io.bindings.sort_by_key(|b| {
             (
                 std::cmp::Reverse(b.at.width.bytes()),
-                b.at.area.index(),
+                b.table,
                 b.at.byte,
                 b.at.bit,
             )
         });
         for b in &io.bindings {
-            let area = &mut io.areas[b.at.area.index()];
-            if area.len() < b.at.end() {
-                area.resize(b.at.end(), 0);
+            let table = &mut io.tables[b.table];
+            if table.len() < b.at.end() {
+                table.resize(b.at.end(), 0);
             }
         }
         for i in 0..io.bindings.len() {
             let b = &io.bindings[i];
             let bits = encode(b, memory[b.slot as usize]);
-            put(&mut io.areas[b.at.area.index()], &b.at, bits);
+            put(&mut io.tables[b.table], &b.at, bits);
             io.bindings[i].seen = bits;
         }
         io.by_slot = io
@@ -125,7 +146,7 @@ impl ProcessImage {
     /// them.
     pub(crate) fn latch(&mut self, memory: &mut [u64]) {
         for b in &mut self.bindings {
-            let bits = get(&self.areas[b.at.area.index()], &b.at);
+            let bits = get(&self.tables[b.table], &b.at);
             if bits != b.seen {
                 b.seen = bits;
                 memory[b.slot as usize] = decode(b, bits);
@@ -137,13 +158,13 @@ impl ProcessImage {
     /// written into the image.
     pub(crate) fn publish(&mut self, memory: &[u64]) {
         for b in &mut self.bindings {
-            if b.at.area == Area::Input {
+            if b.at.table.area == Area::Input {
                 continue;
             }
             let bits = encode(b, memory[b.slot as usize]);
             if bits != b.seen {
                 b.seen = bits;
-                put(&mut self.areas[b.at.area.index()], &b.at, bits);
+                put(&mut self.tables[b.table], &b.at, bits);
             }
         }
     }
@@ -159,32 +180,66 @@ impl ProcessImage {
             let b = &mut self.bindings[self.by_slot[k].1];
             let bits = encode(b, raw);
             b.seen = bits;
-            put(&mut self.areas[b.at.area.index()], &b.at, bits);
+            put(&mut self.tables[b.table], &b.at, bits);
         }
     }
 
-    /// The bytes of one area (as long as the highest address the program
-    /// uses there; empty when it uses none).
-    pub fn area(&self, area: Area) -> &[u8] {
-        &self.areas[area.index()]
+    /// How this image numbers addresses.
+    pub fn addressing(&self) -> Addressing {
+        self.addressing
     }
 
-    /// The bytes of any area, `%Q` included, for the crate's own servers
+    /// The bytes holding `width`-sized addresses of `area`: the whole
+    /// area under `iec` and `byte`, that size's own table under `openplc`
+    /// (`table(Area::Output, Width::Word)` is the `%QW` table, word `n` at
+    /// bytes `2n`, `2n+1`). As long as the highest address the program
+    /// uses there; empty when it uses none.
+    pub fn table(&self, area: Area, width: Width) -> &[u8] {
+        &self.tables[self.addressing.table(area, width).index()]
+    }
+
+    /// The bytes of `width`-sized addresses of `%I` or `%M`, writable by
+    /// the host (the program sees them at the start of the next cycle);
+    /// `None` for `%Q`, which the program writes.
+    pub fn table_mut(&mut self, area: Area, width: Width) -> Option<&mut [u8]> {
+        if area == Area::Output {
+            return None;
+        }
+        Some(&mut self.tables[self.addressing.table(area, width).index()])
+    }
+
+    /// The bytes of one area: under `iec` and `byte` the whole area, under
+    /// `openplc` its table of byte addresses (`%QB`; the other sizes are
+    /// in [`table`](Self::table)).
+    pub fn area(&self, area: Area) -> &[u8] {
+        self.table(area, Width::Byte)
+    }
+
+    /// The bytes of any table, `%Q` included, for the crate's own servers
     /// (a Modbus client writes coils and holding registers, which are
     /// `%Q`); like a host write, the program sees them at the next cycle.
-    pub(crate) fn area_bytes_mut(&mut self, area: Area) -> &mut [u8] {
-        &mut self.areas[area.index()]
+    pub(crate) fn table_bytes_mut(&mut self, table: ImageTable) -> &mut [u8] {
+        &mut self.tables[table.index()]
     }
 
-    /// The `%I` bytes, for a host that copies its inputs in bulk. The
-    /// program sees them at the start of the next cycle.
+    /// The bytes of any table, by its identity.
+    pub(crate) fn table_bytes(&self, table: ImageTable) -> &[u8] {
+        &self.tables[table.index()]
+    }
+
+    /// The `%I` bytes ([`area`](Self::area)), for a host that copies its
+    /// inputs in bulk. The program sees them at the start of the next
+    /// cycle.
     pub fn inputs_mut(&mut self) -> &mut [u8] {
-        &mut self.areas[Area::Input.index()]
+        let t = self.addressing.table(Area::Input, Width::Byte);
+        &mut self.tables[t.index()]
     }
 
-    /// The `%M` bytes, writable by the host like `%I`.
+    /// The `%M` bytes ([`area`](Self::area)), writable by the host like
+    /// `%I`.
     pub fn memory_mut(&mut self) -> &mut [u8] {
-        &mut self.areas[Area::Memory.index()]
+        let t = self.addressing.table(Area::Memory, Width::Byte);
+        &mut self.tables[t.index()]
     }
 
     /// Located variables whose address has no place in the image (a
@@ -195,16 +250,23 @@ impl ProcessImage {
     }
 
     /// Maps `text` for an access of `width`, checking it lies inside its
-    /// area.
-    fn locate(&self, text: &str, width: Width) -> Result<IoAddress, AddressError> {
-        let at = io_address::parse(text)?;
+    /// table.
+    fn locate(&self, text: &str, width: Width) -> Result<ImageSpot, AddressError> {
+        let at = address::parse(text)?;
         if at.width != width {
             return Err(AddressError::WrongWidth {
                 text: text.to_string(),
                 expected: width,
             });
         }
-        let size = self.areas[at.area.index()].len();
+        let at = self
+            .addressing
+            .spot(&at)
+            .map_err(|_| AddressError::OutOfRange {
+                text: text.to_string(),
+                area_size: 0,
+            })?;
+        let size = self.tables[at.table.index()].len();
         if at.end() > size {
             return Err(AddressError::OutOfRange {
                 text: text.to_string(),
@@ -215,9 +277,9 @@ impl ProcessImage {
     }
 
     /// Maps `text` for a host write of `width` (`%I` and `%M` only).
-    fn locate_writable(&self, text: &str, width: Width) -> Result<IoAddress, AddressError> {
+    fn locate_writable(&self, text: &str, width: Width) -> Result<ImageSpot, AddressError> {
         let at = self.locate(text, width)?;
-        if at.area == Area::Output {
+        if at.table.area == Area::Output {
             return Err(AddressError::NotWritable {
                 text: text.to_string(),
             });
@@ -227,12 +289,12 @@ impl ProcessImage {
 
     fn read(&self, text: &str, width: Width) -> Result<u64, AddressError> {
         let at = self.locate(text, width)?;
-        Ok(get(&self.areas[at.area.index()], &at))
+        Ok(get(&self.tables[at.table.index()], &at))
     }
 
     fn write(&mut self, text: &str, width: Width, bits: u64) -> Result<(), AddressError> {
         let at = self.locate_writable(text, width)?;
-        put(&mut self.areas[at.area.index()], &at, bits);
+        put(&mut self.tables[at.table.index()], &at, bits);
         Ok(())
     }
 
@@ -246,7 +308,7 @@ impl ProcessImage {
         self.read(address, Width::Byte).map(|b| b as u8)
     }
 
-    /// Reads a word (`%QW4`: bytes 4 and 5, little-endian).
+    /// Reads a word (`%QW4`: bytes 8 and 9 under `iec`, little-endian).
     pub fn read_word(&self, address: &str) -> Result<u16, AddressError> {
         self.read(address, Width::Word).map(|b| b as u16)
     }
@@ -302,7 +364,7 @@ impl super::engine::Plc {
 }
 
 /// The bits at `at` (little-endian for several bytes).
-fn get(area: &[u8], at: &IoAddress) -> u64 {
+fn get(area: &[u8], at: &ImageSpot) -> u64 {
     match at.width {
         Width::Bit => u64::from(area[at.byte] >> at.bit & 1),
         w => {
@@ -314,7 +376,7 @@ fn get(area: &[u8], at: &IoAddress) -> u64 {
 }
 
 /// Writes `bits` at `at`.
-fn put(area: &mut [u8], at: &IoAddress, bits: u64) {
+fn put(area: &mut [u8], at: &ImageSpot, bits: u64) {
     match at.width {
         Width::Bit => {
             let mask = 1u8 << at.bit;
@@ -333,8 +395,9 @@ fn encode(b: &Binding, raw: u64) -> u64 {
     let bits = (b.at.width.bytes() * 8) as u32;
     match b.at.width {
         Width::Bit => raw & 1,
+        // Milliseconds modulo 2^32 (see the module documentation).
         Width::Dword if b.ty.family() == Family::Duration => {
-            u64::from(((raw as i64) / NS_PER_MS) as i32 as u32)
+            u64::from(((raw as i64) / NS_PER_MS) as u32)
         }
         Width::Lword => raw,
         _ => raw & ((1u64 << bits) - 1),
@@ -347,8 +410,9 @@ fn decode(b: &Binding, bits: u64) -> u64 {
     match b.at.width {
         Width::Bit => bits & 1,
         Width::Lword => bits,
+        // Unsigned milliseconds, as CODESYS' TIME.
         Width::Dword if b.ty.family() == Family::Duration => {
-            ((bits as u32 as i32 as i64) * NS_PER_MS) as u64
+            (i64::from(bits as u32) * NS_PER_MS) as u64
         }
         _ if b.ty.is_signed_int() => {
             let shift = 64 - width;
@@ -362,10 +426,18 @@ fn decode(b: &Binding, bits: u64) -> u64 {
 mod tests {
     use super::*;
 
+    fn spot(text: &str) -> ImageSpot {
+        Addressing::Iec
+            .spot(&address::parse(text).unwrap())
+            .unwrap()
+    }
+
     fn binding(text: &str, ty: ElemType) -> Binding {
+        let at = spot(text);
         Binding {
             slot: 0,
-            at: io_address::parse(text).unwrap(),
+            at,
+            table: at.table.index(),
             ty,
             seen: 0,
         }
@@ -379,7 +451,8 @@ mod tests {
             ("%IW0", ElemType::Int, (-1200i64) as u64),
             ("%IW0", ElemType::Word, 0xBEEF),
             ("%ID0", ElemType::Real, u64::from(1.5f32.to_bits())),
-            ("%ID0", ElemType::Time, (-250 * NS_PER_MS) as u64),
+            ("%ID0", ElemType::Time, (250 * NS_PER_MS) as u64),
+            ("%ID0", ElemType::Time, (u32::MAX as i64 * NS_PER_MS) as u64),
             ("%IL0", ElemType::Lreal, 2.5f64.to_bits()),
             ("%IL0", ElemType::Lint, (-7i64) as u64),
         ];
@@ -390,13 +463,28 @@ mod tests {
     }
 
     #[test]
+    fn a_negative_time_at_a_double_word_wraps_to_unsigned_milliseconds() {
+        let b = binding("%QD0", ElemType::Time);
+        assert_eq!(encode(&b, (-NS_PER_MS) as u64), u64::from(u32::MAX));
+        assert_eq!(
+            encode(&b, (-250 * NS_PER_MS) as u64),
+            u64::from(u32::MAX - 249)
+        );
+        assert_eq!(
+            decode(&b, u64::from(u32::MAX)),
+            (i64::from(u32::MAX) * NS_PER_MS) as u64
+        );
+    }
+
+    #[test]
     fn words_are_little_endian_and_bits_count_from_the_least_significant() {
         let mut area = vec![0u8; 4];
-        put(&mut area, &io_address::parse("%IW1").unwrap(), 0x1234);
-        assert_eq!(area, [0, 0x34, 0x12, 0]);
-        put(&mut area, &io_address::parse("%IX3.7").unwrap(), 1);
-        assert_eq!(area[3], 0x80);
-        assert_eq!(get(&area, &io_address::parse("%IX1.2").unwrap()), 1);
-        assert_eq!(get(&area, &io_address::parse("%ID0").unwrap()), 0x8012_3400);
+        put(&mut area, &spot("%IB1"), 0x34);
+        put(&mut area, &spot("%IW1"), 0x1234);
+        assert_eq!(area, [0, 0x34, 0x34, 0x12]);
+        put(&mut area, &spot("%IX3.7"), 1);
+        assert_eq!(area[3], 0x92);
+        assert_eq!(get(&area, &spot("%IX1.2")), 1);
+        assert_eq!(get(&area, &spot("%ID0")), 0x9234_3400);
     }
 }

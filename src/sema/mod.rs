@@ -112,6 +112,9 @@ pub struct CompileOptions {
     /// and no bounds proofs (`Options::optimize` off), so that a program
     /// can be run both ways and the traces compared.
     pub unoptimized: bool,
+    /// How direct addresses are numbered: decides which located
+    /// variables overlap (W203).
+    pub addressing: crate::address::Addressing,
 }
 
 /// Default limit of a program's data: 512 MiB (one instance or structure

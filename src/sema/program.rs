@@ -26,6 +26,8 @@ pub(crate) struct Program {
     pub(super) data_limit_slots: usize,
     /// Located addresses (`%IX0.1`) with their slot and type.
     pub located: IndexMap<String, (u32, TypeId)>,
+    /// Where each entry of `located` was first written (same order).
+    pub located_spans: Vec<Span>,
     /// String variables and temporaries (index = string id).
     pub strings: Vec<StringInit>,
     /// Code blocks (index = code number).
@@ -162,6 +164,7 @@ impl Program {
         }
         let addr = self.alloc_abs(diags, 1);
         self.located.insert(key, (addr, ty));
+        self.located_spans.push(a.span);
         Some(addr)
     }
 }

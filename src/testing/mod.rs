@@ -32,6 +32,9 @@ pub struct TestOptions {
     /// Pure IEC 61131-3: every compatibility-extension warning (W300-W399)
     /// is an error (default false).
     pub strict: bool,
+    /// How direct addresses are numbered (`--addressing`); `None` (the
+    /// default) chooses from the sources, as [`crate::Options::addressing`].
+    pub addressing: Option<crate::address::Addressing>,
 }
 
 impl Default for TestOptions {
@@ -41,6 +44,7 @@ impl Default for TestOptions {
             cycle_time: 10_000_000,
             watchdog: Some(Duration::from_secs(1)),
             strict: false,
+            addressing: None,
         }
     }
 }

@@ -65,6 +65,7 @@ fn compile(
         program: Some(program),
         watchdog: options.watchdog,
         strict: options.strict,
+        addressing: options.addressing,
         hosts,
         ..Options::default()
     };

@@ -9,8 +9,8 @@
 use super::mapping::{ModbusTable, Tables, for_each_byte_write};
 use super::server::Shared;
 use super::stats::bump;
+use crate::address::ImageTable;
 use crate::runtime::engine::Plc;
-use crate::runtime::io_address::Area;
 use crate::runtime::session::Session;
 use std::sync::Arc;
 use std::sync::mpsc::Receiver;
@@ -67,9 +67,14 @@ impl ModbusExchange {
     /// them (forced variables keep their forced values). Never blocks.
     pub fn exchange(&mut self, plc: &mut Plc) -> ExchangeReport {
         let image = plc.process_image_mut();
-        for area in [Area::Input, Area::Output, Area::Memory] {
-            let from = image.area(area);
-            let to = self.shadow.area_mut(area);
+        let addressing = image.addressing();
+        if self.shadow.addressing() != addressing {
+            // The first exchange with a PLC of another convention.
+            self.shadow = Tables::new(addressing);
+        }
+        for table in ImageTable::all() {
+            let from = image.table_bytes(table);
+            let to = self.shadow.table_mut(table);
             let n = from.len().min(to.len());
             to[..n].copy_from_slice(&from[..n]);
         }
@@ -86,14 +91,15 @@ impl ModbusExchange {
             };
             let shadow = &mut self.shadow;
             for_each_byte_write(
+                addressing,
                 write.table,
                 write.start,
                 write.count,
                 &write.data,
-                |area, byte, mask, bits| {
+                |table, byte, mask, bits| {
                     let put = |b: &mut u8| *b = (*b & !mask) | (bits & mask);
-                    put(&mut shadow.area_mut(area)[byte]);
-                    if let Some(b) = image.area_bytes_mut(area).get_mut(byte) {
+                    put(&mut shadow.table_mut(table)[byte]);
+                    if let Some(b) = image.table_bytes_mut(table).get_mut(byte) {
                         put(b);
                     }
                 },

@@ -1,7 +1,8 @@
 //! A Modbus TCP server on the process image, OpenPLC's way: coils are
 //! `%QX`, discrete inputs `%IX`, input registers `%IW`, holding registers
-//! `%QW` then `%MW`, `%MD`, `%ML` (the table and every difference from
-//! OpenPLC are in `docs/modbus.md`).
+//! `%QW` then `%MW`, `%MD`, `%ML`, numbered as the image's addressing
+//! convention says (the table and every difference from OpenPLC are in
+//! `docs/modbus.md`).
 //!
 //! - [`mapping`]: which image bytes each Modbus address is;
 //! - [`server`]: the listening socket and its threads, [`ModbusServer`];

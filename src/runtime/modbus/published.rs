@@ -42,22 +42,23 @@ impl Published {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::runtime::io_address::Area;
+    use crate::address::{Addressing, Area, Width};
 
     #[test]
     fn a_reader_holding_the_back_buffer_makes_the_publish_wait_a_cycle() {
         let p = Published::default();
         let mut t = Tables::default();
-        t.area_mut(Area::Output)[0] = 1;
+        let q = Addressing::Iec.table(Area::Output, Width::Byte);
+        t.table_mut(q)[0] = 1;
         assert!(p.try_publish(&t));
-        assert_eq!(p.read(|t| t.area(Area::Output)[0]), 1);
+        assert_eq!(p.read(|t| t.table(q)[0]), 1);
         // A reader still on buffer 0 (the old one) blocks the next publish.
         let old = p.buffers[0].read().unwrap();
-        t.area_mut(Area::Output)[0] = 2;
+        t.table_mut(q)[0] = 2;
         assert!(!p.try_publish(&t));
-        assert_eq!(p.read(|t| t.area(Area::Output)[0]), 1);
+        assert_eq!(p.read(|t| t.table(q)[0]), 1);
         drop(old);
         assert!(p.try_publish(&t));
-        assert_eq!(p.read(|t| t.area(Area::Output)[0]), 2);
+        assert_eq!(p.read(|t| t.table(q)[0]), 2);
     }
 }

@@ -33,6 +33,6 @@ impl Plc {
         let now = self.time();
         layout.put(&kept, &mut self.machine, now, None);
         // Retained located variables: the image shows their kept values.
-        self.io = ProcessImage::new(&self.image, &self.machine.mem);
+        self.io = ProcessImage::new(&self.image, &self.machine.mem, self.io.addressing());
     }
 }

@@ -6,6 +6,7 @@
 mod call_depth;
 mod config_elements;
 mod init;
+mod located_overlap;
 mod oop_resets;
 mod recursion;
 mod retained;
@@ -97,6 +98,7 @@ impl Linker<'_> {
             // not build memory for a program that cannot run.
             self.check_recursion();
             self.schedule(options);
+            self.warn_overlapping_addresses(options.addressing);
             return None;
         }
         self.place_function_frames();
@@ -108,7 +110,11 @@ impl Linker<'_> {
             self.check_call_depth();
         }
         self.initialise_globals();
-        let (tasks, programs) = self.schedule(options)?;
+        let scheduled = self.schedule(options);
+        // After scheduling: program connections to direct addresses are
+        // located too.
+        self.warn_overlapping_addresses(options.addressing);
+        let (tasks, programs) = scheduled?;
         let instances = self.instantiate_programs(programs);
         let mut roots = self.root_vars(&instances)?;
         roots.extend(self.apply_var_config(options.program.is_none(), &instances));

@@ -17,6 +17,7 @@ pub mod config_vars;
 pub mod emit;
 pub mod export;
 pub mod interface;
+pub mod origin;
 pub mod pou;
 pub mod raw;
 pub mod sfc;

@@ -1,20 +1,32 @@
-//! Direct addresses (`%IX0.3`, `%QW4`, `%I0.0.0.0.1`) and where they sit in
-//! the process image: an area, a byte offset, a bit and a width.
+//! Direct addresses (`%IX0.3`, `%QW4`, `%I0.0.0.0.1`) as written, and
+//! (in [`convention`]) the byte of the process image each one names under
+//! the chosen [`Addressing`].
 //!
-//! The mapping (see `docs/runtime.md`, "The process image"):
+//! What the text says, whatever the convention (see `docs/runtime.md`,
+//! "Addressing"):
 //!
 //! - the size prefix gives the width: `X` (or none) one bit, `B` one byte,
 //!   `W` two, `D` four, `L` eight;
 //! - a bit address's last field is the bit (0–7) and the field before it
 //!   the byte: `%IX0.3` is byte 0, bit 3; a bit address with a single
-//!   field counts bits from the start of the area: `%IX10` is byte 1, bit 2;
-//! - a byte, word, double or long word address's last field is its first
-//!   byte (byte addressing, as Siemens and most fieldbus images do):
-//!   `%IW4` is bytes 4 and 5, `%ID8` bytes 8 to 11;
+//!   field counts bits from the start of its table: `%IX10` is byte 1,
+//!   bit 2;
+//! - a byte, word, double or long word address's last field is its
+//!   number, the [`IoAddress::index`]; which bytes that is depends on the
+//!   convention (`%QW1` is bytes 2–3 under `iec`, holding register 1
+//!   under `openplc`, bytes 1–2 under `byte`);
 //! - the fields before those (the line, station and module of Moeller's
 //!   five-field form `%I0.0.0.0.1`) must be 0: plcrun has one local I/O
 //!   rack, so `%I0.0.0.0.1` is `%IX0.1` and `%Q0.0.0.1.7` is `%QX1.7`.
 //!   An address with a non-zero leading field has no place in the image.
+//!
+//! This is a bottom stage: the checker uses it to warn of overlapping
+//! located variables ([`overlap`]), the runtime to lay out the image.
+
+pub mod convention;
+pub mod overlap;
+
+pub use convention::{Addressing, ImageSpot, ImageTable, UnknownAddressing};
 
 use std::fmt;
 
@@ -31,7 +43,7 @@ pub enum Area {
 
 impl Area {
     /// Index into per-area tables (`I`, `Q`, `M`).
-    pub(crate) fn index(self) -> usize {
+    pub fn index(self) -> usize {
         match self {
             Area::Input => 0,
             Area::Output => 1,
@@ -75,6 +87,17 @@ impl Width {
         }
     }
 
+    /// Index into per-size tables (`X`, `B`, `W`, `D`, `L`).
+    pub fn index(self) -> usize {
+        match self {
+            Width::Bit => 0,
+            Width::Byte => 1,
+            Width::Word => 2,
+            Width::Dword => 3,
+            Width::Lword => 4,
+        }
+    }
+
     /// The size prefix letter.
     pub fn letter(self) -> char {
         match self {
@@ -87,24 +110,20 @@ impl Width {
     }
 }
 
-/// A direct address mapped into the process image.
+/// A direct address as written: area, size, number and bit. Where it
+/// lies in the process image is [`Addressing::spot`]'s answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct IoAddress {
     /// `%I`, `%Q` or `%M`.
     pub area: Area,
     /// How much it covers.
     pub width: Width,
-    /// First byte.
-    pub byte: usize,
+    /// The address's number: the byte of a bit address (`%QX1.2`: 1), the
+    /// number after the size letter otherwise (`%QW4`: 4, the fifth word
+    /// under `iec` and `openplc`, byte 4 under `byte`).
+    pub index: usize,
     /// Bit inside the byte (0 unless `width` is [`Width::Bit`]).
     pub bit: u8,
-}
-
-impl IoAddress {
-    /// One past the last byte it covers.
-    pub fn end(&self) -> usize {
-        self.byte + self.width.bytes()
-    }
 }
 
 impl fmt::Display for IoAddress {
@@ -112,8 +131,8 @@ impl fmt::Display for IoAddress {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let (a, w) = (self.area.letter(), self.width.letter());
         match self.width {
-            Width::Bit => write!(f, "%{a}{w}{}.{}", self.byte, self.bit),
-            _ => write!(f, "%{a}{w}{}", self.byte),
+            Width::Bit => write!(f, "%{a}{w}{}.{}", self.index, self.bit),
+            _ => write!(f, "%{a}{w}{}", self.index),
         }
     }
 }
@@ -206,8 +225,8 @@ impl fmt::Display for AddressError {
 
 impl std::error::Error for AddressError {}
 
-/// Parses a direct address and maps it into the image (see the module
-/// documentation). Case-insensitive; blanks around it are ignored.
+/// Parses a direct address (see the module documentation).
+/// Case-insensitive; blanks around it are ignored.
 pub fn parse(text: &str) -> Result<IoAddress, AddressError> {
     let t = text.trim();
     let syntax = || AddressError::Syntax {
@@ -242,7 +261,7 @@ pub fn parse(text: &str) -> Result<IoAddress, AddressError> {
     map(text, area, width, &fields)
 }
 
-/// Maps parsed fields to a byte and bit.
+/// The number and bit of parsed fields.
 fn map(text: &str, area: Area, width: Width, fields: &[u64]) -> Result<IoAddress, AddressError> {
     // Fields that name the byte and bit; the rest must be 0.
     let own = match (width, fields.len()) {
@@ -279,19 +298,20 @@ fn map(text: &str, area: Area, width: Width, fields: &[u64]) -> Result<IoAddress
         (_, [byte]) => (*byte, 0),
         _ => return Err(too_big()),
     };
-    // Areas are in-memory buffers: anything past 16 MiB is surely a typo.
+    // Tables are in-memory buffers: anything past 16 MiB is surely a typo
+    // (`Addressing::spot` checks the byte it comes to).
     if byte >= MAX_AREA_BYTES as u64 {
         return Err(too_big());
     }
     Ok(IoAddress {
         area,
         width,
-        byte: byte as usize,
+        index: byte as usize,
         bit,
     })
 }
 
-/// The largest area plcrun builds, in bytes.
+/// The largest table of the image plcrun builds, in bytes.
 pub const MAX_AREA_BYTES: usize = 1 << 24;
 
 #[cfg(test)]
@@ -313,15 +333,15 @@ mod tests {
     #[case("%M0.0.0.2.2", Area::Memory, Width::Bit, 2, 2)]
     #[case("%QX0.0.0.0.1", Area::Output, Width::Bit, 0, 1)]
     #[case("%IW0.0.0.6", Area::Input, Width::Word, 6, 0)]
-    fn addresses_map_to_bytes_and_bits(
+    fn addresses_parse_to_numbers_and_bits(
         #[case] text: &str,
         #[case] area: Area,
         #[case] width: Width,
-        #[case] byte: usize,
+        #[case] index: usize,
         #[case] bit: u8,
     ) {
         let a = parse(text).unwrap();
-        assert_eq!((a.area, a.width, a.byte, a.bit), (area, width, byte, bit));
+        assert_eq!((a.area, a.width, a.index, a.bit), (area, width, index, bit));
     }
 
     #[test]
