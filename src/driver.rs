@@ -173,7 +173,7 @@ pub struct CheckOptions {
     /// warning (`W300`-`W399`) is an error with the same code.
     pub strict: bool,
     /// How direct addresses are numbered (`--addressing`), for the overlap
-    /// warning W203; `None`: chosen from the sources (`byte` for S7-200
+    /// warning W204; `None`: chosen from the sources (`byte` for S7-200
     /// STL, `openplc` for PLCopen XML from the OpenPLC Editor or Beremiz,
     /// `iec` otherwise).
     pub addressing: Option<Addressing>,

@@ -1,7 +1,7 @@
 //! The three addressing conventions through the library's process image
 //! API (docs/runtime.md, "Addressing"): where each convention puts words,
 //! double and long words; host accessors and tables; the overlap warning
-//! W203; the default chosen from the sources (S7-200 STL, PLCopen XML from
+//! W204; the default chosen from the sources (S7-200 STL, PLCopen XML from
 //! the OpenPLC Editor or Beremiz); `Options::addressing` winning over the
 //! detection; `Plc::set_addressing`; retained located variables across
 //! conventions.
@@ -20,11 +20,11 @@ fn repo_text(path: &str) -> String {
     std::fs::read_to_string(format!("{}/{path}", env!("CARGO_MANIFEST_DIR"))).unwrap()
 }
 
-/// The W203 warnings as (`line:col`, message, notes).
+/// The W204 warnings as (`line:col`, message, notes).
 fn overlaps(plc: &Plc) -> Vec<(String, String, String)> {
     plc.warnings()
         .iter()
-        .filter(|d| d.code == "W203")
+        .filter(|d| d.code == "W204")
         .map(|d| {
             assert_eq!(d.severity, Severity::Warning);
             let loc = plc.sources().location(d.span);

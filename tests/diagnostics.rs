@@ -206,7 +206,7 @@ fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case]
 #[rstest]
 #[case("W001", prog("x : INT;", "{ a pragma } x := 1;"), "5:1")]
 #[case("W202", prog("x AT %IX0.0 : BOOL;", "x := TRUE;"), "5:1")]
-#[case("W203", prog("c AT %QX0.0 : BOOL; r AT %QW0 : INT;", ""), "3:26")]
+#[case("W204", prog("c AT %QX0.0 : BOOL; r AT %QW0 : INT;", ""), "3:26")]
 fn warnings_do_not_stop_the_program(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     let mut plc = Plc::compile_files(&[("t.st", &src)], &Options::default())
         .unwrap_or_else(|e| panic!("a warning must not fail the compilation:\n{e}"));

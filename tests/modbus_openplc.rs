@@ -6,7 +6,7 @@
 //! gives: coil n is `%QX(n/8).(n%8)`, holding register n is `%QWn`,
 //! 1024 + n is `%MWn`, 2048 + 2k and 2049 + 2k are `%MDk` (most
 //! significant word first), input register n is `%IWn`. Also: the same
-//! program checked without the flag gets W203, with it none.
+//! program checked without the flag gets W204, with it none.
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
@@ -178,13 +178,13 @@ fn the_same_program_warns_of_overlaps_unless_run_as_openplc() {
         String::from_utf8(out.stderr).unwrap()
     };
     let plain = check(&[]);
-    assert_eq!(plain.matches("warning[W203]").count(), 2, "{plain}");
+    assert_eq!(plain.matches("warning[W204]").count(), 2, "{plain}");
     assert!(plain.contains("openplc_tank.st:17:14"), "{plain}");
     assert!(plain.contains("--addressing openplc"), "{plain}");
     let open = check(&["--addressing", "openplc"]);
-    assert!(!open.contains("W203"), "{open}");
+    assert!(!open.contains("W204"), "{open}");
     let byte = check(&["--addressing", "byte"]);
-    assert_eq!(byte.matches("warning[W203]").count(), 4, "{byte}");
+    assert_eq!(byte.matches("warning[W204]").count(), 4, "{byte}");
     let bad = plcrun()
         .args(["check", TANK, "--addressing", "codesys"])
         .output()

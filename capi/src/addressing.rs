@@ -41,7 +41,7 @@ fn to_code(addressing: Addressing) -> c_int {
 
 /// Lays the process image out again under `addressing`
 /// (`PLC_ADDRESSING_*`): located variables keep their values, the image
-/// takes them at their new places, and the overlap warnings (W203) of
+/// takes them at their new places, and the overlap warnings (W204) of
 /// `plc_warnings` are judged again. Call it after `plc_create`, before the
 /// first cycle. An unknown code is `PLC_E_INVALID_ARGUMENT`.
 #[unsafe(no_mangle)]

@@ -722,7 +722,7 @@ fn the_addressing_convention_is_set_and_read_from_c() {
         // An ST source: iec, and %QW0 shares byte 0 with the coil.
         assert_eq!(plc_addressing(plc, &mut code), PLC_OK);
         assert_eq!(code, PLC_ADDRESSING_IEC);
-        assert!(warnings(plc).contains("W203"), "{}", warnings(plc));
+        assert!(warnings(plc).contains("W204"), "{}", warnings(plc));
         assert_eq!(plc_set_addressing(plc, PLC_ADDRESSING_OPENPLC), PLC_OK);
         assert_eq!(plc_addressing(plc, &mut code), PLC_OK);
         assert_eq!(code, PLC_ADDRESSING_OPENPLC);

@@ -9,7 +9,7 @@ use crate::diagnostics::Diagnostics;
 use crate::driver::{self, CheckOptions};
 
 /// The code of the overlap warning, judged again on a change.
-const OVERLAP: &str = "W203";
+const OVERLAP: &str = "W204";
 
 impl Plc {
     /// How the process image numbers direct addresses (chosen by
@@ -21,7 +21,7 @@ impl Plc {
     /// Lays the process image out again under `addressing`: every located
     /// variable keeps its value, and the image takes them at their new
     /// places (as after a reset); the next cycle exchanges through the new
-    /// layout. The overlap warnings (W203) among [`Plc::warnings`] are
+    /// layout. The overlap warnings (W204) among [`Plc::warnings`] are
     /// judged again under the new convention. Nothing happens when
     /// `addressing` is the current one.
     ///
@@ -30,7 +30,7 @@ impl Plc {
     /// let src = "PROGRAM P VAR c AT %QX0.0 : BOOL; r AT %QW0 : INT; END_VAR
     ///            c := TRUE; r := 7; END_PROGRAM";
     /// let mut plc = Plc::compile_files(&[("p.st", src)], &Options::default())?;
-    /// assert_eq!(plc.warnings().iter().next().map(|d| d.code), Some("W203"));
+    /// assert_eq!(plc.warnings().iter().next().map(|d| d.code), Some("W204"));
     /// plc.set_addressing(Addressing::OpenPlc);
     /// assert!(plc.warnings().is_empty());
     /// plc.run_cycle()?;

@@ -58,7 +58,7 @@ pub struct Options {
     pub optimize: bool,
     /// How direct addresses are numbered (`--addressing`; see
     /// docs/runtime.md, "Addressing"): which bytes of the process image
-    /// `%QW1` is, and which located variables overlap (W203). `None`
+    /// `%QW1` is, and which located variables overlap (W204). `None`
     /// (the default) chooses from the sources: `byte` for S7-200 STL,
     /// `openplc` for a PLCopen project from the OpenPLC Editor or
     /// Beremiz, `iec` otherwise.

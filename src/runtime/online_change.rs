@@ -135,7 +135,7 @@ impl Plc {
         self.id = new.id;
         self.host_code = new.host_code.take();
         // The new version's addressing convention, under which its
-        // warnings (W203) were judged.
+        // warnings (W204) were judged.
         self.io = ProcessImage::new(&self.image, &self.machine.mem, new.io.addressing());
         self.forces = forces;
     }

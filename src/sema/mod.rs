@@ -113,7 +113,7 @@ pub struct CompileOptions {
     /// can be run both ways and the traces compared.
     pub unoptimized: bool,
     /// How direct addresses are numbered: decides which located
-    /// variables overlap (W203).
+    /// variables overlap (W204).
     pub addressing: crate::address::Addressing,
 }
 

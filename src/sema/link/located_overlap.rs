@@ -1,4 +1,4 @@
-//! W203: located variables whose image bytes overlap under the chosen
+//! W204: located variables whose image bytes overlap under the chosen
 //! addressing convention (`docs/diagnostics.md`). Usually the sign of a
 //! program written for another convention: OpenPLC programs put coils at
 //! `%QX0.0` and registers at `%QW0` in separate tables, which share a byte
@@ -8,10 +8,10 @@ use super::Linker;
 use crate::address::{self, Addressing, IoAddress};
 
 /// The code of the warning.
-pub(crate) const OVERLAP: &str = "W203";
+pub(crate) const OVERLAP: &str = "W204";
 
 impl Linker<'_> {
-    /// One W203 per located address (in the order first written) that
+    /// One W204 per located address (in the order first written) that
     /// shares image bits with an address written before it, at the later
     /// one, naming the earlier.
     pub(super) fn warn_overlapping_addresses(&mut self, addressing: Addressing) {
