@@ -12,7 +12,7 @@ use super::model::{ConstInit, PouInfo, Storage};
 use crate::ir::op::{Op, Slot};
 use crate::ir::type_table::{MemberKind, TypeKind, TypeTable};
 use crate::source::Span;
-use crate::syntax::ast::{Call, Expr};
+use crate::syntax::ast::{Call, Expr, ExprKind};
 
 /// An argument evaluated and ready to be stored in the callee's frame.
 enum Ready {
@@ -137,6 +137,10 @@ impl BodyBuilder<'_> {
                 );
                 None
             }
+            (_, Some(e)) if prm.ty == TypeTable::error() => {
+                self.refused_parameter_argument(e);
+                None
+            }
             (_, Some(e)) => match self.types.get(prm.ty).kind {
                 TypeKind::Array { .. } | TypeKind::Struct { .. } => {
                     self.aggregate_argument(prm, e, &what)
@@ -144,6 +148,21 @@ impl BodyBuilder<'_> {
                 _ => self.scalar_argument(prm, e, &what),
             },
             (_, None) => self.default_argument(p, prm, call_span),
+        }
+    }
+
+    /// The argument of a parameter whose type was refused (E203, E209):
+    /// checked for its own errors only, as a variable when it names one
+    /// (an FB instance is no value), else as a value.
+    fn refused_parameter_argument(&mut self, e: &Expr) {
+        let is_place = matches!(
+            e.kind,
+            ExprKind::Name(_) | ExprKind::Member(..) | ExprKind::Index(..) | ExprKind::Deref(_)
+        );
+        if is_place {
+            self.place(e);
+        } else {
+            self.expr(e, None);
         }
     }
 
@@ -253,6 +272,10 @@ impl BodyBuilder<'_> {
         let ret = self.model.pous[p].ret;
         if ret == TypeTable::void() {
             return Val::None(TypeTable::void());
+        }
+        if ret == TypeTable::error() {
+            // The result type was refused at the declaration.
+            return Val::error();
         }
         if matches!(
             self.types.get(ret).kind,
