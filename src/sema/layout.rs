@@ -251,7 +251,14 @@ impl Declarer<'_> {
         decl: &VarDecl,
         frame: &Frame,
     ) -> TypeId {
-        let ty = self.resolve_type(&decl.ty, Some(&frame.vars));
+        // A VAR_IN_OUT is a pointer slot: it may name the block being laid out.
+        let own = match (&decl.ty, block.kind) {
+            (crate::syntax::ast::TypeSpec::Named(id), VarKind::InOut) => {
+                self.own_fb_type(&id.key())
+            }
+            _ => None,
+        };
+        let ty = own.unwrap_or_else(|| self.resolve_type(&decl.ty, Some(&frame.vars)));
         let tkind = &self.types.get(ty).kind;
         let is_fb = matches!(tkind, TypeKind::NativeFb(_) | TypeKind::Pou { .. });
         let why = if matches!(tkind, TypeKind::Pou { program: true, .. }) {
@@ -457,15 +464,18 @@ impl Declarer<'_> {
             frame: 0,
             frame_size: frame.offset,
         });
-        let ty = self.types.add(TypeDef {
-            name: pou.name.name.clone(),
-            kind: TypeKind::Pou {
-                code,
-                members: frame.members,
-                program: pou.kind == PouKind::Program,
+        let ty = self.place_pou_type(
+            p,
+            TypeDef {
+                name: pou.name.name.clone(),
+                kind: TypeKind::Pou {
+                    code,
+                    members: frame.members,
+                    program: pou.kind == PouKind::Program,
+                },
+                size: frame.offset,
             },
-            size: frame.offset,
-        });
+        );
         let info = &mut self.model.pous[p];
         info.vars = frame.vars;
         info.params = frame.params;
