@@ -9,6 +9,7 @@ use super::calls::{Bound, Param};
 use super::consts::Const;
 use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::{ConstInit, PouInfo, Storage};
+use super::refs::RefArg;
 use crate::ir::op::{Op, Slot};
 use crate::ir::type_table::{MemberKind, TypeKind, TypeTable};
 use crate::source::Span;
@@ -184,6 +185,11 @@ impl BodyBuilder<'_> {
     /// A scalar or string argument, kept in a temporary the next argument
     /// cannot overwrite (strings in a string temporary of their own).
     fn scalar_argument(&mut self, prm: &Param, e: &Expr, what: &str) -> Option<Ready> {
+        match self.reference_argument(prm.ty, e, what) {
+            RefArg::Value => {}
+            RefArg::Bound(r) => return Some(Ready::Scalar(r)),
+            RefArg::Error => return None,
+        }
         let v = self.expr(e, Some(prm.ty));
         let v = self.coerce(v, prm.ty, e.span, what);
         if v.is_error() {
