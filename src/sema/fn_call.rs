@@ -191,7 +191,13 @@ impl BodyBuilder<'_> {
             RefArg::Error => return None,
         }
         let v = self.expr(e, Some(prm.ty));
-        let v = self.coerce(v, prm.ty, e.span, what);
+        self.ready_value(prm, v, e.span, what)
+    }
+
+    /// A value already checked, converted to parameter `prm`'s type and
+    /// kept in a temporary (as [`Self::scalar_argument`] keeps it).
+    fn ready_value(&mut self, prm: &Param, v: Val, span: Span, what: &str) -> Option<Ready> {
+        let v = self.coerce(v, prm.ty, span, what);
         if v.is_error() {
             return None;
         }
@@ -210,6 +216,49 @@ impl BodyBuilder<'_> {
         }
         self.block.last_def = None;
         Some(Ready::Scalar(t))
+    }
+
+    /// A call of function `p` with values already evaluated, given by
+    /// parameter name (`what` names the call in messages); the other
+    /// inputs take their initial values. For calls the checker builds
+    /// itself (the test assertions), not for calls written in the source.
+    pub(super) fn function_call_with_values(
+        &mut self,
+        p: usize,
+        values: Vec<(&str, Val, Span)>,
+        span: Span,
+        want: bool,
+    ) -> Val {
+        let params = function_params(&self.model.pous[p]);
+        let mut ready: Vec<(usize, Ready)> = Vec::new();
+        for (name, v, at) in values {
+            let Some(i) = params.iter().position(|prm| prm.matches(name)) else {
+                return Val::error();
+            };
+            let what = format!("argument `{name}`");
+            let Some(r) = self.ready_value(&params[i], v, at, &what) else {
+                return Val::error();
+            };
+            ready.push((i, r));
+        }
+        for (i, prm) in params.iter().enumerate() {
+            if prm.kind == MemberKind::Input && !ready.iter().any(|(j, _)| *j == i) {
+                let r = self.default_argument(p, prm, span);
+                ready.extend(r.map(|r| (i, r)));
+            }
+        }
+        for (i, r) in ready {
+            self.store_argument(p, &params[i], r);
+        }
+        let callee = &self.model.pous[p];
+        let caller = self.model.pous[self.block.pou].code;
+        self.out.calls.push((caller, callee.code, span));
+        self.block.emit(Op::CallFn { code: callee.code });
+        let result = self.function_result(p, span);
+        if !want {
+            return Val::None(TypeTable::void());
+        }
+        result
     }
 
     /// A missing input: its declared initial value (required for arrays

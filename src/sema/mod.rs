@@ -36,6 +36,7 @@ mod type_decl;
 // Phase 2: one body builder per POU.
 mod aggregate_copy;
 pub(crate) mod assert_calls;
+mod assert_enums;
 mod assert_nested;
 mod bcd_width;
 mod binary;
