@@ -41,6 +41,7 @@ pub mod engine;
 pub mod fault_path;
 pub mod forcing;
 pub mod host_blocks;
+pub(crate) mod host_check;
 pub mod io_address;
 pub mod life_cycle;
 pub mod live_stimulus;

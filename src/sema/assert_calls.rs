@@ -63,6 +63,11 @@ impl Family {
     }
 }
 
+/// True when `key` (upper case) names one of the assertions.
+pub(super) fn is_assertion_name(key: &str) -> bool {
+    Family::of(key).is_some()
+}
+
 /// Encodes a call's position for the runner: file in the high half,
 /// byte offset in the low half.
 pub(crate) fn encode_location(span: Span) -> i64 {

@@ -272,6 +272,9 @@ impl Declarer<'_> {
             );
             return;
         }
+        if let Some(w) = super::assert_shadow::assertion_shadow_warning(p, &self.model.host_pous) {
+            self.diags.push(w);
+        }
         if super::stdfuncs::is_standard_function(&p.name.name) {
             // The user's definition wins (OSCAT defines its own TIME_TO_TOD).
             self.diags.push(super::std_shadow::shadow_warning(p));

@@ -38,6 +38,7 @@ mod aggregate_copy;
 pub(crate) mod assert_calls;
 mod assert_enums;
 mod assert_nested;
+mod assert_shadow;
 mod bcd_width;
 mod binary;
 mod bits_arith;

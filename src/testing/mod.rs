@@ -5,6 +5,7 @@
 //! as text or JUnit XML. docs/testing.md describes the convention.
 
 mod assertions;
+mod check;
 mod discover;
 mod junit;
 mod run_one;
@@ -117,6 +118,9 @@ pub struct TestReport {
     pub cases: Vec<TestCase>,
     /// Wall-clock time of the whole run.
     pub elapsed: Duration,
+    /// The sources' warnings, as `plcrun check` gives them (spans in the
+    /// sources given to [`run_tests`]).
+    pub warnings: Diagnostics,
 }
 
 impl TestReport {
@@ -215,6 +219,13 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
             .is_none_or(|f| name.to_ascii_lowercase().contains(&f.to_ascii_lowercase()))
     };
     let tests: Vec<_> = found.into_iter().filter(|t| wanted(&t.name)).collect();
+    let checked = check::check(sources, options)?;
+    if checked.has_errors() {
+        return Err(TestError::Compile(CompileError {
+            diagnostics: checked,
+            sources: sources.clone(),
+        }));
+    }
     if tests.is_empty() {
         return Err(TestError::NoTests);
     }
@@ -225,5 +236,6 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
     Ok(TestReport {
         cases,
         elapsed: start.elapsed(),
+        warnings: check::warnings_in(&checked, sources),
     })
 }
