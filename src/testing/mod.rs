@@ -206,12 +206,6 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
     let start = Instant::now();
     let mut diags = Diagnostics::new();
     let found = discover::find_tests(sources, &mut diags);
-    if diags.has_errors() {
-        return Err(TestError::Compile(CompileError {
-            diagnostics: diags,
-            sources: sources.clone(),
-        }));
-    }
     let wanted = |name: &str| {
         options
             .filter
@@ -219,8 +213,12 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
             .is_none_or(|f| name.to_ascii_lowercase().contains(&f.to_ascii_lowercase()))
     };
     let tests: Vec<_> = found.into_iter().filter(|t| wanted(&t.name)).collect();
-    let checked = check::check(sources, options)?;
-    if checked.has_errors() {
+    // Every problem of every file, as `plcrun check` reports them (a
+    // syntax error in one file does not hide the others'), then those of
+    // the runner's own reading of the tests.
+    let mut checked = check::check(sources, options)?;
+    if checked.has_errors() || diags.has_errors() {
+        checked.extend(discover::runner_errors(diags));
         return Err(TestError::Compile(CompileError {
             diagnostics: checked,
             sources: sources.clone(),
