@@ -49,6 +49,7 @@ mod calls;
 mod compat_typing;
 mod edge_inputs;
 mod emit;
+mod en_params;
 mod eno_body;
 mod eno_uses;
 mod expr;
@@ -144,6 +145,7 @@ pub fn compile(
         diags.push(too_deep);
         return None;
     }
+    en_params::check(units, diags);
     let lowered = oop::lower::lower(units, diags);
     let units = lowered.as_ref().map_or(units, |(u, _)| u.as_slice());
     if let Some(too_deep) = nesting::check(units) {
