@@ -176,7 +176,7 @@ impl Declarer<'_> {
     /// One declaration (`a, b : T := init`): its type checked against the
     /// POU kind, then each name laid out.
     fn layout_decl(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &mut Frame) {
-        let ty = self.refused_instance(pou, block, decl, frame);
+        let ty = self.decl_type(pou, block, decl, frame);
         if ty == TypeTable::void() {
             return;
         }
@@ -238,19 +238,15 @@ impl Declarer<'_> {
         }
     }
 
-    /// The type of declaration `decl`, or the error type after E209 for
-    /// an instance the POU cannot hold (a PROGRAM anywhere, a function
-    /// block in a FUNCTION other than as VAR_IN_OUT). The names are still
-    /// declared with the error type, so a refused parameter keeps its
-    /// place in the interface: calls bind their arguments as written and
-    /// the body finds the name, with no error of their own.
-    fn refused_instance(
-        &mut self,
-        pou: &Pou,
-        block: &VarBlock,
-        decl: &VarDecl,
-        frame: &Frame,
-    ) -> TypeId {
+    /// The type of declaration `decl`: a VAR_IN_OUT of the block being
+    /// laid out gets the id reserved for it (self_ref_types.rs); after
+    /// E209 for an instance the POU cannot hold (a PROGRAM anywhere, a
+    /// function block in a FUNCTION other than as VAR_IN_OUT), the error
+    /// type. The names are still declared with the error type, so a
+    /// refused parameter keeps its place in the interface: calls bind
+    /// their arguments as written and the body finds the name, with no
+    /// error of their own.
+    fn decl_type(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &Frame) -> TypeId {
         // A VAR_IN_OUT is a pointer slot: it may name the block being laid out.
         let own = match (&decl.ty, block.kind) {
             (crate::syntax::ast::TypeSpec::Named(id), VarKind::InOut) => {
