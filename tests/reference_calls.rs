@@ -3,7 +3,8 @@
 //! or through a dereferenced `REF_TO` (`p^.M()`), as a statement and inside
 //! an expression; and a `REFERENCE TO` input of a FUNCTION, FUNCTION_BLOCK
 //! or METHOD bound by the call to the variable given (an FB instance or an
-//! elementary variable), as `r REF= x` would.
+//! elementary variable), as `r REF= x` would; a PROPERTY read and
+//! written through a reference.
 
 #[path = "support/plc.rs"]
 mod plc;
@@ -110,4 +111,36 @@ END_PROGRAM
         got,
         [("E412", "9:10"), ("E301", "10:10"), ("E301", "11:10")]
     );
+}
+
+#[test]
+fn a_property_is_read_and_written_through_a_reference() {
+    let src = "
+FUNCTION_BLOCK FB_P
+VAR v : INT := 7; END_VAR
+PROPERTY Val : INT
+GET
+Val := v;
+END_GET
+SET
+v := Val;
+END_SET
+END_PROPERTY
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR x : FB_P; r : REFERENCE TO FB_P; px : REF_TO FB_P; a, b, c : INT; END_VAR
+r REF= x;
+a := r.Val;
+r.Val := 9;
+px := REF(x);
+b := px^.Val;
+px^.Val := b + 1;
+c := x.Val;
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.a"), "7");
+    assert_eq!(lit(&plc, "P.b"), "9");
+    assert_eq!(lit(&plc, "P.c"), "10");
 }
