@@ -97,6 +97,9 @@ pub fn test(args: &TestArgs) -> i32 {
             return EXIT_FAILED;
         }
     };
+    if !report.warnings.is_empty() {
+        eprint!("{}", report.warnings.render(&sources));
+    }
     print!("{}", report.to_text());
     if let Some(path) = &args.junit
         && let Err(e) = std::fs::write(path, report.to_junit("plcrun"))

@@ -44,6 +44,7 @@ pub mod engine;
 pub mod fault_path;
 pub mod forcing;
 pub mod host_blocks;
+pub(crate) mod host_check;
 pub mod life_cycle;
 pub mod live_stimulus;
 pub mod modbus;

@@ -17,13 +17,15 @@ use crate::syntax::ast::{Arg, Call, Expr, ExprKind, Ident, Literal, LiteralValue
 pub(crate) const ASSERT_TRUE_HOST: &str = "PLCRUN_ASSERT_TRUE";
 /// Prefix of the typed equality host functions (`..._EQ_` + type name).
 pub(crate) const ASSERT_EQ_PREFIX: &str = "PLCRUN_ASSERT_EQ_";
+/// The equality host function for two values of one enumeration.
+pub(crate) const ASSERT_EQ_ENUM_HOST: &str = "PLCRUN_ASSERT_EQ_ENUM";
 /// Prefix of the REAL/LREAL with-delta host functions.
 pub(crate) const ASSERT_NEAR_PREFIX: &str = "PLCRUN_ASSERT_NEAR_";
 /// Largest array `AssertArrayEquals` compares (it unrolls per element).
 pub(super) const MAX_ARRAY_ELEMENTS: i64 = 4096;
 
 /// Diagnostic: the two values of an assertion differ in type, or are not elementary.
-const E_TYPES: &str = "E480";
+pub(super) const E_TYPES: &str = "E480";
 /// Diagnostic: missing, unknown or repeated assertion argument.
 const E_ARGS: &str = "E481";
 /// Diagnostic: arrays that `AssertArrayEquals` cannot compare.
@@ -59,6 +61,11 @@ impl Family {
             Family::Truth(_) => &["CONDITION", "MESSAGE"],
         }
     }
+}
+
+/// True when `key` (upper case) names one of the assertions.
+pub(super) fn is_assertion_name(key: &str) -> bool {
+    Family::of(key).is_some()
 }
 
 /// Encodes a call's position for the runner: file in the high half,
@@ -158,6 +165,9 @@ impl BodyBuilder<'_> {
                 self.host_assert(&name, args, span, want)
             }
             (Family::Equals, Some(a)) => {
+                if let Some(v) = self.enum_equals(&e, &a, &message, &loc, span, want) {
+                    return Some(v);
+                }
                 let t = self.common_elementary(&e, &a, span)?;
                 let name = format!("{ASSERT_EQ_PREFIX}{}", t.name());
                 let args = self.eq_args(e, a, message, loc, None);
@@ -270,6 +280,12 @@ impl BodyBuilder<'_> {
     /// The type `e` would have, without emitting its code (as a variable
     /// when `place`: arrays are not values).
     fn probe(&mut self, e: &Expr, place: bool) -> Ty {
+        self.probe_in(e, place, None)
+    }
+
+    /// [`Self::probe`] where type `want` is expected (a bare enumeration
+    /// value takes the enumeration it names a value of).
+    pub(super) fn probe_in(&mut self, e: &Expr, place: bool, want: Option<TypeId>) -> Ty {
         let block = self.block.clone();
         let diags = self.diags.len();
         let calls = self.out.calls.len();
@@ -277,7 +293,7 @@ impl BodyBuilder<'_> {
             self.place(e)
                 .map_or(Ty::T(TypeTable::error()), |p| Ty::T(p.ty))
         } else {
-            self.expr(e, None).ty()
+            self.expr(e, want).ty()
         };
         self.block = block;
         self.diags.truncate(diags);

@@ -4,6 +4,7 @@
 use super::body::BodyBuilder;
 use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::ConstInit;
+use super::refs::RefArg;
 use crate::elementary::ElemType;
 use crate::ir::op::{Op, Slot, Target};
 use crate::ir::type_table::{MemberKind, TypeDef, TypeId, TypeKind, TypeTable};
@@ -488,6 +489,11 @@ impl BodyBuilder<'_> {
             return;
         }
         let what = format!("argument `{name}`");
+        match self.reference_argument(dst.ty, e, &what) {
+            RefArg::Value => {}
+            RefArg::Bound(r) => return self.write_place(dst, r),
+            RefArg::Error => return,
+        }
         match self.types.get(dst.ty).kind {
             TypeKind::Array { .. } | TypeKind::Struct { .. } => {
                 let Some(src) = self.place(e) else { return };

@@ -49,6 +49,9 @@ pub(super) struct Declarer<'a> {
     /// Ids given to STRUCT TYPEs before their fields are resolved (so a
     /// field may refer to its own structure: `self_ref_types.rs`).
     pub(super) reserved_structs: HashMap<String, TypeId>,
+    /// Type ids given to function blocks before their layout was finished,
+    /// by POU index (self_ref_types.rs).
+    pub(super) reserved_fbs: HashMap<usize, TypeId>,
 }
 
 /// What the declaration phase hands to the linker.
@@ -106,6 +109,7 @@ impl<'a> Declarer<'a> {
             pending_enums: Vec::new(),
             layout_path: Vec::new(),
             reserved_structs: HashMap::new(),
+            reserved_fbs: HashMap::new(),
         }
     }
 
@@ -267,6 +271,9 @@ impl Declarer<'_> {
                 )),
             );
             return;
+        }
+        if let Some(w) = super::assert_shadow::assertion_shadow_warning(p, &self.model.host_pous) {
+            self.diags.push(w);
         }
         if super::stdfuncs::is_standard_function(&p.name.name) {
             // The user's definition wins (OSCAT defines its own TIME_TO_TOD).

@@ -9,10 +9,11 @@ use super::calls::{Bound, Param};
 use super::consts::Const;
 use super::emit::{Place, PlaceRef, Ty, Val};
 use super::model::{ConstInit, PouInfo, Storage};
+use super::refs::RefArg;
 use crate::ir::op::{Op, Slot};
 use crate::ir::type_table::{MemberKind, TypeKind, TypeTable};
 use crate::source::Span;
-use crate::syntax::ast::{Call, Expr};
+use crate::syntax::ast::{Call, Expr, ExprKind};
 
 /// An argument evaluated and ready to be stored in the callee's frame.
 enum Ready {
@@ -137,6 +138,10 @@ impl BodyBuilder<'_> {
                 );
                 None
             }
+            (_, Some(e)) if prm.ty == TypeTable::error() => {
+                self.refused_parameter_argument(e);
+                None
+            }
             (_, Some(e)) => match self.types.get(prm.ty).kind {
                 TypeKind::Array { .. } | TypeKind::Struct { .. } => {
                     self.aggregate_argument(prm, e, &what)
@@ -144,6 +149,21 @@ impl BodyBuilder<'_> {
                 _ => self.scalar_argument(prm, e, &what),
             },
             (_, None) => self.default_argument(p, prm, call_span),
+        }
+    }
+
+    /// The argument of a parameter whose type was refused (E203, E209):
+    /// checked for its own errors only, as a variable when it names one
+    /// (an FB instance is no value), else as a value.
+    fn refused_parameter_argument(&mut self, e: &Expr) {
+        let is_place = matches!(
+            e.kind,
+            ExprKind::Name(_) | ExprKind::Member(..) | ExprKind::Index(..) | ExprKind::Deref(_)
+        );
+        if is_place {
+            self.place(e);
+        } else {
+            self.expr(e, None);
         }
     }
 
@@ -165,8 +185,19 @@ impl BodyBuilder<'_> {
     /// A scalar or string argument, kept in a temporary the next argument
     /// cannot overwrite (strings in a string temporary of their own).
     fn scalar_argument(&mut self, prm: &Param, e: &Expr, what: &str) -> Option<Ready> {
+        match self.reference_argument(prm.ty, e, what) {
+            RefArg::Value => {}
+            RefArg::Bound(r) => return Some(Ready::Scalar(r)),
+            RefArg::Error => return None,
+        }
         let v = self.expr(e, Some(prm.ty));
-        let v = self.coerce(v, prm.ty, e.span, what);
+        self.ready_value(prm, v, e.span, what)
+    }
+
+    /// A value already checked, converted to parameter `prm`'s type and
+    /// kept in a temporary (as [`Self::scalar_argument`] keeps it).
+    fn ready_value(&mut self, prm: &Param, v: Val, span: Span, what: &str) -> Option<Ready> {
+        let v = self.coerce(v, prm.ty, span, what);
         if v.is_error() {
             return None;
         }
@@ -185,6 +216,49 @@ impl BodyBuilder<'_> {
         }
         self.block.last_def = None;
         Some(Ready::Scalar(t))
+    }
+
+    /// A call of function `p` with values already evaluated, given by
+    /// parameter name (`what` names the call in messages); the other
+    /// inputs take their initial values. For calls the checker builds
+    /// itself (the test assertions), not for calls written in the source.
+    pub(super) fn function_call_with_values(
+        &mut self,
+        p: usize,
+        values: Vec<(&str, Val, Span)>,
+        span: Span,
+        want: bool,
+    ) -> Val {
+        let params = function_params(&self.model.pous[p]);
+        let mut ready: Vec<(usize, Ready)> = Vec::new();
+        for (name, v, at) in values {
+            let Some(i) = params.iter().position(|prm| prm.matches(name)) else {
+                return Val::error();
+            };
+            let what = format!("argument `{name}`");
+            let Some(r) = self.ready_value(&params[i], v, at, &what) else {
+                return Val::error();
+            };
+            ready.push((i, r));
+        }
+        for (i, prm) in params.iter().enumerate() {
+            if prm.kind == MemberKind::Input && !ready.iter().any(|(j, _)| *j == i) {
+                let r = self.default_argument(p, prm, span);
+                ready.extend(r.map(|r| (i, r)));
+            }
+        }
+        for (i, r) in ready {
+            self.store_argument(p, &params[i], r);
+        }
+        let callee = &self.model.pous[p];
+        let caller = self.model.pous[self.block.pou].code;
+        self.out.calls.push((caller, callee.code, span));
+        self.block.emit(Op::CallFn { code: callee.code });
+        let result = self.function_result(p, span);
+        if !want {
+            return Val::None(TypeTable::void());
+        }
+        result
     }
 
     /// A missing input: its declared initial value (required for arrays
@@ -253,6 +327,10 @@ impl BodyBuilder<'_> {
         let ret = self.model.pous[p].ret;
         if ret == TypeTable::void() {
             return Val::None(TypeTable::void());
+        }
+        if ret == TypeTable::error() {
+            // The result type was refused at the declaration.
+            return Val::error();
         }
         if matches!(
             self.types.get(ret).kind,

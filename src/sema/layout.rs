@@ -119,17 +119,22 @@ impl Declarer<'_> {
             Some(t) => self.resolve_type(t, None),
             None => TypeTable::void(),
         };
-        self.model.pous[p].ret = ret;
         if ret == TypeTable::void() {
             return;
         }
-        if !self.types.get(ret).kind.is_value_type() {
+        // A refused result type still gives the function its result
+        // variable (of the error type), so calls and the body check on.
+        let ret = if self.types.get(ret).kind.is_value_type() {
+            ret
+        } else {
             self.diags.error(
                 "E209",
                 pou.name.span,
                 "a function cannot return a function block instance",
             );
-        }
+            TypeTable::error()
+        };
+        self.model.pous[p].ret = ret;
         frame.vars.insert(
             pou.name.key(),
             VarInfo {
@@ -171,25 +176,7 @@ impl Declarer<'_> {
     /// One declaration (`a, b : T := init`): its type checked against the
     /// POU kind, then each name laid out.
     fn layout_decl(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &mut Frame) {
-        let ty = self.resolve_type(&decl.ty, Some(&frame.vars));
-        let tkind = self.types.get(ty).kind.clone();
-        let is_fb = matches!(tkind, TypeKind::NativeFb(_) | TypeKind::Pou { .. });
-        if matches!(tkind, TypeKind::Pou { program: true, .. }) {
-            self.diags.error(
-                "E209",
-                decl.ty.span(),
-                "a PROGRAM cannot be instantiated inside a POU",
-            );
-            return;
-        }
-        if is_fb && pou.kind == PouKind::Function && block.kind != VarKind::InOut {
-            self.diags.error(
-                "E209",
-                decl.ty.span(),
-                "a FUNCTION cannot hold function block instances (they have state)",
-            );
-            return;
-        }
+        let ty = self.decl_type(pou, block, decl, frame);
         if ty == TypeTable::void() {
             return;
         }
@@ -249,6 +236,36 @@ impl Declarer<'_> {
             }
             frame.vars.insert(key, var);
         }
+    }
+
+    /// The type of declaration `decl`: a VAR_IN_OUT of the block being
+    /// laid out gets the id reserved for it (self_ref_types.rs); after
+    /// E209 for an instance the POU cannot hold (a PROGRAM anywhere, a
+    /// function block in a FUNCTION other than as VAR_IN_OUT), the error
+    /// type. The names are still declared with the error type, so a
+    /// refused parameter keeps its place in the interface: calls bind
+    /// their arguments as written and the body finds the name, with no
+    /// error of their own.
+    fn decl_type(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &Frame) -> TypeId {
+        // A VAR_IN_OUT is a pointer slot: it may name the block being laid out.
+        let own = match (&decl.ty, block.kind) {
+            (crate::syntax::ast::TypeSpec::Named(id), VarKind::InOut) => {
+                self.own_fb_type(&id.key())
+            }
+            _ => None,
+        };
+        let ty = own.unwrap_or_else(|| self.resolve_type(&decl.ty, Some(&frame.vars)));
+        let tkind = &self.types.get(ty).kind;
+        let is_fb = matches!(tkind, TypeKind::NativeFb(_) | TypeKind::Pou { .. });
+        let why = if matches!(tkind, TypeKind::Pou { program: true, .. }) {
+            "a PROGRAM cannot be instantiated inside a POU"
+        } else if is_fb && pou.kind == PouKind::Function && block.kind != VarKind::InOut {
+            "a FUNCTION cannot hold function block instances (they have state)"
+        } else {
+            return ty;
+        };
+        self.diags.error("E209", decl.ty.span(), why);
+        TypeTable::error()
     }
 
     /// E210: RETAIN or PERSISTENT where a value cannot outlive a call
@@ -443,15 +460,18 @@ impl Declarer<'_> {
             frame: 0,
             frame_size: frame.offset,
         });
-        let ty = self.types.add(TypeDef {
-            name: pou.name.name.clone(),
-            kind: TypeKind::Pou {
-                code,
-                members: frame.members,
-                program: pou.kind == PouKind::Program,
+        let ty = self.place_pou_type(
+            p,
+            TypeDef {
+                name: pou.name.name.clone(),
+                kind: TypeKind::Pou {
+                    code,
+                    members: frame.members,
+                    program: pou.kind == PouKind::Program,
+                },
+                size: frame.offset,
             },
-            size: frame.offset,
-        });
+        );
         let info = &mut self.model.pous[p];
         info.vars = frame.vars;
         info.params = frame.params;

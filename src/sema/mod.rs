@@ -36,7 +36,9 @@ mod type_decl;
 // Phase 2: one body builder per POU.
 mod aggregate_copy;
 pub(crate) mod assert_calls;
+mod assert_enums;
 mod assert_nested;
+mod assert_shadow;
 mod bcd_width;
 mod binary;
 mod bits_arith;
@@ -47,6 +49,7 @@ mod calls;
 mod compat_typing;
 mod edge_inputs;
 mod emit;
+mod en_params;
 mod eno_body;
 mod eno_uses;
 mod expr;
@@ -145,6 +148,7 @@ pub fn compile(
         diags.push(too_deep);
         return None;
     }
+    en_params::check(units, diags);
     let lowered = oop::lower::lower(units, diags);
     let units = lowered.as_ref().map_or(units, |(u, _)| u.as_slice());
     if let Some(too_deep) = nesting::check(units) {

@@ -11,11 +11,22 @@
 //! id, and everything else about the structure (its size, its fields) is
 //! read only once it is complete. Anything but a reference to it inside
 //! itself is still E204.
+//!
+//! A function block may refer to its own type the same way: a
+//! `VAR_IN_OUT other : FB_Self` of the block or of one of its methods, or a
+//! `REF_TO FB_Self` / `POINTER TO` / `REFERENCE TO` variable, is one slot
+//! (a pointer). Such a declaration met while the block itself is being
+//! laid out gets an id reserved for the block's type, which the finished
+//! layout fills in; the block's body (and its methods') is emitted only
+//! after that, so it sees the complete type. Only the block being laid out
+//! right now refers to itself this way: an instance of it inside itself,
+//! or a reference reached through another block that is still being laid
+//! out, stays E204.
 
 use super::declare::Declarer;
 use super::model::LayoutState;
 use crate::ir::type_table::{TypeDef, TypeId, TypeKind};
-use crate::syntax::ast::TypeSpec;
+use crate::syntax::ast::{PouKind, TypeSpec};
 
 impl Declarer<'_> {
     /// Gives the STRUCT TYPE `key` its id before its fields are resolved.
@@ -44,15 +55,55 @@ impl Declarer<'_> {
     }
 
     /// The reserved id of the structure a reference designates when that
-    /// structure is still being resolved (the reference is inside it).
-    pub(super) fn reference_to_unfinished(&self, target: &TypeSpec) -> Option<TypeId> {
+    /// structure is still being resolved (the reference is inside it), or
+    /// of the function block being laid out when it names that block.
+    pub(super) fn reference_to_unfinished(&mut self, target: &TypeSpec) -> Option<TypeId> {
         let TypeSpec::Named(id) = target else {
             return None;
         };
         let key = id.key();
         if self.type_state.get(&key) != Some(&LayoutState::InProgress) {
-            return None;
+            return self.own_fb_type(&key);
         }
         self.reserved_structs.get(&key).copied()
+    }
+
+    /// The id of the function block named `key` when it is the POU being
+    /// laid out (reserved on first use), for a declaration that refers to
+    /// it through a pointer slot.
+    pub(super) fn own_fb_type(&mut self, key: &str) -> Option<TypeId> {
+        let &p = self.model.pou_index.get(key)?;
+        let info = &self.model.pous[p];
+        if self.layout_path.last() != Some(&p)
+            || info.kind != PouKind::FunctionBlock
+            || self.pou_state[p] != LayoutState::InProgress
+        {
+            return None;
+        }
+        let name = info.name.clone();
+        let types = &mut self.types;
+        Some(*self.reserved_fbs.entry(p).or_insert_with(|| {
+            types.add(TypeDef {
+                name,
+                kind: TypeKind::Pou {
+                    code: crate::ir::op::CodeIdx::new(u32::MAX),
+                    members: Vec::new(),
+                    program: false,
+                },
+                size: 1,
+            })
+        }))
+    }
+
+    /// Stores the finished type of POU `p` at the id reserved for it, if
+    /// one was, else adds it.
+    pub(super) fn place_pou_type(&mut self, p: usize, def: TypeDef) -> TypeId {
+        match self.reserved_fbs.remove(&p) {
+            Some(id) => {
+                self.types.set(id, def);
+                id
+            }
+            None => self.types.add(def),
+        }
     }
 }

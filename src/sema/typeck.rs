@@ -312,8 +312,12 @@ impl BodyBuilder<'_> {
         true
     }
 
-    /// Reports a type mismatch.
+    /// Reports a type mismatch, unless one side is the error type (its
+    /// cause was reported where the type was refused).
     pub(super) fn mismatch(&mut self, span: Span, from: Ty, to: TypeId, what: &str) {
+        if to == TypeTable::error() || from == Ty::T(TypeTable::error()) {
+            return;
+        }
         let fname = self.ty_name(from);
         let tname = self.types.name(to).to_string();
         let mut d = crate::diagnostics::Diagnostic::error(

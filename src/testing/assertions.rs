@@ -4,7 +4,9 @@
 
 use crate::elementary::ElemType;
 use crate::runtime::host_blocks::{HostBlocks, HostDeclError, HostIo, HostResult, HostSignature};
-use crate::sema::assert_calls::{ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX, ASSERT_TRUE_HOST};
+use crate::sema::assert_calls::{
+    ASSERT_EQ_ENUM_HOST, ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX, ASSERT_TRUE_HOST,
+};
 use std::sync::{Arc, Mutex};
 
 /// Most failures kept per test (a failing assertion in a loop stays readable).
@@ -61,6 +63,19 @@ impl Log {
 /// Records a failure from the pins `Expected`, `Actual`, `Message`, `Loc`
 /// (and `IsElement`/`Index` when present); sets the result to FALSE.
 fn fail(io: &mut HostIo<'_>, log: &Log, result: &str, element: bool) -> HostResult {
+    let expected = io.get("Expected")?.to_literal();
+    let actual = io.get("Actual")?.to_literal();
+    fail_with(io, log, result, element, (expected, actual))
+}
+
+/// [`fail`] with the expected and actual values already written out.
+fn fail_with(
+    io: &mut HostIo<'_>,
+    log: &Log,
+    result: &str,
+    element: bool,
+    (expected, actual): (String, String),
+) -> HostResult {
     let index = if element && io.get_bool("IsElement")? {
         Some(io.get_i64("Index")?)
     } else {
@@ -73,8 +88,8 @@ fn fail(io: &mut HostIo<'_>, log: &Log, result: &str, element: bool) -> HostResu
     };
     log.push(Recorded {
         loc: io.get_i64("Loc")?,
-        expected: io.get("Expected")?.to_literal(),
-        actual: io.get("Actual")?.to_literal(),
+        expected,
+        actual,
         index,
         element: path,
         message: io.get_str("Message")?,
@@ -140,6 +155,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
             }
         })?;
     }
+    register_enum(hosts, log)?;
     let sig = HostSignature::function(ASSERT_TRUE_HOST, ElemType::Bool)
         .input("Expected", ElemType::Bool)
         .input("Actual", ElemType::Bool)
@@ -155,4 +171,52 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
         }
     })?;
     Ok(())
+}
+
+/// The equality of two values of one enumeration, passed as the integers
+/// they are stored as, with the enumeration's value names
+/// (`Type;name=value;...`, sema::assert_enums) to report them by name.
+fn register_enum(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError> {
+    let sig = HostSignature::function(ASSERT_EQ_ENUM_HOST, ElemType::Bool)
+        .input("Expected", ElemType::Lint)
+        .input("Actual", ElemType::Lint)
+        .input("Message", ElemType::String)
+        .input("Loc", ElemType::Lint)
+        .input("Names", ElemType::String);
+    let log = log.clone();
+    hosts.function(sig, move |io| {
+        let (e, a) = (io.get_i64("Expected")?, io.get_i64("Actual")?);
+        if e == a {
+            io.set_bool(ASSERT_EQ_ENUM_HOST, true)?;
+            return Ok(());
+        }
+        let names = io.get_str("Names")?;
+        let values = (enum_literal(&names, e), enum_literal(&names, a));
+        fail_with(io, &log, ASSERT_EQ_ENUM_HOST, false, values)
+    })?;
+    Ok(())
+}
+
+/// `Type#name` for value `v` of the enumeration described by `names`
+/// (`Type;name=value;...`), or the number when no name is listed for it.
+fn enum_literal(names: &str, v: i64) -> String {
+    let mut parts = names.split(';');
+    let ty = parts.next().unwrap_or_default();
+    parts
+        .filter_map(|p| p.split_once('='))
+        .find(|(_, n)| n.parse::<i64>() == Ok(v))
+        .map_or_else(|| v.to_string(), |(name, _)| format!("{ty}#{name}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::enum_literal;
+
+    #[test]
+    fn an_enumeration_value_is_written_by_name_when_listed() {
+        let names = "E_Mode;Idle=0;Run=1;Stop=-3";
+        assert_eq!(enum_literal(names, 1), "E_Mode#Run");
+        assert_eq!(enum_literal(names, -3), "E_Mode#Stop");
+        assert_eq!(enum_literal(names, 7), "7");
+    }
 }

@@ -74,6 +74,16 @@ fn declared(pou: &Pou, name: &str) -> Option<(Option<i128>, Span)> {
     None
 }
 
+/// The diagnostics of [`find_tests`] that are the runner's own (E483),
+/// not the parser's: the check of the sources reports those again.
+pub(crate) fn runner_errors(diags: Diagnostics) -> Diagnostics {
+    let mut out = Diagnostics::new();
+    for d in diags.iter().filter(|d| d.code == CYCLES_NOT_LITERAL) {
+        out.push(d.clone());
+    }
+    out
+}
+
 /// The tests of `sources`, in file and declaration order; parse errors go
 /// into `diags`.
 pub(crate) fn find_tests(sources: &SourceMap, diags: &mut Diagnostics) -> Vec<Found> {

@@ -5,6 +5,7 @@
 //! as text or JUnit XML. docs/testing.md describes the convention.
 
 mod assertions;
+mod check;
 mod discover;
 mod junit;
 mod run_one;
@@ -121,6 +122,9 @@ pub struct TestReport {
     pub cases: Vec<TestCase>,
     /// Wall-clock time of the whole run.
     pub elapsed: Duration,
+    /// The sources' warnings, as `plcrun check` gives them (spans in the
+    /// sources given to [`run_tests`]).
+    pub warnings: Diagnostics,
 }
 
 impl TestReport {
@@ -206,12 +210,6 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
     let start = Instant::now();
     let mut diags = Diagnostics::new();
     let found = discover::find_tests(sources, &mut diags);
-    if diags.has_errors() {
-        return Err(TestError::Compile(CompileError {
-            diagnostics: diags,
-            sources: sources.clone(),
-        }));
-    }
     let wanted = |name: &str| {
         options
             .filter
@@ -219,6 +217,17 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
             .is_none_or(|f| name.to_ascii_lowercase().contains(&f.to_ascii_lowercase()))
     };
     let tests: Vec<_> = found.into_iter().filter(|t| wanted(&t.name)).collect();
+    // Every problem of every file, as `plcrun check` reports them (a
+    // syntax error in one file does not hide the others'), then those of
+    // the runner's own reading of the tests.
+    let mut checked = check::check(sources, options)?;
+    if checked.has_errors() || diags.has_errors() {
+        checked.extend(discover::runner_errors(diags));
+        return Err(TestError::Compile(CompileError {
+            diagnostics: checked,
+            sources: sources.clone(),
+        }));
+    }
     if tests.is_empty() {
         return Err(TestError::NoTests);
     }
@@ -229,5 +238,6 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
     Ok(TestReport {
         cases,
         elapsed: start.elapsed(),
+        warnings: check::warnings_in(&checked, sources),
     })
 }

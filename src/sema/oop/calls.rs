@@ -82,15 +82,19 @@ impl BodyBuilder<'_> {
     }
 
     /// The static type of a variable path, found without emitting code.
-    pub(super) fn static_type(&self, e: &Expr) -> Option<TypeId> {
+    pub(in crate::sema) fn static_type(&self, e: &Expr) -> Option<TypeId> {
         match &e.kind {
             ExprKind::Name(id) => self.lookup_var(&id.key()).map(|v| v.ty),
             ExprKind::Paren(x) => self.static_type(x),
+            ExprKind::Deref(x) => match self.types.get(self.static_type(x)?).kind {
+                TypeKind::Ref { target, .. } => Some(target),
+                _ => None,
+            },
             ExprKind::Member(b, n) => {
                 if is_this(b) {
                     return self.lookup_var(&n.key()).map(|v| v.ty);
                 }
-                let t = self.static_type(b)?;
+                let t = self.designated(self.static_type(b)?);
                 match &self.types.get(t).kind {
                     TypeKind::Pou { members, .. } => members
                         .iter()
@@ -103,10 +107,12 @@ impl BodyBuilder<'_> {
                     _ => None,
                 }
             }
-            ExprKind::Index(b, _) => match &self.types.get(self.static_type(b)?).kind {
-                TypeKind::Array { elem, .. } => Some(*elem),
-                _ => None,
-            },
+            ExprKind::Index(b, _) => {
+                match &self.types.get(self.designated(self.static_type(b)?)).kind {
+                    TypeKind::Array { elem, .. } => Some(*elem),
+                    _ => None,
+                }
+            }
             ExprKind::Call(c) => self.call_type(c),
             _ => None,
         }
@@ -166,7 +172,8 @@ impl BodyBuilder<'_> {
                 Some(self.method_call(&fb, vi, Inst::Frame(Slot::new(0)), true, call, want))
             }
             ExprKind::Member(base, m) => {
-                let ty = self.static_type(base)?;
+                // Through a `REFERENCE TO` (or `r^`), on the instance it designates.
+                let ty = self.designated(self.static_type(base)?);
                 if let Some(itf) = self.interface_of(ty) {
                     return Some(self.itf_call(&itf, base, m, call, want));
                 }

@@ -520,6 +520,18 @@ impl Lowering<'_> {
         let mut resets = Vec::new();
         let mut sig = Vec::new();
         let mut blocks = Vec::new();
+        // Every name first: a declaration may use a constant declared after it.
+        for b in &m.var_blocks {
+            if matches!(
+                b.kind,
+                VarKind::Input | VarKind::InOut | VarKind::Output | VarKind::Local | VarKind::Temp
+            ) {
+                for n in b.decls.iter().flat_map(|d| &d.names) {
+                    let hidden = hidden_name(origin, &m.name.name, &n.name);
+                    locals.insert(n.key(), hidden.to_ascii_uppercase());
+                }
+            }
+        }
         for b in &m.var_blocks {
             if b.kind == VarKind::External {
                 // The globals keep their names; the FB declares each once.
@@ -571,11 +583,12 @@ impl Lowering<'_> {
                         span: n.span,
                     });
                 }
+                let scoped = super::method_scope::in_method_scope(d, &locals);
                 decls.push(VarDecl {
                     names,
                     location: None,
-                    ty: d.ty.clone(),
-                    init: d.init.clone(),
+                    ty: scoped.ty,
+                    init: scoped.init,
                     span: d.span,
                     edge: None,
                 });

@@ -28,6 +28,7 @@ pub(super) mod calls;
 pub(super) mod class;
 mod itf_values;
 pub(super) mod lower;
+mod method_scope;
 mod method_vars;
 pub(super) mod methods;
 pub(super) mod model;

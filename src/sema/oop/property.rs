@@ -145,7 +145,8 @@ impl BodyBuilder<'_> {
                 Owner::Fb(self.oop.as_ref()?.fb.clone()),
             ),
             ExprKind::Member(b, n) => {
-                let ty = self.static_type(b)?;
+                // Through a `REFERENCE TO` (or `r^`), on the instance it designates.
+                let ty = self.designated(self.static_type(b)?);
                 let owner = match self.interface_of(ty) {
                     Some(i) => Owner::Itf(i),
                     None => {

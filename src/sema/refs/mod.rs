@@ -18,6 +18,8 @@ mod place;
 mod reference;
 mod types;
 
+pub(super) use reference::RefArg;
+
 use crate::elementary::ElemType;
 use crate::ir::type_table::{RefFlavor, TypeDef, TypeId, TypeKind, TypeTable};
 

@@ -1,0 +1,33 @@
+//! Checking sources with the host POUs of [`Options::hosts`] declared, as
+//! `plcrun check` checks them: every diagnostic of every file (syntax and
+//! checker), without requiring or building a runnable program. `plcrun
+//! test` uses it to report the sources' problems — and warnings such as a
+//! POU hiding one of its assertions — once, before running any test.
+
+use super::engine::Options;
+use super::host_blocks::HOST_SOURCE;
+use crate::diagnostics::Diagnostics;
+use crate::driver::{self, CompileOptions};
+use crate::source::SourceMap;
+
+/// Every diagnostic of `sources` checked with `options` (its host POUs
+/// declared in a source of their own, after `sources`).
+pub(crate) fn check_with_hosts(sources: &SourceMap, options: &Options) -> Diagnostics {
+    let mut sources = sources.clone();
+    if !options.hosts.is_empty() {
+        sources.add(HOST_SOURCE, options.hosts.declarations());
+    }
+    let build = CompileOptions {
+        program: None,
+        cycle_time: options.cycle_time,
+        check_only: true,
+        host_pous: options.hosts.names(),
+        grafcet: options.grafcet,
+        max_data_bytes: options.max_data_bytes,
+        strict: options.strict,
+        unoptimized: !options.optimize,
+    };
+    let mut diags = Diagnostics::new();
+    driver::compile(&sources, &build, &mut diags);
+    diags
+}
