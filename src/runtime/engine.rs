@@ -82,6 +82,31 @@ impl Default for Options {
     }
 }
 
+impl Options {
+    /// What the compiler needs of these options for `sources` (whose
+    /// addressing convention decides when none is given). `check_only`
+    /// checks every POU without choosing a program to run.
+    pub(crate) fn compile_options(&self, sources: &SourceMap, check_only: bool) -> CompileOptions {
+        CompileOptions {
+            program: if check_only {
+                None
+            } else {
+                self.program.clone()
+            },
+            cycle_time: self.cycle_time,
+            check_only,
+            host_pous: self.hosts.names(),
+            grafcet: self.grafcet,
+            max_data_bytes: self.max_data_bytes,
+            strict: self.strict,
+            unoptimized: !self.optimize,
+            addressing: self
+                .addressing
+                .unwrap_or_else(|| driver::addressing_of(sources)),
+        }
+    }
+}
+
 /// Compilation failed: the diagnostics and the sources they point into.
 #[derive(Debug, Clone)]
 pub struct CompileError {
@@ -289,19 +314,7 @@ impl Plc {
         if !options.hosts.is_empty() {
             sources.add(HOST_SOURCE, options.hosts.declarations());
         }
-        let build = CompileOptions {
-            program: options.program.clone(),
-            cycle_time: options.cycle_time,
-            check_only: false,
-            host_pous: options.hosts.names(),
-            grafcet: options.grafcet,
-            max_data_bytes: options.max_data_bytes,
-            strict: options.strict,
-            unoptimized: !options.optimize,
-            addressing: options
-                .addressing
-                .unwrap_or_else(|| driver::addressing_of(&sources)),
-        };
+        let build = options.compile_options(&sources, false);
         let image = driver::compile(&sources, &build, &mut diags);
         match image {
             Some(image) if !diags.has_errors() => Ok(Plc::from_image(

@@ -7,7 +7,7 @@
 use super::engine::Options;
 use super::host_blocks::HOST_SOURCE;
 use crate::diagnostics::Diagnostics;
-use crate::driver::{self, CompileOptions};
+use crate::driver;
 use crate::source::SourceMap;
 
 /// Every diagnostic of `sources` checked with `options` (its host POUs
@@ -17,16 +17,7 @@ pub(crate) fn check_with_hosts(sources: &SourceMap, options: &Options) -> Diagno
     if !options.hosts.is_empty() {
         sources.add(HOST_SOURCE, options.hosts.declarations());
     }
-    let build = CompileOptions {
-        program: None,
-        cycle_time: options.cycle_time,
-        check_only: true,
-        host_pous: options.hosts.names(),
-        grafcet: options.grafcet,
-        max_data_bytes: options.max_data_bytes,
-        strict: options.strict,
-        unoptimized: !options.optimize,
-    };
+    let build = options.compile_options(&sources, true);
     let mut diags = Diagnostics::new();
     driver::compile(&sources, &build, &mut diags);
     diags
