@@ -236,17 +236,73 @@ pub unsafe extern "C" fn plc_image_area_size(
 
 /// The bytes `offset .. offset + length` of `area`, checked against its
 /// size (`PLC_E_ADDRESS_OUT_OF_RANGE` past its end).
-fn span(bytes: usize, area: Area, offset: usize, length: usize) -> Result<(), Failure> {
+fn span(
+    bytes: usize,
+    offset: usize,
+    length: usize,
+    table: &dyn Fn() -> String,
+) -> Result<(), Failure> {
     match offset.checked_add(length) {
         Some(end) if end <= bytes => Ok(()),
         _ => Err(Failure::new(
             PLC_E_ADDRESS_OUT_OF_RANGE,
             format!(
-                "bytes {offset} .. {offset}+{length} are outside the %{} area ({bytes} bytes)",
-                area.letter()
+                "bytes {offset} .. {offset}+{length} are outside {} ({bytes} bytes)",
+                table()
             ),
         )),
     }
+}
+
+/// Copies `length` bytes of `bytes` from `offset` on into `buf`, once the
+/// range is checked; `table` names the bytes in the error ("the %Q area").
+///
+/// # Safety
+/// `buf` holds `length` writable bytes (it may be NULL when `length` is 0).
+pub(crate) unsafe fn copy_out(
+    bytes: &[u8],
+    offset: usize,
+    length: usize,
+    buf: *mut u8,
+    table: &dyn Fn() -> String,
+) -> Result<(), Failure> {
+    span(bytes.len(), offset, length, table)?;
+    if length > 0 {
+        // SAFETY: in bounds (checked above); `buf` holds `length` bytes by
+        // the caller's contract.
+        unsafe { std::ptr::copy_nonoverlapping(bytes[offset..].as_ptr(), buf, length) };
+    }
+    Ok(())
+}
+
+/// Copies `length` bytes from `data` into `bytes` from `offset` on, once
+/// the range is checked (see [`copy_out`]).
+///
+/// # Safety
+/// `data` holds `length` readable bytes outside `bytes` (it may be NULL
+/// when `length` is 0).
+pub(crate) unsafe fn copy_in(
+    bytes: &mut [u8],
+    offset: usize,
+    length: usize,
+    data: *const u8,
+    table: &dyn Fn() -> String,
+) -> Result<(), Failure> {
+    span(bytes.len(), offset, length, table)?;
+    if length > 0 {
+        // SAFETY: in bounds (checked above); `data` holds `length` bytes by
+        // the caller's contract and is not the image.
+        unsafe { std::ptr::copy_nonoverlapping(data, bytes[offset..].as_mut_ptr(), length) };
+    }
+    Ok(())
+}
+
+/// The refusal of a host write into `%Q`.
+pub(crate) fn outputs_are_read_only() -> Failure {
+    Failure::new(
+        PLC_E_READ_ONLY,
+        "the host may write %I and %M only; %Q is written by the program",
+    )
 }
 
 /// Copies `length` bytes of `area` from byte `offset` on into `buf`.
@@ -269,13 +325,9 @@ pub unsafe extern "C" fn plc_image_read_area(
         let area = self::area(area)?;
         handles::with_entry(plc, |e| {
             let bytes = e.plc.process_image().area(area);
-            span(bytes.len(), area, offset, length)?;
-            if length > 0 {
-                // SAFETY: in bounds (checked above); `buf` holds `length`
-                // bytes by the caller's contract.
-                unsafe { std::ptr::copy_nonoverlapping(bytes[offset..].as_ptr(), buf, length) };
-            }
-            Ok(())
+            let table = || format!("the %{} area", area.letter());
+            // SAFETY: `buf` holds `length` bytes by the caller's contract.
+            unsafe { copy_out(bytes, offset, length, buf, &table) }
         })
     })
 }
@@ -304,22 +356,11 @@ pub unsafe extern "C" fn plc_image_write_area(
             let bytes = match area {
                 Area::Input => image.inputs_mut(),
                 Area::Memory => image.memory_mut(),
-                _ => {
-                    return Err(Failure::new(
-                        PLC_E_READ_ONLY,
-                        "the host may write %I and %M only; %Q is written by the program",
-                    ));
-                }
+                _ => return Err(outputs_are_read_only()),
             };
-            span(bytes.len(), area, offset, length)?;
-            if length > 0 {
-                // SAFETY: in bounds (checked above); `data` holds `length`
-                // bytes by the caller's contract and is not the image.
-                unsafe {
-                    std::ptr::copy_nonoverlapping(data, bytes[offset..].as_mut_ptr(), length)
-                };
-            }
-            Ok(())
+            let table = || format!("the %{} area", area.letter());
+            // SAFETY: `data` holds `length` bytes by the caller's contract.
+            unsafe { copy_in(bytes, offset, length, data, &table) }
         })
     })
 }

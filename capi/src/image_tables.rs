@@ -7,8 +7,8 @@
 use crate::failure::Failure;
 use crate::guard::guard;
 use crate::handles::{self, PlcHandle};
-use crate::image::area;
-use crate::status::{PLC_E_ADDRESS_OUT_OF_RANGE, PLC_E_INVALID_ARGUMENT, PLC_E_READ_ONLY};
+use crate::image::{area, copy_in, copy_out, outputs_are_read_only};
+use crate::status::PLC_E_INVALID_ARGUMENT;
 use crate::text::store;
 use plcrun::{Area, Width};
 use std::ffi::c_int;
@@ -41,20 +41,9 @@ fn width(code: c_int) -> Result<Width, Failure> {
     }
 }
 
-/// `offset .. offset + length` checked against a table of `bytes` bytes.
-fn span(bytes: usize, area: Area, w: Width, offset: usize, length: usize) -> Result<(), Failure> {
-    match offset.checked_add(length) {
-        Some(end) if end <= bytes => Ok(()),
-        _ => Err(Failure::new(
-            PLC_E_ADDRESS_OUT_OF_RANGE,
-            format!(
-                "bytes {offset} .. {offset}+{length} are outside the table of %{}{} addresses \
-                 ({bytes} bytes)",
-                area.letter(),
-                w.letter()
-            ),
-        )),
-    }
+/// How the errors name a table: "the table of %QW addresses".
+fn table_name(area: Area, w: Width) -> String {
+    format!("the table of %{}{} addresses", area.letter(), w.letter())
 }
 
 /// The size in bytes of the table holding `width`-sized (`PLC_WIDTH_*`)
@@ -103,13 +92,8 @@ pub unsafe extern "C" fn plc_image_read_table(
         let (a, w) = (self::area(area)?, self::width(width)?);
         handles::with_entry(plc, |e| {
             let bytes = e.plc.process_image().table(a, w);
-            span(bytes.len(), a, w, offset, length)?;
-            if length > 0 {
-                // SAFETY: in bounds (checked above); `buf` holds `length`
-                // bytes by the caller's contract.
-                unsafe { std::ptr::copy_nonoverlapping(bytes[offset..].as_ptr(), buf, length) };
-            }
-            Ok(())
+            // SAFETY: `buf` holds `length` bytes by the caller's contract.
+            unsafe { copy_out(bytes, offset, length, buf, &|| table_name(a, w)) }
         })
     })
 }
@@ -137,20 +121,10 @@ pub unsafe extern "C" fn plc_image_write_table(
         let (a, w) = (self::area(area)?, self::width(width)?);
         handles::with_entry(plc, |e| {
             let Some(bytes) = e.plc.process_image_mut().table_mut(a, w) else {
-                return Err(Failure::new(
-                    PLC_E_READ_ONLY,
-                    "the host may write %I and %M only; %Q is written by the program",
-                ));
+                return Err(outputs_are_read_only());
             };
-            span(bytes.len(), a, w, offset, length)?;
-            if length > 0 {
-                // SAFETY: in bounds (checked above); `data` holds `length`
-                // bytes by the caller's contract and is not the image.
-                unsafe {
-                    std::ptr::copy_nonoverlapping(data, bytes[offset..].as_mut_ptr(), length)
-                };
-            }
-            Ok(())
+            // SAFETY: `data` holds `length` bytes by the caller's contract.
+            unsafe { copy_in(bytes, offset, length, data, &|| table_name(a, w)) }
         })
     })
 }
