@@ -26,6 +26,9 @@ pub(crate) fn check_with_hosts(sources: &SourceMap, options: &Options) -> Diagno
         max_data_bytes: options.max_data_bytes,
         strict: options.strict,
         unoptimized: !options.optimize,
+        addressing: options
+            .addressing
+            .unwrap_or_else(|| driver::addressing_of(&sources)),
     };
     let mut diags = Diagnostics::new();
     driver::compile(&sources, &build, &mut diags);
