@@ -1,0 +1,119 @@
+//! CODESYS V3 / TwinCAT 3 spellings that IEC 61131-3 does not have
+//! (issue #25, the dialect): each case runs through the library and
+//! checks values worked out by hand beside it.
+
+#[path = "support/plc.rs"]
+mod plc;
+
+use plc::{compile, error_codes, lit, program, run};
+
+/// Compiles `decls`/`body` as a program after `prelude`, runs one cycle
+/// and checks `(variable, literal)`.
+fn check(prelude: &str, decls: &str, body: &str, expect: &[(&str, &str)]) {
+    let mut plc = compile(&program(prelude, decls, body));
+    run(&mut plc, 1);
+    for (name, value) in expect {
+        assert_eq!(lit(&plc, name), *value, "{name}\n{body}");
+    }
+}
+
+/// A function that counts its calls in `n` and returns `r`.
+const BUMP: &str = "FUNCTION Bump : BOOL
+VAR_INPUT r : BOOL; END_VAR
+VAR_IN_OUT n : INT; END_VAR
+n := n + 1;
+Bump := r;
+END_FUNCTION";
+
+#[test]
+fn and_then_skips_the_right_operand_when_the_left_is_false() {
+    // d = 0: `d <> 0 AND_THEN 10 / d > 1` never divides; i = 11 is
+    // past the array: the index is never evaluated.
+    check(
+        "",
+        "d : INT := 0; i : INT := 11; a : ARRAY[1..10] OF INT;
+         r1, r2 : BOOL := TRUE; r3 : BOOL;",
+        "r1 := d <> 0 AND_THEN 10 / d > 1;
+         r2 := i <= 10 AND_THEN a[i] = 0;
+         IF i >= 1 AND_THEN i <= 10 AND_THEN a[i] = 0 THEN r3 := FALSE; ELSE r3 := TRUE; END_IF;",
+        &[("r1", "FALSE"), ("r2", "FALSE"), ("r3", "TRUE")],
+    );
+}
+
+#[test]
+fn and_then_and_or_else_give_the_truth_tables_and_call_the_right_operand_only_when_needed() {
+    // Each line's count: AND_THEN calls Bump only after a TRUE left,
+    // OR_ELSE only after a FALSE left; AND and OR always call it.
+    check(
+        BUMP,
+        "t : BOOL := TRUE; f : BOOL;
+         n1, n2, n3, n4, n5, n6 : INT;
+         a1, a2, a3, a4, o1, o2, o3, o4, p, q : BOOL;",
+        "a1 := t AND_THEN Bump(TRUE, n1);
+         a2 := t AND_THEN Bump(FALSE, n1);
+         a3 := f AND_THEN Bump(TRUE, n2);
+         a4 := f AND_THEN Bump(FALSE, n2);
+         o1 := t OR_ELSE Bump(TRUE, n3);
+         o2 := t OR_ELSE Bump(FALSE, n3);
+         o3 := f OR_ELSE Bump(TRUE, n4);
+         o4 := f OR_ELSE Bump(FALSE, n4);
+         p := f AND Bump(TRUE, n5);
+         q := t OR Bump(TRUE, n6);",
+        &[
+            ("a1", "TRUE"),
+            ("a2", "FALSE"),
+            ("a3", "FALSE"),
+            ("a4", "FALSE"),
+            ("n1", "2"),
+            ("n2", "0"),
+            ("o1", "TRUE"),
+            ("o2", "TRUE"),
+            ("o3", "TRUE"),
+            ("o4", "FALSE"),
+            ("n3", "0"),
+            ("n4", "2"),
+            ("p", "FALSE"),
+            ("n5", "1"),
+            ("q", "TRUE"),
+            ("n6", "1"),
+        ],
+    );
+}
+
+#[test]
+fn or_else_binds_like_or_and_and_then_like_and() {
+    // `t OR_ELSE f AND_THEN f` is `t OR_ELSE (f AND_THEN f)` = TRUE;
+    // `NOT f AND_THEN t` is `(NOT f) AND_THEN t` = TRUE; comparisons
+    // bind tighter: `1 < 2 AND_THEN 3 = 3` is TRUE; a WHILE condition
+    // guards its index: the loop stops at i = 4 without reading a[4].
+    check(
+        "",
+        "t : BOOL := TRUE; f : BOOL; r1, r2, r3 : BOOL; i : INT := 1;
+         a : ARRAY[1..3] OF INT := [5, 6, 7]; s : INT;",
+        "r1 := t OR_ELSE f AND_THEN f;
+         r2 := NOT f AND_THEN t;
+         r3 := 1 < 2 AND_THEN 3 = 3;
+         WHILE i <= 3 AND_THEN a[i] > 0 DO s := s + a[i]; i := i + 1; END_WHILE;",
+        &[
+            ("r1", "TRUE"),
+            ("r2", "TRUE"),
+            ("r3", "TRUE"),
+            ("i", "4"),
+            ("s", "18"),
+        ],
+    );
+}
+
+#[test]
+fn and_then_on_a_non_bool_operand_is_e302_at_the_operand() {
+    let src = program("", "x : INT; r : BOOL;", "r := x AND_THEN TRUE;");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E302".to_string(), "6:6".to_string())]
+    );
+    let src = program("", "b : BOOL; w : WORD; r : BOOL;", "r := b OR_ELSE w;");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E302".to_string(), "6:16".to_string())]
+    );
+}
