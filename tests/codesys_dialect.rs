@@ -117,3 +117,44 @@ fn and_then_on_a_non_bool_operand_is_e302_at_the_operand() {
         [("E302".to_string(), "6:16".to_string())]
     );
 }
+
+#[test]
+fn ten_hash_literals_are_decimal() {
+    // 10#123 = 123; INT#10#5 = 5; 10#1_000 = 1000; -10#7 = -7;
+    // 10#99 + 16#10 = 99 + 16 = 115; as a CASE label and array bound.
+    check(
+        "",
+        "a : INT := 10#123; b : INT; c : DINT; d : INT; e : INT; w : WORD;
+         arr : ARRAY[1..10#3] OF INT; k : INT := 2; s : INT;",
+        "b := INT#10#5; c := 10#1_000; d := -10#7; e := 10#99 + 16#10; w := WORD#10#65535;
+         CASE k OF 10#2: s := 1; ELSE s := 2; END_CASE; arr[10#3] := 4;",
+        &[
+            ("a", "123"),
+            ("b", "5"),
+            ("c", "1000"),
+            ("d", "-7"),
+            ("e", "115"),
+            ("w", "16#FFFF"),
+            ("s", "1"),
+            ("arr[3]", "4"),
+        ],
+    );
+}
+
+#[test]
+fn a_non_decimal_digit_after_ten_hash_is_e005() {
+    let src = program("", "x : INT;", "x := 10#1A;");
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E005"),
+        "{codes:?}"
+    );
+    let src = program("", "x : INT;", "x := 12#5;");
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E005"),
+        "{codes:?}"
+    );
+}
