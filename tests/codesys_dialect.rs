@@ -158,3 +158,45 @@ fn a_non_decimal_digit_after_ten_hash_is_e005() {
         "{codes:?}"
     );
 }
+
+#[test]
+fn public_internal_final_abstract_on_function_block_headers() {
+    // A PUBLIC and an INTERNAL FB run as plain ones; FB_C (FINAL)
+    // extends the ABSTRACT FB_B and inherits its n := n + 5.
+    check(
+        "FUNCTION_BLOCK PUBLIC FB_X
+VAR_INPUT a : INT; END_VAR
+VAR_OUTPUT b : INT; END_VAR
+b := a * 2;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK INTERNAL FB_I
+VAR_OUTPUT q : INT; END_VAR
+q := 7;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK ABSTRACT FB_B
+VAR_OUTPUT n : INT; END_VAR
+METHOD PUBLIC Step : INT
+n := n + 5;
+Step := n;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FINAL FB_C EXTENDS FB_B
+END_FUNCTION_BLOCK",
+        "x : FB_X; i : FB_I; c : FB_C; r1, r2, r3 : INT;",
+        "x(a := 4); r1 := x.b; i(); r2 := i.q; r3 := c.Step();",
+        &[("r1", "8"), ("r2", "7"), ("r3", "5")],
+    );
+}
+
+#[test]
+fn an_abstract_function_block_instantiated_is_e901() {
+    let src = program(
+        "FUNCTION_BLOCK ABSTRACT FB_Base\nEND_FUNCTION_BLOCK",
+        "b : FB_Base;",
+        "b();",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E901".to_string(), "5:5".to_string())]
+    );
+}
