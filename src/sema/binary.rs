@@ -22,6 +22,9 @@ impl BodyBuilder<'_> {
         span: Span,
         expect: Option<TypeId>,
     ) -> Val {
+        if matches!(op, BinaryOp::AndThen | BinaryOp::OrElse) {
+            return self.short_circuit(op, a, b);
+        }
         if let Some(v) = self.oop_compare(op, a, b, span) {
             return v;
         }
@@ -657,5 +660,7 @@ pub fn binary_name(op: BinaryOp) -> &'static str {
         BinaryOp::And => "AND",
         BinaryOp::Xor => "XOR",
         BinaryOp::Or => "OR",
+        BinaryOp::AndThen => "AND_THEN",
+        BinaryOp::OrElse => "OR_ELSE",
     }
 }

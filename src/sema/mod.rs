@@ -68,6 +68,7 @@ mod place;
 mod ref_inits;
 mod refs;
 mod sfc_emit;
+mod short_circuit;
 mod std_convert;
 mod std_convert_dates;
 mod std_numeric;

@@ -404,6 +404,10 @@ pub enum BinaryOp {
     Xor,
     /// `OR`
     Or,
+    /// `AND_THEN` (CODESYS): AND that skips the right operand when the left is FALSE
+    AndThen,
+    /// `OR_ELSE` (CODESYS): OR that skips the right operand when the left is TRUE
+    OrElse,
 }
 
 /// A literal as written, already decoded by the lexer.

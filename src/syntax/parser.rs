@@ -120,9 +120,27 @@ fn expected_name(raw: &str) -> String {
     }
 }
 
-const OPERATORS: [&str; 18] = [
-    "`+`", "`-`", "`*`", "`/`", "`**`", "`=`", "`<>`", "`<`", "`>`", "`<=`", "`>=`", "`&`",
-    "`AND`", "`OR`", "`XOR`", "`MOD`", "`.`", "`[`",
+const OPERATORS: [&str; 20] = [
+    "`+`",
+    "`-`",
+    "`*`",
+    "`/`",
+    "`**`",
+    "`=`",
+    "`<>`",
+    "`<`",
+    "`>`",
+    "`<=`",
+    "`>=`",
+    "`&`",
+    "`AND`",
+    "`OR`",
+    "`XOR`",
+    "`MOD`",
+    "`.`",
+    "`[`",
+    "`AND_THEN`",
+    "`OR_ELSE`",
 ];
 
 /// Summarises an expected-token list: operators are folded into "an

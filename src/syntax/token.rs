@@ -387,6 +387,10 @@ pub enum Kw {
     Not,
     And,
     Or,
+    /// `AND_THEN` (CODESYS: short-circuit AND).
+    AndThen,
+    /// `OR_ELSE` (CODESYS: short-circuit OR).
+    OrElse,
     Xor,
     Mod,
     InitialStep,
@@ -427,7 +431,7 @@ pub enum Kw {
 }
 
 /// Every keyword with its spelling.
-pub const KEYWORDS: [(&str, Kw); 88] = [
+pub const KEYWORDS: [(&str, Kw); 90] = [
     ("PROGRAM", Kw::Program),
     ("END_PROGRAM", Kw::EndProgram),
     ("FUNCTION", Kw::Function),
@@ -485,6 +489,8 @@ pub const KEYWORDS: [(&str, Kw); 88] = [
     ("NOT", Kw::Not),
     ("AND", Kw::And),
     ("OR", Kw::Or),
+    ("AND_THEN", Kw::AndThen),
+    ("OR_ELSE", Kw::OrElse),
     ("XOR", Kw::Xor),
     ("MOD", Kw::Mod),
     ("INITIAL_STEP", Kw::InitialStep),

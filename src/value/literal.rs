@@ -139,7 +139,7 @@ pub fn write_duration(out: &mut String, nanos: i64, prefix: &str) {
 }
 
 /// Parses an integer literal: decimal (`1_000`) or based (`2#1010`,
-/// `8#17`, `16#FF`), without sign.
+/// `8#17`, `16#FF`, and CODESYS's explicit decimal `10#123`), without sign.
 pub fn parse_int_text(text: &str) -> Result<i128, String> {
     let (base, digits) = match text.split_once('#') {
         None => (10, text),
@@ -147,8 +147,9 @@ pub fn parse_int_text(text: &str) -> Result<i128, String> {
             let base = match b.replace('_', "").as_str() {
                 "2" => 2,
                 "8" => 8,
+                "10" => 10,
                 "16" => 16,
-                _ => return Err(format!("base `{b}` is not 2, 8 or 16 in `{text}`")),
+                _ => return Err(format!("base `{b}` is not 2, 8, 10 or 16 in `{text}`")),
             };
             (base, d)
         }
@@ -452,7 +453,9 @@ mod tests {
         assert_eq!(parse_int_text("2#1_0"), Ok(2));
         assert_eq!(parse_int_text("8#777"), Ok(511));
         assert!(parse_int_text("16#").is_err());
-        assert!(parse_int_text("10#5").is_err());
+        assert_eq!(parse_int_text("10#1_5"), Ok(15));
+        assert!(parse_int_text("10#A").is_err());
+        assert!(parse_int_text("3#1").is_err());
         assert!(parse_int_text("1__0").is_err());
         assert!(parse_int_text("18446744073709551616").is_err());
     }

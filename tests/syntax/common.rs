@@ -100,6 +100,8 @@ fn bin(op: BinaryOp) -> &'static str {
         BinaryOp::And => "AND",
         BinaryOp::Xor => "XOR",
         BinaryOp::Or => "OR",
+        BinaryOp::AndThen => "AND_THEN",
+        BinaryOp::OrElse => "OR_ELSE",
     }
 }
 

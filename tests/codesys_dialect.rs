@@ -1,0 +1,202 @@
+//! CODESYS V3 / TwinCAT 3 spellings that IEC 61131-3 does not have
+//! (issue #25, the dialect): each case runs through the library and
+//! checks values worked out by hand beside it.
+
+#[path = "support/plc.rs"]
+mod plc;
+
+use plc::{compile, error_codes, lit, program, run};
+
+/// Compiles `decls`/`body` as a program after `prelude`, runs one cycle
+/// and checks `(variable, literal)`.
+fn check(prelude: &str, decls: &str, body: &str, expect: &[(&str, &str)]) {
+    let mut plc = compile(&program(prelude, decls, body));
+    run(&mut plc, 1);
+    for (name, value) in expect {
+        assert_eq!(lit(&plc, name), *value, "{name}\n{body}");
+    }
+}
+
+/// A function that counts its calls in `n` and returns `r`.
+const BUMP: &str = "FUNCTION Bump : BOOL
+VAR_INPUT r : BOOL; END_VAR
+VAR_IN_OUT n : INT; END_VAR
+n := n + 1;
+Bump := r;
+END_FUNCTION";
+
+#[test]
+fn and_then_skips_the_right_operand_when_the_left_is_false() {
+    // d = 0: `d <> 0 AND_THEN 10 / d > 1` never divides; i = 11 is
+    // past the array: the index is never evaluated.
+    check(
+        "",
+        "d : INT := 0; i : INT := 11; a : ARRAY[1..10] OF INT;
+         r1, r2 : BOOL := TRUE; r3 : BOOL;",
+        "r1 := d <> 0 AND_THEN 10 / d > 1;
+         r2 := i <= 10 AND_THEN a[i] = 0;
+         IF i >= 1 AND_THEN i <= 10 AND_THEN a[i] = 0 THEN r3 := FALSE; ELSE r3 := TRUE; END_IF;",
+        &[("r1", "FALSE"), ("r2", "FALSE"), ("r3", "TRUE")],
+    );
+}
+
+#[test]
+fn and_then_and_or_else_give_the_truth_tables_and_call_the_right_operand_only_when_needed() {
+    // Each line's count: AND_THEN calls Bump only after a TRUE left,
+    // OR_ELSE only after a FALSE left; AND and OR always call it.
+    check(
+        BUMP,
+        "t : BOOL := TRUE; f : BOOL;
+         n1, n2, n3, n4, n5, n6 : INT;
+         a1, a2, a3, a4, o1, o2, o3, o4, p, q : BOOL;",
+        "a1 := t AND_THEN Bump(TRUE, n1);
+         a2 := t AND_THEN Bump(FALSE, n1);
+         a3 := f AND_THEN Bump(TRUE, n2);
+         a4 := f AND_THEN Bump(FALSE, n2);
+         o1 := t OR_ELSE Bump(TRUE, n3);
+         o2 := t OR_ELSE Bump(FALSE, n3);
+         o3 := f OR_ELSE Bump(TRUE, n4);
+         o4 := f OR_ELSE Bump(FALSE, n4);
+         p := f AND Bump(TRUE, n5);
+         q := t OR Bump(TRUE, n6);",
+        &[
+            ("a1", "TRUE"),
+            ("a2", "FALSE"),
+            ("a3", "FALSE"),
+            ("a4", "FALSE"),
+            ("n1", "2"),
+            ("n2", "0"),
+            ("o1", "TRUE"),
+            ("o2", "TRUE"),
+            ("o3", "TRUE"),
+            ("o4", "FALSE"),
+            ("n3", "0"),
+            ("n4", "2"),
+            ("p", "FALSE"),
+            ("n5", "1"),
+            ("q", "TRUE"),
+            ("n6", "1"),
+        ],
+    );
+}
+
+#[test]
+fn or_else_binds_like_or_and_and_then_like_and() {
+    // `t OR_ELSE f AND_THEN f` is `t OR_ELSE (f AND_THEN f)` = TRUE;
+    // `NOT f AND_THEN t` is `(NOT f) AND_THEN t` = TRUE; comparisons
+    // bind tighter: `1 < 2 AND_THEN 3 = 3` is TRUE; a WHILE condition
+    // guards its index: the loop stops at i = 4 without reading a[4].
+    check(
+        "",
+        "t : BOOL := TRUE; f : BOOL; r1, r2, r3 : BOOL; i : INT := 1;
+         a : ARRAY[1..3] OF INT := [5, 6, 7]; s : INT;",
+        "r1 := t OR_ELSE f AND_THEN f;
+         r2 := NOT f AND_THEN t;
+         r3 := 1 < 2 AND_THEN 3 = 3;
+         WHILE i <= 3 AND_THEN a[i] > 0 DO s := s + a[i]; i := i + 1; END_WHILE;",
+        &[
+            ("r1", "TRUE"),
+            ("r2", "TRUE"),
+            ("r3", "TRUE"),
+            ("i", "4"),
+            ("s", "18"),
+        ],
+    );
+}
+
+#[test]
+fn and_then_on_a_non_bool_operand_is_e302_at_the_operand() {
+    let src = program("", "x : INT; r : BOOL;", "r := x AND_THEN TRUE;");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E302".to_string(), "6:6".to_string())]
+    );
+    let src = program("", "b : BOOL; w : WORD; r : BOOL;", "r := b OR_ELSE w;");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E302".to_string(), "6:16".to_string())]
+    );
+}
+
+#[test]
+fn ten_hash_literals_are_decimal() {
+    // 10#123 = 123; INT#10#5 = 5; 10#1_000 = 1000; -10#7 = -7;
+    // 10#99 + 16#10 = 99 + 16 = 115; as a CASE label and array bound.
+    check(
+        "",
+        "a : INT := 10#123; b : INT; c : DINT; d : INT; e : INT; w : WORD;
+         arr : ARRAY[1..10#3] OF INT; k : INT := 2; s : INT;",
+        "b := INT#10#5; c := 10#1_000; d := -10#7; e := 10#99 + 16#10; w := WORD#10#65535;
+         CASE k OF 10#2: s := 1; ELSE s := 2; END_CASE; arr[10#3] := 4;",
+        &[
+            ("a", "123"),
+            ("b", "5"),
+            ("c", "1000"),
+            ("d", "-7"),
+            ("e", "115"),
+            ("w", "16#FFFF"),
+            ("s", "1"),
+            ("arr[3]", "4"),
+        ],
+    );
+}
+
+#[test]
+fn a_non_decimal_digit_after_ten_hash_is_e005() {
+    let src = program("", "x : INT;", "x := 10#1A;");
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E005"),
+        "{codes:?}"
+    );
+    let src = program("", "x : INT;", "x := 12#5;");
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E005"),
+        "{codes:?}"
+    );
+}
+
+#[test]
+fn public_internal_final_abstract_on_function_block_headers() {
+    // A PUBLIC and an INTERNAL FB run as plain ones; FB_C (FINAL)
+    // extends the ABSTRACT FB_B and inherits its n := n + 5.
+    check(
+        "FUNCTION_BLOCK PUBLIC FB_X
+VAR_INPUT a : INT; END_VAR
+VAR_OUTPUT b : INT; END_VAR
+b := a * 2;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK INTERNAL FB_I
+VAR_OUTPUT q : INT; END_VAR
+q := 7;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK ABSTRACT FB_B
+VAR_OUTPUT n : INT; END_VAR
+METHOD PUBLIC Step : INT
+n := n + 5;
+Step := n;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FINAL FB_C EXTENDS FB_B
+END_FUNCTION_BLOCK",
+        "x : FB_X; i : FB_I; c : FB_C; r1, r2, r3 : INT;",
+        "x(a := 4); r1 := x.b; i(); r2 := i.q; r3 := c.Step();",
+        &[("r1", "8"), ("r2", "7"), ("r3", "5")],
+    );
+}
+
+#[test]
+fn an_abstract_function_block_instantiated_is_e901() {
+    let src = program(
+        "FUNCTION_BLOCK ABSTRACT FB_Base\nEND_FUNCTION_BLOCK",
+        "b : FB_Base;",
+        "b();",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E901".to_string(), "5:5".to_string())]
+    );
+}
