@@ -49,6 +49,13 @@ const ROWS: &[Row] = &[
         expect: &[("a", "5"), ("b", "TRUE"), ("c", "9")],
     },
     Row {
+        covers: &["AND_THEN", "OR_ELSE"],
+        // The right operands would fault (division by zero, index 9 of
+        // 0..2) if they were evaluated: short-circuit means they are not.
+        source: "PROGRAM P\nVAR\n  z : INT; arr : ARRAY[0..2] OF INT; i : INT := 9; a : BOOL; o : BOOL; both : BOOL;\nEND_VAR\na := FALSE AND_THEN (10 / z > 1);\no := TRUE OR_ELSE (arr[i] > 0);\nboth := TRUE AND_THEN NOT FALSE;\nEND_PROGRAM\n",
+        expect: &[("a", "FALSE"), ("o", "TRUE"), ("both", "TRUE")],
+    },
+    Row {
         covers: &[
             "FUNCTION",
             "END_FUNCTION",
