@@ -200,3 +200,36 @@ fn an_abstract_function_block_instantiated_is_e901() {
         [("E901".to_string(), "5:5".to_string())]
     );
 }
+
+#[test]
+fn a_semicolon_after_a_pou_header_is_accepted() {
+    // Each header ends in `;`; the configuration's `PROGRAM ... : P;`
+    // keeps its own. FB_X doubles 4 (8), F adds one (9), M gives 8 + 100.
+    let src = "FUNCTION_BLOCK PUBLIC FB_X;
+VAR_INPUT a : INT; END_VAR
+VAR_OUTPUT b : INT; END_VAR
+METHOD M : INT;
+M := b + 100;
+END_METHOD
+b := a * 2;
+END_FUNCTION_BLOCK
+FUNCTION F : INT;
+VAR_INPUT x : INT; END_VAR
+F := x + 1;
+END_FUNCTION
+PROGRAM P;
+VAR fb : FB_X; r1, r2 : INT; END_VAR
+fb(a := 4); r1 := F(fb.b); r2 := fb.M();
+END_PROGRAM
+CONFIGURATION C
+RESOURCE R ON PLC
+TASK T (INTERVAL := T#10ms);
+PROGRAM main WITH T : P;
+END_RESOURCE
+END_CONFIGURATION
+";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "main.r1"), "9");
+    assert_eq!(lit(&plc, "main.r2"), "108");
+}

@@ -9,6 +9,7 @@ mod codesys_spellings;
 pub mod config_path;
 pub mod construct;
 pub mod depth;
+mod header_semicolon;
 pub mod il_lines;
 pub mod lexer;
 pub mod literal;
@@ -55,7 +56,8 @@ fn parse_in(
         let tokens = method_names::method_names(file, text, tokens, diags);
         let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
         let tokens = oop_property::accessor_words(tokens);
-        codesys_spellings::iec_keywords(file, tokens, diags)
+        let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
+        header_semicolon::drop_header_semicolons(tokens)
     };
     repair::parse_repairing(file, text, &tokens_of, diags)
 }
