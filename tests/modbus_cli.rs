@@ -2,8 +2,11 @@
 //! by a Modbus client; virtual-time runs unchanged without client writes;
 //! bad flags are usage errors.
 
+#[path = "support/cli.rs"]
+mod cli;
+
 use rmodbus::client::ModbusRequest;
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -57,14 +60,7 @@ fn chariot_served_in_real_time_is_driven_by_a_client() {
         .stderr(Stdio::piped())
         .spawn()
         .expect("plcrun starts");
-    let mut err = BufReader::new(child.stderr.take().unwrap());
-    let mut line = String::new();
-    err.read_line(&mut line).unwrap();
-    let addr = line
-        .trim()
-        .strip_prefix("modbus: listening on ")
-        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
-        .to_string();
+    let addr = cli::modbus_address(&mut child);
     let mut s = TcpStream::connect(&addr).unwrap();
     s.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
     // The cart at A, the operator presses start: forward.

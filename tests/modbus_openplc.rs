@@ -8,7 +8,10 @@
 //! significant word first), input register n is `%IWn`. Also: the same
 //! program checked without the flag gets W204, with it none.
 
-use std::io::{BufRead, BufReader, Read, Write};
+#[path = "support/cli.rs"]
+mod cli;
+
+use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -101,16 +104,7 @@ fn serve(extra: &[&str]) -> (Child, Client) {
         .stderr(Stdio::piped())
         .spawn()
         .expect("plcrun starts");
-    let mut err = BufReader::new(child.stderr.take().unwrap());
-    let mut line = String::new();
-    err.read_line(&mut line).unwrap();
-    let addr = line
-        .trim()
-        .strip_prefix("modbus: listening on ")
-        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
-        .to_string();
-    // Keep draining standard error so that the child never blocks on it.
-    std::thread::spawn(move || std::io::copy(&mut err, &mut std::io::sink()));
+    let addr = cli::modbus_address(&mut child);
     let stream = TcpStream::connect(&addr).unwrap();
     stream
         .set_read_timeout(Some(Duration::from_secs(5)))

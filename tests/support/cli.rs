@@ -6,8 +6,9 @@
 //! `plcrun::check`).
 #![allow(dead_code)]
 
+use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
-use std::process::Command;
+use std::process::{Child, Command};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Runs `plcrun` with `args` from the repository root (so repository paths
@@ -45,4 +46,20 @@ pub fn temp_file(name: &str, contents: impl AsRef<[u8]>) -> String {
     let path = dir.join(name);
     std::fs::write(&path, contents).expect("write a temporary file");
     path.to_string_lossy().into_owned()
+}
+
+/// The address a `plcrun --modbus ADDR:0` child listens on, read from the
+/// first line of its standard error (piped); the rest of standard error is
+/// drained on a thread so that the child never blocks writing it.
+pub fn modbus_address(child: &mut Child) -> String {
+    let mut err = BufReader::new(child.stderr.take().expect("standard error is piped"));
+    let mut line = String::new();
+    err.read_line(&mut line).unwrap();
+    let addr = line
+        .trim()
+        .strip_prefix("modbus: listening on ")
+        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
+        .to_string();
+    std::thread::spawn(move || std::io::copy(&mut err, &mut std::io::sink()));
+    addr
 }
