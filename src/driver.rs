@@ -17,6 +17,7 @@ use crate::source::{FileId, SourceMap};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+mod project;
 mod source_bytes;
 pub use source_bytes::add_source_bytes;
 
@@ -59,15 +60,30 @@ pub fn load_files<P: AsRef<Path>>(
 /// Reads every file into a source map, named by its path as given and read
 /// in `encoding` ([`add_source_bytes`] says what is reported: W020 for a
 /// file detected as Windows-1252, E011 for one that should be UTF-8 and is
-/// not); a file that cannot be read at all is a [`LoadError`].
+/// not); a file that cannot be read at all is a [`LoadError`]. A folder or
+/// a TwinCAT `.plcproj` stands for the files of its project (the `.plcproj`
+/// items plcrun reads, in order; in a folder without one, every TwinCAT
+/// object and `.st`/`.il`/`.sfc` file, in path order): `docs/twincat.md`.
 pub fn load_files_with<P: AsRef<Path>>(
     paths: &[P],
     encoding: SourceEncoding,
     diags: &mut Diagnostics,
 ) -> Result<SourceMap, LoadError> {
     let mut sources = SourceMap::new();
+    let mut files = Vec::new();
     for path in paths {
         let path = path.as_ref();
+        if project::is_project(path) {
+            let items = project::source_files(path).map_err(|error| LoadError {
+                path: path.to_path_buf(),
+                error,
+            })?;
+            files.extend(items);
+        } else {
+            files.push(path.to_path_buf());
+        }
+    }
+    for path in &files {
         let bytes = std::fs::read(path).map_err(|error| LoadError {
             path: path.to_path_buf(),
             error,
@@ -146,6 +162,10 @@ fn compile_here(
     for (i, file) in sources.files().iter().enumerate() {
         units.push(crate::syntax::parse_source(FileId(i as u32), file, diags));
     }
+    let files = sources.files();
+    crate::syntax::twincat::merge_task_configurations(&mut units, |i| {
+        crate::syntax::twincat::is_task_file(&files[i].text)
+    });
     let image = sema::compile(&units, options, diags);
     crate::syntax::recovery::drop_cascades(sources, &units, diags);
     if options.strict {

@@ -43,7 +43,7 @@ pub fn check(args: &CheckArgs) -> i32 {
     if diags.has_errors() {
         EXIT_COMPILE
     } else {
-        let n = args.files.len();
+        let n = sources.files().len();
         eprintln!("ok: {n} file{} checked", if n == 1 { "" } else { "s" });
         EXIT_OK
     }

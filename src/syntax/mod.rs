@@ -28,6 +28,7 @@ pub mod repair;
 pub mod s7;
 mod soft_keywords;
 pub mod token;
+pub mod twincat;
 
 use crate::diagnostics::{Diagnostics, Severity};
 use crate::source::encoding::TextEncoding;
@@ -48,18 +49,35 @@ fn parse_in(
     encoding: TextEncoding,
     diags: &mut Diagnostics,
 ) -> ast::CompilationUnit {
+    if twincat::is_twincat(text) {
+        return twincat::parse(file, text, diags);
+    }
     if plcopen::is_plcopen(text) {
         return plcopen::parse(file, text, diags);
     }
     let tokens_of = |diags: &mut Diagnostics| {
         let tokens = lexer::lex_in(file, text, encoding, diags);
-        let tokens = method_names::method_names(file, text, tokens, diags);
-        let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
-        let tokens = oop_property::accessor_words(tokens);
-        let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
-        header_semicolon::drop_header_semicolons(tokens)
+        textual_passes(file, text, tokens, diags)
     };
     repair::parse_repairing(file, text, &tokens_of, diags)
+}
+
+/// The token passes between the lexer and the grammar that make the
+/// CODESYS spellings and soft keywords of textual sources parse (method
+/// names that are keywords, `GET`/`SET` accessors, `FUNCTIONBLOCK`, a `;`
+/// after a header); readers that emit tokens from another format run them
+/// too.
+pub(crate) fn textual_passes(
+    file: FileId,
+    text: &str,
+    tokens: Vec<lexer::Spanned>,
+    diags: &mut Diagnostics,
+) -> Vec<lexer::Spanned> {
+    let tokens = method_names::method_names(file, text, tokens, diags);
+    let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
+    let tokens = oop_property::accessor_words(tokens);
+    let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
+    header_semicolon::drop_header_semicolons(tokens)
 }
 
 /// Parses one file named `name`: S7-200 STL when [`s7::recognise`] says

@@ -108,7 +108,7 @@ pub fn parse_bytes(bytes: &[u8]) -> (CompilationUnit, Diagnostics) {
 }
 
 /// The byte offset of a 1-based row/column (in characters).
-fn offset_of(xml: &str, pos: roxmltree::TextPos) -> usize {
+pub(crate) fn offset_of(xml: &str, pos: roxmltree::TextPos) -> usize {
     let mut offset = 0;
     for (i, line) in xml.split_inclusive('\n').enumerate() {
         if i + 1 == pos.row as usize {

@@ -1,0 +1,133 @@
+//! Project folders and TwinCAT `.plcproj` files given where source files
+//! are expected: each becomes the list of source files it stands for.
+//!
+//! - A `.plcproj` (an MSBuild project) lists its sources as
+//!   `<Compile Include="POUs\MAIN.TcPOU">` items; those plcrun reads
+//!   (`.TcPOU`, `.TcDUT`, `.TcGVL`, `.TcIO`, `.TcTTO`) are loaded in the
+//!   project's order. Visualisations, text lists and the like hold no code
+//!   and are left out.
+//! - A folder holding one `.plcproj` (at any depth) is that project; a
+//!   folder holding several is an error naming them; a folder with none is
+//!   every TwinCAT object and IEC source file in it (`.st`, `.il`, `.sfc`),
+//!   in path order.
+
+use std::io;
+use std::path::{Path, PathBuf};
+
+/// File extensions of the TwinCAT objects plcrun reads (compared ignoring
+/// case).
+const TWINCAT_OBJECTS: [&str; 5] = ["tcpou", "tcdut", "tcgvl", "tcio", "tctto"];
+/// File extensions of textual IEC sources picked up in a folder.
+const IEC_SOURCES: [&str; 3] = ["st", "il", "sfc"];
+/// Folders TwinCAT writes its build products into: never sources.
+const BUILD_FOLDERS: [&str; 3] = ["_Boot", "_CompileInfo", "_Libraries"];
+/// Deepest folder nesting searched.
+const MAX_DEPTH: usize = 16;
+
+/// True when `path` names a project rather than one source file: a folder
+/// or a `.plcproj` file.
+pub(crate) fn is_project(path: &Path) -> bool {
+    path.is_dir() || has_extension(path, &["plcproj"])
+}
+
+fn has_extension(path: &Path, exts: &[&str]) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| exts.iter().any(|x| e.eq_ignore_ascii_case(x)))
+}
+
+/// The source files `path` (a folder or a `.plcproj`) stands for.
+pub(crate) fn source_files(path: &Path) -> io::Result<Vec<PathBuf>> {
+    if !path.is_dir() {
+        return project_items(path);
+    }
+    let mut projects = Vec::new();
+    let mut sources = Vec::new();
+    walk(path, 0, &mut |file| {
+        if has_extension(file, &["plcproj"]) {
+            projects.push(file.to_path_buf());
+        } else if has_extension(file, &TWINCAT_OBJECTS) || has_extension(file, &IEC_SOURCES) {
+            sources.push(file.to_path_buf());
+        }
+    })?;
+    match projects.len() {
+        1 => project_items(&projects[0]),
+        0 if sources.is_empty() => Err(io::Error::new(
+            io::ErrorKind::NotFound,
+            "the folder holds no .plcproj, no TwinCAT object (.TcPOU, .TcDUT, .TcGVL, .TcIO, .TcTTO) and no .st, .il or .sfc file",
+        )),
+        0 => {
+            sources.sort();
+            Ok(sources)
+        }
+        _ => {
+            projects.sort();
+            let names: Vec<String> = projects.iter().map(|p| p.display().to_string()).collect();
+            Err(io::Error::other(format!(
+                "the folder holds {} TwinCAT projects: name one of {}",
+                names.len(),
+                names.join(", ")
+            )))
+        }
+    }
+}
+
+/// Calls `found` for every file under `dir`, in name order, skipping
+/// hidden folders and TwinCAT's build folders.
+fn walk(dir: &Path, depth: usize, found: &mut dyn FnMut(&Path)) -> io::Result<()> {
+    if depth > MAX_DEPTH {
+        return Ok(());
+    }
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    entries.sort();
+    for entry in entries {
+        let name = entry.file_name().and_then(|n| n.to_str()).unwrap_or("");
+        if entry.is_dir() {
+            if !name.starts_with('.') && !BUILD_FOLDERS.contains(&name) {
+                walk(&entry, depth + 1, found)?;
+            }
+        } else {
+            found(&entry);
+        }
+    }
+    Ok(())
+}
+
+/// The sources a `.plcproj` compiles, in its order, as paths next to it.
+fn project_items(project: &Path) -> io::Result<Vec<PathBuf>> {
+    let text = std::fs::read_to_string(project)?;
+    let text = text.trim_start_matches('\u{FEFF}');
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: false,
+        ..roxmltree::ParsingOptions::default()
+    };
+    let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| {
+        io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("not a TwinCAT project: malformed XML: {e}"),
+        )
+    })?;
+    if doc.root_element().tag_name().name() != "Project" {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            "not a TwinCAT project: its root element is not an MSBuild `<Project>`",
+        ));
+    }
+    let folder = project.parent().unwrap_or(Path::new(""));
+    let files: Vec<PathBuf> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("Compile") || n.has_tag_name("None"))
+        .filter_map(|n| n.attribute("Include"))
+        .map(|include| folder.join(include.replace('\\', "/")))
+        .filter(|p| has_extension(p, &TWINCAT_OBJECTS))
+        .collect();
+    if files.is_empty() {
+        return Err(io::Error::new(
+            io::ErrorKind::NotFound,
+            "the project compiles no POU, DUT, GVL, interface or task file",
+        ));
+    }
+    Ok(files)
+}

@@ -1,0 +1,216 @@
+//! TwinCAT 3 projects given to the command line (issue #25, point 1): a
+//! folder or a `.plcproj` loads its `.TcPOU`/`.TcDUT`/`.TcGVL`/`.TcIO`/
+//! `.TcTTO` files, methods, properties and actions run, the task file
+//! sets the cycle, and every diagnostic points into the XML file at the
+//! line and column of the ST text.
+
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::{plcrun, plcrun_ok, temp_file};
+use std::path::Path;
+
+/// The trace of the example project `tests/twincat/conveyor`, derived by
+/// hand: MAIN adds its cycle number to the counter, resets it (an action)
+/// in cycle 3 and reads it back through a property and an interface;
+/// the task file says 10 ms.
+const CONVEYOR_TRACE: &str = "\
+cycle,time,MAIN.nCycle,MAIN.nTotal,MAIN.nViaItf,MAIN.stStats.nMax,MAIN.stStats.nResets,MAIN.fbCounter.nCalls,bRunning
+0,T#0s,1,1,1,1,0,1,FALSE
+1,T#10ms,2,3,3,3,0,2,FALSE
+2,T#20ms,3,0,0,3,1,3,FALSE
+3,T#30ms,4,4,4,4,1,4,FALSE
+4,T#40ms,5,9,9,9,1,5,TRUE
+";
+
+const CONVEYOR_VARS: &str = "MAIN.nCycle,MAIN.nTotal,MAIN.nViaItf,MAIN.stStats.nMax,MAIN.stStats.nResets,MAIN.fbCounter.nCalls,bRunning";
+
+#[test]
+fn a_project_folder_and_its_plcproj_run_the_same_program_on_the_task_cycle() {
+    for target in [
+        "tests/twincat/conveyor",
+        "tests/twincat/conveyor/Conveyor.plcproj",
+    ] {
+        let out = plcrun_ok(&[target, "--cycles", "5", "--trace", CONVEYOR_VARS]);
+        assert_eq!(out, CONVEYOR_TRACE, "{target}");
+    }
+    let (code, _, err) = plcrun(&["check", "tests/twincat/conveyor"]);
+    assert_eq!((code, err.as_str()), (0, "ok: 6 files checked\n"));
+}
+
+/// Writes `files` (path inside the project, contents) into a fresh folder
+/// and returns the folder.
+fn project(files: &[(&str, &str)]) -> String {
+    let marker = temp_file(".project", "");
+    let dir = Path::new(&marker).parent().unwrap().to_path_buf();
+    for (name, text) in files {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(&path, text).unwrap();
+    }
+    dir.to_string_lossy().into_owned()
+}
+
+/// A `.TcPOU` file with `declaration`, then `inner` (methods, actions...),
+/// and an ST body.
+fn pou(name: &str, declaration: &str, body: &str, inner: &str) -> String {
+    format!(
+        "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <POU Name=\"{name}\" Id=\"{{00000000-0000-0000-0000-000000000001}}\" SpecialFunc=\"None\">\n    <Declaration><![CDATA[{declaration}]]></Declaration>\n    <Implementation>\n      <ST><![CDATA[{body}]]></ST>\n    </Implementation>\n{inner}  </POU>\n</TcPlcObject>\n"
+    )
+}
+
+fn task(name: &str, cycle: &str, programs: &[&str]) -> String {
+    let calls: String = programs
+        .iter()
+        .map(|p| format!("    <PouCall>\n      <Name>{p}</Name>\n    </PouCall>\n"))
+        .collect();
+    format!(
+        "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <Task Name=\"{name}\" Id=\"{{00000000-0000-0000-0000-000000000002}}\">\n    <CycleTime>{cycle}</CycleTime>\n    <Priority>20</Priority>\n{calls}  </Task>\n</TcPlcObject>\n"
+    )
+}
+
+#[test]
+fn errors_in_a_method_body_point_at_its_line_and_column_in_the_xml_file() {
+    let method = "    <Method Name=\"Bump\" Id=\"{00000000-0000-0000-0000-000000000003}\">\n      <Declaration><![CDATA[METHOD Bump : BOOL\n]]></Declaration>\n      <Implementation>\n        <ST><![CDATA[n := n + 1;\nn := missing * 2;\n]]></ST>\n      </Implementation>\n    </Method>\n";
+    let dir = project(&[(
+        "FB_Bump.TcPOU",
+        &pou(
+            "FB_Bump",
+            "FUNCTION_BLOCK FB_Bump\nVAR\n    n : INT;\nEND_VAR\n",
+            "Bump();\n",
+            method,
+        ),
+    )]);
+    let (code, _, err) = plcrun(&["check", &dir]);
+    assert_eq!(code, 1, "{err}");
+    // The unknown name is on line 18 of the file, after `n := `.
+    assert!(err.contains("FB_Bump.TcPOU:18:6"), "{err}");
+    assert!(err.contains("n := missing * 2;"), "{err}");
+}
+
+#[test]
+fn graphical_bodies_transitions_and_other_objects_are_refused_by_name() {
+    let sfc = "<?xml version=\"1.0\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <POU Name=\"P\" Id=\"{0}\">\n    <Declaration><![CDATA[PROGRAM P\n]]></Declaration>\n    <Implementation>\n      <SFC>\n      </SFC>\n    </Implementation>\n    <Transition Name=\"t\" Id=\"{1}\"/>\n  </POU>\n</TcPlcObject>\n";
+    let visu = "<?xml version=\"1.0\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <Visu Name=\"V\" Id=\"{2}\"/>\n</TcPlcObject>\n";
+    let dir = project(&[("P.TcPOU", sfc), ("V.TcPOU", visu)]);
+    let (code, _, err) = plcrun(&["check", &dir]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("error[E871]: `<SFC>` body refused: it is a sequential function chart")
+            && err.contains("P.TcPOU:7:7"),
+        "{err}"
+    );
+    assert!(
+        err.contains("`<Transition>` refused") && err.contains("P.TcPOU:10:5"),
+        "{err}"
+    );
+    assert!(
+        err.contains("`<Visu>` refused") && err.contains("V.TcPOU:3:3"),
+        "{err}"
+    );
+}
+
+#[test]
+fn malformed_files_and_bad_task_settings_are_errors_at_their_place() {
+    let dir = project(&[
+        (
+            "Broken.TcPOU",
+            "<?xml version=\"1.0\"?>\n<TcPlcObject>\n  <POU Name=\"x\">\n</TcPlcObject>\n",
+        ),
+        ("Fast.TcTTO", &task("Fast", "0", &["MAIN"])),
+        ("Slow.TcTTO", &task("Slow", "ten", &["MAIN"])),
+        (
+            "NoCycle.TcTTO",
+            "<?xml version=\"1.0\"?>\n<TcPlcObject>\n  <Task Name=\"T\"><Priority>1</Priority></Task>\n</TcPlcObject>\n",
+        ),
+    ]);
+    let (code, _, err) = plcrun(&["check", &dir]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("error[E870]: malformed XML") && err.contains("Broken.TcPOU:4:"),
+        "{err}"
+    );
+    assert!(
+        err.contains("error[E873]: the cycle time of task `Fast` is `0`")
+            && err.contains("Fast.TcTTO:4:16"),
+        "{err}"
+    );
+    assert!(
+        err.contains("the cycle time of task `Slow` is `ten`"),
+        "{err}"
+    );
+    assert!(
+        err.contains("error[E872]: task `T` has no `<CycleTime>`")
+            && err.contains("NoCycle.TcTTO:3:3"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_tasks_of_several_task_files_form_one_configuration() {
+    let counter = |name: &str| {
+        pou(
+            name,
+            &format!("PROGRAM {name}\nVAR\n    n : INT;\nEND_VAR\n"),
+            "n := n + 1;\n",
+            "",
+        )
+    };
+    let dir = project(&[
+        ("Fast.TcPOU", &counter("Fast")),
+        ("Slow.TcPOU", &counter("Slow")),
+        ("FastTask.TcTTO", &task("FastTask", "1000", &["Fast"])),
+        ("SlowTask.TcTTO", &task("SlowTask", "3000", &["Slow"])),
+    ]);
+    let out = plcrun_ok(&[&dir, "--cycles", "6", "--trace", "Fast.n,Slow.n"]);
+    assert_eq!(
+        out,
+        "cycle,time,Fast.n,Slow.n\n0,T#0s,1,1\n1,T#1ms,2,1\n2,T#2ms,3,1\n3,T#3ms,4,2\n4,T#4ms,5,2\n5,T#5ms,6,2\n"
+    );
+}
+
+#[test]
+fn a_folder_without_a_project_file_loads_its_objects_and_sources() {
+    let dir = project(&[
+        (
+            "POUs/MAIN.TcPOU",
+            &pou(
+                "MAIN",
+                "PROGRAM MAIN\nVAR\n    x : INT;\nEND_VAR\n",
+                "x := Twice(x + 1);\n",
+                "",
+            ),
+        ),
+        (
+            "lib/twice.st",
+            "FUNCTION Twice : INT\nVAR_INPUT a : INT; END_VAR\nTwice := 2 * a;\nEND_FUNCTION\n",
+        ),
+        ("notes.txt", "not a source"),
+    ]);
+    let out = plcrun_ok(&[&dir, "--cycles", "3", "--trace", "x"]);
+    assert_eq!(out, "cycle,time,x\n0,T#0s,2\n1,T#10ms,6\n2,T#20ms,14\n");
+}
+
+#[test]
+fn a_folder_with_two_projects_or_none_is_a_usage_error() {
+    let proj = "<?xml version=\"1.0\"?>\n<Project xmlns=\"http://schemas.microsoft.com/developer/msbuild/2003\">\n  <ItemGroup>\n    <Compile Include=\"MAIN.TcPOU\"/>\n  </ItemGroup>\n</Project>\n";
+    let dir = project(&[("a/A.plcproj", proj), ("b/B.plcproj", proj)]);
+    let (code, _, err) = plcrun(&["check", &dir]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("holds 2 TwinCAT projects: name one of") && err.contains("A.plcproj"),
+        "{err}"
+    );
+    // The project names a file that is not there.
+    let (code, _, err) = plcrun(&["check", &format!("{dir}/a/A.plcproj")]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("MAIN.TcPOU"), "{err}");
+    let empty = project(&[("readme.md", "nothing here")]);
+    let (code, _, err) = plcrun(&["check", &empty]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("holds no .plcproj"), "{err}");
+    let not_msbuild = project(&[("X.plcproj", "<?xml version=\"1.0\"?>\n<project/>\n")]);
+    let (code, _, err) = plcrun(&["check", &format!("{not_msbuild}/X.plcproj")]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("not a TwinCAT project"), "{err}");
+}
