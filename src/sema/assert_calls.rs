@@ -38,6 +38,11 @@ enum Family {
     Near(ElemType),
     Truth(bool),
     ArrayEquals,
+    /// TcUnit's `AssertEquals_<TYPE>`.
+    Typed(ElemType),
+    /// TcUnit's `AssertArray[2d|3d]Equals_<TYPE>`: the element type and
+    /// the number of dimensions.
+    TypedArray(ElemType, usize),
 }
 
 impl Family {
@@ -49,16 +54,25 @@ impl Family {
             "ASSERTTRUE" => Family::Truth(true),
             "ASSERTFALSE" => Family::Truth(false),
             "ASSERTARRAYEQUALS" => Family::ArrayEquals,
-            _ => return None,
+            _ => match super::assert_tcunit::tcunit_name(key)? {
+                (t, None) => Family::Typed(t),
+                (t, Some(rank)) => Family::TypedArray(t, rank),
+            },
         })
     }
 
     /// The parameter names in positional order (`Message` is optional).
     fn params(self) -> &'static [&'static str] {
         match self {
-            Family::Equals | Family::ArrayEquals => &["EXPECTED", "ACTUAL", "MESSAGE"],
+            Family::Equals | Family::ArrayEquals | Family::Typed(_) => {
+                &["EXPECTED", "ACTUAL", "MESSAGE"]
+            }
             Family::Near(_) => &["EXPECTED", "ACTUAL", "DELTA", "MESSAGE"],
             Family::Truth(_) => &["CONDITION", "MESSAGE"],
+            Family::TypedArray(t, _) if super::assert_tcunit::has_delta(t) => {
+                &["EXPECTEDS", "ACTUALS", "DELTA", "MESSAGE"]
+            }
+            Family::TypedArray(..) => &["EXPECTEDS", "ACTUALS", "MESSAGE"],
         }
     }
 }
@@ -155,14 +169,23 @@ impl BodyBuilder<'_> {
             }
             (Family::Near(t), Some(a)) => {
                 let name = format!("{ASSERT_NEAR_PREFIX}{}", t.name());
-                let args = vec![
-                    formal("Expected", e),
-                    formal("Actual", a),
-                    formal("Delta", args[2].clone()?),
-                    formal("Message", message),
-                    formal("Loc", loc),
-                ];
+                let delta = args[2].clone()?;
+                let mut args = self.eq_args(e, a, message, loc, None);
+                args.insert(2, formal("Delta", delta));
                 self.host_assert(&name, args, span, want)
+            }
+            (Family::Typed(t), Some(a)) => {
+                let name = format!("{ASSERT_EQ_PREFIX}{}", t.name());
+                let args = self.eq_args(e, a, message, loc, None);
+                self.host_assert(&name, args, span, want)
+            }
+            (Family::TypedArray(t, rank), Some(a)) => {
+                let delta = if super::assert_tcunit::has_delta(t) {
+                    Some(args[2].clone()?)
+                } else {
+                    None
+                };
+                self.tcunit_array_equals((t, rank), (e, a), delta, message, loc, span, want)
             }
             (Family::Equals, Some(a)) => {
                 if let Some(v) = self.enum_equals(&e, &a, &message, &loc, span, want) {

@@ -39,6 +39,7 @@ pub(crate) mod assert_calls;
 mod assert_enums;
 mod assert_nested;
 mod assert_shadow;
+mod assert_tcunit;
 mod bcd_width;
 mod binary;
 mod bits_arith;

@@ -2,6 +2,7 @@
 //! elementary type (the checker picks it from the values' type, see
 //! `sema::assert_calls`), each recording its failures into a shared log.
 
+use super::tcunit::State;
 use crate::elementary::ElemType;
 use crate::runtime::host_blocks::{HostBlocks, HostDeclError, HostIo, HostResult, HostSignature};
 use crate::sema::assert_calls::{
@@ -37,10 +38,39 @@ pub(crate) struct Log {
     pub(crate) failures: Arc<Mutex<Vec<Recorded>>>,
     /// Failures dropped beyond [`MAX_FAILURES`].
     pub(crate) dropped: Arc<Mutex<usize>>,
+    /// Under TcUnit's rules, every assertion that runs goes to the test
+    /// being run instead (`super::tcunit`).
+    pub(crate) suites: Option<Arc<Mutex<State>>>,
 }
 
 impl Log {
+    /// A log whose assertions count for the TcUnit tests of `state`.
+    pub(crate) fn for_suites(state: Arc<Mutex<State>>) -> Log {
+        Log {
+            suites: Some(state),
+            ..Log::default()
+        }
+    }
+
+    /// An assertion at `loc` held.
+    fn held(&self, loc: i64) {
+        if let Some(state) = &self.suites {
+            state
+                .lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .assertion(loc, None);
+        }
+    }
+
     fn push(&self, r: Recorded) {
+        if let Some(state) = &self.suites {
+            let loc = r.loc;
+            state
+                .lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .assertion(loc, Some(r));
+            return;
+        }
         let mut list = self.failures.lock().unwrap_or_else(|p| p.into_inner());
         if list.len() < MAX_FAILURES {
             list.push(r);
@@ -123,6 +153,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
                 io.get("Expected")? == io.get("Actual")?
             };
             if same {
+                log.held(io.get_i64("Loc")?);
                 io.set_bool(&result, true)?;
                 Ok(())
             } else {
@@ -137,7 +168,10 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
             .input("Actual", t)
             .input("Delta", t)
             .input("Message", ElemType::String)
-            .input("Loc", ElemType::Lint);
+            .input("Loc", ElemType::Lint)
+            .input("IsElement", ElemType::Bool)
+            .input("Index", ElemType::Lint)
+            .input("Element", ElemType::String);
         let log = log.clone();
         let result = name.clone();
         hosts.function(sig, move |io| {
@@ -148,10 +182,11 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
             );
             // NaN anywhere fails: `<=` is false for it.
             if (e - a).abs() <= d.abs() {
+                log.held(io.get_i64("Loc")?);
                 io.set_bool(&result, true)?;
                 Ok(())
             } else {
-                fail(io, &log, &result, false)
+                fail(io, &log, &result, true)
             }
         })?;
     }
@@ -164,6 +199,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
     let log = log.clone();
     hosts.function(sig, move |io| {
         if io.get_bool("Expected")? == io.get_bool("Actual")? {
+            log.held(io.get_i64("Loc")?);
             io.set_bool(ASSERT_TRUE_HOST, true)?;
             Ok(())
         } else {
@@ -187,6 +223,7 @@ fn register_enum(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError>
     hosts.function(sig, move |io| {
         let (e, a) = (io.get_i64("Expected")?, io.get_i64("Actual")?);
         if e == a {
+            log.held(io.get_i64("Loc")?);
             io.set_bool(ASSERT_EQ_ENUM_HOST, true)?;
             return Ok(());
         }

@@ -3,6 +3,7 @@
 //! stop the run, and the warnings go into the report.
 
 use super::assertions::{self, Log};
+use super::tcunit::{self, Plan};
 use super::{TestError, TestOptions};
 use crate::diagnostics::{Diagnostics, Severity};
 use crate::runtime::engine::Options;
@@ -11,9 +12,24 @@ use crate::runtime::host_check::check_with_hosts;
 use crate::source::SourceMap;
 
 /// Every diagnostic of `sources` checked as the tests will be compiled.
-pub(super) fn check(sources: &SourceMap, options: &TestOptions) -> Result<Diagnostics, TestError> {
+pub(super) fn check(
+    sources: &SourceMap,
+    options: &TestOptions,
+    suites: &Plan,
+) -> Result<Diagnostics, TestError> {
     let mut hosts = HostBlocks::new();
-    assertions::register(&mut hosts, &Log::default()).map_err(TestError::Host)?;
+    if suites.suites.is_empty() {
+        assertions::register(&mut hosts, &Log::default()).map_err(TestError::Host)?;
+    } else {
+        tcunit::register(&mut hosts, &Default::default())?;
+    }
+    let with_base;
+    let sources = if suites.add_base {
+        with_base = tcunit::sources_for(sources, suites, false);
+        &with_base
+    } else {
+        sources
+    };
     let plc_options = Options {
         cycle_time: options.cycle_time,
         strict: options.strict,

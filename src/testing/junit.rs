@@ -2,7 +2,7 @@
 //! read): `<testsuites>`, one `<testsuite>`, a `<testcase>` per test with a
 //! `<failure>` for failed assertions or an `<error>` for a runtime fault.
 
-use super::text::{details, failure_line};
+use super::text::{details, failure_line, unfinished_line};
 use super::{TestOutcome, TestReport};
 use std::fmt::Write;
 
@@ -40,7 +40,7 @@ pub(super) fn render(report: &TestReport, suite: &str) -> String {
             out,
             "    <testcase name=\"{}\" classname=\"{}\" time=\"{:.3}\"",
             escape(&case.name),
-            escape(&case.file),
+            escape(case.suite.as_ref().unwrap_or(&case.file)),
             case.elapsed.as_secs_f64()
         );
         let body = escape(&details(case).join("\n"));
@@ -49,10 +49,7 @@ pub(super) fn render(report: &TestReport, suite: &str) -> String {
             TestOutcome::Failed => {
                 let (message, kind) = match case.failures.first() {
                     Some(f) => (failure_line(f), "AssertionFailure"),
-                    None => (
-                        format!("TEST_DONE not set within {} cycles", case.cycles),
-                        "Unfinished",
-                    ),
+                    None => (unfinished_line(case), "Unfinished"),
                 };
                 let _ = writeln!(
                     out,

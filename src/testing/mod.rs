@@ -9,6 +9,7 @@ mod check;
 mod discover;
 mod junit;
 mod run_one;
+mod tcunit;
 mod text;
 
 use crate::diagnostics::Diagnostics;
@@ -84,8 +85,11 @@ pub enum TestOutcome {
 /// What happened in one test.
 #[derive(Debug, Clone)]
 pub struct TestCase {
-    /// The test POU's name.
+    /// The test POU's name, or the name a TcUnit test gave to `TEST`.
     pub name: String,
+    /// The TcUnit suite instance the test belongs to (`PRG_TEST.fbSuite`);
+    /// `None` for a `TEST_` POU.
+    pub suite: Option<String>,
     /// The file declaring it.
     pub file: String,
     /// Cycles run (including a faulting one).
@@ -98,8 +102,25 @@ pub struct TestCase {
     pub more_failures: usize,
     /// The runtime fault that stopped it.
     pub fault: Option<RuntimeFault>,
-    /// It declares `TEST_DONE` and had not set it when its cycles ran out.
+    /// It declares `TEST_DONE` and had not set it when its cycles ran out
+    /// (a TcUnit test: it had not called `TEST_FINISHED`).
     pub unfinished: bool,
+    /// The assertion calls a TcUnit test ran (each counted once however
+    /// many cycles it ran in); 0 for a `TEST_` POU.
+    pub assertions: usize,
+    /// The lines a TcUnit test logged with `TCUNIT_ADSLOGSTR`.
+    pub output: Vec<String>,
+}
+
+impl TestCase {
+    /// The name in reports: `Suite.Test` for a TcUnit test, as
+    /// TcUnit-Runner names it, the POU's name otherwise.
+    pub fn full_name(&self) -> String {
+        match &self.suite {
+            Some(s) => format!("{s}.{}", self.name),
+            None => self.name.clone(),
+        }
+    }
 }
 
 impl TestCase {
@@ -167,7 +188,7 @@ impl fmt::Display for TestError {
             TestError::Compile(e) => e.fmt(f),
             TestError::NoTests => write!(
                 f,
-                "no test found: a test is a PROGRAM or FUNCTION_BLOCK whose name starts with {TEST_PREFIX}"
+                "no test found: a test is a PROGRAM or FUNCTION_BLOCK whose name starts with {TEST_PREFIX}, or a TEST of a TcUnit suite (a FUNCTION_BLOCK extending FB_TestSuite)"
             ),
             TestError::Host(e) => write!(f, "cannot declare the assertions: {e}"),
         }
@@ -210,6 +231,7 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
     let start = Instant::now();
     let mut diags = Diagnostics::new();
     let found = discover::find_tests(sources, &mut diags);
+    let suites = tcunit::plan(sources, &mut Diagnostics::new());
     let wanted = |name: &str| {
         options
             .filter
@@ -220,7 +242,7 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
     // Every problem of every file, as `plcrun check` reports them (a
     // syntax error in one file does not hide the others'), then those of
     // the runner's own reading of the tests.
-    let mut checked = check::check(sources, options)?;
+    let mut checked = check::check(sources, options, &suites)?;
     if checked.has_errors() || diags.has_errors() {
         checked.extend(discover::runner_errors(diags));
         return Err(TestError::Compile(CompileError {
@@ -228,12 +250,19 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
             sources: sources.clone(),
         }));
     }
-    if tests.is_empty() {
+    if tests.is_empty() && suites.suites.is_empty() {
         return Err(TestError::NoTests);
     }
     let mut cases = Vec::with_capacity(tests.len());
     for test in &tests {
         cases.push(run_one::run(sources, test, options)?);
+    }
+    if !suites.suites.is_empty() {
+        let ran = tcunit::run(sources, &suites, options)?;
+        cases.extend(ran.into_iter().filter(|c| wanted(&c.full_name())));
+    }
+    if cases.is_empty() {
+        return Err(TestError::NoTests);
     }
     Ok(TestReport {
         cases,

@@ -16,7 +16,7 @@ const WRAPPER: &str = "PLCRUN_TEST_MAIN";
 const INSTANCE: &str = "test";
 
 /// `file:line:column` of an encoded call position.
-fn locate(sources: &SourceMap, loc: i64) -> String {
+pub(super) fn locate(sources: &SourceMap, loc: i64) -> String {
     let file = (loc >> 32) as usize;
     let offset = (loc & 0xFFFF_FFFF) as usize;
     if file >= sources.files().len() {
@@ -88,6 +88,7 @@ pub(super) fn run(
     };
     let mut case = TestCase {
         name: test.name.clone(),
+        suite: None,
         file: test.file.clone(),
         cycles: 0,
         elapsed: Default::default(),
@@ -95,6 +96,8 @@ pub(super) fn run(
         more_failures: 0,
         fault: None,
         unfinished: test.has_done,
+        assertions: 0,
+        output: Vec::new(),
     };
     for cycle in 0..test.cycle_limit() {
         let result = plc.run_cycle();

@@ -30,15 +30,24 @@ pub(crate) fn details(case: &TestCase) -> Vec<String> {
         ));
     }
     if case.unfinished {
-        lines.push(format!(
-            "TEST_DONE was not set within {} cycles",
-            case.cycles
-        ));
+        lines.push(unfinished_line(case));
     }
+    lines.extend(case.output.iter().map(|l| format!("log: {l}")));
     if let Some(fault) = &case.fault {
         lines.extend(fault.to_string().lines().map(str::to_string));
     }
     lines
+}
+
+/// Why an unfinished test failed.
+pub(crate) fn unfinished_line(case: &TestCase) -> String {
+    match case.suite {
+        Some(_) => format!(
+            "TEST_FINISHED was not called within {} cycles (timed out)",
+            case.cycles
+        ),
+        None => format!("TEST_DONE was not set within {} cycles", case.cycles),
+    }
 }
 
 fn plural(n: u64, one: &str) -> String {
@@ -53,10 +62,14 @@ pub(super) fn render(report: &TestReport) -> String {
             TestOutcome::Failed => "FAIL ",
             TestOutcome::Errored => "ERROR",
         };
+        let assertions = match case.suite {
+            Some(_) => format!(", {}", plural(case.assertions as u64, "assertion")),
+            None => String::new(),
+        };
         let _ = writeln!(
             out,
-            "{verdict} {} ({}, {})",
-            case.name,
+            "{verdict} {} ({}, {}{assertions})",
+            case.full_name(),
             case.file,
             plural(case.cycles, "cycle")
         );

@@ -156,10 +156,14 @@ mod tests {
 
     #[test]
     fn the_root_element_decides_and_a_byte_order_mark_or_comment_is_skipped() {
-        assert!(is_twincat("\u{FEFF}<?xml version=\"1.0\"?>\r\n<!-- x --><TcPlcObject>"));
+        assert!(is_twincat(
+            "\u{FEFF}<?xml version=\"1.0\"?>\r\n<!-- x --><TcPlcObject>"
+        ));
         assert!(!is_twincat("<?xml version=\"1.0\"?><project/>"));
         assert!(!is_twincat("PROGRAM P END_PROGRAM"));
-        assert!(is_task_file("<TcPlcObject><Task Name=\"t\"/></TcPlcObject>"));
+        assert!(is_task_file(
+            "<TcPlcObject><Task Name=\"t\"/></TcPlcObject>"
+        ));
     }
 
     #[test]

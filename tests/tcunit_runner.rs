@@ -1,0 +1,211 @@
+//! TcUnit suites under `plcrun test` (issue #25, point 3): a
+//! FUNCTION_BLOCK extending `FB_TestSuite` is a suite, `TEST`/
+//! `TEST_ORDERED` declare its tests, `TEST_FINISHED` ends them, the typed
+//! `AssertEquals_<TYPE>` / `AssertArray[2d|3d]Equals_<TYPE>` check, and
+//! each test is reported as `Suite.Test`. The suites of
+//! `tests/plc/tcunit_suites.st` each show one rule; the expected verdicts
+//! are derived by hand from TcUnit's documented behaviour.
+
+#[path = "support/cli.rs"]
+mod cli;
+
+use plcrun::{SourceMap, TestCase, TestOptions, TestOutcome, run_tests};
+
+fn run(files: &[(&str, &str)]) -> Vec<TestCase> {
+    let mut sources = SourceMap::new();
+    for (name, text) in files {
+        sources.add(*name, *text);
+    }
+    run_tests(&sources, &TestOptions::default())
+        .expect("the suites compile")
+        .cases
+}
+
+fn suites() -> Vec<TestCase> {
+    let text = std::fs::read_to_string("tests/plc/tcunit_suites.st").unwrap();
+    run(&[("suites.st", &text)])
+}
+
+fn case<'a>(cases: &'a [TestCase], name: &str) -> &'a TestCase {
+    cases
+        .iter()
+        .find(|c| c.full_name() == name)
+        .unwrap_or_else(|| {
+            panic!(
+                "no test {name} in {:?}",
+                cases.iter().map(TestCase::full_name).collect::<Vec<_>>()
+            )
+        })
+}
+
+#[test]
+fn each_test_of_each_declared_suite_instance_is_reported_as_suite_dot_test() {
+    let cases = suites();
+    let names: Vec<String> = cases.iter().map(TestCase::full_name).collect();
+    assert_eq!(
+        names,
+        [
+            "PRG_TEST.fbMath.TestAdd",
+            "PRG_TEST.fbMath.TestSlowFailure",
+            "PRG_TEST.fbMath.TestArrays",
+            "PRG_TEST.fbOrder.First",
+            "PRG_TEST.fbOrder.Second",
+        ]
+    );
+    let add = case(&cases, "PRG_TEST.fbMath.TestAdd");
+    assert_eq!(add.outcome(), TestOutcome::Passed);
+    // Four assertions ran; the one after TEST_FINISHED is ignored.
+    assert_eq!((add.assertions, add.cycles), (4, 1));
+}
+
+#[test]
+fn a_failing_assertion_is_reported_once_at_its_line_though_it_runs_every_cycle() {
+    let cases = suites();
+    let slow = case(&cases, "PRG_TEST.fbMath.TestSlowFailure");
+    assert_eq!(slow.outcome(), TestOutcome::Failed);
+    assert_eq!(slow.cycles, 3);
+    assert_eq!(slow.failures.len(), 1, "{:?}", slow.failures);
+    let f = &slow.failures[0];
+    assert_eq!(
+        (
+            f.location.as_str(),
+            f.expected.as_str(),
+            f.actual.as_str(),
+            f.cycle
+        ),
+        ("suites.st:20:1", "7", "8", 0)
+    );
+}
+
+#[test]
+fn array_assertions_compare_by_position_with_a_delta_and_fail_on_different_sizes() {
+    let cases = suites();
+    let arrays = case(&cases, "PRG_TEST.fbMath.TestArrays");
+    let got: Vec<(String, Option<String>, String, String)> = arrays
+        .failures
+        .iter()
+        .map(|f| {
+            (
+                f.location.clone(),
+                f.element.clone(),
+                f.expected.clone(),
+                f.actual.clone(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        got,
+        [
+            (
+                "suites.st:35:1".to_string(),
+                Some("[1,0]".to_string()),
+                "3.0".to_string(),
+                "3.5".to_string()
+            ),
+            (
+                "suites.st:36:1".to_string(),
+                None,
+                "'3 elements'".to_string(),
+                "'4 elements'".to_string()
+            ),
+        ]
+    );
+}
+
+#[test]
+fn ordered_tests_run_one_after_the_other_and_logs_go_to_their_test() {
+    let cases = suites();
+    let first = case(&cases, "PRG_TEST.fbOrder.First");
+    assert_eq!((first.outcome(), first.cycles), (TestOutcome::Passed, 3));
+    let second = case(&cases, "PRG_TEST.fbOrder.Second");
+    // It starts in the cycle First finished in (cycle 2, its 3rd), so only
+    // the second assertion fails; TEST_FINISHED_NAMED ends it there.
+    assert_eq!(second.cycles, 3);
+    assert_eq!(second.failures.len(), 1);
+    assert_eq!(
+        second.failures[0].message,
+        "fails in the first cycle Second runs"
+    );
+    assert_eq!(second.output, ["second ran in cycle 3"]);
+}
+
+#[test]
+fn suites_run_in_sequence_when_a_program_calls_run_in_sequence() {
+    let suite = |name: &str| {
+        format!(
+            "FUNCTION_BLOCK {name} EXTENDS FB_TestSuite\nVAR n : INT; END_VAR\nTEST('T');\nn := n + 1;\nIF n = 2 THEN TEST_FINISHED(); END_IF\nEND_FUNCTION_BLOCK\n"
+        )
+    };
+    let parallel = "PROGRAM PRG_TEST\nVAR a : FB_A; b : FB_B; END_VAR\nRUN();\nEND_PROGRAM\n";
+    let sequence =
+        "PROGRAM PRG_TEST\nVAR a : FB_A; b : FB_B; END_VAR\nRUN_IN_SEQUENCE();\nEND_PROGRAM\n";
+    let cycles = |program: &str| -> Vec<u64> {
+        run(&[
+            ("a.st", &suite("FB_A")),
+            ("b.st", &suite("FB_B")),
+            ("p.st", program),
+        ])
+        .iter()
+        .map(|c| c.cycles)
+        .collect()
+    };
+    assert_eq!(cycles(parallel), [2, 2]);
+    // B is called from the cycle A finished in (its 2nd) on, so it
+    // finishes in the 3rd.
+    assert_eq!(cycles(sequence), [2, 3]);
+}
+
+#[test]
+fn a_test_that_never_finishes_times_out_and_suites_without_a_program_still_run() {
+    let cases = run(&[(
+        "never.st",
+        "FUNCTION_BLOCK FB_Never EXTENDS FB_TestSuite\nTEST('Forever');\nAssertTrue(TRUE, '');\nEND_FUNCTION_BLOCK\n",
+    )]);
+    let forever = case(&cases, "FB_Never.Forever");
+    assert!(forever.unfinished);
+    assert_eq!(forever.outcome(), TestOutcome::Failed);
+    assert_eq!(forever.cycles, 100_000);
+}
+
+#[test]
+fn typed_assertions_convert_their_arguments_and_refuse_wrong_arrays() {
+    let cases = run(&[(
+        "typed.st",
+        "FUNCTION_BLOCK FB_T EXTENDS FB_TestSuite\nVAR s : SINT := 5; b : BYTE := 16#0F; t : TIME := T#2s; END_VAR\nTEST('Conversions');\nAssertEquals_DINT(Expected := 5, Actual := s, Message := 'SINT to DINT');\nAssertEquals_WORD(Expected := 16#000F, Actual := b, Message := 'BYTE to WORD');\nAssertEquals_TIME(Expected := T#2000ms, Actual := t, Message := 'time');\nAssertEquals_BOOL(Expected := TRUE, Actual := FALSE, Message := 'fails');\nTEST_FINISHED();\nEND_FUNCTION_BLOCK\n",
+    )]);
+    let c = case(&cases, "FB_T.Conversions");
+    assert_eq!(c.assertions, 4);
+    assert_eq!(c.failures.len(), 1);
+    assert_eq!(c.failures[0].message, "fails");
+    let mut sources = SourceMap::new();
+    sources.add(
+        "bad.st",
+        "FUNCTION_BLOCK FB_T EXTENDS FB_TestSuite\nVAR a : ARRAY[0..1] OF INT; r : ARRAY[0..1] OF REAL; END_VAR\nTEST('Bad');\nAssertArrayEquals_INT(Expecteds := a, Actuals := r, Message := '');\nAssertArrayEquals_REAL(Expecteds := r, Actuals := r, Message := '');\nEND_FUNCTION_BLOCK\n",
+    );
+    let err = run_tests(&sources, &TestOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("E482") && err.contains("bad.st:4:1"), "{err}");
+    assert!(
+        err.contains("E481") && err.contains("needs its argument `DELTA`"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_junit_report_names_the_suite_as_the_class_of_each_test() {
+    let junit = cli::temp_file("junit.xml", "");
+    let (code, out, _) = cli::plcrun(&["test", "tests/plc/tcunit_suites.st", "--junit", &junit]);
+    assert_eq!(code, 1);
+    let xml = std::fs::read_to_string(&junit).unwrap();
+    assert!(
+        xml.contains("<testcase name=\"TestAdd\" classname=\"PRG_TEST.fbMath\""),
+        "{xml}"
+    );
+    assert!(
+        out.contains(
+            "FAIL  PRG_TEST.fbMath.TestArrays (tests/plc/tcunit_suites.st, 1 cycle, 3 assertions)"
+        ),
+        "{out}"
+    );
+}
