@@ -19,6 +19,7 @@ use std::path::{Path, PathBuf};
 
 mod project;
 mod source_bytes;
+pub(crate) mod twincat_library;
 pub use source_bytes::add_source_bytes;
 
 /// Diagnostic code of "several PROGRAMs and none chosen".
@@ -156,6 +157,18 @@ const INLINE_COMPILE_BYTES: usize = 2 << 10;
 fn compile_here(
     sources: &SourceMap,
     options: &CompileOptions,
+    out: &mut Diagnostics,
+) -> Option<VerifiedImage> {
+    let mut found = Diagnostics::new();
+    let image = compile_units(sources, options, &mut found);
+    out.extend(twincat_library::drop_expected_warnings(sources, found));
+    if out.has_errors() { None } else { image }
+}
+
+/// [`compile_here`] before the library's warnings are dropped.
+fn compile_units(
+    sources: &SourceMap,
+    options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
     let mut units = Vec::with_capacity(sources.files().len());
@@ -252,7 +265,9 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         unoptimized: false,
         addressing: options.addressing.unwrap_or_else(|| addressing_of(sources)),
     };
-    let image = compile(sources, &build, &mut diagnostics);
+    let mut with_library = sources.clone();
+    twincat_library::add_library(&mut with_library);
+    let image = compile(&with_library, &build, &mut diagnostics);
     let ir_listing = match (options.ir_listing, image) {
         (true, Some(image)) => Some(image.dump()),
         _ => None,

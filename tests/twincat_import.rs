@@ -214,3 +214,53 @@ fn a_folder_with_two_projects_or_none_is_a_usage_error() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("not a TwinCAT project"), "{err}");
 }
+
+#[test]
+fn the_tc2_library_items_run_and_a_project_s_own_declaration_wins() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    l : T_MaxString;\n    r : T_MaxString;\n    a : ARRAY[0..3] OF INT := [1, 2, 3, 4];\n    b : ARRAY[0..3] OF INT;\n    nCopied : UDINT;\n    nSame : DINT;\n    nAfterSet : DINT;\n    rand : DRAND;\n    x : LREAL;\n    p : PVOID;\nEND_VAR\n",
+        "l := F_LTrim('  ab c ');\nr := F_RTrim('  ab c ');\nnCopied := MEMCPY(ADR(b), ADR(a), SIZEOF(a));\nnSame := MEMCMP(ADR(a), ADR(b), SIZEOF(a));\nMEMSET(ADR(b), 0, 2);\nnAfterSet := MEMCMP(ADR(a), ADR(b), SIZEOF(a));\nMEMMOVE(ADR(a), ADR(b), 4);\nrand(Seed := 3);\nx := rand.Num;\np := ADR(a);\n",
+        "",
+    );
+    let dir = project(&[("MAIN.TcPOU", &main)]);
+    let vars = "l,r,nCopied,nSame,nAfterSet,b[0],a[0],a[1],a[3]";
+    let out = plcrun_ok(&[&dir, "--cycles", "1", "--trace", vars]);
+    assert_eq!(
+        out,
+        "cycle,time,l,r,nCopied,nSame,nAfterSet,b[0],a[0],a[1],a[3]\n0,T#0s,'ab c ','  ab c',8,0,1,0,0,2,4\n"
+    );
+    // DRAND: in [0, 1), the same sequence for the same seed.
+    let draws = |seed: &str| {
+        let src = main.replace("Seed := 3", &format!("Seed := {seed}"));
+        let dir = project(&[("MAIN.TcPOU", &src)]);
+        plcrun_ok(&[&dir, "--cycles", "50", "--trace", "x"])
+    };
+    let first = draws("3");
+    assert_eq!(first, draws("3"));
+    assert_ne!(first, draws("4"));
+    for line in first.lines().skip(1) {
+        let x: f64 = line.rsplit(',').next().unwrap().parse().unwrap();
+        assert!((0.0..1.0).contains(&x), "{x}");
+    }
+    // The CODESYS-extension warnings (ADR, SIZEOF, POINTER TO) are not
+    // shown for TwinCAT code, nor any of the library's own; --strict still
+    // refuses them.
+    let (code, _, err) = plcrun(&["check", &dir]);
+    assert_eq!((code, err.as_str()), (0, "ok: 1 file checked\n"));
+    let (code, _, err) = plcrun(&["check", "--strict", &dir]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("error[W301]") && !err.contains("<TwinCAT libraries>"),
+        "{err}"
+    );
+    // A project declaring its own F_LTrim uses it.
+    let own = pou(
+        "F_LTrim",
+        "FUNCTION F_LTrim : STRING\nVAR_INPUT in : STRING; END_VAR\n",
+        "F_LTrim := 'mine';\n",
+        "",
+    );
+    let dir = project(&[("MAIN.TcPOU", &main), ("F_LTrim.TcPOU", &own)]);
+    assert!(plcrun_ok(&[&dir, "--cycles", "1", "--trace", "l"]).ends_with("0,T#0s,'mine'\n"));
+}

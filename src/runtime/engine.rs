@@ -314,6 +314,7 @@ impl Plc {
         if !options.hosts.is_empty() {
             sources.add(HOST_SOURCE, options.hosts.declarations());
         }
+        crate::driver::twincat_library::add_library(&mut sources);
         let build = options.compile_options(&sources, false);
         let image = driver::compile(&sources, &build, &mut diags);
         match image {

@@ -17,6 +17,7 @@ pub(crate) fn check_with_hosts(sources: &SourceMap, options: &Options) -> Diagno
     if !options.hosts.is_empty() {
         sources.add(HOST_SOURCE, options.hosts.declarations());
     }
+    crate::driver::twincat_library::add_library(&mut sources);
     let build = options.compile_options(&sources, true);
     let mut diags = Diagnostics::new();
     driver::compile(&sources, &build, &mut diags);
