@@ -1,6 +1,5 @@
-//! A declaration refused for its type (E209: a function block instance in
-//! a FUNCTION, a PROGRAM instance, a function returning an FB; E203: an
-//! unknown type) still declares its name, with the error type: the
+//! A declaration refused for its type (E209: a PROGRAM instance as a
+//! parameter, a function returning a PROGRAM; E203: an unknown type) still declares its name, with the error type: the
 //! function keeps its interface, so calls bind their arguments as written
 //! and the body finds the name. One error per cause, at the declaration;
 //! the calls and the body add none of their own (no "takes 0 arguments",
@@ -18,10 +17,10 @@ VAR_OUTPUT n : INT; END_VAR
 n := n + inc;
 END_FUNCTION_BLOCK
 FUNCTION Peek : INT
-VAR_INPUT c : FB_Counter; k : INT; END_VAR
+VAR_INPUT c : Q; k : INT; END_VAR
 Peek := c.n + k;
 END_FUNCTION
-FUNCTION Make : FB_Counter
+FUNCTION Make : Q
 VAR_INPUT k : INT; END_VAR
 Make.inc := k;
 END_FUNCTION
@@ -37,6 +36,10 @@ r := Peek(c := ctr, k := 2);
 r := Make(3).n + Make(k := 4).inc;
 r := Both(i, i);
 r := Both(u := i, v := i);
+END_PROGRAM
+PROGRAM Q
+VAR_INPUT inc : INT; END_VAR
+VAR_OUTPUT n : INT; END_VAR
 END_PROGRAM
 ";
 

@@ -174,6 +174,7 @@ impl<'a> Declarer<'a> {
         let Item::Pou(pou) = &units[u].items[i] else {
             return;
         };
+        self.layout_callees(pou);
         let builder = BodyBuilder::new(&self.model, &mut self.types, &mut self.out, self.diags, p);
         let built = builder.build(pou);
         self.model.pous[p].consts = built.consts;
@@ -186,6 +187,36 @@ impl<'a> Declarer<'a> {
 }
 
 impl Declarer<'_> {
+    /// Lays out the FUNCTIONs `pou`'s body and methods name before the
+    /// body is emitted: a body can be emitted while the declarations are
+    /// still being laid out (an FB instance's size includes its body's
+    /// temporaries), and a call binds its arguments to the callee's laid
+    /// out parameters.
+    fn layout_callees(&mut self, pou: &Pou) {
+        let mut names: Vec<String> = Vec::new();
+        let mut note = |name: &str| {
+            names.push(name.to_ascii_uppercase());
+            false
+        };
+        super::body_names::any_name(&pou.body, &mut note);
+        if let Some(oop) = &pou.oop {
+            for m in &oop.methods {
+                super::body_names::any_name(&m.body, &mut note);
+                for accessor in m.property.iter().flatten() {
+                    super::body_names::any_name(&accessor.body, &mut note);
+                }
+            }
+        }
+        for name in names {
+            if let Some(&q) = self.model.pou_index.get(&name)
+                && self.model.pous[q].kind == PouKind::Function
+                && self.pou_state[q] == LayoutState::Pending
+            {
+                self.layout_pou(q);
+            }
+        }
+    }
+
     /// Resolves the enumeration TYPEs not resolved yet, for a body emitted
     /// while TYPE declarations are still being resolved (an FB instance in
     /// a structure): the body reads types from the model and cannot resolve

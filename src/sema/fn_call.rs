@@ -49,6 +49,19 @@ impl BodyBuilder<'_> {
     /// A call of user function `p`; `want` when its value is used.
     pub(super) fn user_function_call(&mut self, p: usize, call: &Call, want: bool) -> Val {
         let callee = &self.model.pous[p];
+        if callee.code == crate::ir::op::CodeIdx::new(u32::MAX) {
+            // Its layout waits for this very body: the function holds or
+            // returns an instance of the block being emitted.
+            self.diags.error(
+                "E204",
+                call.span,
+                format!(
+                    "`{}` cannot be called here: it holds or returns an instance of a function block whose own code calls it, a cycle plcrun cannot lay out",
+                    callee.name
+                ),
+            );
+            return Val::error();
+        }
         let params = function_params(callee);
         let Some(b) = self.bind(&params, &call.args, &callee.name, call.span) else {
             return Val::error();
@@ -143,9 +156,10 @@ impl BodyBuilder<'_> {
                 None
             }
             (_, Some(e)) => match self.types.get(prm.ty).kind {
-                TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                    self.aggregate_argument(prm, e, &what)
-                }
+                TypeKind::Array { .. }
+                | TypeKind::Struct { .. }
+                | TypeKind::Pou { program: false, .. }
+                | TypeKind::NativeFb(_) => self.aggregate_argument(prm, e, &what),
                 _ => self.scalar_argument(prm, e, &what),
             },
             (_, None) => self.default_argument(p, prm, call_span),
@@ -334,9 +348,12 @@ impl BodyBuilder<'_> {
         }
         if matches!(
             self.types.get(ret).kind,
-            TypeKind::Array { .. } | TypeKind::Struct { .. }
+            TypeKind::Array { .. }
+                | TypeKind::Struct { .. }
+                | TypeKind::Pou { program: false, .. }
+                | TypeKind::NativeFb(_)
         ) {
-            // An array or structure: the address of the result in the
+            // An array, structure or FB instance: the address of the result in the
             // callee's frame (struct_returns.rs copies it out).
             return self.aggregate_result_address(p, ret);
         }

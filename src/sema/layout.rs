@@ -124,15 +124,27 @@ impl Declarer<'_> {
         }
         // A refused result type still gives the function its result
         // variable (of the error type), so calls and the body check on.
-        let ret = if self.types.get(ret).kind.is_value_type() {
-            ret
-        } else {
-            self.diags.error(
-                "E209",
-                pou.name.span,
-                "a function cannot return a function block instance",
-            );
-            TypeTable::error()
+        // A function may return a function block instance, as CODESYS
+        // allows (a copy of it); not a program, and not a block whose own
+        // code calls this function (its size is not known yet).
+        let ret = match self.types.get(ret).kind {
+            TypeKind::Pou { program: true, .. } => {
+                self.diags.error(
+                    "E209",
+                    pou.name.span,
+                    "a function cannot return a program instance",
+                );
+                TypeTable::error()
+            }
+            TypeKind::Pou { .. } if self.being_emitted(ret) => {
+                self.diags.error(
+                    "E204",
+                    pou.name.span,
+                    "this function returns a function block whose own code calls it, so its size is not known yet (a cycle plcrun cannot lay out)",
+                );
+                TypeTable::error()
+            }
+            _ => ret,
         };
         self.model.pous[p].ret = ret;
         frame.vars.insert(
@@ -176,7 +188,7 @@ impl Declarer<'_> {
     /// One declaration (`a, b : T := init`): its type checked against the
     /// POU kind, then each name laid out.
     fn layout_decl(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &mut Frame) {
-        let ty = self.decl_type(pou, block, decl, frame);
+        let ty = self.decl_type(block, decl, frame);
         if ty == TypeTable::void() {
             return;
         }
@@ -240,13 +252,14 @@ impl Declarer<'_> {
 
     /// The type of declaration `decl`: a VAR_IN_OUT of the block being
     /// laid out gets the id reserved for it (self_ref_types.rs); after
-    /// E209 for an instance the POU cannot hold (a PROGRAM anywhere, a
-    /// function block in a FUNCTION other than as VAR_IN_OUT), the error
+    /// E209 for an instance the POU cannot hold (a PROGRAM anywhere) or
+    /// E204 for an instance of a block whose body is being emitted (its
+    /// size is not final: the block's code calls this POU), the error
     /// type. The names are still declared with the error type, so a
     /// refused parameter keeps its place in the interface: calls bind
     /// their arguments as written and the body finds the name, with no
     /// error of their own.
-    fn decl_type(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &Frame) -> TypeId {
+    fn decl_type(&mut self, block: &VarBlock, decl: &VarDecl, frame: &Frame) -> TypeId {
         // A VAR_IN_OUT is a pointer slot: it may name the block being laid out.
         let own = match (&decl.ty, block.kind) {
             (crate::syntax::ast::TypeSpec::Named(id), VarKind::InOut) => {
@@ -257,15 +270,29 @@ impl Declarer<'_> {
         let ty = own.unwrap_or_else(|| self.resolve_type(&decl.ty, Some(&frame.vars)));
         let tkind = &self.types.get(ty).kind;
         let is_fb = matches!(tkind, TypeKind::NativeFb(_) | TypeKind::Pou { .. });
-        let why = if matches!(tkind, TypeKind::Pou { program: true, .. }) {
-            "a PROGRAM cannot be instantiated inside a POU"
-        } else if is_fb && pou.kind == PouKind::Function && block.kind != VarKind::InOut {
-            "a FUNCTION cannot hold function block instances (they have state)"
+        let (code, why) = if matches!(tkind, TypeKind::Pou { program: true, .. }) {
+            ("E209", "a PROGRAM cannot be instantiated inside a POU")
+        } else if is_fb && block.kind != VarKind::InOut && self.being_emitted(ty) {
+            (
+                "E204",
+                "this block's own code calls the POU declared here, so its size is not known yet (a cycle plcrun cannot lay out)",
+            )
         } else {
             return ty;
         };
-        self.diags.error("E209", decl.ty.span(), why);
+        self.diags.error(code, decl.ty.span(), why);
         TypeTable::error()
+    }
+
+    /// True when `ty` is the instance type of a block whose body is being
+    /// emitted: its size (which counts its body's temporaries) is not
+    /// final yet.
+    fn being_emitted(&self, ty: TypeId) -> bool {
+        self.model
+            .pous
+            .iter()
+            .position(|q| q.ty == ty)
+            .is_some_and(|q| self.emit_state[q] == LayoutState::InProgress)
     }
 
     /// E210: RETAIN or PERSISTENT where a value cannot outlive a call

@@ -45,6 +45,7 @@ mod binary;
 mod bits_arith;
 mod bits_neg;
 mod body;
+mod body_names;
 mod bounds;
 mod calls;
 mod compat_typing;

@@ -320,7 +320,10 @@ impl BodyBuilder<'_> {
         }
         let kind = self.types.get(p.ty).kind.clone();
         match kind {
-            TypeKind::Array { .. } | TypeKind::Struct { .. } => {
+            TypeKind::Array { .. }
+            | TypeKind::Struct { .. }
+            | TypeKind::Pou { program: false, .. }
+            | TypeKind::NativeFb(_) => {
                 let Some(src) = self.place(value) else {
                     return;
                 };
@@ -330,11 +333,11 @@ impl BodyBuilder<'_> {
                 }
                 self.copy_aggregate(&p, &src, span);
             }
-            TypeKind::NativeFb(_) | TypeKind::Pou { .. } | TypeKind::Step => {
+            TypeKind::Pou { .. } | TypeKind::Step => {
                 self.diags.error(
                     "E302",
                     target.span,
-                    "function block instances cannot be assigned",
+                    "program instances and SFC steps cannot be assigned",
                 );
             }
             _ => {

@@ -45,11 +45,15 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// True for an array or a structure.
+    /// True for an array, a structure or a function block instance (a
+    /// FUNCTION may return one, as CODESYS allows).
     fn is_aggregate(&self, ty: TypeId) -> bool {
         matches!(
             self.types.get(ty).kind,
-            TypeKind::Array { .. } | TypeKind::Struct { .. }
+            TypeKind::Array { .. }
+                | TypeKind::Struct { .. }
+                | TypeKind::Pou { program: false, .. }
+                | TypeKind::NativeFb(_)
         )
     }
 
