@@ -144,3 +144,56 @@ END_FUNCTION
     let codes = error_codes(&[("t.st", cycle)]);
     assert!(codes.iter().any(|(c, _)| c == "E204"), "{codes:?}");
 }
+
+#[test]
+fn an_instance_declaration_sets_the_initial_values_of_its_variables_and_pins() {
+    let src = "
+FUNCTION_BLOCK FB_C
+VAR_INPUT inc : INT := 1; END_VAR
+VAR_OUTPUT n : INT; END_VAR
+VAR label : STRING := 'x'; END_VAR
+n := n + inc;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Outer
+VAR_OUTPUT inner : FB_C := (inc := 10); END_VAR
+inner();
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR
+  t : TON := (PT := T#30ms);
+  c : FB_C := (inc := 5, label := 'five');
+  d : FB_C;
+  o : FB_Outer;
+  q : BOOL;
+END_VAR
+t(IN := TRUE);
+q := t.Q;
+c();
+d();
+o();
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 3);
+    // The TON's PT came from the declaration: Q after 30 ms, in cycle 3.
+    assert_eq!(
+        (lit(&plc, "t.PT"), lit(&plc, "q")),
+        ("T#30ms".into(), "FALSE".into())
+    );
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "q"), "TRUE");
+    assert_eq!(
+        [
+            lit(&plc, "c.n"),
+            lit(&plc, "c.label"),
+            lit(&plc, "d.n"),
+            lit(&plc, "o.inner.n")
+        ],
+        ["20", "'five'", "4", "40"]
+    );
+    let bad = "PROGRAM P VAR t : TON := (PX := T#1s); END_VAR END_PROGRAM";
+    assert_eq!(
+        error_codes(&[("t.st", bad)]),
+        [("E201".to_string(), "1:27".to_string())]
+    );
+}

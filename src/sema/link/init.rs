@@ -8,6 +8,15 @@ use crate::ir::type_table::{MemberKind, TypeId, TypeKind};
 use crate::sema::model::{ConstInit, Storage};
 use crate::syntax::ast::PouKind;
 
+/// The initial value an instance's declaration gives its variable or pin
+/// `k` (`ton : TON := (PT := T#5s)`), if it gives one.
+fn overridden(init: Option<&ConstInit>, k: usize) -> Option<&ConstInit> {
+    match init {
+        Some(ConstInit::Struct(v)) => v.iter().find(|(i, _)| *i == k).map(|(_, c)| c),
+        _ => None,
+    }
+}
+
 impl Linker<'_> {
     /// Writes the initial value of a `ty` at `at` in `buf`, collecting string slots.
     fn write_init(
@@ -83,7 +92,10 @@ impl Linker<'_> {
             TypeKind::NativeFb(fb) => {
                 for (k, p) in crate::stdlib::interface(*fb).iter().enumerate() {
                     if let Some(slot) = buf.get_mut(at + k) {
-                        *slot = p.init;
+                        *slot = match overridden(init, k) {
+                            Some(ConstInit::Scalar(b)) => *b,
+                            _ => p.init,
+                        };
                     }
                 }
             }
@@ -91,9 +103,10 @@ impl Linker<'_> {
                 let Some(p) = self.model.pous.iter().position(|p| p.code == *code) else {
                     return;
                 };
-                for var in self.model.pous[p].vars.values() {
+                for (k, var) in self.model.pous[p].vars.values().enumerate() {
                     if let Storage::Frame(o) = var.storage {
-                        self.write_init(buf, at + o as usize, var.ty, var.init.as_ref(), strs);
+                        let value = overridden(init, k).or(var.init.as_ref());
+                        self.write_init(buf, at + o as usize, var.ty, value, strs);
                     }
                 }
                 for &(slot, value) in &self.model.pous[p].consts {

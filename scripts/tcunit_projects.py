@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""Runs `plcrun test` on TwinCAT projects with TcUnit suites and prints
+the table of docs/compatibility.md ("TwinCAT projects and TcUnit").
+
+    python3 scripts/tcunit_projects.py [--plcrun BIN] PROJECT...
+
+Each PROJECT is a folder holding one .plcproj, or a .plcproj file
+(docs/twincat.md). The projects are public repositories fetched outside
+this repository (docs/compatibility.md names them and their commits).
+
+For each project it runs `plcrun check PROJECT` and `plcrun test PROJECT`
+(timing both), and prints one Markdown row:
+
+    project | compiles | tests | passed | failed | errored | assertions | check s | test s
+
+"compiles" is `ok` or the number of errors `plcrun test` reports before
+running anything (the sources checked with TcUnit's functions declared),
+with the three most frequent codes. "tests" counts the TcUnit tests (and `TEST_`
+tests) reported; "assertions" the assertion calls they ran, each counted
+once per test (the figure `plcrun test` prints per test). When the sources
+do not compile, the test columns are empty.
+
+BIN defaults to target/release/plcrun (build it with
+`cargo build --release`).
+"""
+
+import collections
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+CASE = re.compile(r"^(PASS |FAIL |ERROR) (\S+) \((.*), (\d+) cycles?(?:, (\d+) assertions?)?\)$")
+CODE = re.compile(r"^error\[(\w+)\]")
+COUNT = re.compile(r"^(\d+) errors?, ")
+
+
+def run(args):
+    start = time.monotonic()
+    proc = subprocess.run(args, capture_output=True, text=True, errors="replace")
+    return proc, time.monotonic() - start
+
+
+def compile_column(stdout, stderr):
+    if CASE.search(stdout) or any(CASE.match(l) for l in stdout.splitlines()):
+        return "ok"
+    codes = collections.Counter(
+        m.group(1) for line in stderr.splitlines() if (m := CODE.match(line))
+    )
+    total = next((int(m.group(1)) for line in stderr.splitlines() if (m := COUNT.match(line))), sum(codes.values()))
+    top = ", ".join(f"{c}×{n}" for c, n in codes.most_common(3))
+    return f"{total} errors ({top})" if top else f"{total} errors"
+
+
+def measure(plcrun, project):
+    _, check_s = run([plcrun, "check", project])
+    test, test_s = run([plcrun, "test", project])
+    verdicts = collections.Counter()
+    assertions = 0
+    for line in test.stdout.splitlines():
+        m = CASE.match(line)
+        if m:
+            verdicts[m.group(1).strip()] += 1
+            assertions += int(m.group(5) or 0)
+    tests = sum(verdicts.values())
+    name = os.path.basename(os.path.normpath(project))
+    row = [name.removesuffix(".plcproj"), compile_column(test.stdout, test.stderr)]
+    if tests:
+        row += [str(tests), str(verdicts["PASS"]), str(verdicts["FAIL"]), str(verdicts["ERROR"]), str(assertions)]
+    else:
+        row += ["", "", "", "", ""]
+    row += [f"{check_s:.2f}", f"{test_s:.2f}"]
+    return row
+
+
+def main(argv):
+    plcrun = os.path.join(ROOT, "target", "release", "plcrun")
+    if len(argv) >= 2 and argv[0] == "--plcrun":
+        plcrun, argv = argv[1], argv[2:]
+    if not argv:
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
+    if not os.access(plcrun, os.X_OK):
+        print(f"{plcrun} is not there: run `cargo build --release` first", file=sys.stderr)
+        return 2
+    print("| project | compiles | tests | passed | failed | errored | assertions | check s | test s |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for project in argv:
+        print("| " + " | ".join(measure(plcrun, project)) + " |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
