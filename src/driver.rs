@@ -196,6 +196,9 @@ pub struct CheckOptions {
     /// Also build the runnable program and list its IR (a debugging aid;
     /// the sources must then hold one runnable program).
     pub ir_listing: bool,
+    /// Also build the runnable program and list its located variables
+    /// with their addresses ([`crate::ir::image::Image::address_map`]).
+    pub address_map: bool,
     /// Check charts for IEC 60848 evolution (`--grafcet`): forcing orders
     /// are accepted.
     pub grafcet: bool,
@@ -241,6 +244,9 @@ pub struct CheckReport {
     /// The IR listing of every code block, when asked for and the sources
     /// have no error.
     pub ir_listing: Option<String>,
+    /// The located variables and their addresses, when asked for and the
+    /// sources have no error.
+    pub address_map: Option<String>,
 }
 
 impl CheckReport {
@@ -253,29 +259,58 @@ impl CheckReport {
 /// Parses and checks sources without running them. Without
 /// `ir_listing`, a set of declarations with no PROGRAM is fine.
 pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
-    let mut diagnostics = Diagnostics::new();
+    let mut found = Diagnostics::new();
+    let mut extended = sources.clone();
+    twincat_library::add_library(&mut extended);
+    // TcUnit suites check against TcUnit's functions, as `plcrun test`
+    // runs them (the project references the TcUnit library).
+    let host_pous = crate::testing::declare_tcunit(&mut extended);
     let build = CompileOptions {
         program: options.program.clone(),
         cycle_time: 10_000_000,
-        check_only: !options.ir_listing,
-        host_pous: Vec::new(),
+        check_only: !(options.ir_listing || options.address_map),
+        host_pous,
         grafcet: options.grafcet,
         max_data_bytes: options.max_data_bytes,
         strict: options.strict,
         unoptimized: false,
         addressing: options.addressing.unwrap_or_else(|| addressing_of(sources)),
     };
-    let mut with_library = sources.clone();
-    twincat_library::add_library(&mut with_library);
-    let image = compile(&with_library, &build, &mut diagnostics);
-    let ir_listing = match (options.ir_listing, image) {
-        (true, Some(image)) => Some(image.dump()),
-        _ => None,
-    };
+    let image = compile(&extended, &build, &mut found);
+    let diagnostics = in_given_sources(sources, found);
+    let ir_listing = image
+        .as_ref()
+        .filter(|_| options.ir_listing)
+        .map(|i| i.dump());
+    let address_map = image
+        .as_ref()
+        .filter(|_| options.address_map)
+        .map(|i| i.address_map());
     CheckReport {
         diagnostics,
         ir_listing,
+        address_map,
     }
+}
+
+/// The diagnostics of a compile of `sources` with sources of plcrun's own
+/// added after them (a library, declarations): those pointing into an
+/// added source are not the user's: a warning is dropped, an error (which
+/// the added sources' tests rule out) is moved to the start of the first
+/// file, so that every diagnostic can be shown with `sources`.
+fn in_given_sources(sources: &SourceMap, found: Diagnostics) -> Diagnostics {
+    let given = sources.files().len();
+    let mut out = Diagnostics::new();
+    for mut d in found.iter().cloned() {
+        if (d.span.file.0 as usize) < given {
+            out.push(d);
+        } else if d.severity == crate::diagnostics::Severity::Error {
+            d.message = format!("in plcrun's own declarations: {}", d.message);
+            d.span = crate::source::Span::new(FileId(0), 0, 0);
+            out.push(d);
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -50,17 +50,23 @@ fn config_vars_complete_the_addresses_and_give_initial_values() {
 }
 
 #[test]
-fn a_missing_config_variable_leaves_the_address_uncompleted() {
+fn a_missing_config_variable_leaves_the_address_to_be_placed_automatically() {
     let partial = COMPLETE.replace(
         "<configVariable instancePathAndName=\"R.main.v2.coil\" address=\"%QX1.1\"><type><BOOL/></type></configVariable>",
         "",
     );
     let xml = project(&partial);
-    let e = Plc::compile_files(&[("cell.xml", &xml)], &Options::default())
-        .err()
-        .expect("v2.coil is not completed");
-    let codes: Vec<_> = e.diagnostics.iter().map(|d| d.code).collect();
-    assert_eq!(codes, vec!["E710"], "{e}");
+    let plc = Plc::compile_files(&[("cell.xml", &xml)], &Options::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let coil = plc
+        .image()
+        .globals
+        .iter()
+        .find(|r| r.name.eq_ignore_ascii_case("main.v2.coil"));
+    assert!(
+        coil.and_then(|r| r.location.as_deref()).is_some(),
+        "{coil:?}"
+    );
 }
 
 #[test]

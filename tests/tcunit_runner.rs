@@ -209,3 +209,14 @@ fn the_junit_report_names_the_suite_as_the_class_of_each_test() {
         "{out}"
     );
 }
+
+#[test]
+fn check_accepts_what_the_test_runner_accepts() {
+    let (code, _, err) = cli::plcrun(&["check", "tests/plc/tcunit_suites.st"]);
+    assert_eq!((code, err.as_str()), (0, "ok: 1 file checked\n"));
+    // Without a suite, TEST is an unknown function as before.
+    let plain = cli::temp_file("plain.st", "PROGRAM P\nTEST('x');\nEND_PROGRAM\n");
+    let (code, _, err) = cli::plcrun(&["check", &plain]);
+    assert_eq!(code, 1);
+    assert!(err.contains("E201") && err.contains("TEST"), "{err}");
+}

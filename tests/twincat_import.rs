@@ -264,3 +264,20 @@ fn the_tc2_library_items_run_and_a_project_s_own_declaration_wins() {
     let dir = project(&[("MAIN.TcPOU", &main), ("F_LTrim.TcPOU", &own)]);
     assert!(plcrun_ok(&[&dir, "--cycles", "1", "--trace", "l"]).ends_with("0,T#0s,'mine'\n"));
 }
+
+#[test]
+fn twincat_io_declared_at_i_star_gets_addresses_that_check_map_lists() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    bStart AT %IX0.0 : BOOL;\n    bSensor AT %I* : BOOL;\n    nLevel AT %I* : INT;\n    bPump AT %Q* : BOOL;\nEND_VAR\n",
+        "bPump := bStart AND bSensor AND nLevel > 10;\n",
+        "",
+    );
+    let dir = project(&[("MAIN.TcPOU", &main)]);
+    let (code, out, err) = plcrun(&["check", "--map", &dir]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        out,
+        "%IX0.0  bStart : BOOL\n%IX1.0  MAIN.bSensor : BOOL\n%IW1    MAIN.nLevel : INT\n%QX0.0  MAIN.bPump : BOOL\n"
+    );
+}

@@ -1,6 +1,8 @@
 //! `VAR_CONFIG` and incomplete located variables (`AT %I*`, `%Q*`, `%M*`)
 //! in function blocks and programs, completed per instance by the
-//! configuration (docs/semantics.md, "VAR_CONFIG"); the errors E710-E714.
+//! configuration (docs/semantics.md, "VAR_CONFIG"); the errors E710-E714; an
+//! incomplete address that no VAR_CONFIG completes gets the next free
+//! address of its area (docs/runtime.md, "Incomplete addresses").
 
 use plcrun::{CompileError, Options, Plc};
 
@@ -85,25 +87,46 @@ fn the_resource_name_may_be_left_out_when_there_is_one() {
     assert_eq!(plc.process_image().read_bit("%QX1.0"), Ok(true));
 }
 
-#[test]
-fn an_incomplete_address_left_uncompleted_is_e710_at_its_declaration() {
-    let partial = COMPLETE.replace("  R.main.v2.coil AT %QX1.1 : BOOL;", "");
-    let err = match compile(&with_config(&partial)) {
-        Ok(_) => panic!("v2.coil has no address"),
-        Err(e) => e,
-    };
-    let d: Vec<_> = err.diagnostics.iter().collect();
-    assert_eq!(d.len(), 1, "{err}");
-    assert_eq!(d[0].code, "E710");
-    assert!(d[0].message.contains("main.v2.coil"), "{}", d[0].message);
-    // Points at `%Q*` in the FB's declaration (line 6, column 11).
-    assert_eq!(err.sources.location(d[0].span), "cell.st:6:11");
+/// The address `name` ended up at.
+fn address_of(plc: &Plc, name: &str) -> Option<String> {
+    plc.image()
+        .globals
+        .iter()
+        .find(|r| r.name.eq_ignore_ascii_case(name))
+        .and_then(|r| r.location.clone())
 }
 
 #[test]
-fn without_a_configuration_an_incomplete_address_is_e710() {
-    let src = "PROGRAM P VAR x AT %I* : BOOL; y : BOOL; END_VAR y := x; END_PROGRAM";
+fn an_incomplete_address_left_uncompleted_gets_the_next_free_address() {
+    let partial = COMPLETE.replace("  R.main.v2.coil AT %QX1.1 : BOOL;", "");
+    let mut plc = compile(&with_config(&partial)).unwrap_or_else(|e| panic!("{e}"));
+    // %QX1.0 is the highest output used: v2.coil takes the next byte.
+    assert_eq!(address_of(&plc, "main.v2.coil").as_deref(), Some("%QX2.0"));
+    plc.run_cycle().unwrap();
+    // v2 is closed (cmd is TRUE, v2 gets NOT cmd), v1 open.
+    assert_eq!(plc.process_image().read_bit("%QX2.0"), Ok(false));
+    assert_eq!(plc.process_image().read_bit("%QX1.0"), Ok(true));
+}
+
+#[test]
+fn without_a_configuration_incomplete_addresses_are_placed_in_declaration_order() {
+    let src = "PROGRAM P VAR x AT %I* : BOOL; w AT %IW* : INT; y AT %I* : BOOL; \
+               z AT %IX0.5 : BOOL; out AT %Q* : DINT; s AT %I* : STRING; END_VAR \
+               out := SEL(x, 1, 2); END_PROGRAM";
+    // A STRING cannot get an address.
     assert_eq!(error_codes(src), ["E710"]);
+    let src = src.replace(" s AT %I* : STRING;", "");
+    let mut plc = compile(&src).unwrap_or_else(|e| panic!("{e}"));
+    let got: Vec<Option<String>> = ["P.x", "P.w", "P.y", "P.out"]
+        .iter()
+        .map(|n| address_of(&plc, n))
+        .collect();
+    // Byte 0 holds z: bits go to byte 1, the word to bytes 2-3 (%IW1).
+    let want = ["%IX1.0", "%IW1", "%IX1.1", "%QD0"].map(|a| Some(a.to_string()));
+    assert_eq!(got, want);
+    plc.process_image_mut().write_bit("%IX1.0", true).unwrap();
+    plc.run_cycle().unwrap();
+    assert_eq!(plc.process_image().read_dword("%QD0"), Ok(2));
     // Checking a library that declares such blocks but runs none is fine.
     let lib = VALVE
         .replace("PROGRAM Plant", "FUNCTION_BLOCK Plant2")

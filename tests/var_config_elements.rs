@@ -1,7 +1,7 @@
 //! VAR_CONFIG through array elements (issue #11): an element of an array
 //! of FB instances (`R.main.vs[2].coil`) and an element of an array
 //! declared `AT %Q*` (`R.main.vs[1].lamps[3]`); every element left
-//! uncompleted is E710; bad indexes E711; the form warns W326.
+//! uncompleted gets the next free address; bad indexes E711; the form warns W326.
 
 use plcrun::{CompileError, Options, Plc, Severity};
 
@@ -75,20 +75,36 @@ fn the_form_warns_w326_once_per_line() {
 }
 
 #[test]
-fn an_element_left_uncompleted_is_e710() {
-    // vs[2].lamps[2] has no line: one E710 for that array.
+fn an_element_left_uncompleted_gets_the_next_free_address() {
+    let located = |plc: &plcrun::Plc, name: &str| {
+        plc.image()
+            .globals
+            .iter()
+            .find(|r| r.name.eq_ignore_ascii_case(name))
+            .and_then(|r| r.location.clone())
+    };
+    // vs[2].lamps[2] has no line: it goes after the highest output, %QX3.1.
     let some = ALL.replace("  R.main.vs[2].lamps[2] AT %QX3.1 : BOOL;", "");
-    assert_eq!(error_codes(&with_config(&some)), vec!["E710"]);
-    let e = compile(&with_config(&some)).err().unwrap();
-    assert!(e.to_string().contains("main.vs[2].lamps[2]"), "{e}");
-    // vs[2].coil has no line: E710 names the element instance.
-    let some = ALL.replace("  R.main.vs[2].coil AT %QX1.1 : BOOL;", "");
-    let e = compile(&with_config(&some)).err().unwrap();
-    assert!(e.to_string().contains("main.vs[2].coil"), "{e}");
-    // No VAR_CONFIG at all: the instances in the array are checked too.
-    let none = with_config("");
-    assert!(error_codes(&none).iter().all(|c| *c == "E710"));
-    assert_eq!(error_codes(&none).len(), 4, "two coils, two lamp arrays");
+    let plc = compile(&with_config(&some)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        located(&plc, "main.vs[2].lamps[2]").as_deref(),
+        Some("%QX4.0"),
+        "the highest is %QX3.0 now"
+    );
+    // No VAR_CONFIG at all: every coil and lamp is placed, in instance order.
+    let plc = compile(&with_config("")).unwrap_or_else(|e| panic!("{e}"));
+    let names = [
+        "main.vs[1].coil",
+        "main.vs[1].lamps[1]",
+        "main.vs[1].lamps[2]",
+        "main.vs[2].coil",
+    ];
+    let got: Vec<Option<String>> = names.iter().map(|n| located(&plc, n)).collect();
+    assert!(got.iter().all(Option::is_some), "{got:?}");
+    let mut distinct = got.clone();
+    distinct.sort();
+    distinct.dedup();
+    assert_eq!(distinct.len(), got.len(), "{got:?}");
 }
 
 #[test]

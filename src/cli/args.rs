@@ -231,6 +231,10 @@ pub struct CheckArgs {
     /// Print the compiled IR of every code block (a debugging aid).
     #[arg(long)]
     pub dump_ir: bool,
+    /// Print the located variables with their addresses (incomplete
+    /// addresses `AT %I*` with the address each got).
+    #[arg(long)]
+    pub map: bool,
     /// The PROGRAM to build when the files hold several (with --dump-ir).
     #[arg(long)]
     pub program: Option<String>,

@@ -29,6 +29,7 @@ pub fn check(args: &CheckArgs) -> i32 {
     let options = CheckOptions {
         program: args.program.clone(),
         ir_listing: args.dump_ir,
+        address_map: args.map,
         grafcet: args.grafcet,
         max_data_bytes: (args.max_data_mib as usize) << 20,
         strict: args.reading.strict,
@@ -38,6 +39,9 @@ pub fn check(args: &CheckArgs) -> i32 {
     diags.extend(report.diagnostics);
     if let Some(listing) = &report.ir_listing {
         print!("{listing}");
+    }
+    if let Some(map) = &report.address_map {
+        print!("{map}");
     }
     eprint!("{}", diags.render(&sources));
     if diags.has_errors() {

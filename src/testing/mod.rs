@@ -205,6 +205,28 @@ impl std::error::Error for TestError {
     }
 }
 
+/// When `sources` hold TcUnit suites, adds what `plcrun test` declares for
+/// them (TcUnit's functions and assertions, and `FB_TestSuite` if the
+/// sources lack it) as sources of their own, and returns the names of the
+/// host functions declared, so that `plcrun check` accepts what the test
+/// runner accepts; else adds nothing.
+pub(crate) fn declare_tcunit(sources: &mut SourceMap) -> Vec<String> {
+    let plan = tcunit::plan(sources, &mut Diagnostics::new());
+    if plan.suites.is_empty() {
+        return Vec::new();
+    }
+    let mut hosts = crate::runtime::host_blocks::HostBlocks::new();
+    if tcunit::register(&mut hosts, &Default::default()).is_err() {
+        return Vec::new();
+    }
+    *sources = tcunit::sources_for(sources, &plan, false);
+    sources.add(
+        crate::runtime::host_blocks::HOST_SOURCE,
+        hosts.declarations(),
+    );
+    hosts.names()
+}
+
 /// Finds the tests of `sources` and runs each on its own fresh runtime.
 ///
 /// ```

@@ -6,7 +6,7 @@
 //! W326.
 
 use super::Linker;
-use crate::diagnostics::Diagnostic;
+use super::auto_address::Unplaced;
 use crate::ir::type_table::{Dim, TypeId, TypeKind};
 use crate::sema::incomplete_address::is_incomplete;
 use crate::sema::model::VarInfo;
@@ -88,11 +88,13 @@ impl Linker<'_> {
 }
 
 impl Linker<'_> {
-    /// E710 for the elements of array variable `var` (of POU `p`, at
+    /// Collects the elements of array variable `var` (of POU `p`, at
     /// absolute slot `at`, named `here`) that no VAR_CONFIG line
-    /// completed: once for an array declared `AT %Q*` (naming the first
-    /// element left), and inside each element of an array of FB instances.
-    pub(super) fn report_uncompleted_elements(
+    /// completed: each element of an array declared `AT %Q*`, and the
+    /// incomplete addresses inside each element of an array of FB
+    /// instances.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn collect_uncompleted_elements(
         &mut self,
         p: usize,
         var: &VarInfo,
@@ -100,6 +102,7 @@ impl Linker<'_> {
         here: &str,
         completed: &HashSet<u32>,
         depth: usize,
+        out: &mut Vec<Unplaced>,
     ) {
         let Some((elem, count, stride)) = self.array_elements(var.ty) else {
             return;
@@ -107,40 +110,31 @@ impl Linker<'_> {
         let TypeKind::Array { dims, .. } = self.types.get(var.ty).kind.clone() else {
             return;
         };
-        let slot = |k: u64| at as u64 + k * u64::from(stride);
+        let slot = |k: u64| u32::try_from(at as u64 + k * u64::from(stride)).ok();
         if let Some(l) = var.location.as_deref().filter(|l| is_incomplete(l)) {
-            let missing: Vec<u64> = (0..count)
-                .filter(|&k| u32::try_from(slot(k)).is_ok_and(|s| !completed.contains(&s)))
-                .collect();
-            if let Some(&first) = missing.first() {
-                let span = self.address_span(p, &var.name);
-                self.diags.push(
-                    Diagnostic::error(
-                        "E710",
-                        span,
-                        format!(
-                            "`{here}` is declared AT {l}: {} of its {count} elements have no \
-                             VAR_CONFIG address, the first `{}`",
-                            missing.len(),
-                            element_name(here, &dims, first)
-                        ),
-                    )
-                    .with_note(format!(
-                        "give each element its own line: `VAR_CONFIG <resource>.{} AT ... : {}; END_VAR`",
-                        element_name(here, &dims, first),
-                        self.types.name(elem)
-                    )),
-                );
+            let span = self.address_span(p, &var.name);
+            for k in 0..count {
+                let Some(s) = slot(k).filter(|s| !completed.contains(s)) else {
+                    continue;
+                };
+                out.push(Unplaced {
+                    name: element_name(here, &dims, k),
+                    ty: elem,
+                    kind: var.kind,
+                    slot: s,
+                    declared: l.to_string(),
+                    span,
+                });
             }
             return;
         }
         if let Some(q) = self.fb_pou(elem) {
             for k in 0..count {
-                let Ok(s) = u32::try_from(slot(k)) else {
+                let Some(s) = slot(k) else {
                     return;
                 };
                 let name = element_name(here, &dims, k);
-                self.report_uncompleted(q, s, &name, completed, depth + 1);
+                self.collect_uncompleted(q, s, &name, completed, depth + 1, out);
             }
         }
     }

@@ -3,6 +3,7 @@
 //! function-frame addresses, checks for recursion, builds the tasks and
 //! the [`Image`]. Reads the declarations; consumes the output tables.
 
+mod auto_address;
 mod call_depth;
 mod config_elements;
 mod init;
@@ -117,7 +118,13 @@ impl Linker<'_> {
         let (tasks, programs) = scheduled?;
         let instances = self.instantiate_programs(programs);
         let mut roots = self.root_vars(&instances)?;
-        roots.extend(self.apply_var_config(options.program.is_none(), &instances));
+        let configured = self.apply_var_config(
+            options.program.is_none(),
+            &instances,
+            &roots,
+            options.addressing,
+        );
+        roots.extend(configured);
         let retained = self.retained_vars(&instances);
         if !options.unoptimized {
             for c in &mut self.out.codes {

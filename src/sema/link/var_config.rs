@@ -8,6 +8,7 @@
 //! like any `AT %QX1.0` variable.
 
 use super::Linker;
+use super::auto_address::Unplaced;
 use crate::ir::image::{ProgramInstance, RootVar};
 use crate::ir::type_table::{TypeId, TypeKind};
 use crate::sema::declare::normalize_address;
@@ -19,8 +20,6 @@ use crate::syntax::ast::{
 };
 use std::collections::HashSet;
 
-/// An incomplete address left without a VAR_CONFIG line.
-const NOT_COMPLETED: &str = "E710";
 /// A VAR_CONFIG path that names nothing.
 const UNKNOWN_PATH: &str = "E711";
 /// A VAR_CONFIG type that is not the variable's.
@@ -42,12 +41,15 @@ struct Target {
 
 impl Linker<'_> {
     /// Applies the running configuration's VAR_CONFIG to `instances` and
-    /// reports every incomplete address left (E710); returns the completed
-    /// variables as located root variables.
+    /// gives every incomplete address left an address of its own after
+    /// those of `known` and the configured ones (auto_address.rs); returns
+    /// the completed and placed variables as located root variables.
     pub(super) fn apply_var_config(
         &mut self,
         running_config: bool,
         instances: &[ProgramInstance],
+        known: &[RootVar],
+        addressing: crate::address::Addressing,
     ) -> Vec<RootVar> {
         let units = self.units;
         let config = units
@@ -69,11 +71,15 @@ impl Linker<'_> {
                 }
             }
         }
+        let mut unplaced = Vec::new();
         for inst in instances {
             if let Some(p) = self.model.pous.iter().position(|x| x.code == inst.code) {
-                self.report_uncompleted(p, inst.base, &inst.name, &completed, 0);
+                self.collect_uncompleted(p, inst.base, &inst.name, &completed, 0, &mut unplaced);
             }
         }
+        let mut located: Vec<RootVar> = known.to_vec();
+        located.extend(roots.iter().cloned());
+        roots.extend(self.place_automatically(unplaced, &located, addressing));
         roots
     }
 
@@ -346,16 +352,17 @@ impl Linker<'_> {
         }
     }
 
-    /// E710 for every incomplete address in the instance of POU `p` at
-    /// `base` (named `path`) and in the FB instances inside it that
+    /// Collects into `out` every incomplete address in the instance of POU
+    /// `p` at `base` (named `path`) and in the FB instances inside it that
     /// `completed` does not hold.
-    pub(super) fn report_uncompleted(
+    pub(super) fn collect_uncompleted(
         &mut self,
         p: usize,
         base: u32,
         path: &str,
         completed: &HashSet<u32>,
         depth: usize,
+        out: &mut Vec<Unplaced>,
     ) {
         // Instances nest as deep as types do; E122 bounds that elsewhere.
         if depth > 64 {
@@ -368,27 +375,30 @@ impl Linker<'_> {
             };
             let here = format!("{path}.{}", var.name);
             if self.array_elements(var.ty).is_some() {
-                self.report_uncompleted_elements(p, var, base + offset, &here, completed, depth);
+                self.collect_uncompleted_elements(
+                    p,
+                    var,
+                    base + offset,
+                    &here,
+                    completed,
+                    depth,
+                    out,
+                );
                 continue;
             }
             match (&var.location, self.fb_pou(var.ty)) {
                 (Some(l), _) if is_incomplete(l) && !completed.contains(&(base + offset)) => {
-                    let span = self.address_span(p, &var.name);
-                    self.diags.push(
-                        crate::diagnostics::Diagnostic::error(
-                            NOT_COMPLETED,
-                            span,
-                            format!("`{here}` is declared AT {l} but no VAR_CONFIG gives its address"),
-                        )
-                        .with_note(format!(
-                            "add `VAR_CONFIG <resource>.{here} AT {} : {}; END_VAR` to the CONFIGURATION",
-                            example_address(l),
-                            self.types.name(var.ty)
-                        )),
-                    );
+                    out.push(Unplaced {
+                        name: here,
+                        ty: var.ty,
+                        kind: var.kind,
+                        slot: base + offset,
+                        declared: l.clone(),
+                        span: self.address_span(p, &var.name),
+                    });
                 }
                 (None, Some(q)) => {
-                    self.report_uncompleted(q, base + offset, &here, completed, depth + 1)
+                    self.collect_uncompleted(q, base + offset, &here, completed, depth + 1, out)
                 }
                 _ => {}
             }
@@ -407,16 +417,6 @@ impl Linker<'_> {
             .filter(named)
             .find_map(|d| d.location.as_ref().map(|a| a.span))
             .unwrap_or(pou.name.span)
-    }
-}
-
-/// An example complete address for an incomplete one (for the note).
-fn example_address(incomplete: &str) -> String {
-    let stem = incomplete.trim_end_matches('*');
-    match stem.len() {
-        2 => format!("{stem}X0.0"),
-        _ if stem.ends_with('X') => format!("{stem}0.0"),
-        _ => format!("{stem}0"),
     }
 }
 
