@@ -44,8 +44,11 @@ def run(args):
 
 
 def compile_column(stdout, stderr):
-    if CASE.search(stdout) or any(CASE.match(l) for l in stdout.splitlines()):
+    if any(CASE.match(line) for line in stdout.splitlines()):
         return "ok"
+    usage = next((line for line in stderr.splitlines() if line.startswith("error: ")), None)
+    if usage:
+        return usage.removeprefix("error: ")
     codes = collections.Counter(
         m.group(1) for line in stderr.splitlines() if (m := CODE.match(line))
     )

@@ -26,6 +26,7 @@ pub mod recovery;
 pub mod ref_words;
 pub mod repair;
 pub mod s7;
+mod set_reset_assign;
 mod soft_keywords;
 pub mod token;
 pub mod twincat;
@@ -77,6 +78,7 @@ pub(crate) fn textual_passes(
     let tokens = soft_keywords::names_from_keywords(file, text, tokens, diags);
     let tokens = oop_property::accessor_words(tokens);
     let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
+    let tokens = set_reset_assign::set_reset_assignments(tokens);
     header_semicolon::drop_header_semicolons(tokens)
 }
 

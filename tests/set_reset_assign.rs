@@ -1,0 +1,52 @@
+//! CODESYS V3 / TwinCAT set and reset assignments in ST: `x S= c;` sets x
+//! when c is TRUE and keeps it otherwise, `x R= c;` resets it (derived by
+//! hand below, cycle by cycle).
+
+#[path = "support/plc.rs"]
+mod plc;
+
+use plc::{compile, error_codes, lit, run};
+
+#[test]
+fn set_keeps_the_variable_true_until_reset() {
+    let src = "
+FUNCTION_BLOCK FB_Latch
+VAR_OUTPUT q : BOOL; flags : ARRAY[1..2] OF BOOL; END_VAR
+VAR_INPUT s1 : BOOL; r1 : BOOL; END_VAR
+q S= s1;
+q R= r1 AND NOT s1;
+flags[2] S= q;
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR latch : FB_Latch; n : INT; trace : INT; END_VAR
+n := n + 1;
+latch(s1 := n = 2, r1 := n = 4);
+IF latch.q THEN trace := trace + 1; END_IF
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    // Cycle 1: nothing; 2: set; 3: held; 4: reset; 5: stays reset.
+    let mut seen = Vec::new();
+    for _ in 0..5 {
+        run(&mut plc, 1);
+        seen.push(lit(&plc, "latch.q"));
+    }
+    assert_eq!(seen, ["FALSE", "TRUE", "TRUE", "FALSE", "FALSE"]);
+    assert_eq!(lit(&plc, "trace"), "2");
+    // flags[2] was set once and is never reset.
+    assert_eq!(lit(&plc, "latch.flags[2]"), "TRUE");
+}
+
+#[test]
+fn a_set_without_a_condition_or_of_a_non_bool_is_an_error() {
+    let codes = |body: &str| {
+        let src = format!("PROGRAM P VAR x : BOOL; i : INT; END_VAR {body} END_PROGRAM");
+        error_codes(&[("t.st", &src)])
+            .into_iter()
+            .map(|(c, _)| c)
+            .collect::<Vec<_>>()
+    };
+    assert!(!codes("x S= ;").is_empty());
+    // The condition must be BOOL, as IF's.
+    assert_eq!(codes("x S= i;"), ["E303"]);
+}
