@@ -199,15 +199,6 @@ const INC: &str =
     "PROGRAM P\nVAR_INPUT x : BOOL; END_VAR\nEND_PROGRAM\nCONFIGURATION A\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\nPROGRAM i WITH T : P(x := %IW2);\nEND_RESOURCE\nEND_CONFIGURATION\n".to_string(),
     "7:27"
 )]
-#[case(
-    "E432",
-    prog_after(
-        "FUNCTION F : INT VAR_INPUT en : BOOL; END_VAR F := 1; END_FUNCTION",
-        "x : INT;",
-        "x := F(en := TRUE);"
-    ),
-    "1:28"
-)]
 fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     check_error(code, &src, at);
 }

@@ -1,8 +1,9 @@
 //! `EN` and `ENO` declared by the user. `EN` is the enable input every
-//! FUNCTION and FUNCTION_BLOCK has implicitly: a parameter named `EN` (any
-//! case) would never get the value a call gives it, so it is refused,
-//! E432, in FUNCTIONs, FUNCTION_BLOCKs and METHODs (a local variable of
-//! that name is fine). An own `VAR_OUTPUT ENO : BOOL` is the implicit ENO
+//! FUNCTION and FUNCTION_BLOCK has implicitly; a POU that declares its own
+//! `EN` parameter is read as CODESYS and TwinCAT read it: `EN :=` in a
+//! call sets that parameter (warning W432 for a FUNCTION's or
+//! FUNCTION_BLOCK's input; a METHOD has no enable, so its `EN` is plainly
+//! a parameter; a local variable of that name is fine). An own `VAR_OUTPUT ENO : BOOL` is the implicit ENO
 //! output itself: TRUE at each call, written by the body, read by the
 //! caller's `ENO =>`.
 
@@ -12,39 +13,54 @@ mod plc;
 use plc::{compile, error_codes, lit, run};
 
 #[test]
-fn a_parameter_named_en_is_e432_at_its_declaration() {
+fn a_declared_en_parameter_takes_the_argument_of_the_call() {
     let src = "\
 FUNCTION F : INT
 VAR_INPUT en : BOOL; v : INT; END_VAR
 IF en THEN F := v; ELSE F := -1; END_IF
 END_FUNCTION
 FUNCTION_BLOCK FB
-VAR_OUTPUT En : BOOL; END_VAR
-END_FUNCTION_BLOCK
-FUNCTION_BLOCK FB2 VAR_IN_OUT eN : INT; END_VAR
+VAR_INPUT En : BOOL; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+IF En THEN q := q + 1; END_IF
 END_FUNCTION_BLOCK
 FUNCTION_BLOCK FB_M
+VAR_OUTPUT seen : BOOL; END_VAR
 METHOD M
 VAR_INPUT EN : BOOL; END_VAR
+seen := EN;
 END_METHOD
 END_FUNCTION_BLOCK
 PROGRAM P
-VAR r : INT; END_VAR
+VAR r, s : INT; fb : FB; m : FB_M; END_VAR
 r := F(en := TRUE, v := 5);
+s := F(en := FALSE, v := 5);
+fb(En := TRUE);
+fb(En := FALSE);
+m.M(EN := TRUE);
 END_PROGRAM
 ";
-    let got = error_codes(&[("test.st", src)]);
-    let got: Vec<(&str, &str)> = got.iter().map(|(c, a)| (c.as_str(), a.as_str())).collect();
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    // The body ran both times: EN is the function's own input.
     assert_eq!(
-        got,
-        [
-            ("E432", "2:11"),
-            ("E432", "6:12"),
-            ("E432", "8:31"),
-            ("E432", "12:11")
-        ],
-        "one error per declaration, none at the call"
+        (lit(&plc, "P.r"), lit(&plc, "P.s")),
+        ("5".into(), "-1".into())
     );
+    assert_eq!(lit(&plc, "P.fb.q"), "1");
+    assert_eq!(lit(&plc, "P.m.seen"), "TRUE");
+    let warned: Vec<(&str, String)> = plc
+        .warnings()
+        .iter()
+        .filter(|d| d.code == "W432")
+        .map(|d| (d.code, d.message.clone()))
+        .collect();
+    assert_eq!(
+        warned.len(),
+        2,
+        "the FUNCTION's and the FB's inputs: {warned:?}"
+    );
+    assert!(error_codes(&[("test.st", src)]).is_empty());
 }
 
 #[test]

@@ -221,7 +221,11 @@ impl BodyBuilder<'_> {
         for a in args {
             match a {
                 Arg::Input { name, value } => {
-                    if name.name.eq_ignore_ascii_case("EN") {
+                    // A declared `EN` parameter takes the argument
+                    // (CODESYS's reading, W432); else it is the enable.
+                    if name.name.eq_ignore_ascii_case("EN")
+                        && !params.iter().any(|p| p.matches("EN"))
+                    {
                         b.en = Some(value);
                         continue;
                     }
