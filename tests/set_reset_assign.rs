@@ -1,6 +1,6 @@
-//! CODESYS V3 / TwinCAT set and reset assignments in ST: `x S= c;` sets x
-//! when c is TRUE and keeps it otherwise, `x R= c;` resets it (derived by
-//! hand below, cycle by cycle).
+//! CODESYS V3 / TwinCAT forms in ST: set and reset assignments (`x S= c;`
+//! sets x when c is TRUE and keeps it otherwise, `x R= c;` resets it;
+//! derived by hand below, cycle by cycle) and the `BIT` type.
 
 #[path = "support/plc.rs"]
 mod plc;
@@ -49,4 +49,23 @@ fn a_set_without_a_condition_or_of_a_non_bool_is_an_error() {
     assert!(!codes("x S= ;").is_empty());
     // The condition must be BOOL, as IF's.
     assert_eq!(codes("x S= i;"), ["E303"]);
+}
+
+#[test]
+fn bit_members_are_bools_with_a_compatibility_warning() {
+    let src = "TYPE ST_Flags : STRUCT bReady : BIT; bError : BIT; n : INT; END_STRUCT END_TYPE
+PROGRAM P VAR s : ST_Flags; END_VAR
+s.bReady S= s.n = 0;
+s.bError := NOT s.bReady;
+END_PROGRAM";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    assert_eq!(
+        (lit(&plc, "s.bReady"), lit(&plc, "s.bError")),
+        ("TRUE".into(), "FALSE".into())
+    );
+    assert_eq!(
+        plc.warnings().iter().filter(|d| d.code == "W309").count(),
+        2
+    );
 }

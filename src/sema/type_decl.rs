@@ -104,6 +104,16 @@ impl Declarer<'_> {
         if let Some(t) = self.user_type(&key, id.span) {
             return t;
         }
+        if key == "BIT" {
+            // CODESYS's BIT: a BOOL that a structure packs into a bit. The
+            // value is the same; plcrun keeps it in a slot of its own.
+            self.diags.warning(
+                "W309",
+                id.span,
+                "`BIT` is a CODESYS extension: read as BOOL (not packed into a bit of the structure)",
+            );
+            return TypeTable::elem(ElemType::Bool);
+        }
         if let Some(fb) = stdlib::lookup_native(&id.name) {
             let params = stdlib::interface(fb);
             return self.types.intern(TypeDef {
