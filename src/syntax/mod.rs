@@ -9,6 +9,7 @@ mod codesys_spellings;
 pub mod config_path;
 pub mod construct;
 pub mod depth;
+mod empty_args;
 mod header_semicolon;
 pub mod il_lines;
 pub mod lexer;
@@ -79,6 +80,7 @@ pub(crate) fn textual_passes(
     let tokens = oop_property::accessor_words(tokens);
     let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
     let tokens = set_reset_assign::set_reset_assignments(tokens);
+    let tokens = empty_args::drop_empty_arguments(tokens);
     header_semicolon::drop_header_semicolons(tokens)
 }
 

@@ -1,6 +1,7 @@
 //! CODESYS V3 / TwinCAT forms in ST: set and reset assignments (`x S= c;`
 //! sets x when c is TRUE and keeps it otherwise, `x R= c;` resets it;
-//! derived by hand below, cycle by cycle) and the `BIT` type.
+//! derived by hand below, cycle by cycle), the `BIT` type, and formal
+//! arguments left empty.
 
 #[path = "support/plc.rs"]
 mod plc;
@@ -67,5 +68,26 @@ END_PROGRAM";
     assert_eq!(
         plc.warnings().iter().filter(|d| d.code == "W309").count(),
         2
+    );
+}
+
+#[test]
+fn an_empty_formal_argument_leaves_the_input_unconnected() {
+    let src = "PROGRAM P
+VAR t : TON; go : BOOL := TRUE; n : INT; q : BOOL; END_VAR
+n := n + 1;
+IF n = 1 THEN
+  t(IN := go, PT := T#20ms);
+ELSE
+  (* IN keeps TRUE from the first call; ET is not read *)
+  t(IN := , PT := T#20ms, ET => , Q => q);
+END_IF
+END_PROGRAM";
+    let mut plc = compile(src);
+    run(&mut plc, 3);
+    // Cycle 0 starts the timer at 0 ms, cycle 2 (20 ms) sees Q.
+    assert_eq!(
+        (lit(&plc, "t.IN"), lit(&plc, "q")),
+        ("TRUE".into(), "TRUE".into())
     );
 }
