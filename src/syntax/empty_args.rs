@@ -8,34 +8,50 @@
 use super::lexer::Spanned;
 use super::token::Tok;
 
-/// Removes the empty formal arguments of every call.
+/// The index of the nearest token before `i` that is not a line end.
+fn before(t: &[Spanned], i: usize) -> Option<usize> {
+    (0..i).rev().find(|&k| t[k].1 != Tok::Eol)
+}
+
+/// The index of the nearest token after `i` that is not a line end.
+fn after(t: &[Spanned], i: usize) -> Option<usize> {
+    (i + 1..t.len()).find(|&k| t[k].1 != Tok::Eol)
+}
+
+/// Removes the empty formal arguments of every call (line ends between
+/// the words do not matter: such calls are often one argument a line).
 pub fn drop_empty_arguments(tokens: Vec<Spanned>) -> Vec<Spanned> {
     let mut drop = vec![false; tokens.len()];
     let mut any = false;
-    for i in 0..tokens.len().saturating_sub(2) {
-        let (Tok::Ident(_), Tok::Assign | Tok::Arrow) = (&tokens[i].1, &tokens[i + 1].1) else {
+    for i in 0..tokens.len() {
+        let Tok::Ident(_) = tokens[i].1 else { continue };
+        let Some(op) =
+            after(&tokens, i).filter(|&k| matches!(tokens[k].1, Tok::Assign | Tok::Arrow))
+        else {
+            continue;
+        };
+        let Some(next) = after(&tokens, op) else {
             continue;
         };
         // Only inside an argument list: after `(` or `,`.
-        if !matches!(
-            i.checked_sub(1).map(|p| &tokens[p].1),
-            Some(Tok::LParen | Tok::Comma)
-        ) {
+        if before(&tokens, i).is_none_or(|k| !matches!(tokens[k].1, Tok::LParen | Tok::Comma)) {
             continue;
         }
-        match tokens[i + 2].1 {
+        match tokens[next].1 {
             Tok::Comma => {
                 drop[i] = true;
-                drop[i + 1] = true;
-                drop[i + 2] = true;
+                drop[op] = true;
+                drop[next] = true;
                 any = true;
             }
             Tok::RParen => {
                 drop[i] = true;
-                drop[i + 1] = true;
-                // `f(a := 1, b := )`: the comma before goes too.
-                if tokens[i - 1].1 == Tok::Comma {
-                    drop[i - 1] = true;
+                drop[op] = true;
+                // `f(a := 1, b := )`: the comma before goes too (the
+                // nearest one still kept).
+                let kept = (0..i).rev().find(|&k| tokens[k].1 != Tok::Eol && !drop[k]);
+                if let Some(k) = kept.filter(|&k| tokens[k].1 == Tok::Comma) {
+                    drop[k] = true;
                 }
                 any = true;
             }
@@ -86,5 +102,9 @@ mod tests {
         assert_eq!(spelled("t(a := );"), "t ( ) ;");
         // A statement `x := ;` is not an argument: left for the parser.
         assert_eq!(spelled("x := ;"), "x := ;");
+        assert_eq!(
+            spelled("t(\n  IN := x,\n  q => ,\n  d =>\n);"),
+            "t ( IN := x ) ;"
+        );
     }
 }
