@@ -30,7 +30,7 @@ END_PROGRAM";
 struct Served {
     server: Option<OpcUaServer>,
     stop: StopHandle,
-    run: Option<RunThread>,
+    run: Option<RunThread<std::io::Sink>>,
     dir: PathBuf,
 }
 
@@ -149,12 +149,16 @@ fn a_written_input_is_seen_by_the_program_in_a_later_cycle() {
             })
             .await;
         assert_eq!(v, Some(Variant::Int16(-6)));
-        // The array of the last four setpoints, as one array Variable.
-        let seq = c.read(&s.id("seq")).await.value.unwrap();
-        let Variant::Array(a) = seq else {
-            panic!("seq is not an array: {seq:?}")
+        // The array of the last four setpoints, as one array Variable
+        // (four cycles after the write, every element holds it).
+        let all = |v: &Variant| match v {
+            Variant::Array(a) => a.values == vec![Variant::Int16(-3); 4],
+            _ => false,
         };
-        assert_eq!(a.values, vec![Variant::Int16(-3); 4]);
+        let seq = c
+            .read_until(&s.id("seq"), Duration::from_secs(5), all)
+            .await;
+        assert!(seq.as_ref().is_some_and(all), "{seq:?}");
         // TIME is a Duration in milliseconds; writes take milliseconds.
         assert_eq!(
             c.read(&s.id("delay")).await.value,

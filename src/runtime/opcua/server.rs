@@ -256,13 +256,12 @@ impl OpcUaServer {
             ip => ip.to_string(),
         };
         let nodes_shared = shared.clone();
-        let builder = server_builder(&config, &host, local_addr.port()).with_node_manager(
-            InMemoryNodeManagerBuilder::new(
+        let builder = server_builder(&config, &host, local_addr.port(), shared.cycle_ms)
+            .with_node_manager(InMemoryNodeManagerBuilder::new(
                 move |context: ServerContext, space: &mut AddressSpace| {
                     PlcNodes::new(nodes_shared, writes_tx, context, space)
                 },
-            ),
-        );
+            ));
         let (server, handle) = {
             let _in_runtime = runtime.enter();
             builder.build().map_err(OpcUaError::Start)?
@@ -385,8 +384,11 @@ fn prepare_pki(dir: &std::path::Path) -> Result<(), OpcUaError> {
 }
 
 /// The server's settings: identity, certificate, endpoints, limits.
-fn server_builder(config: &OpcUaConfig, host: &str, port: u16) -> ServerBuilder {
+/// Subscriptions may sample at the task's cycle and publish as often,
+/// down to 10 ms (the stack checks its subscriptions at that rate).
+fn server_builder(config: &OpcUaConfig, host: &str, port: u16, cycle_ms: f64) -> ServerBuilder {
     let anonymous = [ANONYMOUS_USER_TOKEN_ID.to_string()];
+    let poll_ms = cycle_ms.clamp(10.0, 100.0);
     let mut builder = ServerBuilder::new()
         .application_name("plcrun")
         .application_uri("urn:plcrun:server")
@@ -400,6 +402,7 @@ fn server_builder(config: &OpcUaConfig, host: &str, port: u16) -> ServerBuilder 
         .port(port)
         .max_sessions(config.max_sessions)
         .diagnostics_enabled(false)
+        .subscription_poll_interval_ms(poll_ms as u64)
         .with_authenticator(Arc::new(PlcAuth {
             users: config.users.clone(),
         }))
@@ -423,6 +426,9 @@ fn server_builder(config: &OpcUaConfig, host: &str, port: u16) -> ServerBuilder 
         )
         .default_endpoint("basic256sha256_sign_encrypt")
         .discovery_urls(vec!["/".to_string()]);
+    let limits = &mut builder.limits_mut().subscriptions;
+    limits.min_publishing_interval_ms = poll_ms;
+    limits.min_sampling_interval_ms = cycle_ms.max(1.0);
     if config.allow_insecure {
         builder = builder.add_endpoint("none", ServerEndpoint::new_none("/", &anonymous));
     }
