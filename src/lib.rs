@@ -85,6 +85,11 @@ pub use runtime::modbus::{
     ModbusStats, ModbusTable, modbus_place,
 };
 pub use runtime::names::VarRef;
+/// The OPC UA server (cargo feature `opcua`, on by default): docs/opcua.md.
+#[cfg(feature = "opcua")]
+pub mod opcua {
+    pub use crate::runtime::opcua::*;
+}
 pub use runtime::plc_value::Value;
 pub use runtime::process_image::ProcessImage;
 pub use runtime::realtime::{BetweenTicksHook, RunOutcome, RunThread, TaskRunner};

@@ -44,6 +44,11 @@ pub enum Command {
     Export(ExportArgs),
     /// Run the unit tests written in IEC (`plcrun test FILES...`; docs/testing.md).
     Test(super::test::TestArgs),
+    /// Manage the users file of the OPC UA server (`plcrun opcua-user add
+    /// FILE NAME`, the password on standard input; docs/opcua.md).
+    #[cfg(feature = "opcua")]
+    #[command(name = "opcua-user")]
+    OpcUaUser(super::opcua::UserArgs),
 }
 
 /// `plcrun draw FILES... [--program P] [-o OUT.svg]`.
@@ -187,6 +192,10 @@ pub struct RunArgs {
         requires = "modbus"
     )]
     pub modbus_idle_timeout: String,
+    /// OPC UA server options (docs/opcua.md).
+    #[cfg(feature = "opcua")]
+    #[command(flatten)]
+    pub opcua: super::opcua::OpcUaArgs,
     /// Most MiB of program data (variables, FB instances) the program may
     /// hold; a larger one is refused with E120.
     #[arg(long, value_name = "MIB", default_value_t = 512,

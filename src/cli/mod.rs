@@ -7,6 +7,8 @@ mod draw;
 mod export;
 mod modbus;
 mod online;
+#[cfg(feature = "opcua")]
+mod opcua;
 mod reload;
 mod retain;
 mod run;
@@ -33,6 +35,8 @@ pub fn main() -> i32 {
             Some(args::Command::Draw(a)) => draw::draw(&a),
             Some(args::Command::Export(a)) => export::export(&a),
             Some(args::Command::Test(a)) => test::test(&a),
+            #[cfg(feature = "opcua")]
+            Some(args::Command::OpcUaUser(a)) => opcua::user(&a),
             None => run::run(&cli.run),
         },
         Err(e) => usage(e),

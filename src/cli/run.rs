@@ -10,6 +10,25 @@ use plcrun::{
 use std::io::{Read, Write};
 use std::time::Duration;
 
+/// The scan side of the OPC UA server (none without the `opcua` feature).
+#[cfg(feature = "opcua")]
+type OpcUaSide = plcrun::opcua::OpcUaExchange;
+/// The scan side of the OPC UA server (none without the `opcua` feature).
+#[cfg(not(feature = "opcua"))]
+type OpcUaSide = std::convert::Infallible;
+
+/// Exchanges with the OPC UA server between two ticks.
+#[cfg(feature = "opcua")]
+fn opcua_exchange(side: &mut OpcUaSide, plc: &mut Plc) {
+    side.exchange(plc);
+}
+
+/// Without the `opcua` feature there is no server to exchange with.
+#[cfg(not(feature = "opcua"))]
+fn opcua_exchange(side: &mut OpcUaSide, _plc: &mut Plc) {
+    match *side {}
+}
+
 /// Exit status after a third Ctrl-C or SIGTERM (128 + SIGINT, as shells
 /// report an interrupted command).
 const EXIT_INTERRUPTED: i32 = 130;
@@ -191,6 +210,7 @@ fn drive<W: Write>(
     writer: &mut TraceWriter<W>,
     reloader: Option<super::reload::Reloader>,
     modbus: Option<ModbusExchange>,
+    opcua: Option<OpcUaSide>,
 ) -> Result<(), Box<RunError>> {
     let stop = session.plc().stop_handle();
     // First signal: stop at the cycle boundary; second: interrupt the
@@ -209,7 +229,7 @@ fn drive<W: Write>(
     if let Err(e) = ctrlc::set_handler(on_signal) {
         eprintln!("warning: Ctrl-C and SIGTERM will not stop cleanly: {e}");
     }
-    if !args.realtime && !args.stats && modbus.is_none() {
+    if !args.realtime && !args.stats && modbus.is_none() && opcua.is_none() {
         // Virtual time without statistics: the plain loop.
         return session.run(cycles.unwrap_or(0), writer).map_err(Box::new);
     }
@@ -225,10 +245,14 @@ fn drive<W: Write>(
     } else {
         TaskRunner::virtual_time(session.plc())
     };
-    if reloader.is_some() || modbus.is_some() {
+    if reloader.is_some() || modbus.is_some() || opcua.is_some() {
         let mut modbus = modbus;
+        let mut opcua = opcua;
         if let Some(exchange) = &mut modbus {
             exchange.exchange(session.plc_mut()); // clients see the initial image
+        }
+        if let Some(side) = &mut opcua {
+            opcua_exchange(side, session.plc_mut());
         }
         runner.set_between_ticks(move |session| {
             if let Some(reloader) = &reloader {
@@ -236,6 +260,9 @@ fn drive<W: Write>(
             }
             if let Some(exchange) = &mut modbus {
                 exchange.exchange(session.plc_mut());
+            }
+            if let Some(side) = &mut opcua {
+                opcua_exchange(side, session.plc_mut());
             }
         });
     }
@@ -278,6 +305,11 @@ pub fn run(args: &RunArgs) -> i32 {
     }
     if args.modbus.is_some() && !args.online_change_at.is_empty() {
         return usage_error("--online-change-at cannot be combined with --modbus");
+    }
+    #[cfg(feature = "opcua")]
+    if args.opcua.opcua.is_some() && (!args.online_change_at.is_empty() || args.reload) {
+        // Both replace the PLC, whose variables the server has resolved.
+        return usage_error("--online-change-at and --reload cannot be combined with --opcua");
     }
     let format: TraceFormat = match args.format.parse() {
         Ok(f) => f,
@@ -339,6 +371,13 @@ pub fn run(args: &RunArgs) -> i32 {
         Err(e) => return usage_error(e),
     };
     let (_server, exchange) = modbus.unzip();
+    #[cfg(feature = "opcua")]
+    let (_opcua_server, opcua) = match super::opcua::start(&args.opcua, session.plc()) {
+        Ok(o) => o.unzip(),
+        Err(e) => return usage_error(e),
+    };
+    #[cfg(not(feature = "opcua"))]
+    let opcua: Option<OpcUaSide> = None;
     let result = if changes.is_empty() {
         drive(
             args,
@@ -347,6 +386,7 @@ pub fn run(args: &RunArgs) -> i32 {
             &mut writer,
             reloader,
             exchange,
+            opcua,
         )
         .map_err(|e| *e)
     } else if args.realtime {

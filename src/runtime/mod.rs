@@ -29,6 +29,7 @@
 //!   `addressing`: changing the convention of a compiled PLC);
 //! - [`forcing`]: forced variables and soft writes;
 //! - [`modbus`]: a Modbus TCP server on the process image;
+//! - `opcua` (cargo feature `opcua`): an OPC UA server on the variables;
 //! - [`variables`]: the list of variables with their types, and chart step
 //!   states;
 //! - [`trace`]: writing the per-cycle trace as a table, CSV or JSON lines;
@@ -50,6 +51,8 @@ pub mod live_stimulus;
 pub mod modbus;
 pub mod names;
 pub mod online_change;
+#[cfg(feature = "opcua")]
+pub mod opcua;
 pub mod plc_value;
 pub mod process_image;
 pub mod realtime;

@@ -21,7 +21,7 @@
 pub mod connection;
 pub mod exchange;
 pub mod mapping;
-mod priority;
+pub(crate) mod priority;
 pub mod published;
 pub mod request;
 pub mod server;
