@@ -395,9 +395,11 @@ fn only_error(text: &str) -> (String, String, String) {
 const OUT_Q: &str = "<interface><outputVars><variable name=\"q\"><type><BOOL/></type></variable></outputVars></interface>";
 
 #[test]
-fn an_fbd_body_is_refused_by_name_at_its_element() {
+fn an_fbd_action_of_a_chart_is_refused_by_name_at_its_element() {
+    // FBD and LD POU bodies run (tests/plcopen_fbd.rs, tests/plcopen_ld.rs);
+    // inside an SFC they are still refused.
     let text = project(&format!(
-        "<pou name=\"P\" pouType=\"program\">{OUT_Q}\n<body>\n  <FBD>\n    <inVariable localId=\"1\"><expression>TRUE</expression></inVariable>\n  </FBD>\n</body></pou>"
+        "<pou name=\"P\" pouType=\"program\">{OUT_Q}<actions><action name=\"A\"><body>\n  <FBD>\n    <inVariable localId=\"1\"><expression>TRUE</expression></inVariable>\n  </FBD>\n</body></action></actions>\n<body><SFC><step localId=\"1\" name=\"S0\" initialStep=\"true\"/></SFC></body></pou>"
     ));
     let (code, at, message) = only_error(&text);
     assert_eq!(code, "E804");
