@@ -21,7 +21,14 @@ impl Lowering<'_, '_, '_> {
         let range = em.attr_range(el.node, "instanceName").unwrap_or(at);
         em.ident(inst, range);
         em.synth("(", at);
-        self.arguments(em, i, true, false);
+        let none = self.arguments(em, i, true, false);
+        if self.plan.uses[i].contains_key("ENO") {
+            if !none {
+                em.synth(",", at);
+            }
+            em.synth("ENO =>", at);
+            em.ident(&self.temp(i, "ENO"), at);
+        }
         em.synth(");", em.end_of(el.node));
     }
 

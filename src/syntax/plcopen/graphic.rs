@@ -248,6 +248,9 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
                             decls.push((self.trigger(i, &p.name), em.at(p.node), word(fb)));
                         }
                     }
+                    if instance.is_some() && self.plan.uses[i].contains_key("ENO") {
+                        decls.push((self.temp(i, "ENO"), here, word("BOOL")));
+                    }
                     if instance.is_none() && self.plan.stored[i] {
                         let uses = &self.plan.uses[i];
                         if return_uses(uses) > 0 || self.plan.early[i] {

@@ -77,6 +77,9 @@ impl Lowering<'_, '_, '_> {
             {
                 self.sources_value(em, &p.sources, at);
             }
+        } else if instance.is_some() && out.name.eq_ignore_ascii_case("ENO") {
+            // Bound by the call (`ENO => _T12_ENO`).
+            em.ident(&self.temp(s.from, "ENO"), at);
         } else if let Some(inst) = instance {
             let range = em.attr_range(el.node, "instanceName").unwrap_or(at);
             em.ident(inst, range);
