@@ -367,3 +367,37 @@ fn a_long_chain_of_blocks_ends_quickly() {
     // An even number of NOTs: x is a.
     assert_eq!(bits(&trace, "x"), "01");
 }
+
+#[test]
+fn a_function_block_with_en_runs_only_when_enabled_and_its_eno_says_so() {
+    // Inc counts its calls; EN := a, ENO -> x, n -> q.
+    let inc = "<pou name=\"Inc\" pouType=\"functionBlock\"><interface><outputVars><variable name=\"n\"><type><INT/></type></variable></outputVars></interface><body><ST><xhtml:p>n := n + 1;</xhtml:p></ST></body></pou>";
+    let main = graphic_pou(
+        "P",
+        "program",
+        &format!(
+            "{}{}{}",
+            vars("inputVars", &["a"]),
+            vars("outputVars", &["q:INT", "x"]),
+            vars("localVars", &["i1:Inc"])
+        ),
+        "FBD",
+        &[
+            in_var(1, "a", 10),
+            block(
+                2,
+                "Inc",
+                10,
+                &[("EN", &["1"])],
+                &["ENO", "n"],
+                " instanceName=\"i1\"",
+            ),
+            out_var(3, "x", &["2:ENO"], 10, ""),
+            out_var(4, "q", &["2:n"], 20, ""),
+        ],
+    );
+    let text = project(&format!("{inc}\n{main}"));
+    let trace = trace_text(&text, "q,x", &bit_stimulus(&[("a", "0110101")]), 7);
+    assert_eq!(column(&trace, "q"), ["0", "1", "2", "2", "3", "3", "4"]);
+    assert_eq!(bits(&trace, "x"), "0110101");
+}
