@@ -401,3 +401,110 @@ fn a_function_block_with_en_runs_only_when_enabled_and_its_eno_says_so() {
     assert_eq!(column(&trace, "q"), ["0", "1", "2", "2", "3", "3", "4"]);
     assert_eq!(bits(&trace, "x"), "0110101");
 }
+
+#[test]
+fn a_chart_with_a_wired_condition_an_fbd_action_and_an_fbd_transition_runs_like_its_twin() {
+    // S0 --[go, a contact wired to the condition]--> S1 (action Count in
+    // FBD: n := n + 1) --[transition Back in FBD: n >= 3]--> S0.
+    let conn = |id: &str| point(&[id]);
+    let chart = format!(
+        "<step localId=\"1\" name=\"S0\" initialStep=\"true\"/>\
+         <leftPowerRail localId=\"20\"><position x=\"0\" y=\"0\"/><connectionPointOut formalParameter=\"\"/></leftPowerRail>\
+         <contact localId=\"21\"><position x=\"10\" y=\"0\"/>{}<connectionPointOut/><variable>go</variable></contact>\
+         <transition localId=\"2\">{}<condition>{}</condition></transition>\
+         <step localId=\"3\" name=\"S1\">{}</step>\
+         <actionBlock localId=\"4\">{}<action><reference name=\"Count\"/></action></actionBlock>\
+         <transition localId=\"5\">{}<condition><reference name=\"Back\"/></condition></transition>\
+         <jumpStep localId=\"6\" targetName=\"S0\">{}</jumpStep>",
+        conn("20"),
+        conn("1"),
+        conn("21"),
+        conn("2"),
+        conn("3"),
+        conn("3"),
+        conn("5"),
+    );
+    let count = graphic_pou(
+        "unused",
+        "program",
+        "",
+        "FBD",
+        &[
+            in_var(1, "n", 10),
+            in_var(2, "1", 20),
+            block(
+                3,
+                "ADD",
+                10,
+                &[("IN1", &["1"]), ("IN2", &["2"])],
+                &["OUT"],
+                "",
+            ),
+            out_var(4, "n", &["3:OUT"], 10, ""),
+        ],
+    );
+    let back = graphic_pou(
+        "unused",
+        "program",
+        "",
+        "FBD",
+        &[
+            in_var(1, "n", 10),
+            in_var(2, "3", 20),
+            block(
+                3,
+                "GE",
+                10,
+                &[("IN1", &["1"]), ("IN2", &["2"])],
+                &["OUT"],
+                "",
+            ),
+            out_var(4, "Back", &["3:OUT"], 10, ""),
+        ],
+    );
+    // The <body> of each helper POU, reused as an action's and a transition's body.
+    let body_of = |pou: &str| {
+        let s = pou.find("<body>").unwrap();
+        let e = pou.rfind("</body>").unwrap() + "</body>".len();
+        pou[s..e].to_string()
+    };
+    let pou = format!(
+        "<pou name=\"P\" pouType=\"program\"><interface>{}{}</interface>\
+         <actions><action name=\"Count\">{}</action></actions>\
+         <transitions><transition name=\"Back\">{}</transition></transitions>\
+         <body><SFC>{chart}</SFC></body></pou>",
+        vars("inputVars", &["go"]),
+        vars("outputVars", &["n:INT"]),
+        body_of(&count),
+        body_of(&back),
+    );
+    let xml = project(&pou);
+    let twin = "PROGRAM P\nVAR_INPUT go : BOOL; END_VAR\nVAR_OUTPUT n : INT; END_VAR\n\
+        INITIAL_STEP S0 : END_STEP\nSTEP S1 : Count(N); END_STEP\n\
+        TRANSITION FROM S0 TO S1 := go; END_TRANSITION\n\
+        TRANSITION FROM S1 TO S0 := n >= 3; END_TRANSITION\n\
+        ACTION Count : n := n + 1; END_ACTION\nEND_PROGRAM\n";
+    for seed in [5, 6] {
+        let stimulus = random_stimulus(&["go"], &[], 60, seed);
+        let names = "n,S0.X,S1.X";
+        let a = trace_text(&xml, names, &stimulus, 60);
+        let request = TraceRequest {
+            cycles: 60,
+            stimulus: Some(&stimulus),
+            trace: Some(names),
+            changes_only: false,
+        };
+        let b = csv_trace(&[("twin.sfc", twin)], &request);
+        assert_same(&a, &b, &format!("seed {seed}"));
+        assert!(column(&a, "S1.X").iter().any(|c| c == "TRUE"));
+    }
+    // A transition network that would need a statement is refused by name.
+    let stateful = xml.replace("typeName=\"GE\"", "typeName=\"GE\" instanceName=\"g\"");
+    let found = errors(&stateful);
+    assert!(
+        found
+            .iter()
+            .any(|d| d.0 == "E807" && d.2.contains("transition")),
+        "{found:#?}"
+    );
+}

@@ -12,7 +12,7 @@ use super::graphic::Lowering;
 use super::network::{Edge, Input, Storage};
 use super::order::return_uses;
 
-impl Lowering<'_, '_, '_> {
+impl Lowering<'_, '_> {
     /// `inst(EN := ..., IN := ...);`.
     pub fn fb_call(&self, em: &mut Emitter, i: usize, inst: &str) {
         let el = &self.net.elements[i];

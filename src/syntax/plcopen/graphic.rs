@@ -28,35 +28,49 @@ use std::collections::HashMap;
 const MAX_DEPTH: usize = 200;
 
 /// The lowering of one body.
-pub struct Lowering<'n, 'a, 'i> {
+pub struct Lowering<'a, 'i> {
     /// The network.
-    pub net: &'n Network<'a, 'i>,
+    pub net: Network<'a, 'i>,
     /// Its order and storage.
     pub plan: Plan,
     /// Types of the names it uses.
     pub types: Types<'a, 'i>,
     /// Label name (upper case) to number.
     pub labels: HashMap<String, usize>,
+    /// The start of its hidden variables' names (`_A1` for the first
+    /// graphical action of a chart; empty for a POU's body).
+    pub prefix: String,
 }
 
 /// Lowers the graphical body `lang` (`<FBD>` or `<LD>`) of `pou`.
 pub fn body(em: &mut Emitter, pou: Node, lang: Node) {
-    let Some(net) = network::read(em, lang) else {
-        return;
-    };
+    if let Some(lw) = prepare(em, pou, lang, false, "") {
+        lw.declarations(em, em.at(lang));
+        lw.statements(em, em.at(lang));
+    }
+}
+
+/// Reads, orders and checks the network of `lang` (an `<FBD>`, an `<LD>`,
+/// or, with `in_sfc`, the graphical elements of an `<SFC>` and the
+/// conditions wired to them); `None` after a reported error.
+pub fn prepare<'a, 'i>(
+    em: &mut Emitter,
+    pou: Node<'a, 'i>,
+    lang: Node<'a, 'i>,
+    in_sfc: bool,
+    prefix: &str,
+) -> Option<Lowering<'a, 'i>> {
+    let net = network::read(em, lang, in_sfc)?;
     let types = Types::new(pou);
     let plan = order::plan(&net, &|i| can_store(&net, &types, i));
     let mut lw = Lowering {
-        net: &net,
+        net,
         plan,
         types,
         labels: HashMap::new(),
+        prefix: prefix.to_string(),
     };
-    if !lw.check(em) {
-        return;
-    }
-    lw.declarations(em, em.at(lang));
-    lw.statements(em, lang);
+    lw.check(em).then_some(lw)
 }
 
 /// Whether element `i`'s value can be kept in a hidden variable.
@@ -67,7 +81,74 @@ fn can_store<'a, 'i>(net: &Network<'a, 'i>, types: &Types<'a, 'i>, i: usize) -> 
     }
 }
 
-impl<'a, 'i> Lowering<'_, 'a, 'i> {
+impl<'a, 'i> Lowering<'a, 'i> {
+    /// True when the network has elements (an SFC body may have none).
+    pub fn is_empty(&self) -> bool {
+        self.net.elements.is_empty()
+    }
+
+    /// The value wired to the `<condition>` of SFC transition `transition`
+    /// (false when the network has no such condition).
+    pub fn condition(&self, em: &mut Emitter, transition: Node) -> bool {
+        let Some(el) = self
+            .net
+            .elements
+            .iter()
+            .find(|e| e.kind == Kind::Condition && e.node == transition)
+        else {
+            return false;
+        };
+        let at = em.at(el.inputs[0].node);
+        self.sources_value(em, &el.inputs[0].sources, at);
+        true
+    }
+
+    /// The value a transition's FBD/LD body gives: what is written to the
+    /// `<outVariable>` or `<coil>` named like the transition (`name`), or
+    /// to the body's only one. A transition is an expression: a network
+    /// that needs statements of its own (function block calls, edge
+    /// memories, values read twice, other writes) is refused with why.
+    pub fn transition_value(&self, em: &mut Emitter, name: &str) -> Result<(), String> {
+        let writers: Vec<usize> = (0..self.net.elements.len())
+            .filter(|&i| matches!(self.net.elements[i].kind, Kind::OutVariable | Kind::Coil))
+            .collect();
+        let named = writers.iter().copied().find(|&i| {
+            self.expression_node(i)
+                .and_then(|n| n.text())
+                .is_some_and(|t| t.trim().eq_ignore_ascii_case(name))
+        });
+        let target = match (named, writers.as_slice()) {
+            (Some(t), _) => t,
+            (None, [only]) => *only,
+            _ => {
+                return Err(format!(
+                    "a transition network gives its value to an <outVariable> or <coil> named `{name}`, and this one has none"
+                ));
+            }
+        };
+        for &i in &self.plan.order {
+            let el = &self.net.elements[i];
+            let quiet = match el.kind {
+                Kind::Block { instance: None, .. } | Kind::Contact => {
+                    !self.plan.stored[i]
+                        && el.edge == Edge::None
+                        && el.inputs.iter().all(|p| p.edge == Edge::None)
+                }
+                Kind::OutVariable | Kind::Coil => i == target,
+                _ => false,
+            };
+            if !quiet {
+                return Err(format!(
+                    "{} in a transition's network would need a statement of its own; a transition is an expression (write it in ST, or move the element into an action)",
+                    network::describe(&el.kind)
+                ));
+            }
+        }
+        let sources = &self.net.elements[target].inputs[0].sources;
+        self.sources_value(em, sources, em.at(self.net.elements[target].node));
+        Ok(())
+    }
+
     /// The identifier part naming element `i` in hidden variables.
     pub fn tag(&self, i: usize) -> String {
         let id = &self.net.elements[i].id;
@@ -84,18 +165,33 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
         match self.net.elements[i].kind {
             Kind::Block { .. } => {
                 let p = if pin.is_empty() { "OUT" } else { pin };
-                format!("_T{}_{}", self.tag(i), p.to_ascii_uppercase())
+                format!(
+                    "{}_T{}_{}",
+                    self.prefix,
+                    self.tag(i),
+                    p.to_ascii_uppercase()
+                )
             }
-            _ => format!("_T{}", self.tag(i)),
+            _ => format!("{}_T{}", self.prefix, self.tag(i)),
         }
+    }
+
+    /// The hidden variable holding the number of the label a jump goes to.
+    pub fn jump_state(&self) -> String {
+        format!("{}_JMP", self.prefix)
     }
 
     /// The hidden edge memory of element `i` (`_E12`), or of its input `pin`.
     pub fn trigger(&self, i: usize, pin: &str) -> String {
         if pin.is_empty() {
-            format!("_E{}", self.tag(i))
+            format!("{}_E{}", self.prefix, self.tag(i))
         } else {
-            format!("_E{}_{}", self.tag(i), pin.to_ascii_uppercase())
+            format!(
+                "{}_E{}_{}",
+                self.prefix,
+                self.tag(i),
+                pin.to_ascii_uppercase()
+            )
         }
     }
 
@@ -136,7 +232,7 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
         }
         let needs_input = matches!(
             el.kind,
-            Kind::OutVariable | Kind::InOutVariable | Kind::Contact | Kind::Coil
+            Kind::OutVariable | Kind::InOutVariable | Kind::Contact | Kind::Coil | Kind::Condition
         );
         if needs_input && el.inputs.iter().all(|p| p.sources.is_empty()) {
             em.error(
@@ -227,7 +323,7 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
     }
 
     /// `VAR ... END_VAR` with the hidden variables, if any.
-    fn declarations(&self, em: &mut Emitter, at: Range) {
+    pub fn declarations(&self, em: &mut Emitter, at: Range) {
         let mut decls: Vec<(String, Range, Result<Ty<'a, 'i>, String>)> = Vec::new();
         let mut jumps = false;
         for (i, el) in self.net.elements.iter().enumerate() {
@@ -286,7 +382,7 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
             }
         }
         if jumps {
-            decls.push(("_JMP".to_string(), at, Ok(Ty::Word("INT".into()))));
+            decls.push((self.jump_state(), at, Ok(Ty::Word("INT".into()))));
         }
         if decls.is_empty() {
             return;
@@ -311,7 +407,7 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
 
     /// The type of output `pin` of function element `i`, or why it is unknown.
     fn typed(&self, i: usize, pin: &str, type_name: &str) -> Result<Ty<'a, 'i>, String> {
-        self.types.output(self.net, i, pin).ok_or_else(|| {
+        self.types.output(&self.net, i, pin).ok_or_else(|| {
             format!(
                 "output `{pin}` of function `{type_name}` is read twice, through a feedback path or after an EN, so it is kept in a variable, and its type cannot be worked out here; connect it to a declared variable (an <inOutVariable>) and read that"
             )
@@ -319,8 +415,7 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
     }
 
     /// The body's statements, with the jump machinery when it has jumps.
-    fn statements(&self, em: &mut Emitter, lang: Node) {
-        let at = em.at(lang);
+    pub fn statements(&self, em: &mut Emitter, at: Range) {
         let order = self.plan.order.clone();
         if !self.labels.is_empty()
             || order
@@ -356,7 +451,8 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
                 Kind::Jump(l) => label_at(l).is_some_and(|p| p <= k),
                 _ => false,
             });
-        em.synth("_JMP := 0;", at);
+        let jmp = self.jump_state();
+        em.synth(&format!("{jmp} := 0;"), at);
         if backwards {
             em.synth("REPEAT", at);
         }
@@ -370,11 +466,11 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
                     open = false;
                 }
                 let k = self.labels[&name.to_ascii_uppercase()];
-                em.synth(&format!("IF _JMP = {k} THEN _JMP := 0; END_IF;"), here);
+                em.synth(&format!("IF {jmp} = {k} THEN {jmp} := 0; END_IF;"), here);
                 continue;
             }
             if !open {
-                em.synth("IF _JMP = 0 THEN", here);
+                em.synth(&format!("IF {jmp} = 0 THEN"), here);
                 open = true;
             }
             self.statement(em, i);
@@ -387,7 +483,7 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
             em.synth("END_IF;", at);
         }
         if backwards {
-            em.synth("UNTIL _JMP = 0 END_REPEAT;", at);
+            em.synth(&format!("UNTIL {jmp} = 0 END_REPEAT;"), at);
         }
     }
 
@@ -409,7 +505,7 @@ impl<'a, 'i> Lowering<'_, 'a, 'i> {
             Kind::Coil => self.coil_statement(em, i),
             Kind::Jump(name) => {
                 let k = self.labels[&name.to_ascii_uppercase()];
-                self.conditional(em, i, &format!("_JMP := {k};"), at);
+                self.conditional(em, i, &format!("{} := {k};", self.jump_state()), at);
             }
             Kind::Return => self.conditional(em, i, "RETURN;", at),
             _ => {}

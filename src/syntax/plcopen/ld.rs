@@ -10,7 +10,7 @@ use super::emit::Emitter;
 use super::graphic::Lowering;
 use super::network::{Edge, Kind};
 
-impl Lowering<'_, '_, '_> {
+impl Lowering<'_, '_> {
     /// `(<power> AND <variable>)`.
     pub fn contact_value(&self, em: &mut Emitter, i: usize) {
         let el = &self.net.elements[i];

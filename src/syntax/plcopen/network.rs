@@ -44,6 +44,9 @@ pub enum Kind {
     Contact,
     /// `<coil>`: the power flow written to a Boolean variable.
     Coil,
+    /// The `<condition>` of an SFC `<transition>` wired to the network:
+    /// read by the chart, it writes nothing.
+    Condition,
 }
 
 /// Edge detection of a pin, contact or coil (`edge="rising|falling"`).
@@ -142,11 +145,26 @@ pub struct Network<'a, 'i> {
 }
 
 /// Reads a network; `None` after a reported error.
-pub fn read<'a, 'i>(em: &mut Emitter, body: Node<'a, 'i>) -> Option<Network<'a, 'i>> {
+///
+/// With `in_sfc`, `body` is an `<SFC>`: its chart elements are left to the
+/// chart, and each `<transition>` whose `<condition>` holds a
+/// `<connectionPointIn>` gives a [`Kind::Condition`] element.
+pub fn read<'a, 'i>(em: &mut Emitter, body: Node<'a, 'i>, in_sfc: bool) -> Option<Network<'a, 'i>> {
     let mut out = Vec::new();
     let mut ids: HashMap<&str, usize> = HashMap::new();
     let mut ok = true;
+    let mut conditions = Vec::new();
+    let mut chart_ids = Vec::new();
     for node in elements(body) {
+        if in_sfc && SFC_ELEMENTS.contains(&node.tag_name().name()) {
+            if let Some(id) = node.attribute("localId") {
+                chart_ids.push(id.trim());
+            }
+            if let Some(cond) = wired_condition(node) {
+                conditions.push((node, cond));
+            }
+            continue;
+        }
         let Some(kind) = kind_of(em, node, &mut ok) else {
             continue;
         };
@@ -166,10 +184,46 @@ pub fn read<'a, 'i>(em: &mut Emitter, body: Node<'a, 'i>) -> Option<Network<'a, 
         }
         out.push(element(node, kind, id));
     }
+    for (transition, cond) in conditions {
+        let id = transition.attribute("localId").unwrap_or("").trim();
+        let mut el = element(transition, Kind::Condition, id);
+        el.inputs = vec![Input {
+            name: String::new(),
+            node: cond,
+            negated: false,
+            edge: Edge::None,
+            in_out: false,
+            sources: Vec::new(),
+        }];
+        out.push(el);
+    }
     let mut net = Network { elements: out };
-    ok &= link(em, &mut net, &ids);
+    ok &= link(em, &mut net, &ids, &chart_ids);
     ok &= resolve_continuations(em, &mut net);
     ok.then_some(net)
+}
+
+/// The elements of an SFC chart, left to the chart when a network is read
+/// from an `<SFC>`.
+pub const SFC_ELEMENTS: [&str; 9] = [
+    "step",
+    "transition",
+    "selectionDivergence",
+    "selectionConvergence",
+    "simultaneousDivergence",
+    "simultaneousConvergence",
+    "jumpStep",
+    "actionBlock",
+    "macroStep",
+];
+
+/// The `<condition>` of a `<transition>` when it is wired to the network.
+fn wired_condition<'a, 'i>(node: Node<'a, 'i>) -> Option<Node<'a, 'i>> {
+    if node.tag_name().name() != "transition" {
+        return None;
+    }
+    let cond = child(node, "condition")?;
+    child(cond, "connectionPointIn").map(|_| cond)
 }
 
 /// The kind of an element; `None` for comments, and (reported) for
@@ -350,7 +404,12 @@ fn points<'a, 'i>(pin: Node<'a, 'i>) -> impl Iterator<Item = Node<'a, 'i>> {
 }
 
 /// Links every `<connection refLocalId formalParameter>` to its element.
-fn link(em: &mut Emitter, net: &mut Network, ids: &HashMap<&str, usize>) -> bool {
+fn link(
+    em: &mut Emitter,
+    net: &mut Network,
+    ids: &HashMap<&str, usize>,
+    chart_ids: &[&str],
+) -> bool {
     let mut ok = true;
     let kinds: Vec<Kind> = net.elements.iter().map(|e| e.kind.clone()).collect();
     let outputs: Vec<Vec<Output>> = net.elements.iter().map(|e| e.outputs.clone()).collect();
@@ -362,6 +421,15 @@ fn link(em: &mut Emitter, net: &mut Network, ids: &HashMap<&str, usize>) -> bool
             for conn in conns {
                 let target = conn.attribute("refLocalId").map(str::trim);
                 let Some(&from) = target.and_then(|t| ids.get(t)) else {
+                    if let Some(t) = target.filter(|t| chart_ids.contains(t)) {
+                        em.error(
+                            codes::BAD_CONNECTION,
+                            em.at(conn),
+                            format!("this connection comes from chart element {t} (a step, a transition...), which gives no value to an FBD/LD network"),
+                        );
+                        ok = false;
+                        continue;
+                    }
                     let range = em.attr_range(conn, "refLocalId").unwrap_or(em.at(conn));
                     em.error(
                         codes::DANGLING_REF,
@@ -440,6 +508,7 @@ pub fn describe(kind: &Kind) -> &'static str {
         Kind::RightRail => "a <rightPowerRail>",
         Kind::Contact => "a <contact>",
         Kind::Coil => "a <coil>",
+        Kind::Condition => "a transition's <condition>",
     }
 }
 

@@ -65,7 +65,8 @@ fn is_sink(net: &Network, uses: &[HashMap<String, usize>], i: usize) -> bool {
         | Kind::Coil
         | Kind::Jump(_)
         | Kind::Label(_)
-        | Kind::Return => true,
+        | Kind::Return
+        | Kind::Condition => true,
         Kind::Block { .. } => uses[i].is_empty(),
         _ => false,
     }

@@ -9,7 +9,7 @@ use super::emit::{Emitter, Range};
 use super::graphic::Lowering;
 use super::network::{Kind, Source};
 
-impl Lowering<'_, '_, '_> {
+impl Lowering<'_, '_> {
     /// The OR of `sources` (one source: its value).
     pub fn sources_value(&self, em: &mut Emitter, sources: &[Source], at: Range) {
         if let [one] = sources {
