@@ -395,9 +395,12 @@ fn only_error(text: &str) -> (String, String, String) {
 const OUT_Q: &str = "<interface><outputVars><variable name=\"q\"><type><BOOL/></type></variable></outputVars></interface>";
 
 #[test]
-fn an_fbd_body_is_refused_by_name_at_its_element() {
+fn an_inline_fbd_action_of_a_chart_is_refused_by_name_at_its_element() {
+    // FBD and LD POU bodies, named actions and transitions, and chart
+    // elements wired to conditions run (tests/plcopen_fbd.rs,
+    // tests/plcopen_ld.rs); an inline action in FBD or LD does not.
     let text = project(&format!(
-        "<pou name=\"P\" pouType=\"program\">{OUT_Q}\n<body>\n  <FBD>\n    <inVariable localId=\"1\"><expression>TRUE</expression></inVariable>\n  </FBD>\n</body></pou>"
+        "<pou name=\"P\" pouType=\"program\">{OUT_Q}<body><SFC><step localId=\"1\" name=\"S0\" initialStep=\"true\"/><actionBlock localId=\"2\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn><action><inline>\n  <FBD>\n    <inVariable localId=\"1\"><expression>TRUE</expression></inVariable>\n  </FBD>\n</inline></action></actionBlock></SFC></body></pou>"
     ));
     let (code, at, message) = only_error(&text);
     assert_eq!(code, "E804");
@@ -473,9 +476,9 @@ fn what_plcrun_cannot_represent_is_refused_by_name() {
             "<macroStep",
         ),
         (
-            "<inVariable localId=\"9\"><expression>q</expression></inVariable>",
-            "E807",
-            "<inVariable",
+            "<coil localId=\"9\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn><variable>q</variable></coil>",
+            "E817",
+            "<connection refLocalId=\"1\"",
         ),
     ];
     for (element, code, needle) in cases {
@@ -491,7 +494,8 @@ fn what_plcrun_cannot_represent_is_refused_by_name() {
     let graphical_condition = project(&format!(
         "<pou name=\"P\" pouType=\"program\">{OUT_Q}<body><SFC><step localId=\"1\" name=\"S0\" initialStep=\"true\"/><step localId=\"3\" name=\"S1\"><connectionPointIn><connection refLocalId=\"2\"/></connectionPointIn></step><transition localId=\"2\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn><condition><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn></condition></transition></SFC></body></pou>"
     ));
-    assert_eq!(only_error(&graphical_condition).0, "E807");
+    // A condition wired to a step: a chart element gives no value.
+    assert_eq!(only_error(&graphical_condition).0, "E817");
     let meaningful = project(&format!(
         "<pou name=\"P\" pouType=\"program\">{OUT_Q}<body><ST><xhtml:p>q := TRUE;</xhtml:p></ST></body><addData><data name=\"urn:other\" handleUnknown=\"implementation\"><x/></data></addData></pou>"
     ));

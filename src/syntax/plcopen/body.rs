@@ -19,7 +19,7 @@ pub fn pou_body(em: &mut Emitter, pou: Node, body: Node) {
     let Some(lang) =
         elements(body).find(|c| matches!(c.tag_name().name(), "IL" | "ST" | "FBD" | "LD" | "SFC"))
     else {
-        super::types::missing_child(em, body, "ST>, <IL> or <SFC");
+        super::types::missing_child(em, body, "ST>, <IL>, <FBD>, <LD> or <SFC");
         return;
     };
     for c in elements(body) {
@@ -34,20 +34,28 @@ pub fn pou_body(em: &mut Emitter, pou: Node, body: Node) {
     match lang.tag_name().name() {
         "SFC" => sfc::chart(em, pou, body, lang),
         "ST" | "IL" => {
-            for name in ["actions", "transitions"] {
-                if let Some(list) = elements(pou).find(|c| c.tag_name().name() == name)
-                    && elements(list).next().is_some()
-                {
-                    em.refuse(list, "actions and named transitions belong to an SFC body");
-                }
-            }
+            refuse_actions(em, pou);
             text_body(em, lang);
         }
-        _ => graphical(em, lang),
+        _ => {
+            refuse_actions(em, pou);
+            super::graphic::body(em, pou, lang);
+        }
     }
 }
 
-/// Refuses a graphical body by name.
+/// Refuses `<actions>`/`<transitions>` in a POU whose body is not SFC.
+fn refuse_actions(em: &mut Emitter, pou: Node) {
+    for name in ["actions", "transitions"] {
+        if let Some(list) = elements(pou).find(|c| c.tag_name().name() == name)
+            && elements(list).next().is_some()
+        {
+            em.refuse(list, "actions and named transitions belong to an SFC body");
+        }
+    }
+}
+
+/// Refuses a graphical body by name (where plcrun does not lower one).
 pub fn graphical(em: &mut Emitter, lang: Node) {
     let name = lang.tag_name().name();
     em.error(

@@ -33,3 +33,14 @@ pub const MISSING_CHILD: &str = "E814";
 pub const MEANINGFUL_ADD_DATA: &str = "E815";
 /// The project's namespace is not TC6 XML 2.01 or 2.0.
 pub const UNKNOWN_NAMESPACE: &str = "W801";
+/// A `<continuation>` without its `<connector>`, two connectors of one name,
+/// or connectors leading back to themselves.
+pub const CONNECTOR: &str = "E816";
+/// A connection from an output the source element does not have.
+pub const BAD_CONNECTION: &str = "E817";
+/// An element of a graphical body whose input must be connected and is not.
+pub const UNCONNECTED: &str = "E818";
+/// A `<jump>` to a label the body does not have, or a label placed twice.
+pub const LABEL: &str = "E819";
+/// A function output kept in a hidden variable whose type cannot be worked out.
+pub const UNTYPED_VALUE: &str = "E820";

@@ -5,8 +5,9 @@
 //! equivalent textual source ([`emit`]) and runs the textual parser on it,
 //! so the result is the same [`CompilationUnit`] a `.st`/`.il`/`.sfc` file
 //! gives, and every diagnostic points into the XML file. What plcrun cannot
-//! represent (FBD and LD bodies, macro steps, graphical conditions...) is
-//! refused by name with an `E8xx` code, never skipped. Export
+//! represent (macro steps, graphical conditions...) is refused by name
+//! with an `E8xx` code, never skipped. FBD and LD bodies are lowered to ST
+//! statements ([`graphic`]). Export
 //! ([`export::export_plcopen`]) writes parsed textual sources back as a
 //! PLCopen project. See `docs/plcopen.md`.
 
@@ -16,12 +17,19 @@ pub mod config;
 pub mod config_vars;
 pub mod emit;
 pub mod export;
+pub mod fbd;
+pub mod graphic;
+pub mod infer;
 pub mod interface;
+pub mod ld;
+pub mod network;
+pub mod order;
 pub mod origin;
 pub mod pou;
 pub mod raw;
 pub mod sfc;
 pub mod types;
+pub mod values;
 
 use crate::diagnostics::Diagnostics;
 use crate::source::FileId;

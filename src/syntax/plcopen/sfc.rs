@@ -6,6 +6,7 @@
 use super::body::{SFC_STATEMENTS_DATA, add_data, data_element, graphical, text_body};
 use super::codes;
 use super::emit::{Emitter, child, elements, is_identifier, is_true};
+use super::graphic::{self, Lowering};
 use roxmltree::Node;
 use std::collections::HashMap;
 
@@ -44,6 +45,28 @@ pub fn chart(em: &mut Emitter, pou: Node, body: Node, sfc: Node) {
     let Some(net) = network(em, sfc) else {
         return;
     };
+    // The graphical elements of the chart (conditions wired to them) and
+    // the actions written in FBD or LD: their hidden variables first.
+    let Some(wired) = graphic::prepare(em, pou, sfc, true, "") else {
+        return;
+    };
+    let actions = named_bodies(em, pou, "actions", "action");
+    let mut graphical_actions = Vec::new();
+    for (k, (name, action)) in actions.iter().enumerate() {
+        let lang = child(*action, "body")
+            .and_then(|b| elements(b).find(|c| matches!(c.tag_name().name(), "FBD" | "LD")));
+        if let Some(lang) = lang {
+            let prefix = format!("_A{}", k + 1);
+            match graphic::prepare(em, pou, lang, false, &prefix) {
+                Some(lw) => graphical_actions.push((name.clone(), lw)),
+                None => return,
+            }
+        }
+    }
+    wired.declarations(em, em.at(sfc));
+    for (_, lw) in &graphical_actions {
+        lw.declarations(em, em.at(sfc));
+    }
     let named_transitions = named_bodies(em, pou, "transitions", "transition");
     let mut inline_actions = Vec::new();
     for (i, el) in net.elements.iter().enumerate() {
@@ -53,14 +76,32 @@ pub fn chart(em: &mut Emitter, pou: Node, body: Node, sfc: Node) {
     }
     for (i, el) in net.elements.iter().enumerate() {
         if el.kind == Kind::Transition {
-            transition(em, &net, i, &named_transitions);
+            transition(em, &net, i, &named_transitions, &wired, pou);
         }
     }
-    for (name, action) in named_bodies(em, pou, "actions", "action") {
-        action_decl(em, &name, action, child(action, "body"));
+    for (name, action) in actions {
+        match graphical_actions
+            .iter()
+            .find(|(n, _)| n.eq_ignore_ascii_case(&name))
+        {
+            Some((_, lw)) => {
+                let at = em.at(action);
+                em.synth("ACTION", at);
+                em.ident(&name, em.attr_range(action, "name").unwrap_or(at));
+                em.synth(":", at);
+                lw.statements(em, at);
+                em.synth("END_ACTION", em.end_of(action));
+            }
+            None => action_decl(em, &name, action, child(action, "body")),
+        }
     }
     for (name, inline) in inline_actions {
         action_decl(em, &name, inline, Some(inline));
+    }
+    // The chart's blocks run as its plain statements, after the actions
+    // of every call.
+    if !wired.is_empty() {
+        wired.statements(em, em.at(sfc));
     }
     for add in elements(body).filter(|c| c.tag_name().name() == "addData") {
         statements(em, add);
@@ -78,7 +119,7 @@ fn network<'a, 'i>(em: &mut Emitter, sfc: Node<'a, 'i>) -> Option<Network<'a, 'i
             ok &= matches!(
                 node.tag_name().name(),
                 "comment" | "documentation" | "addData"
-            );
+            ) || GRAPHICAL.contains(&node.tag_name().name());
             continue;
         };
         match node.attribute("localId") {
@@ -154,6 +195,24 @@ fn network<'a, 'i>(em: &mut Emitter, sfc: Node<'a, 'i>) -> Option<Network<'a, 'i
     })
 }
 
+/// FBD and LD elements, which an SFC body may hold to compute its
+/// transitions' conditions.
+const GRAPHICAL: [&str; 13] = [
+    "inVariable",
+    "outVariable",
+    "inOutVariable",
+    "block",
+    "connector",
+    "continuation",
+    "contact",
+    "coil",
+    "leftPowerRail",
+    "rightPowerRail",
+    "label",
+    "jump",
+    "return",
+];
+
 /// The kind of a chart element; `None` (reported unless it is a comment)
 /// for anything plcrun cannot run.
 fn kind_of(em: &mut Emitter, node: Node) -> Option<Kind> {
@@ -180,11 +239,8 @@ fn kind_of(em: &mut Emitter, node: Node) -> Option<Kind> {
             em.refuse(node, "macro steps have no textual SFC form");
             return None;
         }
-        "inVariable" | "outVariable" | "inOutVariable" | "block" | "connector" | "continuation"
-        | "contact" | "coil" | "leftPowerRail" | "rightPowerRail" | "label" | "jump" | "return" => {
-            em.refuse(node, "graphical (FBD/LD) elements inside an SFC body are not supported; write transition conditions in ST or IL");
-            return None;
-        }
+        // Read by the graphical network of the chart.
+        name if GRAPHICAL.contains(&name) => return None,
         _ => {
             em.unknown(node, "SFC");
             return None;
@@ -283,7 +339,14 @@ fn association<'a, 'i>(
 }
 
 /// `TRANSITION [name] [(PRIORITY := p)] FROM steps TO steps condition END_TRANSITION`.
-fn transition(em: &mut Emitter, net: &Network, index: usize, named: &[(String, Node)]) {
+fn transition(
+    em: &mut Emitter,
+    net: &Network,
+    index: usize,
+    named: &[(String, Node)],
+    wired: &Lowering,
+    pou: Node,
+) {
     let node = net.elements[index].node;
     let at = em.at(node);
     let mut from = Vec::new();
@@ -332,7 +395,7 @@ fn transition(em: &mut Emitter, net: &Network, index: usize, named: &[(String, N
     em.synth("TO", at);
     step_set(em, &to, at);
     match condition {
-        Some(c) => transition_condition(em, c, named),
+        Some(c) => transition_condition(em, c, named, (wired, pou), node),
         None => em.error(
             codes::MISSING_CHILD,
             at,
@@ -454,7 +517,14 @@ fn wrong_link(em: &mut Emitter, node: Node, why: &str) {
 }
 
 /// `<condition>`: inline ST/IL, or a reference to a named transition.
-fn transition_condition(em: &mut Emitter, cond: Node, named: &[(String, Node)]) {
+fn transition_condition(
+    em: &mut Emitter,
+    cond: Node,
+    named: &[(String, Node)],
+    (wired, pou): (&Lowering, Node),
+    transition: Node,
+) {
+    let mut reference = "";
     let negated = is_true(cond.attribute("negated"));
     let Some(kind) = elements(cond)
         .find(|c| c.tag_name().name() != "documentation" && c.tag_name().name() != "addData")
@@ -470,6 +540,7 @@ fn transition_condition(em: &mut Emitter, cond: Node, named: &[(String, Node)]) 
             let Some(name) = em.required_name(kind, "name") else {
                 return;
             };
+            reference = name;
             match named.iter().find(|(n, _)| n.eq_ignore_ascii_case(name)) {
                 Some((_, t)) => child(*t, "body").and_then(|b| {
                     elements(b)
@@ -487,10 +558,15 @@ fn transition_condition(em: &mut Emitter, cond: Node, named: &[(String, Node)]) 
             }
         }
         "connectionPointIn" => {
-            em.refuse(
-                kind,
-                "a condition wired to an FBD/LD network; write it in ST or IL",
-            );
+            em.synth(":=", em.at(kind));
+            if negated {
+                em.synth("NOT (", em.at(cond));
+            }
+            wired.condition(em, transition);
+            if negated {
+                em.synth(")", em.at(cond));
+            }
+            em.synth(";", em.end_of(cond));
             return;
         }
         _ => {
@@ -512,6 +588,21 @@ fn transition_condition(em: &mut Emitter, cond: Node, named: &[(String, Node)]) 
         "IL" => {
             em.synth(":", em.at(lang));
             text_body(em, lang);
+        }
+        "FBD" | "LD" => {
+            if let Some(lw) = graphic::prepare(em, pou, lang, false, "_X") {
+                em.synth(":=", em.at(lang));
+                if negated {
+                    em.synth("NOT (", em.at(cond));
+                }
+                if let Err(why) = lw.transition_value(em, reference) {
+                    em.refuse(lang, &why);
+                }
+                if negated {
+                    em.synth(")", em.at(cond));
+                }
+                em.synth(";", em.end_of(lang));
+            }
         }
         _ => graphical(em, lang),
     }
