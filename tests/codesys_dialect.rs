@@ -233,3 +233,62 @@ END_CONFIGURATION
     assert_eq!(lit(&plc, "main.r1"), "9");
     assert_eq!(lit(&plc, "main.r2"), "108");
 }
+
+#[test]
+fn chained_assignment_assigns_right_to_left() {
+    // `a := b := c := 7`: c = 7, b = c, a = b. `r := i := 3` stores the
+    // INT 3 in i and then i (3) in the REAL r. Inside a CASE arm and an
+    // IF, with array elements and structure fields as targets.
+    check(
+        "TYPE Pt : STRUCT x, y : INT; END_STRUCT END_TYPE",
+        "a, b, c : INT; r : REAL; i : INT; arr : ARRAY[1..3] OF INT; p : Pt;
+         k : INT := 2; d, e : DINT;",
+        "a := b := c := 7;
+         r := i := 3;
+         CASE k OF 2: arr[1] := p.x := arr[3] := 4; END_CASE;
+         IF k = 2 THEN d := e := k * 10; END_IF;",
+        &[
+            ("a", "7"),
+            ("b", "7"),
+            ("c", "7"),
+            ("i", "3"),
+            ("r", "3.0"),
+            ("arr[1]", "4"),
+            ("arr[3]", "4"),
+            ("p.x", "4"),
+            ("d", "20"),
+            ("e", "20"),
+        ],
+    );
+}
+
+#[test]
+fn chained_assignment_passes_on_the_value_the_middle_target_holds() {
+    // The middle target is read after it is written: a STRING[3]
+    // truncates 'abcdef' to 'abc', which is what s6 then gets; a call
+    // on the right runs once.
+    check(
+        BUMP,
+        "s3 : STRING[3]; s6 : STRING[6]; n : INT; x, y : BOOL;",
+        "s6 := s3 := 'abcdef'; x := y := Bump(TRUE, n);",
+        &[
+            ("s3", "'abc'"),
+            ("s6", "'abc'"),
+            ("n", "1"),
+            ("x", "TRUE"),
+            ("y", "TRUE"),
+        ],
+    );
+}
+
+#[test]
+fn chained_assignment_type_errors_point_at_the_assignment_that_fails() {
+    // `b := 'x'` is the failing inner assignment (b is INT).
+    let src = program("", "a, b : INT;", "a := b := 'x';");
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| (c.0.as_str(), c.1.as_str())),
+        Some(("E301", "6:11")),
+        "{codes:?}"
+    );
+}

@@ -5,6 +5,7 @@
 
 pub mod assign_attempt;
 pub mod ast;
+pub mod chain_assign;
 mod codesys_spellings;
 pub mod config_path;
 pub mod construct;
