@@ -292,3 +292,144 @@ fn chained_assignment_type_errors_point_at_the_assignment_that_fails() {
         "{codes:?}"
     );
 }
+
+/// Enumerations written the CODESYS / TwinCAT way: a base type after the
+/// values and before them, and one declared `qualified_only`.
+const MODES: &str = "TYPE E_Small : (S0 := 0, S1, S7 := 7, S8) BYTE; END_TYPE
+TYPE E_Wide : WORD (W0, W1 := 16#FF00, W2); END_TYPE
+{attribute 'qualified_only'}
+{attribute 'strict'}
+TYPE E_Mode :
+(
+    Idle := 0,
+    Run := 5,
+    Stop
+) INT;
+END_TYPE
+FUNCTION IsRun : BOOL
+VAR_INPUT m : E_Mode; END_VAR
+IsRun := m = E_Mode.Run;
+END_FUNCTION";
+
+/// Compiles `src` with `options`; the codes of its warnings, or the
+/// rendered errors.
+fn warning_codes(src: &str, options: &plcrun::Options) -> Result<Vec<String>, String> {
+    match plcrun::Plc::compile_files(&[("test.st", src)], options) {
+        Ok(plc) => Ok(plc.warnings().iter().map(|d| d.code.to_string()).collect()),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+#[test]
+fn enumerations_with_a_base_type_written_after_or_before_the_values() {
+    // S8 follows S7 := 7; W2 follows W1 := 16#FF00. Qualified values
+    // (`E_Small.S8`) as initial values, in expressions and CASE labels.
+    let mut plc = compile(&program(
+        MODES,
+        "a : E_Small := E_Small.S8; b : E_Small; w : E_Wide := E_Wide.W2;
+         m : E_Mode := E_Mode.Stop; k : INT; r1, r2 : BOOL;",
+        "b := E_Small.S1;
+         CASE m OF E_Mode.Idle: k := 1; E_Mode.Stop: k := 2; END_CASE;
+         r1 := IsRun(E_Mode.Run); r2 := IsRun(m);",
+    ));
+    run(&mut plc, 1);
+    assert_eq!(plc.read_i64("a"), Ok(8));
+    assert_eq!(plc.read_i64("b"), Ok(1));
+    assert_eq!(plc.read_i64("w"), Ok(0xFF01));
+    assert_eq!(plc.read_i64("m"), Ok(6));
+    assert_eq!(lit(&plc, "a"), "S8");
+    assert_eq!(lit(&plc, "m"), "Stop");
+    assert_eq!(lit(&plc, "k"), "2");
+    assert_eq!(lit(&plc, "r1"), "TRUE");
+    assert_eq!(lit(&plc, "r2"), "FALSE");
+}
+
+#[test]
+fn a_qualified_only_enumeration_value_written_alone_is_e433() {
+    // MODES has 15 lines: the declarations are on line 18, the body
+    // starts on line 20.
+    let src = program(MODES, "m : E_Mode; b : BOOL;", "m := Run;\nb := m = Stop;");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [
+            ("E433".to_string(), "20:6".to_string()),
+            ("E433".to_string(), "21:10".to_string())
+        ]
+    );
+    let src = program(MODES, "m : E_Mode := Idle;", "");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E433".to_string(), "18:15".to_string())]
+    );
+    // Unqualified values of the other types stay accepted.
+    let src = program(MODES, "a : E_Small := S7; w : E_Wide;", "w := W1;");
+    assert_eq!(error_codes(&[("test.st", &src)]), []);
+}
+
+#[test]
+fn qualified_only_before_a_type_is_honoured_and_elsewhere_still_w150() {
+    let src = program(MODES, "m : E_Mode;", "");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert!(!codes.contains(&"W150".to_string()), "{codes:?}");
+    let src = "{attribute 'qualified_only'}\nVAR_GLOBAL g : INT; END_VAR\nPROGRAM P\nVAR_EXTERNAL g : INT; END_VAR\ng := 1;\nEND_PROGRAM\n";
+    let codes = warning_codes(src, &plcrun::Options::default()).unwrap();
+    assert!(codes.contains(&"W150".to_string()), "{codes:?}");
+}
+
+#[test]
+fn an_enumeration_and_an_integer_convert_implicitly_with_a_warning() {
+    // E_Mode.Run is 5: n = 5 + 1; i (7) stored in a gives S7; a compared
+    // with 7; x becomes E_Small 0 from a literal.
+    let body = "n := E_Mode.Run + 1; a := i; r := a = 7; x := 0; d := m; y := 3;";
+    let decls = "n : INT; i : BYTE := 7; a : E_Small; r : BOOL; x : E_Small := E_Small.S8;
+                 m : E_Mode := E_Mode.Stop; d : DINT; y : E_Small;";
+    let mut plc = compile(&program(MODES, decls, body));
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "n"), "6");
+    assert_eq!(lit(&plc, "a"), "S7");
+    assert_eq!(lit(&plc, "r"), "TRUE");
+    assert_eq!(lit(&plc, "x"), "S0");
+    assert_eq!(lit(&plc, "d"), "6");
+    assert_eq!(plc.read_i64("y"), Ok(3));
+    let src = program(MODES, decls, body);
+    let mut codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    codes.retain(|c| c == "W485" || c == "W486");
+    assert_eq!(codes, ["W485", "W486", "W485", "W486", "W485", "W486"]);
+    // Under --strict each is an error with the same code.
+    let strict = plcrun::Options {
+        strict: true,
+        ..Default::default()
+    };
+    let err = warning_codes(&src, &strict).unwrap_err();
+    assert!(
+        err.contains("error[W485]") && err.contains("error[W486]"),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_integer_that_does_not_fit_the_base_type_or_another_enumeration_is_e301() {
+    // A DINT does not widen to BYTE; two enumerations never mix.
+    let src = program(
+        MODES,
+        "a : E_Small; d : DINT; m : E_Mode;",
+        "a := d;\nm := a;",
+    );
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes,
+        [
+            ("E301".to_string(), "20:6".to_string()),
+            ("E301".to_string(), "21:6".to_string())
+        ]
+    );
+}
+
+#[test]
+fn a_qualified_name_of_a_missing_value_is_e201() {
+    let src = program(MODES, "m : E_Mode;", "m := E_Mode.Running;");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E201".to_string(), "20:13".to_string())]
+    );
+}

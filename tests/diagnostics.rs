@@ -208,6 +208,15 @@ const INC: &str =
     ),
     "1:28"
 )]
+#[case(
+    "E433",
+    prog_after(
+        "{attribute 'qualified_only'} TYPE E_Mode : (Idle, Run); END_TYPE",
+        "m : E_Mode;",
+        "m := Run;"
+    ),
+    "6:6"
+)]
 fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     check_error(code, &src, at);
 }
@@ -216,6 +225,16 @@ fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case]
 #[case("W001", prog("x : INT;", "{ a pragma } x := 1;"), "5:1")]
 #[case("W202", prog("x AT %IX0.0 : BOOL;", "x := TRUE;"), "5:1")]
 #[case("W204", prog("c AT %QX0.0 : BOOL; r AT %QW0 : INT;", ""), "3:26")]
+#[case(
+    "W485",
+    prog_after("TYPE E : (A, B := 5); END_TYPE", "n : DINT;", "n := E.B + 1;"),
+    "6:6"
+)]
+#[case(
+    "W486",
+    prog_after("TYPE E : (A, B := 5); END_TYPE", "e : E;", "e := 5;"),
+    "6:6"
+)]
 fn warnings_do_not_stop_the_program(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     let mut plc = Plc::compile_files(&[("t.st", &src)], &Options::default())
         .unwrap_or_else(|e| panic!("a warning must not fail the compilation:\n{e}"));

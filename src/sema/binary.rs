@@ -58,6 +58,7 @@ impl BodyBuilder<'_> {
         if let Some(v) = self.time_arith(op, &va, &vb, span) {
             return v;
         }
+        let (va, vb) = self.enum_operands(va, vb, span);
         let Some(common) = self.unify(va.ty(), vb.ty()) else {
             let (x, y) = (self.ty_name(va.ty()), self.ty_name(vb.ty()));
             self.diags.push(

@@ -5,6 +5,7 @@
 use super::consts::{
     Const, int_to_slot, literal_to_slot, real_to_slot, slot_to_int, typed_literal,
 };
+use super::enum_qualified::Qualified;
 use super::model::{ConstInit, Model, VarInfo};
 use crate::diagnostics::Diagnostics;
 use crate::elementary::ElemType;
@@ -174,6 +175,32 @@ impl DeclConsts<'_> {
         let def = self.types.get(ty).clone();
         // Enumerations: a value name, optionally qualified.
         if let TypeKind::Enum { values, .. } = &def.kind {
+            if let Some(q) = super::enum_qualified::qualified(self.types, self.model, self.diags, e)
+            {
+                return match q {
+                    Qualified::Value(t, v) if t == ty => Some(Const::Bits(v as u64)),
+                    Qualified::Value(..) => {
+                        self.diags.error(
+                            "E301",
+                            e.span,
+                            format!("expected a value of enumeration {}", def.name),
+                        );
+                        None
+                    }
+                    Qualified::Unknown => None,
+                };
+            }
+            if let ExprKind::Name(id) = &e.kind
+                && super::enum_qualified::unqualified_use(
+                    self.types,
+                    self.model,
+                    self.diags,
+                    id,
+                    Some(ty),
+                )
+            {
+                return None;
+            }
             let name = match &e.kind {
                 ExprKind::Name(id) => Some(id.clone()),
                 ExprKind::Literal(l) => match &l.value {

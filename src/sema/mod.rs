@@ -52,6 +52,8 @@ mod emit;
 mod en_params;
 mod eno_body;
 mod eno_uses;
+mod enum_int;
+mod enum_qualified;
 mod expr;
 mod fb_member_read;
 mod fn_call;

@@ -299,6 +299,9 @@ pub struct TypeDecl {
     pub init: Option<Initializer>,
     /// Where.
     pub span: Span,
+    /// Declared after `{attribute 'qualified_only'}` (CODESYS): its
+    /// enumeration values must be written `Type.Value`.
+    pub qualified_only: bool,
 }
 
 /// An initial value.

@@ -463,6 +463,20 @@ pub enum CaseItem {
     Chain(Vec<Stmt>),
 }
 
+/// The declarations of a `TYPE` block starting at byte `l`, marked
+/// qualified-only when `{attribute 'qualified_only'}` precedes it.
+pub fn type_block(st: &State, l: usize, decls: Vec<Option<TypeDecl>>) -> Vec<TypeDecl> {
+    let qualified = crate::syntax::qualified_only::before_type(st.text(), l);
+    decls
+        .into_iter()
+        .flatten()
+        .map(|d| TypeDecl {
+            qualified_only: qualified,
+            ..d
+        })
+        .collect()
+}
+
 /// Adds `stmts` to the last arm; E107 when there is none yet.
 fn arm_stmts(st: &State, arms: &mut [CaseArm], stmts: Vec<Stmt>) {
     match arms.last_mut() {

@@ -23,6 +23,7 @@ pub mod oop_var_access;
 pub mod parser;
 pub mod plcopen;
 pub mod pragma_meaning;
+pub mod qualified_only;
 pub mod recovery;
 pub mod ref_words;
 pub mod repair;

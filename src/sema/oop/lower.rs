@@ -199,6 +199,7 @@ impl Lowering<'_> {
                 },
                 init: None,
                 span: x.span,
+                qualified_only: false,
             };
             let sig = TypeDecl {
                 name: Ident {
@@ -211,6 +212,7 @@ impl Lowering<'_> {
                 },
                 init: None,
                 span: x.span,
+                qualified_only: false,
             };
             self.units[*u].items[*i] = Item::Types(vec![value, sig]);
             self.info.interfaces.insert(
