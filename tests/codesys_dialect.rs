@@ -433,3 +433,43 @@ fn a_qualified_name_of_a_missing_value_is_e201() {
         [("E201".to_string(), "20:13".to_string())]
     );
 }
+
+#[test]
+fn var_inst_keeps_a_methods_variable_per_instance_between_calls() {
+    // Count's VAR_INST n starts at 10 and grows by one a call, per
+    // instance; its VAR t is fresh at every call (always 0 + 1). FB_D
+    // inherits Count: its instance has its own n.
+    let prelude = "FUNCTION_BLOCK FB_C
+METHOD Count : INT
+VAR_INST n : INT := 10; END_VAR
+VAR t : INT; END_VAR
+n := n + 1;
+t := t + 1;
+Count := n * 100 + t;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_D EXTENDS FB_C
+END_FUNCTION_BLOCK";
+    let mut plc = compile(&program(
+        prelude,
+        "c1, c2 : FB_C; d : FB_D; r1, r2, r3 : INT;",
+        "r1 := c1.Count(); r1 := c1.Count(); r2 := c2.Count(); r3 := d.Count();",
+    ));
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "r1"), "1201");
+    assert_eq!(lit(&plc, "r2"), "1101");
+    assert_eq!(lit(&plc, "r3"), "1101");
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "r1"), "1601");
+    assert_eq!(lit(&plc, "r2"), "1301");
+    assert_eq!(lit(&plc, "r3"), "1301");
+}
+
+#[test]
+fn var_inst_outside_a_method_is_e434() {
+    let src = "FUNCTION_BLOCK FB_X\nVAR_INST n : INT; END_VAR\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR x : FB_X; END_VAR\nx();\nEND_PROGRAM\n";
+    assert_eq!(
+        error_codes(&[("test.st", src)]),
+        [("E434".to_string(), "2:1".to_string())]
+    );
+}

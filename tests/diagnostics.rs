@@ -217,6 +217,7 @@ const INC: &str =
     ),
     "6:6"
 )]
+#[case("E434", "FUNCTION_BLOCK F\nVAR_INST n : INT; END_VAR\nEND_FUNCTION_BLOCK\n".to_string(), "2:1")]
 fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     check_error(code, &src, at);
 }

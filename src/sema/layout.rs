@@ -12,7 +12,8 @@ use indexmap::IndexMap;
 
 fn member_kind(k: VarKind) -> MemberKind {
     match k {
-        VarKind::Local | VarKind::Global => MemberKind::Local,
+        // VAR_INST outside a METHOD was refused (E434).
+        VarKind::Local | VarKind::Global | VarKind::Inst => MemberKind::Local,
         VarKind::Input => MemberKind::Input,
         VarKind::Output => MemberKind::Output,
         VarKind::InOut => MemberKind::InOut,
@@ -154,6 +155,17 @@ impl Declarer<'_> {
     /// The declarations of one VAR... END_VAR block.
     fn layout_block(&mut self, pou: &Pou, block: &VarBlock, frame: &mut Frame) {
         self.check_retain(pou, block);
+        if block.kind == VarKind::Inst {
+            self.diags.error(
+                "E434",
+                block.span,
+                format!(
+                    "VAR_INST is allowed in a METHOD only: `{}` keeps its VAR variables from call to call, declare them there",
+                    pou.name.name
+                ),
+            );
+            return;
+        }
         if block.kind == VarKind::Global {
             self.diags.error(
                 "E209",

@@ -102,6 +102,9 @@ pub enum VarKind {
     Global,
     /// `VAR_TEMP`
     Temp,
+    /// `VAR_INST` (CODESYS / TwinCAT, in a METHOD only): the method's
+    /// variables that keep their values between calls, one set per instance.
+    Inst,
 }
 
 /// RETAIN / NON_RETAIN / PERSISTENT qualifier.
