@@ -473,3 +473,100 @@ fn var_inst_outside_a_method_is_e434() {
         [("E434".to_string(), "2:1".to_string())]
     );
 }
+
+/// A function of three inputs that shows which went where.
+const ABC: &str = "FUNCTION F : INT
+VAR_INPUT a, b : INT; c : INT := 7; END_VAR
+F := a * 100 + b * 10 + c;
+END_FUNCTION
+FUNCTION_BLOCK FB_S
+VAR_INPUT x, y : INT; END_VAR
+VAR_OUTPUT s : INT; END_VAR
+s := x - y;
+END_FUNCTION_BLOCK";
+
+#[test]
+fn positional_arguments_then_formal_ones_bind_in_declaration_order() {
+    // F(1, 2, c := 3): a = 1, b = 2 (positional), c = 3 (formal);
+    // F(4, c := 5, b := 6); F(8, b := 9) leaves c at its default 7;
+    // an FB call too: x = 10 (positional), y = 3 (formal).
+    check(
+        ABC,
+        "r1, r2, r3, r4 : INT; fb : FB_S;",
+        "r1 := F(1, 2, c := 3); r2 := F(4, c := 5, b := 6); r3 := F(8, b := 9);
+         fb(10, y := 3); r4 := fb.s;",
+        &[("r1", "123"), ("r2", "465"), ("r3", "897"), ("r4", "7")],
+    );
+    let src = program(ABC, "r : INT;", "r := F(1, b := 2);");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, ["W487"]);
+}
+
+#[test]
+fn a_positional_argument_after_a_formal_one_is_e411_and_too_many_e404() {
+    // After the 9-line ABC the body is on line 14.
+    let src = program(ABC, "r : INT;", "r := F(a := 1, 2);");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E411".to_string(), "14:16".to_string())]
+    );
+    let src = program(ABC, "r : INT;", "r := F(1, 2, 3, 4, c := 5);");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E404".to_string(), "14:6".to_string())]
+    );
+    let src = program(ABC, "r : INT;", "r := F(1, a := 2);");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E404".to_string(), "14:11".to_string())]
+    );
+}
+
+#[test]
+fn new_and_delete_are_refused_by_name() {
+    let src = program("", "p : POINTER TO INT;", "p := __NEW(INT);\n__DELETE(p);");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [
+            ("E435".to_string(), "6:6".to_string()),
+            ("E435".to_string(), "7:1".to_string())
+        ]
+    );
+}
+
+#[test]
+fn bit_operators_on_integers_of_every_width() {
+    // Bitwise on the two's complement of the width: SINT NOT 5 = -6,
+    // USINT NOT 5 = 250, INT -1 AND 16#0F = 15, UDINT 16#F0 OR 1, LINT
+    // XOR, ULINT NOT 0 = 18446744073709551615, DINT constants folded.
+    check(
+        "",
+        "s : SINT := 5; us : USINT := 5; i : INT := -1; ud : UDINT := 16#F0;
+         l : LINT := 12; ul : ULINT; di : DINT;
+         r1 : SINT; r2 : USINT; r3 : INT; r4 : UDINT; r5 : LINT; r6 : ULINT; r7 : DINT; r8 : UINT;",
+        "r1 := NOT s; r2 := NOT us; r3 := i AND 16#0F; r4 := ud OR 1; r5 := l XOR 10;
+         r6 := NOT ul; r7 := DINT#6 AND DINT#3 OR DINT#8; r8 := NOT UINT#1;",
+        &[
+            ("r1", "-6"),
+            ("r2", "250"),
+            ("r3", "15"),
+            ("r4", "241"),
+            ("r5", "6"),
+            ("r6", "18446744073709551615"),
+            ("r7", "10"),
+            ("r8", "65534"),
+        ],
+    );
+    let src = program("", "i, j : INT;", "j := i AND 3;\nj := NOT i;");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, ["W488", "W488"]);
+    let strict = plcrun::Options {
+        strict: true,
+        ..Default::default()
+    };
+    assert!(
+        warning_codes(&src, &strict)
+            .unwrap_err()
+            .contains("error[W488]")
+    );
+}

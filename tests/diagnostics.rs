@@ -161,7 +161,8 @@ const INC: &str =
     "FUNCTION F : INT\nVAR_INPUT n : INT; END_VAR\nF := G(n - 1);\nEND_FUNCTION\nFUNCTION G : INT\nVAR_INPUT n : INT; END_VAR\nG := F(n);\nEND_FUNCTION\nPROGRAM P\nVAR x : INT; END_VAR\nx := F(1);\nEND_PROGRAM\n".to_string(),
     "7:6"
 )]
-#[case("E411", prog_after(F2, "x : INT;", "x := F(1, b := 2);"), "6:6")]
+#[case("E411", prog_after(F2, "x : INT;", "x := F(a := 1, 2);"), "6:16")]
+#[case("E435", prog("p : POINTER TO INT;", "p := __NEW(INT);"), "5:6")]
 #[case("E402", prog_after(INC, "x : INT;", "Inc(v := 5);"), "6:10")]
 #[case("E412", format!("{INC}\nPROGRAM P\nVAR CONSTANT c : INT := 1; END_VAR\nInc(v := c);\nEND_PROGRAM\n"), "4:10")]
 // ---- E5xx: IL
@@ -236,6 +237,8 @@ fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case]
     prog_after("TYPE E : (A, B := 5); END_TYPE", "e : E;", "e := 5;"),
     "6:6"
 )]
+#[case("W487", prog_after(F2, "x : INT;", "x := F(1, b := 2);"), "6:6")]
+#[case("W488", prog("i, j : INT;", "j := i AND 3;"), "5:6")]
 fn warnings_do_not_stop_the_program(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     let mut plc = Plc::compile_files(&[("t.st", &src)], &Options::default())
         .unwrap_or_else(|e| panic!("a warning must not fail the compilation:\n{e}"));

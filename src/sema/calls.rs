@@ -157,6 +157,18 @@ impl BodyBuilder<'_> {
                     id.name
                 ),
             );
+        } else if matches!(key.as_str(), "__NEW" | "__DELETE") {
+            self.diags.push(
+                crate::diagnostics::Diagnostic::error(
+                    "E435",
+                    id.span,
+                    format!(
+                        "`{}` (CODESYS dynamic memory) is not supported: plcrun allocates every variable when the program is loaded",
+                        id.name
+                    ),
+                )
+                .with_note("declare the object as a variable (or an ARRAY of them) and use a POINTER TO or REFERENCE TO it"),
+            );
         } else {
             let message = format!("unknown function `{}`", id.name);
             let names = self.model.pous.iter().map(|p| p.name.as_str());
@@ -184,15 +196,11 @@ impl BodyBuilder<'_> {
         let formal = args.iter().any(|a| !matches!(a, Arg::Positional(_)));
         let positional = args.iter().any(|a| matches!(a, Arg::Positional(_)));
         if formal && positional {
-            self.diags.error(
-                "E411",
-                span,
-                "a call must use either formal (`name := value`) or non-formal arguments, not both",
-            );
-            return None;
+            let leading = self.mixed_arguments(params, args, callee, span)?;
+            b.inputs = leading;
         }
         let mut ok = true;
-        if positional {
+        if positional && !formal {
             let order: Vec<usize> = params
                 .iter()
                 .enumerate()

@@ -262,10 +262,13 @@ impl BodyBuilder<'_> {
                         });
                         Val::Slot(d, TypeTable::elem(e))
                     }
-                    _ => {
-                        self.bad_operand(span, "NOT", ty);
-                        Val::error()
-                    }
+                    _ => match self.int_not(&v, span) {
+                        Some(r) => r,
+                        None => {
+                            self.bad_operand(span, "NOT", ty);
+                            Val::error()
+                        }
+                    },
                 }
             }
         }
