@@ -570,3 +570,42 @@ fn bit_operators_on_integers_of_every_width() {
             .contains("error[W488]")
     );
 }
+
+#[test]
+fn pointer_indexing_reads_and_writes_the_ith_element_after_the_pointer() {
+    // p points at arr[0]: p[2] is arr[2] (30), p[i] with i = 3 is 40,
+    // p[4] := 7 writes arr[4]; q moves one element on and indexes from
+    // there (q[1] = arr[2]); a LREAL pointer strides by 8 bytes.
+    check(
+        "",
+        "arr : ARRAY[0..4] OF INT := [10, 20, 30, 40, 50]; p, q : POINTER TO INT;
+         lr : ARRAY[1..3] OF LREAL := [1.5, 2.5, 3.5]; pl : POINTER TO LREAL;
+         x, y, z : INT; i : INT := 3; r : LREAL;",
+        "p := ADR(arr); x := p[2]; y := p[i]; p[4] := 7;
+         q := p + SIZEOF(arr[0]); z := q[1];
+         pl := ADR(lr); r := pl[2];",
+        &[
+            ("x", "30"),
+            ("y", "40"),
+            ("arr[4]", "7"),
+            ("z", "30"),
+            ("r", "3.5"),
+        ],
+    );
+}
+
+#[test]
+fn pointer_indexing_past_the_object_faults_and_two_indexes_are_e404() {
+    let src = program(
+        "",
+        "arr : ARRAY[0..4] OF INT; p : POINTER TO INT; x : INT; i : INT := 5;",
+        "p := ADR(arr); x := p[i];",
+    );
+    let fault = plc::first_fault(&src);
+    assert!(fault.to_string().contains("R031"), "{fault}");
+    let src = program("", "p : POINTER TO INT; x : INT;", "x := p[1, 2];");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E404".to_string(), "6:6".to_string())]
+    );
+}

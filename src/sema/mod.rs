@@ -69,6 +69,7 @@ mod literal_widening;
 mod mixed_args;
 mod partial_access;
 mod place;
+mod pointer_index;
 mod ref_inits;
 mod refs;
 mod sfc_emit;
