@@ -609,3 +609,52 @@ fn pointer_indexing_past_the_object_faults_and_two_indexes_are_e404() {
         [("E404".to_string(), "6:6".to_string())]
     );
 }
+
+#[test]
+fn this_call_in_a_method_runs_the_instances_body() {
+    // Twice runs the body with step 1 (n = 1), then with step := 10
+    // (n = 11); the input keeps 10 afterwards. A child FB's instance runs
+    // its own body (n + step * 2).
+    let prelude = "FUNCTION_BLOCK FB_X
+VAR_INPUT step : INT := 1; END_VAR
+VAR_OUTPUT n : INT; END_VAR
+METHOD Twice
+THIS^();
+THIS^(step := 10);
+END_METHOD
+n := n + step;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Y EXTENDS FB_X
+n := n + step * 2;
+END_FUNCTION_BLOCK";
+    check(
+        prelude,
+        "f : FB_X; y : FB_Y; r, s, t : INT;",
+        "f.Twice(); r := f.n; s := f.step; y.Twice(); t := y.n;",
+        &[("r", "11"), ("s", "10"), ("t", "22")],
+    );
+}
+
+#[test]
+fn this_call_in_the_fbs_own_body_or_back_through_a_method_is_e409() {
+    let src = program(
+        "FUNCTION_BLOCK FB_X\nMETHOD M\n;\nEND_METHOD\nTHIS^();\nEND_FUNCTION_BLOCK",
+        "f : FB_X;",
+        "f();",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E409".to_string(), "5:1".to_string())]
+    );
+    let src = program(
+        "FUNCTION_BLOCK FB_X\nMETHOD M\nTHIS^();\nEND_METHOD\nM();\nEND_FUNCTION_BLOCK",
+        "f : FB_X;",
+        "f();",
+    );
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E409"),
+        "{codes:?}"
+    );
+}

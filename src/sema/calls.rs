@@ -76,7 +76,7 @@ impl BodyBuilder<'_> {
 
     /// A call used as a statement.
     pub(super) fn call_stmt(&mut self, call: &Call) {
-        if self.oop_call(call, false).is_some() {
+        if self.oop_call(call, false).is_some() || self.this_body_call(call) {
             return;
         }
         if self.calls_a_function(call) {
@@ -475,7 +475,8 @@ impl BodyBuilder<'_> {
                 self.block.emit(Op::CallNativeInd { fb: *fb, p });
             }
             (TypeKind::Pou { code, .. }, InstanceAt::Frame(o)) => {
-                let caller = self.model.pous[self.block.pou].code;
+                // A method's own block: `THIS^()` in a method is no recursion.
+                let caller = self.current_code();
                 self.out.calls.push((caller, *code, span));
                 self.block.emit(Op::CallFb {
                     code: *code,
@@ -483,7 +484,8 @@ impl BodyBuilder<'_> {
                 });
             }
             (TypeKind::Pou { code, .. }, InstanceAt::Ptr(p)) => {
-                let caller = self.model.pous[self.block.pou].code;
+                // A method's own block: `THIS^()` in a method is no recursion.
+                let caller = self.current_code();
                 self.out.calls.push((caller, *code, span));
                 self.block.emit(Op::CallFbInd { code: *code, p });
             }

@@ -74,7 +74,7 @@ impl BodyBuilder<'_> {
     }
 
     /// The code block being emitted (for the call graph).
-    fn current_code(&self) -> CodeIdx {
+    pub(in crate::sema) fn current_code(&self) -> CodeIdx {
         match &self.oop {
             Some(s) => s.code,
             None => self.model.pous[self.block.pou].code,
