@@ -658,3 +658,61 @@ fn this_call_in_the_fbs_own_body_or_back_through_a_method_is_e409() {
         "{codes:?}"
     );
 }
+
+#[test]
+fn fb_instances_take_structured_initial_values() {
+    // `a` starts with k = 3, n = 100, s = 'abc' (b keeps the declared
+    // k = 1, n = 0); the TON starts with PT = T#5S and is done after
+    // three 2 s cycles; an FB inside an FB gets its own values too.
+    let prelude = "FUNCTION_BLOCK FB_A
+VAR_INPUT k : INT := 1; s : STRING := 'x'; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+VAR n : INT; END_VAR
+q := k * 2 + n;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_B
+VAR inner : FB_A := (k := 20); END_VAR
+VAR_OUTPUT q : INT; END_VAR
+inner();
+q := inner.q;
+END_FUNCTION_BLOCK";
+    let src = program(
+        prelude,
+        "t : TON := (PT := T#5S); a : FB_A := (k := 3, n := 100, s := 'abc'); b : FB_A;
+         c : FB_B; r1, r2, r3 : INT; s : STRING;",
+        "a(); b(); c(); r1 := a.q; r2 := b.q; r3 := c.q; s := a.s; t(IN := TRUE);",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "r1"), "106");
+    assert_eq!(lit(&plc, "r2"), "2");
+    assert_eq!(lit(&plc, "r3"), "40");
+    assert_eq!(lit(&plc, "s"), "'abc'");
+    assert_eq!(lit(&plc, "t.PT"), "T#5s");
+    // A cold restart starts them with the same values.
+    plc.reset_cold();
+    assert_eq!(lit(&plc, "a.k"), "3");
+    assert_eq!(lit(&plc, "t.PT"), "T#5s");
+}
+
+#[test]
+fn an_initial_value_for_an_in_out_or_a_missing_member_of_an_instance_is_refused() {
+    let prelude = "FUNCTION_BLOCK FB_A
+VAR_IN_OUT io : INT; END_VAR
+VAR_INPUT k : INT; END_VAR
+END_FUNCTION_BLOCK";
+    // The declarations are on line 7; RUNNING is TON's hidden state.
+    let src = program(
+        prelude,
+        "a : FB_A := (io := 1, kk := 2); t : TON := (RUNNING := TRUE);",
+        "",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [
+            ("E436".to_string(), "7:14".to_string()),
+            ("E201".to_string(), "7:23".to_string()),
+            ("E436".to_string(), "7:45".to_string())
+        ]
+    );
+}

@@ -154,6 +154,10 @@ impl DeclConsts<'_> {
                     Const::Int(_) | Const::Real(_) => return None,
                 })
             }
+            (
+                Initializer::Struct(fields, _),
+                TypeKind::Pou { program: false, .. } | TypeKind::NativeFb(_),
+            ) => Some(self.fb_instance_init(fields, &def, local)),
             (Initializer::Array(_, span), _) | (Initializer::Struct(_, span), _) => {
                 self.diags.error(
                     "E301",

@@ -86,6 +86,14 @@ impl Linker<'_> {
                         *slot = p.init;
                     }
                 }
+                // `ton : TON := (PT := T#5S)` (fb_init_values.rs): one slot a pin.
+                if let Some(ConstInit::Struct(given)) = init {
+                    for (k, ci) in given {
+                        if let (Some(slot), ConstInit::Scalar(b)) = (buf.get_mut(at + k), ci) {
+                            *slot = *b;
+                        }
+                    }
+                }
             }
             TypeKind::Pou { code, .. } => {
                 let Some(p) = self.model.pous.iter().position(|p| p.code == *code) else {
@@ -99,6 +107,16 @@ impl Linker<'_> {
                 for &(slot, value) in &self.model.pous[p].consts {
                     if let Some(s) = buf.get_mut(at + slot.index()) {
                         *s = value;
+                    }
+                }
+                // `fb : FB_X := (limit := 10)` (fb_init_values.rs), by member.
+                if let (Some(ConstInit::Struct(given)), TypeKind::Pou { members, .. }) =
+                    (init, &self.types.get(ty).kind)
+                {
+                    for (k, ci) in given {
+                        if let Some(m) = members.get(*k) {
+                            self.write_init(buf, at + m.offset as usize, m.ty, Some(ci), strs);
+                        }
                     }
                 }
             }
