@@ -716,3 +716,49 @@ END_FUNCTION_BLOCK";
         ]
     );
 }
+
+#[test]
+fn an_fb_instance_is_copied_by_assignment_strings_by_text() {
+    // b := a copies n (5), k (5) and s ('abc') and the nested TON; a is
+    // called again with k = 1 and s = 'zz': the copies go their own way
+    // (b's string keeps its own buffer).
+    let prelude = "FUNCTION_BLOCK FB_A
+VAR_INPUT k : INT; s : STRING := 'x'; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+VAR n : INT; t : TON; END_VAR
+n := n + k;
+q := n;
+t(IN := TRUE, PT := T#1H);
+END_FUNCTION_BLOCK";
+    let body = "a(k := 5, s := 'abc'); b := a; a(k := 1, s := 'zz'); b();
+        r1 := a.q; r2 := b.q; s1 := a.s; s2 := b.s; tc := tn; tn := a.t;";
+    check(
+        prelude,
+        "a, b : FB_A; r1, r2 : INT; s1, s2 : STRING; tn, tc : TON;",
+        body,
+        &[
+            ("r1", "6"),
+            ("r2", "10"),
+            ("s1", "'zz'"),
+            ("s2", "'abc'"),
+            ("b.t.PT", "T#1h"),
+            ("tn.PT", "T#1h"),
+        ],
+    );
+    let src = program(prelude, "a, b : FB_A; t1, t2 : TON;", "b := a; t1 := t2;");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, ["W489", "W489"]);
+}
+
+#[test]
+fn instances_of_different_fb_types_are_not_copied() {
+    let src = program(
+        "FUNCTION_BLOCK FB_A\nEND_FUNCTION_BLOCK",
+        "a : FB_A; t : TON;",
+        "a := t;",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E301".to_string(), "7:6".to_string())]
+    );
+}

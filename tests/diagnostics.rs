@@ -240,6 +240,7 @@ fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case]
 )]
 #[case("W487", prog_after(F2, "x : INT;", "x := F(1, b := 2);"), "6:6")]
 #[case("W488", prog("i, j : INT;", "j := i AND 3;"), "5:6")]
+#[case("W489", prog("a, b : TON;", "b := a;"), "5:1")]
 fn warnings_do_not_stop_the_program(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     let mut plc = Plc::compile_files(&[("t.st", &src)], &Options::default())
         .unwrap_or_else(|e| panic!("a warning must not fail the compilation:\n{e}"));

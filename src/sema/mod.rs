@@ -55,6 +55,7 @@ mod eno_uses;
 mod enum_int;
 mod enum_qualified;
 mod expr;
+mod fb_copy;
 mod fb_init_values;
 mod fb_member_read;
 mod fn_call;

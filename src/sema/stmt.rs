@@ -330,7 +330,10 @@ impl BodyBuilder<'_> {
                 }
                 self.copy_aggregate(&p, &src, span);
             }
-            TypeKind::NativeFb(_) | TypeKind::Pou { .. } | TypeKind::Step => {
+            TypeKind::NativeFb(_) | TypeKind::Pou { program: false, .. } => {
+                self.copy_fb(&p, value, span);
+            }
+            TypeKind::Pou { .. } | TypeKind::Step => {
                 self.diags.error(
                     "E302",
                     target.span,
@@ -405,6 +408,7 @@ impl BodyBuilder<'_> {
             TypeKind::Str { .. } => true,
             TypeKind::Array { elem, .. } => self.contains_strings(*elem),
             TypeKind::Struct { fields } => fields.iter().any(|m| self.contains_strings(m.ty)),
+            TypeKind::Pou { .. } => !self.fb_string_members(t).is_empty(),
             _ => false,
         }
     }
