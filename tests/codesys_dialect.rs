@@ -762,3 +762,53 @@ fn instances_of_different_fb_types_are_not_copied() {
         [("E301".to_string(), "7:6".to_string())]
     );
 }
+
+#[test]
+fn var_in_out_constant_takes_any_variable_and_is_read_only_in_the_body() {
+    // G reads s ('abcd', 4 characters) and n (21) through references to
+    // the program's CONSTANTs; FB_R doubles v; an FB's input passed on.
+    let prelude = "FUNCTION G : INT
+VAR_IN_OUT CONSTANT s : STRING; n : INT; END_VAR
+G := LEN(s) + n;
+END_FUNCTION
+FUNCTION_BLOCK FB_R
+VAR_IN_OUT CONSTANT v : INT; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+q := v * 2;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_W
+VAR_INPUT k : INT; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+VAR inner : FB_R; END_VAR
+inner(v := k);
+q := inner.q;
+END_FUNCTION_BLOCK";
+    let src = format!(
+        "{prelude}\nPROGRAM P\nVAR CONSTANT c : INT := 21; txt : STRING := 'abcd'; END_VAR\n\
+         VAR r, r2, r3 : INT; fb : FB_R; w : FB_W; x : INT := 5; END_VAR\n\
+         r := G(txt, c); fb(v := c); r2 := fb.q; w(k := x); r3 := w.q;\nEND_PROGRAM\n"
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "r"), "25");
+    assert_eq!(lit(&plc, "r2"), "42");
+    assert_eq!(lit(&plc, "r3"), "10");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, ["W353", "W353", "W353"]);
+}
+
+#[test]
+fn writing_a_var_in_out_constant_is_e401_and_a_plain_in_out_still_needs_a_writable_variable() {
+    let src = "FUNCTION G : INT\nVAR_IN_OUT CONSTANT n : INT; END_VAR\nn := 1;\nG := n;\nEND_FUNCTION\n\
+               PROGRAM P\nVAR r : INT; END_VAR\nr := G(r);\nEND_PROGRAM\n";
+    assert_eq!(
+        error_codes(&[("test.st", src)]),
+        [("E401".to_string(), "3:1".to_string())]
+    );
+    let src = "FUNCTION G : INT\nVAR_IN_OUT n : INT; END_VAR\nG := n;\nEND_FUNCTION\n\
+               PROGRAM P\nVAR CONSTANT c : INT := 1; END_VAR\nVAR r : INT; END_VAR\nr := G(c);\nEND_PROGRAM\n";
+    assert_eq!(
+        error_codes(&[("test.st", src)]),
+        [("E412".to_string(), "8:8".to_string())]
+    );
+}

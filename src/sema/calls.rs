@@ -21,6 +21,9 @@ pub(super) struct Param {
     pub(super) ty: TypeId,
     pub(super) offset: u32,
     pub(super) default: Option<ConstInit>,
+    /// Declared CONSTANT: a `VAR_IN_OUT CONSTANT` (CODESYS) may be given
+    /// a variable the caller cannot write (in_out_constant.rs).
+    pub(super) constant: bool,
 }
 
 impl Param {
@@ -398,6 +401,7 @@ impl BodyBuilder<'_> {
                         ty: TypeTable::elem(p.ty),
                         offset: i as u32,
                         default: None,
+                        constant: false,
                     })
                     .collect(),
             ),
@@ -421,6 +425,7 @@ impl BodyBuilder<'_> {
                         ty: m.ty,
                         offset: m.offset,
                         default: None,
+                        constant: m.constant,
                     })
                     .collect(),
             ),
@@ -448,15 +453,14 @@ impl BodyBuilder<'_> {
             );
             return;
         }
-        if !arg.writable {
-            self.diags.error(
-                "E412",
-                e.span,
-                format!("VAR_IN_OUT `{}` needs a writable variable", p.name),
-            );
+        if !arg.writable && !p.constant {
+            self.in_out_not_writable(p, e.span);
             return;
         }
-        self.note_input_write(&arg, e.span);
+        // The callee does not write a CONSTANT in-out.
+        if !p.constant {
+            self.note_input_write(&arg, e.span);
+        }
         let a = self.address_of(&arg);
         let ptr_place = PlaceRef {
             ty: TypeTable::elem(ElemType::Ulint),

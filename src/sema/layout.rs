@@ -407,16 +407,18 @@ impl Declarer<'_> {
         // A VAR_INPUT CONSTANT (CODESYS) is set by the caller: its initial
         // value is only a default, so it is never folded; the body still
         // may not write it.
-        let input = block.kind == VarKind::Input;
+        let input = matches!(block.kind, VarKind::Input | VarKind::InOut);
         if block.constant && input {
-            self.diags.warning(
-                "W353",
-                name.span,
-                format!(
-                    "`{}`: VAR_INPUT CONSTANT is a CODESYS extension (an input the body may not write)",
-                    name.name
-                ),
-            );
+            let what = match block.kind {
+                VarKind::Input => {
+                    "VAR_INPUT CONSTANT is a CODESYS extension (an input the body may not write)"
+                }
+                _ => {
+                    "VAR_IN_OUT CONSTANT is a CODESYS extension (an in-out the body may not write, connected to any variable)"
+                }
+            };
+            self.diags
+                .warning("W353", name.span, format!("`{}`: {what}", name.name));
         }
         let value = if block.constant && !input {
             init.as_ref().and_then(init_const)

@@ -64,6 +64,7 @@ mod grafcet_forcing;
 mod il;
 mod il_aggregate_results;
 mod il_recovery;
+mod in_out_constant;
 mod in_out_read;
 mod input_write;
 mod int_bit_ops;

@@ -291,6 +291,7 @@ impl BodyBuilder<'_> {
                     ty: var.ty,
                     offset: o,
                     default: var.init.clone(),
+                    constant: var.constant,
                 })
             })
             .collect()
@@ -736,6 +737,7 @@ impl BodyBuilder<'_> {
                     ty,
                     offset: 0,
                     default: None,
+                    constant: false,
                 })
             })
             .collect();
