@@ -812,3 +812,43 @@ fn writing_a_var_in_out_constant_is_e401_and_a_plain_in_out_still_needs_a_writab
         [("E412".to_string(), "8:8".to_string())]
     );
 }
+
+#[test]
+fn a_type_named_with_its_librarys_namespace_is_that_type() {
+    // Tc2_Standard.TON is TON, MyLib.FB_Base the FB_Base declared here:
+    // in declarations, arrays, a FUNCTION's result, EXTENDS and IMPLEMENTS.
+    let prelude = "INTERFACE I_X
+METHOD M : INT
+END_METHOD
+END_INTERFACE
+FUNCTION_BLOCK FB_Base
+VAR_OUTPUT n : INT; END_VAR
+n := n + 1;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Child EXTENDS MyLib.FB_Base IMPLEMENTS MyLib.I_X
+METHOD M : INT
+M := n * 10;
+END_METHOD
+SUPER^();
+END_FUNCTION_BLOCK
+FUNCTION Twice : Standard.INT
+VAR_INPUT x : INT; END_VAR
+Twice := x * 2;
+END_FUNCTION";
+    check(
+        prelude,
+        "t : Tc2_Standard.TON; c : FB_Child; i : I_X; r1, r2 : INT;
+         e : ARRAY[1..2] OF Tc2_Standard.R_TRIG; q : BOOL;",
+        "t(IN := TRUE, PT := T#1S); c(); i := c; r1 := i.M(); r2 := Twice(3);
+         e[2](CLK := TRUE); q := e[2].Q;",
+        &[("r1", "10"), ("r2", "6"), ("t.PT", "T#1s"), ("q", "TRUE")],
+    );
+    // The type must still exist.
+    let src = program("", "t : Tc2_Standard.TONN;", "");
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E203"),
+        "{codes:?}"
+    );
+}
