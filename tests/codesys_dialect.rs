@@ -852,3 +852,32 @@ END_FUNCTION";
         "{codes:?}"
     );
 }
+
+#[test]
+fn a_function_called_with_its_librarys_namespace_is_that_function() {
+    // Tc2_Standard.CONCAT and .LEN are the standard functions, MyLib.F_Add
+    // the FUNCTION declared here; a method call on an instance is not
+    // touched, and a misspelt instance before a method's name is reported
+    // as it was before (not taken for a namespace).
+    let prelude = "FUNCTION F_Add : INT
+VAR_INPUT a, b : INT; END_VAR
+F_Add := a + b;
+END_FUNCTION
+FUNCTION_BLOCK FB_M
+METHOD Get : INT
+Get := 42;
+END_METHOD
+END_FUNCTION_BLOCK";
+    check(
+        prelude,
+        "s : STRING; r1, r2, r3 : INT; m : FB_M;",
+        "s := Tc2_Standard.CONCAT('ab', 'cd'); r1 := MyLib.F_Add(2, 3);
+         r2 := Tc2_Standard.LEN(s); r3 := m.Get(); MyLib.F_Add(1, 1);",
+        &[("s", "'abcd'"), ("r1", "5"), ("r2", "4"), ("r3", "42")],
+    );
+    let src = program(prelude, "m : FB_M; r : INT;", "r := mm.Get();");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E406".to_string(), "14:6".to_string())]
+    );
+}

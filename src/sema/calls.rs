@@ -82,6 +82,9 @@ impl BodyBuilder<'_> {
         if self.oop_call(call, false).is_some() || self.this_body_call(call) {
             return;
         }
+        if let Some(plain) = self.without_namespace(call) {
+            return self.call_stmt(&plain);
+        }
         if self.calls_a_function(call) {
             self.call_function(call, None, false);
             return;
@@ -99,6 +102,9 @@ impl BodyBuilder<'_> {
         }
         if let Some(v) = self.oop_call(call, true) {
             return v;
+        }
+        if let Some(plain) = self.without_namespace(call) {
+            return self.call_expr(&plain, expect);
         }
         if self.calls_a_function(call) {
             return self.call_function(call, expect, true);

@@ -70,6 +70,7 @@ mod input_write;
 mod int_bit_ops;
 mod literal_widening;
 mod mixed_args;
+mod namespace_calls;
 mod partial_access;
 mod place;
 mod pointer_index;

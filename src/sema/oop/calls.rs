@@ -44,7 +44,7 @@ pub(crate) fn is_this(e: &Expr) -> bool {
     matches!(&e.kind, ExprKind::Name(id) if id.name == THIS)
 }
 
-pub(super) fn is_super(e: &Expr) -> bool {
+pub(crate) fn is_super(e: &Expr) -> bool {
     matches!(&e.kind, ExprKind::Name(id) if id.name == SUPER)
 }
 
