@@ -233,3 +233,651 @@ END_CONFIGURATION
     assert_eq!(lit(&plc, "main.r1"), "9");
     assert_eq!(lit(&plc, "main.r2"), "108");
 }
+
+#[test]
+fn chained_assignment_assigns_right_to_left() {
+    // `a := b := c := 7`: c = 7, b = c, a = b. `r := i := 3` stores the
+    // INT 3 in i and then i (3) in the REAL r. Inside a CASE arm and an
+    // IF, with array elements and structure fields as targets.
+    check(
+        "TYPE Pt : STRUCT x, y : INT; END_STRUCT END_TYPE",
+        "a, b, c : INT; r : REAL; i : INT; arr : ARRAY[1..3] OF INT; p : Pt;
+         k : INT := 2; d, e : DINT;",
+        "a := b := c := 7;
+         r := i := 3;
+         CASE k OF 2: arr[1] := p.x := arr[3] := 4; END_CASE;
+         IF k = 2 THEN d := e := k * 10; END_IF;",
+        &[
+            ("a", "7"),
+            ("b", "7"),
+            ("c", "7"),
+            ("i", "3"),
+            ("r", "3.0"),
+            ("arr[1]", "4"),
+            ("arr[3]", "4"),
+            ("p.x", "4"),
+            ("d", "20"),
+            ("e", "20"),
+        ],
+    );
+}
+
+#[test]
+fn chained_assignment_passes_on_the_value_the_middle_target_holds() {
+    // The middle target is read after it is written: a STRING[3]
+    // truncates 'abcdef' to 'abc', which is what s6 then gets; a call
+    // on the right runs once.
+    check(
+        BUMP,
+        "s3 : STRING[3]; s6 : STRING[6]; n : INT; x, y : BOOL;",
+        "s6 := s3 := 'abcdef'; x := y := Bump(TRUE, n);",
+        &[
+            ("s3", "'abc'"),
+            ("s6", "'abc'"),
+            ("n", "1"),
+            ("x", "TRUE"),
+            ("y", "TRUE"),
+        ],
+    );
+}
+
+#[test]
+fn chained_assignment_type_errors_point_at_the_assignment_that_fails() {
+    // `b := 'x'` is the failing inner assignment (b is INT).
+    let src = program("", "a, b : INT;", "a := b := 'x';");
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| (c.0.as_str(), c.1.as_str())),
+        Some(("E301", "6:11")),
+        "{codes:?}"
+    );
+}
+
+/// Enumerations written the CODESYS / TwinCAT way: a base type after the
+/// values and before them, and one declared `qualified_only`.
+const MODES: &str = "TYPE E_Small : (S0 := 0, S1, S7 := 7, S8) BYTE; END_TYPE
+TYPE E_Wide : WORD (W0, W1 := 16#FF00, W2); END_TYPE
+{attribute 'qualified_only'}
+{attribute 'strict'}
+TYPE E_Mode :
+(
+    Idle := 0,
+    Run := 5,
+    Stop
+) INT;
+END_TYPE
+FUNCTION IsRun : BOOL
+VAR_INPUT m : E_Mode; END_VAR
+IsRun := m = E_Mode.Run;
+END_FUNCTION";
+
+/// Compiles `src` with `options`; the codes of its warnings, or the
+/// rendered errors.
+fn warning_codes(src: &str, options: &plcrun::Options) -> Result<Vec<String>, String> {
+    match plcrun::Plc::compile_files(&[("test.st", src)], options) {
+        Ok(plc) => Ok(plc.warnings().iter().map(|d| d.code.to_string()).collect()),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+#[test]
+fn enumerations_with_a_base_type_written_after_or_before_the_values() {
+    // S8 follows S7 := 7; W2 follows W1 := 16#FF00. Qualified values
+    // (`E_Small.S8`) as initial values, in expressions and CASE labels.
+    let mut plc = compile(&program(
+        MODES,
+        "a : E_Small := E_Small.S8; b : E_Small; w : E_Wide := E_Wide.W2;
+         m : E_Mode := E_Mode.Stop; k : INT; r1, r2 : BOOL;",
+        "b := E_Small.S1;
+         CASE m OF E_Mode.Idle: k := 1; E_Mode.Stop: k := 2; END_CASE;
+         r1 := IsRun(E_Mode.Run); r2 := IsRun(m);",
+    ));
+    run(&mut plc, 1);
+    assert_eq!(plc.read_i64("a"), Ok(8));
+    assert_eq!(plc.read_i64("b"), Ok(1));
+    assert_eq!(plc.read_i64("w"), Ok(0xFF01));
+    assert_eq!(plc.read_i64("m"), Ok(6));
+    assert_eq!(lit(&plc, "a"), "S8");
+    assert_eq!(lit(&plc, "m"), "Stop");
+    assert_eq!(lit(&plc, "k"), "2");
+    assert_eq!(lit(&plc, "r1"), "TRUE");
+    assert_eq!(lit(&plc, "r2"), "FALSE");
+}
+
+#[test]
+fn a_qualified_only_enumeration_value_written_alone_is_e433() {
+    // MODES has 15 lines: the declarations are on line 18, the body
+    // starts on line 20.
+    let src = program(MODES, "m : E_Mode; b : BOOL;", "m := Run;\nb := m = Stop;");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [
+            ("E433".to_string(), "20:6".to_string()),
+            ("E433".to_string(), "21:10".to_string())
+        ]
+    );
+    let src = program(MODES, "m : E_Mode := Idle;", "");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E433".to_string(), "18:15".to_string())]
+    );
+    // Unqualified values of the other types stay accepted.
+    let src = program(MODES, "a : E_Small := S7; w : E_Wide;", "w := W1;");
+    assert_eq!(error_codes(&[("test.st", &src)]), []);
+}
+
+#[test]
+fn qualified_only_before_a_type_is_honoured_and_elsewhere_still_w150() {
+    let src = program(MODES, "m : E_Mode;", "");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert!(!codes.contains(&"W150".to_string()), "{codes:?}");
+    let src = "{attribute 'qualified_only'}\nVAR_GLOBAL g : INT; END_VAR\nPROGRAM P\nVAR_EXTERNAL g : INT; END_VAR\ng := 1;\nEND_PROGRAM\n";
+    let codes = warning_codes(src, &plcrun::Options::default()).unwrap();
+    assert!(codes.contains(&"W150".to_string()), "{codes:?}");
+}
+
+#[test]
+fn an_enumeration_and_an_integer_convert_implicitly_with_a_warning() {
+    // E_Mode.Run is 5: n = 5 + 1; i (7) stored in a gives S7; a compared
+    // with 7; x becomes E_Small 0 from a literal.
+    let body = "n := E_Mode.Run + 1; a := i; r := a = 7; x := 0; d := m; y := 3;";
+    let decls = "n : INT; i : BYTE := 7; a : E_Small; r : BOOL; x : E_Small := E_Small.S8;
+                 m : E_Mode := E_Mode.Stop; d : DINT; y : E_Small;";
+    let mut plc = compile(&program(MODES, decls, body));
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "n"), "6");
+    assert_eq!(lit(&plc, "a"), "S7");
+    assert_eq!(lit(&plc, "r"), "TRUE");
+    assert_eq!(lit(&plc, "x"), "S0");
+    assert_eq!(lit(&plc, "d"), "6");
+    assert_eq!(plc.read_i64("y"), Ok(3));
+    let src = program(MODES, decls, body);
+    let mut codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    codes.retain(|c| c == "W485" || c == "W486");
+    assert_eq!(codes, ["W485", "W486", "W485", "W486", "W485", "W486"]);
+    // Under --strict each is an error with the same code.
+    let strict = plcrun::Options {
+        strict: true,
+        ..Default::default()
+    };
+    let err = warning_codes(&src, &strict).unwrap_err();
+    assert!(
+        err.contains("error[W485]") && err.contains("error[W486]"),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_integer_that_does_not_fit_the_base_type_or_another_enumeration_is_e301() {
+    // A DINT does not widen to BYTE; two enumerations never mix.
+    let src = program(
+        MODES,
+        "a : E_Small; d : DINT; m : E_Mode;",
+        "a := d;\nm := a;",
+    );
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes,
+        [
+            ("E301".to_string(), "20:6".to_string()),
+            ("E301".to_string(), "21:6".to_string())
+        ]
+    );
+}
+
+#[test]
+fn a_qualified_name_of_a_missing_value_is_e201() {
+    let src = program(MODES, "m : E_Mode;", "m := E_Mode.Running;");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E201".to_string(), "20:13".to_string())]
+    );
+}
+
+#[test]
+fn var_inst_keeps_a_methods_variable_per_instance_between_calls() {
+    // Count's VAR_INST n starts at 10 and grows by one a call, per
+    // instance; its VAR t is fresh at every call (always 0 + 1). FB_D
+    // inherits Count: its instance has its own n.
+    let prelude = "FUNCTION_BLOCK FB_C
+METHOD Count : INT
+VAR_INST n : INT := 10; END_VAR
+VAR t : INT; END_VAR
+n := n + 1;
+t := t + 1;
+Count := n * 100 + t;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_D EXTENDS FB_C
+END_FUNCTION_BLOCK";
+    let mut plc = compile(&program(
+        prelude,
+        "c1, c2 : FB_C; d : FB_D; r1, r2, r3 : INT;",
+        "r1 := c1.Count(); r1 := c1.Count(); r2 := c2.Count(); r3 := d.Count();",
+    ));
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "r1"), "1201");
+    assert_eq!(lit(&plc, "r2"), "1101");
+    assert_eq!(lit(&plc, "r3"), "1101");
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "r1"), "1601");
+    assert_eq!(lit(&plc, "r2"), "1301");
+    assert_eq!(lit(&plc, "r3"), "1301");
+}
+
+#[test]
+fn var_inst_outside_a_method_is_e434() {
+    let src = "FUNCTION_BLOCK FB_X\nVAR_INST n : INT; END_VAR\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR x : FB_X; END_VAR\nx();\nEND_PROGRAM\n";
+    assert_eq!(
+        error_codes(&[("test.st", src)]),
+        [("E434".to_string(), "2:1".to_string())]
+    );
+}
+
+/// A function of three inputs that shows which went where.
+const ABC: &str = "FUNCTION F : INT
+VAR_INPUT a, b : INT; c : INT := 7; END_VAR
+F := a * 100 + b * 10 + c;
+END_FUNCTION
+FUNCTION_BLOCK FB_S
+VAR_INPUT x, y : INT; END_VAR
+VAR_OUTPUT s : INT; END_VAR
+s := x - y;
+END_FUNCTION_BLOCK";
+
+#[test]
+fn positional_arguments_then_formal_ones_bind_in_declaration_order() {
+    // F(1, 2, c := 3): a = 1, b = 2 (positional), c = 3 (formal);
+    // F(4, c := 5, b := 6); F(8, b := 9) leaves c at its default 7;
+    // an FB call too: x = 10 (positional), y = 3 (formal).
+    check(
+        ABC,
+        "r1, r2, r3, r4 : INT; fb : FB_S;",
+        "r1 := F(1, 2, c := 3); r2 := F(4, c := 5, b := 6); r3 := F(8, b := 9);
+         fb(10, y := 3); r4 := fb.s;",
+        &[("r1", "123"), ("r2", "465"), ("r3", "897"), ("r4", "7")],
+    );
+    let src = program(ABC, "r : INT;", "r := F(1, b := 2);");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, ["W487"]);
+}
+
+#[test]
+fn a_positional_argument_after_a_formal_one_is_e411_and_too_many_e404() {
+    // After the 9-line ABC the body is on line 14.
+    let src = program(ABC, "r : INT;", "r := F(a := 1, 2);");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E411".to_string(), "14:16".to_string())]
+    );
+    let src = program(ABC, "r : INT;", "r := F(1, 2, 3, 4, c := 5);");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E404".to_string(), "14:6".to_string())]
+    );
+    let src = program(ABC, "r : INT;", "r := F(1, a := 2);");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E404".to_string(), "14:11".to_string())]
+    );
+}
+
+#[test]
+fn new_and_delete_are_refused_by_name() {
+    let src = program("", "p : POINTER TO INT;", "p := __NEW(INT);\n__DELETE(p);");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [
+            ("E435".to_string(), "6:6".to_string()),
+            ("E435".to_string(), "7:1".to_string())
+        ]
+    );
+}
+
+#[test]
+fn bit_operators_on_integers_of_every_width() {
+    // Bitwise on the two's complement of the width: SINT NOT 5 = -6,
+    // USINT NOT 5 = 250, INT -1 AND 16#0F = 15, UDINT 16#F0 OR 1, LINT
+    // XOR, ULINT NOT 0 = 18446744073709551615, DINT constants folded.
+    check(
+        "",
+        "s : SINT := 5; us : USINT := 5; i : INT := -1; ud : UDINT := 16#F0;
+         l : LINT := 12; ul : ULINT; di : DINT;
+         r1 : SINT; r2 : USINT; r3 : INT; r4 : UDINT; r5 : LINT; r6 : ULINT; r7 : DINT; r8 : UINT;",
+        "r1 := NOT s; r2 := NOT us; r3 := i AND 16#0F; r4 := ud OR 1; r5 := l XOR 10;
+         r6 := NOT ul; r7 := DINT#6 AND DINT#3 OR DINT#8; r8 := NOT UINT#1;",
+        &[
+            ("r1", "-6"),
+            ("r2", "250"),
+            ("r3", "15"),
+            ("r4", "241"),
+            ("r5", "6"),
+            ("r6", "18446744073709551615"),
+            ("r7", "10"),
+            ("r8", "65534"),
+        ],
+    );
+    let src = program("", "i, j : INT;", "j := i AND 3;\nj := NOT i;");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, ["W488", "W488"]);
+    let strict = plcrun::Options {
+        strict: true,
+        ..Default::default()
+    };
+    assert!(
+        warning_codes(&src, &strict)
+            .unwrap_err()
+            .contains("error[W488]")
+    );
+}
+
+#[test]
+fn pointer_indexing_reads_and_writes_the_ith_element_after_the_pointer() {
+    // p points at arr[0]: p[2] is arr[2] (30), p[i] with i = 3 is 40,
+    // p[4] := 7 writes arr[4]; q moves one element on and indexes from
+    // there (q[1] = arr[2]); a LREAL pointer strides by 8 bytes.
+    check(
+        "",
+        "arr : ARRAY[0..4] OF INT := [10, 20, 30, 40, 50]; p, q : POINTER TO INT;
+         lr : ARRAY[1..3] OF LREAL := [1.5, 2.5, 3.5]; pl : POINTER TO LREAL;
+         x, y, z : INT; i : INT := 3; r : LREAL;",
+        "p := ADR(arr); x := p[2]; y := p[i]; p[4] := 7;
+         q := p + SIZEOF(arr[0]); z := q[1];
+         pl := ADR(lr); r := pl[2];",
+        &[
+            ("x", "30"),
+            ("y", "40"),
+            ("arr[4]", "7"),
+            ("z", "30"),
+            ("r", "3.5"),
+        ],
+    );
+}
+
+#[test]
+fn pointer_indexing_past_the_object_faults_and_two_indexes_are_e404() {
+    let src = program(
+        "",
+        "arr : ARRAY[0..4] OF INT; p : POINTER TO INT; x : INT; i : INT := 5;",
+        "p := ADR(arr); x := p[i];",
+    );
+    let fault = plc::first_fault(&src);
+    assert!(fault.to_string().contains("R031"), "{fault}");
+    let src = program("", "p : POINTER TO INT; x : INT;", "x := p[1, 2];");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E404".to_string(), "6:6".to_string())]
+    );
+}
+
+#[test]
+fn this_call_in_a_method_runs_the_instances_body() {
+    // Twice runs the body with step 1 (n = 1), then with step := 10
+    // (n = 11); the input keeps 10 afterwards. A child FB's instance runs
+    // its own body (n + step * 2).
+    let prelude = "FUNCTION_BLOCK FB_X
+VAR_INPUT step : INT := 1; END_VAR
+VAR_OUTPUT n : INT; END_VAR
+METHOD Twice
+THIS^();
+THIS^(step := 10);
+END_METHOD
+n := n + step;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Y EXTENDS FB_X
+n := n + step * 2;
+END_FUNCTION_BLOCK";
+    check(
+        prelude,
+        "f : FB_X; y : FB_Y; r, s, t : INT;",
+        "f.Twice(); r := f.n; s := f.step; y.Twice(); t := y.n;",
+        &[("r", "11"), ("s", "10"), ("t", "22")],
+    );
+}
+
+#[test]
+fn this_call_in_the_fbs_own_body_or_back_through_a_method_is_e409() {
+    let src = program(
+        "FUNCTION_BLOCK FB_X\nMETHOD M\n;\nEND_METHOD\nTHIS^();\nEND_FUNCTION_BLOCK",
+        "f : FB_X;",
+        "f();",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E409".to_string(), "5:1".to_string())]
+    );
+    let src = program(
+        "FUNCTION_BLOCK FB_X\nMETHOD M\nTHIS^();\nEND_METHOD\nM();\nEND_FUNCTION_BLOCK",
+        "f : FB_X;",
+        "f();",
+    );
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E409"),
+        "{codes:?}"
+    );
+}
+
+#[test]
+fn fb_instances_take_structured_initial_values() {
+    // `a` starts with k = 3, n = 100, s = 'abc' (b keeps the declared
+    // k = 1, n = 0); the TON starts with PT = T#5S and is done after
+    // three 2 s cycles; an FB inside an FB gets its own values too.
+    let prelude = "FUNCTION_BLOCK FB_A
+VAR_INPUT k : INT := 1; s : STRING := 'x'; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+VAR n : INT; END_VAR
+q := k * 2 + n;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_B
+VAR inner : FB_A := (k := 20); END_VAR
+VAR_OUTPUT q : INT; END_VAR
+inner();
+q := inner.q;
+END_FUNCTION_BLOCK";
+    let src = program(
+        prelude,
+        "t : TON := (PT := T#5S); a : FB_A := (k := 3, n := 100, s := 'abc'); b : FB_A;
+         c : FB_B; r1, r2, r3 : INT; s : STRING;",
+        "a(); b(); c(); r1 := a.q; r2 := b.q; r3 := c.q; s := a.s; t(IN := TRUE);",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "r1"), "106");
+    assert_eq!(lit(&plc, "r2"), "2");
+    assert_eq!(lit(&plc, "r3"), "40");
+    assert_eq!(lit(&plc, "s"), "'abc'");
+    assert_eq!(lit(&plc, "t.PT"), "T#5s");
+    // A cold restart starts them with the same values.
+    plc.reset_cold();
+    assert_eq!(lit(&plc, "a.k"), "3");
+    assert_eq!(lit(&plc, "t.PT"), "T#5s");
+}
+
+#[test]
+fn an_initial_value_for_an_in_out_or_a_missing_member_of_an_instance_is_refused() {
+    let prelude = "FUNCTION_BLOCK FB_A
+VAR_IN_OUT io : INT; END_VAR
+VAR_INPUT k : INT; END_VAR
+END_FUNCTION_BLOCK";
+    // The declarations are on line 7; RUNNING is TON's hidden state.
+    let src = program(
+        prelude,
+        "a : FB_A := (io := 1, kk := 2); t : TON := (RUNNING := TRUE);",
+        "",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [
+            ("E436".to_string(), "7:14".to_string()),
+            ("E201".to_string(), "7:23".to_string()),
+            ("E436".to_string(), "7:45".to_string())
+        ]
+    );
+}
+
+#[test]
+fn an_fb_instance_is_copied_by_assignment_strings_by_text() {
+    // b := a copies n (5), k (5) and s ('abc') and the nested TON; a is
+    // called again with k = 1 and s = 'zz': the copies go their own way
+    // (b's string keeps its own buffer).
+    let prelude = "FUNCTION_BLOCK FB_A
+VAR_INPUT k : INT; s : STRING := 'x'; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+VAR n : INT; t : TON; END_VAR
+n := n + k;
+q := n;
+t(IN := TRUE, PT := T#1H);
+END_FUNCTION_BLOCK";
+    let body = "a(k := 5, s := 'abc'); b := a; a(k := 1, s := 'zz'); b();
+        r1 := a.q; r2 := b.q; s1 := a.s; s2 := b.s; tc := tn; tn := a.t;";
+    check(
+        prelude,
+        "a, b : FB_A; r1, r2 : INT; s1, s2 : STRING; tn, tc : TON;",
+        body,
+        &[
+            ("r1", "6"),
+            ("r2", "10"),
+            ("s1", "'zz'"),
+            ("s2", "'abc'"),
+            ("b.t.PT", "T#1h"),
+            ("tn.PT", "T#1h"),
+        ],
+    );
+    let src = program(prelude, "a, b : FB_A; t1, t2 : TON;", "b := a; t1 := t2;");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, ["W489", "W489"]);
+}
+
+#[test]
+fn instances_of_different_fb_types_are_not_copied() {
+    let src = program(
+        "FUNCTION_BLOCK FB_A\nEND_FUNCTION_BLOCK",
+        "a : FB_A; t : TON;",
+        "a := t;",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E301".to_string(), "7:6".to_string())]
+    );
+}
+
+#[test]
+fn var_in_out_constant_takes_any_variable_and_is_read_only_in_the_body() {
+    // G reads s ('abcd', 4 characters) and n (21) through references to
+    // the program's CONSTANTs; FB_R doubles v; an FB's input passed on.
+    let prelude = "FUNCTION G : INT
+VAR_IN_OUT CONSTANT s : STRING; n : INT; END_VAR
+G := LEN(s) + n;
+END_FUNCTION
+FUNCTION_BLOCK FB_R
+VAR_IN_OUT CONSTANT v : INT; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+q := v * 2;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_W
+VAR_INPUT k : INT; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+VAR inner : FB_R; END_VAR
+inner(v := k);
+q := inner.q;
+END_FUNCTION_BLOCK";
+    let src = format!(
+        "{prelude}\nPROGRAM P\nVAR CONSTANT c : INT := 21; txt : STRING := 'abcd'; END_VAR\n\
+         VAR r, r2, r3 : INT; fb : FB_R; w : FB_W; x : INT := 5; END_VAR\n\
+         r := G(txt, c); fb(v := c); r2 := fb.q; w(k := x); r3 := w.q;\nEND_PROGRAM\n"
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "r"), "25");
+    assert_eq!(lit(&plc, "r2"), "42");
+    assert_eq!(lit(&plc, "r3"), "10");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, ["W353", "W353", "W353"]);
+}
+
+#[test]
+fn writing_a_var_in_out_constant_is_e401_and_a_plain_in_out_still_needs_a_writable_variable() {
+    let src = "FUNCTION G : INT\nVAR_IN_OUT CONSTANT n : INT; END_VAR\nn := 1;\nG := n;\nEND_FUNCTION\n\
+               PROGRAM P\nVAR r : INT; END_VAR\nr := G(r);\nEND_PROGRAM\n";
+    assert_eq!(
+        error_codes(&[("test.st", src)]),
+        [("E401".to_string(), "3:1".to_string())]
+    );
+    let src = "FUNCTION G : INT\nVAR_IN_OUT n : INT; END_VAR\nG := n;\nEND_FUNCTION\n\
+               PROGRAM P\nVAR CONSTANT c : INT := 1; END_VAR\nVAR r : INT; END_VAR\nr := G(c);\nEND_PROGRAM\n";
+    assert_eq!(
+        error_codes(&[("test.st", src)]),
+        [("E412".to_string(), "8:8".to_string())]
+    );
+}
+
+#[test]
+fn a_type_named_with_its_librarys_namespace_is_that_type() {
+    // Tc2_Standard.TON is TON, MyLib.FB_Base the FB_Base declared here:
+    // in declarations, arrays, a FUNCTION's result, EXTENDS and IMPLEMENTS.
+    let prelude = "INTERFACE I_X
+METHOD M : INT
+END_METHOD
+END_INTERFACE
+FUNCTION_BLOCK FB_Base
+VAR_OUTPUT n : INT; END_VAR
+n := n + 1;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Child EXTENDS MyLib.FB_Base IMPLEMENTS MyLib.I_X
+METHOD M : INT
+M := n * 10;
+END_METHOD
+SUPER^();
+END_FUNCTION_BLOCK
+FUNCTION Twice : Standard.INT
+VAR_INPUT x : INT; END_VAR
+Twice := x * 2;
+END_FUNCTION";
+    check(
+        prelude,
+        "t : Tc2_Standard.TON; c : FB_Child; i : I_X; r1, r2 : INT;
+         e : ARRAY[1..2] OF Tc2_Standard.R_TRIG; q : BOOL;",
+        "t(IN := TRUE, PT := T#1S); c(); i := c; r1 := i.M(); r2 := Twice(3);
+         e[2](CLK := TRUE); q := e[2].Q;",
+        &[("r1", "10"), ("r2", "6"), ("t.PT", "T#1s"), ("q", "TRUE")],
+    );
+    // The type must still exist.
+    let src = program("", "t : Tc2_Standard.TONN;", "");
+    let codes = error_codes(&[("test.st", &src)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E203"),
+        "{codes:?}"
+    );
+}
+
+#[test]
+fn a_function_called_with_its_librarys_namespace_is_that_function() {
+    // Tc2_Standard.CONCAT and .LEN are the standard functions, MyLib.F_Add
+    // the FUNCTION declared here; a method call on an instance is not
+    // touched, and a misspelt instance before a method's name is reported
+    // as it was before (not taken for a namespace).
+    let prelude = "FUNCTION F_Add : INT
+VAR_INPUT a, b : INT; END_VAR
+F_Add := a + b;
+END_FUNCTION
+FUNCTION_BLOCK FB_M
+METHOD Get : INT
+Get := 42;
+END_METHOD
+END_FUNCTION_BLOCK";
+    check(
+        prelude,
+        "s : STRING; r1, r2, r3 : INT; m : FB_M;",
+        "s := Tc2_Standard.CONCAT('ab', 'cd'); r1 := MyLib.F_Add(2, 3);
+         r2 := Tc2_Standard.LEN(s); r3 := m.Get(); MyLib.F_Add(1, 1);",
+        &[("s", "'abcd'"), ("r1", "5"), ("r2", "4"), ("r3", "42")],
+    );
+    let src = program(prelude, "m : FB_M; r : INT;", "r := mm.Get();");
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [("E406".to_string(), "14:6".to_string())]
+    );
+}

@@ -210,6 +210,12 @@ const ROWS: &[Row] = &[
         expect: &[("v", "3")],
     },
     Row {
+        covers: &["VAR_INST"],
+        // The method's VAR_INST n is kept between calls: three cycles count 3.
+        source: "FUNCTION_BLOCK F\nMETHOD Inc : INT\nVAR_INST\n  n : INT;\nEND_VAR\nn := n + 1;\nInc := n;\nEND_METHOD\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  f : F; v : INT;\nEND_VAR\nv := f.Inc();\nEND_PROGRAM\n",
+        expect: &[("v", "3")],
+    },
+    Row {
         covers: &["INTERFACE", "END_INTERFACE", "IMPLEMENTS"],
         // A call through the interface variable reaches F's method.
         source: "INTERFACE I\nMETHOD M : INT\nEND_METHOD\nEND_INTERFACE\nFUNCTION_BLOCK F IMPLEMENTS I\nVAR\n  n : INT;\nEND_VAR\nMETHOD M : INT\nn := n + 1;\nM := n;\nEND_METHOD\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  f : F; itf : I; v : INT;\nEND_VAR\nitf := f;\nv := itf.M();\nEND_PROGRAM\n",

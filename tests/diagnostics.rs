@@ -161,7 +161,9 @@ const INC: &str =
     "FUNCTION F : INT\nVAR_INPUT n : INT; END_VAR\nF := G(n - 1);\nEND_FUNCTION\nFUNCTION G : INT\nVAR_INPUT n : INT; END_VAR\nG := F(n);\nEND_FUNCTION\nPROGRAM P\nVAR x : INT; END_VAR\nx := F(1);\nEND_PROGRAM\n".to_string(),
     "7:6"
 )]
-#[case("E411", prog_after(F2, "x : INT;", "x := F(1, b := 2);"), "6:6")]
+#[case("E411", prog_after(F2, "x : INT;", "x := F(a := 1, 2);"), "6:16")]
+#[case("E435", prog("p : POINTER TO INT;", "p := __NEW(INT);"), "5:6")]
+#[case("E436", prog("t : TON := (RUNNING := TRUE);", ""), "3:13")]
 #[case("E402", prog_after(INC, "x : INT;", "Inc(v := 5);"), "6:10")]
 #[case("E412", format!("{INC}\nPROGRAM P\nVAR CONSTANT c : INT := 1; END_VAR\nInc(v := c);\nEND_PROGRAM\n"), "4:10")]
 // ---- E5xx: IL
@@ -199,6 +201,16 @@ const INC: &str =
     "PROGRAM P\nVAR_INPUT x : BOOL; END_VAR\nEND_PROGRAM\nCONFIGURATION A\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\nPROGRAM i WITH T : P(x := %IW2);\nEND_RESOURCE\nEND_CONFIGURATION\n".to_string(),
     "7:27"
 )]
+#[case(
+    "E433",
+    prog_after(
+        "{attribute 'qualified_only'} TYPE E_Mode : (Idle, Run); END_TYPE",
+        "m : E_Mode;",
+        "m := Run;"
+    ),
+    "6:6"
+)]
+#[case("E434", "FUNCTION_BLOCK F\nVAR_INST n : INT; END_VAR\nEND_FUNCTION_BLOCK\n".to_string(), "2:1")]
 fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     check_error(code, &src, at);
 }
@@ -207,6 +219,19 @@ fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case]
 #[case("W001", prog("x : INT;", "{ a pragma } x := 1;"), "5:1")]
 #[case("W202", prog("x AT %IX0.0 : BOOL;", "x := TRUE;"), "5:1")]
 #[case("W204", prog("c AT %QX0.0 : BOOL; r AT %QW0 : INT;", ""), "3:26")]
+#[case(
+    "W485",
+    prog_after("TYPE E : (A, B := 5); END_TYPE", "n : DINT;", "n := E.B + 1;"),
+    "6:6"
+)]
+#[case(
+    "W486",
+    prog_after("TYPE E : (A, B := 5); END_TYPE", "e : E;", "e := 5;"),
+    "6:6"
+)]
+#[case("W487", prog_after(F2, "x : INT;", "x := F(1, b := 2);"), "6:6")]
+#[case("W488", prog("i, j : INT;", "j := i AND 3;"), "5:6")]
+#[case("W489", prog("a, b : TON;", "b := a;"), "5:1")]
 fn warnings_do_not_stop_the_program(#[case] code: &str, #[case] src: String, #[case] at: &str) {
     let mut plc = Plc::compile_files(&[("t.st", &src)], &Options::default())
         .unwrap_or_else(|e| panic!("a warning must not fail the compilation:\n{e}"));

@@ -24,7 +24,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Copies the `ty` at offset `off` from the addresses in `d` and `s`.
-    fn copy_at(&mut self, d: Slot, s: Slot, ty: TypeId, off: u32) {
+    pub(super) fn copy_at(&mut self, d: Slot, s: Slot, ty: TypeId, off: u32) {
         match self.types.get(ty).kind.clone() {
             _ if !self.contains_strings(ty) => {
                 let n = self.types.size(ty);
@@ -72,6 +72,7 @@ impl BodyBuilder<'_> {
                     self.copy_loop(d, s, elem, off, count, stride);
                 }
             }
+            TypeKind::Pou { .. } => self.copy_fb_at(d, s, ty, off),
             _ => {
                 let n = self.types.size(ty);
                 self.copy_plain(d, s, off, n);
@@ -80,7 +81,7 @@ impl BodyBuilder<'_> {
     }
 
     /// `MemCopy` of `n` string-free slots at offset `off`.
-    fn copy_plain(&mut self, d: Slot, s: Slot, off: u32, n: u32) {
+    pub(super) fn copy_plain(&mut self, d: Slot, s: Slot, off: u32, n: u32) {
         if n == 0 {
             return;
         }

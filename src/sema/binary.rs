@@ -58,6 +58,7 @@ impl BodyBuilder<'_> {
         if let Some(v) = self.time_arith(op, &va, &vb, span) {
             return v;
         }
+        let (va, vb) = self.enum_operands(va, vb, span);
         let Some(common) = self.unify(va.ty(), vb.ty()) else {
             let (x, y) = (self.ty_name(va.ty()), self.ty_name(vb.ty()));
             self.diags.push(
@@ -78,6 +79,7 @@ impl BodyBuilder<'_> {
             self.bad_operand(span, op_name, common);
             return Val::error();
         }
+        self.int_bit_operands(op, common, span);
         let common = self.widen_for_literal(&va, &vb, common, span);
         // Constant folding.
         if let (Val::Const(ca, _), Val::Const(cb, _)) = (&va, &vb) {
@@ -162,7 +164,8 @@ impl BodyBuilder<'_> {
             BinaryOp::And | BinaryOp::Or | BinaryOp::Xor => match common {
                 Ty::AnyInt => true,
                 Ty::AnyReal => false,
-                Ty::T(t) => !self.is_enum(t) && elem.is_some_and(|e| e.is_bit()),
+                // Integers too, as CODESYS allows (W488, int_bit_ops.rs).
+                Ty::T(t) => !self.is_enum(t) && elem.is_some_and(|e| e.is_bit() || e.is_int()),
             },
             BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div => {
                 self.is_numeric(common)

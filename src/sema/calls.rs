@@ -21,6 +21,9 @@ pub(super) struct Param {
     pub(super) ty: TypeId,
     pub(super) offset: u32,
     pub(super) default: Option<ConstInit>,
+    /// Declared CONSTANT: a `VAR_IN_OUT CONSTANT` (CODESYS) may be given
+    /// a variable the caller cannot write (in_out_constant.rs).
+    pub(super) constant: bool,
 }
 
 impl Param {
@@ -76,8 +79,11 @@ impl BodyBuilder<'_> {
 
     /// A call used as a statement.
     pub(super) fn call_stmt(&mut self, call: &Call) {
-        if self.oop_call(call, false).is_some() {
+        if self.oop_call(call, false).is_some() || self.this_body_call(call) {
             return;
+        }
+        if let Some(plain) = self.without_namespace(call) {
+            return self.call_stmt(&plain);
         }
         if self.calls_a_function(call) {
             self.call_function(call, None, false);
@@ -96,6 +102,9 @@ impl BodyBuilder<'_> {
         }
         if let Some(v) = self.oop_call(call, true) {
             return v;
+        }
+        if let Some(plain) = self.without_namespace(call) {
+            return self.call_expr(&plain, expect);
         }
         if self.calls_a_function(call) {
             return self.call_function(call, expect, true);
@@ -157,6 +166,18 @@ impl BodyBuilder<'_> {
                     id.name
                 ),
             );
+        } else if matches!(key.as_str(), "__NEW" | "__DELETE") {
+            self.diags.push(
+                crate::diagnostics::Diagnostic::error(
+                    "E435",
+                    id.span,
+                    format!(
+                        "`{}` (CODESYS dynamic memory) is not supported: plcrun allocates every variable when the program is loaded",
+                        id.name
+                    ),
+                )
+                .with_note("declare the object as a variable (or an ARRAY of them) and use a POINTER TO or REFERENCE TO it"),
+            );
         } else {
             let message = format!("unknown function `{}`", id.name);
             let names = self.model.pous.iter().map(|p| p.name.as_str());
@@ -184,15 +205,11 @@ impl BodyBuilder<'_> {
         let formal = args.iter().any(|a| !matches!(a, Arg::Positional(_)));
         let positional = args.iter().any(|a| matches!(a, Arg::Positional(_)));
         if formal && positional {
-            self.diags.error(
-                "E411",
-                span,
-                "a call must use either formal (`name := value`) or non-formal arguments, not both",
-            );
-            return None;
+            let leading = self.mixed_arguments(params, args, callee, span)?;
+            b.inputs = leading;
         }
         let mut ok = true;
-        if positional {
+        if positional && !formal {
             let order: Vec<usize> = params
                 .iter()
                 .enumerate()
@@ -394,6 +411,7 @@ impl BodyBuilder<'_> {
                         ty: TypeTable::elem(p.ty),
                         offset: i as u32,
                         default: None,
+                        constant: false,
                     })
                     .collect(),
             ),
@@ -417,6 +435,7 @@ impl BodyBuilder<'_> {
                         ty: m.ty,
                         offset: m.offset,
                         default: None,
+                        constant: m.constant,
                     })
                     .collect(),
             ),
@@ -444,15 +463,14 @@ impl BodyBuilder<'_> {
             );
             return;
         }
-        if !arg.writable {
-            self.diags.error(
-                "E412",
-                e.span,
-                format!("VAR_IN_OUT `{}` needs a writable variable", p.name),
-            );
+        if !arg.writable && !p.constant {
+            self.in_out_not_writable(p, e.span);
             return;
         }
-        self.note_input_write(&arg, e.span);
+        // The callee does not write a CONSTANT in-out.
+        if !p.constant {
+            self.note_input_write(&arg, e.span);
+        }
         let a = self.address_of(&arg);
         let ptr_place = PlaceRef {
             ty: TypeTable::elem(ElemType::Ulint),
@@ -471,7 +489,8 @@ impl BodyBuilder<'_> {
                 self.block.emit(Op::CallNativeInd { fb: *fb, p });
             }
             (TypeKind::Pou { code, .. }, InstanceAt::Frame(o)) => {
-                let caller = self.model.pous[self.block.pou].code;
+                // A method's own block: `THIS^()` in a method is no recursion.
+                let caller = self.current_code();
                 self.out.calls.push((caller, *code, span));
                 self.block.emit(Op::CallFb {
                     code: *code,
@@ -479,7 +498,8 @@ impl BodyBuilder<'_> {
                 });
             }
             (TypeKind::Pou { code, .. }, InstanceAt::Ptr(p)) => {
-                let caller = self.model.pous[self.block.pou].code;
+                // A method's own block: `THIS^()` in a method is no recursion.
+                let caller = self.current_code();
                 self.out.calls.push((caller, *code, span));
                 self.block.emit(Op::CallFbInd { code: *code, p });
             }

@@ -5,6 +5,7 @@
 use super::consts::{
     Const, int_to_slot, literal_to_slot, real_to_slot, slot_to_int, typed_literal,
 };
+use super::enum_qualified::Qualified;
 use super::model::{ConstInit, Model, VarInfo};
 use crate::diagnostics::Diagnostics;
 use crate::elementary::ElemType;
@@ -145,10 +146,6 @@ impl DeclConsts<'_> {
                 }
                 Some(ConstInit::Struct(out))
             }
-            (Initializer::Struct(fields, _), TypeKind::Pou { program: false, .. })
-            | (Initializer::Struct(fields, _), TypeKind::NativeFb(_)) => {
-                Some(self.instance_init(fields, ty, &def.name, local))
-            }
             (Initializer::Expr(e), _) => {
                 let c = self.const_value(e, ty, local)?;
                 Some(match c {
@@ -157,6 +154,10 @@ impl DeclConsts<'_> {
                     Const::Int(_) | Const::Real(_) => return None,
                 })
             }
+            (
+                Initializer::Struct(fields, _),
+                TypeKind::Pou { program: false, .. } | TypeKind::NativeFb(_),
+            ) => Some(self.fb_instance_init(fields, &def, local)),
             (Initializer::Array(_, span), _) | (Initializer::Struct(_, span), _) => {
                 self.diags.error(
                     "E301",
@@ -166,53 +167,6 @@ impl DeclConsts<'_> {
                 None
             }
         }
-    }
-
-    /// `(PT := T#5s, count := 3)` for a function block instance (CODESYS,
-    /// TwinCAT): the initial values of the named variables of the block
-    /// (for a block of the standard library, of its pins), indexed as
-    /// `link::init` writes them: by the variable's place in the block's
-    /// variables, or the pin's in the block's interface.
-    fn instance_init(
-        &mut self,
-        fields: &[(crate::syntax::ast::Ident, Initializer)],
-        ty: TypeId,
-        block: &str,
-        local: Option<&IndexMap<String, VarInfo>>,
-    ) -> ConstInit {
-        let members: Vec<(String, TypeId)> = match &self.types.get(ty).kind {
-            TypeKind::NativeFb(fb) => crate::stdlib::interface(*fb)
-                .iter()
-                .map(|p| (p.name.to_string(), TypeTable::elem(p.ty)))
-                .collect(),
-            TypeKind::Pou { code, .. } => self
-                .model
-                .pous
-                .iter()
-                .find(|p| p.code == *code)
-                .map(|p| p.vars.values().map(|v| (v.name.clone(), v.ty)).collect())
-                .unwrap_or_default(),
-            _ => Vec::new(),
-        };
-        let mut out = Vec::new();
-        for (name, v) in fields {
-            match members
-                .iter()
-                .position(|(m, _)| m.eq_ignore_ascii_case(&name.name))
-            {
-                Some(i) => {
-                    if let Some(ci) = self.resolve_init(v, members[i].1, local) {
-                        out.push((i, ci));
-                    }
-                }
-                None => self.diags.error(
-                    "E201",
-                    name.span,
-                    format!("`{block}` has no variable `{}`", name.name),
-                ),
-            }
-        }
-        ConstInit::Struct(out)
     }
 
     /// Evaluates a constant scalar expression as a value of `ty`.
@@ -225,6 +179,32 @@ impl DeclConsts<'_> {
         let def = self.types.get(ty).clone();
         // Enumerations: a value name, optionally qualified.
         if let TypeKind::Enum { values, .. } = &def.kind {
+            if let Some(q) = super::enum_qualified::qualified(self.types, self.model, self.diags, e)
+            {
+                return match q {
+                    Qualified::Value(t, v) if t == ty => Some(Const::Bits(v as u64)),
+                    Qualified::Value(..) => {
+                        self.diags.error(
+                            "E301",
+                            e.span,
+                            format!("expected a value of enumeration {}", def.name),
+                        );
+                        None
+                    }
+                    Qualified::Unknown => None,
+                };
+            }
+            if let ExprKind::Name(id) = &e.kind
+                && super::enum_qualified::unqualified_use(
+                    self.types,
+                    self.model,
+                    self.diags,
+                    id,
+                    Some(ty),
+                )
+            {
+                return None;
+            }
             let name = match &e.kind {
                 ExprKind::Name(id) => Some(id.clone()),
                 ExprKind::Literal(l) => match &l.value {

@@ -25,6 +25,11 @@ impl BodyBuilder<'_> {
         if let Some(v) = self.property_read(e) {
             return v;
         }
+        if matches!(e.kind, ExprKind::Member(..))
+            && let Some(v) = self.qualified_enum(e)
+        {
+            return v;
+        }
         match &e.kind {
             ExprKind::Literal(l) => self.literal(l, e.span, expect),
             ExprKind::Paren(x) => self.expr(x, expect),
@@ -41,6 +46,9 @@ impl BodyBuilder<'_> {
                 }
                 if key == "NULL" && self.lookup_var(&key).is_none() {
                     return self.null_value();
+                }
+                if self.lookup_var(&key).is_none() && self.unqualified_enum(id) {
+                    return Val::error();
                 }
                 if let Some(var) = self.lookup_var(&key)
                     && var.constant
@@ -107,6 +115,7 @@ impl BodyBuilder<'_> {
             LiteralValue::Real(v) => Val::Const(Const::Real(*v), Ty::AnyReal),
             LiteralValue::EnumValue(id) => match self.enum_value(&id.key(), expect) {
                 Some(v) => v,
+                None if self.unqualified_enum(id) => Val::error(),
                 None => {
                     let message = format!("unknown enumeration value `{}`", id.name);
                     let names = self.model.enum_values.keys().map(String::as_str);
@@ -253,10 +262,13 @@ impl BodyBuilder<'_> {
                         });
                         Val::Slot(d, TypeTable::elem(e))
                     }
-                    _ => {
-                        self.bad_operand(span, "NOT", ty);
-                        Val::error()
-                    }
+                    _ => match self.int_not(&v, span) {
+                        Some(r) => r,
+                        None => {
+                            self.bad_operand(span, "NOT", ty);
+                            Val::error()
+                        }
+                    },
                 }
             }
         }

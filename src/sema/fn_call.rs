@@ -41,6 +41,7 @@ fn function_params(callee: &PouInfo) -> Vec<Param> {
                 Storage::Abs(a) => a,
             },
             default: v.init.clone(),
+            constant: v.constant,
         })
         .collect()
 }
@@ -129,15 +130,14 @@ impl BodyBuilder<'_> {
                     self.mismatch(e.span, Ty::T(arg.ty), prm.ty, &what);
                     return None;
                 }
-                if !arg.writable {
-                    self.diags.error(
-                        "E412",
-                        e.span,
-                        format!("VAR_IN_OUT `{}` needs a writable variable", prm.name),
-                    );
+                if !arg.writable && !prm.constant {
+                    self.in_out_not_writable(prm, e.span);
                     return None;
                 }
-                self.note_input_write(&arg, e.span);
+                // The callee does not write a CONSTANT in-out.
+                if !prm.constant {
+                    self.note_input_write(&arg, e.span);
+                }
                 Some(Ready::Pointer(self.address_of(&arg)))
             }
             (MemberKind::InOut, None) => {

@@ -12,7 +12,8 @@ use indexmap::IndexMap;
 
 fn member_kind(k: VarKind) -> MemberKind {
     match k {
-        VarKind::Local | VarKind::Global => MemberKind::Local,
+        // VAR_INST outside a METHOD was refused (E434).
+        VarKind::Local | VarKind::Global | VarKind::Inst => MemberKind::Local,
         VarKind::Input => MemberKind::Input,
         VarKind::Output => MemberKind::Output,
         VarKind::InOut => MemberKind::InOut,
@@ -166,6 +167,17 @@ impl Declarer<'_> {
     /// The declarations of one VAR... END_VAR block.
     fn layout_block(&mut self, pou: &Pou, block: &VarBlock, frame: &mut Frame) {
         self.check_retain(pou, block);
+        if block.kind == VarKind::Inst {
+            self.diags.error(
+                "E434",
+                block.span,
+                format!(
+                    "VAR_INST is allowed in a METHOD only: `{}` keeps its VAR variables from call to call, declare them there",
+                    pou.name.name
+                ),
+            );
+            return;
+        }
         if block.kind == VarKind::Global {
             self.diags.error(
                 "E209",
@@ -422,16 +434,18 @@ impl Declarer<'_> {
         // A VAR_INPUT CONSTANT (CODESYS) is set by the caller: its initial
         // value is only a default, so it is never folded; the body still
         // may not write it.
-        let input = block.kind == VarKind::Input;
+        let input = matches!(block.kind, VarKind::Input | VarKind::InOut);
         if block.constant && input {
-            self.diags.warning(
-                "W353",
-                name.span,
-                format!(
-                    "`{}`: VAR_INPUT CONSTANT is a CODESYS extension (an input the body may not write)",
-                    name.name
-                ),
-            );
+            let what = match block.kind {
+                VarKind::Input => {
+                    "VAR_INPUT CONSTANT is a CODESYS extension (an input the body may not write)"
+                }
+                _ => {
+                    "VAR_IN_OUT CONSTANT is a CODESYS extension (an in-out the body may not write, connected to any variable)"
+                }
+            };
+            self.diags
+                .warning("W353", name.span, format!("`{}`: {what}", name.name));
         }
         let value = if block.constant && !input {
             init.as_ref().and_then(init_const)

@@ -104,6 +104,9 @@ pub(crate) struct Model {
     pub type_inits: HashMap<TypeId, ConstInit>,
     /// Enumeration values by case-folded name: (enum type, value).
     pub enum_values: HashMap<String, Vec<(TypeId, i64)>>,
+    /// Values of the enumerations declared `qualified_only`, by
+    /// case-folded name: they are written `Type.Value` only (E433).
+    pub qualified_enum_values: HashMap<String, Vec<TypeId>>,
     /// Globals by case-folded name, in declaration order.
     pub globals: IndexMap<String, VarInfo>,
     /// Per POU (case-folded name) whose references are initialised once

@@ -338,6 +338,9 @@ impl BodyBuilder<'_> {
             // Checked element by element against the referenced object.
             return self.place_deref_index(e, r, indexes);
         }
+        if self.is_pointer_path(base) {
+            return self.pointer_index(e, base, indexes);
+        }
         let b = self.place(base)?;
         let (dims, elem) = self.array_shape(e, b.ty, indexes.len())?;
         let elem_size = self.types.size(elem);

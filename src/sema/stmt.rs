@@ -320,10 +320,7 @@ impl BodyBuilder<'_> {
         }
         let kind = self.types.get(p.ty).kind.clone();
         match kind {
-            TypeKind::Array { .. }
-            | TypeKind::Struct { .. }
-            | TypeKind::Pou { program: false, .. }
-            | TypeKind::NativeFb(_) => {
+            TypeKind::Array { .. } | TypeKind::Struct { .. } => {
                 let Some(src) = self.place(value) else {
                     return;
                 };
@@ -332,6 +329,9 @@ impl BodyBuilder<'_> {
                     return;
                 }
                 self.copy_aggregate(&p, &src, span);
+            }
+            TypeKind::NativeFb(_) | TypeKind::Pou { program: false, .. } => {
+                self.copy_fb(&p, value, span);
             }
             TypeKind::Pou { .. } | TypeKind::Step => {
                 self.diags.error(
@@ -408,6 +408,7 @@ impl BodyBuilder<'_> {
             TypeKind::Str { .. } => true,
             TypeKind::Array { elem, .. } => self.contains_strings(*elem),
             TypeKind::Struct { fields } => fields.iter().any(|m| self.contains_strings(m.ty)),
+            TypeKind::Pou { .. } => !self.fb_string_members(t).is_empty(),
             _ => false,
         }
     }

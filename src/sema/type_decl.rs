@@ -48,13 +48,8 @@ impl Declarer<'_> {
                     self.model.type_inits.insert(id, ci);
                 }
                 if let TypeKind::Enum { values, .. } = &self.types.get(id).kind {
-                    for (name, v) in values.clone() {
-                        self.model
-                            .enum_values
-                            .entry(name.to_ascii_uppercase())
-                            .or_default()
-                            .push((id, v));
-                    }
+                    let values = values.clone();
+                    self.register_enum_values(&values, base, id, decl.qualified_only);
                 }
                 id
             }
@@ -378,6 +373,40 @@ impl Declarer<'_> {
                 .push((id, v));
         }
         id
+    }
+
+    /// Makes the values of the named enumeration `id` (declared as the
+    /// anonymous `base`) known by their names alone, or, for a
+    /// `qualified_only` type, only as `Type.Value` (`enum_qualified.rs`).
+    fn register_enum_values(
+        &mut self,
+        values: &[(String, i64)],
+        base: TypeId,
+        id: TypeId,
+        qualified_only: bool,
+    ) {
+        for (name, v) in values {
+            let key = name.to_ascii_uppercase();
+            if !qualified_only {
+                self.model
+                    .enum_values
+                    .entry(key)
+                    .or_default()
+                    .push((id, *v));
+                continue;
+            }
+            if let Some(list) = self.model.enum_values.get_mut(&key) {
+                list.retain(|(t, _)| *t != base);
+                if list.is_empty() {
+                    self.model.enum_values.remove(&key);
+                }
+            }
+            self.model
+                .qualified_enum_values
+                .entry(key)
+                .or_default()
+                .push(id);
+        }
     }
 
     /// `STRUCT ... END_STRUCT`: fields laid out in order, with their defaults.

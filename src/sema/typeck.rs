@@ -189,6 +189,7 @@ impl BodyBuilder<'_> {
                     self.mismatch(span, *from, to, what);
                     return Val::error();
                 }
+                self.literal_to_enum(*from, to, span);
                 match self.const_as(c, *from, to) {
                     Ok(c) => Val::Const(c, Ty::T(to)),
                     Err(msg) => {
@@ -292,7 +293,7 @@ impl BodyBuilder<'_> {
     /// not (see `bits_arith`); warns W351 when it does.
     fn codesys_widening(&mut self, from: TypeId, to: TypeId, span: Span) -> bool {
         if self.is_enum(from) || self.is_enum(to) {
-            return false;
+            return self.enum_int_conversion(from, to, span);
         }
         let (Some(f), Some(t)) = (self.types.scalar(from), self.types.scalar(to)) else {
             return false;

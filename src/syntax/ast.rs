@@ -102,6 +102,9 @@ pub enum VarKind {
     Global,
     /// `VAR_TEMP`
     Temp,
+    /// `VAR_INST` (CODESYS / TwinCAT, in a METHOD only): the method's
+    /// variables that keep their values between calls, one set per instance.
+    Inst,
 }
 
 /// RETAIN / NON_RETAIN / PERSISTENT qualifier.
@@ -299,6 +302,9 @@ pub struct TypeDecl {
     pub init: Option<Initializer>,
     /// Where.
     pub span: Span,
+    /// Declared after `{attribute 'qualified_only'}` (CODESYS): its
+    /// enumeration values must be written `Type.Value`.
+    pub qualified_only: bool,
 }
 
 /// An initial value.

@@ -459,6 +459,38 @@ pub enum CaseItem {
     Labels(Vec<CaseLabel>, Span),
     /// A statement of the current arm.
     Stmt(Stmt),
+    /// The assignments of a chained assignment in the current arm.
+    Chain(Vec<Stmt>),
+}
+
+/// The declarations of a `TYPE` block starting at byte `l`, marked
+/// qualified-only when `{attribute 'qualified_only'}` precedes it.
+pub fn type_block(st: &State, l: usize, decls: Vec<Option<TypeDecl>>) -> Vec<TypeDecl> {
+    let qualified = crate::syntax::qualified_only::before_type(st.text(), l);
+    decls
+        .into_iter()
+        .flatten()
+        .map(|d| TypeDecl {
+            qualified_only: qualified,
+            ..d
+        })
+        .collect()
+}
+
+/// Adds `stmts` to the last arm; E107 when there is none yet.
+fn arm_stmts(st: &State, arms: &mut [CaseArm], stmts: Vec<Stmt>) {
+    match arms.last_mut() {
+        Some(arm) => arm.body.extend(stmts),
+        None => {
+            if let Some(s) = stmts.first() {
+                st.error(
+                    "E107",
+                    s.span,
+                    "statement before the first CASE label: expected a label such as `1:`",
+                );
+            }
+        }
+    }
 }
 
 fn is_compound(s: &Stmt) -> bool {
@@ -544,14 +576,8 @@ pub fn case_stmt(
                 body: Vec::new(),
                 span,
             }),
-            CaseItem::Stmt(s) => match arms.last_mut() {
-                Some(arm) => arm.body.push(s),
-                None => st.error(
-                    "E107",
-                    s.span,
-                    "statement before the first CASE label: expected a label such as `1:`",
-                ),
-            },
+            CaseItem::Stmt(s) => arm_stmts(st, &mut arms, vec![s]),
+            CaseItem::Chain(v) => arm_stmts(st, &mut arms, v),
         }
     }
     for arm in &mut arms {
@@ -746,18 +772,21 @@ pub fn pou(
 pub enum BodyElem {
     /// A plain statement.
     Stmt(Stmt),
+    /// The assignments of a chained assignment (`a := b := c;`).
+    Chain(Vec<Stmt>),
     /// A step, transition or action.
     Sfc(SfcElement),
 }
 
 /// ST statements, or an SFC chart if any chart element is present.
 pub fn body(elems: Vec<BodyElem>) -> Body {
+    let elems = spell_out_chains(elems);
     if elems.iter().all(|e| matches!(e, BodyElem::Stmt(_))) {
         let stmts = elems
             .into_iter()
             .filter_map(|e| match e {
                 BodyElem::Stmt(s) => Some(s),
-                BodyElem::Sfc(_) => None,
+                BodyElem::Sfc(_) | BodyElem::Chain(_) => None,
             })
             .collect();
         return Body::St(stmt_list(stmts));
@@ -778,9 +807,26 @@ pub fn body(elems: Vec<BodyElem>) -> Body {
                 absorb = false;
                 out.push(x);
             }
+            // Spelt out by `spell_out_chains` above.
+            BodyElem::Chain(_) => {}
         }
     }
     Body::Sfc(out)
+}
+
+/// `elems` with each chained assignment replaced by its statements.
+fn spell_out_chains(elems: Vec<BodyElem>) -> Vec<BodyElem> {
+    if !elems.iter().any(|e| matches!(e, BodyElem::Chain(_))) {
+        return elems;
+    }
+    let mut out = Vec::with_capacity(elems.len());
+    for e in elems {
+        match e {
+            BodyElem::Chain(v) => out.extend(v.into_iter().map(BodyElem::Stmt)),
+            other => out.push(other),
+        }
+    }
+    out
 }
 
 /// Qualifiers of IEC 61131-3 action associations.

@@ -74,7 +74,9 @@ pub fn lex_in(
                 }
             }
             Raw::LineComment => continue,
-            Raw::Pragma if pragma(span(r.start, r.end), slice, diags) => Tok::Eol,
+            Raw::Pragma if pragma(span(r.start, r.end), slice, lexer.remainder(), diags) => {
+                Tok::Eol
+            }
             Raw::Pragma => continue,
             Raw::Word if library_list(&mut lexer, span(r.start, r.end), text, diags) => Tok::Eol,
             Raw::Word => word(slice),
@@ -162,10 +164,14 @@ pub fn lex_in(
 }
 
 /// Reports a `{...}` pragma: named when other tools give it a meaning,
-/// W001 otherwise, E010 when unterminated. True when it spans lines (it
-/// then ends an IL line, as a comment does).
-fn pragma(at: Span, slice: &str, diags: &mut Diagnostics) -> bool {
-    if slice.ends_with('}')
+/// W001 otherwise, E010 when unterminated; nothing for one plcrun honours
+/// (`qualified_only` before a `TYPE`, followed by `rest`). True when it
+/// spans lines (it then ends an IL line, as a comment does).
+fn pragma(at: Span, slice: &str, rest: &str, diags: &mut Diagnostics) -> bool {
+    use super::qualified_only::{is_qualified_only, type_follows};
+    if is_qualified_only(slice) && type_follows(rest) {
+        // Honoured: the grammar finds it before the TYPE keyword.
+    } else if slice.ends_with('}')
         && let Some((code, message)) = super::pragma_meaning::named(slice)
     {
         diags.warning(code, at, message);

@@ -5,6 +5,7 @@
 
 pub mod assign_attempt;
 pub mod ast;
+pub mod chain_assign;
 mod codesys_spellings;
 pub mod config_path;
 pub mod construct;
@@ -23,6 +24,7 @@ pub mod oop_var_access;
 pub mod parser;
 pub mod plcopen;
 pub mod pragma_meaning;
+pub mod qualified_only;
 pub mod recovery;
 pub mod ref_words;
 pub mod repair;

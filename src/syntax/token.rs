@@ -343,6 +343,7 @@ pub enum Kw {
     VarExternal,
     VarGlobal,
     VarTemp,
+    VarInst,
     EndVar,
     Constant,
     Retain,
@@ -431,7 +432,7 @@ pub enum Kw {
 }
 
 /// Every keyword with its spelling.
-pub const KEYWORDS: [(&str, Kw); 90] = [
+pub const KEYWORDS: [(&str, Kw); 91] = [
     ("PROGRAM", Kw::Program),
     ("END_PROGRAM", Kw::EndProgram),
     ("FUNCTION", Kw::Function),
@@ -445,6 +446,7 @@ pub const KEYWORDS: [(&str, Kw); 90] = [
     ("VAR_EXTERNAL", Kw::VarExternal),
     ("VAR_GLOBAL", Kw::VarGlobal),
     ("VAR_TEMP", Kw::VarTemp),
+    ("VAR_INST", Kw::VarInst),
     ("END_VAR", Kw::EndVar),
     ("CONSTANT", Kw::Constant),
     ("RETAIN", Kw::Retain),

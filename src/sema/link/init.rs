@@ -8,15 +8,6 @@ use crate::ir::type_table::{MemberKind, TypeId, TypeKind};
 use crate::sema::model::{ConstInit, Storage};
 use crate::syntax::ast::PouKind;
 
-/// The initial value an instance's declaration gives its variable or pin
-/// `k` (`ton : TON := (PT := T#5s)`), if it gives one.
-fn overridden(init: Option<&ConstInit>, k: usize) -> Option<&ConstInit> {
-    match init {
-        Some(ConstInit::Struct(v)) => v.iter().find(|(i, _)| *i == k).map(|(_, c)| c),
-        _ => None,
-    }
-}
-
 impl Linker<'_> {
     /// Writes the initial value of a `ty` at `at` in `buf`, collecting string slots.
     fn write_init(
@@ -92,10 +83,15 @@ impl Linker<'_> {
             TypeKind::NativeFb(fb) => {
                 for (k, p) in crate::stdlib::interface(*fb).iter().enumerate() {
                     if let Some(slot) = buf.get_mut(at + k) {
-                        *slot = match overridden(init, k) {
-                            Some(ConstInit::Scalar(b)) => *b,
-                            _ => p.init,
-                        };
+                        *slot = p.init;
+                    }
+                }
+                // `ton : TON := (PT := T#5S)` (fb_init_values.rs): one slot a pin.
+                if let Some(ConstInit::Struct(given)) = init {
+                    for (k, ci) in given {
+                        if let (Some(slot), ConstInit::Scalar(b)) = (buf.get_mut(at + k), ci) {
+                            *slot = *b;
+                        }
                     }
                 }
             }
@@ -103,15 +99,24 @@ impl Linker<'_> {
                 let Some(p) = self.model.pous.iter().position(|p| p.code == *code) else {
                     return;
                 };
-                for (k, var) in self.model.pous[p].vars.values().enumerate() {
+                for var in self.model.pous[p].vars.values() {
                     if let Storage::Frame(o) = var.storage {
-                        let value = overridden(init, k).or(var.init.as_ref());
-                        self.write_init(buf, at + o as usize, var.ty, value, strs);
+                        self.write_init(buf, at + o as usize, var.ty, var.init.as_ref(), strs);
                     }
                 }
                 for &(slot, value) in &self.model.pous[p].consts {
                     if let Some(s) = buf.get_mut(at + slot.index()) {
                         *s = value;
+                    }
+                }
+                // `fb : FB_X := (limit := 10)` (fb_init_values.rs), by member.
+                if let (Some(ConstInit::Struct(given)), TypeKind::Pou { members, .. }) =
+                    (init, &self.types.get(ty).kind)
+                {
+                    for (k, ci) in given {
+                        if let Some(m) = members.get(*k) {
+                            self.write_init(buf, at + m.offset as usize, m.ty, Some(ci), strs);
+                        }
                     }
                 }
             }

@@ -44,7 +44,7 @@ pub(crate) fn is_this(e: &Expr) -> bool {
     matches!(&e.kind, ExprKind::Name(id) if id.name == THIS)
 }
 
-pub(super) fn is_super(e: &Expr) -> bool {
+pub(crate) fn is_super(e: &Expr) -> bool {
     matches!(&e.kind, ExprKind::Name(id) if id.name == SUPER)
 }
 
@@ -74,7 +74,7 @@ impl BodyBuilder<'_> {
     }
 
     /// The code block being emitted (for the call graph).
-    fn current_code(&self) -> CodeIdx {
+    pub(in crate::sema) fn current_code(&self) -> CodeIdx {
         match &self.oop {
             Some(s) => s.code,
             None => self.model.pous[self.block.pou].code,
@@ -291,6 +291,7 @@ impl BodyBuilder<'_> {
                     ty: var.ty,
                     offset: o,
                     default: var.init.clone(),
+                    constant: var.constant,
                 })
             })
             .collect()
@@ -736,6 +737,7 @@ impl BodyBuilder<'_> {
                     ty,
                     offset: 0,
                     default: None,
+                    constant: false,
                 })
             })
             .collect();

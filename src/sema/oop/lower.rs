@@ -199,6 +199,7 @@ impl Lowering<'_> {
                 },
                 init: None,
                 span: x.span,
+                qualified_only: false,
             };
             let sig = TypeDecl {
                 name: Ident {
@@ -211,6 +212,7 @@ impl Lowering<'_> {
                 },
                 init: None,
                 span: x.span,
+                qualified_only: false,
             };
             self.units[*u].items[*i] = Item::Types(vec![value, sig]);
             self.info.interfaces.insert(
@@ -524,7 +526,12 @@ impl Lowering<'_> {
         for b in &m.var_blocks {
             if matches!(
                 b.kind,
-                VarKind::Input | VarKind::InOut | VarKind::Output | VarKind::Local | VarKind::Temp
+                VarKind::Input
+                    | VarKind::InOut
+                    | VarKind::Output
+                    | VarKind::Local
+                    | VarKind::Temp
+                    | VarKind::Inst
             ) {
                 for n in b.decls.iter().flat_map(|d| &d.names) {
                     let hidden = hidden_name(origin, &m.name.name, &n.name);
@@ -541,12 +548,12 @@ impl Lowering<'_> {
             let input = match b.kind {
                 VarKind::Input | VarKind::InOut => Some(true),
                 VarKind::Output => Some(false),
-                VarKind::Local | VarKind::Temp => None,
+                VarKind::Local | VarKind::Temp | VarKind::Inst => None,
                 _ => {
                     self.diags.error(
                         "E915",
                         b.span,
-                        "a METHOD may declare VAR_INPUT, VAR_OUTPUT, VAR_IN_OUT, VAR_EXTERNAL, VAR and VAR_TEMP only",
+                        "a METHOD may declare VAR_INPUT, VAR_OUTPUT, VAR_IN_OUT, VAR_EXTERNAL, VAR, VAR_TEMP and VAR_INST only",
                     );
                     continue;
                 }
@@ -576,6 +583,8 @@ impl Lowering<'_> {
                                 resets.push(hk);
                             }
                         }
+                        // VAR_INST keeps its value from call to call.
+                        None if b.kind == VarKind::Inst => {}
                         None => resets.push(hk),
                     }
                     names.push(Ident {

@@ -53,12 +53,8 @@ impl BodyBuilder<'_> {
             );
             return None;
         }
-        if !arg.writable {
-            self.diags.error(
-                "E412",
-                e.span,
-                format!("VAR_IN_OUT `{}` needs a writable variable", p.name),
-            );
+        if !arg.writable && !p.constant {
+            self.in_out_not_writable(p, e.span);
             return None;
         }
         let a = self.address_of(&arg);

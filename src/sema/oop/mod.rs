@@ -33,6 +33,7 @@ mod method_vars;
 pub(super) mod methods;
 pub(super) mod model;
 pub(super) mod property;
+mod this_call;
 pub(super) mod var_access;
 
 pub(super) use model::OopInfo;

@@ -270,6 +270,7 @@ impl Exporter<'_> {
             VarKind::External => "externalVars",
             VarKind::Global => "globalVars",
             VarKind::Temp => "tempVars",
+            VarKind::Inst => return Err(self.refuse("a VAR_INST block", block.span)),
         };
         let mut attrs: Vec<(&str, &str)> = Vec::new();
         if block.constant {

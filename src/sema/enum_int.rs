@@ -1,0 +1,129 @@
+//! Implicit conversion between an enumeration and integers, as CODESYS
+//! allows it (without `{attribute 'strict'}`): an enumeration value is
+//! its base type's integer where an integer is expected or combined with
+//! one (W485), and an integer may be stored in an enumeration variable
+//! (W486: the value is not checked against the named ones). Both are
+//! compatibility warnings: `--strict` refuses them.
+
+use super::body::BodyBuilder;
+use super::emit::{Ty, Val};
+use crate::elementary::ElemType;
+use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
+use crate::source::Span;
+
+impl BodyBuilder<'_> {
+    /// The base type of enumeration `t`.
+    fn enum_base(&self, t: TypeId) -> Option<ElemType> {
+        match self.types.get(t).kind {
+            TypeKind::Enum { base, .. } => Some(base),
+            _ => None,
+        }
+    }
+
+    /// Whether a value of `from` converts to `to` across an enumeration
+    /// (one side an enumeration, the other an integer or bit string the
+    /// base type widens to, or that widens to the base type); warns then.
+    pub(super) fn enum_int_conversion(&mut self, from: TypeId, to: TypeId, span: Span) -> bool {
+        match (self.enum_base(from), self.enum_base(to)) {
+            (Some(base), None) => {
+                let Some(t) = self.types.scalar(to).filter(|t| t.is_int() || t.is_bit()) else {
+                    return false;
+                };
+                if base != t && !base.widens_to(t) {
+                    return false;
+                }
+                self.enum_to_int_warning(from, t, span);
+                true
+            }
+            (None, Some(base)) => {
+                let Some(f) = self.types.scalar(from).filter(|f| f.is_int() || f.is_bit()) else {
+                    return false;
+                };
+                if f != base && !f.widens_to(base) {
+                    return false;
+                }
+                self.int_to_enum_warning(f.name(), to, span);
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// An untyped integer literal stored in an enumeration: W486.
+    pub(super) fn literal_to_enum(&mut self, from: Ty, to: TypeId, span: Span) {
+        if from == Ty::AnyInt && self.enum_base(to).is_some() {
+            self.int_to_enum_warning("an integer literal", to, span);
+        }
+    }
+
+    /// Operands of a binary operator where one is an enumeration and the
+    /// other an integer: the enumeration taken as its base type (W485).
+    pub(super) fn enum_operands(&mut self, va: Val, vb: Val, span: Span) -> (Val, Val) {
+        let (ea, eb) = (self.val_enum(&va), self.val_enum(&vb));
+        match (ea, eb) {
+            (Some(_), None) if self.is_integer(&vb) => (self.as_base(va, span), vb),
+            (None, Some(_)) if self.is_integer(&va) => (va, self.as_base(vb, span)),
+            _ => (va, vb),
+        }
+    }
+
+    /// The enumeration type of `v`, if it has one.
+    fn val_enum(&self, v: &Val) -> Option<TypeId> {
+        v.ty().id().filter(|t| self.enum_base(*t).is_some())
+    }
+
+    /// Whether `v` is an integer or bit string (typed or a literal).
+    fn is_integer(&self, v: &Val) -> bool {
+        match v.ty() {
+            Ty::AnyInt => true,
+            Ty::AnyReal => false,
+            Ty::T(t) => {
+                self.enum_base(t).is_none()
+                    && self
+                        .types
+                        .scalar(t)
+                        .is_some_and(|e| e.is_int() || e.is_bit())
+            }
+        }
+    }
+
+    /// Enumeration value `v` retyped as its base type, with W485.
+    fn as_base(&mut self, v: Val, span: Span) -> Val {
+        let Some(t) = self.val_enum(&v) else {
+            return v;
+        };
+        let Some(base) = self.enum_base(t) else {
+            return v;
+        };
+        self.enum_to_int_warning(t, base, span);
+        let b = TypeTable::elem(base);
+        match v {
+            Val::Const(c, _) => Val::Const(c, Ty::T(b)),
+            Val::Slot(s, _) => Val::Slot(s, b),
+            other => other,
+        }
+    }
+
+    fn enum_to_int_warning(&mut self, from: TypeId, to: ElemType, span: Span) {
+        let from = self.types.name(from).to_string();
+        self.diags.warning(
+            "W485",
+            span,
+            format!(
+                "enumeration {from} used as an integer of its base type {} (a CODESYS extension)",
+                to.name()
+            ),
+        );
+    }
+
+    fn int_to_enum_warning(&mut self, from: &str, to: TypeId, span: Span) {
+        let to = self.types.name(to).to_string();
+        self.diags.warning(
+            "W486",
+            span,
+            format!(
+                "{from} stored in enumeration {to} (CODESYS): the value is not checked against {to}'s values"
+            ),
+        );
+    }
+}

@@ -1,0 +1,81 @@
+//! `{attribute 'qualified_only'}` before a `TYPE` (CODESYS / TwinCAT): the
+//! enumeration values of the types declared there must be written with
+//! their type's name (`E_Mode.Run`). The attribute is found in the source
+//! text right before the `TYPE` keyword, with only blanks and other
+//! pragmas between; the lexer uses the same rule to know that the
+//! attribute is honoured (no W150) rather than ignored.
+
+/// Whether pragma text `{...}` is `{attribute 'qualified_only'}`.
+pub fn is_qualified_only(pragma: &str) -> bool {
+    let inner = pragma.trim_start_matches('{').trim_end_matches('}').trim();
+    let Some(rest) = strip_word(inner, "attribute") else {
+        return false;
+    };
+    rest.trim()
+        .trim_matches(|c| c == '\'' || c == '"')
+        .trim()
+        .eq_ignore_ascii_case("qualified_only")
+}
+
+/// Whether the `TYPE` keyword at byte `at` of `text` is preceded by a
+/// `{attribute 'qualified_only'}`, with only blanks and pragmas between.
+pub fn before_type(text: &str, at: usize) -> bool {
+    let mut end = at.min(text.len());
+    loop {
+        let trimmed = text[..end].trim_end();
+        if !trimmed.ends_with('}') {
+            return false;
+        }
+        // Pragmas do not nest: the last `{` opens this one.
+        let Some(open) = trimmed.rfind('{') else {
+            return false;
+        };
+        if is_qualified_only(&trimmed[open..]) {
+            return true;
+        }
+        end = open;
+    }
+}
+
+/// Whether a `TYPE` keyword follows `rest` (the text after a pragma),
+/// with only blanks and pragmas before it.
+pub fn type_follows(rest: &str) -> bool {
+    let mut rest = rest.trim_start();
+    while rest.starts_with('{') {
+        match rest.find('}') {
+            Some(close) => rest = rest[close + 1..].trim_start(),
+            None => return false,
+        }
+    }
+    strip_word(rest, "TYPE").is_some()
+}
+
+/// `text` after its first word when that word is `word` (any case).
+fn strip_word<'a>(text: &'a str, word: &str) -> Option<&'a str> {
+    let head = text.get(..word.len())?;
+    let rest = &text[word.len()..];
+    let ends = !rest.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '_');
+    (head.eq_ignore_ascii_case(word) && ends).then_some(rest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{before_type, is_qualified_only, type_follows};
+
+    #[test]
+    fn the_attribute_is_found_next_to_its_type_keyword() {
+        assert!(is_qualified_only("{attribute 'qualified_only'}"));
+        assert!(is_qualified_only("{ attribute \"QUALIFIED_ONLY\" }"));
+        assert!(!is_qualified_only("{attribute 'strict'}"));
+        assert!(!is_qualified_only("{attributes 'qualified_only'}"));
+        let text = "{attribute 'qualified_only'}\n{attribute 'strict'}\nTYPE E : (A); END_TYPE";
+        let at = text.find("TYPE").unwrap();
+        assert!(before_type(text, at));
+        assert!(type_follows(&text["{attribute 'qualified_only'}".len()..]));
+        let text =
+            "{attribute 'qualified_only'}\nVAR_GLOBAL x : INT; END_VAR\nTYPE E : (A); END_TYPE";
+        assert!(!before_type(text, text.find("TYPE").unwrap()));
+        assert!(!type_follows(&text["{attribute 'qualified_only'}".len()..]));
+        assert!(!type_follows(" TYPES"));
+    }
+}
