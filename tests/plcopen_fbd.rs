@@ -246,14 +246,18 @@ fn malformed_networks_get_coded_errors_at_their_element() {
     assert_eq!(at, location_of(&no_pin, "<connection refLocalId=\"2\""));
     assert!(message.contains("`Q`"), "{message}");
 
+    // Drawn but not wired: an outVariable writes nothing, with a warning.
     let unconnected = program(&[
         "<outVariable localId=\"1\"><position x=\"0\" y=\"0\"/><connectionPointIn/><expression>x</expression></outVariable>".to_string(),
     ]);
-    let (code, at, _) = only_error(&unconnected);
+    let found = diagnostics(&unconnected);
+    assert_eq!(found.len(), 1, "{found:#?}");
     assert_eq!(
-        (code.as_str(), at),
-        ("E818", location_of(&unconnected, "<outVariable"))
+        (found[0].0.as_str(), found[0].1.clone()),
+        ("W802", location_of(&unconnected, "<outVariable"))
     );
+    let trace = trace_text(&unconnected, "x", &bit_stimulus(&[("a", "1")]), 1);
+    assert_eq!(bits(&trace, "x"), "0");
 
     let no_label = program(&[
         in_var(1, "a", 10),
@@ -507,4 +511,27 @@ fn a_chart_with_a_wired_condition_an_fbd_action_and_an_fbd_transition_runs_like_
             .any(|d| d.0 == "E807" && d.2.contains("transition")),
         "{found:#?}"
     );
+}
+
+#[test]
+fn a_body_starting_with_an_unread_function_is_st_not_il() {
+    // ADD's result is read by nobody: the call is a statement, `ADD(...);`,
+    // which must not be read as the IL operator `ADD(`.
+    let text = program(&[
+        in_var(1, "i", 10),
+        in_var(2, "1", 20),
+        block(
+            3,
+            "ADD",
+            10,
+            &[("IN1", &["1"]), ("IN2", &["2"])],
+            &["OUT"],
+            "",
+        ),
+        in_var(4, "a", 30),
+        out_var(5, "x", &["4"], 30, ""),
+    ]);
+    assert!(errors(&text).is_empty(), "{:#?}", errors(&text));
+    let trace = trace_text(&text, "x", &bit_stimulus(&[("a", "01")]), 2);
+    assert_eq!(bits(&trace, "x"), "01");
 }

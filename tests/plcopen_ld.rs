@@ -95,13 +95,14 @@ fn rail() -> String {
 fn malformed_rungs_get_coded_errors() {
     let floating = ladder(&[
         rail(),
-        "<coil localId=\"2\"><position x=\"0\" y=\"0\"/><connectionPointIn/><connectionPointOut/><variable>q</variable></coil>".to_string(),
+        "<contact localId=\"2\"><position x=\"0\" y=\"0\"/><connectionPointIn/><connectionPointOut/><variable>a</variable></contact>".to_string(),
+        format!("<coil localId=\"3\"><position x=\"0\" y=\"0\"/>{}<connectionPointOut/><variable>q</variable></coil>", point(&["2"])),
     ]);
     let found = errors(&floating);
     assert_eq!(found.len(), 1, "{found:#?}");
     assert_eq!(
         (found[0].0.as_str(), found[0].1.clone()),
-        ("E818", location_of(&floating, "<coil"))
+        ("E818", location_of(&floating, "<contact"))
     );
 
     let nameless = ladder(&[
