@@ -535,3 +535,33 @@ fn a_body_starting_with_an_unread_function_is_st_not_il() {
     let trace = trace_text(&text, "x", &bit_stimulus(&[("a", "01")]), 2);
     assert_eq!(bits(&trace, "x"), "01");
 }
+
+#[test]
+fn a_long_chain_of_in_out_pins_is_refused_not_a_stack_overflow() {
+    // 5000 instances, each passing the variable of its in-out on to the
+    // next one's: the value is written inline through every pin, so the
+    // chain is refused past a depth instead of exhausting the stack.
+    let mut els = vec![in_var(1, "i", 0)];
+    for k in 0..5000u32 {
+        let from = if k == 0 {
+            "1".to_string()
+        } else {
+            format!("{}:v", 9 + k)
+        };
+        els.push(format!(
+            "<block localId=\"{}\" typeName=\"Pass\" instanceName=\"p\"><position x=\"0\" y=\"{k}\"/><inputVariables/><inOutVariables><variable formalParameter=\"v\">{}<connectionPointOut/></variable></inOutVariables><outputVariables/></block>",
+            10 + k,
+            point(&[from.as_str()])
+        ));
+    }
+    els.push(out_var(5, "q", &["5009:v"], 6000, ""));
+    let text = program(&els);
+    let found = errors(&text);
+    assert!(
+        found
+            .iter()
+            .any(|d| d.0 == "E807" && d.2.contains("deeply")),
+        "{:?}",
+        &found[..found.len().min(3)]
+    );
+}
