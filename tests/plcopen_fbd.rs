@@ -565,3 +565,47 @@ fn a_long_chain_of_in_out_pins_is_refused_not_a_stack_overflow() {
         &found[..found.len().min(3)]
     );
 }
+
+#[test]
+fn a_runtime_fault_in_a_block_names_the_pou_and_the_block_in_the_xml() {
+    let text = project(&graphic_pou(
+        "P",
+        "program",
+        &format!(
+            "{}{}",
+            vars("inputVars", &["d:INT"]),
+            vars("outputVars", &["q:INT"])
+        ),
+        "FBD",
+        &[
+            in_var(1, "10", 10),
+            in_var(2, "d", 20),
+            block(
+                3,
+                "DIV",
+                10,
+                &[("IN1", &["1"]), ("IN2", &["2"])],
+                &["OUT"],
+                "",
+            ),
+            out_var(4, "q", &["3:OUT"], 10, ""),
+        ],
+    ));
+    let request = TraceRequest {
+        cycles: 3,
+        stimulus: Some("cycle,d\n0,2\n1,0\n"),
+        trace: Some("q"),
+        changes_only: false,
+    };
+    let (csv, outcome) = run_csv(&[("t.xml", text.as_str())], &request);
+    assert_eq!(column(&csv, "q"), ["5"]);
+    let fault = outcome
+        .expect_err("division by zero in cycle 1")
+        .to_string();
+    // The fault is at the block's typeName, in P.
+    let at = location_of(&text, "DIV\"");
+    assert!(
+        fault.contains(&at) && fault.contains('P'),
+        "{fault} (expected {at})"
+    );
+}
