@@ -521,10 +521,7 @@ impl<'a, 'i> Lowering<'a, 'i> {
                 instance: Some(inst),
                 ..
             } => self.fb_call(em, i, inst),
-            Kind::Block {
-                type_name,
-                instance: None,
-            } => self.function_statement(em, i, type_name),
+            Kind::Block { instance: None, .. } => self.function_statement(em, i),
             Kind::OutVariable | Kind::InOutVariable | Kind::Coil if self.unwired(i) => {}
             Kind::OutVariable | Kind::InOutVariable => self.variable_write(em, i),
             Kind::Contact => self.contact_statement(em, i),
