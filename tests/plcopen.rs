@@ -395,19 +395,23 @@ fn only_error(text: &str) -> (String, String, String) {
 const OUT_Q: &str = "<interface><outputVars><variable name=\"q\"><type><BOOL/></type></variable></outputVars></interface>";
 
 #[test]
-fn an_inline_fbd_action_of_a_chart_is_refused_by_name_at_its_element() {
-    // FBD and LD POU bodies, named actions and transitions, and chart
-    // elements wired to conditions run (tests/plcopen_fbd.rs,
-    // tests/plcopen_ld.rs); an inline action in FBD or LD does not.
+fn an_inline_ld_action_of_a_chart_runs() {
+    // FBD and LD bodies are lowered to ST wherever they stand (E804 is
+    // retired); here an inline LD action of the initial step sets q.
     let text = project(&format!(
-        "<pou name=\"P\" pouType=\"program\">{OUT_Q}<body><SFC><step localId=\"1\" name=\"S0\" initialStep=\"true\"/><actionBlock localId=\"2\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn><action><inline>\n  <FBD>\n    <inVariable localId=\"1\"><expression>TRUE</expression></inVariable>\n  </FBD>\n</inline></action></actionBlock></SFC></body></pou>"
+        "<pou name=\"P\" pouType=\"program\">{OUT_Q}<body><SFC><step localId=\"1\" name=\"S0\" initialStep=\"true\"/><actionBlock localId=\"2\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn><action><inline>\n  <LD>\n    <leftPowerRail localId=\"1\"><connectionPointOut/></leftPowerRail><coil localId=\"2\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn><variable>q</variable></coil>\n  </LD>\n</inline></action></actionBlock></SFC></body></pou>"
     ));
-    let (code, at, message) = only_error(&text);
-    assert_eq!(code, "E804");
-    assert_eq!(at, location_of("t.xml", &text, "<FBD>", 0));
-    assert!(message.contains("`<FBD>`"), "{message}");
-    let ld = text.replace("FBD", "LD");
-    assert_eq!(only_error(&ld).0, "E804");
+    assert!(diagnostics("t.xml", &text).is_empty());
+    let files = vec![("t.xml", text)];
+    let request = TraceRequest {
+        cycles: 2,
+        trace: Some("q"),
+        ..TraceRequest::default()
+    };
+    assert_eq!(
+        csv_trace(&files, &request).lines().nth(1),
+        Some("0,T#0s,TRUE")
+    );
 }
 
 #[test]

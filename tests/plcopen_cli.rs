@@ -50,13 +50,18 @@ fn export_writes_a_project_that_runs_identically() {
 
 #[test]
 fn refusals_and_usage_errors_have_their_exit_statuses() {
-    let fbd = temp_file(
-        "fbd.xml",
-        "<?xml version=\"1.0\"?>\n<project xmlns=\"http://www.plcopen.org/xml/tc6_0201\">\n<types><dataTypes/><pous>\n<pou name=\"P\" pouType=\"program\"><body>\n<FBD/>\n</body></pou>\n</pous></types><instances><configurations/></instances></project>\n",
+    // (FBD bodies, refused here once, run since issue #29: a macro step is
+    // the refusal now.)
+    let refused = temp_file(
+        "refused.xml",
+        "<?xml version=\"1.0\"?>\n<project xmlns=\"http://www.plcopen.org/xml/tc6_0201\">\n<types><dataTypes/><pous>\n<pou name=\"P\" pouType=\"program\"><body>\n<SFC><macroStep localId=\"1\" name=\"M\"/></SFC>\n</body></pou>\n</pous></types><instances><configurations/></instances></project>\n",
     );
-    let (code, _, err) = plcrun(&["check", &fbd]);
+    let (code, _, err) = plcrun(&["check", &refused]);
     assert_eq!(code, 1, "{err}");
-    assert!(err.contains("E804") && err.contains("fbd.xml:5:1"), "{err}");
+    assert!(
+        err.contains("E807") && err.contains("refused.xml:5:6"),
+        "{err}"
+    );
     let (code, _, err) = plcrun(&["export", "programs/chariot.sfc"]);
     assert_eq!(code, 2, "--plcopen is required: {err}");
     let (code, _, err) = plcrun(&["export", "--plcopen", "tests/plcopen/chariot.xml"]);

@@ -246,14 +246,18 @@ fn malformed_networks_get_coded_errors_at_their_element() {
     assert_eq!(at, location_of(&no_pin, "<connection refLocalId=\"2\""));
     assert!(message.contains("`Q`"), "{message}");
 
+    // Drawn but not wired: an outVariable writes nothing, with a warning.
     let unconnected = program(&[
         "<outVariable localId=\"1\"><position x=\"0\" y=\"0\"/><connectionPointIn/><expression>x</expression></outVariable>".to_string(),
     ]);
-    let (code, at, _) = only_error(&unconnected);
+    let found = diagnostics(&unconnected);
+    assert_eq!(found.len(), 1, "{found:#?}");
     assert_eq!(
-        (code.as_str(), at),
-        ("E818", location_of(&unconnected, "<outVariable"))
+        (found[0].0.as_str(), found[0].1.clone()),
+        ("W802", location_of(&unconnected, "<outVariable"))
     );
+    let trace = trace_text(&unconnected, "x", &bit_stimulus(&[("a", "1")]), 1);
+    assert_eq!(bits(&trace, "x"), "0");
 
     let no_label = program(&[
         in_var(1, "a", 10),
@@ -506,5 +510,102 @@ fn a_chart_with_a_wired_condition_an_fbd_action_and_an_fbd_transition_runs_like_
             .iter()
             .any(|d| d.0 == "E807" && d.2.contains("transition")),
         "{found:#?}"
+    );
+}
+
+#[test]
+fn a_body_starting_with_an_unread_function_is_st_not_il() {
+    // ADD's result is read by nobody: the call is a statement, `ADD(...);`,
+    // which must not be read as the IL operator `ADD(`.
+    let text = program(&[
+        in_var(1, "i", 10),
+        in_var(2, "1", 20),
+        block(
+            3,
+            "ADD",
+            10,
+            &[("IN1", &["1"]), ("IN2", &["2"])],
+            &["OUT"],
+            "",
+        ),
+        in_var(4, "a", 30),
+        out_var(5, "x", &["4"], 30, ""),
+    ]);
+    assert!(errors(&text).is_empty(), "{:#?}", errors(&text));
+    let trace = trace_text(&text, "x", &bit_stimulus(&[("a", "01")]), 2);
+    assert_eq!(bits(&trace, "x"), "01");
+}
+
+#[test]
+fn a_long_chain_of_in_out_pins_is_refused_not_a_stack_overflow() {
+    // 5000 instances, each passing the variable of its in-out on to the
+    // next one's: the value is written inline through every pin, so the
+    // chain is refused past a depth instead of exhausting the stack.
+    let mut els = vec![in_var(1, "i", 0)];
+    for k in 0..5000u32 {
+        let from = if k == 0 {
+            "1".to_string()
+        } else {
+            format!("{}:v", 9 + k)
+        };
+        els.push(format!(
+            "<block localId=\"{}\" typeName=\"Pass\" instanceName=\"p\"><position x=\"0\" y=\"{k}\"/><inputVariables/><inOutVariables><variable formalParameter=\"v\">{}<connectionPointOut/></variable></inOutVariables><outputVariables/></block>",
+            10 + k,
+            point(&[from.as_str()])
+        ));
+    }
+    els.push(out_var(5, "q", &["5009:v"], 6000, ""));
+    let text = program(&els);
+    let found = errors(&text);
+    assert!(
+        found
+            .iter()
+            .any(|d| d.0 == "E807" && d.2.contains("deeply")),
+        "{:?}",
+        &found[..found.len().min(3)]
+    );
+}
+
+#[test]
+fn a_runtime_fault_in_a_block_names_the_pou_and_the_block_in_the_xml() {
+    let text = project(&graphic_pou(
+        "P",
+        "program",
+        &format!(
+            "{}{}",
+            vars("inputVars", &["d:INT"]),
+            vars("outputVars", &["q:INT"])
+        ),
+        "FBD",
+        &[
+            in_var(1, "10", 10),
+            in_var(2, "d", 20),
+            block(
+                3,
+                "DIV",
+                10,
+                &[("IN1", &["1"]), ("IN2", &["2"])],
+                &["OUT"],
+                "",
+            ),
+            out_var(4, "q", &["3:OUT"], 10, ""),
+        ],
+    ));
+    let request = TraceRequest {
+        cycles: 3,
+        stimulus: Some("cycle,d\n0,2\n1,0\n"),
+        trace: Some("q"),
+        changes_only: false,
+    };
+    let (csv, outcome) = run_csv(&[("t.xml", text.as_str())], &request);
+    assert_eq!(column(&csv, "q"), ["5"]);
+    let fault = outcome
+        .expect_err("division by zero in cycle 1")
+        .to_string();
+    // The fault is at the block's typeName, in P.
+    let at = location_of(&text, "DIV\"");
+    assert!(
+        fault.contains(&at) && fault.contains('P'),
+        "{fault} (expected {at})"
     );
 }

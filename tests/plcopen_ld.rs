@@ -95,13 +95,14 @@ fn rail() -> String {
 fn malformed_rungs_get_coded_errors() {
     let floating = ladder(&[
         rail(),
-        "<coil localId=\"2\"><position x=\"0\" y=\"0\"/><connectionPointIn/><connectionPointOut/><variable>q</variable></coil>".to_string(),
+        "<contact localId=\"2\"><position x=\"0\" y=\"0\"/><connectionPointIn/><connectionPointOut/><variable>a</variable></contact>".to_string(),
+        format!("<coil localId=\"3\"><position x=\"0\" y=\"0\"/>{}<connectionPointOut/><variable>q</variable></coil>", point(&["2"])),
     ]);
     let found = errors(&floating);
     assert_eq!(found.len(), 1, "{found:#?}");
     assert_eq!(
         (found[0].0.as_str(), found[0].1.clone()),
-        ("E818", location_of(&floating, "<coil"))
+        ("E818", location_of(&floating, "<contact"))
     );
 
     let nameless = ladder(&[
@@ -152,4 +153,41 @@ fn a_coil_read_further_right_passes_its_power_on() {
     ]);
     let trace = trace_text(&text, "q", "", 4);
     assert_eq!(bits(&trace, "q"), "0101");
+}
+
+#[test]
+fn each_instance_of_a_ladder_function_block_has_its_own_edge_memory() {
+    // FUNCTION_BLOCK Edge (LD): x -|P|- ( q ). Two instances on two inputs.
+    let edge = graphic_pou(
+        "Edge",
+        "functionBlock",
+        &format!(
+            "{}{}",
+            vars("inputVars", &["x"]),
+            vars("outputVars", &["q"])
+        ),
+        "LD",
+        &[
+            rail(),
+            format!(
+                "<contact localId=\"2\" edge=\"rising\"><position x=\"0\" y=\"0\"/>{}<connectionPointOut/><variable>x</variable></contact>",
+                point(&["1"])
+            ),
+            format!(
+                "<coil localId=\"3\"><position x=\"10\" y=\"0\"/>{}<connectionPointOut/><variable>q</variable></coil>",
+                point(&["2"])
+            ),
+        ],
+    );
+    let main = format!(
+        "<pou name=\"P\" pouType=\"program\"><interface>{}{}{}</interface><body><ST><xhtml:p>e1(x := a); e2(x := b); qa := e1.q; qb := e2.q;</xhtml:p></ST></body></pou>",
+        vars("inputVars", &["a", "b"]),
+        vars("outputVars", &["qa", "qb"]),
+        vars("localVars", &["e1:Edge", "e2:Edge"])
+    );
+    let text = project(&format!("{edge}\n{main}"));
+    let stimulus = bit_stimulus(&[("a", "01101"), ("b", "00110")]);
+    let trace = trace_text(&text, "qa,qb", &stimulus, 5);
+    assert_eq!(bits(&trace, "qa"), "01001");
+    assert_eq!(bits(&trace, "qb"), "00100");
 }

@@ -8,7 +8,9 @@ mod library;
 #[path = "rng.rs"]
 mod rng;
 
-pub use library::{TraceRequest, csv_trace, repo_text};
+// Each test file uses its own part of these.
+#[allow(unused_imports)]
+pub use library::{TraceRequest, csv_trace, repo_text, run_csv};
 use plcrun::{CheckOptions, SourceMap, check};
 use rng::Rng;
 

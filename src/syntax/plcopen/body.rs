@@ -55,23 +55,6 @@ fn refuse_actions(em: &mut Emitter, pou: Node) {
     }
 }
 
-/// Refuses a graphical body by name (where plcrun does not lower one).
-pub fn graphical(em: &mut Emitter, lang: Node) {
-    let name = lang.tag_name().name();
-    em.error(
-        codes::GRAPHICAL_BODY,
-        em.at(lang),
-        format!(
-            "`<{name}>` body refused: plcrun runs textual bodies (ST, IL) and SFC, not {} networks",
-            if name == "LD" {
-                "ladder"
-            } else {
-                "function block diagram"
-            }
-        ),
-    );
-}
-
 /// Emits a textual body (`<ST>` or `<IL>`) as its tokens, between line
 /// breaks so that an IL body is recognised line by line.
 pub fn text_body(em: &mut Emitter, lang: Node) {

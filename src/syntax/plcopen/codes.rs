@@ -7,7 +7,8 @@ pub const MALFORMED_XML: &str = "E801";
 pub const NOT_A_PROJECT: &str = "E802";
 /// An element that has no place where it stands.
 pub const UNKNOWN_ELEMENT: &str = "E803";
-/// A graphical body (FBD, LD).
+/// A graphical body (FBD, LD) refused: retired since FBD and LD are
+/// lowered to ST (issue #29); kept so that the code is never reused.
 pub const GRAPHICAL_BODY: &str = "E804";
 /// A required attribute is missing or empty.
 pub const MISSING_ATTRIBUTE: &str = "E805";
@@ -33,12 +34,16 @@ pub const MISSING_CHILD: &str = "E814";
 pub const MEANINGFUL_ADD_DATA: &str = "E815";
 /// The project's namespace is not TC6 XML 2.01 or 2.0.
 pub const UNKNOWN_NAMESPACE: &str = "W801";
+/// An `<outVariable>`, `<inOutVariable>` or `<coil>` with nothing connected
+/// to its input: ignored.
+pub const UNWIRED_WRITE: &str = "W802";
 /// A `<continuation>` without its `<connector>`, two connectors of one name,
 /// or connectors leading back to themselves.
 pub const CONNECTOR: &str = "E816";
 /// A connection from an output the source element does not have.
 pub const BAD_CONNECTION: &str = "E817";
-/// An element of a graphical body whose input must be connected and is not.
+/// A contact, a transition's condition or a block's in-out with nothing
+/// connected to it.
 pub const UNCONNECTED: &str = "E818";
 /// A `<jump>` to a label the body does not have, or a label placed twice.
 pub const LABEL: &str = "E819";

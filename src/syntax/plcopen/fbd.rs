@@ -21,7 +21,7 @@ impl Lowering<'_, '_> {
         let range = em.attr_range(el.node, "instanceName").unwrap_or(at);
         em.ident(inst, range);
         em.synth("(", at);
-        let none = self.arguments(em, i, true, false);
+        let none = self.arguments(em, i, true);
         if self.plan.uses[i].contains_key("ENO") {
             if !none {
                 em.synth(",", at);
@@ -33,7 +33,7 @@ impl Lowering<'_, '_> {
     }
 
     /// The statement of a function: its call, storing what is read of it.
-    pub fn function_statement(&self, em: &mut Emitter, i: usize, _type_name: &str) {
+    pub fn function_statement(&self, em: &mut Emitter, i: usize) {
         self.input_triggers(em, i);
         if !self.plan.stored[i] {
             return;
@@ -84,7 +84,7 @@ impl Lowering<'_, '_> {
             em.ident(type_name, range);
         }
         em.synth("(", at);
-        let mut first = self.arguments(em, i, with_en, true);
+        let mut first = self.arguments(em, i, with_en);
         if self.plan.stored[i] {
             for o in &el.outputs {
                 let up = o.name.to_ascii_uppercase();
@@ -119,7 +119,7 @@ impl Lowering<'_, '_> {
 
     /// The connected inputs as `name := value` (in-outs too); returns
     /// whether none was written. `EN` is left out unless `with_en`.
-    fn arguments(&self, em: &mut Emitter, i: usize, with_en: bool, _function: bool) -> bool {
+    fn arguments(&self, em: &mut Emitter, i: usize, with_en: bool) -> bool {
         let el = &self.net.elements[i];
         let mut first = true;
         for p in &el.inputs {

@@ -82,6 +82,14 @@ fn can_store<'a, 'i>(net: &Network<'a, 'i>, types: &Types<'a, 'i>, i: usize) -> 
 }
 
 impl<'a, 'i> Lowering<'a, 'i> {
+    /// True when nothing is connected to element `i`'s input.
+    fn unwired(&self, i: usize) -> bool {
+        self.net.elements[i]
+            .inputs
+            .iter()
+            .all(|p| p.sources.is_empty())
+    }
+
     /// True when the network has elements (an SFC body may have none).
     pub fn is_empty(&self) -> bool {
         self.net.elements.is_empty()
@@ -230,11 +238,25 @@ impl<'a, 'i> Lowering<'a, 'i> {
             );
             return false;
         }
-        let needs_input = matches!(
-            el.kind,
-            Kind::OutVariable | Kind::InOutVariable | Kind::Contact | Kind::Coil | Kind::Condition
-        );
-        if needs_input && el.inputs.iter().all(|p| p.sources.is_empty()) {
+        let unconnected = el.inputs.iter().all(|p| p.sources.is_empty());
+        if unconnected
+            && matches!(
+                el.kind,
+                Kind::OutVariable | Kind::InOutVariable | Kind::Coil
+            )
+        {
+            // Drawn but not wired: nothing to write (Beremiz skips it too).
+            em.warning(
+                codes::UNWIRED_WRITE,
+                at,
+                format!(
+                    "{} whose input is not connected writes nothing; it is ignored",
+                    network::describe(&el.kind)
+                ),
+            );
+        }
+        let needs_input = matches!(el.kind, Kind::Contact | Kind::Condition);
+        if needs_input && unconnected {
             em.error(
                 codes::UNCONNECTED,
                 at,
@@ -416,6 +438,9 @@ impl<'a, 'i> Lowering<'a, 'i> {
 
     /// The body's statements, with the jump machinery when it has jumps.
     pub fn statements(&self, em: &mut Emitter, at: Range) {
+        // An empty statement first: a body starting with a call such as
+        // `ADD(...)` must not be taken for IL (`ADD(` is an IL operator).
+        em.synth(";", at);
         let order = self.plan.order.clone();
         if !self.labels.is_empty()
             || order
@@ -496,10 +521,8 @@ impl<'a, 'i> Lowering<'a, 'i> {
                 instance: Some(inst),
                 ..
             } => self.fb_call(em, i, inst),
-            Kind::Block {
-                type_name,
-                instance: None,
-            } => self.function_statement(em, i, type_name),
+            Kind::Block { instance: None, .. } => self.function_statement(em, i),
+            Kind::OutVariable | Kind::InOutVariable | Kind::Coil if self.unwired(i) => {}
             Kind::OutVariable | Kind::InOutVariable => self.variable_write(em, i),
             Kind::Contact => self.contact_statement(em, i),
             Kind::Coil => self.coil_statement(em, i),

@@ -226,7 +226,24 @@ fn storage(
             _ => (false, false),
         };
         stored[i] = inline_kind && (must || (prefer && can_store(i)));
-        depth[i] = if inline_kind && !stored[i] { d } else { 0 };
+        depth[i] = if inline_kind && !stored[i] {
+            d
+        } else if let Kind::Block {
+            instance: Some(_), ..
+        } = el.kind
+        {
+            // An instance's in-out output is the variable given to the
+            // in-out: written inline where it is read.
+            el.inputs
+                .iter()
+                .filter(|p| p.in_out)
+                .flat_map(|p| p.sources.iter())
+                .map(|s| 1 + depth[s.from])
+                .max()
+                .unwrap_or(0)
+        } else {
+            0
+        };
     }
     (stored, depth)
 }

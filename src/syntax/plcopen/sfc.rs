@@ -3,7 +3,7 @@
 //! becomes textual SFC: `STEP`s with their action associations,
 //! `TRANSITION FROM ... TO ...` in document order, and `ACTION`s.
 
-use super::body::{SFC_STATEMENTS_DATA, add_data, data_element, graphical, text_body};
+use super::body::{SFC_STATEMENTS_DATA, add_data, data_element, text_body};
 use super::codes;
 use super::emit::{Emitter, child, elements, is_identifier, is_true};
 use super::graphic::{self, Lowering};
@@ -63,8 +63,25 @@ pub fn chart(em: &mut Emitter, pou: Node, body: Node, sfc: Node) {
             }
         }
     }
+    // Inline actions of action blocks written in FBD or LD.
+    let mut graphical_inline = Vec::new();
+    let inlines = elements(sfc)
+        .filter(|b| b.tag_name().name() == "actionBlock")
+        .flat_map(elements)
+        .filter_map(|a| child(a, "inline"));
+    for (k, inline) in inlines.enumerate() {
+        if let Some(lang) = elements(inline).find(|c| matches!(c.tag_name().name(), "FBD" | "LD")) {
+            match graphic::prepare(em, pou, lang, false, &format!("_I{}", k + 1)) {
+                Some(lw) => graphical_inline.push((inline, lw)),
+                None => return,
+            }
+        }
+    }
     wired.declarations(em, em.at(sfc));
     for (_, lw) in &graphical_actions {
+        lw.declarations(em, em.at(sfc));
+    }
+    for (_, lw) in &graphical_inline {
         lw.declarations(em, em.at(sfc));
     }
     let named_transitions = named_bodies(em, pou, "transitions", "transition");
@@ -84,19 +101,15 @@ pub fn chart(em: &mut Emitter, pou: Node, body: Node, sfc: Node) {
             .iter()
             .find(|(n, _)| n.eq_ignore_ascii_case(&name))
         {
-            Some((_, lw)) => {
-                let at = em.at(action);
-                em.synth("ACTION", at);
-                em.ident(&name, em.attr_range(action, "name").unwrap_or(at));
-                em.synth(":", at);
-                lw.statements(em, at);
-                em.synth("END_ACTION", em.end_of(action));
-            }
+            Some((_, lw)) => graphical_action(em, &name, action, lw),
             None => action_decl(em, &name, action, child(action, "body")),
         }
     }
     for (name, inline) in inline_actions {
-        action_decl(em, &name, inline, Some(inline));
+        match graphical_inline.iter().find(|(n, _)| *n == inline) {
+            Some((_, lw)) => graphical_action(em, &name, inline, lw),
+            None => action_decl(em, &name, inline, Some(inline)),
+        }
     }
     // The chart's blocks run as its plain statements, after the actions
     // of every call.
@@ -106,6 +119,17 @@ pub fn chart(em: &mut Emitter, pou: Node, body: Node, sfc: Node) {
     for add in elements(body).filter(|c| c.tag_name().name() == "addData") {
         statements(em, add);
     }
+}
+
+/// `ACTION name : <lowered network> END_ACTION` for an action (named, or
+/// inline in an action block) written in FBD or LD.
+fn graphical_action(em: &mut Emitter, name: &str, node: Node, lw: &Lowering) {
+    let at = em.at(node);
+    em.synth("ACTION", at);
+    em.ident(name, em.attr_range(node, "name").unwrap_or(at));
+    em.synth(":", at);
+    lw.statements(em, at);
+    em.synth("END_ACTION", em.end_of(node));
 }
 
 /// Reads the elements and their connections; `None` after a reported
@@ -604,7 +628,7 @@ fn transition_condition(
                 em.synth(";", em.end_of(lang));
             }
         }
-        _ => graphical(em, lang),
+        _ => em.refuse(lang, "a transition written in SFC"),
     }
 }
 
@@ -666,7 +690,7 @@ fn action_decl(em: &mut Emitter, name: &str, node: Node, body: Option<Node>) {
             em.synth("END_ACTION", em.end_of(node));
         }
         "SFC" => em.refuse(lang, "an action written in SFC"),
-        _ => graphical(em, lang),
+        _ => em.refuse(lang, "this action's FBD/LD body has no place here"),
     }
 }
 

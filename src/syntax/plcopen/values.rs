@@ -3,7 +3,7 @@
 //! instance's output (`inst.Q`), a hidden variable holding a stored
 //! value, or, for a value read once, the function call or the contact
 //! written inline. Several connections into one input are ORed (parallel
-//! branches of a rung).
+//! branches of a rung); none is FALSE.
 
 use super::emit::{Emitter, Range};
 use super::graphic::Lowering;
@@ -12,6 +12,11 @@ use super::network::{Kind, Source};
 impl Lowering<'_, '_> {
     /// The OR of `sources` (one source: its value).
     pub fn sources_value(&self, em: &mut Emitter, sources: &[Source], at: Range) {
+        if sources.is_empty() {
+            // No power (an unwired coil read further right).
+            em.synth("FALSE", at);
+            return;
+        }
         if let [one] = sources {
             self.value(em, one);
             return;
