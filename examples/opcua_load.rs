@@ -199,7 +199,7 @@ async fn drive(
     for _ in 0..n {
         let session = connect(url, pki).await?;
         if subscribe {
-            let (count, latencies, counter) = (count.clone(), latencies.clone(), counter.clone());
+            let (count, latencies, watched) = (count.clone(), latencies.clone(), counter.clone());
             let sub = session
                 .create_subscription(
                     Duration::from_millis(10),
@@ -210,7 +210,7 @@ async fn drive(
                     true,
                     DataChangeCallback::new(move |dv, item| {
                         count.fetch_add(1, Ordering::Relaxed);
-                        if item.item_to_monitor().node_id == counter
+                        if item.item_to_monitor().node_id == watched
                             && let Some(at) = dv.source_timestamp
                         {
                             let now = DateTime::now().ticks();

@@ -73,7 +73,8 @@ enum plc_status {
     PLC_E_RETAIN_FILE = -16,     /* retain file unreadable, unwritable or damaged */
     PLC_E_RETAIN_MISMATCH = -17, /* retain file of other variables; nothing restored */
     PLC_E_UNKNOWN_TASK = -18,    /* no task of that name */
-    PLC_E_NOT_PERMITTED = -19    /* the system refused a real-time setting */
+    PLC_E_NOT_PERMITTED = -19,   /* the system refused a real-time setting */
+    PLC_E_SERVER = -20           /* the OPC UA server could not start */
 };
 
 /* A static description of a status ("unknown status" for other values). */
@@ -370,6 +371,34 @@ int plc_abort(plc_stop token);
 
 /* Frees a token. */
 int plc_stop_token_free(plc_stop token);
+
+/* ---- OPC UA server ------------------------------------------------------
+ * Serves the PLC's variables over OPC UA (docs/opcua.md) while the host
+ * runs plc_run_cycle, which then exchanges with the server after each
+ * cycle: clients read the last cycle's values, their writes land before
+ * the next one, forced variables stay forced.
+ */
+enum {
+    PLC_OPCUA_ALLOW_INSECURE = 1, /* also serve SecurityPolicy None (read-only) */
+    PLC_OPCUA_TRUST_CLIENTS = 2   /* accept every client certificate */
+};
+
+/* Starts a server on address ("127.0.0.1:4840"; port 0 for a free one)
+ * serving every variable. users_file (NULL: none; anonymous clients only
+ * read) is written by `plcrun opcua-user add`; pki_dir keeps the server's
+ * certificate, made on first start. flags: PLC_OPCUA_*. A server already
+ * running on this PLC is stopped first. PLC_E_SERVER when it cannot start
+ * (plc_last_error gives the E95x code and the reason). */
+int plc_opcua_start(plc_handle plc, const char *address, const char *users_file,
+                    const char *pki_dir, uint32_t flags);
+
+/* The port it listens on into *port, and the namespace index of the
+ * variables' NodeIds (ns=<index>;s=<path>) into *ns_index (may be NULL).
+ * PLC_E_INVALID_ARGUMENT when no server runs. */
+int plc_opcua_port(plc_handle plc, uint16_t *port, uint16_t *ns_index);
+
+/* Stops the server (nothing when none runs); plc_free stops it too. */
+int plc_opcua_stop(plc_handle plc);
 
 /* ---- Reserved for the next versions ------------------------------------
  * Each feature below gets a section of its own here, with its status codes

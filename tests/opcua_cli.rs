@@ -287,3 +287,33 @@ fn bad_opcua_settings_are_usage_errors_with_a_code() {
     assert!(err.contains("E954"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_virtual_time_run_with_an_idle_server_traces_as_without() {
+    let dir = temp_dir("virtual");
+    let run = |extra: &[&str]| {
+        let out = plcrun()
+            .args(["programs/chariot.sfc", "--cycles", "130", "--stimulus"])
+            .arg("programs/chariot.csv")
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let pki = dir.join("pki");
+    let plain = run(&[]);
+    let served = run(&[
+        "--opcua",
+        "127.0.0.1:0",
+        "--opcua-pki",
+        pki.to_str().unwrap(),
+    ]);
+    assert!(plain.lines().count() > 100);
+    assert_eq!(plain, served);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -26,7 +26,13 @@ pub extern "C" fn plc_run_cycle(plc: PlcHandle) -> c_int {
                     format!("the PLC is stopped on an earlier fault: {f}"),
                 ));
             }
-            e.plc.run_cycle().map_err(|f| Failure::from(&f))
+            let result = e.plc.run_cycle().map_err(|f| Failure::from(&f));
+            // The server sees the cycle (even a faulted one) and the
+            // clients' writes land before the next.
+            if let Some((_, exchange)) = &mut e.opcua {
+                exchange.exchange(&mut e.plc);
+            }
+            result
         })
     })
 }

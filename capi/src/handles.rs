@@ -39,6 +39,8 @@ pub(crate) struct Entry {
     pub vars: Vec<VarRef>,
     /// Tells this PLC's variable handles from another's.
     pub tag: u32,
+    /// The OPC UA server `plc_opcua_start` started, with its scan side.
+    pub opcua: Option<(plcrun::opcua::OpcUaServer, plcrun::opcua::OpcUaExchange)>,
 }
 
 impl Entry {
@@ -48,6 +50,7 @@ impl Entry {
             plc,
             vars: Vec::new(),
             tag: NEXT_TAG.fetch_add(1, Ordering::Relaxed),
+            opcua: None,
         }
     }
 

@@ -21,6 +21,7 @@ mod handles;
 mod image;
 mod image_tables;
 mod lifecycle;
+mod opcua;
 mod realtime;
 mod retain;
 mod scalar;
@@ -56,6 +57,10 @@ pub use image_tables::{
 pub use lifecycle::{
     PLC_ABI_VERSION, PlcOptions, PlcSource, plc_abi_version, plc_create, plc_free,
     plc_options_init, plc_version, plc_warnings,
+};
+pub use opcua::{
+    PLC_OPCUA_ALLOW_INSECURE, PLC_OPCUA_TRUST_CLIENTS, plc_opcua_port, plc_opcua_start,
+    plc_opcua_stop,
 };
 pub use retain::{plc_retain_restore, plc_retain_save};
 pub use status::plc_status_text;

@@ -50,6 +50,9 @@ pub const PLC_E_UNKNOWN_TASK: c_int = -18;
 /// The operating system refused a real-time setting (SCHED_FIFO, memory
 /// lock) to this process; `plc_last_error` says what would permit it.
 pub const PLC_E_NOT_PERMITTED: c_int = -19;
+/// The OPC UA server could not start (address, port in use, users file,
+/// certificate directory); `plc_last_error` gives the E95x code and why.
+pub const PLC_E_SERVER: c_int = -20;
 
 /// Every status with its name and description, in the header's order.
 pub(crate) const STATUSES: &[(c_int, &str, &str)] = &[
@@ -144,6 +147,11 @@ pub(crate) const STATUSES: &[(c_int, &str, &str)] = &[
         PLC_E_NOT_PERMITTED,
         "PLC_E_NOT_PERMITTED",
         "the system refused a real-time setting\0",
+    ),
+    (
+        PLC_E_SERVER,
+        "PLC_E_SERVER",
+        "the OPC UA server could not start\0",
     ),
 ];
 

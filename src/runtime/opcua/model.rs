@@ -94,7 +94,8 @@ impl Model {
                     None => (GLOBALS.to_string(), String::new(), info.path.clone()),
                 }
             } else {
-                (programs[0].clone(), String::new(), info.path.clone())
+                let folder = programs.first().map_or(GLOBALS, String::as_str);
+                (folder.to_string(), String::new(), info.path.clone())
             };
             let leaf = model.leaves.len();
             model.leaves.push(Leaf {
