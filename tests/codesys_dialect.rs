@@ -881,3 +881,48 @@ END_FUNCTION_BLOCK";
         [("E406".to_string(), "14:6".to_string())]
     );
 }
+
+/// A PROGRAM with a METHOD (with VAR_INST) and a PROPERTY.
+const PRG_METHODS: &str = "PROGRAM P
+VAR x : INT; r : INT; calls : INT; END_VAR
+METHOD Twice : INT
+VAR_INPUT a : INT; END_VAR
+VAR_INST n : INT; END_VAR
+n := n + 1;
+calls := n;
+Twice := a * 2;
+END_METHOD
+PROPERTY Value : INT
+GET Value := x; END_GET
+SET x := Value + 1; END_SET
+END_PROPERTY
+Value := 20;
+r := Twice(Value);
+r := THIS^.Twice(r);
+END_PROGRAM
+";
+
+#[test]
+fn methods_and_properties_in_a_program() {
+    // Value := 20 stores 21 in x; Twice(21) = 42, Twice(42) = 84; the
+    // method's VAR_INST counts 2 calls a cycle.
+    let mut plc = compile(PRG_METHODS);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "x"), "21");
+    assert_eq!(lit(&plc, "r"), "84");
+    assert_eq!(lit(&plc, "calls"), "4");
+}
+
+#[test]
+fn each_instance_of_a_program_with_methods_keeps_its_own_state() {
+    // Two instances of P under one task: each counts its own calls.
+    let src = format!(
+        "{PRG_METHODS}CONFIGURATION C\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\n\
+         PROGRAM a WITH T : P;\nPROGRAM b WITH T : P;\nEND_RESOURCE\nEND_CONFIGURATION\n"
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "a.calls"), "6");
+    assert_eq!(lit(&plc, "b.calls"), "6");
+    assert_eq!(lit(&plc, "b.r"), "84");
+}
