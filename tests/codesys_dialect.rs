@@ -298,7 +298,7 @@ fn chained_assignment_type_errors_point_at_the_assignment_that_fails() {
 const MODES: &str = "TYPE E_Small : (S0 := 0, S1, S7 := 7, S8) BYTE; END_TYPE
 TYPE E_Wide : WORD (W0, W1 := 16#FF00, W2); END_TYPE
 {attribute 'qualified_only'}
-{attribute 'strict'}
+{attribute 'linkalways'}
 TYPE E_Mode :
 (
     Idle := 0,
@@ -925,4 +925,29 @@ fn each_instance_of_a_program_with_methods_keeps_its_own_state() {
     assert_eq!(lit(&plc, "a.calls"), "6");
     assert_eq!(lit(&plc, "b.calls"), "6");
     assert_eq!(lit(&plc, "b.r"), "84");
+}
+
+#[test]
+fn a_strict_enumeration_never_converts_to_or_from_an_integer() {
+    // TwinCAT's default for a new enumeration: qualified_only and strict.
+    let prelude = "{attribute 'qualified_only'}
+{attribute 'strict'}
+TYPE E_S : (A, B := 5); END_TYPE";
+    let src = program(
+        prelude,
+        "e : E_S; n : INT; d : DINT;",
+        "n := E_S.B + 1;\ne := 1;\nd := e;\ne := E_S.B;",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [
+            ("E306".to_string(), "8:6".to_string()),
+            ("E301".to_string(), "9:6".to_string()),
+            ("E301".to_string(), "10:6".to_string())
+        ]
+    );
+    // The attribute is honoured there: neither W001 nor W150.
+    let src = program(prelude, "e : E_S;", "e := E_S.B;");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, Vec::<String>::new());
 }

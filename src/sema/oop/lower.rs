@@ -202,6 +202,7 @@ impl Lowering<'_> {
                 init: None,
                 span: x.span,
                 qualified_only: false,
+                strict: false,
             };
             let sig = TypeDecl {
                 name: Ident {
@@ -215,6 +216,7 @@ impl Lowering<'_> {
                 init: None,
                 span: x.span,
                 qualified_only: false,
+                strict: false,
             };
             self.units[*u].items[*i] = Item::Types(vec![value, sig]);
             self.info.interfaces.insert(
