@@ -298,7 +298,7 @@ fn chained_assignment_type_errors_point_at_the_assignment_that_fails() {
 const MODES: &str = "TYPE E_Small : (S0 := 0, S1, S7 := 7, S8) BYTE; END_TYPE
 TYPE E_Wide : WORD (W0, W1 := 16#FF00, W2); END_TYPE
 {attribute 'qualified_only'}
-{attribute 'strict'}
+{attribute 'linkalways'}
 TYPE E_Mode :
 (
     Idle := 0,
@@ -880,4 +880,74 @@ END_FUNCTION_BLOCK";
         error_codes(&[("test.st", &src)]),
         [("E406".to_string(), "14:6".to_string())]
     );
+}
+
+/// A PROGRAM with a METHOD (with VAR_INST) and a PROPERTY.
+const PRG_METHODS: &str = "PROGRAM P
+VAR x : INT; r : INT; calls : INT; END_VAR
+METHOD Twice : INT
+VAR_INPUT a : INT; END_VAR
+VAR_INST n : INT; END_VAR
+n := n + 1;
+calls := n;
+Twice := a * 2;
+END_METHOD
+PROPERTY Value : INT
+GET Value := x; END_GET
+SET x := Value + 1; END_SET
+END_PROPERTY
+Value := 20;
+r := Twice(Value);
+r := THIS^.Twice(r);
+END_PROGRAM
+";
+
+#[test]
+fn methods_and_properties_in_a_program() {
+    // Value := 20 stores 21 in x; Twice(21) = 42, Twice(42) = 84; the
+    // method's VAR_INST counts 2 calls a cycle.
+    let mut plc = compile(PRG_METHODS);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "x"), "21");
+    assert_eq!(lit(&plc, "r"), "84");
+    assert_eq!(lit(&plc, "calls"), "4");
+}
+
+#[test]
+fn each_instance_of_a_program_with_methods_keeps_its_own_state() {
+    // Two instances of P under one task: each counts its own calls.
+    let src = format!(
+        "{PRG_METHODS}CONFIGURATION C\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\n\
+         PROGRAM a WITH T : P;\nPROGRAM b WITH T : P;\nEND_RESOURCE\nEND_CONFIGURATION\n"
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "a.calls"), "6");
+    assert_eq!(lit(&plc, "b.calls"), "6");
+    assert_eq!(lit(&plc, "b.r"), "84");
+}
+
+#[test]
+fn a_strict_enumeration_never_converts_to_or_from_an_integer() {
+    // TwinCAT's default for a new enumeration: qualified_only and strict.
+    let prelude = "{attribute 'qualified_only'}
+{attribute 'strict'}
+TYPE E_S : (A, B := 5); END_TYPE";
+    let src = program(
+        prelude,
+        "e : E_S; n : INT; d : DINT;",
+        "n := E_S.B + 1;\ne := 1;\nd := e;\ne := E_S.B;",
+    );
+    assert_eq!(
+        error_codes(&[("test.st", &src)]),
+        [
+            ("E306".to_string(), "8:6".to_string()),
+            ("E301".to_string(), "9:6".to_string()),
+            ("E301".to_string(), "10:6".to_string())
+        ]
+    );
+    // The attribute is honoured there: neither W001 nor W150.
+    let src = program(prelude, "e : E_S;", "e := E_S.B;");
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    assert_eq!(codes, Vec::<String>::new());
 }

@@ -3,7 +3,8 @@
 //! its base type's integer where an integer is expected or combined with
 //! one (W485), and an integer may be stored in an enumeration variable
 //! (W486: the value is not checked against the named ones). Both are
-//! compatibility warnings: `--strict` refuses them.
+//! compatibility warnings: `--strict` refuses them. An enumeration
+//! declared after `{attribute 'strict'}` converts as in IEC: never.
 
 use super::body::BodyBuilder;
 use super::emit::{Ty, Val};
@@ -12,10 +13,10 @@ use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 
 impl BodyBuilder<'_> {
-    /// The base type of enumeration `t`.
+    /// The base type of enumeration `t`, unless it is declared strict.
     fn enum_base(&self, t: TypeId) -> Option<ElemType> {
         match self.types.get(t).kind {
-            TypeKind::Enum { base, .. } => Some(base),
+            TypeKind::Enum { base, .. } if !self.model.strict_enums.contains(&t) => Some(base),
             _ => None,
         }
     }
@@ -49,11 +50,17 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// An untyped integer literal stored in an enumeration: W486.
-    pub(super) fn literal_to_enum(&mut self, from: Ty, to: TypeId, span: Span) {
-        if from == Ty::AnyInt && self.enum_base(to).is_some() {
-            self.int_to_enum_warning("an integer literal", to, span);
+    /// An untyped integer literal stored in an enumeration: W486, or
+    /// refused (false) for a strict one.
+    pub(super) fn literal_to_enum(&mut self, from: Ty, to: TypeId, span: Span) -> bool {
+        if from != Ty::AnyInt || !self.is_enum(to) {
+            return true;
         }
+        if self.enum_base(to).is_none() {
+            return false;
+        }
+        self.int_to_enum_warning("an integer literal", to, span);
+        true
     }
 
     /// Operands of a binary operator where one is an enumeration and the
@@ -67,7 +74,7 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// The enumeration type of `v`, if it has one.
+    /// The (not strict) enumeration type of `v`, if it has one.
     fn val_enum(&self, v: &Val) -> Option<TypeId> {
         v.ty().id().filter(|t| self.enum_base(*t).is_some())
     }
@@ -78,7 +85,7 @@ impl BodyBuilder<'_> {
             Ty::AnyInt => true,
             Ty::AnyReal => false,
             Ty::T(t) => {
-                self.enum_base(t).is_none()
+                !self.is_enum(t)
                     && self
                         .types
                         .scalar(t)

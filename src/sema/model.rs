@@ -107,6 +107,9 @@ pub(crate) struct Model {
     /// Values of the enumerations declared `qualified_only`, by
     /// case-folded name: they are written `Type.Value` only (E433).
     pub qualified_enum_values: HashMap<String, Vec<TypeId>>,
+    /// The enumerations declared after `{attribute 'strict'}`: never
+    /// converted to or from an integer implicitly (enum_int.rs).
+    pub strict_enums: std::collections::HashSet<TypeId>,
     /// Globals by case-folded name, in declaration order.
     pub globals: IndexMap<String, VarInfo>,
     /// Per POU (case-folded name) whose references are initialised once

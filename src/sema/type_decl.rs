@@ -50,6 +50,9 @@ impl Declarer<'_> {
                 if let TypeKind::Enum { values, .. } = &self.types.get(id).kind {
                     let values = values.clone();
                     self.register_enum_values(&values, base, id, decl.qualified_only);
+                    if decl.strict {
+                        self.model.strict_enums.insert(id);
+                    }
                 }
                 id
             }

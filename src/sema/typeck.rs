@@ -189,7 +189,10 @@ impl BodyBuilder<'_> {
                     self.mismatch(span, *from, to, what);
                     return Val::error();
                 }
-                self.literal_to_enum(*from, to, span);
+                if !self.literal_to_enum(*from, to, span) {
+                    self.mismatch(span, *from, to, what);
+                    return Val::error();
+                }
                 match self.const_as(c, *from, to) {
                     Ok(c) => Val::Const(c, Ty::T(to)),
                     Err(msg) => {

@@ -305,6 +305,9 @@ pub struct TypeDecl {
     /// Declared after `{attribute 'qualified_only'}` (CODESYS): its
     /// enumeration values must be written `Type.Value`.
     pub qualified_only: bool,
+    /// Declared after `{attribute 'strict'}` (CODESYS): an enumeration
+    /// that never converts to or from an integer implicitly.
+    pub strict: bool,
 }
 
 /// An initial value.

@@ -464,14 +464,18 @@ pub enum CaseItem {
 }
 
 /// The declarations of a `TYPE` block starting at byte `l`, marked
-/// qualified-only when `{attribute 'qualified_only'}` precedes it.
+/// qualified-only and strict when `{attribute 'qualified_only'}` and
+/// `{attribute 'strict'}` precede it.
 pub fn type_block(st: &State, l: usize, decls: Vec<Option<TypeDecl>>) -> Vec<TypeDecl> {
-    let qualified = crate::syntax::qualified_only::before_type(st.text(), l);
+    use crate::syntax::qualified_only::{before_type, is_qualified_only, is_strict};
+    let qualified = before_type(st.text(), l, is_qualified_only);
+    let strict = before_type(st.text(), l, is_strict);
     decls
         .into_iter()
         .flatten()
         .map(|d| TypeDecl {
             qualified_only: qualified,
+            strict,
             ..d
         })
         .collect()

@@ -165,11 +165,11 @@ pub fn lex_in(
 
 /// Reports a `{...}` pragma: named when other tools give it a meaning,
 /// W001 otherwise, E010 when unterminated; nothing for one plcrun honours
-/// (`qualified_only` before a `TYPE`, followed by `rest`). True when it
+/// (`qualified_only` or `strict` before a `TYPE`, followed by `rest`). True when it
 /// spans lines (it then ends an IL line, as a comment does).
 fn pragma(at: Span, slice: &str, rest: &str, diags: &mut Diagnostics) -> bool {
-    use super::qualified_only::{is_qualified_only, type_follows};
-    if is_qualified_only(slice) && type_follows(rest) {
+    use super::qualified_only::{is_qualified_only, is_strict, type_follows};
+    if (is_qualified_only(slice) || is_strict(slice)) && type_follows(rest) {
         // Honoured: the grammar finds it before the TYPE keyword.
     } else if slice.ends_with('}')
         && let Some((code, message)) = super::pragma_meaning::named(slice)

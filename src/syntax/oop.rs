@@ -205,7 +205,7 @@ pub fn stray_method(st: &State, m: &Method) {
             "E110",
             m.span,
             format!(
-                "a PROPERTY outside a FUNCTION_BLOCK, CLASS or INTERFACE is not supported by plcrun: declare `{}` in one",
+                "a PROPERTY outside a FUNCTION_BLOCK, PROGRAM, CLASS or INTERFACE is not supported by plcrun: declare `{}` in one",
                 m.name.name
             ),
         );
@@ -215,7 +215,7 @@ pub fn stray_method(st: &State, m: &Method) {
         "E110",
         m.span,
         format!(
-            "a METHOD outside a FUNCTION_BLOCK is not supported by plcrun: declare `{}` between the FB's variables and its body",
+            "a METHOD outside a FUNCTION_BLOCK or PROGRAM is not supported by plcrun: declare `{}` between the POU's variables and its body",
             m.name.name
         ),
     );

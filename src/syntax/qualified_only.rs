@@ -1,12 +1,23 @@
-//! `{attribute 'qualified_only'}` before a `TYPE` (CODESYS / TwinCAT): the
-//! enumeration values of the types declared there must be written with
-//! their type's name (`E_Mode.Run`). The attribute is found in the source
-//! text right before the `TYPE` keyword, with only blanks and other
-//! pragmas between; the lexer uses the same rule to know that the
-//! attribute is honoured (no W150) rather than ignored.
+//! `{attribute 'qualified_only'}` and `{attribute 'strict'}` before a
+//! `TYPE` (CODESYS / TwinCAT): the enumeration values of the types declared
+//! there must be written with their type's name (`E_Mode.Run`), and a
+//! strict enumeration never converts to or from an integer. The attribute
+//! is found in the source text right before the `TYPE` keyword, with only
+//! blanks and other pragmas between; the lexer uses the same rule to know
+//! that the attribute is honoured (no W150, no W001) rather than ignored.
 
 /// Whether pragma text `{...}` is `{attribute 'qualified_only'}`.
 pub fn is_qualified_only(pragma: &str) -> bool {
+    is_attribute(pragma, "qualified_only")
+}
+
+/// Whether pragma text `{...}` is `{attribute 'strict'}`.
+pub fn is_strict(pragma: &str) -> bool {
+    is_attribute(pragma, "strict")
+}
+
+/// Whether pragma text `{...}` is `{attribute 'name'}`.
+fn is_attribute(pragma: &str, name: &str) -> bool {
     let inner = pragma.trim_start_matches('{').trim_end_matches('}').trim();
     let Some(rest) = strip_word(inner, "attribute") else {
         return false;
@@ -14,12 +25,12 @@ pub fn is_qualified_only(pragma: &str) -> bool {
     rest.trim()
         .trim_matches(|c| c == '\'' || c == '"')
         .trim()
-        .eq_ignore_ascii_case("qualified_only")
+        .eq_ignore_ascii_case(name)
 }
 
 /// Whether the `TYPE` keyword at byte `at` of `text` is preceded by a
-/// `{attribute 'qualified_only'}`, with only blanks and pragmas between.
-pub fn before_type(text: &str, at: usize) -> bool {
+/// pragma `is` accepts, with only blanks and pragmas between.
+pub fn before_type(text: &str, at: usize, is: fn(&str) -> bool) -> bool {
     let mut end = at.min(text.len());
     loop {
         let trimmed = text[..end].trim_end();
@@ -30,7 +41,7 @@ pub fn before_type(text: &str, at: usize) -> bool {
         let Some(open) = trimmed.rfind('{') else {
             return false;
         };
-        if is_qualified_only(&trimmed[open..]) {
+        if is(&trimmed[open..]) {
             return true;
         }
         end = open;
@@ -60,7 +71,7 @@ fn strip_word<'a>(text: &'a str, word: &str) -> Option<&'a str> {
 
 #[cfg(test)]
 mod tests {
-    use super::{before_type, is_qualified_only, type_follows};
+    use super::{before_type, is_qualified_only, is_strict, type_follows};
 
     #[test]
     fn the_attribute_is_found_next_to_its_type_keyword() {
@@ -70,11 +81,17 @@ mod tests {
         assert!(!is_qualified_only("{attributes 'qualified_only'}"));
         let text = "{attribute 'qualified_only'}\n{attribute 'strict'}\nTYPE E : (A); END_TYPE";
         let at = text.find("TYPE").unwrap();
-        assert!(before_type(text, at));
+        assert!(before_type(text, at, is_qualified_only));
+        assert!(before_type(text, at, is_strict));
+        assert!(!is_strict("{attribute 'strictly'}"));
         assert!(type_follows(&text["{attribute 'qualified_only'}".len()..]));
         let text =
             "{attribute 'qualified_only'}\nVAR_GLOBAL x : INT; END_VAR\nTYPE E : (A); END_TYPE";
-        assert!(!before_type(text, text.find("TYPE").unwrap()));
+        assert!(!before_type(
+            text,
+            text.find("TYPE").unwrap(),
+            is_qualified_only
+        ));
         assert!(!type_follows(&text["{attribute 'qualified_only'}".len()..]));
         assert!(!type_follows(" TYPES"));
     }

@@ -94,8 +94,10 @@ impl Lowering<'_> {
     fn index_fbs(&mut self) {
         for (u, unit) in self.units.iter().enumerate() {
             for (i, item) in unit.items.iter().enumerate() {
+                // A PROGRAM with methods is lowered as its one instance's FB.
                 if let Item::Pou(p) = item
-                    && p.kind == PouKind::FunctionBlock
+                    && (p.kind == PouKind::FunctionBlock
+                        || (p.kind == PouKind::Program && p.oop.is_some()))
                 {
                     self.fb_at.entry(p.name.key()).or_insert((u, i));
                 }
@@ -200,6 +202,7 @@ impl Lowering<'_> {
                 init: None,
                 span: x.span,
                 qualified_only: false,
+                strict: false,
             };
             let sig = TypeDecl {
                 name: Ident {
@@ -213,6 +216,7 @@ impl Lowering<'_> {
                 init: None,
                 span: x.span,
                 qualified_only: false,
+                strict: false,
             };
             self.units[*u].items[*i] = Item::Types(vec![value, sig]);
             self.info.interfaces.insert(
