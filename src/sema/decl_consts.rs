@@ -39,6 +39,9 @@ impl DeclConsts<'_> {
     }
 
     fn const_int_inner(&self, e: &Expr, local: Option<&IndexMap<String, VarInfo>>) -> Option<i128> {
+        if let Some(global) = self.list_qualified(e, local) {
+            return self.const_int_inner(&global, local);
+        }
         match &e.kind {
             ExprKind::Literal(l) => match l.value {
                 LiteralValue::Int(v) => Some(v),
@@ -78,6 +81,27 @@ impl DeclConsts<'_> {
             }
             _ => None,
         }
+    }
+
+    /// `GVL.x` (a global named with its list or library, CODESYS and
+    /// TwinCAT; see `place.rs`, `is_list_qualifier`) as the name `x`, when
+    /// `GVL` names no variable, POU or type and `x` is a global.
+    fn list_qualified(&self, e: &Expr, local: Option<&IndexMap<String, VarInfo>>) -> Option<Expr> {
+        let ExprKind::Member(base, name) = &e.kind else {
+            return None;
+        };
+        let ExprKind::Name(q) = &base.kind else {
+            return None;
+        };
+        let qk = q.key();
+        let visible = local.is_some_and(|l| l.contains_key(&qk))
+            || self.model.globals.contains_key(&qk)
+            || self.model.pou_index.contains_key(&qk)
+            || self.model.type_ids.contains_key(&qk);
+        (!visible && self.model.globals.contains_key(&name.key())).then(|| Expr {
+            kind: ExprKind::Name(name.clone()),
+            span: e.span,
+        })
     }
 
     /// Resolves an initializer against type `ty`.
@@ -264,6 +288,9 @@ impl DeclConsts<'_> {
         elem: ElemType,
         local: Option<&IndexMap<String, VarInfo>>,
     ) -> Result<Const, (&'static str, String)> {
+        if let Some(global) = self.list_qualified(e, local) {
+            return self.const_scalar(&global, elem, local);
+        }
         match &e.kind {
             ExprKind::Paren(x) => self.const_scalar(x, elem, local),
             ExprKind::Literal(l) => {

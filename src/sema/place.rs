@@ -31,6 +31,22 @@ struct ElemShape {
 }
 
 impl BodyBuilder<'_> {
+    /// True for `Q.x` where `Q` names nothing visible (no variable, POU or
+    /// type) and `x` is a global variable: CODESYS and TwinCAT name a
+    /// global with its global variable list or library (`GVL_Io.bStart`,
+    /// `GVL_Constants.PI`). plcrun has one namespace for globals, so the
+    /// qualifier itself is not checked.
+    pub(super) fn is_list_qualifier(&self, base: &Expr, name: &Ident) -> bool {
+        let ExprKind::Name(q) = &base.kind else {
+            return false;
+        };
+        let qk = q.key();
+        self.lookup_var(&qk).is_none()
+            && !self.model.pou_index.contains_key(&qk)
+            && !self.model.type_ids.contains_key(&qk)
+            && self.model.globals.contains_key(&name.key())
+    }
+
     /// Reads the place `e` denotes as a scalar value.
     pub(super) fn place_value(&mut self, e: &Expr) -> Val {
         let Some(p) = self.place(e) else {
@@ -143,6 +159,10 @@ impl BodyBuilder<'_> {
 
     /// A member of a structure or an instance: `base.name`.
     fn place_member(&mut self, base: &Expr, name: &Ident) -> Option<PlaceRef> {
+        if self.is_list_qualifier(base, name) {
+            // `GVL.x`: a global variable named with its list (or library).
+            return self.place_name(name);
+        }
         if super::oop::calls::is_this(base) {
             return self
                 .this_allowed(base.span)

@@ -45,15 +45,11 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// True for an array, a structure or a function block instance (a
-    /// FUNCTION may return one, as CODESYS allows).
+    /// True for an array or a structure.
     fn is_aggregate(&self, ty: TypeId) -> bool {
         matches!(
             self.types.get(ty).kind,
-            TypeKind::Array { .. }
-                | TypeKind::Struct { .. }
-                | TypeKind::Pou { program: false, .. }
-                | TypeKind::NativeFb(_)
+            TypeKind::Array { .. } | TypeKind::Struct { .. }
         )
     }
 
