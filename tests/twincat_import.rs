@@ -281,3 +281,31 @@ fn twincat_io_declared_at_i_star_gets_addresses_that_check_map_lists() {
         "%IX0.0  bStart : BOOL\n%IX1.0  MAIN.bSensor : BOOL\n%IW1    MAIN.nLevel : INT\n%QX0.0  MAIN.bPump : BOOL\n"
     );
 }
+
+#[test]
+fn a_global_named_with_its_list_reads_and_sizes_like_the_global() {
+    let gvl = "<?xml version=\"1.0\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <GVL Name=\"GVL_Constants\" Id=\"{0}\">\n    <Declaration><![CDATA[{attribute 'qualified_only'}\nVAR_GLOBAL CONSTANT\n    MAX_N : INT := 3;\n    PI : LREAL := 3.5;\nEND_VAR\n]]></Declaration>\n  </GVL>\n</TcPlcObject>\n";
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    a : ARRAY[1..GVL_Constants.MAX_N] OF INT;\n    r : LREAL := GVL_Constants.PI * 2.0;\n    n : INT;\nEND_VAR\n",
+        "a[GVL_Constants.MAX_N] := 5;\nn := a[3] + GVL_Constants.MAX_N;\n",
+        "",
+    );
+    let dir = project(&[("GVL_Constants.TcGVL", gvl), ("MAIN.TcPOU", &main)]);
+    let out = plcrun_ok(&[&dir, "--cycles", "1", "--trace", "n,r"]);
+    assert_eq!(out, "cycle,time,n,r\n0,T#0s,8,7.0\n");
+    // A qualifier that is a variable keeps its meaning: `a.x` is no global.
+    let bad = pou(
+        "P",
+        "PROGRAM P\nVAR\n    a : INT;\nEND_VAR\n",
+        "a := a.MAX_N;\n",
+        "",
+    );
+    let dir = project(&[("GVL_Constants.TcGVL", gvl), ("P.TcPOU", &bad)]);
+    let (code, _, err) = plcrun(&["check", &dir]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("error[E301]") && err.contains("P.TcPOU:10:"),
+        "{err}"
+    );
+}
