@@ -227,9 +227,13 @@ async fn drive(
                 item.requested_parameters.sampling_interval = 10.0;
                 item.requested_parameters.queue_size = 10;
             }
-            session
-                .create_monitored_items(sub, TimestampsToReturn::Both, items)
-                .await?;
+            // In requests of 500: the stack decodes arrays of at most
+            // 1000 elements by default.
+            for chunk in items.chunks(500) {
+                session
+                    .create_monitored_items(sub, TimestampsToReturn::Both, chunk.to_vec())
+                    .await?;
+            }
         } else {
             let (session, reads, done) = (session.clone(), reads.clone(), done.clone());
             let batch: Vec<ReadValueId> = ids

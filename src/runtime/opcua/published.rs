@@ -84,11 +84,13 @@ mod tests {
         let p = Published::new(1);
         assert!(p.try_publish(|f| f.raw[0] = 1));
         assert_eq!(p.read(|f| f.raw[0]), 1);
-        // The server still holds frame 0 (the old one): no publish.
+        // The server still holds frame 0 (the old one), which the next
+        // publish would fill: it is put off.
         let held = p.frames[0].lock().unwrap();
-        assert!(p.try_publish(|f| f.raw[0] = 2));
-        assert!(!p.try_publish(|f| f.raw[0] = 3));
+        assert!(!p.try_publish(|f| f.raw[0] = 2));
+        assert_eq!(p.read(|f| f.raw[0]), 1);
         drop(held);
-        assert_eq!(p.read(|f| f.raw[0]), 2);
+        assert!(p.try_publish(|f| f.raw[0] = 3));
+        assert_eq!(p.read(|f| f.raw[0]), 3);
     }
 }

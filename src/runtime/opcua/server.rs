@@ -30,6 +30,12 @@ use std::sync::mpsc::sync_channel;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
+/// Monitored items one subscription may hold.
+const MAX_ITEMS_PER_SUBSCRIPTION: usize = 100_000;
+
+/// Data changes in one Publish response at most.
+const MAX_NOTIFICATIONS_PER_PUBLISH: u64 = 500;
+
 /// How long stopping the server waits for its tasks.
 const SHUTDOWN_WAIT: Duration = Duration::from_secs(2);
 
@@ -429,6 +435,12 @@ fn server_builder(config: &OpcUaConfig, host: &str, port: u16, cycle_ms: f64) ->
     let limits = &mut builder.limits_mut().subscriptions;
     limits.min_publishing_interval_ms = poll_ms;
     limits.min_sampling_interval_ms = cycle_ms.max(1.0);
+    // A client may watch every value of a large program in one
+    // subscription (the stack's default is 1000 items).
+    limits.max_monitored_items_per_sub = MAX_ITEMS_PER_SUBSCRIPTION;
+    // A Publish of more notifications than this is split: measured, a
+    // client asking for no limit with 1000 changed values got none.
+    limits.max_notifications_per_publish = MAX_NOTIFICATIONS_PER_PUBLISH;
     if config.allow_insecure {
         builder = builder.add_endpoint("none", ServerEndpoint::new_none("/", &anonymous));
     }
