@@ -17,6 +17,7 @@ use crate::source::{FileId, SourceMap};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+mod address_map;
 mod project;
 mod source_bytes;
 pub(crate) mod twincat_library;
@@ -262,14 +263,11 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
     let mut found = Diagnostics::new();
     let mut extended = sources.clone();
     twincat_library::add_library(&mut extended);
-    // TcUnit suites check against TcUnit's functions, as `plcrun test`
-    // runs them (the project references the TcUnit library).
-    let host_pous = crate::testing::declare_tcunit(&mut extended);
     let build = CompileOptions {
         program: options.program.clone(),
         cycle_time: 10_000_000,
         check_only: !(options.ir_listing || options.address_map),
-        host_pous,
+        host_pous: Vec::new(),
         grafcet: options.grafcet,
         max_data_bytes: options.max_data_bytes,
         strict: options.strict,
@@ -285,7 +283,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
     let address_map = image
         .as_ref()
         .filter(|_| options.address_map)
-        .map(|i| i.address_map());
+        .map(|i| address_map::address_map(i));
     CheckReport {
         diagnostics,
         ir_listing,

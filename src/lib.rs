@@ -85,9 +85,11 @@ pub use runtime::modbus::{
     ModbusStats, ModbusTable, modbus_place,
 };
 pub use runtime::names::VarRef;
-/// The OPC UA server (cargo feature `opcua`, on by default): docs/opcua.md.
+#[cfg(feature = "opcua")]
+pub use runtime::opcua::{OpcUaConfig, OpcUaExchange, OpcUaServer, Users};
 #[cfg(feature = "opcua")]
 pub mod opcua {
+    //! The OPC UA server (cargo feature `opcua`, on by default): docs/opcua.md.
     pub use crate::runtime::opcua::*;
 }
 pub use runtime::plc_value::Value;
@@ -117,7 +119,7 @@ pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use syntax::plcopen::export::{ExportError, export_plcopen};
 pub use testing::{
     AssertionFailure, TEST_PREFIX, TestCase, TestError, TestOptions, TestOutcome, TestReport,
-    run_tests,
+    check_tcunit_suites, run_tests,
 };
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind, HostFailure, UnstableCycle};

@@ -5,7 +5,7 @@
 use super::{EXIT_OK, EXIT_USAGE};
 use clap::{Args, Subcommand};
 use plcrun::Plc;
-use plcrun::opcua::{OpcUaConfig, OpcUaExchange, OpcUaServer, Users};
+use plcrun::{OpcUaConfig, OpcUaExchange, OpcUaServer, Users};
 use std::io::BufRead;
 use std::path::PathBuf;
 

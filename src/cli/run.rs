@@ -12,7 +12,7 @@ use std::time::Duration;
 
 /// The scan side of the OPC UA server (none without the `opcua` feature).
 #[cfg(feature = "opcua")]
-type OpcUaSide = plcrun::opcua::OpcUaExchange;
+type OpcUaSide = plcrun::OpcUaExchange;
 /// The scan side of the OPC UA server (none without the `opcua` feature).
 #[cfg(not(feature = "opcua"))]
 type OpcUaSide = std::convert::Infallible;
@@ -54,7 +54,20 @@ pub fn check(args: &CheckArgs) -> i32 {
         strict: args.reading.strict,
         addressing: args.reading.addressing,
     };
-    let report = check_sources(&sources, &options);
+    let mut report = check_sources(&sources, &options);
+    // Sources holding TcUnit suites check as `plcrun test` compiles them.
+    if !(options.ir_listing || options.address_map) {
+        let test_options = plcrun::TestOptions {
+            strict: options.strict,
+            addressing: options.addressing,
+            ..plcrun::TestOptions::default()
+        };
+        match plcrun::check_tcunit_suites(&sources, &test_options) {
+            Some(Ok(found)) => report.diagnostics = found,
+            Some(Err(e)) => return usage_error(e),
+            None => {}
+        }
+    }
     diags.extend(report.diagnostics);
     if let Some(listing) = &report.ir_listing {
         print!("{listing}");

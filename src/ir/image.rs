@@ -164,39 +164,6 @@ impl Image {
         })
     }
 
-    /// The located variables and their addresses, one per line
-    /// (`%IX1.0  MAIN.bStart : BOOL`), by area and address: the process
-    /// image as the program lays it out, incomplete addresses (`AT %I*`)
-    /// with the address each got (for `plcrun check --map`).
-    pub fn address_map(&self) -> String {
-        let mut rows: Vec<(String, &RootVar)> = self
-            .globals
-            .iter()
-            // A located variable is also reachable by its address's name.
-            .filter(|r| !r.name.starts_with('%'))
-            .filter_map(|r| r.location.clone().map(|l| (l, r)))
-            .collect();
-        let key = |l: &str| match crate::address::parse(l) {
-            Ok(a) => (
-                a.area.index(),
-                a.index * 8 + usize::from(a.bit),
-                a.width.index(),
-            ),
-            Err(_) => (usize::MAX, 0, 0),
-        };
-        rows.sort_by_key(|(l, r)| (key(l), r.name.clone()));
-        let width = rows.iter().map(|(l, _)| l.len()).max().unwrap_or(0);
-        let mut out = String::new();
-        for (l, r) in rows {
-            out.push_str(&format!(
-                "{l:<width$}  {} : {}\n",
-                r.name,
-                self.types.name(r.ty)
-            ));
-        }
-        out
-    }
-
     /// A readable listing of every code block (for `plcrun check --dump-ir`).
     pub fn dump(&self) -> String {
         use std::fmt::Write;

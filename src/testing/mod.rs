@@ -205,26 +205,19 @@ impl std::error::Error for TestError {
     }
 }
 
-/// When `sources` hold TcUnit suites, adds what `plcrun test` declares for
-/// them (TcUnit's functions and assertions, and `FB_TestSuite` if the
-/// sources lack it) as sources of their own, and returns the names of the
-/// host functions declared, so that `plcrun check` accepts what the test
-/// runner accepts; else adds nothing.
-pub(crate) fn declare_tcunit(sources: &mut SourceMap) -> Vec<String> {
+/// When `sources` hold TcUnit suites: every diagnostic of `sources`
+/// checked as `plcrun test` compiles them, with TcUnit's functions and
+/// assertions declared (so that `plcrun check` accepts what the test
+/// runner accepts); `None` when they hold no suite.
+pub fn check_tcunit_suites(
+    sources: &SourceMap,
+    options: &TestOptions,
+) -> Option<Result<Diagnostics, TestError>> {
     let plan = tcunit::plan(sources, &mut Diagnostics::new());
     if plan.suites.is_empty() {
-        return Vec::new();
+        return None;
     }
-    let mut hosts = crate::runtime::host_blocks::HostBlocks::new();
-    if tcunit::register(&mut hosts, &Default::default()).is_err() {
-        return Vec::new();
-    }
-    *sources = tcunit::sources_for(sources, &plan, false);
-    sources.add(
-        crate::runtime::host_blocks::HOST_SOURCE,
-        hosts.declarations(),
-    );
-    hosts.names()
+    Some(check::check(sources, options, &plan))
 }
 
 /// Finds the tests of `sources` and runs each on its own fresh runtime.
