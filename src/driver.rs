@@ -260,7 +260,7 @@ impl CheckReport {
 /// Parses and checks sources without running them. Without
 /// `ir_listing`, a set of declarations with no PROGRAM is fine.
 pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
-    let mut found = Diagnostics::new();
+    let mut diagnostics = Diagnostics::new();
     let mut extended = sources.clone();
     twincat_library::add_library(&mut extended);
     let build = CompileOptions {
@@ -274,8 +274,10 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         unoptimized: false,
         addressing: options.addressing.unwrap_or_else(|| addressing_of(sources)),
     };
-    let image = compile(&extended, &build, &mut found);
-    let diagnostics = in_given_sources(sources, found);
+    // The library's own diagnostics are dropped or moved into the given
+    // files by the compile (twincat_library.rs), so every one renders
+    // with `sources`.
+    let image = compile(&extended, &build, &mut diagnostics);
     let ir_listing = image
         .as_ref()
         .filter(|_| options.ir_listing)
@@ -289,26 +291,6 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
         ir_listing,
         address_map,
     }
-}
-
-/// The diagnostics of a compile of `sources` with sources of plcrun's own
-/// added after them (a library, declarations): those pointing into an
-/// added source are not the user's: a warning is dropped, an error (which
-/// the added sources' tests rule out) is moved to the start of the first
-/// file, so that every diagnostic can be shown with `sources`.
-fn in_given_sources(sources: &SourceMap, found: Diagnostics) -> Diagnostics {
-    let given = sources.files().len();
-    let mut out = Diagnostics::new();
-    for mut d in found.iter().cloned() {
-        if (d.span.file.0 as usize) < given {
-            out.push(d);
-        } else if d.severity == crate::diagnostics::Severity::Error {
-            d.message = format!("in plcrun's own declarations: {}", d.message);
-            d.span = crate::source::Span::new(FileId(0), 0, 0);
-            out.push(d);
-        }
-    }
-    out
 }
 
 #[cfg(test)]

@@ -99,11 +99,7 @@ fn walk(dir: &Path, depth: usize, found: &mut dyn FnMut(&Path)) -> io::Result<()
 fn project_items(project: &Path) -> io::Result<Vec<PathBuf>> {
     let text = std::fs::read_to_string(project)?;
     let text = text.trim_start_matches('\u{FEFF}');
-    let options = roxmltree::ParsingOptions {
-        allow_dtd: false,
-        ..roxmltree::ParsingOptions::default()
-    };
-    let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| {
+    let doc = crate::syntax::plcopen::read_xml(text).map_err(|(_, e)| {
         io::Error::new(
             io::ErrorKind::InvalidData,
             format!("not a TwinCAT project: malformed XML: {e}"),

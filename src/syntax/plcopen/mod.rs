@@ -51,20 +51,27 @@ pub fn is_plcopen(text: &str) -> bool {
     rest.starts_with("<?xml") || rest.starts_with("<project")
 }
 
+/// Parses `xml` as the importers read XML files (no DTD: nothing can make
+/// the reader fetch or expand anything); on failure, the byte offset where
+/// the reader stopped and its message.
+pub(crate) fn read_xml(xml: &str) -> Result<roxmltree::Document<'_>, (usize, String)> {
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: false,
+        ..roxmltree::ParsingOptions::default()
+    };
+    roxmltree::Document::parse_with_options(xml, options)
+        .map_err(|e| (offset_of(xml, e.pos()), e.to_string()))
+}
+
 /// Parses a PLCopen project into the AST. Never panics, on any input;
 /// every problem is a diagnostic pointing into `text`.
 pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUnit {
     let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
     let xml = &text[base..];
     let mut em = Emitter::new(file, xml, base);
-    let options = roxmltree::ParsingOptions {
-        allow_dtd: false,
-        ..roxmltree::ParsingOptions::default()
-    };
-    let doc = match roxmltree::Document::parse_with_options(xml, options) {
+    let doc = match read_xml(xml) {
         Ok(doc) => doc,
-        Err(e) => {
-            let at = offset_of(xml, e.pos());
+        Err((at, e)) => {
             em.error(
                 codes::MALFORMED_XML,
                 (at, at),
@@ -116,7 +123,7 @@ pub fn parse_bytes(bytes: &[u8]) -> (CompilationUnit, Diagnostics) {
 }
 
 /// The byte offset of a 1-based row/column (in characters).
-pub(crate) fn offset_of(xml: &str, pos: roxmltree::TextPos) -> usize {
+fn offset_of(xml: &str, pos: roxmltree::TextPos) -> usize {
     let mut offset = 0;
     for (i, line) in xml.split_inclusive('\n').enumerate() {
         if i + 1 == pos.row as usize {

@@ -63,14 +63,9 @@ pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUn
     let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
     let xml = &text[base..];
     let mut em = Emitter::new(file, xml, base);
-    let options = roxmltree::ParsingOptions {
-        allow_dtd: false,
-        ..roxmltree::ParsingOptions::default()
-    };
-    let doc = match roxmltree::Document::parse_with_options(xml, options) {
+    let doc = match crate::syntax::plcopen::read_xml(xml) {
         Ok(doc) => doc,
-        Err(e) => {
-            let at = crate::syntax::plcopen::offset_of(xml, e.pos());
+        Err((at, e)) => {
             em.error(
                 codes::MALFORMED_XML,
                 (at, at),
