@@ -15,9 +15,9 @@
 
 use std::fmt::Write as _;
 
-#[path = "../tests/support/rng.rs"]
-mod rng;
-use rng::Rng;
+// The includer provides `rng` (tests/support/rng.rs), so that a test
+// binary that already has it compiles it once.
+use super::rng::Rng;
 
 /// Variables of each kind declared by [`large_program`].
 pub const LARGE_DINTS: usize = 1000;

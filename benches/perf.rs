@@ -22,6 +22,9 @@ mod native;
 
 #[path = "generate.rs"]
 mod generate;
+// benches/generate.rs takes its random numbers from here.
+#[path = "../tests/support/rng.rs"]
+mod rng;
 
 use native::{BenchA, BenchB, BenchC, BenchD, BenchEmpty, Reference, cycle_time_ns};
 use std::time::Instant;

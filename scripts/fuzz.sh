@@ -84,7 +84,7 @@ seeds() {
     # fuzz/src/seeds.rs): programs/, tests/, examples/ and the programs
     # inside the Rust tests.
     PLCRUN_FUZZ_CORPUS="$root/fuzz/corpus" PLCRUN_FUZZ_SECONDS=0 \
-        cargo test --test fuzz_smoke every_target_takes_every_seed -- --quiet
+        cargo test --test suite fuzz_smoke::every_target_takes_every_seed -- --quiet
 }
 
 run() {

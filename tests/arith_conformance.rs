@@ -8,8 +8,7 @@
 //! `run_cycle`, the output read back. A fault is compared by its code and
 //! the PLC is reset cold for the next case.
 
-#[path = "support/arith_model.rs"]
-mod arith_model;
+use crate::support::arith_model;
 
 use arith_model::*;
 use plcrun::{ElemType as E, Options, Plc, Value, VarRef};

@@ -4,8 +4,7 @@
 //! `plcrun test` — in the report (library) and on standard error (CLI).
 //! Outside `plcrun test` the name is an ordinary POU name.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, temp_file};
 use plcrun::{CheckOptions, SourceMap, TestOptions, TestOutcome, check, run_tests};

@@ -3,8 +3,7 @@
 //! when `a..b` lies inside the array and the body cannot change `i`
 //! (docs/performance.md). Everything else keeps its check and faults.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, lit, program, run};
 use plcrun::Plc;

@@ -1,8 +1,7 @@
 //! The `plcrun` command line (docs/cli.md): options, stimulus files, trace
 //! formats, names, exit statuses.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, plcrun_ok, temp_file};
 

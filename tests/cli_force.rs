@@ -2,8 +2,7 @@
 //! whole run and is marked in the trace; bad names and values are usage
 //! errors naming them.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, plcrun_ok, temp_file};
 

@@ -2,8 +2,7 @@
 //! (issue #11): draw, export, compare, test, and the new versions of
 //! `run --reload` / `--online-change-at`, besides run and check.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, temp_file};
 

@@ -2,8 +2,7 @@
 //! (OSCAT among them) rely on: each is accepted with its compatibility
 //! warning (W350-W359) and computes as worked out by hand beside each case.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, program, run};
 

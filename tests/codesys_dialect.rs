@@ -2,8 +2,7 @@
 //! (issue #25, the dialect): each case runs through the library and
 //! checks values worked out by hand beside it.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, program, run};
 

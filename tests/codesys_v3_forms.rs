@@ -3,8 +3,7 @@
 //! derived by hand below, cycle by cycle), the `BIT` type, and formal
 //! arguments left empty.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, run};
 

@@ -2,8 +2,7 @@
 //! the counterexample file replayed by a plain run, identical output on
 //! any number of jobs, usage errors.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, temp_file};
 

@@ -4,10 +4,8 @@
 //! and the generic-function typing found by fuzzing. Programs written
 //! here; expected values worked out by hand beside each.
 
-#[path = "support/access_diags.rs"]
-mod access_diags;
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::access_diags;
+use crate::support::plc;
 
 use access_diags::{codes_at, error_codes};
 use plc::{compile, first_fault, lit, program, run};

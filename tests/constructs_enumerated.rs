@@ -9,8 +9,7 @@
 //! expression kinds of the AST (`src/syntax/ast.rs`). A construct added
 //! without a row in [`ROWS`] makes `every_construct_has_a_row` fail.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plcrun::{Options, Plc, Severity};
 

@@ -3,8 +3,7 @@
 //! both (the OSCAT BASIC export is ordered this way: FT_AVG holds a DELAY,
 //! whose body calls INC1, declared further down).
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, lit, run};
 

@@ -6,9 +6,6 @@
 //!
 //! Every code here has a section in docs/diagnostics.md (checked below).
 
-#[path = "support/plc.rs"]
-mod plc;
-
 use plcrun::{Diagnostics, FileId, Severity};
 use plcrun::{Options, Plc};
 use rstest::rstest;
@@ -346,8 +343,7 @@ fn errors_in_several_files_name_their_file() {
 
 // ---------------------------------------------------------------- plcrun check
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 use cli::{plcrun, temp_file};
 
 #[test]
@@ -394,8 +390,7 @@ fn check_of_a_missing_file_is_a_usage_error() {
 
 // ---------------------------------------------------------------- robustness
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::support::rng;
 use rng::Rng;
 
 /// Parses and compiles `text`; must not panic, whatever it is.

@@ -4,8 +4,7 @@
 //! to prove they are valid SVG, and drawn twice to prove they are
 //! deterministic.
 
-#[path = "support/library.rs"]
-mod library;
+use crate::support::library;
 
 use library::repo_text;
 use plcrun::{

@@ -2,8 +2,7 @@
 //! the real binary; and the pictures of docs/sfc.md, which this test draws
 //! again and compares byte for byte (`PLCRUN_BLESS=1` rewrites them).
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, plcrun_ok};
 use roxmltree::Document;
@@ -222,6 +221,6 @@ fn the_pictures_of_the_docs_are_up_to_date() {
     }
     assert!(
         stale.is_empty(),
-        "docs/images/{stale:?} differ from what plcrun draws now; run PLCRUN_BLESS=1 cargo test --test draw_cli"
+        "docs/images/{stale:?} differ from what plcrun draws now; run PLCRUN_BLESS=1 cargo test --test suite draw_cli::"
     );
 }

@@ -7,8 +7,7 @@
 //! output itself: TRUE at each call, written by the body, read by the
 //! caller's `ENO =>`.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, run};
 

@@ -4,10 +4,8 @@
 //! `ENO => x`; a call skipped by `EN := FALSE` gives FALSE. POUs that do not
 //! mention ENO are unchanged.
 
-#[path = "support/access_diags.rs"]
-mod access_diags;
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::access_diags;
+use crate::support::plc;
 
 use access_diags::error_codes;
 use plc::{compile, lit, run, run_once};

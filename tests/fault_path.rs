@@ -2,8 +2,7 @@
 //! the program instance down) and the chain of calls that led there,
 //! innermost first, in the library's fault type and in its message.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, compile_files, first_fault, line_col, program};
 use plcrun::{FaultFrame, FaultKind, Options, Plc, RuntimeFault};

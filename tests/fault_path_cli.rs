@@ -2,8 +2,7 @@
 //! its callers, one `note:` line each (docs/diagnostics.md, "Where a runtime
 //! fault happened").
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, temp_file};
 

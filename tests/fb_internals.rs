@@ -2,10 +2,8 @@
 //! (`x := inst.count;`), as CoDeSys 2.3 and matiec accept: W320, read-only
 //! (a write is E420); VAR_TEMP (E421) stays hidden, a VAR_IN_OUT reads its bound variable (W325).
 
-#[path = "support/access_diags.rs"]
-mod access_diags;
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::access_diags;
+use crate::support::plc;
 
 use access_diags::{codes_at, diags};
 use plc::{compile, lit, run};

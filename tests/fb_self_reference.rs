@@ -4,8 +4,7 @@
 //! the block's size stays finite; only an instance of the block inside
 //! itself is E204 (docs/diagnostics.md).
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, run};
 

@@ -3,8 +3,7 @@
 //! instance's declaration; a FUNCTION still cannot hold or return one
 //! (E209). Each expected value is derived by hand from the program.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, run};
 

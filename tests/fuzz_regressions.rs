@@ -4,18 +4,7 @@
 //! return without panicking. scripts/fuzz.sh leaves crashes in
 //! fuzz/artifacts/TARGET/; copy each here with a name saying what it was.
 
-#[allow(dead_code)]
-#[path = "../fuzz/src/differential.rs"]
-mod differential;
-#[allow(dead_code)]
-#[path = "../fuzz/src/il_gen.rs"]
-mod il_gen;
-#[allow(dead_code)]
-#[path = "../fuzz/src/st_gen.rs"]
-mod st_gen;
-#[allow(dead_code)]
-#[path = "../fuzz/src/targets.rs"]
-mod targets;
+use crate::fuzz::targets;
 
 use std::path::Path;
 

@@ -7,21 +7,11 @@
 //! stays short; scripts/fuzz.sh runs the real fuzzer
 //! (docs/robustness.md, "Fuzzing").
 
-#[allow(dead_code)]
-#[path = "../fuzz/src/differential.rs"]
-mod differential;
-#[allow(dead_code)]
-#[path = "../fuzz/src/il_gen.rs"]
-mod il_gen;
-#[allow(dead_code)]
-#[path = "../fuzz/src/seeds.rs"]
-mod seeds;
-#[allow(dead_code)]
-#[path = "../fuzz/src/st_gen.rs"]
-mod st_gen;
-#[allow(dead_code)]
-#[path = "../fuzz/src/targets.rs"]
-mod targets;
+use crate::fuzz::differential;
+use crate::fuzz::il_gen;
+use crate::fuzz::seeds;
+use crate::fuzz::st_gen;
+use crate::fuzz::targets;
 
 use std::path::Path;
 use std::time::{Duration, Instant};

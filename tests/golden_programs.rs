@@ -6,10 +6,8 @@
 //! end byte for byte. Each run is also repeated to check that the output is
 //! deterministic.
 
-#[path = "support/cli.rs"]
-mod cli;
-#[path = "support/library.rs"]
-mod library;
+use crate::support::cli;
+use crate::support::library;
 
 use cli::{plcrun_ok, temp_file};
 use library::{TraceRequest, csv_trace, repo_files, repo_text};

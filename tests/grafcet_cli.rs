@@ -2,8 +2,7 @@
 //! `check` accepts forcing orders with it and refuses them without, and an
 //! unstable chart ends the run with R020 and exit status 3.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, plcrun_ok, temp_file};
 

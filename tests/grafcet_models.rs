@@ -4,14 +4,9 @@
 //! output and checks the models against step-change cycles derived by hand.
 //!
 //! Regenerate the files (after checking a change by hand!) with
-//! `PLCRUN_BLESS_MODELS=1 cargo test --test grafcet_models`.
+//! `PLCRUN_BLESS_MODELS=1 cargo test --test suite grafcet_models::`.
 
-mod support {
-    #[path = "grafcet_models.rs"]
-    pub mod grafcet_models;
-    #[path = "trace_text.rs"]
-    pub mod trace_text;
-}
+use crate::support;
 
 use support::grafcet_models::{Algorithm, CYCLES, TRACED, expected_csv, run};
 use support::trace_text::{bool_changes, check_or_bless, read_repo_file};

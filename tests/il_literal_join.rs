@@ -2,10 +2,8 @@
 //! jump to the label brings (`LD 0` falling into `SET_OUT: ST OUT`, where
 //! another path jumps to SET_OUT with an INT).
 
-#[path = "support/access_diags.rs"]
-mod access_diags;
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::access_diags;
+use crate::support::plc;
 
 use access_diags::codes_at;
 use plc::{compile, lit, run};

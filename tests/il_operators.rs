@@ -4,8 +4,7 @@
 //! negates the operand, `C`/`CN` act when the CR is TRUE/FALSE, `OP(`
 //! saves the CR and `)` applies the saved operation.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, lit, program, run};
 use rstest::rstest;

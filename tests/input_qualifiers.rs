@@ -2,10 +2,8 @@
 //! the FB only on the call where the value passed rises (R_EDGE) or falls
 //! (F_EDGE); the memory is per instance and starts FALSE.
 
-#[path = "support/access_diags.rs"]
-mod access_diags;
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::access_diags;
+use crate::support::plc;
 
 use access_diags::codes_at;
 use plc::{compile, lit, run};

@@ -1,10 +1,8 @@
 //! Writing a VAR_INPUT inside the body of its own FUNCTION or
 //! FUNCTION_BLOCK, as CODESYS and matiec accept (W321): the change is local.
 
-#[path = "support/access_diags.rs"]
-mod access_diags;
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::access_diags;
+use crate::support::plc;
 
 use access_diags::codes_at;
 use plc::{compile, lit, run};

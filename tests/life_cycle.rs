@@ -4,8 +4,7 @@
 //! stop handle interrupts a runaway cycle from another thread; every fault
 //! kind has a stable code, documented.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, lit, program, run};
 use plcrun::{FaultKind, Options, Plc, PlcState};

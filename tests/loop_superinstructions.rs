@@ -5,10 +5,8 @@
 //! loop with one extra statement that prevents the fusion (padded so that
 //! every column matches), and compares everything observable.
 
-#[path = "support/plc.rs"]
-mod plc;
-#[path = "support/rng.rs"]
-mod rng;
+use crate::support::plc;
+use crate::support::rng;
 
 use plc::{compile, lit, program};
 use plcrun::{Options, Plc};

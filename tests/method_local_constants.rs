@@ -3,8 +3,7 @@
 //! bounds and string lengths given by them, as in a PROGRAM — even when
 //! the FB declares a constant of the same name.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, lit, run};
 

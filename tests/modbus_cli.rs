@@ -2,8 +2,7 @@
 //! by a Modbus client; virtual-time runs unchanged without client writes;
 //! bad flags are usage errors.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use rmodbus::client::ModbusRequest;
 use std::io::{Read, Write};

@@ -8,8 +8,7 @@
 //! significant word first), input register n is `%IWn`. Also: the same
 //! program checked without the flag gets W204, with it none.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use std::io::{Read, Write};
 use std::net::TcpStream;

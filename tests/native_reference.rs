@@ -6,13 +6,15 @@
 //! Every README cycle count up to 100 000 runs by default (about 2 s in a
 //! debug build); the three longest (2 000 000 for a, 100 000 for b, 150 000
 //! for d) are ignored, run them with
-//! `cargo test --release --test native_reference -- --include-ignored`.
+//! `cargo test --release --test suite native_reference:: -- --include-ignored`.
 
 #[path = "../benches/native/mod.rs"]
 mod native;
 
 #[path = "../benches/generate.rs"]
 mod generate;
+// benches/generate.rs takes its random numbers from here.
+use crate::support::rng;
 
 use native::{
     BenchA, BenchB, BenchC, BenchD, BenchEmpty, Ctu, RTrig, Reference, Ton, cycle_time_ns, run,

@@ -2,8 +2,7 @@
 //! program before cycle N; a version that cannot apply is refused and the
 //! old program runs on.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, temp_file};
 

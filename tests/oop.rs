@@ -3,8 +3,7 @@
 //! dispatch, ABSTRACT/FINAL, access specifiers; every feature run and
 //! checked after cycles, every misuse a coded diagnostic at its place.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, program, run};
 use rstest::rstest;

@@ -3,8 +3,7 @@
 //! access"): each feature run and its values checked after cycles, each
 //! misuse a coded diagnostic (E921-E930) at its place.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, program, run};
 use rstest::rstest;

@@ -6,8 +6,7 @@
 //! diagnostic per inherited error — each run with checked values, each
 //! misuse a coded diagnostic at its place.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, program, run};
 use rstest::rstest;

@@ -2,8 +2,7 @@
 //! browsed, read, written and subscribed to by the `async-opcua` client;
 //! `plcrun opcua-user add`; bad flags are usage errors with a code.
 
-#[path = "support/opcua_client.rs"]
-mod opcua_client;
+use crate::support::opcua_client;
 
 use async_opcua::types::{
     BrowseDescription, BrowseDirection, BrowsePath, BrowseResultMask, NodeId, ObjectId,

@@ -4,8 +4,7 @@
 //! subscription receiving changes, writes refused without login, to a
 //! CONSTANT and to an unknown NodeId, a forced variable staying forced.
 
-#[path = "support/opcua_client.rs"]
-mod opcua_client;
+use crate::support::opcua_client;
 
 use async_opcua::types::{AttributeId, NodeId, StatusCode, Variant};
 use opcua_client::{Security, connect};

@@ -4,10 +4,8 @@
 //! variable's width is E423 at compile time. Every expected value is worked
 //! out by hand: part `n` of width `w` is bits `n*w .. n*w+w-1`.
 
-#[path = "support/access_diags.rs"]
-mod access_diags;
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::access_diags;
+use crate::support::plc;
 
 use access_diags::{codes_at, diags};
 use plc::{lit, program, run_once};

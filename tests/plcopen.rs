@@ -12,8 +12,7 @@
 //! - Diagnostics point into the XML file (line and column), and what
 //!   plcrun cannot represent is refused by name.
 
-#[path = "support/library.rs"]
-mod library;
+use crate::support::library;
 
 use library::{TraceRequest, csv_trace, repo_text};
 use plcrun::syntax::plcopen::{is_plcopen, parse_bytes};

@@ -1,8 +1,7 @@
 //! The PLCopen commands of the binary: `plcrun FILE.xml`, `plcrun check
 //! FILE.xml` and `plcrun export --plcopen`, end to end.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, plcrun_ok, temp_file};
 

@@ -4,8 +4,7 @@
 //! hand-derived traces below; malformed networks get coded diagnostics at
 //! their place in the XML.
 
-#[path = "support/graphic.rs"]
-mod graphic;
+use crate::support::graphic;
 
 use graphic::*;
 

@@ -4,8 +4,7 @@
 //! seal-in rung follow traces derived by hand; malformed rungs get coded
 //! diagnostics.
 
-#[path = "support/graphic.rs"]
-mod graphic;
+use crate::support::graphic;
 
 use graphic::*;
 

@@ -5,8 +5,7 @@
 //! little-endian layout (written beside each), and the faults of a view
 //! that leaves its object.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, first_fault, line_col, lit, program, run};
 use plcrun::FaultKind;

@@ -3,8 +3,7 @@
 //! the W30x compatibility warnings, and the faults of a pointer that
 //! leaves the object it was taken from.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, first_fault, line_col, lit, program, run};
 use plcrun::FaultKind;

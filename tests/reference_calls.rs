@@ -6,8 +6,7 @@
 //! elementary variable), as `r REF= x` would; a PROPERTY read and
 //! written through a reference.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, run};
 

@@ -3,8 +3,7 @@
 //! struct members, array elements and FB inputs -- values checked -- and
 //! every fault and diagnostic with its code and place.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, first_fault, line_col, lit, program, run};
 use plcrun::FaultKind;

@@ -5,8 +5,7 @@
 //! the calls and the body add none of their own (no "takes 0 arguments",
 //! no "undeclared variable", no "expected <error>").
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::error_codes;
 

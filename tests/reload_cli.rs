@@ -2,8 +2,7 @@
 //! running PLC by online change, its variables carried over; a version that
 //! does not compile is refused with its diagnostics and the program runs on.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, temp_file};
 use std::path::Path;

@@ -4,10 +4,8 @@
 //! every time the file left behind must parse, fit the program and hold a
 //! counter that never went backwards and was never torn.
 
-#[path = "support/cli.rs"]
-mod cli;
-#[path = "support/rng.rs"]
-mod rng;
+use crate::support::cli;
+use crate::support::rng;
 
 use cli::{plcrun, plcrun_ok, temp_file};
 use plcrun::{Options, Plc, RestoreMode};

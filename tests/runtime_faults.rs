@@ -3,8 +3,7 @@
 //! through the embedding API, through a `Session` writing a trace, and
 //! through the `plcrun` binary (exit 3).
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{first_fault, line_col, program};
 use plcrun::FaultKind;
@@ -158,10 +157,8 @@ fn watchdog_stops_an_endless_loop() {
 
 // ---------------------------------------------------------------- session and CLI
 
-#[path = "support/cli.rs"]
-mod cli;
-#[path = "support/library.rs"]
-mod library;
+use crate::support::cli;
+use crate::support::library;
 
 use cli::{plcrun, temp_file};
 use library::{TraceRequest, run_csv};

@@ -4,10 +4,7 @@
 //! repaired listings are checked against their models in
 //! `s7_seed_examples.rs`.)
 
-mod support {
-    #[path = "library.rs"]
-    pub mod library;
-}
+use crate::support;
 
 use support::library::{TraceRequest, csv_trace, repo_text};
 

@@ -11,16 +11,9 @@
 //!   the model's, cycle by cycle, and its CSV text the committed file.
 //!
 //! Regenerate the expected files (after checking a change by hand!) with
-//! `PLCRUN_BLESS_MODELS=1 cargo test --test s7_seed_examples`.
+//! `PLCRUN_BLESS_MODELS=1 cargo test --test suite s7_seed_examples::`.
 
-mod support {
-    #[path = "library.rs"]
-    pub mod library;
-    #[path = "s7_table_models.rs"]
-    pub mod s7_table_models;
-    #[path = "trace_text.rs"]
-    pub mod trace_text;
-}
+use crate::support;
 
 use std::collections::BTreeSet;
 use support::library::{TraceRequest, check_rendered, repo_files, run_csv};

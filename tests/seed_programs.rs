@@ -5,16 +5,9 @@
 //! hand.
 //!
 //! Regenerate the files (after checking a change by hand!) with
-//! `PLCRUN_BLESS_MODELS=1 cargo test --test seed_programs`.
+//! `PLCRUN_BLESS_MODELS=1 cargo test --test suite seed_programs::`.
 
-mod support {
-    #[path = "grafcet_models.rs"]
-    pub mod grafcet_models;
-    #[path = "seed_models.rs"]
-    pub mod seed_models;
-    #[path = "trace_text.rs"]
-    pub mod trace_text;
-}
+use crate::support;
 
 use support::seed_models::{cmd_monitor_expected_csv, cmd_monitor_run, comparator_expected_csv};
 use support::trace_text::{bool_changes, check_or_bless, read_repo_file};

@@ -17,10 +17,8 @@
 //! - cycle 60150: FcB FALSE (left B). cycle 60300: FcA TRUE: AR → INIT, KMAR
 //!   FALSE, VOM TRUE. cycle 60310: Dcy again: INIT → AV, KMAV TRUE.
 
-#[path = "support/cli.rs"]
-mod cli;
-#[path = "support/sfc_run.rs"]
-mod sfc_run;
+use crate::support::cli;
+use crate::support::sfc_run;
 
 use cli::plcrun_ok;
 use sfc_run::column;

@@ -2,14 +2,12 @@
 //! same stimulus through the library's `Session`; the cycles where they
 //! differ are reported (and checked against what the methods predict).
 
-#[path = "support/sfc_run.rs"]
-mod sfc_run;
+use crate::support::sfc_run;
 
 use sfc_run::library::{TraceRequest, csv_trace, repo_files, repo_text};
 use sfc_run::rows;
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::support::rng;
 use rng::Rng;
 
 /// A stimulus with one row per cycle: each input flips with probability

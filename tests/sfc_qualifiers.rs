@@ -6,8 +6,7 @@
 //! The action is the BOOL variable `out` (`out := Q` every call the action is
 //! live), so the trace shows Q directly.
 
-#[path = "support/sfc_run.rs"]
-mod sfc_run;
+use crate::support::sfc_run;
 
 use rstest::rstest;
 use sfc_run::{bits, stimulus, trace_src};

@@ -3,8 +3,7 @@
 //! string has one character per cycle (cycle 0 first) and is derived by hand
 //! in the comment above it; cycles are 10 ms.
 
-#[path = "support/sfc_run.rs"]
-mod sfc_run;
+use crate::support::sfc_run;
 
 use rstest::rstest;
 use sfc_run::{bits, column, diagnostics, stimulus, trace_src};

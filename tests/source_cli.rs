@@ -1,8 +1,7 @@
 //! The command-line options of source files: `--encoding` and `--strict`
 //! (docs/cli.md, "Source encodings and strict mode").
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, temp_file};
 

@@ -3,8 +3,7 @@
 //! IEC 61131-3 and docs/semantics.md (derivations in comments where they are
 //! not obvious).
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, lit, program, run, run_once};
 use rstest::rstest;

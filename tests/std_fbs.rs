@@ -8,8 +8,7 @@
 //!    the same pseudo-random inputs (fixed-seed xorshift) for 2000 cycles;
 //!    their outputs must be identical after every cycle.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, compile_files, lit, program};
 use plcrun::Plc;
@@ -428,8 +427,7 @@ fn a_timer_that_is_not_called_does_not_change() {
 
 // ---------------------------------------------------------------- side by side
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::support::rng;
 use rng::Rng;
 
 /// How to drive one kind of block.

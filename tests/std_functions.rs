@@ -5,8 +5,7 @@
 //! `v` printed as an IEC literal. Inputs that come from variables are
 //! declared in `VARS` so that the functions also run (not only fold).
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, lit, program, run_once};
 use rstest::rstest;

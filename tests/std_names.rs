@@ -4,8 +4,7 @@
 //! W343), and a variable named like a standard function (a call is not a
 //! variable). Expected values are worked out by hand beside each case.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, program, run_once};
 use rstest::rstest;

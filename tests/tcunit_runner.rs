@@ -6,8 +6,7 @@
 //! `tests/plc/tcunit_suites.st` each show one rule; the expected verdicts
 //! are derived by hand from TcUnit's documented behaviour.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use plcrun::{SourceMap, TestCase, TestOptions, TestOutcome, run_tests};
 

@@ -3,8 +3,7 @@
 //! others (it used to stop at the parse errors), and the runner's own
 //! E483 comes with them.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, temp_file};
 use plcrun::{SourceMap, TestError, TestOptions, run_tests};

@@ -1,8 +1,7 @@
 //! `plcrun test` on the command line (docs/testing.md, docs/cli.md): text
 //! report, `--junit`, `--filter`, options and exit statuses.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, temp_file};
 

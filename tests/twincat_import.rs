@@ -4,8 +4,7 @@
 //! sets the cycle, and every diagnostic points into the XML file at the
 //! line and column of the ST text.
 
-#[path = "support/cli.rs"]
-mod cli;
+use crate::support::cli;
 
 use cli::{plcrun, plcrun_ok, temp_file};
 use std::path::Path;

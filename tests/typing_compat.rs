@@ -6,8 +6,7 @@
 //! CODESYS date/time counts, W346). Expected values are worked out by hand
 //! beside each case.
 
-#[path = "support/plc.rs"]
-mod plc;
+use crate::support::plc;
 
 use plc::{compile, error_codes, lit, program, run, run_once};
 use rstest::rstest;

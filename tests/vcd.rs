@@ -2,10 +2,8 @@
 //! compared, value by value and cycle by cycle, with the CSV trace of the
 //! same run.
 
-#[path = "support/cli.rs"]
-mod cli;
-#[path = "support/library.rs"]
-mod library;
+use crate::support::cli;
+use crate::support::library;
 
 use cli::{plcrun, plcrun_ok, temp_file};
 use library::{repo_files, repo_text};

@@ -2,7 +2,7 @@
 //! optimizations (fused superinstructions, bounds proofs) and without,
 //! fed the same inputs; every cycle's variables and faults must agree.
 
-use crate::st_gen::GenProgram;
+use super::st_gen::GenProgram;
 use plcrun::{Options, Plc, RuntimeFault, VarRef};
 use std::time::Duration;
 

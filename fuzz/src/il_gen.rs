@@ -1,6 +1,6 @@
 //! A structure-aware generator of Instruction List programs that
 //! type-check by construction, driven by `arbitrary` bytes (the IL
-//! counterpart of [`crate::st_gen`]; every byte string gives a program).
+//! counterpart of [`super::st_gen`]; every byte string gives a program).
 //!
 //! The program is a FUNCTION, a FUNCTION_BLOCK and a PROGRAM, all three
 //! written in IL. The generator tracks the type of the current result
@@ -26,7 +26,7 @@
 //!
 //! Shared by the `gen_il_diff` fuzz target and `tests/fuzz_smoke.rs`.
 
-use crate::st_gen::{Array, GenProgram, PROGRAM_ARRAYS, PROGRAM_WRITES, Ty};
+use super::st_gen::{Array, GenProgram, PROGRAM_ARRAYS, PROGRAM_WRITES, Ty};
 use arbitrary::{Result, Unstructured};
 
 /// Most statements in one list, most nesting of blocks and loops, of

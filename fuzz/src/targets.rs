@@ -101,19 +101,19 @@ pub fn run(data: &[u8]) {
 }
 
 /// A generated, type-correct ST program run optimized and unoptimized,
-/// compared cycle by cycle (see [`crate::differential::check`]).
+/// compared cycle by cycle (see [`super::differential::check`]).
 pub fn gen_diff(data: &[u8]) {
     let mut u = arbitrary::Unstructured::new(data);
-    if let Ok(program) = crate::st_gen::generate(&mut u) {
-        crate::differential::check(&program);
+    if let Ok(program) = super::st_gen::generate(&mut u) {
+        super::differential::check(&program);
     }
 }
 
 /// A generated, type-correct IL program run optimized and unoptimized,
-/// compared cycle by cycle (see [`crate::il_gen`]).
+/// compared cycle by cycle (see [`super::il_gen`]).
 pub fn gen_il_diff(data: &[u8]) {
     let mut u = arbitrary::Unstructured::new(data);
-    if let Ok(program) = crate::il_gen::generate(&mut u) {
-        crate::differential::check(&program);
+    if let Ok(program) = super::il_gen::generate(&mut u) {
+        super::differential::check(&program);
     }
 }

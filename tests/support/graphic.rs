@@ -3,10 +3,8 @@
 //! ST twin must print the same trace), one-POU projects, diagnostics.
 #![allow(dead_code)]
 
-#[path = "library.rs"]
-mod library;
-#[path = "rng.rs"]
-mod rng;
+use super::library;
+use super::rng;
 
 // Each test file uses its own part of these.
 #[allow(unused_imports)]

@@ -3,8 +3,7 @@
 
 #![allow(dead_code)]
 
-#[path = "library.rs"]
-pub mod library;
+pub use super::library;
 
 use library::{TraceRequest, check_rendered, csv_trace};
 

@@ -115,8 +115,7 @@ fn moderate_nesting_is_fine() {
     ));
 }
 
-#[path = "../support/rng.rs"]
-mod rng;
+use crate::support::rng;
 use rng::Rng;
 
 const PIECES: [&str; 40] = [
