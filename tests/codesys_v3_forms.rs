@@ -90,3 +90,38 @@ END_PROGRAM";
         ("TRUE".into(), "TRUE".into())
     );
 }
+
+/// `trig : R_TRIG();` calls FB_init with no arguments: the instance is
+/// declared as without the parentheses. A CASE arm's `Reset();` stays a
+/// call. Cycle 1: the rising edge; 2: none; the CASE called Reset once.
+#[test]
+fn an_instance_declared_with_empty_parentheses_is_a_plain_instance() {
+    let src = "
+FUNCTION_BLOCK FB_Counter
+VAR_OUTPUT n : INT := 5; END_VAR
+METHOD Reset
+n := 0;
+END_METHOD
+n := n + 1;
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR
+  trig : R_TRIG();
+  counter : FB_Counter();
+  ton1 : TON() := (PT := T#1s);
+  edges : INT; step : INT := 1;
+END_VAR
+trig(CLK := TRUE);
+IF trig.Q THEN edges := edges + 1; END_IF
+CASE step OF
+  1: counter.Reset(); step := 2;
+  2: counter();
+END_CASE
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "edges"), "1");
+    assert_eq!(lit(&plc, "counter.n"), "2");
+    assert_eq!(lit(&plc, "ton1.PT"), "T#1s");
+}

@@ -1,7 +1,8 @@
 //! Function block instances as values, as CODESYS and TwinCAT allow them
-//! (issue #25, point 2): copy assignment and the initial values of an
-//! instance's declaration; a FUNCTION still cannot hold or return one
-//! (E209). Each expected value is derived by hand from the program.
+//! (issue #25, point 2): copy assignment, a FUNCTION returning an
+//! instance, instances local to a FUNCTION (fresh at every call) and
+//! passed by value. Each expected value is derived by hand from the
+//! program.
 
 use crate::support::plc;
 
@@ -21,6 +22,82 @@ Len := SQRT(x * x + y * y);
 END_METHOD
 END_FUNCTION_BLOCK
 ";
+
+#[test]
+fn a_function_returns_a_copy_of_its_local_instance() {
+    let src = format!(
+        "{VEC}
+FUNCTION F_Add : FB_Vec
+VAR_INPUT a : FB_Vec; b : FB_Vec; END_VAR
+VAR tmp : FB_Vec; END_VAR
+tmp.Set(a.x + b.x, a.y + b.y);
+F_Add := tmp;
+END_FUNCTION
+PROGRAM P
+VAR u : FB_Vec; w : FB_Vec; s : FB_Vec; len : LREAL; END_VAR
+u.Set(3, 0);
+w.Set(0, 4);
+s := F_Add(u, w);
+len := s.Len();
+END_PROGRAM
+"
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "s.x"), "3.0");
+    assert_eq!(lit(&plc, "s.y"), "4.0");
+    assert_eq!(lit(&plc, "len"), "5.0");
+    // tmp is fresh at each call: Set ran once on it, from its initial 100.
+    assert_eq!(lit(&plc, "s.calls"), "101");
+    // u was set twice (two cycles); passing it by value did not change it.
+    assert_eq!(lit(&plc, "u.calls"), "102");
+}
+
+/// An instance holding strings, returned by a FUNCTION and passed to one
+/// (lcls-twincat-math's F_EulerToQuat returns such a block): the strings
+/// travel by text, each copy with its own.
+#[test]
+fn an_instance_holding_strings_is_returned_and_passed_with_its_text() {
+    let src = "
+FUNCTION_BLOCK FB_Named
+VAR_OUTPUT name : STRING := 'none'; tag : STRING[4]; n : INT; END_VAR
+VAR history : ARRAY[0..1] OF STRING[8]; END_VAR
+METHOD Rename
+VAR_INPUT newName : STRING; END_VAR
+history[1] := history[0]; history[0] := name;
+name := newName; tag := newName; n := n + 1;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION F_Make : FB_Named
+VAR_INPUT base : STRING; END_VAR
+VAR tmp : FB_Named; END_VAR
+tmp.Rename(CONCAT(base, '-a'));
+tmp.Rename(CONCAT(base, '-b'));
+F_Make := tmp;
+END_FUNCTION
+FUNCTION F_Len : INT
+VAR_INPUT v : FB_Named; END_VAR
+v.Rename('changed');
+F_Len := LEN(v.name) + v.n;
+END_FUNCTION
+PROGRAM P
+VAR one : FB_Named; two : FB_Named; l : INT; END_VAR
+one := F_Make('first');
+two := F_Make('second');
+l := F_Len(two);
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "one.name"), "'first-b'");
+    assert_eq!(lit(&plc, "one.tag"), "'firs'");
+    assert_eq!(lit(&plc, "one.history[0]"), "'first-a'");
+    assert_eq!(lit(&plc, "one.history[1]"), "'none'");
+    assert_eq!(lit(&plc, "two.name"), "'second-b'");
+    assert_eq!(lit(&plc, "two.n"), "2");
+    // F_Len renamed its own copy: 'changed' (7) and n 3; `two` unchanged.
+    assert_eq!(lit(&plc, "l"), "10");
+}
 
 #[test]
 fn copy_assignment_copies_the_whole_state_and_the_copies_then_go_their_own_way() {
@@ -53,6 +130,64 @@ END_PROGRAM
     // A standard block copies too: t2 holds t1's elapsed time.
     assert_eq!(lit(&plc, "t2.ET"), lit(&plc, "t1.ET"));
     assert_eq!(lit(&plc, "t1.ET"), "T#20ms");
+}
+
+#[test]
+fn an_instance_passed_by_value_is_a_copy_the_function_may_change() {
+    let src = format!(
+        "{VEC}
+FUNCTION F_Bump : INT
+VAR_INPUT v : FB_Vec; END_VAR
+v.Set(0, 0);
+F_Bump := v.calls;
+END_FUNCTION
+PROGRAM P
+VAR a : FB_Vec; seen : INT; END_VAR
+seen := F_Bump(a);
+END_PROGRAM
+"
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 3);
+    assert_eq!(
+        (lit(&plc, "seen"), lit(&plc, "a.calls")),
+        ("101".into(), "100".into())
+    );
+}
+
+#[test]
+fn wrong_types_programs_and_layout_cycles_are_refused_with_their_codes() {
+    let other = format!(
+        "{VEC}
+FUNCTION_BLOCK FB_Other VAR_OUTPUT x : LREAL; END_VAR END_FUNCTION_BLOCK
+PROGRAM P VAR a : FB_Vec; o : FB_Other; END_VAR a := o; END_PROGRAM
+"
+    );
+    assert_eq!(error_codes(&[("t.st", &other)])[0].0, "E301");
+    let program = "PROGRAM Q END_PROGRAM
+FUNCTION F : Q END_FUNCTION
+PROGRAM P VAR x : INT; END_VAR x := 1; END_PROGRAM
+";
+    assert_eq!(
+        error_codes(&[("t.st", program)]),
+        [("E209".to_string(), "2:10".to_string())]
+    );
+    // FB_A's code calls F_Next, which holds an FB_A: the sizes depend on
+    // each other.
+    let cycle = "PROGRAM P VAR a : FB_A; END_VAR a(n := 4); END_PROGRAM
+FUNCTION_BLOCK FB_A
+VAR_INPUT n : INT; END_VAR
+VAR_OUTPUT v : INT; END_VAR
+v := F_Next(n);
+END_FUNCTION_BLOCK
+FUNCTION F_Next : INT
+VAR_INPUT n : INT; END_VAR
+VAR tmp : FB_A; END_VAR
+F_Next := n + 1 + tmp.v;
+END_FUNCTION
+";
+    let codes = error_codes(&[("t.st", cycle)]);
+    assert!(codes.iter().any(|(c, _)| c == "E204"), "{codes:?}");
 }
 
 #[test]
@@ -106,23 +241,4 @@ END_PROGRAM
         error_codes(&[("t.st", bad)]),
         [("E201".to_string(), "1:27".to_string())]
     );
-}
-
-#[test]
-fn a_function_holding_or_returning_an_instance_is_still_e209() {
-    let src = format!(
-        "{VEC}
-FUNCTION F_Add : FB_Vec
-VAR_INPUT a : INT; END_VAR
-VAR tmp : FB_Vec; END_VAR
-tmp.Set(1, 2);
-END_FUNCTION
-PROGRAM P VAR x : INT; END_VAR x := 1; END_PROGRAM
-"
-    );
-    let codes: Vec<String> = error_codes(&[("t.st", &src)])
-        .into_iter()
-        .map(|(c, _)| c)
-        .collect();
-    assert_eq!(codes, ["E209", "E209"]);
 }

@@ -156,9 +156,10 @@ impl BodyBuilder<'_> {
                 None
             }
             (_, Some(e)) => match self.types.get(prm.ty).kind {
-                TypeKind::Array { .. } | TypeKind::Struct { .. } => {
-                    self.aggregate_argument(prm, e, &what)
-                }
+                TypeKind::Array { .. }
+                | TypeKind::Struct { .. }
+                | TypeKind::Pou { program: false, .. }
+                | TypeKind::NativeFb(_) => self.aggregate_argument(prm, e, &what),
                 _ => self.scalar_argument(prm, e, &what),
             },
             (_, None) => self.default_argument(p, prm, call_span),
@@ -347,9 +348,12 @@ impl BodyBuilder<'_> {
         }
         if matches!(
             self.types.get(ret).kind,
-            TypeKind::Array { .. } | TypeKind::Struct { .. }
+            TypeKind::Array { .. }
+                | TypeKind::Struct { .. }
+                | TypeKind::Pou { program: false, .. }
+                | TypeKind::NativeFb(_)
         ) {
-            // An array or structure: the address of the result in the
+            // An array, structure or FB instance: the address of the result in the
             // callee's frame (struct_returns.rs copies it out).
             return self.aggregate_result_address(p, ret);
         }

@@ -125,17 +125,27 @@ impl Declarer<'_> {
         }
         // A refused result type still gives the function its result
         // variable (of the error type), so calls and the body check on.
-        // A refused result type still gives the function its result
-        // variable (of the error type), so calls and the body check on.
-        let ret = if self.types.get(ret).kind.is_value_type() {
-            ret
-        } else {
-            self.diags.error(
-                "E209",
-                pou.name.span,
-                "a function cannot return a function block instance",
-            );
-            TypeTable::error()
+        // A function may return a function block instance, as CODESYS
+        // allows (a copy of it); not a program, and not a block whose own
+        // code calls this function (its size is not known yet).
+        let ret = match self.types.get(ret).kind {
+            TypeKind::Pou { program: true, .. } => {
+                self.diags.error(
+                    "E209",
+                    pou.name.span,
+                    "a function cannot return a program instance",
+                );
+                TypeTable::error()
+            }
+            TypeKind::Pou { .. } if self.being_emitted(ret) => {
+                self.diags.error(
+                    "E204",
+                    pou.name.span,
+                    "this function returns a function block whose own code calls it, so its size is not known yet (a cycle plcrun cannot lay out)",
+                );
+                TypeTable::error()
+            }
+            _ => ret,
         };
         self.model.pous[p].ret = ret;
         frame.vars.insert(
@@ -190,7 +200,7 @@ impl Declarer<'_> {
     /// One declaration (`a, b : T := init`): its type checked against the
     /// POU kind, then each name laid out.
     fn layout_decl(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &mut Frame) {
-        let ty = self.decl_type(pou.kind == PouKind::Function, block, decl, frame);
+        let ty = self.decl_type(block, decl, frame);
         if ty == TypeTable::void() {
             return;
         }
@@ -261,13 +271,7 @@ impl Declarer<'_> {
     /// refused parameter keeps its place in the interface: calls bind
     /// their arguments as written and the body finds the name, with no
     /// error of their own.
-    fn decl_type(
-        &mut self,
-        function: bool,
-        block: &VarBlock,
-        decl: &VarDecl,
-        frame: &Frame,
-    ) -> TypeId {
+    fn decl_type(&mut self, block: &VarBlock, decl: &VarDecl, frame: &Frame) -> TypeId {
         // A VAR_IN_OUT is a pointer slot: it may name the block being laid out.
         let own = match (&decl.ty, block.kind) {
             (crate::syntax::ast::TypeSpec::Named(id), VarKind::InOut) => {
@@ -280,11 +284,6 @@ impl Declarer<'_> {
         let is_fb = matches!(tkind, TypeKind::NativeFb(_) | TypeKind::Pou { .. });
         let (code, why) = if matches!(tkind, TypeKind::Pou { program: true, .. }) {
             ("E209", "a PROGRAM cannot be instantiated inside a POU")
-        } else if is_fb && function && block.kind != VarKind::InOut {
-            (
-                "E209",
-                "a FUNCTION cannot hold function block instances (they have state)",
-            )
         } else if is_fb && block.kind != VarKind::InOut && self.being_emitted(ty) {
             (
                 "E204",

@@ -45,11 +45,15 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// True for an array or a structure.
+    /// True for an array, a structure or a function block instance (a
+    /// FUNCTION may return one, as CODESYS allows).
     fn is_aggregate(&self, ty: TypeId) -> bool {
         matches!(
             self.types.get(ty).kind,
-            TypeKind::Array { .. } | TypeKind::Struct { .. }
+            TypeKind::Array { .. }
+                | TypeKind::Struct { .. }
+                | TypeKind::Pou { program: false, .. }
+                | TypeKind::NativeFb(_)
         )
     }
 
@@ -105,6 +109,13 @@ impl BodyBuilder<'_> {
                 let stride = self.types.size(*elem);
                 for i in 0..count as u32 {
                     self.string_slots(*elem, base + i * stride, out);
+                }
+            }
+            // An instance returned by a FUNCTION: the strings among its
+            // variables (a copy of it copies them by text, fb_copy.rs).
+            TypeKind::Pou { .. } => {
+                for (offset, member) in self.fb_string_members(ty) {
+                    self.string_slots(member, base + offset, out);
                 }
             }
             _ => {}

@@ -11,6 +11,7 @@ pub mod config_path;
 pub mod construct;
 pub mod depth;
 mod empty_args;
+mod empty_init_call;
 mod header_semicolon;
 pub mod il_lines;
 pub mod lexer;
@@ -83,6 +84,7 @@ pub(crate) fn textual_passes(
     let tokens = codesys_spellings::iec_keywords(file, tokens, diags);
     let tokens = set_reset_assign::set_reset_assignments(tokens);
     let tokens = empty_args::drop_empty_arguments(tokens);
+    let tokens = empty_init_call::drop_empty_init_calls(tokens);
     header_semicolon::drop_header_semicolons(tokens)
 }
 
