@@ -125,3 +125,63 @@ END_PROGRAM
     assert_eq!(lit(&plc, "counter.n"), "2");
     assert_eq!(lit(&plc, "ton1.PT"), "T#1s");
 }
+
+/// An initial value may read the variables declared before it in the same
+/// VAR block (CODESYS initialises them in order): statics once, a
+/// method's temporaries at every call. By hand: `list` starts [3, 6] and
+/// its first element grows by one a cycle; M's `buf` is [18, 4] at every
+/// call, so M returns 19 + 4 + LEN('x') = 24 each time.
+#[test]
+fn an_initial_value_reads_the_variables_declared_before_it_in_its_block() {
+    let src = "
+FUNCTION_BLOCK FB_T
+VAR_OUTPUT sum : INT; total : INT; END_VAR
+VAR
+  base : INT := 3;
+  twice : INT := base * 2;
+  list : ARRAY[1..2] OF INT := [base, twice];
+END_VAR
+METHOD M : INT
+VAR
+  a : BYTE := 2#0001_0010;
+  b : BYTE := 4;
+  buf : ARRAY[1..2] OF BYTE := [a, b];
+  s : STRING := 'x';
+  t : STRING := s;
+END_VAR
+buf[1] := buf[1] + 1;
+M := BYTE_TO_INT(buf[1]) + BYTE_TO_INT(buf[2]) + LEN(t);
+END_METHOD
+sum := M();
+list[1] := list[1] + 1;
+total := list[1] + list[2];
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR fb : FB_T; END_VAR
+fb();
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "fb.sum"), "24");
+    assert_eq!(lit(&plc, "fb.total"), "12");
+}
+
+/// What an initial value may not read: an input (its value comes from the
+/// caller), a variable of another block (a method's temporary cannot see
+/// its block's state as it is at the call), a variable declared after it.
+#[test]
+fn an_initial_value_from_an_input_another_block_or_a_later_variable_is_refused() {
+    for (decls, why) in [
+        ("VAR_INPUT i : INT; END_VAR VAR x : INT := i; END_VAR", "input"),
+        ("VAR s : INT := 1; END_VAR VAR_TEMP x : INT := s; END_VAR", "another block"),
+        ("VAR x : INT := later; later : INT := 1; END_VAR", "declared later"),
+    ] {
+        let src = format!("FUNCTION_BLOCK FB {decls} x := x + 1; END_FUNCTION_BLOCK");
+        let codes: Vec<String> = error_codes(&[("t.st", &src)])
+            .into_iter()
+            .map(|(code, _)| code)
+            .collect();
+        assert_eq!(codes, ["E205"], "{why}: {src}");
+    }
+}

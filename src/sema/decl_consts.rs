@@ -21,6 +21,12 @@ pub(super) struct DeclConsts<'a> {
     pub(super) model: &'a Model,
     /// Where errors go.
     pub(super) diags: &'a mut Diagnostics,
+    /// The variables declared earlier in the VAR block whose initial value
+    /// is being folded: their initial values may be read (CODESYS
+    /// initialises a block's variables in order, so `b : INT := a;` sees
+    /// `a`'s initial value, at start for static variables and at each call
+    /// for temporaries). Empty elsewhere, and for inputs (set by callers).
+    pub(super) same_block: Vec<String>,
 }
 
 impl DeclConsts<'_> {
@@ -102,6 +108,27 @@ impl DeclConsts<'_> {
             kind: ExprKind::Name(name.clone()),
             span: e.span,
         })
+    }
+
+    /// The value of `v` (named `key`) an initial value may read: a
+    /// CONSTANT's, or the initial value of a scalar variable declared
+    /// earlier in the same block (its type's default without one).
+    fn readable_value(&self, key: &str, v: &VarInfo) -> Option<Const> {
+        if v.constant {
+            return v.value.clone();
+        }
+        if !self.same_block.iter().any(|k| k == key) || v.location.is_some() {
+            return None;
+        }
+        let init = v
+            .init
+            .clone()
+            .unwrap_or_else(|| self.model.default_init(self.types, v.ty));
+        match init {
+            ConstInit::Scalar(b) => Some(Const::Bits(b)),
+            ConstInit::Str(s) => Some(Const::Str(s)),
+            _ => None,
+        }
     }
 
     /// Resolves an initializer against type `ty`.
@@ -337,8 +364,9 @@ impl DeclConsts<'_> {
                 let var = local
                     .and_then(|l| l.get(&key))
                     .or_else(|| self.model.globals.get(&key));
+                let value = var.and_then(|v| self.readable_value(&key, v));
                 match var {
-                    Some(v) if v.constant => match (&v.value, self.types.scalar(v.ty)) {
+                    Some(v) if value.is_some() => match (&value, self.types.scalar(v.ty)) {
                         (Some(Const::Bits(b)), Some(t)) if t == elem => Ok(Const::Bits(*b)),
                         (Some(Const::Bits(b)), Some(t)) if t.widens_to(elem) => {
                             if t.is_int() && elem.is_real() {
@@ -358,7 +386,7 @@ impl DeclConsts<'_> {
                     _ => Err((
                         "E205",
                         format!(
-                            "`{}` is not a constant; initial values must be constant",
+                            "`{}` is not a constant; an initial value may read constants and the variables declared before it in the same VAR block",
                             id.name
                         ),
                     )),

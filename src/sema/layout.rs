@@ -192,14 +192,31 @@ impl Declarer<'_> {
         for cycle in cycles {
             self.report_constant_cycle(block, &cycle);
         }
+        // The names an initial value may read (decl_consts.rs, same_block);
+        // not in parameter blocks, whose values come from the caller.
+        let reads_earlier = !matches!(
+            block.kind,
+            VarKind::Input | VarKind::InOut | VarKind::External
+        );
+        let mut earlier = Vec::new();
         for decl in order.iter().map(|&d| &block.decls[d]) {
-            self.layout_decl(pou, block, decl, frame);
+            self.layout_decl(pou, block, decl, frame, &earlier);
+            if reads_earlier {
+                earlier.extend(decl.names.iter().map(|n| n.key()));
+            }
         }
     }
 
     /// One declaration (`a, b : T := init`): its type checked against the
     /// POU kind, then each name laid out.
-    fn layout_decl(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &mut Frame) {
+    fn layout_decl(
+        &mut self,
+        pou: &Pou,
+        block: &VarBlock,
+        decl: &VarDecl,
+        frame: &mut Frame,
+        earlier: &[String],
+    ) {
         let ty = self.decl_type(block, decl, frame);
         if ty == TypeTable::void() {
             return;
@@ -210,7 +227,11 @@ impl Declarer<'_> {
             .init
             .as_ref()
             .filter(|_| !by_body)
-            .and_then(|i| self.consts().resolve_init(i, ty, Some(&frame.vars)));
+            .and_then(|i| {
+                let mut consts = self.consts();
+                consts.same_block = earlier.to_vec();
+                consts.resolve_init(i, ty, Some(&frame.vars))
+            });
         let edge = self.edge_input_ok(pou, block, decl, ty);
         for name in &decl.names {
             let key = name.key();
