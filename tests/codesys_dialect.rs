@@ -927,7 +927,7 @@ fn each_instance_of_a_program_with_methods_keeps_its_own_state() {
 }
 
 #[test]
-fn a_strict_enumeration_never_converts_to_or_from_an_integer() {
+fn a_strict_enumeration_takes_no_integer_and_no_arithmetic_but_reads_as_one() {
     // TwinCAT's default for a new enumeration: qualified_only and strict.
     let prelude = "{attribute 'qualified_only'}
 {attribute 'strict'}
@@ -935,14 +935,17 @@ TYPE E_S : (A, B := 5); END_TYPE";
     let src = program(
         prelude,
         "e : E_S; n : INT; d : DINT;",
-        "n := E_S.B + 1;\ne := 1;\nd := e;\ne := E_S.B;",
+        "n := E_S.B + 1;\ne := 1;\nd := e;\ne := E_S.B;\ne := n;",
     );
+    // TwinCAT's manual lists what strict refuses: arithmetic, a constant
+    // and a value of another type stored in the enumeration. Reading it as
+    // an integer (`d := e`) stays allowed, with W485.
     assert_eq!(
         error_codes(&[("test.st", &src)]),
         [
             ("E306".to_string(), "8:6".to_string()),
             ("E301".to_string(), "9:6".to_string()),
-            ("E301".to_string(), "10:6".to_string())
+            ("E301".to_string(), "12:6".to_string())
         ]
     );
     // The attribute is honoured there: neither W001 nor W150.

@@ -173,9 +173,18 @@ END_PROGRAM
 #[test]
 fn an_initial_value_from_an_input_another_block_or_a_later_variable_is_refused() {
     for (decls, why) in [
-        ("VAR_INPUT i : INT; END_VAR VAR x : INT := i; END_VAR", "input"),
-        ("VAR s : INT := 1; END_VAR VAR_TEMP x : INT := s; END_VAR", "another block"),
-        ("VAR x : INT := later; later : INT := 1; END_VAR", "declared later"),
+        (
+            "VAR_INPUT i : INT; END_VAR VAR x : INT := i; END_VAR",
+            "input",
+        ),
+        (
+            "VAR s : INT := 1; END_VAR VAR_TEMP x : INT := s; END_VAR",
+            "another block",
+        ),
+        (
+            "VAR x : INT := later; later : INT := 1; END_VAR",
+            "declared later",
+        ),
     ] {
         let src = format!("FUNCTION_BLOCK FB {decls} x := x + 1; END_FUNCTION_BLOCK");
         let codes: Vec<String> = error_codes(&[("t.st", &src)])

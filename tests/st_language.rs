@@ -705,6 +705,40 @@ END_FUNCTION_BLOCK";
     assert_eq!((lit(&p, "s"), lit(&p, "d")), ("13".into(), "7".into()));
 }
 
+/// `=>` of a structure or array output copies all of it (a regression:
+/// only its first slot was copied), from a block and from a function.
+#[test]
+fn structure_and_array_outputs_are_copied_whole() {
+    let prelude = "TYPE E_K : (a := 0, b := 1) USINT; END_TYPE
+TYPE ST_R : STRUCT k : E_K; code : UINT; text : STRING[8]; END_STRUCT END_TYPE
+FUNCTION_BLOCK FB_Parse
+VAR_OUTPUT r : ST_R; bytes : ARRAY[1..3] OF BYTE; END_VAR
+r.k := E_K.b; r.code := 30000; r.text := 'ok';
+bytes[1] := 16#11; bytes[3] := 16#33;
+END_FUNCTION_BLOCK
+FUNCTION F_Parse : BOOL
+VAR_OUTPUT r : ST_R; END_VAR
+r.code := 7; r.text := 'fn';
+F_Parse := TRUE;
+END_FUNCTION";
+    let p = run_once(&program(
+        prelude,
+        "fb : FB_Parse; got : ST_R; raw : ARRAY[1..3] OF BYTE; fromFn : ST_R; ok : BOOL;",
+        "fb(r => got, bytes => raw); ok := F_Parse(r => fromFn);",
+    ));
+    assert_eq!(
+        [
+            lit(&p, "got.k"),
+            lit(&p, "got.code"),
+            lit(&p, "got.text"),
+            lit(&p, "raw[3]"),
+            lit(&p, "fromFn.code"),
+            lit(&p, "fromFn.text")
+        ],
+        ["b", "30000", "'ok'", "16#33", "7", "'fn'"]
+    );
+}
+
 #[test]
 fn standard_fb_pin_names_and_instances_in_arrays() {
     let mut p = compile(&program(

@@ -264,6 +264,37 @@ fn the_tc2_library_items_run_and_a_project_s_own_declaration_wins() {
     assert!(plcrun_ok(&[&dir, "--cycles", "1", "--trace", "l"]).ends_with("0,T#0s,'mine'\n"));
 }
 
+/// Tc2_EtherCAT's distributed-clock time: plcrun's clock starts at the
+/// DC epoch (2000-01-01), and DCTIME64_TO_STRING prints dates across leap
+/// years and century rules. Each count of nanoseconds below is worked out
+/// by hand from the days before the date (e.g. 2024-02-29: 24 years with 6
+/// leap days, then 31 + 28 days: 8 825 days).
+#[test]
+fn distributed_clock_times_start_at_the_epoch_and_print_as_dates() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    t : Tc2_EtherCAT.T_DCTIME64;\n    now : STRING;\n    a : STRING; b : STRING; c : STRING; d : STRING; e : STRING; f : STRING;\nEND_VAR\n",
+        "t := Tc2_EtherCAT.F_GetCurDcTaskTime64();\nnow := DCTIME64_TO_STRING(in := t);\n\
+         a := DCTIME64_TO_STRING(in := 0);\n\
+         b := DCTIME64_TO_STRING(in := 762525296123456789);\n\
+         c := DCTIME64_TO_STRING(in := 3160857600000000000);\n\
+         d := DCTIME64_TO_STRING(in := 3281817600000000000);\n\
+         e := DCTIME64_TO_STRING(in := 3287001600000000000);\n\
+         f := DCTIME64_TO_STRING(in := 6311433600000000000);\n",
+        "",
+    );
+    let dir = project(&[("MAIN.TcPOU", &main)]);
+    let out = plcrun_ok(&[&dir, "--cycles", "3", "--trace", "t,now,a,b,c,d,e,f"]);
+    let last = out.lines().last().unwrap();
+    assert_eq!(
+        last,
+        "2,T#20ms,20000000,'2000-01-01-00:00:00.020000000','2000-01-01-00:00:00.000000000',\
+         '2024-02-29-12:34:56.123456789','2100-03-01-00:00:00.000000000',\
+         '2103-12-31-00:00:00.000000000','2104-02-29-00:00:00.000000000',\
+         '2200-01-01-00:00:00.000000000'"
+    );
+}
+
 #[test]
 fn twincat_io_declared_at_i_star_gets_addresses_that_check_map_lists() {
     let main = pou(

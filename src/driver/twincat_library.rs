@@ -1,6 +1,7 @@
-//! What TwinCAT programs use most from the Tc2_System and Tc2_Utilities
-//! libraries (`T_MaxString`, `PVOID`, `F_LTrim`, `F_RTrim`, `MEMCPY`,
-//! `MEMMOVE`, `MEMSET`, `MEMCMP`, `DRAND`), written in ST by plcrun
+//! What TwinCAT programs use most from the Tc2_System, Tc2_Utilities and
+//! Tc2_EtherCAT libraries (`T_MaxString`, `PVOID`, `F_LTrim`, `F_RTrim`,
+//! `MEMCPY`, `MEMMOVE`, `MEMSET`, `MEMCMP`, `DRAND`, the distributed-clock
+//! time `T_DCTIME64` and its functions), written in ST by plcrun
 //! (`twincat_library.st`) and added as a source of its own when the
 //! sources hold a TwinCAT file. An item the sources declare themselves is
 //! left out: theirs wins. Warnings inside it (its `POINTER TO` is a
@@ -130,7 +131,12 @@ mod tests {
                 "MEMMOVE",
                 "MEMSET",
                 "MEMCMP",
-                "DRAND"
+                "DRAND",
+                "T_DCTIME64",
+                "F_GetCurDcTaskTime64",
+                "F_GetCurDcTickTime64",
+                "F_GetActualDcTime64",
+                "DCTIME64_TO_STRING"
             ]
         );
     }

@@ -38,12 +38,15 @@ impl BodyBuilder<'_> {
         let TypeKind::Enum { base, values } = self.types.get(target).kind.clone() else {
             return None;
         };
-        if !(base == ElemType::Lint || base.widens_to(ElemType::Lint)) {
+        // A bit-string base (`(a, b) BYTE`, TwinCAT) holds its value
+        // zero-extended: read as LINT as it is.
+        let bits = base.is_bit() && base != ElemType::Bool;
+        if !(base == ElemType::Lint || base.widens_to(ElemType::Lint) || bits) {
             self.diags.error(
                 E_TYPES,
                 span,
                 format!(
-                    "AssertEquals compares enumerations stored as integers up to LINT; `{}` is stored as {}",
+                    "AssertEquals compares enumerations stored as integers up to LINT or as bit strings; `{}` is stored as {}",
                     self.types.name(target),
                     base.name()
                 ),
@@ -51,7 +54,7 @@ impl BodyBuilder<'_> {
             return Some(Val::error());
         }
         let &p = self.model.pou_index.get(ASSERT_EQ_ENUM_HOST)?;
-        let base_ty = TypeTable::elem(base);
+        let base_ty = TypeTable::elem(if bits { ElemType::Lint } else { base });
         let ve = self.enum_as_base(e, target, base_ty);
         let va = self.enum_as_base(a, target, base_ty);
         if ve.is_error() || va.is_error() {

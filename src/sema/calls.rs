@@ -560,6 +560,21 @@ impl BodyBuilder<'_> {
             return;
         }
         self.note_input_write(&t, target.span);
+        // An array or structure output is copied whole, as an assignment.
+        if !negated
+            && matches!(
+                self.types.get(src.ty).kind,
+                TypeKind::Array { .. } | TypeKind::Struct { .. }
+            )
+        {
+            if !self.assignable(src.ty, t.ty) {
+                let what = format!("output `{name}`");
+                self.mismatch(target.span, Ty::T(src.ty), t.ty, &what);
+                return;
+            }
+            self.copy_aggregate(&t, src, target.span);
+            return;
+        }
         let v = self.read_place(src);
         let v = if negated {
             if src.ty != TypeTable::elem(ElemType::Bool) {

@@ -4,7 +4,10 @@
 //! one (W485), and an integer may be stored in an enumeration variable
 //! (W486: the value is not checked against the named ones). Both are
 //! compatibility warnings: `--strict` refuses them. An enumeration
-//! declared after `{attribute 'strict'}` converts as in IEC: never.
+//! declared after `{attribute 'strict'}` takes part in no arithmetic and
+//! takes no integer, as TwinCAT's manual lists; it still converts to an
+//! integer where one is expected (TcUnit's own examples pass such values
+//! to `AssertEquals_USINT`).
 
 use super::body::BodyBuilder;
 use super::emit::{Ty, Val};
@@ -15,8 +18,14 @@ use crate::source::Span;
 impl BodyBuilder<'_> {
     /// The base type of enumeration `t`, unless it is declared strict.
     fn enum_base(&self, t: TypeId) -> Option<ElemType> {
+        self.any_enum_base(t)
+            .filter(|_| !self.model.strict_enums.contains(&t))
+    }
+
+    /// The base type of enumeration `t`, strict or not.
+    fn any_enum_base(&self, t: TypeId) -> Option<ElemType> {
         match self.types.get(t).kind {
-            TypeKind::Enum { base, .. } if !self.model.strict_enums.contains(&t) => Some(base),
+            TypeKind::Enum { base, .. } => Some(base),
             _ => None,
         }
     }
@@ -25,7 +34,9 @@ impl BodyBuilder<'_> {
     /// (one side an enumeration, the other an integer or bit string the
     /// base type widens to, or that widens to the base type); warns then.
     pub(super) fn enum_int_conversion(&mut self, from: TypeId, to: TypeId, span: Span) -> bool {
-        match (self.enum_base(from), self.enum_base(to)) {
+        match (self.any_enum_base(from), self.enum_base(to)) {
+            // Two enumerations never mix.
+            (Some(_), None) if self.is_enum(to) => false,
             (Some(base), None) => {
                 let Some(t) = self.types.scalar(to).filter(|t| t.is_int() || t.is_bit()) else {
                     return false;

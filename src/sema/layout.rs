@@ -223,15 +223,11 @@ impl Declarer<'_> {
         }
         // `REF(x)` / `ADR(x)`: evaluated by the body (ref_inits.rs).
         let by_body = self.defer_reference_init(pou, block, decl, ty, &mut frame.offset);
-        let init = decl
-            .init
-            .as_ref()
-            .filter(|_| !by_body)
-            .and_then(|i| {
-                let mut consts = self.consts();
-                consts.same_block = earlier.to_vec();
-                consts.resolve_init(i, ty, Some(&frame.vars))
-            });
+        let init = decl.init.as_ref().filter(|_| !by_body).and_then(|i| {
+            let mut consts = self.consts();
+            consts.same_block = earlier.to_vec();
+            consts.resolve_init(i, ty, Some(&frame.vars))
+        });
         let edge = self.edge_input_ok(pou, block, decl, ty);
         for name in &decl.names {
             let key = name.key();
