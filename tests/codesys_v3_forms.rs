@@ -194,3 +194,66 @@ fn an_initial_value_from_an_input_another_block_or_a_later_variable_is_refused()
         assert_eq!(codes, ["E205"], "{why}: {src}");
     }
 }
+
+/// `TYPE ST_B EXTENDS ST_A : STRUCT` has ST_A's fields (and their initial
+/// values) first, then its own, through a chain of extensions; the errors
+/// name what is wrong.
+#[test]
+fn a_structure_extends_another_with_its_fields_and_their_initial_values() {
+    let src = "
+TYPE ST_A : STRUCT x : INT := 5; s : STRING[8] := 'a'; END_STRUCT END_TYPE
+TYPE ST_B EXTENDS ST_A : STRUCT y : INT := 7; END_STRUCT END_TYPE
+TYPE ST_C EXTENDS ST_B :
+STRUCT
+  z : REAL;
+END_STRUCT
+END_TYPE
+PROGRAM P
+VAR b : ST_B; c : ST_C; copy : ST_C; END_VAR
+c.x := c.x + 1; c.z := 1.5; c.s := 'c';
+copy := c;
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 2);
+    assert_eq!(
+        [lit(&plc, "b.x"), lit(&plc, "b.s"), lit(&plc, "b.y")],
+        ["5", "'a'", "7"]
+    );
+    assert_eq!(
+        [
+            lit(&plc, "copy.x"),
+            lit(&plc, "copy.s"),
+            lit(&plc, "copy.y"),
+            lit(&plc, "copy.z")
+        ],
+        ["7", "'c'", "7", "1.5"]
+    );
+    for (types, code) in [
+        (
+            "TYPE ST_B EXTENDS INT : STRUCT y : INT; END_STRUCT END_TYPE",
+            "E438",
+        ),
+        (
+            "TYPE ST_D EXTENDS ST_Q : STRUCT y : INT; END_STRUCT END_TYPE",
+            "E203",
+        ),
+        (
+            "TYPE ST_E EXTENDS ST_E : STRUCT y : INT; END_STRUCT END_TYPE",
+            "E204",
+        ),
+        (
+            "TYPE ST_F EXTENDS ST_G : STRUCT x : INT; END_STRUCT END_TYPE
+             TYPE ST_G : STRUCT x : INT; END_STRUCT END_TYPE",
+            "E202",
+        ),
+    ] {
+        let name = types.split_whitespace().nth(1).unwrap();
+        let src = format!("{types}\nPROGRAM P VAR v : {name}; END_VAR END_PROGRAM");
+        let codes: Vec<String> = error_codes(&[("t.st", &src)])
+            .into_iter()
+            .map(|(code, _)| code)
+            .collect();
+        assert_eq!(codes, [code], "{src}");
+    }
+}

@@ -344,6 +344,18 @@ fn export_is_deterministic_and_refuses_xml_input() {
     xml.add("c.xml", a);
     let e = export_plcopen(&xml).expect_err("XML is not a textual source");
     assert!(e.to_string().contains("c.xml"), "{e}");
+    // TC6 XML has no structure inheritance: refused where it is written.
+    let mut extended = SourceMap::new();
+    extended.add(
+        "s.st",
+        "TYPE A : STRUCT x : INT; END_STRUCT END_TYPE\nTYPE B EXTENDS A : STRUCT y : INT; END_STRUCT END_TYPE\n",
+    );
+    let e = export_plcopen(&extended).expect_err("EXTENDS has no XML form");
+    assert!(
+        e.to_string()
+            .starts_with("s.st:2:16: a structure extending another (`EXTENDS A`)"),
+        "{e}"
+    );
 }
 
 /// `(code, file:line:col)` of every diagnostic of checking `text` as `name`.

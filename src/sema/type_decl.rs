@@ -83,7 +83,9 @@ impl Declarer<'_> {
                 self.subrange_type(base, lo, hi, *span, local)
             }
             TypeSpec::Enum { base, values, span } => self.enum_type(base, values, *span, local),
-            TypeSpec::Struct { fields, span: _ } => self.struct_type(fields, local),
+            TypeSpec::Struct {
+                extends, fields, ..
+            } => self.struct_type(extends.as_ref(), fields, local),
             TypeSpec::Ref { kind, target, span } => self.ref_type(*kind, target, *span, local),
         }
     }
@@ -412,15 +414,42 @@ impl Declarer<'_> {
         }
     }
 
+    /// The fields (with their initial values and the size they take) a
+    /// structure declared `EXTENDS base` starts with: `base`'s own. A base
+    /// that is not a structure is E438.
+    fn inherited_fields(&mut self, base: &Ident) -> (Vec<Member>, Vec<(usize, ConstInit)>, u32) {
+        let ty = self.named_type(base);
+        let TypeKind::Struct { fields } = &self.types.get(ty).kind else {
+            if ty != TypeTable::error() {
+                self.diags.error(
+                    "E438",
+                    base.span,
+                    format!(
+                        "a structure can extend only a structure; `{}` is not one",
+                        base.name
+                    ),
+                );
+            }
+            return (Vec::new(), Vec::new(), 0);
+        };
+        let inits = match self.model.type_inits.get(&ty) {
+            Some(ConstInit::Struct(v)) => v.clone(),
+            _ => Vec::new(),
+        };
+        (fields.clone(), inits, self.types.size(ty))
+    }
+
     /// `STRUCT ... END_STRUCT`: fields laid out in order, with their defaults.
     fn struct_type(
         &mut self,
+        extends: Option<&Ident>,
         fields: &[VarDecl],
         local: Option<&IndexMap<String, VarInfo>>,
     ) -> TypeId {
-        let mut members: Vec<Member> = Vec::new();
-        let mut inits = Vec::new();
-        let mut offset = 0u32;
+        let (mut members, mut inits, mut offset) = match extends {
+            Some(base) => self.inherited_fields(base),
+            None => (Vec::new(), Vec::new(), 0u32),
+        };
         for decl in fields {
             let fty = self.resolve_type(&decl.ty, local);
             let no_value = self.static_reference_init(decl, fty, "a structure field");

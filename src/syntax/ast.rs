@@ -249,6 +249,9 @@ pub enum TypeSpec {
     },
     /// `STRUCT ... END_STRUCT` (only inside TYPE).
     Struct {
+        /// The structure it extends (`TYPE B EXTENDS A : STRUCT`, CODESYS
+        /// and TwinCAT): its fields come first.
+        extends: Option<Ident>,
         /// The members.
         fields: Vec<VarDecl>,
         /// Where.

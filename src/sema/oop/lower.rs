@@ -193,6 +193,7 @@ impl Lowering<'_> {
             let value = TypeDecl {
                 name: x.name.clone(),
                 ty: TypeSpec::Struct {
+                    extends: None,
                     fields: vec![
                         field(ADDR_FIELD, "ULINT", x.span),
                         field(TID_FIELD, "UDINT", x.span),
@@ -210,6 +211,7 @@ impl Lowering<'_> {
                     span: x.name.span,
                 },
                 ty: TypeSpec::Struct {
+                    extends: None,
                     fields,
                     span: x.span,
                 },

@@ -115,6 +115,16 @@ impl Exporter<'_> {
                 }
                 w.close("enum");
             }
+            TypeSpec::Struct {
+                extends: Some(base),
+                ..
+            } => {
+                // TC6 XML has no structure inheritance.
+                return Err(self.refuse(
+                    format!("a structure extending another (`EXTENDS {}`)", base.name),
+                    base.span,
+                ));
+            }
             TypeSpec::Struct { fields, .. } => {
                 w.open("struct", &[]);
                 for f in fields {
