@@ -338,4 +338,18 @@ fn a_global_named_with_its_list_reads_and_sizes_like_the_global() {
         err.contains("error[E301]") && err.contains("P.TcPOU:10:"),
         "{err}"
     );
+    // A name the list does not declare: the message says both halves.
+    let missing = pou(
+        "Q",
+        "PROGRAM Q\nVAR\n    n : INT;\nEND_VAR\n",
+        "n := GVL_Constants.MAX_M;\n",
+        "",
+    );
+    let dir = project(&[("GVL_Constants.TcGVL", gvl), ("Q.TcPOU", &missing)]);
+    let (code, _, err) = plcrun(&["check", &dir]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("error[E201]: undeclared variable `GVL_Constants`; nor is `MAX_M` a global variable (if `GVL_Constants` is a global variable list, it does not declare `MAX_M`)"),
+        "{err}"
+    );
 }

@@ -47,6 +47,19 @@ impl BodyBuilder<'_> {
             && self.model.globals.contains_key(&name.key())
     }
 
+    /// True when `base` is a bare name that is no variable, POU, type or
+    /// enumeration value in scope.
+    fn names_nothing(&self, base: &Expr) -> bool {
+        let ExprKind::Name(q) = &base.kind else {
+            return false;
+        };
+        let qk = q.key();
+        self.lookup_var(&qk).is_none()
+            && !self.model.pou_index.contains_key(&qk)
+            && !self.model.type_ids.contains_key(&qk)
+            && !self.model.enum_values.contains_key(&qk)
+    }
+
     /// Reads the place `e` denotes as a scalar value.
     pub(super) fn place_value(&mut self, e: &Expr) -> Val {
         let Some(p) = self.place(e) else {
@@ -167,6 +180,12 @@ impl BodyBuilder<'_> {
             return self
                 .this_allowed(base.span)
                 .then(|| self.place_name(name))?;
+        }
+        if self.names_nothing(base) {
+            if let ExprKind::Name(q) = &base.kind {
+                self.undeclared_qualifier(q, Some(name));
+            }
+            return None;
         }
         let b = self.place(base)?;
         let def = self.types.get(b.ty).clone();

@@ -15,6 +15,13 @@ impl BodyBuilder<'_> {
     /// Reports `id` as an undeclared variable unless that is a repeat or a
     /// consequence of a syntax error (see the module comment).
     pub(super) fn undeclared_variable(&mut self, id: &Ident) {
+        self.undeclared_qualifier(id, None);
+    }
+
+    /// As [`Self::undeclared_variable`], for `id` written before `.member`:
+    /// without a close name to suggest, the message says that `member` is
+    /// no global either (`GVL.x` with a list that does not declare `x`).
+    pub(super) fn undeclared_qualifier(&mut self, id: &Ident, member: Option<&Ident>) {
         let file = id.span.file;
         let (from, to) = self.pou_region(id);
         let at = id.span.start;
@@ -43,7 +50,13 @@ impl BodyBuilder<'_> {
             .chain(self.model.globals.values())
             .map(|v| v.name.as_str())
             .chain(self.model.enum_values.keys().map(String::as_str));
-        let message = with_suggestion(head, &id.name, names);
+        let mut message = with_suggestion(head.clone(), &id.name, names);
+        if let Some(m) = member.filter(|_| message == head) {
+            message.push_str(&format!(
+                "; nor is `{}` a global variable (if `{}` is a global variable list, it does not declare `{}`)",
+                m.name, id.name, m.name
+            ));
+        }
         self.diags.error("E201", id.span, message);
     }
 
