@@ -182,6 +182,8 @@ mod plcopen;
 #[cfg(feature = "cli")]
 #[path = "plcopen_cli.rs"]
 mod plcopen_cli;
+#[path = "plcopen_codesys_members.rs"]
+mod plcopen_codesys_members;
 #[path = "plcopen_config_vars.rs"]
 mod plcopen_config_vars;
 #[path = "plcopen_fbd.rs"]

@@ -13,6 +13,7 @@
 
 pub mod body;
 pub mod codes;
+pub mod codesys_members;
 pub mod config;
 pub mod config_vars;
 pub mod emit;

@@ -1,8 +1,9 @@
 //! One `<pou>`: header, interface, body, and the actions and named
 //! transitions an SFC body refers to.
 
-use super::body::{self, add_data};
+use super::body;
 use super::codes;
+use super::codesys_members;
 use super::emit::{Emitter, child, elements};
 use super::interface::interface;
 use super::types::{missing_child, type_of};
@@ -38,13 +39,26 @@ pub fn pou(em: &mut Emitter, node: Node) {
         type_of(em, ret);
     }
     let mut bodies = Vec::new();
+    let mut members = Vec::new();
     for c in elements(node) {
         match c.tag_name().name() {
             "interface" => interface(em, c),
             "body" => bodies.push(c),
             "actions" | "transitions" | "documentation" => {}
-            "addData" => add_data(em, c),
+            "addData" => {
+                members.extend(elements(c).filter(|d| codesys_members::is_member(*d)));
+                codesys_members::other_data(em, c);
+            }
             _ => em.unknown(c, "pou"),
+        }
+    }
+    // CODESYS V3's methods and properties, between the variables and the
+    // body as in ST; a FUNCTION has none.
+    for data in members {
+        if open == "FUNCTION" {
+            em.refuse(data, "a method or property of a FUNCTION");
+        } else {
+            codesys_members::member(em, data);
         }
     }
     match bodies.as_slice() {

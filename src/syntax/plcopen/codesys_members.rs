@@ -1,0 +1,164 @@
+//! CODESYS V3's methods and properties in a PLCopen export. TC6 XML has
+//! no place for them, so CODESYS writes each one in the `<addData>` of its
+//! POU: `<data name=".../plcopenxml/method">` holding a `<Method>` with its
+//! own `<interface>` and `<body>`, and `<data name=".../plcopenxml/property">`
+//! holding a `<Property>` with a `<GetAccessor>` and a `<SetAccessor>`.
+//! They are emitted as the textual `METHOD ... END_METHOD` and
+//! `PROPERTY ... END_PROPERTY` of the block, before its body, so the ST
+//! parser and the checker treat them as in a `.st` file.
+
+use super::body::{data_element, text_body};
+use super::emit::{Emitter, child, elements, is_true};
+use super::interface::interface;
+use super::types::{missing_child, type_of};
+use crate::syntax::token::{Kw, Tok};
+use roxmltree::Node;
+
+/// The `<data>` name of a method.
+const METHOD_DATA: &str = "http://www.3s-software.com/plcopenxml/method";
+/// The `<data>` name of a property.
+const PROPERTY_DATA: &str = "http://www.3s-software.com/plcopenxml/property";
+/// The `<data>` name of a member's access modifiers.
+const ACCESS_DATA: &str = "http://www.3s-software.com/plcopenxml/accessmodifiers";
+
+/// True for a `<data>` holding a method or a property.
+pub fn is_member(data: Node) -> bool {
+    data.tag_name().name() == "data"
+        && matches!(data.attribute("name"), Some(METHOD_DATA | PROPERTY_DATA))
+}
+
+/// Emits the method or property of one `<data>` ([`is_member`]).
+pub fn member(em: &mut Emitter, data: Node) {
+    for c in elements(data) {
+        match c.tag_name().name() {
+            "Method" => method(em, c),
+            "Property" => property(em, c),
+            _ => em.unknown(c, "data"),
+        }
+    }
+}
+
+/// `<Method name>`: `METHOD [modifiers] name [: type] sections body END_METHOD`.
+fn method(em: &mut Emitter, node: Node) {
+    em.synth("METHOD", em.at(node));
+    modifiers(em, node);
+    em.name(node, "name");
+    let iface = child(node, "interface");
+    if let Some(ret) = iface.and_then(|i| child(i, "returnType")) {
+        em.synth(":", em.at(ret));
+        type_of(em, ret);
+    }
+    if let Some(i) = iface {
+        interface(em, i);
+    }
+    member_body(em, node);
+    em.synth("END_METHOD", em.end_of(node));
+}
+
+/// `<Property name>`: `PROPERTY [modifiers] name : type`, then a `GET` and
+/// a `SET` section for the accessors present, `END_PROPERTY`.
+fn property(em: &mut Emitter, node: Node) {
+    em.synth("PROPERTY", em.at(node));
+    modifiers(em, node);
+    em.name(node, "name");
+    match child(node, "interface").and_then(|i| child(i, "returnType")) {
+        Some(ret) => {
+            em.synth(":", em.at(ret));
+            type_of(em, ret);
+        }
+        None => missing_child(em, node, "interface><returnType"),
+    }
+    for c in elements(node) {
+        let (open, close) = match c.tag_name().name() {
+            "GetAccessor" => (Kw::Get, "END_GET"),
+            "SetAccessor" => (Kw::Set, "END_SET"),
+            "interface" | "documentation" => continue,
+            "addData" => {
+                access_free_add_data(em, c);
+                continue;
+            }
+            _ => {
+                em.unknown(c, "Property");
+                continue;
+            }
+        };
+        // `GET` and `SET` are keywords only where they open an accessor,
+        // which the textual lexer decides from context: say it here.
+        let span = em.span(em.at(c));
+        em.toks
+            .push((span.start as usize, Tok::Kw(open), span.end as usize));
+        modifiers(em, c);
+        if let Some(i) = child(c, "interface") {
+            interface(em, i);
+        }
+        member_body(em, c);
+        em.synth(close, em.end_of(c));
+    }
+    em.synth("END_PROPERTY", em.end_of(node));
+}
+
+/// The `<body>` of a method or accessor: ST or IL text. Its other
+/// children (`<addData>` aside, read by [`modifiers`]) are unknown.
+fn member_body(em: &mut Emitter, node: Node) {
+    for c in elements(node) {
+        match c.tag_name().name() {
+            "interface" | "documentation" => {}
+            "addData" => access_free_add_data(em, c),
+            "body" => match elements(c).find(|l| matches!(l.tag_name().name(), "ST" | "IL")) {
+                Some(lang) => text_body(em, lang),
+                None => em.refuse(c, "a method or accessor body that is not ST or IL"),
+            },
+            _ if node.tag_name().name() == "Method" => em.unknown(c, "Method"),
+            _ => em.unknown(c, node.tag_name().name()),
+        }
+    }
+    if child(node, "body").is_none() {
+        missing_child(em, node, "body");
+    }
+}
+
+/// The access modifiers CODESYS writes in a member's `<addData>`
+/// (`<AccessModifiers Private="true"/>`), as keywords.
+fn modifiers(em: &mut Emitter, node: Node) {
+    let Some(add) = child(node, "addData") else {
+        return;
+    };
+    for data in elements(add).filter(|d| d.attribute("name") == Some(ACCESS_DATA)) {
+        for m in elements(data).filter(|m| m.tag_name().name() == "AccessModifiers") {
+            for (attr, keyword) in [
+                ("Private", "PRIVATE"),
+                ("Protected", "PROTECTED"),
+                ("Internal", "INTERNAL"),
+                ("Public", "PUBLIC"),
+            ] {
+                if is_true(m.attribute(attr)) {
+                    em.synth(keyword, em.at(m));
+                }
+            }
+        }
+    }
+}
+
+/// A member's `<addData>` without its access modifiers (read by
+/// [`modifiers`]).
+fn access_free_add_data(em: &mut Emitter, add: Node) {
+    data_except(em, add, |d| d.attribute("name") == Some(ACCESS_DATA));
+}
+
+/// A POU's `<addData>` without its methods and properties (emitted by
+/// [`member`]).
+pub fn other_data(em: &mut Emitter, add: Node) {
+    data_except(em, add, is_member);
+}
+
+/// Each `<data>` of `add` that `skip` does not take, read as any
+/// `<addData>` is (body.rs).
+fn data_except(em: &mut Emitter, add: Node, skip: impl Fn(Node) -> bool) {
+    for d in elements(add).filter(|d| !skip(*d)) {
+        if d.tag_name().name() == "data" {
+            data_element(em, d);
+        } else {
+            em.unknown(d, "addData");
+        }
+    }
+}
