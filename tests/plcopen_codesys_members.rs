@@ -113,3 +113,35 @@ fn a_private_method_stays_private_and_a_function_has_no_methods() {
         "{found:?}"
     );
 }
+
+/// `EXTENDS` from the `<Inheritance>` CODESYS writes in the interface's
+/// `<addData>`: FB_Double inherits FB_Counter's variables and `Add`, and
+/// adds a method of its own (the instance itself is never called, so the
+/// body's reset does not run).
+#[test]
+fn a_block_extends_another_through_its_inheritance_data() {
+    let derived = format!(
+        r#"<pou name="FB_Double" pouType="functionBlock">
+  <interface>
+    <addData><data name="http://www.3s-software.com/plcopenxml/pouinheritance" handleUnknown="implementation"><Inheritance><Extends>FB_Counter</Extends></Inheritance></data></addData>
+  </interface>
+  <body><ST><xhtml:p>;</xhtml:p></ST></body>
+  <addData>
+    <data name="{METHOD}" handleUnknown="implementation">
+      <Method name="Twice"><interface/><body><ST><xhtml:p>count := count * 2;</xhtml:p></ST></body></Method>
+    </data>
+  </addData>
+</pou>"#
+    );
+    let main = r#"<pou name="MAIN" pouType="program">
+  <interface><localVars><variable name="d"><type><derived name="FB_Double"/></type></variable></localVars></interface>
+  <body><ST><xhtml:p>d.Add(4); d.Twice();</xhtml:p></ST></body>
+</pou>"#;
+    let xml = project(&format!("{}\n{derived}\n{main}", counter("")));
+    let trace = trace_text(&xml, "d.count,d.limitValue", "", 2);
+    // (0 + 4) * 2 = 8, then (8 + 4) * 2 = 24; limitValue is the inherited 10.
+    assert_eq!(
+        trace,
+        "cycle,time,d.count,d.limitValue\n0,T#0s,8,10\n1,T#10ms,24,10\n"
+    );
+}

@@ -18,6 +18,8 @@ use roxmltree::Node;
 const METHOD_DATA: &str = "http://www.3s-software.com/plcopenxml/method";
 /// The `<data>` name of a property.
 const PROPERTY_DATA: &str = "http://www.3s-software.com/plcopenxml/property";
+/// The `<data>` name of a block's `EXTENDS` and `IMPLEMENTS`.
+const INHERITANCE_DATA: &str = "http://www.3s-software.com/plcopenxml/pouinheritance";
 /// The `<data>` name of a member's access modifiers.
 const ACCESS_DATA: &str = "http://www.3s-software.com/plcopenxml/accessmodifiers";
 
@@ -25,6 +27,47 @@ const ACCESS_DATA: &str = "http://www.3s-software.com/plcopenxml/accessmodifiers
 pub fn is_member(data: Node) -> bool {
     data.tag_name().name() == "data"
         && matches!(data.attribute("name"), Some(METHOD_DATA | PROPERTY_DATA))
+}
+
+/// `EXTENDS base` and `IMPLEMENTS i, j` of a block, from the
+/// `<Inheritance>` CODESYS writes in the `<addData>` of its `<interface>`
+/// (emitted right after the block's name, where the header has them).
+pub fn inheritance(em: &mut Emitter, iface: Node) {
+    let Some(add) = child(iface, "addData") else {
+        return;
+    };
+    let found = elements(add)
+        .filter(|d| d.attribute("name") == Some(INHERITANCE_DATA))
+        .flat_map(elements)
+        .filter(|i| i.tag_name().name() == "Inheritance");
+    for inh in found {
+        let mut implements = 0;
+        for c in elements(inh) {
+            let keyword = match c.tag_name().name() {
+                "Extends" => "EXTENDS",
+                "Implements" if implements == 0 => "IMPLEMENTS",
+                "Implements" => ",",
+                _ => {
+                    em.unknown(c, "Inheritance");
+                    continue;
+                }
+            };
+            implements += usize::from(keyword != "EXTENDS");
+            em.synth(keyword, em.at(c));
+            let name = c.text().unwrap_or("").trim();
+            if name.is_empty() {
+                missing_child(em, c, "name");
+            } else {
+                em.ident(name, em.at(c));
+            }
+        }
+    }
+}
+
+/// True for a `<data>` this module reads (members, inheritance), which
+/// the generic `<addData>` reader must leave alone.
+fn is_codesys_object(data: Node) -> bool {
+    is_member(data) || data.attribute("name") == Some(INHERITANCE_DATA)
 }
 
 /// Emits the method or property of one `<data>` ([`is_member`]).
@@ -145,10 +188,10 @@ fn access_free_add_data(em: &mut Emitter, add: Node) {
     data_except(em, add, |d| d.attribute("name") == Some(ACCESS_DATA));
 }
 
-/// A POU's `<addData>` without its methods and properties (emitted by
-/// [`member`]).
+/// A POU's or interface's `<addData>` without the methods, properties and
+/// inheritance this module emits.
 pub fn other_data(em: &mut Emitter, add: Node) {
-    data_except(em, add, is_member);
+    data_except(em, add, is_codesys_object);
 }
 
 /// Each `<data>` of `add` that `skip` does not take, read as any

@@ -25,7 +25,8 @@ pub fn interface(em: &mut Emitter, node: Node) {
     for c in elements(node) {
         match c.tag_name().name() {
             "returnType" | "documentation" => {}
-            "addData" => add_data(em, c),
+            // CODESYS's EXTENDS/IMPLEMENTS there are read with the header.
+            "addData" => super::codesys_members::other_data(em, c),
             "accessVars" => em.refuse(c, "VAR_ACCESS is not supported"),
             name if section_keyword(name).is_some() => var_section(em, c),
             _ => em.unknown(c, "interface"),

@@ -34,6 +34,9 @@ pub fn pou(em: &mut Emitter, node: Node) {
     em.synth(open, at);
     em.name(node, "name");
     let iface = child(node, "interface");
+    if let Some(i) = iface {
+        codesys_members::inheritance(em, i);
+    }
     if let Some(ret) = iface.and_then(|i| child(i, "returnType")) {
         em.synth(":", em.at(ret));
         type_of(em, ret);
