@@ -1,0 +1,111 @@
+//! `plcrun.toml`, the project file (docs/project-file.md): read with serde
+//! and the `toml` crate, checked key by key, and mapped onto the options
+//! the command line fills ([`RunArgs`]), so that `plcrun serve` runs a
+//! project through the same path as `plcrun run`.
+
+mod errors;
+mod fallback;
+mod paths;
+mod schema;
+mod settings;
+
+pub use fallback::sources_or_project;
+pub use settings::default_run_args;
+
+use super::args::RunArgs;
+use errors::{ProjectError, SYNTAX, UNKNOWN_KEY, UNREADABLE, WRONG_TYPE};
+use std::path::{Path, PathBuf};
+
+/// The name `serve`, `check`, `test` and `compare` look for in the
+/// current folder.
+pub const DEFAULT_NAME: &str = "plcrun.toml";
+
+/// A project file read and checked.
+#[derive(Debug)]
+pub struct Project {
+    /// The file, as it was named.
+    pub path: PathBuf,
+    /// The source files (globs expanded, relative to the file's folder).
+    pub sources: Vec<PathBuf>,
+    /// Everything the file says, as the options of `plcrun run` (its
+    /// `files` are [`Self::sources`]).
+    pub run: RunArgs,
+    /// Whether the file has a `[trace]` table (without one, `serve`
+    /// writes no trace).
+    pub traced: bool,
+    /// The `[web]` table, checked (the monitor is not served yet).
+    pub web: Option<settings::WebSettings>,
+}
+
+/// Reads and checks the project file at `path`. On error, every problem
+/// found, rendered as diagnostics.
+pub fn load(path: &Path) -> Result<Project, String> {
+    let name = path.display().to_string();
+    let text = match std::fs::read_to_string(path) {
+        Ok(text) => text,
+        Err(e) => {
+            let error = ProjectError::whole(UNREADABLE, format!("cannot read the project file: {e}"));
+            let error = if e.kind() == std::io::ErrorKind::NotFound {
+                error.note("`plcrun init` writes one; or give the sources on the command line")
+            } else {
+                error
+            };
+            return Err(errors::render(&name, "", &[error]));
+        }
+    };
+    parse(path, &text).map_err(|found| errors::render(&name, &text, &found))
+}
+
+/// The project file for a command given no source: `explicit` (from
+/// `--project`) or `./plcrun.toml`.
+pub fn find(explicit: Option<&Path>) -> Result<Project, String> {
+    load(explicit.unwrap_or(Path::new(DEFAULT_NAME)))
+}
+
+/// Parses `text`, the contents of the project file at `path`.
+fn parse(path: &Path, text: &str) -> Result<Project, Vec<ProjectError>> {
+    // Syntax first: a TOML error is reported as such, not as a missing key.
+    if let Err(e) = text.parse::<toml::Table>() {
+        return Err(vec![from_toml(SYNTAX, &e, text)]);
+    }
+    let file: schema::ProjectFile = toml::from_str(text).map_err(|e| {
+        let code = if e.message().starts_with("unknown field") {
+            UNKNOWN_KEY
+        } else {
+            WRONG_TYPE
+        };
+        vec![from_toml(code, &e, text)]
+    })?;
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    settings::resolve(path, &folder, file)
+}
+
+/// A serde or syntax error of the `toml` crate as one of ours: its
+/// message (naming the key when the crate does not) at its place.
+fn from_toml(code: &'static str, e: &toml::de::Error, text: &str) -> ProjectError {
+    let message = e.message().trim().to_string();
+    let Some(span) = e.span() else {
+        return ProjectError::whole(code, message);
+    };
+    let named = message.contains('`');
+    let message = if code == UNKNOWN_KEY {
+        match errors::table_at(text, span.start) {
+            Some(table) => format!("{message} (in `[{table}]`)"),
+            None => message,
+        }
+    } else {
+        match errors::key_at(text, span.start) {
+            Some(key) if !named => format!("`{key}`: {message}"),
+            _ => message,
+        }
+    };
+    let error = ProjectError::at(code, span, message);
+    if code == UNKNOWN_KEY {
+        error.note("docs/project-file.md lists every key")
+    } else {
+        error
+    }
+}
