@@ -275,17 +275,17 @@ fn a_toml_syntax_error_is_e971_at_its_place() {
 #[test]
 fn an_unknown_key_is_e972_naming_the_key_and_its_table() {
     let (head, place, err, file) = error_case("sources = [\"main.st\"]\ncycle = \"10ms\"\n");
-    assert!(head.starts_with("error[E972]: unknown field `cycle`"), "{err}");
+    assert!(head.starts_with("error[E972]: unknown key `cycle`"), "{err}");
     assert_eq!(place, format!("--> {}:2:1", file.display()), "{err}");
     let (head, place, err, file) = error_case(
         "sources = [\"main.st\"]\n\n[modbus]\nlisten = \"127.0.0.1:502\"\nport = 502\n",
     );
-    assert!(head.starts_with("error[E972]: unknown field `port`"), "{err}");
-    assert!(head.ends_with("(in `[modbus]`)"), "{err}");
+    assert_eq!(head, "error[E972]: unknown key `port` in `[modbus]`", "{err}");
+    assert!(err.contains("= note: the keys here: listen, max_clients, idle_timeout"), "{err}");
     assert_eq!(place, format!("--> {}:5:1", file.display()), "{err}");
     // An unknown table too.
     let (head, _, err, _) = error_case("sources = [\"main.st\"]\n[http]\nlisten = \"x\"\n");
-    assert!(head.starts_with("error[E972]: unknown field `http`"), "{err}");
+    assert!(head.starts_with("error[E972]: unknown key `http`"), "{err}");
 }
 
 #[test]
@@ -296,9 +296,9 @@ fn a_value_of_the_wrong_type_is_e973_naming_the_key() {
     assert_eq!(place, format!("--> {}:4:15", file.display()), "{err}");
     // A missing required key.
     let (head, _, err, _) = error_case("cycle_time = \"10ms\"\n");
-    assert!(head.starts_with("error[E973]: missing field `sources`"), "{err}");
+    assert!(head.starts_with("error[E973]: missing key `sources`"), "{err}");
     let (head, _, err, _) = error_case("sources = [\"main.st\"]\n[retain]\nevery = 5\n");
-    assert!(head.starts_with("error[E973]: missing field `file`"), "{err}");
+    assert!(head.starts_with("error[E973]: missing key `file` in `[retain]`"), "{err}");
     // A value in [force] that is no value.
     let (head, place, err, file) = error_case("sources = [\"main.st\"]\n[force]\n\"Main.valve\" = [1, 2]\n");
     assert!(head.starts_with("error[E973]: `force.Main.valve`: an array"), "{err}");
@@ -353,8 +353,8 @@ fn sources_that_name_no_file_are_e975() {
     assert_eq!(place, format!("--> {}:1:11", file.display()), "{err}");
     let (head, _, err, _) = error_case("sources = []\n");
     assert!(head.starts_with("error[E975]: `sources` names no file"), "{err}");
-    let (head, _, err, _) = error_case("sources = [\"[z-a].st\"]\n");
-    assert!(head.starts_with("error[E975]: `sources`: `[z-a].st` is not a valid pattern"), "{err}");
+    let (head, _, err, _) = error_case("sources = [\"src/***.st\"]\n");
+    assert!(head.starts_with("error[E975]: `sources`: `src/***.st` is not a valid pattern"), "{err}");
 }
 
 #[test]

@@ -55,7 +55,11 @@ pub enum Command {
             .help("The project file (default: ./plcrun.toml)")),
         // Real time is implied: flags that need --realtime are accepted
         // alone. A flag's default is not what serve uses: the file's is.
-        mut_args(|a| a.requires(clap::builder::Resettable::Reset).hide_default_value(true)),
+        mut_args(|a| {
+            let takes_values = a.get_action().takes_values();
+            a.requires(clap::builder::Resettable::Reset)
+                .hide_default_value(takes_values)
+        }),
     )]
     Serve(Box<super::serve::ServeArgs>),
     /// Write a commented plcrun.toml to start a project from.

@@ -84,28 +84,48 @@ fn parse(path: &Path, text: &str) -> Result<Project, Vec<ProjectError>> {
 }
 
 /// A serde or syntax error of the `toml` crate as one of ours: its
-/// message (naming the key when the crate does not) at its place.
+/// message in the file's words (keys, not fields; the table named) at its
+/// place.
 fn from_toml(code: &'static str, e: &toml::de::Error, text: &str) -> ProjectError {
-    let message = e.message().trim().to_string();
+    let message = e
+        .message()
+        .trim()
+        .replace("expected i64", "expected an integer");
     let Some(span) = e.span() else {
         return ProjectError::whole(code, message);
     };
-    let named = message.contains('`');
-    let message = if code == UNKNOWN_KEY {
-        match errors::table_at(text, span.start) {
-            Some(table) => format!("{message} (in `[{table}]`)"),
-            None => message,
-        }
-    } else {
-        match errors::key_at(text, span.start) {
-            Some(key) if !named => format!("`{key}`: {message}"),
-            _ => message,
-        }
+    let in_table = |at: usize| match errors::table_at(text, at) {
+        Some(table) => format!(" in `[{table}]`"),
+        None => String::new(),
     };
-    let error = ProjectError::at(code, span, message);
-    if code == UNKNOWN_KEY {
-        error.note("docs/project-file.md lists every key")
-    } else {
-        error
+    if let Some(rest) = message.strip_prefix("unknown field ") {
+        // "unknown field `x`, expected one of `a`, `b`": the list, which
+        // can be long, goes to a note.
+        let (name, expected) = rest.split_once(", expected ").unwrap_or((rest, ""));
+        let error = ProjectError::at(
+            UNKNOWN_KEY,
+            span.clone(),
+            format!("unknown key {name}{}", in_table(span.start)),
+        );
+        let error = match expected.strip_prefix("one of ") {
+            Some(list) => error.note(format!("the keys here: {}", list.replace('`', ""))),
+            None if !expected.is_empty() => error.note(format!("expected {expected}")),
+            None => error,
+        };
+        return error.note("docs/project-file.md lists every key");
     }
+    if let Some(name) = message.strip_prefix("missing field ") {
+        // The span is the table's header (or the file's start).
+        let table = if text[span.start.min(text.len())..].starts_with('[') {
+            in_table(span.end)
+        } else {
+            String::new()
+        };
+        return ProjectError::at(code, span, format!("missing key {name}{table}"));
+    }
+    let message = match errors::key_at(text, span.start) {
+        Some(key) if !message.contains(&format!("`{key}`")) => format!("`{key}`: {message}"),
+        _ => message,
+    };
+    ProjectError::at(code, span, message)
 }
