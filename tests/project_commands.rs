@@ -8,11 +8,13 @@ use cli::{plcrun, temp_file};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const COUNTER: &str = "PROGRAM Count VAR_OUTPUT n : INT; END_VAR n := n + 1; END_PROGRAM\n";
+const COUNTER: &str = "FUNCTION_BLOCK Counter VAR_OUTPUT n : INT; END_VAR n := n + 1; END_FUNCTION_BLOCK
+PROGRAM Count VAR c : Counter; END_VAR VAR_OUTPUT n : INT; END_VAR c(); n := c.n; END_PROGRAM
+";
 const COUNTER_TEST: &str = "PROGRAM TEST_counts
-VAR c : Count; END_VAR
+VAR c : Counter; END_VAR
 c(); c();
-ASSERT_EQUAL(2, c.n, 'two calls count two');
+AssertEquals(2, c.n, 'two calls count two');
 END_PROGRAM
 ";
 
@@ -43,7 +45,7 @@ fn plcrun_in(dir: &Path, args: &[&str]) -> (i32, String, String) {
 fn check_reads_the_project_file_of_the_current_folder_or_the_one_named() {
     let dir = project(&[
         ("count.st", COUNTER.as_bytes()),
-        ("tests.st", COUNTER_TEST.as_bytes()),
+        ("main.st", b"PROGRAM Main VAR c : Counter; END_VAR c(); END_PROGRAM\n"),
         ("plcrun.toml", b"sources = [\"*.st\"]\nprogram = \"Count\"\n"),
     ]);
     let (code, _, err) = plcrun_in(&dir, &["check"]);
@@ -113,7 +115,7 @@ fn compare_takes_program_a_from_the_project() {
         ("count.st", COUNTER.as_bytes()),
         (
             "other.st",
-            b"PROGRAM Count VAR_OUTPUT n : INT; END_VAR n := 1 + n; END_PROGRAM\n",
+            b"PROGRAM Count VAR_OUTPUT n : INT; END_VAR n := 1 + n; END_PROGRAM\n" as &[u8],
         ),
         ("plcrun.toml", b"sources = [\"count.st\"]\n"),
     ]);
