@@ -8,7 +8,8 @@ use cli::{plcrun, temp_file};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const COUNTER: &str = "FUNCTION_BLOCK Counter VAR_OUTPUT n : INT; END_VAR n := n + 1; END_FUNCTION_BLOCK
+const COUNTER: &str =
+    "FUNCTION_BLOCK Counter VAR_OUTPUT n : INT; END_VAR n := n + 1; END_FUNCTION_BLOCK
 PROGRAM Count VAR c : Counter; END_VAR VAR_OUTPUT n : INT; END_VAR c(); n := c.n; END_PROGRAM
 ";
 const COUNTER_TEST: &str = "PROGRAM TEST_counts
@@ -20,7 +21,10 @@ END_PROGRAM
 
 /// A fresh folder holding `files`.
 fn project(files: &[(&str, &[u8])]) -> PathBuf {
-    let dir = Path::new(&temp_file(".keep", "")).parent().unwrap().to_path_buf();
+    let dir = Path::new(&temp_file(".keep", ""))
+        .parent()
+        .unwrap()
+        .to_path_buf();
     for (name, bytes) in files {
         std::fs::write(dir.join(name), bytes).unwrap();
     }
@@ -45,8 +49,14 @@ fn plcrun_in(dir: &Path, args: &[&str]) -> (i32, String, String) {
 fn check_reads_the_project_file_of_the_current_folder_or_the_one_named() {
     let dir = project(&[
         ("count.st", COUNTER.as_bytes()),
-        ("main.st", b"PROGRAM Main VAR c : Counter; END_VAR c(); END_PROGRAM\n"),
-        ("plcrun.toml", b"sources = [\"*.st\"]\nprogram = \"Count\"\n"),
+        (
+            "main.st",
+            b"PROGRAM Main VAR c : Counter; END_VAR c(); END_PROGRAM\n",
+        ),
+        (
+            "plcrun.toml",
+            b"sources = [\"*.st\"]\nprogram = \"Count\"\n",
+        ),
     ]);
     let (code, _, err) = plcrun_in(&dir, &["check"]);
     assert_eq!(code, 0, "{err}");
@@ -55,13 +65,21 @@ fn check_reads_the_project_file_of_the_current_folder_or_the_one_named() {
     let (code, _, err) = plcrun(&["check", "--project", file.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     // Sources and --project together are refused.
-    let (code, _, _) = plcrun(&["check", "programs/alg01.il", "--project", file.to_str().unwrap()]);
+    let (code, _, _) = plcrun(&[
+        "check",
+        "programs/alg01.il",
+        "--project",
+        file.to_str().unwrap(),
+    ]);
     assert_eq!(code, 2);
     // A folder without one.
     let empty = project(&[]);
     let (code, _, err) = plcrun_in(&empty, &["check"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.starts_with("error[E970]: cannot read the project file"), "{err}");
+    assert!(
+        err.starts_with("error[E970]: cannot read the project file"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -72,7 +90,10 @@ fn check_reports_errors_of_the_project_file_itself() {
     ]);
     let (code, _, err) = plcrun_in(&dir, &["check"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.starts_with("error[E973]: `cycle_time`: invalid type"), "{err}");
+    assert!(
+        err.starts_with("error[E973]: `cycle_time`: invalid type"),
+        "{err}"
+    );
     assert!(err.contains("--> plcrun.toml:2:14"), "{err}");
 }
 
@@ -84,7 +105,10 @@ fn the_encoding_of_the_file_is_used_unless_the_command_line_gives_one() {
     source.extend_from_slice(COUNTER.as_bytes());
     let dir = project(&[
         ("count.st", &source),
-        ("plcrun.toml", b"sources = [\"count.st\"]\nencoding = \"latin-1\"\n"),
+        (
+            "plcrun.toml",
+            b"sources = [\"count.st\"]\nencoding = \"latin-1\"\n",
+        ),
     ]);
     let (code, _, err) = plcrun_in(&dir, &["check"]);
     assert_eq!(code, 0, "{err}");
@@ -119,6 +143,11 @@ fn compare_takes_program_a_from_the_project() {
         ),
         ("plcrun.toml", b"sources = [\"count.st\"]\n"),
     ]);
-    let (code, out, err) = plcrun_in(&dir, &["compare", "--", "other.st", "--cycles", "20", "--random", "1"]);
+    let (code, out, err) = plcrun_in(
+        &dir,
+        &[
+            "compare", "--", "other.st", "--cycles", "20", "--random", "1",
+        ],
+    );
     assert_eq!(code, 0, "{out}{err}");
 }

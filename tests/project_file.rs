@@ -57,7 +57,10 @@ fn errors_of(file: &Path) -> String {
 
 #[test]
 fn a_minimal_file_runs_its_source_in_real_time_without_a_trace() {
-    let dir = project(&[("main.st", PROG), ("plcrun.toml", "sources = [\"main.st\"]\n")]);
+    let dir = project(&[
+        ("main.st", PROG),
+        ("plcrun.toml", "sources = [\"main.st\"]\n"),
+    ]);
     let main = dir.join("main.st");
     assert_eq!(
         command_of(&dir.join("plcrun.toml"), &[]),
@@ -135,7 +138,10 @@ token = "0123456789abcdef"
     assert_eq!(code, 0, "{err}");
     assert_eq!(out.trim(), expected);
     // The web table is read and checked, and said not to be served yet.
-    assert!(err.contains("web monitor ([web], 127.0.0.1:8081, token set) is not served yet"), "{err}");
+    assert!(
+        err.contains("web monitor ([web], 127.0.0.1:8081, token set) is not served yet"),
+        "{err}"
+    );
 }
 
 #[cfg(feature = "opcua")]
@@ -163,7 +169,10 @@ trust_clients = true
     // Without `pki`, the certificates are kept next to the file too.
     let dir = project(&[
         ("main.st", PROG),
-        ("plcrun.toml", "sources = [\"main.st\"]\n[opcua]\nlisten = \"127.0.0.1:0\"\n"),
+        (
+            "plcrun.toml",
+            "sources = [\"main.st\"]\n[opcua]\nlisten = \"127.0.0.1:0\"\n",
+        ),
     ]);
     let command = command_of(&dir.join("plcrun.toml"), &[]);
     assert!(
@@ -193,8 +202,14 @@ fn paths_are_relative_to_the_folder_of_the_file() {
 #[test]
 fn globs_expand_in_path_order_and_name_each_file_once() {
     let dir = project(&[
-        ("src/b.st", "PROGRAM B VAR_OUTPUT y : INT; END_VAR y := 2; END_PROGRAM\n"),
-        ("src/a.st", "PROGRAM A VAR_OUTPUT x : INT; END_VAR x := 1; END_PROGRAM\n"),
+        (
+            "src/b.st",
+            "PROGRAM B VAR_OUTPUT y : INT; END_VAR y := 2; END_PROGRAM\n",
+        ),
+        (
+            "src/a.st",
+            "PROGRAM A VAR_OUTPUT x : INT; END_VAR x := 1; END_PROGRAM\n",
+        ),
         ("src/lib/c.st", "FUNCTION C : INT C := 3; END_FUNCTION\n"),
         ("src/notes.txt", "not a source"),
         (
@@ -275,13 +290,21 @@ fn a_toml_syntax_error_is_e971_at_its_place() {
 #[test]
 fn an_unknown_key_is_e972_naming_the_key_and_its_table() {
     let (head, place, err, file) = error_case("sources = [\"main.st\"]\ncycle = \"10ms\"\n");
-    assert!(head.starts_with("error[E972]: unknown key `cycle`"), "{err}");
-    assert_eq!(place, format!("--> {}:2:1", file.display()), "{err}");
-    let (head, place, err, file) = error_case(
-        "sources = [\"main.st\"]\n\n[modbus]\nlisten = \"127.0.0.1:502\"\nport = 502\n",
+    assert!(
+        head.starts_with("error[E972]: unknown key `cycle`"),
+        "{err}"
     );
-    assert_eq!(head, "error[E972]: unknown key `port` in `[modbus]`", "{err}");
-    assert!(err.contains("= note: the keys here: listen, max_clients, idle_timeout"), "{err}");
+    assert_eq!(place, format!("--> {}:2:1", file.display()), "{err}");
+    let (head, place, err, file) =
+        error_case("sources = [\"main.st\"]\n\n[modbus]\nlisten = \"127.0.0.1:502\"\nport = 502\n");
+    assert_eq!(
+        head, "error[E972]: unknown key `port` in `[modbus]`",
+        "{err}"
+    );
+    assert!(
+        err.contains("= note: the keys here: listen, max_clients, idle_timeout"),
+        "{err}"
+    );
     assert_eq!(place, format!("--> {}:5:1", file.display()), "{err}");
     // An unknown table too.
     let (head, _, err, _) = error_case("sources = [\"main.st\"]\n[http]\nlisten = \"x\"\n");
@@ -290,18 +313,32 @@ fn an_unknown_key_is_e972_naming_the_key_and_its_table() {
 
 #[test]
 fn a_value_of_the_wrong_type_is_e973_naming_the_key() {
-    let (head, place, err, file) =
-        error_case("sources = [\"main.st\"]\n[modbus]\nlisten = \"127.0.0.1:502\"\nmax_clients = \"four\"\n");
-    assert!(head.starts_with("error[E973]: `modbus.max_clients`: invalid type"), "{err}");
+    let (head, place, err, file) = error_case(
+        "sources = [\"main.st\"]\n[modbus]\nlisten = \"127.0.0.1:502\"\nmax_clients = \"four\"\n",
+    );
+    assert!(
+        head.starts_with("error[E973]: `modbus.max_clients`: invalid type"),
+        "{err}"
+    );
     assert_eq!(place, format!("--> {}:4:15", file.display()), "{err}");
     // A missing required key.
     let (head, _, err, _) = error_case("cycle_time = \"10ms\"\n");
-    assert!(head.starts_with("error[E973]: missing key `sources`"), "{err}");
+    assert!(
+        head.starts_with("error[E973]: missing key `sources`"),
+        "{err}"
+    );
     let (head, _, err, _) = error_case("sources = [\"main.st\"]\n[retain]\nevery = 5\n");
-    assert!(head.starts_with("error[E973]: missing key `file` in `[retain]`"), "{err}");
+    assert!(
+        head.starts_with("error[E973]: missing key `file` in `[retain]`"),
+        "{err}"
+    );
     // A value in [force] that is no value.
-    let (head, place, err, file) = error_case("sources = [\"main.st\"]\n[force]\n\"Main.valve\" = [1, 2]\n");
-    assert!(head.starts_with("error[E973]: `force.Main.valve`: an array"), "{err}");
+    let (head, place, err, file) =
+        error_case("sources = [\"main.st\"]\n[force]\n\"Main.valve\" = [1, 2]\n");
+    assert!(
+        head.starts_with("error[E973]: `force.Main.valve`: an array"),
+        "{err}"
+    );
     assert_eq!(place, format!("--> {}:3:16", file.display()), "{err}");
 }
 
@@ -321,7 +358,10 @@ idle_timeout = \"0s\"
 token = \"short\"
 ";
     let (head, place, err, file) = error_case(toml);
-    assert!(head.starts_with("error[E974]: `cycle_time`: `soon` is not a duration"), "{err}");
+    assert!(
+        head.starts_with("error[E974]: `cycle_time`: `soon` is not a duration"),
+        "{err}"
+    );
     assert_eq!(place, format!("--> {}:2:14", file.display()), "{err}");
     let f = file.display();
     for (message, at) in [
@@ -343,18 +383,28 @@ token = \"short\"
 
 #[test]
 fn sources_that_name_no_file_are_e975() {
-    let (head, place, err, file) = error_case("sources = [\n  \"main.st\",\n  \"missing.st\",\n]\n");
+    let (head, place, err, file) =
+        error_case("sources = [\n  \"main.st\",\n  \"missing.st\",\n]\n");
     assert!(head.starts_with("error[E975]: `sources`: `"), "{err}");
     assert!(head.ends_with("missing.st` does not exist"), "{err}");
     assert_eq!(place, format!("--> {}:3:3", file.display()), "{err}");
     // Globs matching nothing at all.
     let (head, place, err, file) = error_case("sources = [\"src/*.st\", \"*.il\"]\n");
-    assert!(head.starts_with("error[E975]: `sources` names no file"), "{err}");
+    assert!(
+        head.starts_with("error[E975]: `sources` names no file"),
+        "{err}"
+    );
     assert_eq!(place, format!("--> {}:1:11", file.display()), "{err}");
     let (head, _, err, _) = error_case("sources = []\n");
-    assert!(head.starts_with("error[E975]: `sources` names no file"), "{err}");
+    assert!(
+        head.starts_with("error[E975]: `sources` names no file"),
+        "{err}"
+    );
     let (head, _, err, _) = error_case("sources = [\"src/***.st\"]\n");
-    assert!(head.starts_with("error[E975]: `sources`: `src/***.st` is not a valid pattern"), "{err}");
+    assert!(
+        head.starts_with("error[E975]: `sources`: `src/***.st` is not a valid pattern"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -363,7 +413,10 @@ fn a_missing_project_file_is_e970() {
     let file = dir.join("nothing.toml");
     let (code, _, err) = plcrun(&["serve", path_str(&file)]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.starts_with("error[E970]: cannot read the project file: "), "{err}");
+    assert!(
+        err.starts_with("error[E970]: cannot read the project file: "),
+        "{err}"
+    );
     assert!(err.contains("plcrun init"), "{err}");
     // No file named and none in the current folder (the repository's root).
     let (code, _, err) = plcrun(&["serve", "--check"]);

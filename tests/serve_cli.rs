@@ -20,7 +20,10 @@ fn repo(path: &str) -> PathBuf {
 
 /// A fresh folder for one test.
 fn fresh_dir() -> PathBuf {
-    Path::new(&temp_file(".keep", "")).parent().unwrap().to_path_buf()
+    Path::new(&temp_file(".keep", ""))
+        .parent()
+        .unwrap()
+        .to_path_buf()
 }
 
 #[cfg(target_os = "linux")]
@@ -85,13 +88,23 @@ fn the_chariot_example_serves_until_sigterm_and_saves_its_retained_data() {
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         // A free port and a retain file of the test's own: the file's
         // values overridden from the command line.
-        .args(["serve", EXAMPLE, "--modbus", "127.0.0.1:0", "--retain", retain_arg])
+        .args([
+            "serve",
+            EXAMPLE,
+            "--modbus",
+            "127.0.0.1:0",
+            "--retain",
+            retain_arg,
+        ])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .expect("plcrun starts");
     let (head, rest) = wait_for_line(&mut child, "modbus: listening on 127.0.0.1:");
-    assert!(head.contains("serve: examples/chariot/plcrun.toml (2 source files)"), "{head}");
+    assert!(
+        head.contains("serve: examples/chariot/plcrun.toml (2 source files)"),
+        "{head}"
+    );
     assert!(head.contains("cold start"), "{head}");
     // Cycles run in real time; the file is saved every 100 of them and at the stop.
     std::thread::sleep(Duration::from_millis(500));
@@ -100,13 +113,24 @@ fn the_chariot_example_serves_until_sigterm_and_saves_its_retained_data() {
     let rest = rest.join().unwrap();
     assert_eq!(output.status.code(), Some(0), "{head}{rest}");
     // No [trace] table: nothing on standard output.
-    assert!(output.stdout.is_empty(), "{}", String::from_utf8_lossy(&output.stdout));
+    assert!(
+        output.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&output.stdout)
+    );
     // Saved at the stop: after the cycles run, not only at the start.
     let cycles = saved_after(&retain);
     assert!(cycles > 0, "saved after {cycles} cycles\n{head}{rest}");
     // The next start is warm, from that save.
     let (code, _, err) = plcrun(&[
-        "serve", EXAMPLE, "--modbus", "127.0.0.1:0", "--retain", retain_arg, "--cycles", "3",
+        "serve",
+        EXAMPLE,
+        "--modbus",
+        "127.0.0.1:0",
+        "--retain",
+        retain_arg,
+        "--cycles",
+        "3",
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(
@@ -145,15 +169,24 @@ fn init_writes_a_file_that_checks_and_keeps_an_existing_one() {
     .unwrap();
     let (code, out, err) = plcrun(&["serve", file_arg, "--check"]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.starts_with("plcrun run --realtime --no-trace -- "), "{out}");
+    assert!(
+        out.starts_with("plcrun run --realtime --no-trace -- "),
+        "{out}"
+    );
     let (code, _, err) = plcrun(&["check", "--project", file_arg]);
     assert_eq!(code, 0, "{err}");
     // A second init keeps the file; --force overwrites it.
     std::fs::write(&file, "sources = [\"main.st\"]\n").unwrap();
     let (code, _, err) = plcrun(&["init", file_arg]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("exists; `plcrun init --force` overwrites it"), "{err}");
-    assert_eq!(std::fs::read_to_string(&file).unwrap(), "sources = [\"main.st\"]\n");
+    assert!(
+        err.contains("exists; `plcrun init --force` overwrites it"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&file).unwrap(),
+        "sources = [\"main.st\"]\n"
+    );
     let (code, _, err) = plcrun(&["init", file_arg, "--force"]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(std::fs::read_to_string(&file).unwrap(), written);
@@ -169,9 +202,9 @@ fn every_key_of_the_init_file_parses_when_uncommented() {
     assert_eq!(code, 0, "{err}");
     let mut text = String::new();
     for line in std::fs::read_to_string(&file).unwrap().lines() {
-        let key_or_table = line
-            .strip_prefix("# ")
-            .filter(|l| l.starts_with('[') || l.split_once(" = ").is_some_and(|(k, _)| !k.contains(' ')));
+        let key_or_table = line.strip_prefix("# ").filter(|l| {
+            l.starts_with('[') || l.split_once(" = ").is_some_and(|(k, _)| !k.contains(' '))
+        });
         text.push_str(key_or_table.unwrap_or(line));
         text.push('\n');
     }
@@ -180,7 +213,10 @@ fn every_key_of_the_init_file_parses_when_uncommented() {
         let end = text.find("[web]").unwrap();
         text.replace_range(cut..end, "");
     }
-    assert!(text.contains("\n[web]\nlisten = \"127.0.0.1:8080\""), "{text}");
+    assert!(
+        text.contains("\n[web]\nlisten = \"127.0.0.1:8080\""),
+        "{text}"
+    );
     std::fs::write(&file, &text).unwrap();
     std::fs::write(
         dir.join("main.st"),

@@ -81,7 +81,10 @@ pub fn render(name: &str, text: &str, errors: &[ProjectError]) -> String {
                 out.push_str(&diagnostic.render(&sources));
             }
             None => {
-                out.push_str(&format!("error[{}]: {}\n --> {name}\n", error.code, error.message));
+                out.push_str(&format!(
+                    "error[{}]: {}\n --> {name}\n",
+                    error.code, error.message
+                ));
                 for note in &error.notes {
                     out.push_str(&format!("  = note: {note}\n"));
                 }
@@ -138,9 +141,9 @@ pub fn table_at(text: &str, offset: usize) -> Option<String> {
 /// A bare or quoted TOML key (possibly dotted).
 fn is_key(text: &str) -> bool {
     !text.is_empty()
-        && text.chars().all(|c| {
-            c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.' | '"' | '\'' | ' ')
-        })
+        && text
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.' | '"' | '\'' | ' '))
 }
 
 fn floor_char_boundary(text: &str, mut at: usize) -> usize {

@@ -44,7 +44,8 @@ pub fn load(path: &Path) -> Result<Project, String> {
     let text = match std::fs::read_to_string(path) {
         Ok(text) => text,
         Err(e) => {
-            let error = ProjectError::whole(UNREADABLE, format!("cannot read the project file: {e}"));
+            let error =
+                ProjectError::whole(UNREADABLE, format!("cannot read the project file: {e}"));
             let error = if e.kind() == std::io::ErrorKind::NotFound {
                 error.note("`plcrun init` writes one; or give the sources on the command line")
             } else {

@@ -15,7 +15,8 @@ pub fn resolve(folder: &Path, path: &str) -> PathBuf {
         match part {
             Component::CurDir => {}
             Component::ParentDir => {
-                let last_is_name = matches!(out.components().next_back(), Some(Component::Normal(_)));
+                let last_is_name =
+                    matches!(out.components().next_back(), Some(Component::Normal(_)));
                 if last_is_name {
                     out.pop();
                 } else {
@@ -50,7 +51,11 @@ pub fn sources(
         let text = entry.get_ref().as_str();
         let span = entry.span();
         if text.trim().is_empty() {
-            errors.push(ProjectError::at(NO_SOURCE, span, "`sources`: an empty entry"));
+            errors.push(ProjectError::at(
+                NO_SOURCE,
+                span,
+                "`sources`: an empty entry",
+            ));
             continue;
         }
         if !is_glob(text) {

@@ -34,7 +34,9 @@ pub fn default_run_args(files: &[PathBuf]) -> Result<RunArgs, String> {
     if files.is_empty() {
         argv.push("-".into()); // `files` is required: replaced below
     }
-    let matches = command.try_get_matches_from(argv).map_err(|e| e.to_string())?;
+    let matches = command
+        .try_get_matches_from(argv)
+        .map_err(|e| e.to_string())?;
     let mut args = RunArgs::from_arg_matches(&matches).map_err(|e| e.to_string())?;
     args.files = files.to_vec();
     Ok(args)
@@ -122,7 +124,12 @@ impl Filler<'_> {
     }
 
     /// A duration for `key`, checked as the run checks its flag.
-    fn duration(&mut self, key: &str, value: &Spanned<String>, zero_allowed: bool) -> Option<String> {
+    fn duration(
+        &mut self,
+        key: &str,
+        value: &Spanned<String>,
+        zero_allowed: bool,
+    ) -> Option<String> {
         let text = value.get_ref().trim();
         let parsed = if zero_allowed && text == "0" {
             Ok(0)
@@ -133,14 +140,23 @@ impl Filler<'_> {
             Ok(0) if zero_allowed => Some(text.to_string()),
             Ok(ns) if ns > 0 => Some(text.to_string()),
             Ok(_) => {
-                let want = if zero_allowed { "0 or more" } else { "positive" };
-                self.bad(value.span(), format!("`{key}` must be {want}, not `{text}`"));
+                let want = if zero_allowed {
+                    "0 or more"
+                } else {
+                    "positive"
+                };
+                self.bad(
+                    value.span(),
+                    format!("`{key}` must be {want}, not `{text}`"),
+                );
                 None
             }
             Err(e) => {
                 self.bad(
                     value.span(),
-                    format!("`{key}`: `{text}` is not a duration ({e}); write e.g. \"10ms\" or \"T#1s\""),
+                    format!(
+                        "`{key}`: `{text}` is not a duration ({e}); write e.g. \"10ms\" or \"T#1s\""
+                    ),
                 );
                 None
             }
@@ -153,7 +169,10 @@ impl Filler<'_> {
         if (low..=high).contains(&n) {
             u64::try_from(n).ok()
         } else {
-            self.bad(value.span(), format!("`{key}` must be from {low} to {high}, not {n}"));
+            self.bad(
+                value.span(),
+                format!("`{key}` must be from {low} to {high}, not {n}"),
+            );
             None
         }
     }
@@ -170,7 +189,11 @@ impl Filler<'_> {
         if port.parse::<u16>().is_ok() {
             Some(text.to_string())
         } else {
-            let form = if port_alone { "HOST:PORT or a port" } else { "HOST:PORT" };
+            let form = if port_alone {
+                "HOST:PORT or a port"
+            } else {
+                "HOST:PORT"
+            };
             self.bad(
                 value.span(),
                 format!("`{key}`: `{text}` is not {form} (e.g. \"127.0.0.1:502\")"),

@@ -115,7 +115,10 @@ pub fn command_line(run: &RunArgs) -> String {
     if let Some(a) = &run.modbus {
         flag("modbus", Some(a.clone()));
         if changed!(modbus_max_clients) {
-            flag("modbus-max-clients", Some(run.modbus_max_clients.to_string()));
+            flag(
+                "modbus-max-clients",
+                Some(run.modbus_max_clients.to_string()),
+            );
         }
         if changed!(modbus_idle_timeout) {
             flag("modbus-idle-timeout", Some(run.modbus_idle_timeout.clone()));
@@ -142,7 +145,11 @@ pub fn command_line(run: &RunArgs) -> String {
     }
     words.push("--".into());
     words.extend(run.files.iter().map(|f| path(f)));
-    words.iter().map(|w| quoted(w)).collect::<Vec<_>>().join(" ")
+    words
+        .iter()
+        .map(|w| quoted(w))
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// `word` as a POSIX shell reads it back.

@@ -50,7 +50,11 @@ pub fn serve(args: &ServeArgs, given: &Given) -> i32 {
             "note: {}: the web monitor ([web], {}, {}) is not served yet by this version",
             project.path.display(),
             web.listen,
-            if web.token.is_some() { "token set" } else { "no token" }
+            if web.token.is_some() {
+                "token set"
+            } else {
+                "no token"
+            }
         );
     }
     if args.check {

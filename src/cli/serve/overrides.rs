@@ -25,11 +25,41 @@ pub fn apply(base: &mut RunArgs, cli: &RunArgs, given: &Given) -> Result<(), Str
         ($first:ident . $($rest:ident).+) => { last!($($rest).+) };
     }
     replace!(
-        cycles, cycle_time, program, stimulus, trace, format, changes_only, output, no_trace,
-        watchdog, realtime, rt_priority, cpu, no_lock_memory, allow_cpu_sleep, stats,
-        stats_format, online_change_at, reload, retain, retain_every, cold, retain_partial, svg,
-        svg_chart, svg_chart_cycle, grafcet, modbus, modbus_max_clients, modbus_idle_timeout,
-        max_data_mib, no_optimize, reading.strict, reading.encoding, reading.addressing,
+        cycles,
+        cycle_time,
+        program,
+        stimulus,
+        trace,
+        format,
+        changes_only,
+        output,
+        no_trace,
+        watchdog,
+        realtime,
+        rt_priority,
+        cpu,
+        no_lock_memory,
+        allow_cpu_sleep,
+        stats,
+        stats_format,
+        online_change_at,
+        reload,
+        retain,
+        retain_every,
+        cold,
+        retain_partial,
+        svg,
+        svg_chart,
+        svg_chart_cycle,
+        grafcet,
+        modbus,
+        modbus_max_clients,
+        modbus_idle_timeout,
+        max_data_mib,
+        no_optimize,
+        reading.strict,
+        reading.encoding,
+        reading.addressing,
     );
     #[cfg(feature = "opcua")]
     replace!(
@@ -50,7 +80,11 @@ pub fn apply(base: &mut RunArgs, cli: &RunArgs, given: &Given) -> Result<(), Str
         }
     }
     // A trace asked for on the command line is written.
-    if ["trace", "output", "changes_only"].iter().any(|id| given.has(id)) && !given.has("no_trace") {
+    if ["trace", "output", "changes_only"]
+        .iter()
+        .any(|id| given.has(id))
+        && !given.has("no_trace")
+    {
         base.no_trace = false;
     }
     match given.ids().find(|id| !known.contains(id)) {
