@@ -107,8 +107,10 @@ pub struct Modbus {
     pub idle_timeout: Option<Spanned<String>>,
 }
 
-/// `[opcua]`.
+/// `[opcua]` (read in every build, so that its keys are checked; used
+/// only with the `opcua` feature).
 #[derive(Debug, Deserialize)]
+#[cfg_attr(not(feature = "opcua"), allow(dead_code))]
 #[serde(deny_unknown_fields)]
 pub struct OpcUa {
     /// `ADDR:PORT` or a port alone.
