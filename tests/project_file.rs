@@ -436,3 +436,19 @@ fn a_project_whose_sources_do_not_compile_fails_the_check() {
     assert!(out.is_empty(), "{out}");
     assert!(err.contains("error[E201]"), "{err}");
 }
+
+#[test]
+fn a_folder_source_is_given_to_the_loader_as_it_is() {
+    // A folder stands for its sources wherever a source file may be named.
+    let dir = project(&[
+        ("plc/main.st", PROG),
+        ("plcrun.toml", "sources = [\"plc\"]\n"),
+    ]);
+    let (code, out, err) = serve_check(&dir.join("plcrun.toml"), &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("ok: 1 file checked"), "{err}");
+    assert!(
+        out.trim().ends_with(&format!("-- {}/plc", dir.display())),
+        "{out}"
+    );
+}
