@@ -265,7 +265,7 @@ fn flags_given_to_serve_override_the_file() {
 
 /// The first diagnostic's header: `error[CODE]: message` and `--> place`.
 fn first_error(err: &str) -> (String, String) {
-    let mut lines = err.lines();
+    let mut lines = err.lines().skip_while(|l| !l.starts_with("error["));
     let head = lines.next().unwrap_or_default().to_string();
     let place = lines.next().unwrap_or_default().trim().to_string();
     (head, place)
@@ -451,4 +451,24 @@ fn a_folder_source_is_given_to_the_loader_as_it_is() {
         out.trim().ends_with(&format!("-- {}/plc", dir.display())),
         "{out}"
     );
+}
+
+#[test]
+fn check_reports_set_and_force_lines_the_program_cannot_take_at_their_place() {
+    let toml = "sources = [\"main.st\"]\n[set]\n\"Main.setpoint\" = 12\n\"Main.nothing\" = 1\n[force]\n\"Main.valve\" = \"maybe\"\n";
+    let (head, place, err, file) = error_case(toml);
+    assert_eq!(
+        head, "error[E974]: `set.Main.nothing`: `Main.nothing`: Main has no member `nothing`",
+        "{err}"
+    );
+    assert_eq!(place, format!("--> {}:4:18", file.display()), "{err}");
+    let f = file.display();
+    assert!(
+        err.contains(&format!(
+            "error[E974]: `force.Main.valve`: `Main.valve` is of type BOOL and cannot take `maybe`"
+        )),
+        "{err}"
+    );
+    assert!(err.contains(&format!("--> {f}:6:16\n")), "{err}");
+    assert!(err.ends_with("2 errors in the project file\n"), "{err}");
 }

@@ -160,6 +160,27 @@ fn compile(args: &RunArgs, options: &Options) -> Result<Plc, i32> {
     Ok(plc)
 }
 
+/// The program of `args` compiled as the run compiles it, with nothing
+/// printed but the reason it failed (for `plcrun serve --check`, which has
+/// printed the diagnostics already); `Err` is the exit status.
+pub(super) fn compile_quietly(args: &RunArgs) -> Result<Plc, i32> {
+    let options = options(args).map_err(usage_error)?;
+    let mut diags = Diagnostics::new();
+    let sources =
+        load_files_with(&args.files, options.encoding, &mut diags).map_err(usage_error)?;
+    if diags.has_errors() {
+        return Err(EXIT_COMPILE);
+    }
+    Plc::compile(sources, &options).map_err(|e| {
+        eprint!("{e}");
+        if e.needs_program_choice() {
+            EXIT_USAGE
+        } else {
+            EXIT_COMPILE
+        }
+    })
+}
+
 /// Builds the session: `--set`, the stimulus, the traced names.
 fn session(args: &RunArgs, mut plc: Plc) -> Result<Session, String> {
     for item in &args.set {

@@ -10,7 +10,7 @@ mod schema;
 mod settings;
 
 pub use fallback::sources_or_project;
-pub use settings::default_run_args;
+pub use settings::{Assignment, default_run_args};
 
 use super::args::RunArgs;
 use errors::{ProjectError, SYNTAX, UNKNOWN_KEY, UNREADABLE, WRONG_TYPE};
@@ -35,6 +35,40 @@ pub struct Project {
     pub traced: bool,
     /// The `[web]` table, checked (the monitor is not served yet).
     pub web: Option<settings::WebSettings>,
+    /// The `[set]` and `[force]` lines, with their places.
+    pub assignments: Vec<settings::Assignment>,
+}
+
+/// Checks the `[set]` and `[force]` lines of the project file at `path`
+/// against `plc` (compiled from the project) as the run will apply them: a
+/// name the program does not have, or a value that does not fit, is
+/// reported at its place in the file (E974). `Err` holds the rendered
+/// errors.
+pub fn check_assignments(
+    path: &Path,
+    assignments: &[settings::Assignment],
+    plc: &mut plcrun::Plc,
+) -> Result<(), String> {
+    let mut found = Vec::new();
+    for a in assignments {
+        let result = match a.table {
+            "force" => plc.force(&a.name, &a.literal),
+            _ => plc.write(&a.name, &a.literal),
+        };
+        if let Err(e) = result {
+            found.push(ProjectError::at(
+                errors::BAD_VALUE,
+                a.span.clone(),
+                format!("`{}.{}`: {e}", a.table, a.name),
+            ));
+        }
+    }
+    if found.is_empty() {
+        return Ok(());
+    }
+    let name = path.display().to_string();
+    let text = std::fs::read_to_string(path).unwrap_or_default();
+    Err(errors::render(&name, &text, &found))
 }
 
 /// Reads and checks the project file at `path`. On error, every problem

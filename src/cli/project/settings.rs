@@ -23,6 +23,20 @@ pub struct WebSettings {
     pub token: Option<String>,
 }
 
+/// One `NAME = value` of `[set]` or `[force]`, with its place, so that a
+/// name the program does not have can be reported there.
+#[derive(Debug, Clone)]
+pub struct Assignment {
+    /// `"set"` or `"force"`.
+    pub table: &'static str,
+    /// The variable's path.
+    pub name: String,
+    /// The value as an IEC literal.
+    pub literal: String,
+    /// The value's bytes in the file.
+    pub span: Range<usize>,
+}
+
 /// The default address of the web monitor.
 const WEB_DEFAULT: &str = "127.0.0.1:8080";
 
@@ -68,6 +82,7 @@ pub fn resolve(
     };
     // `serve` runs in real time; `check`, `test` and `compare` ignore it.
     run.realtime = true;
+    let mut assignments = Vec::new();
     let mut into = Filler {
         folder,
         errors: &mut errors,
@@ -80,10 +95,10 @@ pub fn resolve(
         into.retain(r.get_ref(), &mut run);
     }
     if let Some(set) = &file.set {
-        run.set = into.assignments("set", set);
+        run.set = into.assignments("set", set, &mut assignments);
     }
     if let Some(force) = &file.force {
-        run.force = into.assignments("force", force);
+        run.force = into.assignments("force", force, &mut assignments);
     }
     if let Some(t) = &file.trace {
         into.trace(t.get_ref(), &mut run);
@@ -102,6 +117,7 @@ pub fn resolve(
             run,
             traced: file.trace.is_some(),
             web,
+            assignments,
         })
     } else {
         Err(errors)
@@ -288,12 +304,24 @@ impl Filler<'_> {
     /// Dotted names (`main.valve = true`) read as TOML nests them.
     fn assignments(
         &mut self,
-        table: &str,
+        table: &'static str,
         entries: &Spanned<BTreeMap<String, Spanned<toml::Value>>>,
+        placed: &mut Vec<Assignment>,
     ) -> Vec<String> {
         let mut items = Vec::new();
         for (name, value) in entries.get_ref() {
+            let before = items.len();
             self.assignment(table, name, value.get_ref(), value.span(), &mut items);
+            for item in &items[before..] {
+                if let Some((name, literal)) = item.split_once('=') {
+                    placed.push(Assignment {
+                        table,
+                        name: name.to_string(),
+                        literal: literal.to_string(),
+                        span: value.span(),
+                    });
+                }
+            }
         }
         items
     }

@@ -10,7 +10,8 @@ use super::args::{CheckArgs, ReadingArgs, RunArgs};
 use super::given::Given;
 use super::{EXIT_USAGE, project};
 use clap::Args;
-use std::path::PathBuf;
+use project::Assignment;
+use std::path::{Path, PathBuf};
 
 /// `plcrun serve [FILE] [--check] [flags of run]`.
 #[derive(Debug, Args)]
@@ -58,7 +59,7 @@ pub fn serve(args: &ServeArgs, given: &Given) -> i32 {
         );
     }
     if args.check {
-        return check(&run);
+        return check(&run, &project.path, &project.assignments);
     }
     eprintln!(
         "serve: {} ({} source file{})",
@@ -69,9 +70,10 @@ pub fn serve(args: &ServeArgs, given: &Given) -> i32 {
     super::run::run(&run)
 }
 
-/// `--check`: the sources checked as `plcrun check` checks them, then the
-/// equivalent command on standard output.
-fn check(run: &RunArgs) -> i32 {
+/// `--check`: the sources checked as `plcrun check` checks them, the
+/// `[set]` and `[force]` names and values against the compiled program,
+/// then the equivalent command on standard output.
+fn check(run: &RunArgs, path: &Path, assignments: &[Assignment]) -> i32 {
     let args = CheckArgs {
         files: run.files.clone(),
         project: None,
@@ -87,8 +89,19 @@ fn check(run: &RunArgs) -> i32 {
         },
     };
     let status = super::run::check(&args, &Given::default());
-    if status == super::EXIT_OK {
-        println!("{}", command_line::command_line(run));
+    if status != super::EXIT_OK {
+        return status;
     }
-    status
+    if !assignments.is_empty() {
+        let mut plc = match super::run::compile_quietly(run) {
+            Ok(plc) => plc,
+            Err(status) => return status,
+        };
+        if let Err(rendered) = project::check_assignments(path, assignments, &mut plc) {
+            eprint!("{rendered}");
+            return EXIT_USAGE;
+        }
+    }
+    println!("{}", command_line::command_line(run));
+    super::EXIT_OK
 }
