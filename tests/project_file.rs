@@ -464,9 +464,9 @@ fn check_reports_set_and_force_lines_the_program_cannot_take_at_their_place() {
     assert_eq!(place, format!("--> {}:4:18", file.display()), "{err}");
     let f = file.display();
     assert!(
-        err.contains(&format!(
+        err.contains(
             "error[E974]: `force.Main.valve`: `Main.valve` is of type BOOL and cannot take `maybe`"
-        )),
+        ),
         "{err}"
     );
     assert!(err.contains(&format!("--> {f}:6:16\n")), "{err}");
