@@ -51,6 +51,7 @@ pub enum Command {
         mut_arg("files", |a| a
             .required(false)
             .num_args(0..=1)
+            .action(clap::ArgAction::Set)
             .value_name("FILE")
             .help("The project file (default: ./plcrun.toml)")),
         // Real time is implied: flags that need --realtime are accepted

@@ -81,7 +81,7 @@ pub fn load(path: &Path) -> Result<Project, String> {
             let error =
                 ProjectError::whole(UNREADABLE, format!("cannot read the project file: {e}"));
             let error = if e.kind() == std::io::ErrorKind::NotFound {
-                error.note("`plcrun init` writes one; or give the sources on the command line")
+                error.note("`plcrun init` writes one; `check`, `test` and `compare` also take source files instead")
             } else {
                 error
             };
