@@ -196,6 +196,12 @@ mod pointer_byte_views;
 mod pointers;
 #[path = "process_image.rs"]
 mod process_image;
+#[cfg(feature = "cli")]
+#[path = "project_commands.rs"]
+mod project_commands;
+#[cfg(feature = "cli")]
+#[path = "project_file.rs"]
+mod project_file;
 #[path = "reference_calls.rs"]
 mod reference_calls;
 #[path = "references.rs"]
@@ -221,6 +227,9 @@ mod s7_seed_as_printed;
 mod s7_seed_examples;
 #[path = "seed_programs.rs"]
 mod seed_programs;
+#[cfg(feature = "cli")]
+#[path = "serve_cli.rs"]
+mod serve_cli;
 #[cfg(feature = "cli")]
 #[path = "sfc_chariot.rs"]
 mod sfc_chariot;

@@ -44,6 +44,27 @@ pub enum Command {
     Export(ExportArgs),
     /// Run the unit tests written in IEC (`plcrun test FILES...`; docs/testing.md).
     Test(super::test::TestArgs),
+    /// Run the project of a plcrun.toml in real time until stopped
+    /// (Ctrl-C, SIGTERM); flags of `run` given here override the file
+    /// (docs/project-file.md).
+    #[command(
+        mut_arg("files", |a| a
+            .required(false)
+            .num_args(0..=1)
+            .action(clap::ArgAction::Set)
+            .value_name("FILE")
+            .help("The project file (default: ./plcrun.toml)")),
+        // Real time is implied: flags that need --realtime are accepted
+        // alone. A flag's default is not what serve uses: the file's is.
+        mut_args(|a| {
+            let takes_values = a.get_action().takes_values();
+            a.requires(clap::builder::Resettable::Reset)
+                .hide_default_value(takes_values)
+        }),
+    )]
+    Serve(Box<super::serve::ServeArgs>),
+    /// Write a commented plcrun.toml to start a project from.
+    Init(super::init::InitArgs),
     /// Manage the users file of the OPC UA server (`plcrun opcua-user add
     /// FILE NAME`, the password on standard input; docs/opcua.md).
     #[cfg(feature = "opcua")]
@@ -108,6 +129,10 @@ pub struct RunArgs {
     /// Write the trace to FILE instead of standard output.
     #[arg(long)]
     pub output: Option<PathBuf>,
+    /// Write no trace (what `plcrun serve` does when the project has no
+    /// `[trace]` table).
+    #[arg(long, conflicts_with_all = ["trace", "output", "changes_only"])]
+    pub no_trace: bool,
     /// Wall-clock limit of one cycle (e.g. 1s, 250ms); 0 disables it.
     #[arg(long, default_value = "1s")]
     pub watchdog: String,
@@ -234,9 +259,11 @@ pub struct ReadingArgs {
 /// `plcrun check FILES...`: parse and check only.
 #[derive(Debug, Args)]
 pub struct CheckArgs {
-    /// Source files.
-    #[arg(required = true)]
+    /// Source files (default: the sources of ./plcrun.toml or --project).
     pub files: Vec<PathBuf>,
+    /// Check the sources of this project file (docs/project-file.md).
+    #[arg(long, value_name = "FILE", conflicts_with = "files")]
+    pub project: Option<PathBuf>,
     /// Print the compiled IR of every code block (a debugging aid).
     #[arg(long)]
     pub dump_ir: bool,

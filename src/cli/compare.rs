@@ -4,6 +4,7 @@
 //! errors.
 
 use super::args::ReadingArgs;
+use super::given::Given;
 use super::{EXIT_OK, EXIT_USAGE};
 use clap::Args;
 use plcrun::{
@@ -23,9 +24,12 @@ const EXIT_DIFFERENT: i32 = 1;
     after_help = "Exit status: 0 equivalent on every run, 1 a difference found, 2 usage or compile errors. See docs/compare.md."
 )]
 pub struct CompareArgs {
-    /// Source files of program A.
-    #[arg(required = true)]
+    /// Source files of program A (default: the sources of ./plcrun.toml
+    /// or --project).
     pub a_files: Vec<PathBuf>,
+    /// Program A is the project of this file (docs/project-file.md).
+    #[arg(long, value_name = "FILE", conflicts_with = "a_files")]
+    pub project: Option<PathBuf>,
     /// Source files of program B (after `--`).
     #[arg(last = true, required = true)]
     pub b_files: Vec<PathBuf>,
@@ -154,8 +158,22 @@ impl Program {
     }
 }
 
-/// `plcrun compare ...`
-pub fn compare(args: &CompareArgs) -> i32 {
+/// `plcrun compare ...`; without A's files, A is the project file's
+/// sources (read as it says unless `given` flags say otherwise).
+pub fn compare(mut args: Box<CompareArgs>, given: &Given) -> i32 {
+    match super::project::sources_or_project(
+        &args.a_files,
+        args.project.as_deref(),
+        &args.reading,
+        given,
+    ) {
+        Ok((files, reading)) => (args.a_files, args.reading) = (files, reading),
+        Err(rendered) => {
+            eprint!("{rendered}");
+            return EXIT_USAGE;
+        }
+    }
+    let args = &*args;
     match prepare(args) {
         Ok((a, b, options, pair)) => match execute(args, &a, &b, &options, pair) {
             Ok(status) => status,

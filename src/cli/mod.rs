@@ -5,16 +5,21 @@ mod args;
 mod compare;
 mod draw;
 mod export;
+mod given;
+mod init;
 mod modbus;
 mod online;
 #[cfg(feature = "opcua")]
 mod opcua;
+mod project;
 mod reload;
 mod retain;
 mod run;
+mod serve;
 mod test;
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches};
+use given::Given;
 
 /// Exit status for success.
 pub const EXIT_OK: i32 = 0;
@@ -27,14 +32,27 @@ pub const EXIT_FAULT: i32 = 3;
 
 /// Parses the command line and runs the chosen command.
 pub fn main() -> i32 {
-    match args::Cli::try_parse_from(compare::reorder(std::env::args_os().collect())) {
+    let words = compare::reorder(std::env::args_os().collect());
+    let matches = match args::Cli::command().try_get_matches_from(words) {
+        Ok(m) => m,
+        Err(e) => return usage(e),
+    };
+    // The flags typed (not defaulted) of the subcommand: those that
+    // override a project file.
+    let given = matches
+        .subcommand()
+        .map(|(_, sub)| Given::of(sub))
+        .unwrap_or_default();
+    match args::Cli::from_arg_matches(&matches) {
         Ok(cli) => match cli.command {
-            Some(args::Command::Check(a)) => run::check(&a),
-            Some(args::Command::Compare(a)) => compare::compare(&a),
+            Some(args::Command::Check(a)) => run::check(&a, &given),
+            Some(args::Command::Compare(a)) => compare::compare(a, &given),
             Some(args::Command::Run(a)) => run::run(&a),
             Some(args::Command::Draw(a)) => draw::draw(&a),
             Some(args::Command::Export(a)) => export::export(&a),
-            Some(args::Command::Test(a)) => test::test(&a),
+            Some(args::Command::Test(a)) => test::test(a, &given),
+            Some(args::Command::Serve(a)) => serve::serve(&a, &given),
+            Some(args::Command::Init(a)) => init::init(&a),
             #[cfg(feature = "opcua")]
             Some(args::Command::OpcUaUser(a)) => opcua::user(&a),
             None => run::run(&cli.run),

@@ -1,6 +1,7 @@
 //! The `run` and `check` commands, over the library's public API.
 
 use super::args::{CheckArgs, RunArgs, StatsFormat};
+use super::given::Given;
 use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
 use plcrun::{
     CheckOptions, Diagnostics, LiveStimulus, ModbusExchange, Options, Plc, RealTimeSetup, RunError,
@@ -38,10 +39,23 @@ fn usage_error(msg: impl std::fmt::Display) -> i32 {
     EXIT_USAGE
 }
 
-/// `plcrun check FILES...`
-pub fn check(args: &CheckArgs) -> i32 {
+/// `plcrun check FILES...` (or the sources of a project file); `given`
+/// says which flags were typed.
+pub fn check(args: &CheckArgs, given: &Given) -> i32 {
+    let (files, reading) = match super::project::sources_or_project(
+        &args.files,
+        args.project.as_deref(),
+        &args.reading,
+        given,
+    ) {
+        Ok(found) => found,
+        Err(rendered) => {
+            eprint!("{rendered}");
+            return EXIT_USAGE;
+        }
+    };
     let mut diags = Diagnostics::new();
-    let sources = match load_files_with(&args.files, args.reading.encoding, &mut diags) {
+    let sources = match load_files_with(&files, reading.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
@@ -51,8 +65,8 @@ pub fn check(args: &CheckArgs) -> i32 {
         address_map: args.map,
         grafcet: args.grafcet,
         max_data_bytes: (args.max_data_mib as usize) << 20,
-        strict: args.reading.strict,
-        addressing: args.reading.addressing,
+        strict: reading.strict,
+        addressing: reading.addressing,
     };
     let mut report = check_sources(&sources, &options);
     // Sources holding TcUnit suites check as `plcrun test` compiles them.
@@ -146,6 +160,27 @@ fn compile(args: &RunArgs, options: &Options) -> Result<Plc, i32> {
     Ok(plc)
 }
 
+/// The program of `args` compiled as the run compiles it, with nothing
+/// printed but the reason it failed (for `plcrun serve --check`, which has
+/// printed the diagnostics already); `Err` is the exit status.
+pub(super) fn compile_quietly(args: &RunArgs) -> Result<Plc, i32> {
+    let options = options(args).map_err(usage_error)?;
+    let mut diags = Diagnostics::new();
+    let sources =
+        load_files_with(&args.files, options.encoding, &mut diags).map_err(usage_error)?;
+    if diags.has_errors() {
+        return Err(EXIT_COMPILE);
+    }
+    Plc::compile(sources, &options).map_err(|e| {
+        eprint!("{e}");
+        if e.needs_program_choice() {
+            EXIT_USAGE
+        } else {
+            EXIT_COMPILE
+        }
+    })
+}
+
 /// Builds the session: `--set`, the stimulus, the traced names.
 fn session(args: &RunArgs, mut plc: Plc) -> Result<Session, String> {
     for item in &args.set {
@@ -162,7 +197,9 @@ fn session(args: &RunArgs, mut plc: Plc) -> Result<Session, String> {
         plc.force(name.trim(), value)
             .map_err(|e| format!("--force {item}: {e}"))?;
     }
-    let names: Vec<String> = if args.trace.is_empty() {
+    let names: Vec<String> = if args.no_trace {
+        Vec::new()
+    } else if args.trace.is_empty() {
         for (name, values) in plc.default_trace_left_out() {
             eprintln!(
                 "note: `{name}` ({values} values) is left out of the default trace; name the values to trace with --trace"
@@ -352,6 +389,8 @@ pub fn run(args: &RunArgs) -> i32 {
         Err(e) => return usage_error(e),
     };
     let out: Box<dyn Write> = match &args.output {
+        // No trace: the rows (cycle and time only) go nowhere.
+        _ if args.no_trace => Box::new(std::io::sink()),
         Some(p) => match std::fs::File::create(p) {
             Ok(f) => Box::new(std::io::BufWriter::new(f)),
             Err(e) => return usage_error(format!("cannot write `{}`: {e}", p.display())),

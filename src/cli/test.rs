@@ -3,6 +3,7 @@
 //! errored, compile errors or no test found, 2 usage errors.
 
 use super::args::ReadingArgs;
+use super::given::Given;
 use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};
 use clap::Args;
 use plcrun::{Diagnostics, TestError, TestOptions, load_files_with, parse_time_literal, run_tests};
@@ -18,9 +19,12 @@ const EXIT_FAILED: i32 = 1;
     after_help = "A test is a PROGRAM or FUNCTION_BLOCK whose name starts with TEST_. Exit status: 0 every test passed, 1 a test failed, compile errors or no test, 2 usage errors. See docs/testing.md."
 )]
 pub struct TestArgs {
-    /// Source files: the code under test and the tests.
-    #[arg(required = true)]
+    /// Source files: the code under test and the tests (default: the
+    /// sources of ./plcrun.toml or --project).
     pub files: Vec<PathBuf>,
+    /// Test the sources of this project file (docs/project-file.md).
+    #[arg(long, value_name = "FILE", conflicts_with = "files")]
+    pub project: Option<PathBuf>,
     /// Run only the tests whose name contains PATTERN (ignoring case).
     #[arg(long, value_name = "PATTERN")]
     pub filter: Option<String>,
@@ -69,8 +73,22 @@ fn options(args: &TestArgs) -> Result<TestOptions, String> {
     })
 }
 
-/// `plcrun test FILES...`
-pub fn test(args: &TestArgs) -> i32 {
+/// `plcrun test FILES...` (or the sources of a project file, read as it
+/// says unless `given` flags say otherwise).
+pub fn test(mut args: TestArgs, given: &Given) -> i32 {
+    match super::project::sources_or_project(
+        &args.files,
+        args.project.as_deref(),
+        &args.reading,
+        given,
+    ) {
+        Ok((files, reading)) => (args.files, args.reading) = (files, reading),
+        Err(rendered) => {
+            eprint!("{rendered}");
+            return EXIT_USAGE;
+        }
+    }
+    let args = &args;
     let options = match options(args) {
         Ok(o) => o,
         Err(e) => return usage_error(e),
