@@ -953,3 +953,47 @@ TYPE E_S : (A, B := 5); END_TYPE";
     let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
     assert_eq!(codes, Vec::<String>::new());
 }
+
+/// The string functions' inputs under CODESYS's names (W359), at the same
+/// place as the IEC ones: by hand, 'ab' + 'cde' = 'abcde' (5 characters),
+/// MID of 3 from position 2 'bcd', LEFT 2 'ab', FIND 'cd' at 3,
+/// INSERT 'X' after 1 'aXbcde', DELETE 2 from 2 'ade', REPLACE 2 from 2
+/// by 'Z' 'aZde', RIGHT 2 'de'.
+#[test]
+fn string_function_inputs_take_codesys_s_names_with_a_warning() {
+    let src = program(
+        "",
+        "s, m, l, ins, del, rep, r : STRING; n, f : INT;",
+        "s := CONCAT(STR1 := 'ab', STR2 := 'cde');
+         n := LEN(STR := s);
+         m := MID(STR := s, LEN := 3, POS := 2);
+         l := LEFT(STR := s, SIZE := 2);
+         f := FIND(STR1 := s, STR2 := 'cd');
+         ins := INSERT(STR1 := s, STR2 := 'X', POS := 1);
+         del := DELETE(STR := s, LEN := 2, POS := 2);
+         rep := REPLACE(STR1 := s, STR2 := 'Z', L := 2, P := 2);
+         r := RIGHT(STR := s, SIZE := 2);",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(
+        ["s", "n", "m", "l", "f", "ins", "del", "rep", "r"].map(|v| lit(&plc, v)),
+        [
+            "'abcde'", "5", "'bcd'", "'ab'", "3", "'aXbcde'", "'ade'", "'aZde'", "'de'"
+        ]
+    );
+    let codes = warning_codes(&src, &plcrun::Options::default()).unwrap();
+    // Every name but REPLACE's `L` and `P` (also the IEC names) warns.
+    assert_eq!(
+        codes.iter().filter(|c| *c == "W359").count(),
+        20,
+        "{codes:?}"
+    );
+    // An input neither name knows is still E403.
+    let bad = program("", "n : INT;", "n := LEN(TEXT := 'x');");
+    let codes: Vec<String> = error_codes(&[("t.st", &bad)])
+        .into_iter()
+        .map(|(code, _)| code)
+        .collect();
+    assert_eq!(codes, ["E403"]);
+}

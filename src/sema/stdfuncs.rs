@@ -193,7 +193,55 @@ fn param_names(std: Std, n: usize) -> Vec<String> {
     }
 }
 
+/// The names CODESYS and TwinCAT give the string functions' inputs
+/// (`CONCAT(STR1, STR2)`, `MID(STR, LEN, POS)`...), position by position
+/// as [`param_names`]; `None` for the other functions.
+fn codesys_param_names(std: Std, n: usize) -> Option<Vec<String>> {
+    let v = |x: &[&str]| x.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    Some(match std {
+        Std::Concat | Std::Str(StrFn::Concat) => {
+            (1..=n.max(2)).map(|i| format!("STR{i}")).collect()
+        }
+        Std::Str(StrFn::Len) => v(&["STR"]),
+        Std::Str(StrFn::Left | StrFn::Right) => v(&["STR", "SIZE"]),
+        Std::Str(StrFn::Mid | StrFn::Delete) => v(&["STR", "LEN", "POS"]),
+        Std::Str(StrFn::Insert) => v(&["STR1", "STR2", "POS"]),
+        Std::Str(StrFn::Replace) => v(&["STR1", "STR2", "L", "P"]),
+        Std::Str(StrFn::Find) => v(&["STR1", "STR2"]),
+        _ => return None,
+    })
+}
+
 impl BodyBuilder<'_> {
+    /// The position of formal input `name` of standard function `std`:
+    /// its IEC name, or the name CODESYS gives it (W359).
+    fn std_input_position(
+        &mut self,
+        std: Std,
+        n: usize,
+        names: &[String],
+        name: &Ident,
+    ) -> Option<usize> {
+        if let Some(k) = names
+            .iter()
+            .position(|x| x.eq_ignore_ascii_case(&name.name))
+        {
+            return Some(k);
+        }
+        let k = codesys_param_names(std, n)?
+            .iter()
+            .position(|x| x.eq_ignore_ascii_case(&name.name))?;
+        self.diags.warning(
+            "W359",
+            name.span,
+            format!(
+                "`{}` is CODESYS's name for this input; IEC 61131-3 calls it `{}`",
+                name.name, names[k]
+            ),
+        );
+        Some(k)
+    }
+
     /// Checks and emits a call of a standard function; `None` if `id` is not one.
     pub(super) fn std_call(
         &mut self,
@@ -229,10 +277,7 @@ impl BodyBuilder<'_> {
                     }
                 }
                 Arg::Input { name, value } => {
-                    match names
-                        .iter()
-                        .position(|n| n.eq_ignore_ascii_case(&name.name))
-                    {
+                    match self.std_input_position(std, args.len(), &names, name) {
                         Some(k) => exprs[k] = Some(value),
                         None => {
                             self.diags.error(
