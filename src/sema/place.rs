@@ -37,27 +37,27 @@ impl BodyBuilder<'_> {
     /// `GVL_Constants.PI`). plcrun has one namespace for globals, so the
     /// qualifier itself is not checked.
     pub(super) fn is_list_qualifier(&self, base: &Expr, name: &Ident) -> bool {
-        let ExprKind::Name(q) = &base.kind else {
-            return false;
-        };
-        let qk = q.key();
-        self.lookup_var(&qk).is_none()
-            && !self.model.pou_index.contains_key(&qk)
-            && !self.model.type_ids.contains_key(&qk)
-            && self.model.globals.contains_key(&name.key())
+        self.unbound_name(base).is_some() && self.model.globals.contains_key(&name.key())
     }
 
     /// True when `base` is a bare name that is no variable, POU, type or
     /// enumeration value in scope.
     fn names_nothing(&self, base: &Expr) -> bool {
+        self.unbound_name(base)
+            .is_some_and(|k| !self.model.enum_values.contains_key(&k))
+    }
+
+    /// The key of `base` when it is a bare name that is no variable, POU
+    /// or type in scope.
+    fn unbound_name(&self, base: &Expr) -> Option<String> {
         let ExprKind::Name(q) = &base.kind else {
-            return false;
+            return None;
         };
         let qk = q.key();
-        self.lookup_var(&qk).is_none()
+        (self.lookup_var(&qk).is_none()
             && !self.model.pou_index.contains_key(&qk)
-            && !self.model.type_ids.contains_key(&qk)
-            && !self.model.enum_values.contains_key(&qk)
+            && !self.model.type_ids.contains_key(&qk))
+        .then_some(qk)
     }
 
     /// Reads the place `e` denotes as a scalar value.

@@ -61,12 +61,7 @@ pub fn drop_empty_arguments(tokens: Vec<Spanned>) -> Vec<Spanned> {
     if !any {
         return tokens;
     }
-    tokens
-        .into_iter()
-        .zip(drop)
-        .filter(|(_, d)| !d)
-        .map(|(t, _)| t)
-        .collect()
+    super::lexer::without_marked(tokens, drop)
 }
 
 #[cfg(test)]

@@ -52,12 +52,7 @@ pub fn drop_empty_init_calls(tokens: Vec<Spanned>) -> Vec<Spanned> {
             drop[i + 1] = true;
         }
     }
-    tokens
-        .into_iter()
-        .zip(drop)
-        .filter(|(_, d)| !d)
-        .map(|(t, _)| t)
-        .collect()
+    super::lexer::without_marked(tokens, drop)
 }
 
 #[cfg(test)]

@@ -453,3 +453,14 @@ pub fn direct(file: FileId, slice: &str, start: usize) -> Result<DirectAddress, 
         span: Span::new(file, start, start + slice.len()),
     })
 }
+
+/// `tokens` without those whose flag in `drop` is set (the token passes
+/// that remove CODESYS forms mark, then drop in one go).
+pub fn without_marked(tokens: Vec<Spanned>, drop: Vec<bool>) -> Vec<Spanned> {
+    tokens
+        .into_iter()
+        .zip(drop)
+        .filter(|(_, d)| !d)
+        .map(|(t, _)| t)
+        .collect()
+}
