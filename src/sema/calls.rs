@@ -521,11 +521,7 @@ impl BodyBuilder<'_> {
         match self.types.get(dst.ty).kind {
             TypeKind::Array { .. } | TypeKind::Struct { .. } => {
                 let Some(src) = self.place(e) else { return };
-                if !self.assignable(src.ty, dst.ty) {
-                    self.mismatch(e.span, Ty::T(src.ty), dst.ty, &what);
-                    return;
-                }
-                self.copy_aggregate(dst, &src, e.span);
+                self.copy_if_assignable(dst, &src, e.span, e.span, &what);
             }
             _ => {
                 let v = self.expr(e, Some(dst.ty));
@@ -567,12 +563,8 @@ impl BodyBuilder<'_> {
                 TypeKind::Array { .. } | TypeKind::Struct { .. }
             )
         {
-            if !self.assignable(src.ty, t.ty) {
-                let what = format!("output `{name}`");
-                self.mismatch(target.span, Ty::T(src.ty), t.ty, &what);
-                return;
-            }
-            self.copy_aggregate(&t, src, target.span);
+            let what = format!("output `{name}`");
+            self.copy_if_assignable(&t, src, target.span, target.span, &what);
             return;
         }
         let v = self.read_place(src);

@@ -26,7 +26,7 @@ pub(super) struct DeclConsts<'a> {
     /// initialises a block's variables in order, so `b : INT := a;` sees
     /// `a`'s initial value, at start for static variables and at each call
     /// for temporaries). Empty elsewhere, and for inputs (set by callers).
-    pub(super) same_block: Vec<String>,
+    pub(super) same_block: &'a [String],
 }
 
 impl DeclConsts<'_> {

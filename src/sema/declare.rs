@@ -119,7 +119,7 @@ impl<'a> Declarer<'a> {
             types: &self.types,
             model: &self.model,
             diags: self.diags,
-            same_block: Vec::new(),
+            same_block: &[],
         }
     }
 

@@ -382,29 +382,22 @@ impl BodyBuilder<'_> {
     fn read_function_outputs(&mut self, p: usize, params: &[Param], b: &Bound) {
         for &(i, negated, target) in &b.outputs {
             let prm = &params[i];
-            let t = self.block.temp();
             // An array or structure is read where it lies in the callee's
             // frame (its address); a scalar is loaded.
             let aggregate = matches!(
                 self.types.get(prm.ty).kind,
                 TypeKind::Array { .. } | TypeKind::Struct { .. }
             );
-            let at = if aggregate {
-                let imm = i32::try_from(prm.offset).unwrap_or(i32::MAX);
-                let at = self.block.emit(Op::LoadI { d: t, imm });
-                // The immediate is relocated: not a constant to fold.
-                self.block.last_def = None;
-                at
+            let place = if aggregate {
+                let p = self.callee_frame_address(p, prm.offset);
+                Place::Ind { p, off: 0 }
             } else {
-                self.block.emit(Op::LoadAbs {
+                let t = self.block.temp();
+                let at = self.block.emit(Op::LoadAbs {
                     d: t,
                     abs: prm.offset,
-                })
-            };
-            self.block.fixups.push((at, p));
-            let place = if aggregate {
-                Place::Ind { p: t, off: 0 }
-            } else {
+                });
+                self.block.fixups.push((at, p));
                 Place::Frame(t)
             };
             let src = PlaceRef {

@@ -225,7 +225,7 @@ impl Declarer<'_> {
         let by_body = self.defer_reference_init(pou, block, decl, ty, &mut frame.offset);
         let init = decl.init.as_ref().filter(|_| !by_body).and_then(|i| {
             let mut consts = self.consts();
-            consts.same_block = earlier.to_vec();
+            consts.same_block = earlier;
             consts.resolve_init(i, ty, Some(&frame.vars))
         });
         let edge = self.edge_input_ok(pou, block, decl, ty);

@@ -324,11 +324,7 @@ impl BodyBuilder<'_> {
                 let Some(src) = self.place(value) else {
                     return;
                 };
-                if !self.assignable(src.ty, p.ty) {
-                    self.mismatch(value.span, Ty::T(src.ty), p.ty, "assignment");
-                    return;
-                }
-                self.copy_aggregate(&p, &src, span);
+                self.copy_if_assignable(&p, &src, value.span, span, "assignment");
             }
             TypeKind::NativeFb(_) | TypeKind::Pou { program: false, .. } => {
                 self.copy_fb(&p, value, span);
@@ -385,6 +381,24 @@ impl BodyBuilder<'_> {
             );
         }
         true
+    }
+
+    /// Copies the array or structure `src` into `dst` when its type may
+    /// be assigned there (else a mismatch at `at`, named by `what`); a
+    /// fault in the copy is reported at `span`.
+    pub(super) fn copy_if_assignable(
+        &mut self,
+        dst: &super::emit::PlaceRef,
+        src: &super::emit::PlaceRef,
+        at: Span,
+        span: Span,
+        what: &str,
+    ) {
+        if !self.assignable(src.ty, dst.ty) {
+            self.mismatch(at, Ty::T(src.ty), dst.ty, what);
+            return;
+        }
+        self.copy_aggregate(dst, src, span);
     }
 
     /// Copies an array or structure by value.

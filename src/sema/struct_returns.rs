@@ -58,13 +58,21 @@ impl BodyBuilder<'_> {
     }
 
     /// The address of the aggregate result of function `p` (slot 0 of its
-    /// frame, relocated when the linker places the frame).
+    /// frame).
     pub(super) fn aggregate_result_address(&mut self, p: usize, ret: TypeId) -> Val {
+        Val::Slot(self.callee_frame_address(p, 0), ret)
+    }
+
+    /// A temporary holding the address of slot `offset` of function `p`'s
+    /// static frame (relocated when the linker places the frame).
+    pub(super) fn callee_frame_address(&mut self, p: usize, offset: u32) -> Slot {
         let d = self.block.temp();
-        let at = self.block.emit(Op::LoadI { d, imm: 0 });
+        let imm = i32::try_from(offset).unwrap_or(i32::MAX);
+        let at = self.block.emit(Op::LoadI { d, imm });
         self.block.fixups.push((at, p));
+        // The immediate is relocated: not a constant to fold.
         self.block.last_def = None;
-        Val::Slot(d, ret)
+        d
     }
 
     /// Copies a result of type `ty` at the address in `addr` into fresh

@@ -89,7 +89,7 @@ impl Linker<'_> {
             types: self.types,
             model: self.model,
             diags: self.diags,
-            same_block: Vec::new(),
+            same_block: &[],
         }
     }
 

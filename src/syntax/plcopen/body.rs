@@ -105,7 +105,13 @@ pub fn text_ranges(em: &mut Emitter, lang: Node) -> Vec<Range> {
 /// `<addData>`: ignored, unless a `<data>` says with
 /// `handleUnknown="implementation"` that dropping it changes the program.
 pub fn add_data(em: &mut Emitter, node: Node) {
-    for data in elements(node) {
+    add_data_except(em, node, |_| false);
+}
+
+/// [`add_data`] for the `<data>` that `skip` does not take (those another
+/// reader handles: CODESYS's methods, for instance).
+pub fn add_data_except(em: &mut Emitter, node: Node, skip: impl Fn(Node) -> bool) {
+    for data in elements(node).filter(|d| !skip(*d)) {
         if data.tag_name().name() == "data" {
             data_element(em, data);
         } else {

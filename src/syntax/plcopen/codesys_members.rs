@@ -7,7 +7,7 @@
 //! `PROPERTY ... END_PROPERTY` of the block, before its body, so the ST
 //! parser and the checker treat them as in a `.st` file.
 
-use super::body::{data_element, text_body};
+use super::body::{add_data_except, text_body};
 use super::emit::{Emitter, child, elements, is_true};
 use super::interface::interface;
 use super::types::{missing_child, type_of};
@@ -151,7 +151,6 @@ fn member_body(em: &mut Emitter, node: Node) {
                 Some(lang) => text_body(em, lang),
                 None => em.refuse(c, "a method or accessor body that is not ST or IL"),
             },
-            _ if node.tag_name().name() == "Method" => em.unknown(c, "Method"),
             _ => em.unknown(c, node.tag_name().name()),
         }
     }
@@ -185,23 +184,11 @@ fn modifiers(em: &mut Emitter, node: Node) {
 /// A member's `<addData>` without its access modifiers (read by
 /// [`modifiers`]).
 fn access_free_add_data(em: &mut Emitter, add: Node) {
-    data_except(em, add, |d| d.attribute("name") == Some(ACCESS_DATA));
+    add_data_except(em, add, |d| d.attribute("name") == Some(ACCESS_DATA));
 }
 
 /// A POU's or interface's `<addData>` without the methods, properties and
 /// inheritance this module emits.
 pub fn other_data(em: &mut Emitter, add: Node) {
-    data_except(em, add, is_codesys_object);
-}
-
-/// Each `<data>` of `add` that `skip` does not take, read as any
-/// `<addData>` is (body.rs).
-fn data_except(em: &mut Emitter, add: Node, skip: impl Fn(Node) -> bool) {
-    for d in elements(add).filter(|d| !skip(*d)) {
-        if d.tag_name().name() == "data" {
-            data_element(em, d);
-        } else {
-            em.unknown(d, "addData");
-        }
-    }
+    add_data_except(em, add, is_codesys_object);
 }
