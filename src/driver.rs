@@ -72,20 +72,7 @@ pub fn load_files_with<P: AsRef<Path>>(
     diags: &mut Diagnostics,
 ) -> Result<SourceMap, LoadError> {
     let mut sources = SourceMap::new();
-    let mut files = Vec::new();
-    for path in paths {
-        let path = path.as_ref();
-        if project::is_project(path) {
-            let items = project::source_files(path).map_err(|error| LoadError {
-                path: path.to_path_buf(),
-                error,
-            })?;
-            files.extend(items);
-        } else {
-            files.push(path.to_path_buf());
-        }
-    }
-    for path in &files {
+    for path in &project_files(paths)? {
         let bytes = std::fs::read(path).map_err(|error| LoadError {
             path: path.to_path_buf(),
             error,
@@ -99,6 +86,26 @@ pub fn load_files_with<P: AsRef<Path>>(
         );
     }
     Ok(sources)
+}
+
+/// The source files `paths` stand for, in the order [`load_files_with`]
+/// reads them: a folder or a TwinCAT `.plcproj` is expanded into the files
+/// of its project, any other path is kept.
+pub fn project_files<P: AsRef<Path>>(paths: &[P]) -> Result<Vec<PathBuf>, LoadError> {
+    let mut files = Vec::new();
+    for path in paths {
+        let path = path.as_ref();
+        if project::is_project(path) {
+            let items = project::source_files(path).map_err(|error| LoadError {
+                path: path.to_path_buf(),
+                error,
+            })?;
+            files.extend(items);
+        } else {
+            files.push(path.to_path_buf());
+        }
+    }
+    Ok(files)
 }
 
 /// Parses and checks every file of `sources`, reporting into `diags`;

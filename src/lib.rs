@@ -41,6 +41,7 @@ mod diagnostics;
 mod draw;
 mod driver;
 mod elementary;
+mod ide;
 pub(crate) mod ir;
 mod runtime;
 mod sema;
@@ -67,8 +68,14 @@ pub use draw::{
 };
 pub use driver::{
     CheckOptions, CheckReport, LoadError, add_source_bytes, check, load_files, load_files_with,
+    project_files,
 };
 pub use elementary::ElemType;
+pub use ide::{
+    Analysis, Completion, CompletionKind, Fold, Hover, Occurrence, OutlineItem, RenameError, Shape,
+    Signature, SignatureParam, StdFunction, Symbol, SymbolId, SymbolKind, TokenKind, TokenMark,
+    VarSection, std_function, std_functions,
+};
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::clock::Clock;
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};

@@ -62,6 +62,19 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "driver",
         ],
     ),
+    // What an editor asks (plcrun lsp): the parsed sources indexed, the
+    // check's diagnostics, the standard blocks' pins.
+    (
+        "ide",
+        &[
+            "source",
+            "diagnostics",
+            "elementary",
+            "syntax",
+            "driver",
+            "stdlib",
+        ],
+    ),
     // Pictures: charts read from the parsed sources, timing diagrams
     // sampled from a running PLC.
     (

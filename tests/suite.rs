@@ -15,6 +15,8 @@ mod support {
     pub mod grafcet_models;
     pub mod graphic;
     pub mod library;
+    #[cfg(feature = "cli")]
+    pub mod lsp_client;
     pub mod one_typo;
     #[cfg(feature = "opcua")]
     pub mod opcua_client;
@@ -142,6 +144,9 @@ mod life_cycle;
 mod limits;
 #[path = "loop_superinstructions.rs"]
 mod loop_superinstructions;
+#[cfg(feature = "cli")]
+#[path = "lsp.rs"]
+mod lsp;
 #[path = "method_local_constants.rs"]
 mod method_local_constants;
 #[path = "modbus.rs"]

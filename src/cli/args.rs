@@ -65,6 +65,9 @@ pub enum Command {
     Serve(Box<super::serve::ServeArgs>),
     /// Write a commented plcrun.toml to start a project from.
     Init(super::init::InitArgs),
+    /// Serve the Language Server Protocol on standard input and output,
+    /// for editors (docs/editors.md).
+    Lsp(super::lsp::LspArgs),
     /// Manage the users file of the OPC UA server (`plcrun opcua-user add
     /// FILE NAME`, the password on standard input; docs/opcua.md).
     #[cfg(feature = "opcua")]

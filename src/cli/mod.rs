@@ -7,6 +7,7 @@ mod draw;
 mod export;
 mod given;
 mod init;
+mod lsp;
 mod modbus;
 mod online;
 #[cfg(feature = "opcua")]
@@ -53,6 +54,7 @@ pub fn main() -> i32 {
             Some(args::Command::Test(a)) => test::test(a, &given),
             Some(args::Command::Serve(a)) => serve::serve(&a, &given),
             Some(args::Command::Init(a)) => init::init(&a),
+            Some(args::Command::Lsp(a)) => lsp::lsp(&a),
             #[cfg(feature = "opcua")]
             Some(args::Command::OpcUaUser(a)) => opcua::user(&a),
             None => run::run(&cli.run),

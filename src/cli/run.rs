@@ -68,20 +68,10 @@ pub fn check(args: &CheckArgs, given: &Given) -> i32 {
         strict: reading.strict,
         addressing: reading.addressing,
     };
-    let mut report = check_sources(&sources, &options);
-    // Sources holding TcUnit suites check as `plcrun test` compiles them.
-    if !(options.ir_listing || options.address_map) {
-        let test_options = plcrun::TestOptions {
-            strict: options.strict,
-            addressing: options.addressing,
-            ..plcrun::TestOptions::default()
-        };
-        match plcrun::check_tcunit_suites(&sources, &test_options) {
-            Some(Ok(found)) => report.diagnostics = found,
-            Some(Err(e)) => return usage_error(e),
-            None => {}
-        }
-    }
+    let report = match check_as_cli(&sources, &options) {
+        Ok(report) => report,
+        Err(e) => return usage_error(e),
+    };
     diags.extend(report.diagnostics);
     if let Some(listing) = &report.ir_listing {
         print!("{listing}");
@@ -97,6 +87,27 @@ pub fn check(args: &CheckArgs, given: &Given) -> i32 {
         eprintln!("ok: {n} file{} checked", if n == 1 { "" } else { "s" });
         EXIT_OK
     }
+}
+
+/// What `plcrun check` reports for `sources` (and `plcrun lsp` shows):
+/// the check, where sources holding TcUnit suites are checked as `plcrun
+/// test` compiles them.
+pub(super) fn check_as_cli(
+    sources: &plcrun::SourceMap,
+    options: &CheckOptions,
+) -> Result<plcrun::CheckReport, plcrun::TestError> {
+    let mut report = check_sources(sources, options);
+    if !(options.ir_listing || options.address_map) {
+        let test_options = plcrun::TestOptions {
+            strict: options.strict,
+            addressing: options.addressing,
+            ..plcrun::TestOptions::default()
+        };
+        if let Some(found) = plcrun::check_tcunit_suites(sources, &test_options) {
+            report.diagnostics = found?;
+        }
+    }
+    Ok(report)
 }
 
 /// The options that do not depend on the program.

@@ -1,0 +1,38 @@
+//! `plcrun lsp`: a Language Server Protocol server on standard input and
+//! output (docs/editors.md). The protocol's framing is `lsp-server`'s, its
+//! types `lsp-types`'; the answers come from the library's [`plcrun::Analysis`].
+
+mod convert;
+mod handlers;
+mod position;
+mod server;
+mod uri;
+mod workspace;
+
+use super::{EXIT_OK, EXIT_USAGE};
+use clap::Args;
+use lsp_server::Connection;
+
+/// `plcrun lsp`: serve the Language Server Protocol on stdio.
+#[derive(Debug, Args)]
+pub struct LspArgs {
+    /// Accepted for the editors that pass it: standard input and output
+    /// are the only transport.
+    #[arg(long)]
+    pub stdio: bool,
+}
+
+/// Runs the server until the client says `exit`.
+pub fn lsp(_args: &LspArgs) -> i32 {
+    let (connection, threads) = Connection::stdio();
+    let outcome = server::serve(&connection);
+    drop(connection);
+    let joined = threads.join();
+    match outcome.and_then(|()| joined.map_err(|e| e.to_string())) {
+        Ok(()) => EXIT_OK,
+        Err(e) => {
+            eprintln!("error: plcrun lsp: {e}");
+            EXIT_USAGE
+        }
+    }
+}
