@@ -357,3 +357,60 @@ fn a_chart_steps_are_symbols_and_transitions_point_at_them() {
     let line = source[..declared].matches('\n').count() as u64;
     assert_eq!(line_of(&found), line);
 }
+
+/// A program with a typo on line 9 (`levle`), `level` used on line 8.
+const NEOVIM_PROGRAM: &str = "\
+PROGRAM Main
+VAR
+    (* liquid level, mm *)
+    level : INT;
+    t : TON;
+END_VAR
+t(IN := TRUE, PT := T#1s);
+IF t.Q THEN
+level := level + 1;
+levle := 0;
+END_IF;
+END_PROGRAM
+";
+
+#[test]
+fn neovims_own_client_gets_diagnostics_hover_and_definition() {
+    let found = std::process::Command::new("nvim").arg("--version").output();
+    if !found.is_ok_and(|o| o.status.success()) {
+        eprintln!("skipped: nvim is not installed (apt-get install neovim runs this test)");
+        return;
+    }
+    let file = PathBuf::from(temp_file("main.st", NEOVIM_PROGRAM));
+    let dir = file.parent().unwrap().to_path_buf();
+    let out = dir.join("neovim.json");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/lsp/neovim_client.lua");
+    let status = std::process::Command::new("nvim")
+        .args(["--headless", "-u", "NONE", "-i", "NONE", "-n"])
+        .arg("-c")
+        .arg(format!("luafile {}", script.display()))
+        .env("PLCRUN", env!("CARGO_BIN_EXE_plcrun"))
+        .env("ROOT", &dir)
+        .env("FILE", &file)
+        .env("OUT", &out)
+        .env("XDG_STATE_HOME", &dir)
+        .env("XDG_DATA_HOME", &dir)
+        .stdin(std::process::Stdio::null())
+        .status()
+        .expect("nvim runs");
+    assert!(status.success(), "nvim exited with {status}");
+    let result: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let diagnostics = result["diagnostics"].as_array().unwrap();
+    assert!(
+        diagnostics
+            .iter()
+            .any(|d| d["code"] == "E201" && d["line"] == 9 && d["col"] == 0),
+        "{result}"
+    );
+    let hover = result["hover"].as_str().unwrap();
+    assert!(
+        hover.contains("level : INT") && hover.contains("liquid level, mm"),
+        "{hover}"
+    );
+    assert_eq!(result["definition_line"], 3);
+}

@@ -27,8 +27,10 @@ pub fn lsp(_args: &LspArgs) -> i32 {
     let (connection, threads) = Connection::stdio();
     let outcome = server::serve(&connection);
     drop(connection);
-    let joined = threads.join();
-    match outcome.and_then(|()| joined.map_err(|e| e.to_string())) {
+    // The reader thread may fail on a message sent after `exit` (an
+    // editor closing its documents as it quits): the session is over.
+    let _ = threads.join();
+    match outcome {
         Ok(()) => EXIT_OK,
         Err(e) => {
             eprintln!("error: plcrun lsp: {e}");

@@ -118,10 +118,9 @@ impl Server {
             };
             match message {
                 Message::Request(request) => {
-                    if connection
-                        .handle_shutdown(&request)
-                        .map_err(|e| e.to_string())?
-                    {
+                    // After `shutdown`, a client that closes the pipe
+                    // instead of sending `exit` has still asked to stop.
+                    if connection.handle_shutdown(&request).unwrap_or(true) {
                         return Ok(());
                     }
                     // Answers must see the latest edits' diagnostics too.
