@@ -131,6 +131,13 @@ pub use testing::{
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind, HostFailure, UnstableCycle};
 
+/// Entry points for the fuzz targets (fuzz/): the network servers'
+/// request paths without sockets. Not part of the API.
+#[doc(hidden)]
+pub mod fuzzing {
+    pub use crate::runtime::modbus::fuzzing::serve_bytes as modbus_serve_bytes;
+}
+
 /// The examples of `docs/embedding.md`, compiled and run as doc-tests.
 #[cfg(doctest)]
 #[doc = include_str!("../docs/embedding.md")]

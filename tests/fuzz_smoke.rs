@@ -60,6 +60,7 @@ fn target(name: &str) -> fn(&[u8]) {
         "check" => targets::check,
         "run" => targets::run,
         "gen_il_diff" => targets::gen_il_diff,
+        "modbus" => targets::modbus,
         _ => targets::gen_diff,
     }
 }
@@ -345,4 +346,26 @@ fn the_programs_and_benches_run_the_same_unoptimized() {
     }
     // The benchmarks use the fused forms (a fill, a sieve, scans).
     assert!(fused > 0, "no fused instruction in {files:?}");
+}
+
+/// The Modbus request path is fast (microseconds an input): it gets its
+/// own run of mutants, counted rather than timed, on top of its share of
+/// the timed one.
+#[test]
+fn modbus_request_path_survives_mutated_streams() {
+    let seeds = targets::modbus_seeds();
+    let mut rng = Rng(0xD1B5_4A32_D192_ED03);
+    for n in 0..20_000 {
+        let (name, bytes) = &seeds[rng.below(seeds.len())];
+        let (_, other) = &seeds[rng.below(seeds.len())];
+        let mut input = bytes.clone();
+        for _ in 0..1 + rng.below(6) {
+            input = mutate(&mut rng, &input, other);
+        }
+        let outcome = std::panic::catch_unwind(|| targets::modbus(&input));
+        assert!(
+            outcome.is_ok(),
+            "mutant {n} of {name} broke the Modbus request path: {input:?}"
+        );
+    }
 }

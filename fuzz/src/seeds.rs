@@ -241,5 +241,10 @@ pub fn corpora(seeds: &[Seed]) -> Vec<(&'static str, String, Vec<u8>)> {
         out.push(("check", name.clone(), prefixed.clone()));
         out.push(("run", name, prefixed));
     }
+    // The network servers' request paths take protocol frames, not
+    // programs: their seeds are written in the target's file.
+    for (name, bytes) in super::targets::modbus_seeds() {
+        out.push(("modbus", name, bytes));
+    }
     out
 }

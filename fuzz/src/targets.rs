@@ -117,3 +117,73 @@ pub fn gen_il_diff(data: &[u8]) {
         super::differential::check(&program);
     }
 }
+
+/// The Modbus TCP server's request path (frame reader and request
+/// handler): any bytes as one client's stream. Every answer must be a
+/// whole MBAP frame (protocol 0, a length of 2 to 254 that the answer
+/// fills) answering a request of the stream.
+pub fn modbus(data: &[u8]) {
+    let (answers, _writes) = plcrun::fuzzing::modbus_serve_bytes(data);
+    let mut rest = answers.as_slice();
+    while !rest.is_empty() {
+        assert!(rest.len() >= 8, "a truncated answer: {rest:?}");
+        assert_eq!([rest[2], rest[3]], [0, 0], "protocol identifier");
+        let length = usize::from(u16::from_be_bytes([rest[4], rest[5]]));
+        assert!((2..=254).contains(&length), "MBAP length {length}");
+        assert!(
+            rest.len() >= 6 + length,
+            "an answer shorter than its length"
+        );
+        let transaction = [rest[0], rest[1]];
+        assert!(
+            data.windows(2).any(|w| w == transaction),
+            "an answer to a transaction nobody sent"
+        );
+        rest = &rest[6 + length..];
+    }
+}
+
+/// One Modbus TCP request: transaction `t`, unit 1, the PDU `pdu`.
+fn modbus_frame(t: u16, pdu: &[u8]) -> Vec<u8> {
+    let mut frame = t.to_be_bytes().to_vec();
+    frame.extend([0, 0]);
+    frame.extend(((pdu.len() + 1) as u16).to_be_bytes());
+    frame.push(1);
+    frame.extend(pdu);
+    frame
+}
+
+/// Seeds for [`modbus`]: a valid request of every function the server
+/// serves (reads and writes of coils, inputs and registers, at the start,
+/// middle and end of the tables), one of each error it answers, and a
+/// stream of several requests back to back.
+pub fn modbus_seeds() -> Vec<(String, Vec<u8>)> {
+    let pdus: Vec<(&str, Vec<u8>)> = vec![
+        ("read_coils", vec![0x01, 0, 0, 0, 16]),
+        ("read_discrete_inputs", vec![0x02, 0, 8, 0, 8]),
+        ("read_holding", vec![0x03, 0, 0, 0, 10]),
+        ("read_holding_max", vec![0x03, 0, 0, 0, 125]),
+        ("read_input_registers", vec![0x04, 0, 2, 0, 4]),
+        ("write_single_coil", vec![0x05, 0, 3, 0xFF, 0]),
+        ("write_single_register", vec![0x06, 0, 1, 0x12, 0x34]),
+        ("write_coils", vec![0x0F, 0, 0, 0, 10, 2, 0xFF, 0x03]),
+        ("write_registers", vec![0x10, 0, 0, 0, 2, 4, 0, 1, 0, 2]),
+        ("memory_word", vec![0x03, 0x04, 0x00, 0, 2]),
+        ("unknown_function", vec![0x2B, 0x0E, 1, 0]),
+        ("quantity_zero", vec![0x03, 0, 0, 0, 0]),
+        ("past_the_end", vec![0x03, 0xFF, 0xF0, 0, 125]),
+        ("bad_byte_count", vec![0x10, 0, 0, 0, 2, 3, 0, 1, 0, 2]),
+    ];
+    let mut seeds: Vec<(String, Vec<u8>)> = pdus
+        .iter()
+        .enumerate()
+        .map(|(i, (name, pdu))| (name.to_string(), modbus_frame(i as u16 + 1, pdu)))
+        .collect();
+    let stream: Vec<u8> = pdus
+        .iter()
+        .enumerate()
+        .flat_map(|(i, (_, pdu))| modbus_frame(0x100 + i as u16, pdu))
+        .collect();
+    seeds.push(("stream".into(), stream));
+    seeds
+}

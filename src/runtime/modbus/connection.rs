@@ -55,8 +55,8 @@ pub(crate) fn serve(mut stream: TcpStream, shared: &Shared, writes: &SyncSender<
     let _ = stream.shutdown(std::net::Shutdown::Both);
 }
 
-fn serve_frames(
-    stream: &mut TcpStream,
+pub(crate) fn serve_frames<S: Read + Write>(
+    stream: &mut S,
     shared: &Shared,
     writes: &SyncSender<ClientWrite>,
 ) -> Ended {
@@ -85,8 +85,8 @@ fn serve_frames(
 }
 
 /// Reads exactly `buf.len()` bytes before `deadline`.
-fn read_full(
-    stream: &mut TcpStream,
+fn read_full<S: Read>(
+    stream: &mut S,
     buf: &mut [u8],
     deadline: Instant,
     shared: &Shared,

@@ -20,6 +20,7 @@
 
 pub mod connection;
 pub mod exchange;
+pub mod fuzzing;
 pub mod mapping;
 pub(crate) mod priority;
 pub mod published;

@@ -102,6 +102,20 @@ pub(crate) struct Shared {
     next_client: AtomicU64,
 }
 
+impl Shared {
+    /// The state of a server with `config` that has no client yet.
+    pub(crate) fn new(config: ModbusConfig) -> Shared {
+        Shared {
+            config,
+            published: Published::default(),
+            counters: Counters::default(),
+            stop: AtomicBool::new(false),
+            clients: Mutex::new(Vec::new()),
+            next_client: AtomicU64::new(0),
+        }
+    }
+}
+
 /// A Modbus TCP server on a PLC's process image (see `docs/modbus.md`).
 ///
 /// The network side runs on its own threads; the scan side is the
@@ -155,14 +169,7 @@ impl ModbusServer {
         let local_addr = listener.local_addr().map_err(bind_error)?;
         let (tx, rx) = sync_channel(config.write_queue);
         let per_exchange = config.write_queue;
-        let shared = Arc::new(Shared {
-            config,
-            published: Published::default(),
-            counters: Counters::default(),
-            stop: AtomicBool::new(false),
-            clients: Mutex::new(Vec::new()),
-            next_client: AtomicU64::new(0),
-        });
+        let shared = Arc::new(Shared::new(config));
         let acceptor_shared = Arc::clone(&shared);
         let acceptor = std::thread::Builder::new()
             .name("modbus-accept".into())
