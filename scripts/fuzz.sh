@@ -37,7 +37,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 export RUSTC_BOOTSTRAP=1
-targets=(lex parse plcopen s7 check run gen_diff gen_il_diff modbus)
+targets=(lex parse plcopen s7 check run gen_diff gen_il_diff modbus opcua_write)
 
 # The sanitizer a target is built with (see above).
 sanitizer_of() {

@@ -136,6 +136,8 @@ pub use vm::{Fault, FaultKind, HostFailure, UnstableCycle};
 #[doc(hidden)]
 pub mod fuzzing {
     pub use crate::runtime::modbus::fuzzing::serve_bytes as modbus_serve_bytes;
+    #[cfg(feature = "opcua")]
+    pub use crate::runtime::opcua::fuzzing::WriteFuzz as OpcUaWriteFuzz;
 }
 
 /// The examples of `docs/embedding.md`, compiled and run as doc-tests.

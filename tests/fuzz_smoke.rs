@@ -61,6 +61,8 @@ fn target(name: &str) -> fn(&[u8]) {
         "run" => targets::run,
         "gen_il_diff" => targets::gen_il_diff,
         "modbus" => targets::modbus,
+        #[cfg(feature = "opcua")]
+        "opcua_write" => targets::opcua_write,
         _ => targets::gen_diff,
     }
 }
@@ -366,6 +368,38 @@ fn modbus_request_path_survives_mutated_streams() {
         assert!(
             outcome.is_ok(),
             "mutant {n} of {name} broke the Modbus request path: {input:?}"
+        );
+    }
+}
+
+/// The OPC UA Write path: mutants of encoded WriteRequests, counted.
+#[cfg(feature = "opcua")]
+#[test]
+fn opcua_write_path_survives_mutated_requests() {
+    let seeds = targets::opcua_write_seeds();
+    assert!(seeds.len() > 20, "only {} seeds", seeds.len());
+    // The seeds reach the checks and the PLC: each writable variable's
+    // own request is accepted, and so are all of them together.
+    let mut plc = plcrun::fuzzing::OpcUaWriteFuzz::new();
+    let (_, all) = seeds.iter().find(|(n, _)| n == "write_all").unwrap();
+    let accepted = plc.feed(all);
+    eprintln!(
+        "write_all: {accepted} of {} writes accepted",
+        seeds.len() - 1
+    );
+    assert!(accepted >= 30, "only {accepted} seed writes accepted");
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    for n in 0..3_000 {
+        let (name, bytes) = &seeds[rng.below(seeds.len())];
+        let (_, other) = &seeds[rng.below(seeds.len())];
+        let mut input = bytes.clone();
+        for _ in 0..1 + rng.below(4) {
+            input = mutate(&mut rng, &input, other);
+        }
+        let outcome = std::panic::catch_unwind(|| targets::opcua_write(&input));
+        assert!(
+            outcome.is_ok(),
+            "mutant {n} of {name} broke the OPC UA write path: {input:?}"
         );
     }
 }

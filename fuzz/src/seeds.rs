@@ -246,5 +246,9 @@ pub fn corpora(seeds: &[Seed]) -> Vec<(&'static str, String, Vec<u8>)> {
     for (name, bytes) in super::targets::modbus_seeds() {
         out.push(("modbus", name, bytes));
     }
+    #[cfg(feature = "opcua")]
+    for (name, bytes) in super::targets::opcua_write_seeds() {
+        out.push(("opcua_write", name, bytes));
+    }
     out
 }

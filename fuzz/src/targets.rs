@@ -187,3 +187,23 @@ pub fn modbus_seeds() -> Vec<(String, Vec<u8>)> {
     seeds.push(("stream".into(), stream));
     seeds
 }
+
+/// The OPC UA server's Write handling: any bytes decoded by async-opcua's
+/// decoder as a WriteRequest, each write checked as the server checks a
+/// client's and applied as the scan side applies it (a write the server
+/// accepts must land), then a cycle.
+#[cfg(feature = "opcua")]
+pub fn opcua_write(data: &[u8]) {
+    use std::cell::RefCell;
+    thread_local! {
+        static PLC: RefCell<plcrun::fuzzing::OpcUaWriteFuzz> =
+            RefCell::new(plcrun::fuzzing::OpcUaWriteFuzz::new());
+    }
+    PLC.with(|plc| plc.borrow_mut().feed(data));
+}
+
+/// Seeds for [`opcua_write`]: a WriteRequest per served variable.
+#[cfg(feature = "opcua")]
+pub fn opcua_write_seeds() -> Vec<(String, Vec<u8>)> {
+    plcrun::fuzzing::OpcUaWriteFuzz::new().seeds()
+}

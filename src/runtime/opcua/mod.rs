@@ -20,6 +20,7 @@
 
 mod auth;
 pub mod exchange;
+pub mod fuzzing;
 pub mod glob;
 pub(crate) mod model;
 pub mod node_manager;

@@ -67,32 +67,7 @@ impl PlcNodes {
 
     /// The status of one client write: queued (Good) or why not.
     fn write_one(&self, context: &RequestContext, write: &ParsedWriteValue) -> StatusCode {
-        let model = &self.shared.model;
-        let Some(node) = self.node_of(&write.node_id) else {
-            return StatusCode::BadNodeIdUnknown;
-        };
-        let Some(leaves) = model.leaves_of(node) else {
-            return StatusCode::BadNotWritable;
-        };
-        if write.attribute_id != AttributeId::Value
-            || leaves.iter().any(|&l| !model.leaves[l].writable)
-        {
-            return StatusCode::BadNotWritable;
-        }
-        if context.token.is_anonymous() {
-            return StatusCode::BadUserAccessDenied;
-        }
-        let Some(value) = &write.value.value else {
-            return StatusCode::BadTypeMismatch;
-        };
-        let is_array = matches!(
-            model.nodes[node].kind,
-            NodeKind::Variable { dims: Some(_), .. }
-        );
-        if !is_array && write.index_range.has_range() {
-            return StatusCode::BadIndexRangeInvalid;
-        }
-        let batch = match self.values(leaves, is_array, &write.index_range, value) {
+        let batch = match checked_write(&self.shared, write, context.token.is_anonymous()) {
             Ok(batch) => batch,
             Err(status) => return status,
         };
@@ -108,51 +83,84 @@ impl PlcNodes {
             Err(TrySendError::Disconnected(_)) => StatusCode::BadServerHalted,
         }
     }
+}
 
-    /// The node of a NodeId in the PLC's namespace.
-    fn node_of(&self, id: &NodeId) -> Option<usize> {
-        if id.namespace != self.namespace.namespace_index {
-            return None;
-        }
-        match &id.identifier {
-            Identifier::String(s) => self.shared.model.by_id.get(s.as_ref()).copied(),
-            _ => None,
-        }
+/// The values a client's write gives the PLC's variables, checked: a node
+/// of the PLC's namespace, its Value attribute, writable leaves, a user
+/// logged in (`anonymous` false), an index range only on an array, and
+/// values that fit the variables' types.
+pub(crate) fn checked_write(
+    shared: &Shared,
+    write: &ParsedWriteValue,
+    anonymous: bool,
+) -> Result<ClientWrite, StatusCode> {
+    let model = &shared.model;
+    let node = node_of(shared, &write.node_id).ok_or(StatusCode::BadNodeIdUnknown)?;
+    let leaves = model.leaves_of(node).ok_or(StatusCode::BadNotWritable)?;
+    if write.attribute_id != AttributeId::Value || leaves.iter().any(|&l| !model.leaves[l].writable)
+    {
+        return Err(StatusCode::BadNotWritable);
     }
+    if anonymous {
+        return Err(StatusCode::BadUserAccessDenied);
+    }
+    let value = write
+        .value
+        .value
+        .as_ref()
+        .ok_or(StatusCode::BadTypeMismatch)?;
+    let is_array = matches!(
+        model.nodes[node].kind,
+        NodeKind::Variable { dims: Some(_), .. }
+    );
+    if !is_array && write.index_range.has_range() {
+        return Err(StatusCode::BadIndexRangeInvalid);
+    }
+    values(model, leaves, is_array, &write.index_range, value)
+}
 
-    /// The values a write of `value` (over `range`) gives `leaves`.
-    fn values(
-        &self,
-        leaves: &[usize],
-        is_array: bool,
-        range: &NumericRange,
-        value: &Variant,
-    ) -> Result<ClientWrite, StatusCode> {
-        let model = &self.shared.model;
-        let targets: &[usize] = match range {
-            NumericRange::None => leaves,
-            NumericRange::Index(i) => leaves
-                .get(*i as usize..*i as usize + 1)
-                .ok_or(StatusCode::BadIndexRangeNoData)?,
-            NumericRange::Range(a, b) => leaves
-                .get(*a as usize..=*b as usize)
-                .ok_or(StatusCode::BadIndexRangeNoData)?,
-            NumericRange::MultipleRanges(_) => return Err(StatusCode::BadIndexRangeInvalid),
-        };
-        let items: Vec<&Variant> = match value {
-            Variant::Array(a) => a.values.iter().collect(),
-            scalar if !is_array || range.has_range() && targets.len() == 1 => vec![scalar],
-            _ => return Err(StatusCode::BadTypeMismatch),
-        };
-        if items.len() != targets.len() {
-            return Err(StatusCode::BadTypeMismatch);
-        }
-        targets
-            .iter()
-            .zip(items)
-            .map(|(&leaf, v)| Ok((leaf, value_of(&model.leaves[leaf].kind, v)?)))
-            .collect()
+/// The node of a NodeId in the PLC's namespace.
+fn node_of(shared: &Shared, id: &NodeId) -> Option<usize> {
+    if id.namespace != shared.namespace.load(std::sync::atomic::Ordering::Acquire) {
+        return None;
     }
+    match &id.identifier {
+        Identifier::String(s) => shared.model.by_id.get(s.as_ref()).copied(),
+        _ => None,
+    }
+}
+
+/// The values a write of `value` (over `range`) gives `leaves`.
+fn values(
+    model: &Model,
+    leaves: &[usize],
+    is_array: bool,
+    range: &NumericRange,
+    value: &Variant,
+) -> Result<ClientWrite, StatusCode> {
+    let targets: &[usize] = match range {
+        NumericRange::None => leaves,
+        NumericRange::Index(i) => leaves
+            .get(*i as usize..*i as usize + 1)
+            .ok_or(StatusCode::BadIndexRangeNoData)?,
+        NumericRange::Range(a, b) => leaves
+            .get(*a as usize..=*b as usize)
+            .ok_or(StatusCode::BadIndexRangeNoData)?,
+        NumericRange::MultipleRanges(_) => return Err(StatusCode::BadIndexRangeInvalid),
+    };
+    let items: Vec<&Variant> = match value {
+        Variant::Array(a) => a.values.iter().collect(),
+        scalar if !is_array || range.has_range() && targets.len() == 1 => vec![scalar],
+        _ => return Err(StatusCode::BadTypeMismatch),
+    };
+    if items.len() != targets.len() {
+        return Err(StatusCode::BadTypeMismatch);
+    }
+    targets
+        .iter()
+        .zip(items)
+        .map(|(&leaf, v)| Ok((leaf, value_of(&model.leaves[leaf].kind, v)?)))
+        .collect()
 }
 
 #[async_trait::async_trait]
