@@ -27,12 +27,13 @@ VAR
     w0 AT %MW0 : UINT; w1 AT %MW1 : UINT; w2 AT %MW2 : UINT; w3 AT %MW3 : UINT;
     e0 AT %QW0 : UINT; e1 AT %QW1 : UINT; e2 AT %QW2 : UINT; e3 AT %QW3 : UINT;
     beat AT %QW10 : UINT;
-    setpoint : INT;
-    doubled : INT;
+    setpoint1 : INT; doubled1 : INT;
+    setpoint2 : INT; doubled2 : INT;
 END_VAR
 e0 := w0; e1 := w1; e2 := w2; e3 := w3;
 beat := beat + 1;
-doubled := setpoint * 2;
+doubled1 := setpoint1 * 2;
+doubled2 := setpoint2 * 2;
 END_PROGRAM
 ";
 
@@ -91,65 +92,110 @@ fn read_register(s: &mut TcpStream, t: u16, register: u16) -> std::io::Result<u1
     Ok(u16::from_be_bytes([a[9], a[10]]))
 }
 
+/// What one client did.
+#[derive(Default)]
+struct Tally {
+    /// Writes confirmed (or requests answered).
+    done: u64,
+    /// Connections the server refused or broke, retried.
+    retried: u64,
+}
+
+/// Sends `request` and reads its answer, on `stream` or, when the server
+/// refuses or drops the connection (over `max_clients`, say), on a new one.
+fn ask(addr: SocketAddr, stream: &mut TcpStream, request: &[u8], tally: &mut Tally) -> Vec<u8> {
+    for _ in 0..1000 {
+        if stream.write_all(request).is_ok()
+            && let Ok(a) = answer(stream)
+        {
+            return a;
+        }
+        tally.retried += 1;
+        std::thread::sleep(Duration::from_millis(5));
+        *stream = connect_modbus(addr);
+    }
+    panic!("the Modbus server refused 1000 connections in a row");
+}
+
 /// Client `k`: writes 1, 2, 3... to holding register 1024 + k (`%MWk`) and
 /// waits for the program's echo in register k (`%QWk`) after each, on a
-/// new connection every 20 writes. Returns the writes confirmed.
-fn writer(addr: SocketAddr, k: u16, until: Instant) -> Result<u64, String> {
+/// new connection every 20 writes. A write the server acknowledged must
+/// reach the program, whatever happens to the connection after.
+fn writer(addr: SocketAddr, k: u16, until: Instant) -> Result<Tally, String> {
+    let mut tally = Tally::default();
     let mut value: u16 = 0;
-    let mut confirmed = 0;
     while Instant::now() < until {
         let mut s = connect_modbus(addr);
         for _ in 0..20 {
             value = value.wrapping_add(1).max(1);
             let r = (1024 + k).to_be_bytes();
             let v = value.to_be_bytes();
-            s.write_all(&frame(value, &[0x06, r[0], r[1], v[0], v[1]]))
-                .map_err(|e| e.to_string())?;
-            let a = answer(&mut s).map_err(|e| format!("write {value}: {e}"))?;
+            let a = ask(
+                addr,
+                &mut s,
+                &frame(value, &[0x06, r[0], r[1], v[0], v[1]]),
+                &mut tally,
+            );
             if a[7] != 0x06 {
                 return Err(format!("write {value} refused: {a:?}"));
             }
-            let seen_by = Instant::now() + Duration::from_secs(5);
+            let seen_by = Instant::now() + Duration::from_secs(10);
+            let r = k.to_be_bytes();
             loop {
-                let echo = read_register(&mut s, value, k).map_err(|e| e.to_string())?;
+                let a = ask(
+                    addr,
+                    &mut s,
+                    &frame(value, &[0x03, r[0], r[1], 0, 1]),
+                    &mut tally,
+                );
+                let echo = u16::from_be_bytes([a[9], a[10]]);
                 if echo == value {
                     break;
                 }
                 if Instant::now() > seen_by {
-                    return Err(format!("client {k}: write {value} lost (echo {echo})"));
+                    return Err(format!("write {value} acknowledged and lost (echo {echo})"));
                 }
                 std::thread::sleep(Duration::from_millis(1));
             }
-            confirmed += 1;
+            tally.done += 1;
         }
     }
-    Ok(confirmed)
+    Ok(tally)
 }
 
-/// Sends 100 reads without waiting, then takes the 100 answers.
-fn flooder(addr: SocketAddr, until: Instant) -> Result<u64, String> {
-    let mut answered = 0;
+/// Sends 100 reads without waiting, then takes the 100 answers, which
+/// must come in order (a burst on a refused connection is sent again).
+fn flooder(addr: SocketAddr, until: Instant) -> Result<Tally, String> {
+    let mut tally = Tally::default();
+    let burst: Vec<u8> = (0..100u16)
+        .flat_map(|t| frame(t, &[0x03, 0, 0, 0, 16]))
+        .collect();
     while Instant::now() < until {
         let mut s = connect_modbus(addr);
-        let burst: Vec<u8> = (0..100u16)
-            .flat_map(|t| frame(t, &[0x03, 0, 0, 0, 16]))
-            .collect();
-        s.write_all(&burst).map_err(|e| e.to_string())?;
+        if s.write_all(&burst).is_err() {
+            tally.retried += 1;
+            continue;
+        }
         for t in 0..100u16 {
-            let a = answer(&mut s).map_err(|e| format!("flood answer {t}: {e}"))?;
-            if u16::from_be_bytes([a[0], a[1]]) != t {
-                return Err(format!("answer {t} out of order: {a:?}"));
+            match answer(&mut s) {
+                Ok(a) if u16::from_be_bytes([a[0], a[1]]) == t => tally.done += 1,
+                Ok(a) => return Err(format!("answer {t} out of order: {a:?}")),
+                // Refused at once (no answer at all): try again.
+                Err(_) if t == 0 => {
+                    tally.retried += 1;
+                    break;
+                }
+                Err(e) => return Err(format!("the server dropped a flood at answer {t}: {e}")),
             }
-            answered += 1;
         }
     }
-    Ok(answered)
+    Ok(tally)
 }
 
 /// Connections that break the protocol: half a frame then gone, a header
 /// that cannot be Modbus, a connection closed at once.
-fn dropper(addr: SocketAddr, until: Instant) -> Result<u64, String> {
-    let mut dropped = 0;
+fn dropper(addr: SocketAddr, until: Instant) -> Result<Tally, String> {
+    let mut tally = Tally::default();
     while Instant::now() < until {
         let whole = frame(7, &[0x10, 0, 0, 0, 2, 4, 0, 1, 0, 2]);
         let mut s = connect_modbus(addr);
@@ -160,52 +206,73 @@ fn dropper(addr: SocketAddr, until: Instant) -> Result<u64, String> {
         let mut sink = [0u8; 16];
         let _ = s.read(&mut sink);
         drop(TcpStream::connect(addr));
-        dropped += 3;
+        tally.done += 3;
         std::thread::sleep(Duration::from_millis(2));
     }
-    Ok(dropped)
+    Ok(tally)
 }
 
-/// An OPC UA client that logs in, writes `setpoint`, waits for the
-/// program's `doubled`, and reconnects every 10 writes.
+/// OPC UA client `n` (1 or 2): logs in, writes `setpoint<n>`, waits for
+/// the program's `doubled<n>`, and reconnects every 10 writes. A write
+/// answered Good must reach the program. Connections that fail are
+/// retried; more than one in five failing is an error.
 fn opcua_writer(
     url: String,
     ns: u16,
     pki: std::path::PathBuf,
     n: i16,
     until: Instant,
-) -> Result<u64, String> {
+) -> Result<Tally, String> {
     let rt = tokio::runtime::Builder::new_current_thread()
         .enable_all()
         .build()
         .unwrap();
     rt.block_on(async move {
-        let mut confirmed = 0;
-        let mut value = n * 1000;
+        let mut tally = Tally::default();
+        let mut attempts = 0u64;
+        let mut value = 0i16;
+        let (setpoint, doubled) = (format!("setpoint{n}"), format!("doubled{n}"));
         while Instant::now() < until {
-            let c = connect(&url, Security::Encrypt, Some(("op", "pw")), &pki).await?;
+            attempts += 1;
+            let c = match connect(&url, Security::Encrypt, Some(("op", "pw")), &pki).await {
+                Ok(c) => c,
+                Err(e) => {
+                    tally.retried += 1;
+                    if tally.retried * 5 > attempts.max(5) {
+                        return Err(format!(
+                            "{} of {attempts} connections failed: {e}",
+                            tally.retried
+                        ));
+                    }
+                    continue;
+                }
+            };
             for _ in 0..10 {
-                value += 1;
+                value = (value + 1) % 10_000;
                 let status = c
-                    .write(&NodeId::new(ns, "setpoint"), Variant::Int16(value))
+                    .write(&NodeId::new(ns, setpoint.as_str()), Variant::Int16(value))
                     .await;
                 if status != StatusCode::Good {
                     return Err(format!("OPC UA write {value}: {status}"));
                 }
                 let want = Variant::Int16(value * 2);
                 let got = c
-                    .read_until(&NodeId::new(ns, "doubled"), Duration::from_secs(5), |v| {
-                        *v == want
-                    })
+                    .read_until(
+                        &NodeId::new(ns, doubled.as_str()),
+                        Duration::from_secs(10),
+                        |v| *v == want,
+                    )
                     .await;
                 if got != Some(want.clone()) {
-                    return Err(format!("OPC UA write {value} lost: read {got:?}"));
+                    return Err(format!(
+                        "OPC UA write {value} answered Good and lost: read {got:?}"
+                    ));
                 }
-                confirmed += 1;
+                tally.done += 1;
             }
             c.close().await;
         }
-        Ok(confirmed)
+        Ok(tally)
     })
 }
 
@@ -261,7 +328,7 @@ fn servers_survive_floods_drops_and_reconnects_under_a_1ms_task() {
         })
     };
     let done = Arc::new(AtomicU64::new(0));
-    let mut clients: Vec<(String, std::thread::JoinHandle<Result<u64, String>>)> = Vec::new();
+    let mut clients: Vec<(String, std::thread::JoinHandle<Result<Tally, String>>)> = Vec::new();
     for k in 0..4 {
         clients.push((
             format!("modbus writer {k}"),
@@ -278,21 +345,21 @@ fn servers_survive_floods_drops_and_reconnects_under_a_1ms_task() {
             std::thread::spawn(move || dropper(addr, until)),
         ));
     }
-    for k in 0..2 {
+    for k in 0..2i16 {
         let (url, pki) = (url.clone(), dir.join(format!("client-{k}")));
         clients.push((
             format!("opcua writer {k}"),
-            std::thread::spawn(move || opcua_writer(url, ns, pki, k as i16 + 1, until)),
+            std::thread::spawn(move || opcua_writer(url, ns, pki, k + 1, until)),
         ));
     }
     let mut report = Vec::new();
     let mut failures = Vec::new();
     for (name, client) in clients {
         match client.join() {
-            Ok(Ok(n)) => {
-                done.fetch_add(n, Ordering::Relaxed);
-                report.push(format!("{name}: {n}"));
-                if n == 0 {
+            Ok(Ok(t)) => {
+                done.fetch_add(t.done, Ordering::Relaxed);
+                report.push(format!("{name}: {} ({} retried)", t.done, t.retried));
+                if t.done == 0 {
                     failures.push(format!("{name} did nothing"));
                 }
             }
@@ -318,7 +385,7 @@ fn servers_survive_floods_drops_and_reconnects_under_a_1ms_task() {
     let third = samples.len() / 3;
     let (early, late) = (samples[third].1, samples.last().unwrap().1);
     eprintln!(
-        "soak {:.0} s: {} | cycles {} of {} expected, overruns {}, exec max {} us, start jitter p99 {} us max {} us | modbus: {} accepted, {} requests, {} exceptions, {} dropped malformed, {} timed out, {} writes applied | RSS {} -> {} KiB",
+        "soak {:.0} s: {} | cycles {} of {} expected, overruns {}, exec max {} us, start jitter p99 {} us max {} us | modbus: {} accepted, {} refused, {} requests, {} exceptions, {} dropped malformed, {} timed out, {} writes applied | RSS {} -> {} KiB",
         elapsed.as_secs_f64(),
         report.join(", "),
         task.cycles,
@@ -328,6 +395,7 @@ fn servers_survive_floods_drops_and_reconnects_under_a_1ms_task() {
         task.start_jitter.map_or(0, |j| j.p99_ns / 1000),
         task.start_jitter.map_or(0, |j| j.max_ns / 1000),
         m.connections_accepted,
+        m.connections_refused,
         m.requests,
         m.exceptions,
         m.connections_dropped_malformed,

@@ -52,6 +52,15 @@ pub(crate) struct Plan {
     pub(crate) add_base: bool,
 }
 
+/// True when `text` writes the name of TcUnit's base block (any case):
+/// a source without it declares no suite.
+pub(crate) fn names_the_base(text: &str) -> bool {
+    let base = BASE.as_bytes();
+    text.as_bytes()
+        .windows(base.len())
+        .any(|w| w.eq_ignore_ascii_case(base))
+}
+
 /// The last segment of a possibly qualified name (`TcUnit.FB_TestSuite`).
 fn last_segment(name: &str) -> &str {
     name.rsplit('.').next().unwrap_or(name)
