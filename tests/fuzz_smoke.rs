@@ -350,6 +350,32 @@ fn the_programs_and_benches_run_the_same_unoptimized() {
     assert!(fused > 0, "no fused instruction in {files:?}");
 }
 
+/// `count` mutants (up to `depth` changes each) of `seeds` through
+/// `target`, which must not panic; counted rather than timed, for the
+/// fast targets.
+fn counted_mutants(
+    what: &str,
+    seeds: &[(String, Vec<u8>)],
+    target: fn(&[u8]),
+    count: usize,
+    depth: usize,
+    rng: &mut Rng,
+) {
+    for n in 0..count {
+        let (name, bytes) = &seeds[rng.below(seeds.len())];
+        let (_, other) = &seeds[rng.below(seeds.len())];
+        let mut input = bytes.clone();
+        for _ in 0..1 + rng.below(depth) {
+            input = mutate(rng, &input, other);
+        }
+        let outcome = std::panic::catch_unwind(|| target(&input));
+        assert!(
+            outcome.is_ok(),
+            "mutant {n} of {name} broke the {what}: {input:?}"
+        );
+    }
+}
+
 /// The Modbus request path is fast (microseconds an input): it gets its
 /// own run of mutants, counted rather than timed, on top of its share of
 /// the timed one.
@@ -357,19 +383,14 @@ fn the_programs_and_benches_run_the_same_unoptimized() {
 fn modbus_request_path_survives_mutated_streams() {
     let seeds = targets::modbus_seeds();
     let mut rng = Rng(0xD1B5_4A32_D192_ED03);
-    for n in 0..20_000 {
-        let (name, bytes) = &seeds[rng.below(seeds.len())];
-        let (_, other) = &seeds[rng.below(seeds.len())];
-        let mut input = bytes.clone();
-        for _ in 0..1 + rng.below(6) {
-            input = mutate(&mut rng, &input, other);
-        }
-        let outcome = std::panic::catch_unwind(|| targets::modbus(&input));
-        assert!(
-            outcome.is_ok(),
-            "mutant {n} of {name} broke the Modbus request path: {input:?}"
-        );
-    }
+    counted_mutants(
+        "Modbus request path",
+        &seeds,
+        targets::modbus,
+        20_000,
+        6,
+        &mut rng,
+    );
 }
 
 /// The OPC UA Write path: mutants of encoded WriteRequests, counted.
@@ -389,17 +410,12 @@ fn opcua_write_path_survives_mutated_requests() {
     );
     assert!(accepted >= 30, "only {accepted} seed writes accepted");
     let mut rng = Rng(0x2545_F491_4F6C_DD1D);
-    for n in 0..3_000 {
-        let (name, bytes) = &seeds[rng.below(seeds.len())];
-        let (_, other) = &seeds[rng.below(seeds.len())];
-        let mut input = bytes.clone();
-        for _ in 0..1 + rng.below(4) {
-            input = mutate(&mut rng, &input, other);
-        }
-        let outcome = std::panic::catch_unwind(|| targets::opcua_write(&input));
-        assert!(
-            outcome.is_ok(),
-            "mutant {n} of {name} broke the OPC UA write path: {input:?}"
-        );
-    }
+    counted_mutants(
+        "OPC UA write path",
+        &seeds,
+        targets::opcua_write,
+        3_000,
+        4,
+        &mut rng,
+    );
 }
