@@ -180,6 +180,9 @@ mod opcua_python;
 #[cfg(feature = "opcua")]
 #[path = "opcua_server.rs"]
 mod opcua_server;
+#[cfg(feature = "cli")]
+#[path = "packaging.rs"]
+mod packaging;
 #[path = "partial_access.rs"]
 mod partial_access;
 #[path = "plcopen.rs"]

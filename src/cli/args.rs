@@ -68,6 +68,11 @@ pub enum Command {
     /// Serve the Language Server Protocol on standard input and output,
     /// for editors (docs/editors.md).
     Lsp(super::lsp::LspArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish,
+    /// powershell): `plcrun completions bash > /etc/bash_completion.d/plcrun`.
+    Completions(super::completions::CompletionsArgs),
+    /// Print the manual page, or write every page into a folder.
+    Man(super::completions::ManArgs),
     /// Manage the users file of the OPC UA server (`plcrun opcua-user add
     /// FILE NAME`, the password on standard input; docs/opcua.md).
     #[cfg(feature = "opcua")]

@@ -3,6 +3,7 @@
 
 mod args;
 mod compare;
+mod completions;
 mod draw;
 mod export;
 mod given;
@@ -55,6 +56,8 @@ pub fn main() -> i32 {
             Some(args::Command::Serve(a)) => serve::serve(&a, &given),
             Some(args::Command::Init(a)) => init::init(&a),
             Some(args::Command::Lsp(a)) => lsp::lsp(&a),
+            Some(args::Command::Completions(a)) => completions::completions(&a),
+            Some(args::Command::Man(a)) => completions::man(&a),
             #[cfg(feature = "opcua")]
             Some(args::Command::OpcUaUser(a)) => opcua::user(&a),
             None => run::run(&cli.run),
