@@ -2,8 +2,8 @@
 //! library's `Session` (a `Plc` with stimulus and trace), on a virtual
 //! clock.
 
-use crate::errors::bad_option;
 use crate::errors::{RetainError, compile_error, diagnostics_list, runtime_fault, variable_error};
+use crate::errors::{bad_option, variable_message};
 use crate::sources::{CompileArgs, duration_ns, source_map};
 use crate::values::{literal_for, timedelta, to_py};
 use plcrun::{
@@ -59,11 +59,23 @@ impl PyPlc {
 
     /// The value of `name`.
     pub fn value(&mut self, py: Python<'_>, name: &str) -> PyResult<Value> {
-        let r = self.var(py, name)?;
-        self.s()
-            .plc()
-            .get(&r)
-            .map_err(|e| variable_error(py, name, &e))
+        if !self.refs.contains_key(name) {
+            self.var(py, name)?;
+        }
+        // Borrowed from the cache, not cloned: a read allocates nothing
+        // but the value.
+        let session = self.session.get_mut().unwrap_or_else(|e| e.into_inner());
+        match self.refs.get(name) {
+            Some(r) => session
+                .plc()
+                .get(r)
+                .map_err(|e| variable_error(py, name, &e)),
+            None => Err(variable_message(
+                py,
+                name,
+                format!("unknown variable `{name}`"),
+            )),
+        }
     }
 
     /// The library's value for the Python object `obj` written to `name`.
