@@ -1,6 +1,7 @@
-"""The examples of docs/python.md, run as tests: every ```python block is
-run from the repository's root; a block whose first line is a comment
-naming a `test_*.py` file is run by pytest (through `pytester`) instead."""
+"""The examples of docs/python.md and README.md, run as tests: every
+```python block is run from the repository's root; a block whose first
+line is a comment naming a `test_*.py` file is run by pytest (through
+`pytester`) instead."""
 
 import re
 import shutil
@@ -9,20 +10,22 @@ import pytest
 
 from conftest import REPO
 
-DOC = REPO / "docs" / "python.md"
+DOCS = [REPO / "docs" / "python.md", REPO / "README.md"]
 BLOCK = re.compile(r"^```python\n(.*?)^```", re.DOTALL | re.MULTILINE)
 PYTEST_FILE = re.compile(r"^# (test_\w+\.py)\n")
 
 
 def _blocks():
-    text = DOC.read_text(encoding="utf-8")
-    for m in BLOCK.finditer(text):
-        line = text[: m.start()].count("\n") + 1
-        yield pytest.param(m.group(1), id=f"python.md:{line}")
+    for doc in DOCS:
+        text = doc.read_text(encoding="utf-8")
+        for m in BLOCK.finditer(text):
+            line = text[: m.start()].count("\n") + 1
+            yield pytest.param(m.group(1), id=f"{doc.name}:{line}")
 
 
 def test_the_guide_has_examples():
-    assert len(list(_blocks())) >= 7
+    assert len([b for b in _blocks() if "python.md" in b.id]) >= 7
+    assert len([b for b in _blocks() if "README" in b.id]) >= 1
 
 
 @pytest.mark.parametrize("code", list(_blocks()))
@@ -30,7 +33,7 @@ def test_example(code, monkeypatch, pytester):
     named = PYTEST_FILE.match(code)
     if named is None:
         monkeypatch.chdir(REPO)
-        exec(compile(code, str(DOC), "exec"), {"__name__": "docs_example"})
+        exec(compile(code, "docs example", "exec"), {"__name__": "docs_example"})
         return
     # A pytest example: run it where programs/ is at the root directory.
     shutil.copytree(REPO / "programs", pytester.path / "programs")
