@@ -28,11 +28,14 @@ Errors: ``CompileError`` (``.diagnostics``), ``RuntimeFault`` (``.code``,
 
 ``run_st_tests`` runs unit tests written in IEC (``TEST_`` POUs), and the
 pytest plugin (``plcrun.pytest_plugin``, registered on install) gives a
-``plc`` fixture and collects ST test files. The guide is docs/python.md.
+``plc`` fixture and collects ST test files. ``plcrun.campaign`` runs
+``plcrun compare`` over many seeds through any executor (a process pool,
+Dask). The guide is docs/python.md.
 """
 
 from ._plcrun import (
     CompileError,
+    ComparePair,
     Diagnostic,
     Plc,
     PlcError,
@@ -48,6 +51,7 @@ from ._plcrun import (
 
 __all__ = [
     "CompileError",
+    "ComparePair",
     "Diagnostic",
     "Plc",
     "PlcError",

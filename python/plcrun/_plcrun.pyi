@@ -155,3 +155,28 @@ def run_st_tests(
     filter: Optional[str] = None,
     strict: bool = False,
 ) -> List[StTest]: ...
+
+class ComparePair:
+    """Two programs paired as ``plcrun compare A -- B`` pairs them (see
+    ``plcrun.campaign``)."""
+
+    def __init__(
+        self,
+        a: Sources,
+        b: Sources,
+        *,
+        a_label: str,
+        b_label: str,
+        cycles: int,
+        cycle_time: Optional[Duration] = None,
+        program_a: Optional[str] = None,
+        program_b: Optional[str] = None,
+        map: Sequence[str] = ...,
+        ignore: Sequence[str] = ...,
+        lag: int = 0,
+        change_prob: float = 0.1,
+        min_hold: int = 1,
+        max_hold: int = 20,
+    ) -> None: ...
+    def run_seeds(self, start: int, stop: int) -> Tuple[List[int], int]: ...
+    def report(self, start: int, stop: int, differing: List[int]) -> str: ...

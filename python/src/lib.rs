@@ -5,6 +5,7 @@
 //! library's; this crate turns Python values into IEC literals and the
 //! library's values and errors into Python ones.
 
+mod campaign;
 mod errors;
 mod plc;
 mod simulate;
@@ -22,6 +23,7 @@ fn _plcrun(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<plc::PyVariable>()?;
     m.add_class::<errors::PyDiagnostic>()?;
     m.add_class::<st_tests::PyStTest>()?;
+    m.add_class::<campaign::PyComparePair>()?;
     m.add_function(wrap_pyfunction!(st_tests::run_st_tests, m)?)?;
     m.add("PlcError", py.get_type::<errors::PlcError>())?;
     m.add("CompileError", py.get_type::<errors::CompileError>())?;
