@@ -45,7 +45,7 @@ impl PyComparePair {
     /// `max_hold`.
     #[new]
     #[pyo3(signature = (a, b, *, a_label, b_label, cycles, cycle_time=None, program_a=None, program_b=None, map=Vec::new(), ignore=Vec::new(), lag=0, change_prob=0.1, min_hold=1, max_hold=20))]
-    #[allow(clippy::too_many_arguments)]
+    #[allow(clippy::too_many_arguments)] // Python keyword arguments
     fn new(
         py: Python<'_>,
         a: &Bound<'_, PyAny>,
@@ -102,7 +102,7 @@ impl PyComparePair {
     /// Runs every seed in `start..stop` (the GIL released) and returns
     /// `(differing seeds, cycles run)`.
     fn run_seeds(&mut self, py: Python<'_>, start: u64, stop: u64) -> PyResult<(Vec<u64>, u64)> {
-        let (settings, cycles) = (self.settings.clone(), self.cycles);
+        let (settings, cycles) = (self.settings, self.cycles);
         let pair = self.pair();
         py.detach(|| {
             let mut differing = Vec::new();
@@ -130,7 +130,7 @@ impl PyComparePair {
         stop: u64,
         differing: Vec<u64>,
     ) -> PyResult<String> {
-        let (settings, cycles) = (self.settings.clone(), self.cycles);
+        let (settings, cycles) = (self.settings, self.cycles);
         let (a_label, b_label) = (self.a_label.clone(), self.b_label.clone());
         let pair = self.pair();
         let found = match differing.first() {

@@ -134,6 +134,7 @@ impl PyPlc {
     /// evolution. `addressing`: `"iec"`, `"openplc"` or `"byte"`.
     /// Raises `CompileError` with every diagnostic.
     #[staticmethod]
+    #[allow(clippy::too_many_arguments)] // Python keyword arguments
     #[pyo3(signature = (sources, *, cycle_time=None, program=None, watchdog=None, strict=false, grafcet=false, addressing=None))]
     fn compile(
         py: Python<'_>,
@@ -465,6 +466,7 @@ impl PyPlc {
     /// "charts_restarted": [...]}`. Refused versions raise `CompileError`
     /// or `PlcError`, and the old version runs on.
     #[pyo3(signature = (sources, *, cycle_time=None, program=None, watchdog=None, strict=false, grafcet=false, addressing=None))]
+    #[allow(clippy::too_many_arguments)] // Python keyword arguments
     fn online_change<'py>(
         &mut self,
         py: Python<'py>,
@@ -524,7 +526,7 @@ impl PyPlc {
     /// Runs `cycles` cycles as a session (see `plcrun.Plc.simulate` in
     /// docs/python.md): stimulus, trace and a per-cycle callback.
     #[pyo3(signature = (cycles, stimulus=None, *, csv=None, trace=None, on_cycle=None, output="dict"))]
-    #[allow(clippy::too_many_arguments)]
+    #[allow(clippy::too_many_arguments)] // Python keyword arguments
     fn simulate(
         slf: &Bound<'_, Self>,
         cycles: u64,
