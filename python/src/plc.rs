@@ -523,8 +523,19 @@ impl PyPlc {
         )
     }
 
-    /// Runs `cycles` cycles as a session (see `plcrun.Plc.simulate` in
-    /// docs/python.md): stimulus, trace and a per-cycle callback.
+    /// Runs `cycles` cycles as `plcrun FILES --cycles N --stimulus S
+    /// --trace ...` does and returns the trace.
+    ///
+    /// `stimulus`: a dict `{name: [values]}` (row `i` before the `i`-th
+    /// cycle of the run; a `"cycle"` or `"time"` entry keys the rows from
+    /// the current cycle or clock; `None`/NaN leaves a variable unchanged)
+    /// or a pandas DataFrame; or `csv`: a stimulus file or its text.
+    /// `trace`: the names to sample after each cycle (default: every
+    /// output). `on_cycle(plc)`: called after each cycle (a plant model);
+    /// returning `False` ends the run. `output`: `"dict"` (lists),
+    /// `"numpy"` (arrays) or `"pandas"` (a DataFrame); the trace has
+    /// `cycle` and `time` first. Raises `StimulusError`, `VariableError`,
+    /// `RuntimeFault`.
     #[pyo3(signature = (cycles, stimulus=None, *, csv=None, trace=None, on_cycle=None, output="dict"))]
     #[allow(clippy::too_many_arguments)] // Python keyword arguments
     fn simulate(

@@ -94,3 +94,23 @@ def test_bad_campaigns_are_refused():
         campaign.compare({"a.st": A}, {"b.st": B}, seeds=5, cycles=10, change_prob=2.0)
     with pytest.raises(PlcError):
         campaign.compare({"a.st": A}, {"b.st": B}, seeds=5, cycles=10, ignore=["nope"])
+
+
+def test_a_dask_campaign_over_1000_seeds_is_the_command_lines():
+    distributed = pytest.importorskip("distributed")
+    exe = _cli()
+    if exe is None:
+        pytest.skip("no plcrun binary (target/debug/plcrun is built by cargo test)")
+    args = ["programs/alg01.il", "--", "programs/alg02.il", "--cycles", "300", "--random", "0", "--seeds", "1000"]
+    cli = subprocess.run([exe, "compare", *args], cwd=REPO, capture_output=True, text=True)
+    assert cli.returncode in (0, 1), cli.stderr
+    old = os.getcwd()
+    os.chdir(REPO)
+    try:
+        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+            with distributed.Client(cluster) as client:
+                result = campaign.compare("programs/alg01.il", "programs/alg02.il", seeds=range(1000), cycles=300,
+                                          executor=client, chunk_size=50)
+    finally:
+        os.chdir(old)
+    assert result.report == cli.stdout
