@@ -6,6 +6,7 @@ the repository's root with a release build installed:
     pip install ./python && python python/bench/campaign.py
 """
 
+import multiprocessing
 import time
 from concurrent.futures import ProcessPoolExecutor
 
@@ -14,6 +15,8 @@ from plcrun import campaign
 # A program against itself: no seed differs, so every seed runs all its cycles.
 A, B = "programs/alg01.il", "programs/alg01.il"
 SEEDS, CYCLES, CHUNK = range(1000), 1000, 50
+# Clean worker processes: this one has threads (the watchdogs).
+SPAWN = multiprocessing.get_context("spawn")
 
 
 def timed(**kw):
@@ -26,7 +29,7 @@ def main():
     ref, t = timed()
     print(f"in process          : {len(SEEDS) / t:7.0f} seeds/s ({ref.cycles_run} cycles, same={ref.same})")
     for n in (1, 2):
-        with ProcessPoolExecutor(n) as pool:
+        with ProcessPoolExecutor(n, mp_context=SPAWN) as pool:
             pool.submit(int).result()  # start the workers before timing
             r, t = timed(executor=pool)
         assert r.report == ref.report
@@ -42,7 +45,7 @@ def main():
         assert r.report == ref.report
         print(f"Dask, 2 workers     : {len(SEEDS) / t:7.0f} seeds/s")
     # Overhead of a chunk: 2000 one-cycle seeds in 2000 chunks against one chunk.
-    with ProcessPoolExecutor(1) as pool:
+    with ProcessPoolExecutor(1, mp_context=SPAWN) as pool:
         pool.submit(int).result()
         t0 = time.perf_counter()
         campaign.compare(A, B, seeds=2000, cycles=1, chunk_size=2000, executor=pool)

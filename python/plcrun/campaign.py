@@ -9,10 +9,12 @@ and runs its chunks of seeds; the driver merges the differing seeds and
 writes the report that ``plcrun compare`` prints for the same seeds (the
 lowest differing seed is run again there and its plan shrunk)::
 
+    import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
     from plcrun import campaign
 
-    with ProcessPoolExecutor(2) as pool:
+    spawn = multiprocessing.get_context("spawn")  # the caller has threads
+    with ProcessPoolExecutor(2, mp_context=spawn) as pool:
         result = campaign.compare("programs/alg01.il", "programs/alg02.il",
                                   seeds=range(1, 1001), cycles=3000, executor=pool)
     print(result.report)

@@ -2,6 +2,7 @@
 merged report must not depend on the executor or the chunk size, and must
 be the command line's for the same seeds."""
 
+import multiprocessing
 import os
 import subprocess
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
@@ -36,7 +37,9 @@ def test_the_same_program_agrees_with_itself():
 def test_a_process_pool_gives_the_same_report():
     alg01, alg02 = REPO / "programs" / "alg01.il", REPO / "programs" / "alg02.il"
     here = campaign.compare(str(alg01), str(alg02), seeds=range(1, 21), cycles=500)
-    with ProcessPoolExecutor(2) as pool:
+    # spawn: the test process has threads (watchdogs), and fork copies
+    # only the forking one.
+    with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn")) as pool:
         there = campaign.compare(str(alg01), str(alg02), seeds=range(1, 21), cycles=500, executor=pool, chunk_size=3)
     assert there.report == here.report
     assert there.differing == here.differing
