@@ -107,7 +107,10 @@ pub use runtime::stimulus::{
     Stimulus, StimulusCursor, StimulusError, StimulusKey, StimulusRow, parse_stimulus,
 };
 pub use runtime::stop::StopHandle;
-pub use runtime::task_stats::{TaskStats, TaskStatsHandle, TimeStats, format_stats_table};
+pub use runtime::task_stats::{
+    Histogram, TaskHistograms, TaskStats, TaskStatsHandle, TimeStats, format_stats_table,
+    histogram_bounds,
+};
 pub use runtime::tasks::{TaskInfo, TaskStepError};
 pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter, UnknownTraceFormat};
 pub use runtime::trace_vcd::{VcdSignal, VcdTimescale};

@@ -17,6 +17,7 @@ mod retain;
 mod run;
 mod serve;
 mod test;
+mod web;
 
 use clap::{CommandFactory, FromArgMatches};
 use given::Given;
