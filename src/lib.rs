@@ -80,6 +80,7 @@ pub use runtime::host_blocks::{
 };
 pub use runtime::life_cycle::PlcState;
 pub use runtime::live_stimulus::{LiveStimulus, LiveStimulusError};
+pub use runtime::modbus::priority::leave_real_time;
 pub use runtime::modbus::{
     ExchangeReport, ImagePlace, ModbusConfig, ModbusError, ModbusExchange, ModbusServer,
     ModbusStats, ModbusTable, modbus_place,

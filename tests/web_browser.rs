@@ -14,9 +14,12 @@ const CHROMIUM: &str = "/usr/bin/chromium";
 
 /// The DOM of `url` after the page's script ran, from a fresh profile.
 fn dump_dom(url: &str) -> String {
-    let profile = temp_file("profile/.keep", "");
-    let profile_dir = Path::new(&profile).parent().unwrap();
-    let out = Command::new(CHROMIUM)
+    let keep = temp_file(".keep", "");
+    let profile_dir = Path::new(&keep).parent().unwrap().join("profile");
+    std::fs::create_dir_all(&profile_dir).unwrap();
+    // At most a minute: a browser that hangs fails the test, not CI.
+    let out = Command::new("timeout")
+        .args(["60", CHROMIUM])
         .args([
             "--headless",
             "--no-sandbox",
@@ -27,6 +30,9 @@ fn dump_dom(url: &str) -> String {
             "--disable-component-update",
             "--disable-sync",
             "--disable-dev-shm-usage",
+            // navigator.webdriver: the page polls rather than streams, so
+            // that the network settles and virtual time runs.
+            "--enable-automation",
             &format!("--user-data-dir={}", profile_dir.display()),
             // Time for the fetches and the first events.
             "--virtual-time-budget=3000",
@@ -35,7 +41,7 @@ fn dump_dom(url: &str) -> String {
         ])
         .output()
         .expect("chromium runs");
-    let _ = std::fs::remove_dir_all(profile_dir);
+    let _ = std::fs::remove_dir_all(&profile_dir);
     assert!(
         out.status.success(),
         "chromium failed: {}",

@@ -37,27 +37,25 @@ impl std::fmt::Debug for WebServer {
 }
 
 impl WebServer {
-    /// Serves on `listener`.
+    /// Serves on `listener`. The server's threads are started from a
+    /// thread that first leaves a real-time policy the process may run
+    /// under (`chrt -f 50 plcrun ...`), so that they and every thread they
+    /// start leave the CPU to the scan.
     pub(super) fn start(listener: TcpListener, shared: Arc<Shared>) -> Result<WebServer, String> {
         let local_addr = listener
             .local_addr()
             .map_err(|e| format!("E962: web: cannot listen: {e}"))?;
-        let server = tiny_http::Server::from_listener(listener, None)
-            .map_err(|e| format!("E962: web: cannot listen on {local_addr}: {e}"))?;
-        let server = Arc::new(server);
-        let mut workers = Vec::with_capacity(WORKERS);
-        for _ in 0..WORKERS {
-            let (server, shared) = (Arc::clone(&server), Arc::clone(&shared));
-            let worker = std::thread::Builder::new()
-                .name("web".into())
-                .spawn(move || {
-                    while let Ok(request) = server.recv() {
-                        answer(request, &shared);
-                    }
-                })
-                .map_err(|e| format!("E962: web: cannot start a thread: {e}"))?;
-            workers.push(worker);
-        }
+        let for_starter = Arc::clone(&shared);
+        let starter = std::thread::Builder::new()
+            .name("web-start".into())
+            .spawn(move || {
+                plcrun::leave_real_time();
+                serve(listener, local_addr, &for_starter)
+            })
+            .map_err(|e| format!("E962: web: cannot start a thread: {e}"))?;
+        let (server, workers) = starter
+            .join()
+            .map_err(|_| "E962: web: the server's start failed".to_string())??;
         Ok(WebServer {
             server,
             shared,
@@ -91,6 +89,34 @@ impl Drop for WebServer {
     fn drop(&mut self) {
         self.stop();
     }
+}
+
+/// The server and its workers, started on the calling thread.
+type Started = (Arc<tiny_http::Server>, Vec<JoinHandle<()>>);
+
+/// Starts `tiny_http` on `listener` and the workers taking its requests.
+fn serve(
+    listener: TcpListener,
+    local_addr: SocketAddr,
+    shared: &Arc<Shared>,
+) -> Result<Started, String> {
+    let server = tiny_http::Server::from_listener(listener, None)
+        .map_err(|e| format!("E962: web: cannot listen on {local_addr}: {e}"))?;
+    let server = Arc::new(server);
+    let mut workers = Vec::with_capacity(WORKERS);
+    for _ in 0..WORKERS {
+        let (server, shared) = (Arc::clone(&server), Arc::clone(shared));
+        let worker = std::thread::Builder::new()
+            .name("web".into())
+            .spawn(move || {
+                while let Ok(request) = server.recv() {
+                    answer(request, &shared);
+                }
+            })
+            .map_err(|e| format!("E962: web: cannot start a thread: {e}"))?;
+        workers.push(worker);
+    }
+    Ok((server, workers))
 }
 
 /// Answers one request.
