@@ -8,6 +8,7 @@
 //! - [`state`]: what the monitor's threads share with the scan;
 //! - [`scan`]: the scan's side, called between two cycles, never waiting;
 //! - [`server`]: the HTTP server's threads;
+//! - [`http`]: reading a request and writing an answer;
 //! - [`api`]: the JSON API;
 //! - [`sse`]: the event stream;
 //! - [`metrics`]: the Prometheus page;
@@ -15,6 +16,7 @@
 
 mod api;
 mod auth;
+mod http;
 mod metrics;
 mod scan;
 mod server;

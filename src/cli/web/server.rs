@@ -1,30 +1,32 @@
-//! The HTTP side of the web monitor: a few worker threads take requests
-//! from `tiny_http` and answer them (the page, `/metrics`, the API); an
-//! event stream gets a thread of its own ([`super::sse`]).
+//! The HTTP side of the web monitor: a thread accepts connections and
+//! gives each its own thread (at most [`MAX_CONNECTIONS`] at once), which
+//! reads one request and answers it (the page, `/metrics`, the API) or
+//! keeps the connection as an event stream ([`super::sse`]).
 
 use super::api::{Asked, Reply, route};
+use super::http::{Request, read_request, write_reply};
 use super::state::{Shared, bump};
-use std::io::Read;
-use std::net::{SocketAddr, TcpListener};
+use std::io::BufReader;
+use std::net::{SocketAddr, TcpListener, TcpStream};
 use std::sync::Arc;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::thread::JoinHandle;
+use std::time::Duration;
 
 /// The page, served at `/`.
 const PAGE: &str = include_str!("page.html");
 
-/// Threads answering requests.
-const WORKERS: usize = 4;
+/// Connections served at once; one more is answered 503 and closed.
+const MAX_CONNECTIONS: u64 = 64;
 
-/// The largest request body read.
-const MAX_BODY: usize = 64 * 1024;
+/// How long a client may take to send its request, or to take an answer.
+const IO_TIMEOUT: Duration = Duration::from_secs(10);
 
 /// A running web monitor's HTTP server (stopped by [`Self::shutdown`] or
 /// when dropped).
 pub struct WebServer {
-    server: Arc<tiny_http::Server>,
     shared: Arc<Shared>,
-    workers: Vec<JoinHandle<()>>,
+    acceptor: Option<JoinHandle<()>>,
     local_addr: SocketAddr,
 }
 
@@ -37,29 +39,25 @@ impl std::fmt::Debug for WebServer {
 }
 
 impl WebServer {
-    /// Serves on `listener`. The server's threads are started from a
-    /// thread that first leaves a real-time policy the process may run
-    /// under (`chrt -f 50 plcrun ...`), so that they and every thread they
-    /// start leave the CPU to the scan.
+    /// Serves on `listener`. The accepting thread first leaves a
+    /// real-time policy the process may run under (`chrt -f 50 plcrun
+    /// ...`), so that it and every connection's thread, which inherit its
+    /// policy, leave the CPU to the scan.
     pub(super) fn start(listener: TcpListener, shared: Arc<Shared>) -> Result<WebServer, String> {
         let local_addr = listener
             .local_addr()
             .map_err(|e| format!("E962: web: cannot listen: {e}"))?;
-        let for_starter = Arc::clone(&shared);
-        let starter = std::thread::Builder::new()
-            .name("web-start".into())
+        let for_thread = Arc::clone(&shared);
+        let acceptor = std::thread::Builder::new()
+            .name("web-accept".into())
             .spawn(move || {
                 plcrun::leave_real_time();
-                serve(listener, local_addr, &for_starter)
+                accept(&listener, &for_thread);
             })
             .map_err(|e| format!("E962: web: cannot start a thread: {e}"))?;
-        let (server, workers) = starter
-            .join()
-            .map_err(|_| "E962: web: the server's start failed".to_string())??;
         Ok(WebServer {
-            server,
             shared,
-            workers,
+            acceptor: Some(acceptor),
             local_addr,
         })
     }
@@ -69,19 +67,25 @@ impl WebServer {
         self.local_addr
     }
 
-    /// Closes the streams and stops the workers.
+    /// Stops accepting and closes the streams.
     pub fn shutdown(mut self) {
         self.stop();
     }
 
     fn stop(&mut self) {
-        self.shared.closing.store(true, Ordering::Release);
-        for _ in 0..self.workers.len() {
-            self.server.unblock();
+        let Some(acceptor) = self.acceptor.take() else {
+            return;
+        };
+        self.shared
+            .closing
+            .store(true, std::sync::atomic::Ordering::Release);
+        // Wake the accepting thread with a connection of our own.
+        let mut wake = self.local_addr;
+        if wake.ip().is_unspecified() {
+            wake.set_ip(std::net::Ipv4Addr::LOCALHOST.into());
         }
-        for worker in self.workers.drain(..) {
-            let _ = worker.join();
-        }
+        let _ = TcpStream::connect_timeout(&wake, Duration::from_secs(1));
+        let _ = acceptor.join();
     }
 }
 
@@ -91,73 +95,122 @@ impl Drop for WebServer {
     }
 }
 
-/// The server and its workers, started on the calling thread.
-type Started = (Arc<tiny_http::Server>, Vec<JoinHandle<()>>);
-
-/// Starts `tiny_http` on `listener` and the workers taking its requests.
-fn serve(
-    listener: TcpListener,
-    local_addr: SocketAddr,
-    shared: &Arc<Shared>,
-) -> Result<Started, String> {
-    let server = tiny_http::Server::from_listener(listener, None)
-        .map_err(|e| format!("E962: web: cannot listen on {local_addr}: {e}"))?;
-    let server = Arc::new(server);
-    let mut workers = Vec::with_capacity(WORKERS);
-    for _ in 0..WORKERS {
-        let (server, shared) = (Arc::clone(&server), Arc::clone(shared));
-        let worker = std::thread::Builder::new()
+/// Accepts connections until the run ends.
+fn accept(listener: &TcpListener, shared: &Arc<Shared>) {
+    let open = Arc::new(AtomicU64::new(0));
+    for conn in listener.incoming() {
+        if shared.is_closing() {
+            return;
+        }
+        let Ok(conn) = conn else {
+            // A connection reset before it was accepted, or no file
+            // descriptor left: wait a little rather than spin.
+            std::thread::sleep(Duration::from_millis(10));
+            continue;
+        };
+        let _ = conn.set_read_timeout(Some(IO_TIMEOUT));
+        let _ = conn.set_write_timeout(Some(IO_TIMEOUT));
+        if open.fetch_add(1, Ordering::AcqRel) >= MAX_CONNECTIONS {
+            open.fetch_sub(1, Ordering::AcqRel);
+            let reply = Reply::error(503, "too many connections");
+            let mut conn = conn;
+            let _ = write_reply(&mut conn, &reply, false);
+            continue;
+        }
+        let (shared, open) = (Arc::clone(shared), Arc::clone(&open));
+        let spawned = std::thread::Builder::new()
             .name("web".into())
             .spawn(move || {
-                while let Ok(request) = server.recv() {
-                    answer(request, &shared);
-                }
-            })
-            .map_err(|e| format!("E962: web: cannot start a thread: {e}"))?;
-        workers.push(worker);
+                serve(conn, &shared);
+                open.fetch_sub(1, Ordering::AcqRel);
+            });
+        if spawned.is_err() {
+            // The connection went with the closure and is closed.
+            std::thread::sleep(Duration::from_millis(10));
+        }
     }
-    Ok((server, workers))
 }
 
-/// Answers one request.
-fn answer(mut request: tiny_http::Request, shared: &Arc<Shared>) {
-    let url = request.url().to_string();
-    let (raw_path, query) = url.split_once('?').unwrap_or((url.as_str(), ""));
-    let Some(path) = percent_decode(raw_path, false) else {
-        bump(&shared.counters.requests);
-        return respond(
-            request,
-            Reply::error(400, "the path is not valid percent-encoded UTF-8"),
-        );
+/// Reads one request from `conn` and answers it.
+fn serve(conn: TcpStream, shared: &Arc<Shared>) {
+    let Ok(writer) = conn.try_clone() else {
+        return;
     };
-    let method = request.method().as_str().to_ascii_uppercase();
-    if path == "/api/events" && method == "GET" {
-        super::sse::open(request, Arc::clone(shared));
+    let mut reader = BufReader::new(conn);
+    let mut both = Duplex {
+        reader: &mut reader,
+        writer,
+    };
+    let request = match read_request(&mut both) {
+        Ok(r) => r,
+        Err(Some(reply)) => {
+            bump(&shared.counters.requests);
+            let _ = write_reply(&mut both.writer, &reply, false);
+            return;
+        }
+        Err(None) => return,
+    };
+    let mut writer = both.writer;
+    let path_only = request.target.split('?').next().unwrap_or("");
+    if path_only == "/api/events" && request.method == "GET" {
+        super::sse::open(writer, shared);
         return;
     }
     bump(&shared.counters.requests);
-    let reply = match path.as_str() {
-        "/" | "/index.html" if method == "GET" || method == "HEAD" => {
-            Reply::body("text/html; charset=utf-8", PAGE)
-        }
-        "/metrics" if method == "GET" || method == "HEAD" => Reply::body(
+    let reply = answer(&request, shared);
+    let _ = write_reply(&mut writer, &reply, request.method == "HEAD");
+}
+
+/// A buffered reader and the writer of the same connection, as one.
+struct Duplex<'a> {
+    reader: &'a mut BufReader<TcpStream>,
+    writer: TcpStream,
+}
+
+impl std::io::Read for Duplex<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        self.reader.read(buf)
+    }
+}
+
+impl std::io::BufRead for Duplex<'_> {
+    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
+        self.reader.fill_buf()
+    }
+    fn consume(&mut self, n: usize) {
+        self.reader.consume(n);
+    }
+}
+
+impl std::io::Write for Duplex<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.writer.write(buf)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.writer.flush()
+    }
+}
+
+/// The answer to `request`.
+fn answer(request: &Request, shared: &Shared) -> Reply {
+    let (raw_path, query) = request
+        .target
+        .split_once('?')
+        .unwrap_or((request.target.as_str(), ""));
+    let Some(path) = percent_decode(raw_path, false) else {
+        return Reply::error(400, "the path is not valid percent-encoded UTF-8");
+    };
+    let method = request.method.as_str();
+    let reading = method == "GET" || method == "HEAD";
+    match path.as_str() {
+        "/" | "/index.html" if reading => Reply::body("text/html; charset=utf-8", PAGE),
+        "/metrics" if reading => Reply::body(
             "text/plain; version=0.0.4; charset=utf-8",
             super::metrics::render(shared),
         ),
         "/" | "/index.html" | "/metrics" => Reply::error(405, "read it with GET"),
         p if p == "/api" || p.starts_with("/api/") => {
-            let mut body = Vec::new();
-            let limited = request
-                .as_reader()
-                .take(MAX_BODY as u64 + 1)
-                .read_to_end(&mut body);
-            if limited.is_err() {
-                return respond(request, Reply::error(400, "the body could not be read"));
-            }
-            if body.len() > MAX_BODY {
-                return respond(request, Reply::error(413, "the body is over 64 KiB"));
-            }
-            let authorised = super::auth::presented(request.headers())
+            let authorised = super::auth::presented(&request.headers)
                 .is_some_and(|t| super::auth::matches(t, &shared.token));
             let search = query
                 .split('&')
@@ -165,11 +218,11 @@ fn answer(mut request: tiny_http::Request, shared: &Arc<Shared>) {
                 .find(|(k, _)| *k == "q")
                 .and_then(|(_, v)| percent_decode(v, true));
             let asked = Asked {
-                method: &method,
+                method,
                 path: p,
                 search,
                 authorised,
-                body: &body,
+                body: &request.body,
             };
             route(shared, &asked)
         }
@@ -177,35 +230,7 @@ fn answer(mut request: tiny_http::Request, shared: &Arc<Shared>) {
             404,
             format!("nothing at {path}: the page is at /, the API under /api/"),
         ),
-    };
-    let reply = if method == "HEAD" {
-        Reply {
-            body: Vec::new(),
-            ..reply
-        }
-    } else {
-        reply
-    };
-    respond(request, reply);
-}
-
-/// Sends `reply` (a client gone meanwhile is no error of ours).
-pub(super) fn respond(request: tiny_http::Request, reply: Reply) {
-    let mut response = tiny_http::Response::from_data(reply.body).with_status_code(reply.status);
-    let mut headers = vec![
-        ("Content-Type", reply.content_type.to_string()),
-        ("Cache-Control", "no-store".to_string()),
-        ("X-Content-Type-Options", "nosniff".to_string()),
-    ];
-    if let Some((name, value)) = reply.extra {
-        headers.push((name, value));
     }
-    for (name, value) in headers {
-        if let Ok(h) = tiny_http::Header::from_bytes(name.as_bytes(), value.as_bytes()) {
-            response.add_header(h);
-        }
-    }
-    let _ = request.respond(response);
 }
 
 /// Decodes `%XX` escapes (and `+` as a space in a query); `None` for a

@@ -1,4 +1,4 @@
-//! `GET /api/events`: server-sent events, one thread per stream. Each
+//! `GET /api/events`: server-sent events, on the connection's thread. Each
 //! stream looks at the snapshot [`POLL`] times a second at most and sends
 //! an event when a new one was published: the first event carries every
 //! value, the next ones only the values that changed since the event
@@ -6,10 +6,11 @@
 //! faulted state each time.
 
 use super::api::{Reply, fault_json, plotted, task_stats};
+use super::http::write_reply;
 use super::state::{Shared, Snapshot, bump};
 use serde_json::{Value as Json, json};
 use std::io::Write;
-use std::sync::Arc;
+use std::net::TcpStream;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
@@ -22,38 +23,28 @@ const KEEP_ALIVE: Duration = Duration::from_secs(15);
 /// The most streams open at once.
 const MAX_STREAMS: u64 = 32;
 
-/// Opens a stream for `request` on a thread of its own, or refuses it
-/// (503) when [`MAX_STREAMS`] are open.
-pub(super) fn open(request: tiny_http::Request, shared: Arc<Shared>) {
+/// Keeps `conn` as an event stream, on the calling thread (the
+/// connection's own), or refuses it (503) when [`MAX_STREAMS`] are open.
+pub(super) fn open(mut conn: TcpStream, shared: &Shared) {
+    bump(&shared.counters.requests);
     let open = shared.counters.streams.fetch_add(1, Ordering::AcqRel);
     if open >= MAX_STREAMS || shared.is_closing() {
         shared.counters.streams.fetch_sub(1, Ordering::AcqRel);
         let reply = Reply::error(503, format!("{MAX_STREAMS} event streams are open already"));
-        super::server::respond(request, reply);
+        let _ = write_reply(&mut conn, &reply, false);
         return;
     }
-    let for_thread = Arc::clone(&shared);
-    let spawned = std::thread::Builder::new()
-        .name("web-events".into())
-        .spawn(move || {
-            let _ = stream(request.into_writer(), &for_thread);
-            for_thread.counters.streams.fetch_sub(1, Ordering::AcqRel);
-        });
-    if spawned.is_err() {
-        // The request went with the closure: the client sees the
-        // connection close.
-        shared.counters.streams.fetch_sub(1, Ordering::AcqRel);
-    }
+    let _ = stream(&mut conn, shared);
+    shared.counters.streams.fetch_sub(1, Ordering::AcqRel);
 }
 
 /// Writes the stream until the client leaves or the run ends.
-fn stream(mut out: Box<dyn Write + Send>, shared: &Shared) -> std::io::Result<()> {
+fn stream(out: &mut TcpStream, shared: &Shared) -> std::io::Result<()> {
     out.write_all(
         b"HTTP/1.1 200 OK\r\nContent-Type: text/event-stream\r\nCache-Control: no-cache\r\n\
           Connection: close\r\nX-Accel-Buffering: no\r\n\r\nretry: 2000\n\n",
     )?;
     out.flush()?;
-    bump(&shared.counters.requests);
     let mut sent: Option<Vec<(String, bool)>> = None;
     let mut seq = 0u64;
     let mut quiet_since = Instant::now();
