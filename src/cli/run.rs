@@ -251,6 +251,13 @@ fn read_stimulus(path: &std::path::Path) -> Result<String, String> {
         .map_err(|e| format!("cannot read stimulus `{}`: {e}", path.display()))
 }
 
+/// The scan sides of the servers of a run, exchanged between two ticks.
+struct Servers {
+    modbus: Option<ModbusExchange>,
+    opcua: Option<OpcUaSide>,
+    web: Option<(super::web::ScanSide, super::web::WebLinks)>,
+}
+
 /// Runs the session: plain virtual cycles, or through a task runner (real
 /// time, or virtual with statistics), with Ctrl-C and SIGTERM asking for a
 /// stop at the next cycle boundary. Prints the statistics if asked.
@@ -260,10 +267,9 @@ fn drive<W: Write>(
     cycles: Option<u64>,
     writer: &mut TraceWriter<W>,
     reloader: Option<super::reload::Reloader>,
-    modbus: Option<ModbusExchange>,
-    opcua: Option<OpcUaSide>,
-    web: Option<(super::web::ScanSide, super::web::WebLinks)>,
+    servers: Servers,
 ) -> Result<(), Box<RunError>> {
+    let Servers { modbus, opcua, web } = servers;
     let stop = session.plc().stop_handle();
     let stop_after_fault = session.plc().stop_handle();
     // First signal: stop at the cycle boundary; second: interrupt the
@@ -495,9 +501,11 @@ pub fn run(args: &RunArgs) -> i32 {
             args.cycles,
             &mut writer,
             reloader,
-            exchange,
-            opcua,
-            web,
+            Servers {
+                modbus: exchange,
+                opcua,
+                web,
+            },
         )
         .map_err(|e| *e)
     } else if args.realtime {
