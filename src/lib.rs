@@ -87,6 +87,7 @@ pub use runtime::host_blocks::{
 };
 pub use runtime::life_cycle::PlcState;
 pub use runtime::live_stimulus::{LiveStimulus, LiveStimulusError};
+pub use runtime::modbus::priority::leave_real_time;
 pub use runtime::modbus::{
     ExchangeReport, ImagePlace, ModbusConfig, ModbusError, ModbusExchange, ModbusServer,
     ModbusStats, ModbusTable, modbus_place,
@@ -114,7 +115,10 @@ pub use runtime::stimulus::{
     Stimulus, StimulusCursor, StimulusError, StimulusKey, StimulusRow, parse_stimulus,
 };
 pub use runtime::stop::StopHandle;
-pub use runtime::task_stats::{TaskStats, TaskStatsHandle, TimeStats, format_stats_table};
+pub use runtime::task_stats::{
+    Histogram, TaskHistograms, TaskStats, TaskStatsHandle, TimeStats, format_stats_table,
+    histogram_bounds,
+};
 pub use runtime::tasks::{TaskInfo, TaskStepError};
 pub use runtime::trace::{TraceCell, TraceFormat, TraceWriter, UnknownTraceFormat};
 pub use runtime::trace_vcd::{VcdSignal, VcdTimescale};

@@ -93,6 +93,8 @@ fn the_chariot_example_serves_until_sigterm_and_saves_its_retained_data() {
             EXAMPLE,
             "--modbus",
             "127.0.0.1:0",
+            "--web",
+            "127.0.0.1:0",
             "--retain",
             retain_arg,
         ])
@@ -100,7 +102,12 @@ fn the_chariot_example_serves_until_sigterm_and_saves_its_retained_data() {
         .stderr(Stdio::piped())
         .spawn()
         .expect("plcrun starts");
-    let (head, rest) = wait_for_line(&mut child, "modbus: listening on 127.0.0.1:");
+    let (head, rest) = wait_for_line(&mut child, "web: token for changes: ");
+    assert!(head.contains("modbus: listening on 127.0.0.1:"), "{head}");
+    assert!(
+        head.contains("web: listening on http://127.0.0.1:"),
+        "{head}"
+    );
     assert!(
         head.contains("serve: examples/chariot/plcrun.toml (2 source files)"),
         "{head}"
@@ -127,6 +134,8 @@ fn the_chariot_example_serves_until_sigterm_and_saves_its_retained_data() {
         EXAMPLE,
         "--modbus",
         "127.0.0.1:0",
+        "--web",
+        "127.0.0.1:0",
         "--retain",
         retain_arg,
         "--cycles",
@@ -148,7 +157,8 @@ fn the_chariot_example_checks() {
         out.trim(),
         "plcrun run --realtime --watchdog 100ms --retain examples/chariot/chariot.retain \
          --retain-every 100 --no-trace --modbus 127.0.0.1:5020 --modbus-max-clients 4 \
-         --modbus-idle-timeout 60s -- programs/chariot.sfc examples/modbus/chariot_modbus.st"
+         --modbus-idle-timeout 60s --web 127.0.0.1:8080 -- programs/chariot.sfc \
+         examples/modbus/chariot_modbus.st"
     );
 }
 

@@ -14,6 +14,8 @@ mod support {
     pub mod cli;
     pub mod grafcet_models;
     pub mod graphic;
+    #[cfg(feature = "cli")]
+    pub mod http;
     pub mod library;
     #[cfg(feature = "cli")]
     pub mod lsp_client;
@@ -294,3 +296,9 @@ mod variables;
 #[cfg(feature = "cli")]
 #[path = "vcd.rs"]
 mod vcd;
+#[cfg(feature = "cli")]
+#[path = "web_browser.rs"]
+mod web_browser;
+#[cfg(feature = "cli")]
+#[path = "web_cli.rs"]
+mod web_cli;

@@ -86,6 +86,7 @@ fn chart_states_name_the_active_steps_of_each_chart() {
         plc.chart_states(),
         vec![ChartState {
             path: "P.b".into(),
+            pou: "Blinker".into(),
             active: vec!["Dark".into()]
         }]
     );

@@ -229,6 +229,15 @@ pub struct RunArgs {
     #[cfg(feature = "opcua")]
     #[command(flatten)]
     pub opcua: super::opcua::OpcUaArgs,
+    /// With --realtime: serve the web monitor on ADDR:PORT (a port alone
+    /// listens on 127.0.0.1; port 0 for a free port): live values, forcing,
+    /// statistics, charts, a JSON API and /metrics; see docs/web.md.
+    #[arg(long, value_name = "ADDR:PORT", requires = "realtime")]
+    pub web: Option<String>,
+    /// The token the web monitor's changes need (writes, forces, resets);
+    /// without it one is drawn at random and printed at start.
+    #[arg(long, value_name = "TOKEN", requires = "web")]
+    pub web_token: Option<String>,
     /// Most MiB of program data (variables, FB instances) the program may
     /// hold; a larger one is refused with E120.
     #[arg(long, value_name = "MIB", default_value_t = 512,

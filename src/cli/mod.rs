@@ -19,6 +19,7 @@ mod retain;
 mod run;
 mod serve;
 mod test;
+mod web;
 
 use clap::{CommandFactory, FromArgMatches};
 use given::Given;

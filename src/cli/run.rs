@@ -9,6 +9,7 @@ use plcrun::{
     format_stats_table, load_files_with, parse_stimulus, parse_time_literal,
 };
 use std::io::{Read, Write};
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 /// The scan side of the OPC UA server (none without the `opcua` feature).
@@ -261,6 +262,13 @@ fn read_stimulus(path: &std::path::Path) -> Result<String, String> {
         .map_err(|e| format!("cannot read stimulus `{}`: {e}", path.display()))
 }
 
+/// The scan sides of the servers of a run, exchanged between two ticks.
+struct Servers {
+    modbus: Option<ModbusExchange>,
+    opcua: Option<OpcUaSide>,
+    web: Option<(super::web::ScanSide, super::web::WebLinks)>,
+}
+
 /// Runs the session: plain virtual cycles, or through a task runner (real
 /// time, or virtual with statistics), with Ctrl-C and SIGTERM asking for a
 /// stop at the next cycle boundary. Prints the statistics if asked.
@@ -270,10 +278,11 @@ fn drive<W: Write>(
     cycles: Option<u64>,
     writer: &mut TraceWriter<W>,
     reloader: Option<super::reload::Reloader>,
-    modbus: Option<ModbusExchange>,
-    opcua: Option<OpcUaSide>,
+    servers: Servers,
 ) -> Result<(), Box<RunError>> {
+    let Servers { modbus, opcua, web } = servers;
     let stop = session.plc().stop_handle();
+    let stop_after_fault = session.plc().stop_handle();
     // First signal: stop at the cycle boundary; second: interrupt the
     // cycle under way; third: leave at once (a cycle stuck where it
     // cannot be interrupted).
@@ -290,7 +299,7 @@ fn drive<W: Write>(
     if let Err(e) = ctrlc::set_handler(on_signal) {
         eprintln!("warning: Ctrl-C and SIGTERM will not stop cleanly: {e}");
     }
-    if !args.realtime && !args.stats && modbus.is_none() && opcua.is_none() {
+    if !args.realtime && !args.stats && modbus.is_none() && opcua.is_none() && web.is_none() {
         // Virtual time without statistics: the plain loop.
         return session.run(cycles.unwrap_or(0), writer).map_err(Box::new);
     }
@@ -306,7 +315,14 @@ fn drive<W: Write>(
     } else {
         TaskRunner::virtual_time(session.plc())
     };
-    if reloader.is_some() || modbus.is_some() || opcua.is_some() {
+    // The monitor's scan side serves the hook and, after a fault, the
+    // wait for a reset; the hook only ever tries its lock.
+    let web = web.map(|(scan, links)| {
+        links.set_stats(runner.stats());
+        Arc::new(Mutex::new(scan))
+    });
+    let web_hook = web.clone();
+    if reloader.is_some() || modbus.is_some() || opcua.is_some() || web_hook.is_some() {
         let mut modbus = modbus;
         let mut opcua = opcua;
         if let Some(exchange) = &mut modbus {
@@ -325,9 +341,32 @@ fn drive<W: Write>(
             if let Some(side) = &mut opcua {
                 opcua_exchange(side, session.plc_mut());
             }
+            if let Some(scan) = &web_hook
+                && let Ok(mut scan) = scan.try_lock()
+            {
+                scan.between_ticks(session.plc_mut());
+            }
         });
     }
-    let result = runner.run(session, cycles, writer);
+    let mut result = runner.run(session, cycles, writer);
+    // With the monitor, a fault leaves the PLC in its faulted state,
+    // shown on the page, until a reset from it or a stop.
+    while let (Err(RunError::Fault(fault)), Some(scan)) = (&result, &web) {
+        eprintln!(
+            "web: the PLC is stopped by fault {} in cycle {}; reset it from the monitor, or stop it (Ctrl-C)",
+            fault.code(),
+            fault.cycle
+        );
+        let after = scan
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .wait_in_fault(session.plc_mut(), &stop_after_fault);
+        if after == super::web::AfterFault::Stop {
+            break;
+        }
+        eprintln!("web: reset from the monitor; running again");
+        result = runner.run(session, cycles, writer);
+    }
     if let Some(report) = runner.real_time_report() {
         if let Err(why) = &report.memory_lock {
             eprintln!(
@@ -366,6 +405,10 @@ pub fn run(args: &RunArgs) -> i32 {
     }
     if args.modbus.is_some() && !args.online_change_at.is_empty() {
         return usage_error("--online-change-at cannot be combined with --modbus");
+    }
+    if args.web.is_some() && args.reload {
+        // The monitor lists the variables of the program it started with.
+        return usage_error("--reload cannot be combined with --web");
     }
     #[cfg(feature = "opcua")]
     if args.opcua.opcua.is_some() && (!args.online_change_at.is_empty() || args.reload) {
@@ -433,14 +476,35 @@ pub fn run(args: &RunArgs) -> i32 {
         Ok(m) => m,
         Err(e) => return usage_error(e),
     };
-    let (_server, exchange) = modbus.unzip();
+    let (modbus_server, exchange) = modbus.unzip();
+    let modbus_server = modbus_server.map(Arc::new);
     #[cfg(feature = "opcua")]
-    let (_opcua_server, opcua) = match super::opcua::start(&args.opcua, session.plc()) {
+    let (opcua_server, opcua) = match super::opcua::start(&args.opcua, session.plc()) {
         Ok(o) => o.unzip(),
         Err(e) => return usage_error(e),
     };
+    #[cfg(feature = "opcua")]
+    let opcua_server = opcua_server.map(Arc::new);
     #[cfg(not(feature = "opcua"))]
     let opcua: Option<OpcUaSide> = None;
+    let (web_server, web) = match super::web::start(
+        args.web.as_deref(),
+        args.web_token.as_deref(),
+        session.plc(),
+    ) {
+        Ok(Some((server, scan, links))) => {
+            if let Some(m) = &modbus_server {
+                links.add_modbus(Arc::clone(m));
+            }
+            #[cfg(feature = "opcua")]
+            if let Some(o) = &opcua_server {
+                links.add_opcua(Arc::clone(o));
+            }
+            (Some(server), Some((scan, links)))
+        }
+        Ok(None) => (None, None),
+        Err(e) => return usage_error(e),
+    };
     let result = if changes.is_empty() {
         drive(
             args,
@@ -448,8 +512,11 @@ pub fn run(args: &RunArgs) -> i32 {
             args.cycles,
             &mut writer,
             reloader,
-            exchange,
-            opcua,
+            Servers {
+                modbus: exchange,
+                opcua,
+                web,
+            },
         )
         .map_err(|e| *e)
     } else if args.realtime {
@@ -460,6 +527,9 @@ pub fn run(args: &RunArgs) -> i32 {
         let cycles = args.cycles.unwrap_or(0);
         super::online::run(&mut session, cycles, &mut writer, &changes, &options)
     };
+    if let Some(server) = web_server {
+        server.shutdown();
+    }
     // A fault leaves the faulting cycle half done: the last periodic save
     // is the consistent one, so only a run ending at a cycle boundary saves.
     let boundary = !matches!(result, Err(RunError::Fault(_)));

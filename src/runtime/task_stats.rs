@@ -93,6 +93,78 @@ impl Distribution {
     }
 }
 
+impl Distribution {
+    /// The samples as a cumulative histogram over [`histogram_bounds`].
+    fn histogram(&self) -> Histogram {
+        let bounds = histogram_bounds();
+        let mut buckets = Vec::with_capacity(bounds.len());
+        let mut seen = 0u64;
+        let mut b = 0usize;
+        for bound in bounds {
+            let last = bucket_of(bound as u64);
+            while b <= last {
+                seen += u64::from(self.histogram[b]);
+                b += 1;
+            }
+            buckets.push((bound, seen));
+        }
+        Histogram {
+            count: self.count,
+            sum_ns: self.sum,
+            buckets,
+        }
+    }
+}
+
+/// The upper bounds of [`Histogram::buckets`], in nanoseconds: for each of
+/// 1, 2 and 5 × 10^k ns from 1 µs to 10 s, the top of the statistics'
+/// own bucket holding it (at most 1/16 above it), so that every count is
+/// exact: the samples at most that bound.
+pub fn histogram_bounds() -> Vec<i64> {
+    let mut out: Vec<i64> = Vec::new();
+    let mut decade = 1_000i64;
+    while decade <= 10_000_000_000 {
+        for m in [1, 2, 5] {
+            let v = decade * m;
+            if v > 10_000_000_000 {
+                break;
+            }
+            let top = i64::try_from(bucket_top(bucket_of(v as u64))).unwrap_or(i64::MAX);
+            if out.last() != Some(&top) {
+                out.push(top);
+            }
+        }
+        decade *= 10;
+    }
+    out
+}
+
+/// A cumulative histogram of durations, as monitoring systems read them
+/// (Prometheus' `_bucket`, `_sum`, `_count`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Histogram {
+    /// How many samples.
+    pub count: u64,
+    /// Their sum in nanoseconds.
+    pub sum_ns: i128,
+    /// Increasing upper bounds in nanoseconds ([`histogram_bounds`]), each
+    /// with the number of samples at most that bound (negative samples
+    /// count as 0); samples above the last bound are in `count` only.
+    pub buckets: Vec<(i64, u64)>,
+}
+
+/// The histograms of one task (see [`TaskStatsHandle::histograms`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TaskHistograms {
+    /// The task's name.
+    pub name: String,
+    /// How long its programs ran per activation.
+    pub execution: Histogram,
+    /// How late each activation started after its deadline (no samples
+    /// in virtual time).
+    pub start_jitter: Histogram,
+}
+
 /// Minimum, mean, maximum and 99th percentile of a duration, in
 /// nanoseconds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -208,6 +280,21 @@ impl TaskStatsHandle {
         self.with(|records| records.iter().map(TaskRecord::snapshot).collect())
     }
 
+    /// The execution time and start jitter of each task as cumulative
+    /// histograms, in the order of [`Self::snapshot`].
+    pub fn histograms(&self) -> Vec<TaskHistograms> {
+        self.with(|records| {
+            records
+                .iter()
+                .map(|r| TaskHistograms {
+                    name: r.name.clone(),
+                    execution: r.execution.histogram(),
+                    start_jitter: r.start_jitter.histogram(),
+                })
+                .collect()
+        })
+    }
+
     /// Runs `f` on the records under the lock (a panic elsewhere while
     /// holding it leaves plain counters, still worth reading).
     pub(crate) fn with<R>(&self, f: impl FnOnce(&mut [TaskRecord]) -> R) -> R {
@@ -299,6 +386,46 @@ mod tests {
             (990_000..=990_000 + 990_000 / 16).contains(&s.p99_ns),
             "{s:?}"
         );
+    }
+
+    #[test]
+    fn histogram_counts_are_the_samples_at_most_each_bound() {
+        let mut d = Distribution::default();
+        let samples = [
+            -5i64,
+            0,
+            999,
+            1_000,
+            1_060,
+            1_100,
+            2_500,
+            70_000,
+            20_000_000_000,
+        ];
+        for v in samples {
+            d.record(v);
+        }
+        let h = d.histogram();
+        assert_eq!(h.count, samples.len() as u64);
+        assert_eq!(
+            h.sum_ns,
+            samples.iter().map(|&v| i128::from(v)).sum::<i128>()
+        );
+        let mut last = 0;
+        for &(bound, n) in &h.buckets {
+            let expected = samples.iter().filter(|&&v| v.max(0) <= bound).count() as u64;
+            assert_eq!(n, expected, "bound {bound}");
+            assert!(n >= last);
+            last = n;
+        }
+        // The bounds sit within 1/16 above 1, 2, 5 x 10^k ns.
+        let bounds = histogram_bounds();
+        assert_eq!(bounds.len(), 22);
+        assert!(
+            (1_000..=1_000 + 1_000 / 16).contains(&bounds[0]),
+            "{bounds:?}"
+        );
+        assert!(bounds.windows(2).all(|w| w[0] < w[1]));
     }
 
     #[test]

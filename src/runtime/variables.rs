@@ -104,6 +104,9 @@ pub struct VarInfo {
 pub struct ChartState {
     /// The instance that owns the chart (`Chariot`, `Main.seq`).
     pub path: String,
+    /// The PROGRAM or FUNCTION_BLOCK whose body the chart is (what
+    /// [`crate::ChartPicture::from_sources`] draws).
+    pub pou: String,
     /// Names of its active steps, in declaration order.
     pub active: Vec<String>,
 }
@@ -230,6 +233,7 @@ impl Plc {
                         .collect();
                     out.push(ChartState {
                         path: path.clone(),
+                        pou: image.types.name(ty).to_string(),
                         active,
                     });
                 }

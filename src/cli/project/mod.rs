@@ -33,8 +33,6 @@ pub struct Project {
     /// Whether the file has a `[trace]` table (without one, `serve`
     /// writes no trace).
     pub traced: bool,
-    /// The `[web]` table, checked (the monitor is not served yet).
-    pub web: Option<settings::WebSettings>,
     /// The `[set]` and `[force]` lines, with their places.
     pub assignments: Vec<settings::Assignment>,
 }

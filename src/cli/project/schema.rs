@@ -51,7 +51,7 @@ pub struct ProjectFile {
     pub modbus: Option<Spanned<Modbus>>,
     /// The OPC UA server.
     pub opcua: Option<Spanned<OpcUa>>,
-    /// The web monitor (reserved: read and checked, not served yet).
+    /// The web monitor (docs/web.md).
     pub web: Option<Spanned<Web>>,
 }
 

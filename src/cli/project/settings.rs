@@ -14,15 +14,6 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-/// The `[web]` table, checked.
-#[derive(Debug, Clone)]
-pub struct WebSettings {
-    /// Where the monitor will listen.
-    pub listen: String,
-    /// The token that will allow writes, if set.
-    pub token: Option<String>,
-}
-
 /// One `NAME = value` of `[set]` or `[force]`, with its place, so that a
 /// name the program does not have can be reported there.
 #[derive(Debug, Clone)]
@@ -109,14 +100,15 @@ pub fn resolve(
     if let Some(o) = &file.opcua {
         into.opcua(o, &mut run);
     }
-    let web = file.web.as_ref().map(|w| into.web(w.get_ref()));
+    if let Some(w) = &file.web {
+        into.web(w.get_ref(), &mut run);
+    }
     if errors.is_empty() {
         Ok(Project {
             path: path.to_path_buf(),
             sources,
             run,
             traced: file.trace.is_some(),
-            web,
             assignments,
         })
     } else {
@@ -420,7 +412,7 @@ impl Filler<'_> {
         ));
     }
 
-    fn web(&mut self, w: &Web) -> WebSettings {
+    fn web(&mut self, w: &Web, run: &mut RunArgs) {
         let listen = match &w.listen {
             Some(v) => self
                 .address("web.listen", v, false)
@@ -437,6 +429,7 @@ impl Filler<'_> {
             }
             text.clone()
         });
-        WebSettings { listen, token }
+        run.web = Some(listen);
+        run.web_token = token;
     }
 }

@@ -124,6 +124,12 @@ pub fn command_line(run: &RunArgs) -> String {
             flag("modbus-idle-timeout", Some(run.modbus_idle_timeout.clone()));
         }
     }
+    if let Some(a) = &run.web {
+        flag("web", Some(a.clone()));
+        if let Some(t) = &run.web_token {
+            flag("web-token", Some(t.clone()));
+        }
+    }
     #[cfg(feature = "opcua")]
     if let Some(a) = &run.opcua.opcua {
         flag("opcua", Some(a.clone()));

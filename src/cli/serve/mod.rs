@@ -46,18 +46,6 @@ pub fn serve(args: &ServeArgs, given: &Given) -> i32 {
         eprintln!("error: {e}");
         return EXIT_USAGE;
     }
-    if let Some(web) = &project.web {
-        eprintln!(
-            "note: {}: the web monitor ([web], {}, {}) is not served yet by this version",
-            project.path.display(),
-            web.listen,
-            if web.token.is_some() {
-                "token set"
-            } else {
-                "no token"
-            }
-        );
-    }
     if args.check {
         return check(&run, &project.path, &project.assignments);
     }

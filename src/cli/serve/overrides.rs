@@ -55,6 +55,8 @@ pub fn apply(base: &mut RunArgs, cli: &RunArgs, given: &Given) -> Result<(), Str
         modbus,
         modbus_max_clients,
         modbus_idle_timeout,
+        web,
+        web_token,
         max_data_mib,
         no_optimize,
         reading.strict,

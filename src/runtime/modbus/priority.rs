@@ -5,9 +5,11 @@
 
 /// Moves the calling thread to the normal time-sharing policy when it
 /// runs under a real-time one; does nothing otherwise (nor where the
-/// system refuses).
+/// system refuses). A host's own server threads call it so that, under
+/// `chrt -f 50 plcrun ...`, they leave the CPU to the scan; threads they
+/// start inherit the normal policy.
 #[cfg(target_os = "linux")]
-pub(crate) fn leave_real_time() {
+pub fn leave_real_time() {
     // SAFETY: plain system calls on the calling thread (pid 0 names it on
     // Linux) with a parameter block that lives across the call.
     unsafe {
@@ -21,7 +23,7 @@ pub(crate) fn leave_real_time() {
 
 /// Elsewhere threads keep their priority.
 #[cfg(not(target_os = "linux"))]
-pub(crate) fn leave_real_time() {}
+pub fn leave_real_time() {}
 
 #[cfg(all(test, target_os = "linux"))]
 mod tests {
