@@ -395,25 +395,70 @@ fn drive<W: Write>(
     result.map_err(Box::new)
 }
 
-/// `plcrun FILES... --cycles N ...`
-pub fn run(args: &RunArgs) -> i32 {
+/// The server of the run's OPC UA server (none without the feature).
+#[cfg(feature = "opcua")]
+type OpcUaServerOf = plcrun::OpcUaServer;
+/// The server of the run's OPC UA server (none without the feature).
+#[cfg(not(feature = "opcua"))]
+type OpcUaServerOf = ();
+
+/// A started web monitor: its server, and its scan side for the run.
+type WebParts = (
+    Option<super::web::WebServer>,
+    Option<(super::web::ScanSide, super::web::WebLinks)>,
+);
+
+/// Starts the monitor `--web` asks for, with the other servers' counters
+/// on its `/metrics`.
+fn start_web(
+    args: &RunArgs,
+    plc: &Plc,
+    modbus: &Option<Arc<plcrun::ModbusServer>>,
+    opcua: &Option<Arc<OpcUaServerOf>>,
+) -> Result<WebParts, String> {
+    let started = super::web::start(args.web.as_deref(), args.web_token.as_deref(), plc)?;
+    let Some((server, scan, links)) = started else {
+        return Ok((None, None));
+    };
+    if let Some(m) = modbus {
+        links.add_modbus(Arc::clone(m));
+    }
+    #[cfg(feature = "opcua")]
+    if let Some(o) = opcua {
+        links.add_opcua(Arc::clone(o));
+    }
+    #[cfg(not(feature = "opcua"))]
+    let _ = opcua;
+    Ok((Some(server), Some((scan, links))))
+}
+
+/// Why the flags of `args` cannot go together, if they cannot.
+fn refused_combination(args: &RunArgs) -> Option<&'static str> {
     if args.cycles.is_none() && !args.realtime {
-        return usage_error("--cycles is required (or --realtime, which runs until stopped)");
+        return Some("--cycles is required (or --realtime, which runs until stopped)");
     }
     if args.reload && !args.realtime {
-        return usage_error("--reload watches the sources of a --realtime run; add --realtime");
+        return Some("--reload watches the sources of a --realtime run; add --realtime");
     }
     if args.modbus.is_some() && !args.online_change_at.is_empty() {
-        return usage_error("--online-change-at cannot be combined with --modbus");
+        return Some("--online-change-at cannot be combined with --modbus");
     }
     if args.web.is_some() && args.reload {
         // The monitor lists the variables of the program it started with.
-        return usage_error("--reload cannot be combined with --web");
+        return Some("--reload cannot be combined with --web");
     }
     #[cfg(feature = "opcua")]
     if args.opcua.opcua.is_some() && (!args.online_change_at.is_empty() || args.reload) {
         // Both replace the PLC, whose variables the server has resolved.
-        return usage_error("--online-change-at and --reload cannot be combined with --opcua");
+        return Some("--online-change-at and --reload cannot be combined with --opcua");
+    }
+    None
+}
+
+/// `plcrun FILES... --cycles N ...`
+pub fn run(args: &RunArgs) -> i32 {
+    if let Some(why) = refused_combination(args) {
+        return usage_error(why);
     }
     let format: TraceFormat = match args.format.parse() {
         Ok(f) => f,
@@ -487,22 +532,10 @@ pub fn run(args: &RunArgs) -> i32 {
     let opcua_server = opcua_server.map(Arc::new);
     #[cfg(not(feature = "opcua"))]
     let opcua: Option<OpcUaSide> = None;
-    let (web_server, web) = match super::web::start(
-        args.web.as_deref(),
-        args.web_token.as_deref(),
-        session.plc(),
-    ) {
-        Ok(Some((server, scan, links))) => {
-            if let Some(m) = &modbus_server {
-                links.add_modbus(Arc::clone(m));
-            }
-            #[cfg(feature = "opcua")]
-            if let Some(o) = &opcua_server {
-                links.add_opcua(Arc::clone(o));
-            }
-            (Some(server), Some((scan, links)))
-        }
-        Ok(None) => (None, None),
+    #[cfg(not(feature = "opcua"))]
+    let opcua_server: Option<Arc<()>> = None;
+    let (web_server, web) = match start_web(args, session.plc(), &modbus_server, &opcua_server) {
+        Ok(started) => started,
         Err(e) => return usage_error(e),
     };
     let result = if changes.is_empty() {
