@@ -1,5 +1,5 @@
 //! Soak: a 1 ms task serves Modbus TCP and OPC UA while clients connect,
-//! flood, drop mid-frame and reconnect, for `PLCRUN_SOAK_SECONDS` (15 s
+//! flood, drop mid-frame and reconnect, for `PLCRUN_SOAK_SECONDS` (8 s
 //! by default; docs/robustness.md reports an hour). Checked: no write is
 //! lost (every acknowledged Modbus write and OPC UA write is seen by the
 //! program), the servers answer to the end, the scan keeps running, and
@@ -41,7 +41,7 @@ fn soak_time() -> Duration {
     let secs = std::env::var("PLCRUN_SOAK_SECONDS")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(15);
+        .unwrap_or(8);
     Duration::from_secs(secs)
 }
 
