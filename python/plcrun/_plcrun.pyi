@@ -59,7 +59,7 @@ class Variable:
 
     path: str
     type: str
-    direction: Literal["input", "output", "local", "global", "step", "action", "other"]
+    direction: Literal["input", "output", "local", "global", "step", "action"]
     address: Optional[str]
     writable: bool
     values: List[str]

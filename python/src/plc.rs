@@ -7,8 +7,8 @@ use crate::errors::{bad_option, variable_message};
 use crate::sources::{CompileArgs, duration_ns, source_map};
 use crate::values::{literal_for, timedelta, to_py};
 use plcrun::{
-    Area, Direction, OnlineChangeError, Plc, RestoreMode, RuntimeFault, Session, Value, VarInfo,
-    VarRef, VarShape,
+    Area, OnlineChangeError, Plc, RestoreMode, RuntimeFault, Session, Value, VarInfo, VarRef,
+    VarShape,
 };
 use pyo3::exceptions::{PyTimeoutError, PyTypeError};
 use pyo3::prelude::*;
@@ -582,15 +582,7 @@ pub struct PyVariable {
 
 impl PyVariable {
     fn new(v: &VarInfo) -> PyVariable {
-        let direction = match v.direction {
-            Direction::Input => "input",
-            Direction::Output => "output",
-            Direction::Local => "local",
-            Direction::Global => "global",
-            Direction::Step => "step",
-            Direction::Action => "action",
-            _ => "other",
-        };
+        let direction = v.direction.name();
         let values = match &v.shape {
             VarShape::Enum { values } => values.clone(),
             _ => Vec::new(),

@@ -113,7 +113,7 @@ impl Resolver<'_> {
     }
 
     fn pou(&mut self, pou: &Pou) {
-        let Some(id) = self.declared(pou.name.span) else {
+        let Some(id) = self.table.declared_at(pou.name.span) else {
             return;
         };
         self.scope = vec![id];
@@ -140,24 +140,8 @@ impl Resolver<'_> {
         self.scope.clear();
     }
 
-    /// The symbol declared at `span` (the table holds one per declared
-    /// name; the first declaration of a duplicated POU wins).
-    fn declared(&self, span: Span) -> Option<SymbolId> {
-        self.table
-            .symbols
-            .iter()
-            .position(|s| s.location == Some(span))
-            .map(|i| SymbolId(i as u32))
-    }
-
     fn method(&mut self, method: &Method, owner: SymbolId) {
-        let Some(id) = self
-            .table
-            .children_of(owner)
-            .iter()
-            .copied()
-            .find(|&c| self.table.get(c).location == Some(method.name.span))
-        else {
+        let Some(id) = self.table.declared_at(method.name.span) else {
             return;
         };
         self.scope = vec![id, owner];

@@ -48,6 +48,8 @@ pub(crate) struct Table {
     children: HashMap<(SymbolId, String), SymbolId>,
     /// Members of a symbol in declaration order.
     ordered: HashMap<SymbolId, Vec<SymbolId>>,
+    /// Symbols by where their name is declared.
+    by_location: HashMap<crate::source::Span, SymbolId>,
 }
 
 impl Table {
@@ -58,6 +60,9 @@ impl Table {
             self.children.entry((parent, symbol.key())).or_insert(id);
             self.ordered.entry(parent).or_default().push(id);
         }
+        if let Some(span) = symbol.location {
+            self.by_location.entry(span).or_insert(id);
+        }
         self.symbols.push(symbol);
         id
     }
@@ -65,6 +70,11 @@ impl Table {
     /// The symbol `id`.
     pub fn get(&self, id: SymbolId) -> &Symbol {
         &self.symbols[id.0 as usize]
+    }
+
+    /// The symbol whose name is declared at `span`.
+    pub fn declared_at(&self, span: crate::source::Span) -> Option<SymbolId> {
+        self.by_location.get(&span).copied()
     }
 
     /// The member `key` of `parent`, without inheritance.

@@ -50,6 +50,21 @@ pub enum Direction {
     Action,
 }
 
+impl Direction {
+    /// The section's name as the web monitor's API and the Python package
+    /// spell it: `input`, `output`, `local`, `global`, `step`, `action`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Direction::Input => "input",
+            Direction::Output => "output",
+            Direction::Local => "local",
+            Direction::Global => "global",
+            Direction::Step => "step",
+            Direction::Action => "action",
+        }
+    }
+}
+
 /// What kind of value a variable holds.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]

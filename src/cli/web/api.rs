@@ -3,7 +3,7 @@
 //! scan. Every refusal is an HTTP status with `{"error": "..."}`.
 
 use super::state::{Command, Shared, Snapshot};
-use plcrun::{Direction, Value, VarInfo};
+use plcrun::{Value, VarInfo};
 use serde_json::{Value as Json, json};
 use std::sync::mpsc::{RecvTimeoutError, TrySendError, sync_channel};
 use std::time::{Duration, UNIX_EPOCH};
@@ -121,19 +121,6 @@ fn index(_: &Shared, _: &Asked<'_>) -> Reply {
     )
 }
 
-/// The name of a section.
-fn direction(d: Direction) -> &'static str {
-    match d {
-        Direction::Input => "input",
-        Direction::Output => "output",
-        Direction::Local => "local",
-        Direction::Global => "global",
-        Direction::Step => "step",
-        Direction::Action => "action",
-        _ => "other",
-    }
-}
-
 /// A value as a number for plots (BOOL 0/1, integers, reals, durations
 /// in nanoseconds), or null.
 pub(super) fn plotted(v: &Value) -> Json {
@@ -153,7 +140,7 @@ fn variable(info: &VarInfo, i: usize, snapshot: &Snapshot) -> Json {
         "index": i,
         "path": info.path,
         "type": info.type_name,
-        "direction": direction(info.direction),
+        "direction": info.direction.name(),
         "address": info.address,
         "writable": info.writable,
         "value": value.map(Value::to_literal),
