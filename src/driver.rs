@@ -6,6 +6,7 @@
 use crate::address::Addressing;
 use crate::diagnostics::Diagnostics;
 use crate::ir::verify::VerifiedImage;
+use crate::progress::Progress;
 use crate::sema;
 /// What to build from the sources (the program to run, the implicit
 /// task's cycle time, check only).
@@ -122,12 +123,22 @@ pub(crate) fn compile(
     options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
+    compile_reporting(sources, options, diags, &())
+}
+
+/// [`compile`], reporting each file parsed, then the check, to `progress`.
+pub(crate) fn compile_reporting(
+    sources: &SourceMap,
+    options: &CompileOptions,
+    diags: &mut Diagnostics,
+    progress: &dyn Progress,
+) -> Option<VerifiedImage> {
     // A source this small cannot nest deeply enough to need the big stack
     // (a few hundred levels at most fit in it), and a thread with a 256 MiB
     // stack is not free: under valgrind each one costs about half a second.
     let bytes: usize = sources.files().iter().map(|f| f.text.len()).sum();
     if bytes <= INLINE_COMPILE_BYTES {
-        return compile_here(sources, options, diags);
+        return compile_here(sources, options, diags, progress);
     }
     std::thread::scope(|scope| {
         let worker = std::thread::Builder::new()
@@ -135,7 +146,7 @@ pub(crate) fn compile(
             .stack_size(COMPILE_STACK)
             .spawn_scoped(scope, || {
                 let mut own = Diagnostics::new();
-                let image = compile_here(sources, options, &mut own);
+                let image = compile_here(sources, options, &mut own, progress);
                 (image, own)
             });
         match worker {
@@ -147,7 +158,7 @@ pub(crate) fn compile(
                 Err(panic) => std::panic::resume_unwind(panic),
             },
             // No thread available (resource limits): compile on this one.
-            Err(_) => compile_here(sources, options, diags),
+            Err(_) => compile_here(sources, options, diags, progress),
         }
     })
 }
@@ -166,9 +177,10 @@ fn compile_here(
     sources: &SourceMap,
     options: &CompileOptions,
     out: &mut Diagnostics,
+    progress: &dyn Progress,
 ) -> Option<VerifiedImage> {
     let mut found = Diagnostics::new();
-    let image = compile_units(sources, options, &mut found);
+    let image = compile_units(sources, options, &mut found, progress);
     out.extend(twincat_library::drop_expected_warnings(sources, found));
     if out.has_errors() { None } else { image }
 }
@@ -178,12 +190,17 @@ fn compile_units(
     sources: &SourceMap,
     options: &CompileOptions,
     diags: &mut Diagnostics,
+    progress: &dyn Progress,
 ) -> Option<VerifiedImage> {
-    let mut units = Vec::with_capacity(sources.files().len());
-    for (i, file) in sources.files().iter().enumerate() {
+    let files = sources.files();
+    // One step per file parsed, and one for the check of them all.
+    let total = files.len() as u64 + 1;
+    let mut units = Vec::with_capacity(files.len());
+    for (i, file) in files.iter().enumerate() {
+        progress.report(i as u64, total, &file.name);
         units.push(crate::syntax::parse_source(FileId(i as u32), file, diags));
     }
-    let files = sources.files();
+    progress.report(total - 1, total, "check");
     crate::syntax::twincat::merge_task_configurations(&mut units, |i| {
         crate::syntax::twincat::is_task_file(&files[i].text)
     });
@@ -192,6 +209,7 @@ fn compile_units(
     if options.strict {
         diags.make_strict();
     }
+    progress.report(total, total, "done");
     if diags.has_errors() { None } else { image }
 }
 
@@ -267,6 +285,16 @@ impl CheckReport {
 /// Parses and checks sources without running them. Without
 /// `ir_listing`, a set of declarations with no PROGRAM is fine.
 pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
+    check_reporting(sources, options, &())
+}
+
+/// [`check`], reporting each file parsed and then the check to `progress`
+/// (for a progress bar over a large project).
+pub fn check_reporting(
+    sources: &SourceMap,
+    options: &CheckOptions,
+    progress: &dyn Progress,
+) -> CheckReport {
     let mut diagnostics = Diagnostics::new();
     let mut extended = sources.clone();
     twincat_library::add_library(&mut extended);
@@ -284,7 +312,7 @@ pub fn check(sources: &SourceMap, options: &CheckOptions) -> CheckReport {
     // The library's own diagnostics are dropped or moved into the given
     // files by the compile (twincat_library.rs), so every one renders
     // with `sources`.
-    let image = compile(&extended, &build, &mut diagnostics);
+    let image = compile_reporting(&extended, &build, &mut diagnostics, progress);
     let ir_listing = image
         .as_ref()
         .filter(|_| options.ir_listing)

@@ -43,6 +43,7 @@ mod driver;
 mod elementary;
 mod ide;
 pub(crate) mod ir;
+mod progress;
 mod runtime;
 mod sema;
 mod source;
@@ -59,7 +60,7 @@ pub use address::{
 pub use compare::{
     CompareError, CompareOptions, CompareReport, Difference, InputChange, InputKind, InputPlan,
     Mismatch, OutputDifference, Pair, PairedVar, Pairing, RandomStimulus, SeedsOutcome, Shrunk,
-    Side, StimulusSource, parse_map, run_seeds,
+    Side, StimulusSource, parse_map, run_seeds, run_seeds_reporting,
 };
 pub use diagnostics::{Diagnostic, Diagnostics, STRICT_NOTE, Severity, is_compatibility_code};
 pub use draw::{
@@ -67,8 +68,8 @@ pub use draw::{
     TransitionNode, draw_chart,
 };
 pub use driver::{
-    CheckOptions, CheckReport, LoadError, add_source_bytes, check, load_files, load_files_with,
-    project_files,
+    CheckOptions, CheckReport, LoadError, add_source_bytes, check, check_reporting, load_files,
+    load_files_with, project_files,
 };
 pub use elementary::ElemType;
 pub use ide::{
@@ -76,6 +77,7 @@ pub use ide::{
     Signature, SignatureParam, StdFunction, Symbol, SymbolId, SymbolKind, TokenKind, TokenMark,
     VarSection, std_function, std_functions,
 };
+pub use progress::Progress;
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::clock::Clock;
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
@@ -130,7 +132,7 @@ pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use syntax::plcopen::export::{ExportError, export_plcopen};
 pub use testing::{
     AssertionFailure, TEST_PREFIX, TestCase, TestError, TestOptions, TestOutcome, TestReport,
-    check_tcunit_suites, run_tests,
+    check_tcunit_suites, run_tests, run_tests_reporting,
 };
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind, HostFailure, UnstableCycle};

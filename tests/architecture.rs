@@ -16,6 +16,9 @@ const ALLOWED: &[(&str, &[&str])] = &[
     // an address names): the checker warns of overlaps, the runtime lays
     // out the image.
     ("address", &[]),
+    // How far long work has got: reported by the driver, the runtime's
+    // runs, comparisons and tests; shown by a front end.
+    ("progress", &[]),
     ("value", &["elementary"]),
     ("diagnostics", &["source"]),
     ("syntax", &["source", "diagnostics", "elementary", "value"]),
@@ -46,6 +49,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "syntax",
             "sema",
             "ir",
+            "progress",
         ],
     ),
     (
@@ -60,6 +64,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "stdlib",
             "vm",
             "driver",
+            "progress",
         ],
     ),
     // What an editor asks (plcrun lsp): the parsed sources indexed, the
@@ -90,7 +95,10 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ),
     // Runs two programs through the runtime's public face; reads the
     // program instances' inputs from the image.
-    ("compare", &["runtime", "ir", "elementary", "value"]),
+    (
+        "compare",
+        &["runtime", "ir", "elementary", "value", "progress"],
+    ),
     // The unit-test runner: finds tests in the parsed sources, runs them
     // through the runtime with host-function assertions whose names the
     // checker (sema) rewrites calls into.
@@ -104,6 +112,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "syntax",
             "sema",
             "runtime",
+            "progress",
         ],
     ),
 ];

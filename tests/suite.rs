@@ -65,6 +65,9 @@ mod cli;
 #[path = "cli_force.rs"]
 mod cli_force;
 #[cfg(feature = "cli")]
+#[path = "cli_output.rs"]
+mod cli_output;
+#[cfg(feature = "cli")]
 #[path = "cli_reading.rs"]
 mod cli_reading;
 #[path = "codesys_compat.rs"]
@@ -206,6 +209,8 @@ mod pointer_byte_views;
 mod pointers;
 #[path = "process_image.rs"]
 mod process_image;
+#[path = "progress_reports.rs"]
+mod progress_reports;
 #[cfg(feature = "cli")]
 #[path = "project_commands.rs"]
 mod project_commands;

@@ -24,6 +24,14 @@ pub struct Cli {
     /// `plcrun FILES... --cycles N` (same as `plcrun run ...`).
     #[command(flatten)]
     pub run: RunArgs,
+    /// Colour the output: auto (on a terminal, unless NO_COLOR is set),
+    /// always or never.
+    #[arg(long, global = true, value_enum, default_value_t, value_name = "WHEN")]
+    pub color: super::style::ColorChoice,
+    /// No progress bars and no "ok" lines; errors, warnings and results
+    /// are still printed.
+    #[arg(long, short = 'q', global = true)]
+    pub quiet: bool,
 }
 
 /// The subcommands.

@@ -9,7 +9,7 @@ use super::{EXIT_OK, EXIT_USAGE};
 use clap::Args;
 use plcrun::{
     CompareOptions, CompareReport, Diagnostics, InputPlan, Options, Pair, Plc, RandomStimulus,
-    SourceMap, StimulusSource, load_files_with, parse_map, parse_time_literal, run_seeds,
+    SourceMap, StimulusSource, load_files_with, parse_map, parse_time_literal, run_seeds_reporting,
 };
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -112,7 +112,7 @@ pub fn reorder(args: Vec<OsString>) -> Vec<OsString> {
 }
 
 fn usage_error(msg: impl std::fmt::Display) -> i32 {
-    eprintln!("error: {msg}");
+    sayln!("error: {msg}");
     EXIT_USAGE
 }
 
@@ -133,7 +133,7 @@ impl Program {
         let mut diags = Diagnostics::new();
         let sources = load_files_with(files, reading.encoding, &mut diags).map_err(usage_error)?;
         if !diags.is_empty() {
-            eprint!("{}", diags.render(&sources));
+            say!("{}", diags.render(&sources));
         }
         if diags.has_errors() {
             return Err(EXIT_USAGE);
@@ -169,7 +169,7 @@ pub fn compare(mut args: Box<CompareArgs>, given: &Given) -> i32 {
     ) {
         Ok((files, reading)) => (args.a_files, args.reading) = (files, reading),
         Err(rendered) => {
-            eprint!("{rendered}");
+            say!("{rendered}");
             return EXIT_USAGE;
         }
     }
@@ -208,15 +208,15 @@ fn prepare(args: &CompareArgs) -> Result<(Program, Program, CompareOptions, Pair
     };
     let compiled = |p: &Program, side: &str| {
         p.compile().map_err(|e| {
-            eprint!("{e}");
-            eprintln!("error: program {side} ({}) does not compile", p.label);
+            say!("{e}");
+            sayln!("error: program {side} ({}) does not compile", p.label);
             EXIT_USAGE
         })
     };
     let (pa, pb) = (compiled(&a, "A")?, compiled(&b, "B")?);
     for (plc, p) in [(&pa, &a), (&pb, &b)] {
         if !plc.warnings().is_empty() {
-            eprint!("{}", plc.warnings().render(&p.sources));
+            say!("{}", plc.warnings().render(&p.sources));
         }
     }
     let pair = Pair::new(pa, pb, &options).map_err(usage_error)?;
@@ -267,8 +267,17 @@ fn execute(
                     options,
                 )
             };
-            let outcome = run_seeds(make, &settings, seeds.clone(), args.cycles, jobs)
-                .map_err(|e| e.to_string())?;
+            let bar = super::progress_bar::Bar::new("compare");
+            let outcome = run_seeds_reporting(
+                make,
+                &settings,
+                seeds.clone(),
+                args.cycles,
+                jobs,
+                super::progress_bar::receiver(&bar),
+            );
+            drop(bar);
+            let outcome = outcome.map_err(|e| e.to_string())?;
             let first = outcome.first.map(|(seed, d)| {
                 let plan = pair.random_plan(&settings, seed, args.cycles);
                 (Some(seed), plan, d)
@@ -287,7 +296,7 @@ fn execute(
     };
     if args.timing {
         let secs = elapsed.as_secs_f64().max(1e-9);
-        eprintln!(
+        sayln!(
             "timing: {cycles_run} cycles compared in {secs:.3} s: {:.0} cycles/s",
             cycles_run as f64 / secs
         );
@@ -302,10 +311,10 @@ fn execute(
         differing_seeds: differing,
         found,
     };
-    print!("{report}");
+    print!("{}", super::style::report(&report.to_string()));
     let Some((_, _, _, shrunk)) = &report.found else {
         if let Some(path) = &args.counterexample {
-            eprintln!(
+            sayln!(
                 "note: no difference: no counterexample written to {}",
                 path.display()
             );

@@ -37,7 +37,7 @@ pub fn man(args: &ManArgs) -> i32 {
         return match clap_mangen::Man::new(command).render(&mut std::io::stdout()) {
             Ok(()) => EXIT_OK,
             Err(e) => {
-                eprintln!("error: cannot write the manual page: {e}");
+                sayln!("error: cannot write the manual page: {e}");
                 EXIT_USAGE
             }
         };
@@ -47,7 +47,7 @@ pub fn man(args: &ManArgs) -> i32 {
     match written {
         Ok(()) => EXIT_OK,
         Err(e) => {
-            eprintln!(
+            sayln!(
                 "error: cannot write the manual pages into {}: {e}",
                 dir.display()
             );

@@ -20,7 +20,7 @@ pub fn draw(args: &DrawArgs) -> i32 {
     let sources = match load_files_with(&args.files, args.reading.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("error: {e}");
+            sayln!("error: {e}");
             return EXIT_USAGE;
         }
     };
@@ -36,14 +36,14 @@ pub fn draw(args: &DrawArgs) -> i32 {
         },
     );
     diags.extend(report.diagnostics);
-    eprint!("{}", diags.render(&sources));
+    say!("{}", diags.render(&sources));
     if diags.has_errors() {
         return EXIT_COMPILE;
     }
     let picture = match ChartPicture::from_sources(&sources, args.program.as_deref()) {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: {e}");
+            sayln!("error: {e}");
             return EXIT_USAGE;
         }
     };
@@ -51,7 +51,7 @@ pub fn draw(args: &DrawArgs) -> i32 {
     match &args.output {
         Some(path) => {
             if let Err(e) = write_file(path, &svg) {
-                eprintln!("error: {e}");
+                sayln!("error: {e}");
                 return EXIT_USAGE;
             }
         }
@@ -114,7 +114,7 @@ pub fn finish(args: &RunArgs, pictures: Pictures, session: &Session) -> Result<(
         let mut t = t.lock().unwrap_or_else(PoisonError::into_inner);
         t.set_end(session.plc().time());
         if let Some(c) = t.stopped_at() {
-            eprintln!(
+            sayln!(
                 "warning: --svg: the timing diagram stops at cycle {c}: it holds at most {} value changes",
                 plcrun::MAX_CHANGES
             );

@@ -12,7 +12,7 @@ pub fn export(args: &ExportArgs) -> i32 {
     let sources = match load_files_with(&args.files, args.reading.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("error: {e}");
+            sayln!("error: {e}");
             return EXIT_USAGE;
         }
     };
@@ -27,7 +27,7 @@ pub fn export(args: &ExportArgs) -> i32 {
         diags.extend(check_sources(&sources, &options).diagnostics);
     }
     if !diags.is_empty() {
-        eprint!("{}", diags.render(&sources));
+        say!("{}", diags.render(&sources));
     }
     if diags.has_errors() {
         return EXIT_COMPILE;
@@ -35,11 +35,11 @@ pub fn export(args: &ExportArgs) -> i32 {
     let xml = match export_plcopen(&sources) {
         Ok(xml) => xml,
         Err(e @ (ExportError::NotTextual { .. } | ExportError::S7Source { .. })) => {
-            eprintln!("error: {e}");
+            sayln!("error: {e}");
             return EXIT_USAGE;
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            sayln!("error: {e}");
             return EXIT_COMPILE;
         }
     };
@@ -47,7 +47,7 @@ pub fn export(args: &ExportArgs) -> i32 {
         Some(path) => match std::fs::write(path, xml) {
             Ok(()) => EXIT_OK,
             Err(e) => {
-                eprintln!("error: cannot write `{}`: {e}", path.display());
+                sayln!("error: cannot write `{}`: {e}", path.display());
                 EXIT_USAGE
             }
         },

@@ -37,7 +37,7 @@ pub fn init(args: &InitArgs) -> i32 {
         .and_then(|mut f| f.write_all(TEMPLATE.as_bytes()));
     match written {
         Ok(()) => {
-            eprintln!(
+            sayln!(
                 "init: wrote {}; name your sources in `sources`, then `plcrun serve {}`",
                 path.display(),
                 path.display()
@@ -45,14 +45,14 @@ pub fn init(args: &InitArgs) -> i32 {
             EXIT_OK
         }
         Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-            eprintln!(
+            sayln!(
                 "error: `{}` exists; `plcrun init --force` overwrites it",
                 path.display()
             );
             EXIT_USAGE
         }
         Err(e) => {
-            eprintln!("error: cannot write `{}`: {e}", path.display());
+            sayln!("error: cannot write `{}`: {e}", path.display());
             EXIT_USAGE
         }
     }

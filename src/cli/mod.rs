@@ -1,6 +1,10 @@
 //! Command-line front end: a thin driver over the library's public API.
 //! Exit status: 0 ok, 1 compile errors, 2 usage errors, 3 runtime fault.
 
+// First: its `say!` and `sayln!` print every message of the modules below.
+#[macro_use]
+mod style;
+
 mod args;
 mod compare;
 mod completions;
@@ -13,6 +17,7 @@ mod modbus;
 mod online;
 #[cfg(feature = "opcua")]
 mod opcua;
+mod progress_bar;
 mod project;
 mod reload;
 mod retain;
@@ -36,7 +41,14 @@ pub const EXIT_FAULT: i32 = 3;
 /// Parses the command line and runs the chosen command.
 pub fn main() -> i32 {
     let words = compare::reorder(std::env::args_os().collect());
-    let matches = match args::Cli::command().try_get_matches_from(words) {
+    let color = style::choice_in(&words);
+    let command = args::Cli::command().color(style::for_clap(color));
+    let subcommands: Vec<String> = command
+        .get_subcommands()
+        .map(|c| c.get_name().to_string())
+        .collect();
+    let words = style::globals_after_subcommand(words, &subcommands);
+    let matches = match command.try_get_matches_from(words) {
         Ok(m) => m,
         Err(e) => return usage(e),
     };
@@ -47,23 +59,31 @@ pub fn main() -> i32 {
         .map(|(_, sub)| Given::of(sub))
         .unwrap_or_default();
     match args::Cli::from_arg_matches(&matches) {
-        Ok(cli) => match cli.command {
-            Some(args::Command::Check(a)) => run::check(&a, &given),
-            Some(args::Command::Compare(a)) => compare::compare(a, &given),
-            Some(args::Command::Run(a)) => run::run(&a),
-            Some(args::Command::Draw(a)) => draw::draw(&a),
-            Some(args::Command::Export(a)) => export::export(&a),
-            Some(args::Command::Test(a)) => test::test(a, &given),
-            Some(args::Command::Serve(a)) => serve::serve(&a, &given),
-            Some(args::Command::Init(a)) => init::init(&a),
-            Some(args::Command::Lsp(a)) => lsp::lsp(&a),
-            Some(args::Command::Completions(a)) => completions::completions(&a),
-            Some(args::Command::Man(a)) => completions::man(&a),
-            #[cfg(feature = "opcua")]
-            Some(args::Command::OpcUaUser(a)) => opcua::user(&a),
-            None => run::run(&cli.run),
-        },
+        Ok(cli) => {
+            style::configure(cli.color, cli.quiet);
+            dispatch(cli, &given)
+        }
         Err(e) => usage(e),
+    }
+}
+
+/// Runs the command `cli` names.
+fn dispatch(cli: args::Cli, given: &Given) -> i32 {
+    match cli.command {
+        Some(args::Command::Check(a)) => run::check(&a, given),
+        Some(args::Command::Compare(a)) => compare::compare(a, given),
+        Some(args::Command::Run(a)) => run::run(&a),
+        Some(args::Command::Draw(a)) => draw::draw(&a),
+        Some(args::Command::Export(a)) => export::export(&a),
+        Some(args::Command::Test(a)) => test::test(a, given),
+        Some(args::Command::Serve(a)) => serve::serve(&a, given),
+        Some(args::Command::Init(a)) => init::init(&a),
+        Some(args::Command::Lsp(a)) => lsp::lsp(&a),
+        Some(args::Command::Completions(a)) => completions::completions(&a),
+        Some(args::Command::Man(a)) => completions::man(&a),
+        #[cfg(feature = "opcua")]
+        Some(args::Command::OpcUaUser(a)) => opcua::user(&a),
+        None => run::run(&cli.run),
     }
 }
 

@@ -24,6 +24,6 @@ pub(super) fn start(args: &RunArgs) -> Result<Option<(ModbusServer, ModbusExchan
         ..ModbusConfig::default()
     };
     let (server, exchange) = ModbusServer::bind(address, config).map_err(|e| e.to_string())?;
-    eprintln!("modbus: listening on {}", server.local_addr());
+    sayln!("modbus: listening on {}", server.local_addr());
     Ok(Some((server, exchange)))
 }

@@ -63,20 +63,20 @@ fn apply(session: &mut Session, change: &PlannedChange, options: &Options) {
     ) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("online change before cycle {at} refused: {e}");
+            sayln!("online change before cycle {at} refused: {e}");
             return;
         }
     };
     if diags.has_errors() {
-        eprint!("{}", diags.render(&sources));
-        eprintln!("online change before cycle {at} refused; the program runs on");
+        say!("{}", diags.render(&sources));
+        sayln!("online change before cycle {at} refused; the program runs on");
         return;
     }
     let new = match Plc::compile(sources, options) {
         Ok(plc) => plc,
         Err(e) => {
-            eprint!("{e}");
-            eprintln!(
+            say!("{e}");
+            sayln!(
                 "online change before cycle {at} refused: `{}` does not compile; the program runs on",
                 change.file.display()
             );
@@ -85,14 +85,14 @@ fn apply(session: &mut Session, change: &PlannedChange, options: &Options) {
     };
     match session.online_change(new) {
         Ok(report) => {
-            eprintln!(
+            sayln!(
                 "online change before cycle {at}: `{}` loaded",
                 change.file.display()
             );
             for line in report.to_string().lines() {
-                eprintln!("  {line}");
+                sayln!("  {line}");
             }
         }
-        Err(e) => eprintln!("{e} (before cycle {at}); the program runs on"),
+        Err(e) => sayln!("{e} (before cycle {at}); the program runs on"),
     }
 }

@@ -87,7 +87,7 @@ pub(super) fn start(
         ..OpcUaConfig::default()
     };
     let (server, exchange) = OpcUaServer::bind(address, plc, config).map_err(|e| e.to_string())?;
-    eprintln!(
+    sayln!(
         "opcua: listening on {} ({} values, ns={} {})",
         server.endpoint_url(),
         server.served_values(),
@@ -103,21 +103,21 @@ pub fn user(args: &UserArgs) -> i32 {
         UserAction::Add { file, name } => {
             let mut password = String::new();
             if let Err(e) = std::io::stdin().lock().read_line(&mut password) {
-                eprintln!("error: E957: cannot read the password from standard input: {e}");
+                sayln!("error: E957: cannot read the password from standard input: {e}");
                 return EXIT_USAGE;
             }
             let password = password.trim_end_matches(['\r', '\n']);
             if password.is_empty() {
-                eprintln!("error: E957: the password (standard input) is empty");
+                sayln!("error: E957: the password (standard input) is empty");
                 return EXIT_USAGE;
             }
             match Users::add_to_file(file, name, password) {
                 Ok(()) => {
-                    eprintln!("opcua: user `{name}` written to {}", file.display());
+                    sayln!("opcua: user `{name}` written to {}", file.display());
                     EXIT_OK
                 }
                 Err(e) => {
-                    eprintln!("error: E952: {e}");
+                    sayln!("error: E952: {e}");
                     EXIT_USAGE
                 }
             }

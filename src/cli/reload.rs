@@ -110,22 +110,22 @@ impl Reloader {
         let at = session.plc().cycle();
         match version {
             Version::Refused(diagnostics) => {
-                eprint!("{diagnostics}");
-                eprintln!(
+                say!("{diagnostics}");
+                sayln!(
                     "reload before cycle {at} refused: the sources do not compile; the program runs on"
                 );
             }
             Version::Compiled { plc, warnings } => {
-                eprint!("{warnings}");
+                say!("{warnings}");
                 match session.online_change(*plc) {
                     Ok(report) => {
-                        eprintln!("reload before cycle {at}: new version loaded");
+                        sayln!("reload before cycle {at}: new version loaded");
                         for line in report.to_string().lines() {
-                            eprintln!("  {line}");
+                            sayln!("  {line}");
                         }
                     }
                     Err(e) => {
-                        eprintln!("reload before cycle {at} refused: {e}; the program runs on")
+                        sayln!("reload before cycle {at} refused: {e}; the program runs on")
                     }
                 }
             }

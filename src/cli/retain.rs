@@ -14,7 +14,7 @@ pub fn start(args: &RunArgs, plc: &mut Plc) -> Result<Option<RetainSaver>, Strin
     };
     let shown = path.display();
     if args.cold {
-        eprintln!(
+        sayln!(
             "note: cold start: the values in `{shown}` are not used (the file is overwritten with the initial values)"
         );
     } else {
@@ -25,18 +25,18 @@ pub fn start(args: &RunArgs, plc: &mut Plc) -> Result<Option<RetainSaver>, Strin
         };
         match plc.restore_retain(path, mode) {
             Ok(report) => {
-                eprintln!(
+                sayln!(
                     "note: warm start: {} retained value{} restored from `{shown}` (saved after {} cycles)",
                     report.restored,
                     if report.restored == 1 { "" } else { "s" },
                     report.cycle
                 );
                 if !report.differences.is_empty() {
-                    eprintln!("note: not restored: {}", report.differences);
+                    sayln!("note: not restored: {}", report.differences);
                 }
             }
             Err(e) if e.is_missing_file() => {
-                eprintln!("note: cold start: retain file `{shown}` does not exist yet");
+                sayln!("note: cold start: retain file `{shown}` does not exist yet");
             }
             Err(e @ plcrun::RetainError::Mismatch { .. }) => {
                 return Err(format!(

@@ -5,10 +5,10 @@ use super::given::Given;
 use super::{EXIT_COMPILE, EXIT_FAULT, EXIT_OK, EXIT_USAGE};
 use plcrun::{
     CheckOptions, Diagnostics, LiveStimulus, ModbusExchange, Options, Plc, RealTimeSetup, RunError,
-    Session, TaskRunner, TraceFormat, TraceWriter, VcdTimescale, check as check_sources,
-    format_stats_table, load_files_with, parse_stimulus, parse_time_literal,
+    Session, TaskRunner, TraceFormat, TraceWriter, VcdTimescale, format_stats_table,
+    load_files_with, parse_stimulus, parse_time_literal,
 };
-use std::io::{Read, Write};
+use std::io::{IsTerminal, Read, Write};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -36,7 +36,7 @@ fn opcua_exchange(side: &mut OpcUaSide, _plc: &mut Plc) {
 const EXIT_INTERRUPTED: i32 = 130;
 
 fn usage_error(msg: impl std::fmt::Display) -> i32 {
-    eprintln!("error: {msg}");
+    sayln!("error: {msg}");
     EXIT_USAGE
 }
 
@@ -51,7 +51,7 @@ pub fn check(args: &CheckArgs, given: &Given) -> i32 {
     ) {
         Ok(found) => found,
         Err(rendered) => {
-            eprint!("{rendered}");
+            say!("{rendered}");
             return EXIT_USAGE;
         }
     };
@@ -69,7 +69,10 @@ pub fn check(args: &CheckArgs, given: &Given) -> i32 {
         strict: reading.strict,
         addressing: reading.addressing,
     };
-    let report = match check_as_cli(&sources, &options) {
+    let bar = super::progress_bar::Bar::new("check");
+    let report = check_as_cli(&sources, &options, super::progress_bar::receiver(&bar));
+    drop(bar);
+    let report = match report {
         Ok(report) => report,
         Err(e) => return usage_error(e),
     };
@@ -80,12 +83,14 @@ pub fn check(args: &CheckArgs, given: &Given) -> i32 {
     if let Some(map) = &report.address_map {
         print!("{map}");
     }
-    eprint!("{}", diags.render(&sources));
+    say!("{}", diags.render(&sources));
     if diags.has_errors() {
         EXIT_COMPILE
     } else {
         let n = sources.files().len();
-        eprintln!("ok: {n} file{} checked", if n == 1 { "" } else { "s" });
+        if !super::style::quiet() {
+            sayln!("ok: {n} file{} checked", if n == 1 { "" } else { "s" });
+        }
         EXIT_OK
     }
 }
@@ -96,8 +101,9 @@ pub fn check(args: &CheckArgs, given: &Given) -> i32 {
 pub(super) fn check_as_cli(
     sources: &plcrun::SourceMap,
     options: &CheckOptions,
+    progress: &dyn plcrun::Progress,
 ) -> Result<plcrun::CheckReport, plcrun::TestError> {
-    let mut report = check_sources(sources, options);
+    let mut report = plcrun::check_reporting(sources, options, progress);
     if !(options.ir_listing || options.address_map) {
         let test_options = plcrun::TestOptions {
             strict: options.strict,
@@ -150,15 +156,15 @@ fn compile(args: &RunArgs, options: &Options) -> Result<Plc, i32> {
     let sources =
         load_files_with(&args.files, options.encoding, &mut diags).map_err(usage_error)?;
     if diags.has_errors() {
-        eprint!("{}", diags.render(&sources));
+        say!("{}", diags.render(&sources));
         return Err(EXIT_COMPILE);
     }
     // Warnings of loading (an encoding assumed): shown before the program's.
     if !diags.is_empty() {
-        eprint!("{}", diags.render(&sources));
+        say!("{}", diags.render(&sources));
     }
     let plc = Plc::compile(sources, options).map_err(|e| {
-        eprint!("{e}");
+        say!("{e}");
         // Only "which program?": the user must pick one.
         if e.needs_program_choice() {
             EXIT_USAGE
@@ -167,7 +173,7 @@ fn compile(args: &RunArgs, options: &Options) -> Result<Plc, i32> {
         }
     })?;
     if !plc.warnings().is_empty() {
-        eprint!("{}", plc.warnings().render(plc.sources()));
+        say!("{}", plc.warnings().render(plc.sources()));
     }
     Ok(plc)
 }
@@ -184,7 +190,7 @@ pub(super) fn compile_quietly(args: &RunArgs) -> Result<Plc, i32> {
         return Err(EXIT_COMPILE);
     }
     Plc::compile(sources, &options).map_err(|e| {
-        eprint!("{e}");
+        say!("{e}");
         if e.needs_program_choice() {
             EXIT_USAGE
         } else {
@@ -213,7 +219,7 @@ fn session(args: &RunArgs, mut plc: Plc) -> Result<Session, String> {
         Vec::new()
     } else if args.trace.is_empty() {
         for (name, values) in plc.default_trace_left_out() {
-            eprintln!(
+            sayln!(
                 "note: `{name}` ({values} values) is left out of the default trace; name the values to trace with --trace"
             );
         }
@@ -297,11 +303,19 @@ fn drive<W: Write>(
     };
     // A second handler cannot be set in one process; the run works without.
     if let Err(e) = ctrlc::set_handler(on_signal) {
-        eprintln!("warning: Ctrl-C and SIGTERM will not stop cleanly: {e}");
+        sayln!("warning: Ctrl-C and SIGTERM will not stop cleanly: {e}");
     }
     if !args.realtime && !args.stats && modbus.is_none() && opcua.is_none() && web.is_none() {
-        // Virtual time without statistics: the plain loop.
-        return session.run(cycles.unwrap_or(0), writer).map_err(Box::new);
+        // Virtual time without statistics: the plain loop, with a bar on
+        // a terminal for a long run.
+        let cycles = cycles.unwrap_or(0);
+        let trace_to_terminal =
+            !args.no_trace && args.output.is_none() && std::io::stdout().is_terminal();
+        return match super::progress_bar::Bar::for_run(trace_to_terminal) {
+            Some(bar) => session.run_reporting(cycles, writer, &bar),
+            None => session.run(cycles, writer),
+        }
+        .map_err(Box::new);
     }
     let mut runner = if args.realtime {
         let mut runner = TaskRunner::real_time(session.plc());
@@ -352,7 +366,7 @@ fn drive<W: Write>(
     // With the monitor, a fault leaves the PLC in its faulted state,
     // shown on the page, until a reset from it or a stop.
     while let (Err(RunError::Fault(fault)), Some(scan)) = (&result, &web) {
-        eprintln!(
+        sayln!(
             "web: the PLC is stopped by fault {} in cycle {}; reset it from the monitor, or stop it (Ctrl-C)",
             fault.code(),
             fault.cycle
@@ -364,18 +378,18 @@ fn drive<W: Write>(
         if after == super::web::AfterFault::Stop {
             break;
         }
-        eprintln!("web: reset from the monitor; running again");
+        sayln!("web: reset from the monitor; running again");
         result = runner.run(session, cycles, writer);
     }
     if let Some(report) = runner.real_time_report() {
         if let Err(why) = &report.memory_lock {
-            eprintln!(
+            sayln!(
                 "note: memory was not locked ({why}): page faults may delay cycles; run as \
                  root, give the binary CAP_IPC_LOCK, raise `ulimit -l`, or pass --no-lock-memory"
             );
         }
         if let Err(why) = &report.cpu_awake {
-            eprintln!(
+            sayln!(
                 "note: the CPUs were not kept awake (/dev/cpu_dma_latency: {why}): waking from \
                  idle may delay cycles; run as root, or pass --allow-cpu-sleep"
             );
@@ -385,11 +399,11 @@ fn drive<W: Write>(
         let stats = runner.stats().snapshot();
         if args.stats_format == StatsFormat::Json {
             match serde_json::to_string(&stats) {
-                Ok(json) => eprintln!("{json}"),
-                Err(e) => eprintln!("error: cannot print the statistics: {e}"),
+                Ok(json) => sayln!("{json}"),
+                Err(e) => sayln!("error: cannot print the statistics: {e}"),
             }
         } else {
-            eprint!("{}", format_stats_table(&stats));
+            say!("{}", format_stats_table(&stats));
         }
     }
     result.map_err(Box::new)
@@ -569,29 +583,29 @@ pub fn run(args: &RunArgs) -> i32 {
     if let Some(saver) = session.take_retain_saver()
         && let Err(e) = super::retain::finish(saver, session.plc(), boundary)
     {
-        eprintln!("error: {e}");
+        sayln!("error: {e}");
         return EXIT_USAGE;
     }
     let status = match result {
         Ok(()) => EXIT_OK,
         Err(RunError::Fault(fault)) => {
             // Starts with `error[R...]:`, like a compile diagnostic.
-            eprintln!("{fault}");
+            sayln!("{fault}");
             EXIT_FAULT
         }
         Err(e @ RunError::Trace(_)) => {
-            eprintln!("error: {e}");
+            sayln!("error: {e}");
             return EXIT_USAGE;
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            sayln!("error: {e}");
             EXIT_USAGE
         }
     };
     if let Some(pictures) = pictures
         && let Err(e) = super::draw::finish(args, pictures, &session)
     {
-        eprintln!("error: {e}");
+        sayln!("error: {e}");
         return EXIT_USAGE;
     }
     match writer.finish() {
@@ -599,7 +613,7 @@ pub fn run(args: &RunArgs) -> i32 {
             let _ = w.flush();
         }
         Err(e) => {
-            eprintln!("error: cannot write the trace: {e}");
+            sayln!("error: cannot write the trace: {e}");
             return EXIT_USAGE;
         }
     }

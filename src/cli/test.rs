@@ -6,7 +6,9 @@ use super::args::ReadingArgs;
 use super::given::Given;
 use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};
 use clap::Args;
-use plcrun::{Diagnostics, TestError, TestOptions, load_files_with, parse_time_literal, run_tests};
+use plcrun::{
+    Diagnostics, TestError, TestOptions, load_files_with, parse_time_literal, run_tests_reporting,
+};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -43,7 +45,7 @@ pub struct TestArgs {
 }
 
 fn usage_error(msg: impl std::fmt::Display) -> i32 {
-    eprintln!("error: {msg}");
+    sayln!("error: {msg}");
     EXIT_USAGE
 }
 
@@ -84,7 +86,7 @@ pub fn test(mut args: TestArgs, given: &Given) -> i32 {
     ) {
         Ok((files, reading)) => (args.files, args.reading) = (files, reading),
         Err(rendered) => {
-            eprint!("{rendered}");
+            say!("{rendered}");
             return EXIT_USAGE;
         }
     }
@@ -99,26 +101,29 @@ pub fn test(mut args: TestArgs, given: &Given) -> i32 {
         Err(e) => return usage_error(e),
     };
     if !diags.is_empty() {
-        eprint!("{}", diags.render(&sources));
+        say!("{}", diags.render(&sources));
     }
     if diags.has_errors() {
         return EXIT_COMPILE;
     }
-    let report = match run_tests(&sources, &options) {
+    let bar = super::progress_bar::Bar::new("test");
+    let report = run_tests_reporting(&sources, &options, super::progress_bar::receiver(&bar));
+    drop(bar);
+    let report = match report {
         Ok(r) => r,
         Err(TestError::Compile(e)) => {
-            eprint!("{e}");
+            say!("{e}");
             return EXIT_COMPILE;
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            sayln!("error: {e}");
             return EXIT_FAILED;
         }
     };
     if !report.warnings.is_empty() {
-        eprint!("{}", report.warnings.render(&sources));
+        say!("{}", report.warnings.render(&sources));
     }
-    print!("{}", report.to_text());
+    print!("{}", super::style::report(&report.to_text()));
     if let Some(path) = &args.junit
         && let Err(e) = std::fs::write(path, report.to_junit("plcrun"))
     {

@@ -45,7 +45,7 @@ pub use input_plan::{InputChange, InputPlan};
 pub use pairing::{CompareOptions, InputKind, PairedVar, Pairing, parse_map};
 pub use report::{CompareReport, StimulusSource};
 pub use run_pair::{Difference, Mismatch, OutputDifference, Pair};
-pub use seeds::{SeedsOutcome, run_seeds};
+pub use seeds::{SeedsOutcome, run_seeds, run_seeds_reporting};
 pub use shrink::Shrunk;
 pub use stimulus_gen::RandomStimulus;
 

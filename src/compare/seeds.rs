@@ -7,6 +7,7 @@
 use super::error::CompareError;
 use super::run_pair::{Difference, Pair};
 use super::stimulus_gen::RandomStimulus;
+use crate::progress::Progress;
 use std::ops::Range;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -36,7 +37,28 @@ pub fn run_seeds<F>(
 where
     F: Fn() -> Result<Pair, CompareError> + Sync,
 {
+    run_seeds_reporting(make, settings, seeds, cycles, jobs, &())
+}
+
+/// [`run_seeds`], reporting the seeds done to `progress` as they finish.
+pub fn run_seeds_reporting<F>(
+    make: F,
+    settings: &RandomStimulus,
+    seeds: Range<u64>,
+    cycles: u64,
+    jobs: usize,
+    progress: &dyn Progress,
+) -> Result<SeedsOutcome, CompareError>
+where
+    F: Fn() -> Result<Pair, CompareError> + Sync,
+{
     settings.validate()?;
+    let done = Done {
+        count: AtomicU64::new(0),
+        total: seeds.end.saturating_sub(seeds.start),
+        progress,
+    };
+    done.progress.report(0, done.total, "seeds");
     let next = AtomicU64::new(seeds.start);
     let results: Mutex<Vec<(u64, Option<Difference>, u64)>> = Mutex::new(Vec::new());
     let failure: Mutex<Option<CompareError>> = Mutex::new(None);
@@ -46,7 +68,7 @@ where
     std::thread::scope(|scope| {
         for _ in 0..jobs {
             scope.spawn(|| {
-                if let Err(e) = worker(&make, settings, &seeds, cycles, &next, &results) {
+                if let Err(e) = worker(&make, settings, &seeds, cycles, &next, &results, &done) {
                     // The first error wins; the other workers stop at their next seed.
                     next.store(seeds.end, Ordering::Relaxed);
                     failure
@@ -81,6 +103,13 @@ where
 
 type Results = Mutex<Vec<(u64, Option<Difference>, u64)>>;
 
+/// The seeds finished so far, and who is told.
+struct Done<'a> {
+    count: AtomicU64,
+    total: u64,
+    progress: &'a dyn Progress,
+}
+
 /// One thread: takes the next seed until none is left.
 fn worker<F>(
     make: &F,
@@ -89,6 +118,7 @@ fn worker<F>(
     cycles: u64,
     next: &AtomicU64,
     results: &Results,
+    done: &Done,
 ) -> Result<(), CompareError>
 where
     F: Fn() -> Result<Pair, CompareError>,
@@ -106,5 +136,7 @@ where
             .lock()
             .unwrap_or_else(|p| p.into_inner())
             .push((seed, d, ran));
+        let finished = done.count.fetch_add(1, Ordering::Relaxed) + 1;
+        done.progress.report(finished, done.total, "seeds");
     }
 }

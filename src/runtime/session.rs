@@ -29,6 +29,7 @@ use super::stimulus::{Stimulus, StimulusCursor};
 use super::trace::{TraceCell, TraceWriter};
 use super::trace_vcd::{VcdSignal, vcd_signal};
 use super::var_error::VarError;
+use crate::progress::Progress;
 use std::fmt;
 use std::io::{self, Write};
 use std::time::{Duration, Instant};
@@ -467,10 +468,25 @@ impl Session {
     /// stop was asked through the PLC's [`crate::StopHandle`]; a clean end
     /// runs the stop hook ([`Self::set_on_stop`]).
     pub fn run<W: Write>(&mut self, cycles: u64, out: &mut TraceWriter<W>) -> Result<(), RunError> {
+        self.run_reporting(cycles, out, &())
+    }
+
+    /// [`Self::run`], telling `progress` the cycles done every 4096
+    /// cycles and at the end. Generic, so that
+    /// [`Self::run`]'s loop (`()`: no report) carries no test for it.
+    pub fn run_reporting<W: Write, P: Progress + ?Sized>(
+        &mut self,
+        cycles: u64,
+        out: &mut TraceWriter<W>,
+        progress: &P,
+    ) -> Result<(), RunError> {
         let started = Instant::now();
         let first_time = self.plc.time();
         let stop = self.plc.stop_handle();
-        for _ in 0..cycles {
+        for done in 0..cycles {
+            if done % CYCLES_PER_REPORT == 0 {
+                progress.report(done, cycles, "cycles");
+            }
             if stop.is_stop_requested() {
                 break;
             }
@@ -488,9 +504,13 @@ impl Session {
             out.row_marked(cycle, time, &self.cells, &self.forced)
                 .map_err(RunError::Trace)?;
         }
+        progress.report(cycles, cycles, "cycles");
         self.run_on_stop()
     }
 }
+
+/// How many cycles [`Session::run_reporting`] runs between two reports.
+const CYCLES_PER_REPORT: u64 = 4096;
 
 /// Resolves every column of `stimulus` in `plc` and decodes every cell for
 /// its column's type.

@@ -13,6 +13,7 @@ mod tcunit;
 mod text;
 
 use crate::diagnostics::Diagnostics;
+use crate::progress::Progress;
 use crate::runtime::engine::{CompileError, RuntimeFault};
 use crate::runtime::host_blocks::HostDeclError;
 use crate::source::SourceMap;
@@ -252,6 +253,17 @@ pub fn check_tcunit_suites(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestReport, TestError> {
+    run_tests_reporting(sources, options, &())
+}
+
+/// [`run_tests`], reporting to `progress`: the check of the sources as one
+/// step, then each `TEST_` POU as it finishes, then the TcUnit suites (run
+/// together, as TcUnit runs them) as one step each.
+pub fn run_tests_reporting(
+    sources: &SourceMap,
+    options: &TestOptions,
+    progress: &dyn Progress,
+) -> Result<TestReport, TestError> {
     let start = Instant::now();
     let mut diags = Diagnostics::new();
     let found = discover::find_tests(sources, &mut diags);
@@ -263,6 +275,8 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
             .is_none_or(|f| name.to_ascii_lowercase().contains(&f.to_ascii_lowercase()))
     };
     let tests: Vec<_> = found.into_iter().filter(|t| wanted(&t.name)).collect();
+    let total = 1 + tests.len() as u64 + suites.suites.len() as u64;
+    progress.report(0, total, "check");
     // Every problem of every file, as `plcrun check` reports them (a
     // syntax error in one file does not hide the others'), then those of
     // the runner's own reading of the tests.
@@ -278,13 +292,16 @@ pub fn run_tests(sources: &SourceMap, options: &TestOptions) -> Result<TestRepor
         return Err(TestError::NoTests);
     }
     let mut cases = Vec::with_capacity(tests.len());
-    for test in &tests {
+    for (i, test) in tests.iter().enumerate() {
+        progress.report(1 + i as u64, total, &test.name);
         cases.push(run_one::run(sources, test, options)?);
     }
     if !suites.suites.is_empty() {
+        progress.report(1 + tests.len() as u64, total, "TcUnit suites");
         let ran = tcunit::run(sources, &suites, options)?;
         cases.extend(ran.into_iter().filter(|c| wanted(&c.full_name())));
     }
+    progress.report(total, total, "done");
     if cases.is_empty() {
         return Err(TestError::NoTests);
     }

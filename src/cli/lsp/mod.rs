@@ -33,7 +33,7 @@ pub fn lsp(_args: &LspArgs) -> i32 {
     match outcome {
         Ok(()) => EXIT_OK,
         Err(e) => {
-            eprintln!("error: plcrun lsp: {e}");
+            sayln!("error: plcrun lsp: {e}");
             EXIT_USAGE
         }
     }

@@ -135,7 +135,7 @@ impl Server {
                     // A malformed notification is the client's bug: say
                     // so on stderr (the client's log) and go on.
                     if let Err(e) = self.notified(n) {
-                        eprintln!("plcrun lsp: {e}");
+                        sayln!("plcrun lsp: {e}");
                     }
                 }
                 Message::Response(_) => {}

@@ -70,7 +70,7 @@ fn analyse(
     // The TcUnit form of the check fails only where there is nothing to
     // test; the plain check then says all there is to say.
     let report =
-        check_as_cli(&sources, options).unwrap_or_else(|_| plcrun::check(&sources, options));
+        check_as_cli(&sources, options, &()).unwrap_or_else(|_| plcrun::check(&sources, options));
     diags.extend(report.diagnostics);
     Analysis::with_diagnostics(sources, diags)
 }

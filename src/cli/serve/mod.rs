@@ -34,7 +34,7 @@ pub fn serve(args: &ServeArgs, given: &Given) -> i32 {
     let project = match project::find(explicit) {
         Ok(p) => p,
         Err(rendered) => {
-            eprint!("{rendered}");
+            say!("{rendered}");
             return EXIT_USAGE;
         }
     };
@@ -43,13 +43,13 @@ pub fn serve(args: &ServeArgs, given: &Given) -> i32 {
         run.no_trace = true;
     }
     if let Err(e) = overrides::apply(&mut run, &args.run, given) {
-        eprintln!("error: {e}");
+        sayln!("error: {e}");
         return EXIT_USAGE;
     }
     if args.check {
         return check(&run, &project.path, &project.assignments);
     }
-    eprintln!(
+    sayln!(
         "serve: {} ({} source file{})",
         project.path.display(),
         run.files.len(),
@@ -86,7 +86,7 @@ fn check(run: &RunArgs, path: &Path, assignments: &[Assignment]) -> i32 {
             Err(status) => return status,
         };
         if let Err(rendered) = project::check_assignments(path, assignments, &mut plc) {
-            eprint!("{rendered}");
+            say!("{rendered}");
             return EXIT_USAGE;
         }
     }

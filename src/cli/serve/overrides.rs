@@ -6,11 +6,12 @@ use super::super::given::Given;
 
 /// Replaces each field of `base` whose flag was given by the value of
 /// `cli`; `--set` and `--force` add to the file's lists (a later item for
-/// the same name wins). `files` (the project file) and serve's own flags
-/// are not options of the run. A flag this list does not know is refused
+/// the same name wins). `files` (the project file), serve's own flags and
+/// the global ones are not options of the run. A flag this list does not know is refused
 /// rather than silently dropped.
 pub fn apply(base: &mut RunArgs, cli: &RunArgs, given: &Given) -> Result<(), String> {
-    let mut known: Vec<&str> = vec!["files", "check"];
+    // `color` and `quiet` are the whole command line's, not the run's.
+    let mut known: Vec<&str> = vec!["files", "check", "color", "quiet"];
     macro_rules! replace {
         ($($($field:ident).+),* $(,)?) => {$({
             let id = last!($($field).+);

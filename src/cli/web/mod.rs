@@ -117,9 +117,9 @@ pub fn start(web: Option<&str>, token: Option<&str>, plc: &Plc) -> Result<Option
     });
     let mut scan = ScanSide::new(Arc::clone(&shared), plc, rx);
     let server = WebServer::start(listener, Arc::clone(&shared))?;
-    eprintln!("web: listening on http://{}/", server.local_addr());
+    sayln!("web: listening on http://{}/", server.local_addr());
     if drawn {
-        eprintln!("web: token for changes: {}", shared.token);
+        sayln!("web: token for changes: {}", shared.token);
     }
     // The page shows the initial values until the first cycle ends.
     scan.publish_now(plc);
