@@ -68,3 +68,175 @@ fn the_packaged_project_checks_and_its_unit_runs_it() {
     assert!(unit.contains("StateDirectory=plcrun"));
     assert!(config.contains("file = \"/var/lib/plcrun/"));
 }
+
+/// The Debian package as `[package.metadata.deb]` in Cargo.toml describes
+/// it, built with `dpkg-deb` from the binary the tests run. The released
+/// package is built by cargo-deb from a release build
+/// (`scripts/package_deb.sh`), which does not fit CI's time; this builds
+/// the same file list, modes, conffiles and maintainer scripts, so a
+/// missing asset, a wrong destination or a broken control file fails here.
+/// Skipped, saying so, where `dpkg-deb` is not installed.
+#[test]
+fn the_debian_package_builds_from_its_metadata() {
+    use std::path::{Path, PathBuf};
+    use std::process::Command;
+    let tool = Command::new("dpkg-deb").arg("--version").output();
+    if !tool.is_ok_and(|o| o.status.success()) {
+        eprintln!("skipped: dpkg-deb is not installed");
+        return;
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let manifest: toml::Table = std::fs::read_to_string(root.join("Cargo.toml"))
+        .unwrap()
+        .parse()
+        .unwrap();
+    let deb = &manifest["package"]["metadata"]["deb"];
+    let work = std::env::temp_dir().join(format!("plcrun-deb-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&work);
+    // What scripts/package_deb.sh generates before cargo-deb runs.
+    let generated = work.join("generated");
+    std::fs::create_dir_all(&generated).unwrap();
+    plcrun_ok(&["man", generated.join("man").to_str().unwrap()]);
+    for (shell, name) in [
+        ("bash", "plcrun.bash"),
+        ("zsh", "_plcrun"),
+        ("fish", "plcrun.fish"),
+    ] {
+        std::fs::write(generated.join(name), plcrun_ok(&["completions", shell])).unwrap();
+    }
+    let source_of = |asset: &str| -> Vec<PathBuf> {
+        if asset == "target/release/plcrun" {
+            return vec![PathBuf::from(env!("CARGO_BIN_EXE_plcrun"))];
+        }
+        let path = match asset.strip_prefix("target/package/") {
+            Some(rest) => generated.join(rest),
+            None => root.join(asset),
+        };
+        match path.file_name().and_then(|n| n.to_str()) {
+            Some("*") => {
+                let dir = path.parent().unwrap();
+                let mut all: Vec<PathBuf> = std::fs::read_dir(dir)
+                    .unwrap()
+                    .map(|e| e.unwrap().path())
+                    .collect();
+                all.sort();
+                all
+            }
+            _ => vec![path],
+        }
+    };
+    let tree = work.join("tree");
+    let mut installed = Vec::new();
+    for asset in deb["assets"].as_array().unwrap() {
+        let [from, to, mode] = [0, 1, 2].map(|i| asset[i].as_str().unwrap());
+        let files = source_of(from);
+        assert!(!files.is_empty(), "asset {from} matches no file");
+        for file in files {
+            assert!(
+                file.is_file(),
+                "asset {from}: {} is missing",
+                file.display()
+            );
+            let dest = if to.ends_with('/') {
+                format!("{to}{}", file.file_name().unwrap().to_str().unwrap())
+            } else {
+                to.to_string()
+            };
+            let target = tree.join(&dest);
+            std::fs::create_dir_all(target.parent().unwrap()).unwrap();
+            std::fs::copy(&file, &target).unwrap();
+            let mode = u32::from_str_radix(mode, 8).unwrap();
+            use std::os::unix::fs::PermissionsExt;
+            std::fs::set_permissions(&target, std::fs::Permissions::from_mode(mode)).unwrap();
+            installed.push(format!("./{dest}"));
+        }
+    }
+    let control = tree.join("DEBIAN");
+    std::fs::create_dir_all(&control).unwrap();
+    let conf_files: Vec<&str> = deb["conf-files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_str().unwrap())
+        .collect();
+    for conf in &conf_files {
+        assert!(
+            installed.contains(&format!(".{conf}")),
+            "conffile {conf} is not an asset"
+        );
+    }
+    std::fs::write(control.join("conffiles"), conf_files.join("\n") + "\n").unwrap();
+    let scripts = root.join(deb["maintainer-scripts"].as_str().unwrap());
+    std::fs::copy(scripts.join("postinst"), control.join("postinst")).unwrap();
+    let arch = Command::new("dpkg")
+        .arg("--print-architecture")
+        .output()
+        .unwrap();
+    let description = deb["extended-description"]
+        .as_str()
+        .unwrap()
+        .replace('\n', " ");
+    let depends = deb["depends"].as_str().unwrap().replace("$auto", "libc6");
+    std::fs::write(
+        control.join("control"),
+        format!(
+            "Package: plcrun\nVersion: {}\nArchitecture: {}\nMaintainer: {}\nDepends: {depends}\n\
+             Section: {}\nPriority: {}\nDescription: {}\n {description}\n",
+            env!("CARGO_PKG_VERSION"),
+            String::from_utf8_lossy(&arch.stdout).trim(),
+            deb["maintainer"].as_str().unwrap(),
+            deb["section"].as_str().unwrap(),
+            deb["priority"].as_str().unwrap(),
+            env!("CARGO_PKG_DESCRIPTION"),
+        ),
+    )
+    .unwrap();
+    let package = work.join("plcrun.deb");
+    // Light compression: this checks the layout (the debug binary is 70 MB
+    // and xz would take 25 s), not the size.
+    let built = Command::new("dpkg-deb")
+        .args(["--root-owner-group", "-Zgzip", "-z1", "--build"])
+        .arg(&tree)
+        .arg(&package)
+        .output()
+        .unwrap();
+    assert!(
+        built.status.success(),
+        "{}",
+        String::from_utf8_lossy(&built.stderr)
+    );
+    let listing = Command::new("dpkg-deb")
+        .arg("--contents")
+        .arg(&package)
+        .output()
+        .unwrap();
+    let listing = String::from_utf8_lossy(&listing.stdout);
+    for path in &installed {
+        assert!(
+            listing.contains(path.as_str()),
+            "{path} not in the package:\n{listing}"
+        );
+    }
+    for must in [
+        "./usr/bin/plcrun",
+        "./lib/systemd/system/plcrun.service",
+        "./etc/plcrun/plcrun.toml",
+        "./usr/share/man/man1/plcrun-serve.1",
+    ] {
+        assert!(
+            installed.iter().any(|p| p == must),
+            "{must} is not packaged"
+        );
+    }
+    let info = Command::new("dpkg-deb")
+        .arg("--info")
+        .arg(&package)
+        .output()
+        .unwrap();
+    let info = String::from_utf8_lossy(&info.stdout);
+    assert!(
+        info.contains("Package: plcrun") && info.contains("postinst"),
+        "{info}"
+    );
+    let _ = std::fs::remove_dir_all(&work);
+}
