@@ -74,6 +74,55 @@ fn a_connection_back_to_an_earlier_block_reads_the_previous_cycle() {
 }
 
 #[test]
+fn the_difference_of_two_moments_kept_for_eno_is_a_duration() {
+    // SUB(t1, t2) on DTs, its ENO chained to LT's EN: the importer keeps
+    // SUB's result in a hidden variable, which must be a TIME (DT - DT),
+    // not a DT like its first input (Beremiz's iec61131_lang_test met E306
+    // `<` of DT and TIME here).
+    let iface = format!(
+        "{}{}",
+        vars("inputVars", &["a", "t1:DT", "t2:DT"]),
+        vars("outputVars", &["x", "d:TIME"])
+    );
+    let text = project(&graphic_pou(
+        "P",
+        "program",
+        &iface,
+        "FBD",
+        &[
+            in_var(1, "a", 10),
+            in_var(2, "t1", 20),
+            in_var(3, "t2", 30),
+            block(
+                4,
+                "SUB",
+                20,
+                &[("EN", &["1"]), ("IN1", &["2"]), ("IN2", &["3"])],
+                &["ENO", "OUT"],
+                "",
+            ),
+            in_var(5, "T#10s", 40),
+            block(
+                6,
+                "LT",
+                30,
+                &[("EN", &["4:ENO"]), ("IN1", &["4:OUT"]), ("IN2", &["5"])],
+                &["ENO", "OUT"],
+                "",
+            ),
+            out_var(7, "x", &["6:OUT"], 30, ""),
+            out_var(8, "d", &["4:OUT"], 50, ""),
+        ],
+    ));
+    let stimulus = "cycle,a,t1,t2\n\
+                    0,TRUE,DT#2024-01-01-00:00:05,DT#2024-01-01-00:00:00\n\
+                    1,TRUE,DT#2024-01-01-00:01:00,DT#2024-01-01-00:00:00\n";
+    let trace = trace_text(&text, "x,d", stimulus, 2);
+    assert_eq!(column(&trace, "d"), ["T#5s", "T#1m"]);
+    assert_eq!(column(&trace, "x"), ["TRUE", "FALSE"]);
+}
+
+#[test]
 fn execution_order_ids_win_over_positions() {
     let a = "0110100";
     let stimulus = bit_stimulus(&[("a", a)]);

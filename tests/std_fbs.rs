@@ -357,6 +357,32 @@ fn ton_with_zero_pt_and_true_first_call() {
 }
 
 #[test]
+fn rtc_runs_from_its_preset_while_in_is_true() {
+    // IN TRUE in cycles 2..=251 and from 300; the 10 ms clock.
+    let src = program(
+        "",
+        "c : RTC; x : BOOL; p : DT := DT#2024-02-28-23:59:59;",
+        "c(IN := x, PDT := p);",
+    );
+    let rows = simulate(
+        &src,
+        310,
+        |k| vec![("x", b((2..252).contains(&k) || k >= 300))],
+        &["c.Q", "c.CDT"],
+    );
+    assert_eq!(rows[1], ["FALSE", "DT#1970-01-01-00:00:00"]);
+    // Preset in the call that sees IN rise; then the clock's time since.
+    assert_eq!(rows[2], ["TRUE", "DT#2024-02-28-23:59:59"]);
+    assert_eq!(rows[3][1], "DT#2024-02-28-23:59:59.01");
+    // 100 cycles = 1 s later: past midnight of a leap year's February 28.
+    assert_eq!(rows[102][1], "DT#2024-02-29-00:00:00");
+    assert_eq!(rows[251][1], "DT#2024-02-29-00:00:01.49");
+    assert_eq!(rows[252], ["FALSE", "DT#1970-01-01-00:00:00"]);
+    // A new rising edge presets again: PDT, not where the clock stopped.
+    assert_eq!(rows[300][1], "DT#2024-02-28-23:59:59");
+}
+
+#[test]
 fn tof_holds_q_for_pt_after_in_falls() {
     // IN TRUE 0..9, FALSE 10..29, TRUE 30..39, FALSE 40..44, TRUE 45..49, FALSE 50..
     let input = |k: usize| k < 10 || (30..40).contains(&k) || (45..50).contains(&k);
@@ -489,6 +515,19 @@ const TIMER: Kind = Kind {
     outputs: &["Q", "ET"],
 };
 
+const RTC: Kind = Kind {
+    bools: &[("IN", 15)],
+    value: Some((
+        "PDT",
+        &[
+            "DT#2024-01-31-12:00:00",
+            "DT#1999-12-31-23:59:59",
+            "DT#1970-01-01-00:00:00",
+        ],
+    )),
+    outputs: &["Q", "CDT"],
+};
+
 fn kind(fb: &str) -> &'static Kind {
     let base = fb.split('_').next().unwrap();
     let unsigned = fb.ends_with("_UDINT") || fb.ends_with("_ULINT");
@@ -503,6 +542,7 @@ fn kind(fb: &str) -> &'static Kind {
         ("CTUD", false) => &CTUD_S,
         ("CTUD", true) => &CTUD_U,
         ("TON" | "TOF" | "TP", _) => &TIMER,
+        ("RTC", _) => &RTC,
         _ => panic!("no driver for {fb}"),
     }
 }
@@ -540,7 +580,8 @@ fn native_block_matches_its_st_reference(
         "CTUD_ULINT",
         "TON",
         "TOF",
-        "TP"
+        "TP",
+        "RTC"
     )]
     fb: &str,
 ) {
@@ -559,6 +600,7 @@ fn native_block_matches_its_st_reference(
     if let Some((n, _)) = k.value {
         let ty = match (fb, n) {
             (_, "PT") => "TIME".to_string(),
+            (_, "PDT") => "DT".to_string(),
             (f, _) if f.contains('_') => f.rsplit('_').next().unwrap().to_string(),
             _ => "INT".to_string(),
         };

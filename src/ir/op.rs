@@ -164,6 +164,8 @@ pub enum NativeFb {
     Tof,
     /// TP
     Tp,
+    /// RTC (real-time clock, IEC 61131-3 edition 1)
+    Rtc,
 }
 
 impl NativeFb {
@@ -176,6 +178,7 @@ impl NativeFb {
             NativeFb::Ctu(_) | NativeFb::Ctd(_) => 6,
             NativeFb::Ctud(_) => 10,
             NativeFb::Ton | NativeFb::Tof | NativeFb::Tp => 7,
+            NativeFb::Rtc => 6,
         }
     }
 }

@@ -1,5 +1,5 @@
 //! The native standard function blocks (IEC 61131-3 R_TRIG, F_TRIG, SR, RS,
-//! CTU, CTD, CTUD and typed variants, TON, TOF, TP), exactly as
+//! CTU, CTD, CTUD and typed variants, TON, TOF, TP, RTC), exactly as
 //! `docs/semantics.md` §4 defines them.
 //!
 //! Each block works on its instance memory: a slice of slots whose layout
@@ -7,6 +7,7 @@
 //! before the call and outputs read after it, so a call copies nothing.
 
 mod bistable;
+mod clock;
 mod counters;
 mod edges;
 mod pins;
@@ -42,5 +43,6 @@ pub(crate) unsafe fn call_raw(fb: NativeFb, p: *mut u64, now: i64) {
         NativeFb::Ton => timers::ton(slots!(7), now),
         NativeFb::Tof => timers::tof(slots!(7), now),
         NativeFb::Tp => timers::tp(slots!(7), now),
+        NativeFb::Rtc => clock::rtc(slots!(6), now),
     }
 }

@@ -88,6 +88,15 @@ const TIMER: [NativeParam; 7] = [
     pin("RUNNING", Hidden, ElemType::Bool),
 ];
 
+const RTC: [NativeParam; 6] = [
+    pin("IN", Input, ElemType::Bool),
+    pin("PDT", Input, ElemType::Dt),
+    pin("Q", Output, ElemType::Bool),
+    pin("CDT", Output, ElemType::Dt),
+    pin("AT_ZERO", Hidden, ElemType::Dt),
+    pin("IN_PREV", Hidden, ElemType::Bool),
+];
+
 macro_rules! counters {
     ($($ty:ident => $ctu:ident, $ctd:ident, $ctud:ident);* $(;)?) => {$(
         const $ctu: [NativeParam; 6] = [
@@ -138,6 +147,7 @@ pub fn interface(fb: NativeFb) -> &'static [NativeParam] {
         NativeFb::Sr => &SR,
         NativeFb::Rs => &RS,
         NativeFb::Ton | NativeFb::Tof | NativeFb::Tp => &TIMER,
+        NativeFb::Rtc => &RTC,
         NativeFb::Ctu(C::Int) => &CTU_INT,
         NativeFb::Ctu(C::Dint) => &CTU_DINT,
         NativeFb::Ctu(C::Lint) => &CTU_LINT,
@@ -179,6 +189,7 @@ pub fn lookup_native(name: &str) -> Option<NativeFb> {
         "TON" => NativeFb::Ton,
         "TOF" => NativeFb::Tof,
         "TP" => NativeFb::Tp,
+        "RTC" => NativeFb::Rtc,
         _ => {
             if let Some(r) = counter("CTUD") {
                 NativeFb::Ctud(r)
@@ -211,6 +222,7 @@ pub fn native_name(fb: NativeFb) -> String {
         NativeFb::Ton => "TON".into(),
         NativeFb::Tof => "TOF".into(),
         NativeFb::Tp => "TP".into(),
+        NativeFb::Rtc => "RTC".into(),
         NativeFb::Ctu(r) => format!("CTU{}", suffix(r)),
         NativeFb::Ctd(r) => format!("CTD{}", suffix(r)),
         NativeFb::Ctud(r) => format!("CTUD{}", suffix(r)),
@@ -234,6 +246,7 @@ mod tests {
             NativeFb::Ton,
             NativeFb::Tof,
             NativeFb::Tp,
+            NativeFb::Rtc,
         ];
         for r in [C::Int, C::Dint, C::Lint, C::Udint, C::Ulint] {
             all.extend([NativeFb::Ctu(r), NativeFb::Ctd(r), NativeFb::Ctud(r)]);

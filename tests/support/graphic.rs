@@ -233,7 +233,7 @@ pub fn vars(section: &str, list: &[&str]) -> String {
         .map(|v| {
             let (n, t) = v.split_once(':').unwrap_or((v, "BOOL"));
             let elementary = [
-                "BOOL", "INT", "DINT", "UINT", "REAL", "LREAL", "TIME", "WORD",
+                "BOOL", "INT", "DINT", "UINT", "REAL", "LREAL", "TIME", "WORD", "DT",
             ];
             let ty = if elementary.contains(&t) {
                 format!("<{t}/>")

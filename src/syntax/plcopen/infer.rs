@@ -43,6 +43,8 @@ fn std_fb_output(fb: &str, pin: &str) -> Option<&'static str> {
         ("CTU" | "CTD" | "CTUD", "CV") => "INT",
         ("R_TRIG" | "F_TRIG", "Q") => "BOOL",
         ("SR" | "RS", "Q1") => "BOOL",
+        ("RTC", "Q") => "BOOL",
+        ("RTC", "CDT") => "DATE_AND_TIME",
         (_, "ENO") => "BOOL",
         _ => return None,
     })
@@ -205,6 +207,11 @@ impl<'a, 'i> Types<'a, 'i> {
                 if let Some(w) = std_result(type_name) {
                     return Some(Ty::Word(w));
                 }
+                if type_name.eq_ignore_ascii_case("SUB")
+                    && let Some(duration) = self.difference_of_two_moments(net, el, budget)
+                {
+                    return Some(Ty::Word(duration.into()));
+                }
                 for input in &el.inputs {
                     if NOT_DATA.contains(&input.name.to_ascii_uppercase().as_str()) {
                         continue;
@@ -216,6 +223,32 @@ impl<'a, 'i> Types<'a, 'i> {
                     }
                 }
                 None
+            }
+            _ => None,
+        }
+    }
+
+    /// The duration type a `SUB` of two moments of one kind gives (DT - DT,
+    /// DATE - DATE, TOD - TOD: TIME; their long forms: LTIME), not the
+    /// moment its first input is.
+    fn difference_of_two_moments(
+        &self,
+        net: &Network<'a, 'i>,
+        el: &super::network::Element<'a, 'i>,
+        budget: &mut u32,
+    ) -> Option<&'static str> {
+        let mut kinds = el
+            .inputs
+            .iter()
+            .filter(|input| !NOT_DATA.contains(&input.name.to_ascii_uppercase().as_str()))
+            .map(|input| {
+                let from = input.sources.first()?;
+                let ty = self.of(net, from.from, &from.pin, budget)?;
+                moment_kind(&ty)
+            });
+        match (kinds.next(), kinds.next(), kinds.next()) {
+            (Some(Some((a, long))), Some(Some(b)), None) if (a, long) == b => {
+                Some(if long { "LTIME" } else { "TIME" })
             }
             _ => None,
         }
@@ -239,6 +272,28 @@ impl<'a, 'i> Types<'a, 'i> {
             self.of_text(child(el.node, "expression").and_then(|e| e.text())?)
         })
     }
+}
+
+/// The kind of moment a type is (`DT`, `DATE`, `TOD`) and whether it is
+/// the long form; `None` for any other type.
+fn moment_kind(ty: &Ty) -> Option<(&'static str, bool)> {
+    let name = match ty {
+        Ty::Word(w) => w.to_ascii_uppercase(),
+        Ty::Xml(node) => elements(*node)
+            .next()?
+            .tag_name()
+            .name()
+            .to_ascii_uppercase(),
+    };
+    Some(match name.as_str() {
+        "DT" | "DATE_AND_TIME" => ("DT", false),
+        "LDT" | "LDATE_AND_TIME" => ("DT", true),
+        "DATE" => ("DATE", false),
+        "LDATE" => ("DATE", true),
+        "TOD" | "TIME_OF_DAY" => ("TOD", false),
+        "LTOD" | "LTIME_OF_DAY" => ("TOD", true),
+        _ => return None,
+    })
 }
 
 /// The result type of a standard function whose result type does not
