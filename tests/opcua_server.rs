@@ -186,6 +186,9 @@ fn anonymous_clients_read_but_cannot_write() {
             .unwrap();
         let ticks = c.read(&s.id("ticks")).await;
         assert!(matches!(ticks.value, Some(Variant::Int32(_))), "{ticks:?}");
+        // The server counts the session (/metrics shows it).
+        let stats = s.server.as_ref().unwrap().stats();
+        assert_eq!((stats.sessions, stats.sessions_total), (1, 1));
         assert_eq!(
             c.write(&s.id("setpoint"), Variant::Int16(5)).await,
             StatusCode::BadUserAccessDenied

@@ -278,6 +278,18 @@ pub(super) fn opcua(server: std::sync::Arc<plcrun::OpcUaServer>) -> Source {
             "OPC UA client writes refused because the queue was full.",
             s.writes_refused_busy as f64,
         );
+        page.single(
+            "plcrun_opcua_sessions",
+            "gauge",
+            "OPC UA client sessions open now.",
+            s.sessions as f64,
+        );
+        page.single(
+            "plcrun_opcua_sessions_total",
+            "counter",
+            "OPC UA client sessions created since the server started.",
+            s.sessions_total as f64,
+        );
     })
 }
 

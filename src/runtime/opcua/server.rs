@@ -21,7 +21,7 @@ use async_opcua::server::address_space::AddressSpace;
 use async_opcua::server::node_manager::ServerContext;
 use async_opcua::server::node_manager::memory::{InMemoryNodeManager, InMemoryNodeManagerBuilder};
 use async_opcua::server::{ANONYMOUS_USER_TOKEN_ID, ServerBuilder, ServerEndpoint, ServerHandle};
-use async_opcua::types::MessageSecurityMode;
+use async_opcua::types::{MessageSecurityMode, VariableId, Variant};
 use std::fmt;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener, ToSocketAddrs};
 use std::path::PathBuf;
@@ -351,7 +351,21 @@ impl OpcUaServer {
 
     /// The server's counters now.
     pub fn stats(&self) -> OpcUaStats {
-        self.shared.counters.snapshot()
+        let mut stats = self.shared.counters.snapshot();
+        // The server's own diagnostics summary counts the sessions.
+        let count = |id: VariableId| -> u64 {
+            match self.handle.info().diagnostics.get(id).and_then(|v| v.value) {
+                Some(Variant::UInt32(n)) => u64::from(n),
+                _ => 0,
+            }
+        };
+        stats.sessions = count(
+            VariableId::Server_ServerDiagnostics_ServerDiagnosticsSummary_CurrentSessionCount,
+        );
+        stats.sessions_total = count(
+            VariableId::Server_ServerDiagnostics_ServerDiagnosticsSummary_CumulatedSessionCount,
+        );
+        stats
     }
 
     /// Stops the server: closes the sessions and waits (a bounded time)
@@ -407,7 +421,9 @@ fn server_builder(config: &OpcUaConfig, host: &str, port: u16, cycle_ms: f64) ->
         .host(host.to_string())
         .port(port)
         .max_sessions(config.max_sessions)
-        .diagnostics_enabled(false)
+        // On for the session counts of `stats()` (and /metrics); it also
+        // serves the standard ServerDiagnostics nodes.
+        .diagnostics_enabled(true)
         .subscription_poll_interval_ms(poll_ms as u64)
         .with_authenticator(Arc::new(PlcAuth {
             users: config.users.clone(),

@@ -26,6 +26,10 @@ pub struct OpcUaStats {
     pub writes_refused_busy: u64,
     /// Queued writes applied between two cycles.
     pub writes_applied: u64,
+    /// Client sessions open now.
+    pub sessions: u64,
+    /// Client sessions created since the server started.
+    pub sessions_total: u64,
 }
 
 /// The live counters behind [`OpcUaStats`].
@@ -57,6 +61,8 @@ impl Counters {
             writes_queued: get(&self.writes_queued),
             writes_refused_busy: get(&self.writes_refused_busy),
             writes_applied: get(&self.writes_applied),
+            sessions: 0,
+            sessions_total: 0,
         }
     }
 }
