@@ -82,8 +82,11 @@ fn saved_after(path: &Path) -> u64 {
 #[cfg(target_os = "linux")]
 #[test]
 fn the_chariot_example_serves_until_sigterm_and_saves_its_retained_data() {
-    let retain = fresh_dir().join("chariot.retain");
+    let dir = fresh_dir();
+    let retain = dir.join("chariot.retain");
     let retain_arg = retain.to_str().unwrap();
+    let pki = dir.join("pki");
+    let pki_arg = pki.to_str().unwrap();
     let mut child = Command::new(env!("CARGO_BIN_EXE_plcrun"))
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         // A free port and a retain file of the test's own: the file's
@@ -95,6 +98,10 @@ fn the_chariot_example_serves_until_sigterm_and_saves_its_retained_data() {
             "127.0.0.1:0",
             "--web",
             "127.0.0.1:0",
+            "--opcua",
+            "127.0.0.1:0",
+            "--opcua-pki",
+            pki_arg,
             "--retain",
             retain_arg,
         ])
@@ -104,6 +111,10 @@ fn the_chariot_example_serves_until_sigterm_and_saves_its_retained_data() {
         .expect("plcrun starts");
     let (head, rest) = wait_for_line(&mut child, "web: token for changes: ");
     assert!(head.contains("modbus: listening on 127.0.0.1:"), "{head}");
+    assert!(
+        head.contains("opcua: listening on opc.tcp://127.0.0.1:"),
+        "{head}"
+    );
     assert!(
         head.contains("web: listening on http://127.0.0.1:"),
         "{head}"
@@ -136,6 +147,10 @@ fn the_chariot_example_serves_until_sigterm_and_saves_its_retained_data() {
         "127.0.0.1:0",
         "--web",
         "127.0.0.1:0",
+        "--opcua",
+        "127.0.0.1:0",
+        "--opcua-pki",
+        pki_arg,
         "--retain",
         retain_arg,
         "--cycles",
@@ -157,9 +172,23 @@ fn the_chariot_example_checks() {
         out.trim(),
         "plcrun run --realtime --watchdog 100ms --retain examples/chariot/chariot.retain \
          --retain-every 100 --no-trace --modbus 127.0.0.1:5020 --modbus-max-clients 4 \
-         --modbus-idle-timeout 60s --web 127.0.0.1:8080 -- programs/chariot.sfc \
+         --modbus-idle-timeout 60s --web 127.0.0.1:8080 --opcua 127.0.0.1:4840 \
+         --opcua-pki examples/chariot/opcua-pki -- programs/chariot.sfc \
          examples/modbus/chariot_modbus.st"
     );
+    // Flags of the flattened option groups (OPC UA, reading) override the
+    // file too: they were once refused as "`--OpcUaArgs`".
+    let (code, out, err) = plcrun(&[
+        "serve",
+        EXAMPLE,
+        "--check",
+        "--opcua",
+        "127.0.0.1:4841",
+        "--strict",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains(" --strict "), "{out}");
+    assert!(out.contains(" --opcua 127.0.0.1:4841 "), "{out}");
 }
 
 #[test]

@@ -2,8 +2,8 @@
 //! project file, and `check`, `test` and `compare` let them override the
 //! file's reading settings, while clap's defaults override nothing.
 
-use clap::ArgMatches;
 use clap::parser::ValueSource;
+use clap::{ArgMatches, Command};
 use std::collections::BTreeSet;
 
 /// The ids (field names) of the arguments given on the command line.
@@ -11,12 +11,19 @@ use std::collections::BTreeSet;
 pub struct Given(BTreeSet<String>);
 
 impl Given {
-    /// The arguments of `matches` that came from the command line.
-    pub fn of(matches: &ArgMatches) -> Given {
+    /// The arguments of `matches`, parsed by `command`, that came from the
+    /// command line. Only arguments: the groups clap makes of flattened
+    /// option structs (`OpcUaArgs`, `ReadingArgs`) are not flags.
+    pub fn of(matches: &ArgMatches, command: &Command) -> Given {
+        let arguments: BTreeSet<&str> = command
+            .get_arguments()
+            .map(|a| a.get_id().as_str())
+            .collect();
         Given(
             matches
                 .ids()
                 .map(|id| id.as_str())
+                .filter(|id| arguments.contains(id))
                 .filter(|id| matches.value_source(id) == Some(ValueSource::CommandLine))
                 .map(str::to_string)
                 .collect(),

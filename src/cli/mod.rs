@@ -56,7 +56,11 @@ pub fn main() -> i32 {
     // override a project file.
     let given = matches
         .subcommand()
-        .map(|(_, sub)| Given::of(sub))
+        .and_then(|(name, sub)| {
+            let command = args::Cli::command();
+            let parser = command.find_subcommand(name)?;
+            Some(Given::of(sub, parser))
+        })
         .unwrap_or_default();
     match args::Cli::from_arg_matches(&matches) {
         Ok(cli) => {
