@@ -16,6 +16,7 @@ pub mod codes;
 pub mod codesys_members;
 pub mod config;
 pub mod config_vars;
+pub mod diagram;
 pub mod emit;
 pub mod export;
 pub mod fbd;

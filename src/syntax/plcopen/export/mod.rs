@@ -1,25 +1,31 @@
-//! Export: parsed textual sources (IL, ST, SFC) written as a PLCopen TC6
-//! 2.01 project. Declarations come from the AST; bodies, initial values
-//! and other expressions are the source text as written (so comments in
-//! bodies survive). SFC charts become real TC6 networks (steps,
-//! transitions, divergences, convergences, action blocks) with localIds,
-//! connections and a simple layout.
+//! Export: parsed sources (IL, ST, SFC, and PLCopen XML) written as a
+//! PLCopen TC6 2.01 project. Declarations come from the AST; bodies,
+//! initial values and other expressions are the source text as written
+//! (so comments in bodies survive). SFC charts become real TC6 networks
+//! (steps, transitions, divergences, convergences, action blocks) with
+//! localIds, connections and a simple layout. The FBD and LD bodies of a
+//! PLCopen file are written back as drawn ([`graphic`]), element for
+//! element, so reading the output gives the same networks.
 
 mod config;
+mod graphic;
 mod sfc;
 mod types;
 mod writer;
+mod xml_source;
 
 use crate::diagnostics::Diagnostics;
 use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::ast::{Body, CompilationUnit, Item, Pou, PouKind, Retain, VarBlock, VarKind};
+use std::collections::HashMap;
 use std::fmt;
 use writer::Writer;
+use xml_source::{XmlBody, XmlPou, xml_bodies};
 
 /// Why sources could not be exported.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ExportError {
-    /// A file is already PLCopen XML (export writes textual sources).
+    /// A file is XML export cannot read back (a TwinCAT project).
     NotTextual {
         /// The file's name.
         file: String,
@@ -49,7 +55,7 @@ impl fmt::Display for ExportError {
             ExportError::NotTextual { file } => {
                 write!(
                     f,
-                    "`{file}` is PLCopen XML already; export writes IL, ST and SFC sources"
+                    "`{file}` is XML that is not a PLCopen project; export writes IL, ST, SFC and PLCopen sources"
                 )
             }
             ExportError::S7Source { file } => {
@@ -71,9 +77,10 @@ impl fmt::Display for ExportError {
 
 impl std::error::Error for ExportError {}
 
-/// Writes every POU, data type and configuration of `sources` (IL, ST and
-/// SFC files) as one PLCopen TC6 2.01 project, in the shape the OpenPLC
-/// Editor and Beremiz read. The output is deterministic.
+/// Writes every POU, data type and configuration of `sources` (IL, ST,
+/// SFC and PLCopen files) as one PLCopen TC6 2.01 project, in the shape
+/// the OpenPLC Editor and Beremiz read. The FBD and LD bodies of PLCopen
+/// files are written back as drawn. The output is deterministic.
 ///
 /// ```
 /// use plcrun::{SourceMap, export_plcopen};
@@ -86,11 +93,21 @@ impl std::error::Error for ExportError {}
 pub fn export_plcopen(sources: &SourceMap) -> Result<String, ExportError> {
     let mut diags = Diagnostics::new();
     let mut units = Vec::new();
+    let mut xml = HashMap::new();
     for (i, file) in sources.files().iter().enumerate() {
-        if super::is_plcopen(&file.text) {
+        if crate::syntax::twincat::is_twincat(&file.text) {
             return Err(ExportError::NotTextual {
                 file: file.name.clone(),
             });
+        }
+        if super::is_plcopen(&file.text) {
+            let bodies = xml_bodies(FileId(i as u32), &file.text).map_err(|what| {
+                ExportError::Unrepresentable {
+                    what,
+                    location: file.name.clone(),
+                }
+            })?;
+            xml.extend(bodies);
         }
         if crate::syntax::s7::recognise(&file.name, &file.text) {
             return Err(ExportError::S7Source {
@@ -108,12 +125,14 @@ pub fn export_plcopen(sources: &SourceMap) -> Result<String, ExportError> {
             rendered: diags.render(sources),
         });
     }
-    Exporter { sources }.project(&units)
+    Exporter { sources, xml }.project(&units)
 }
 
 /// The sources being exported (for the text of expressions and bodies).
 struct Exporter<'s> {
     sources: &'s SourceMap,
+    /// The bodies of the POUs of PLCopen files, by file and upper-case name.
+    xml: HashMap<(FileId, String), XmlPou>,
 }
 
 impl Exporter<'_> {
@@ -212,10 +231,34 @@ impl Exporter<'_> {
             self.type_spec(w, ret)?;
             w.close("returnType");
         }
+        let from_xml = self
+            .xml
+            .get(&(pou.span.file, pou.name.name.to_ascii_uppercase()));
         for block in &pou.var_blocks {
-            self.var_block(w, block)?;
+            let hidden = from_xml.is_some_and(|x| x.range.contains(&(block.span.start as usize)));
+            if !hidden {
+                self.var_block(w, block)?;
+            }
         }
         w.close("interface");
+        if from_xml.is_none() && super::is_plcopen(&self.sources.file(pou.span.file).text) {
+            // The AST of an imported chart holds its graphical parts
+            // lowered to ST: writing it back would not give the chart read.
+            return Err(self.refuse(
+                "an SFC body read from PLCopen XML (export writes SFC from textual sources only)",
+                pou.name.span,
+            ));
+        }
+        if let Some(x) = from_xml {
+            w.open("body", &[]);
+            match &x.body {
+                XmlBody::Graphic(d) => graphic::diagram(w, d),
+                XmlBody::Text { language, text } => w.text_body(language, text),
+            }
+            w.close("body");
+            w.close("pou");
+            return Ok(());
+        }
         match &pou.body {
             Body::Sfc(elements) => self.sfc_pou(w, pou, elements)?,
             Body::St(_) | Body::Il(_) => {
