@@ -3,7 +3,12 @@
 //! of connection points, and the route of every connection as an
 //! orthogonal polyline (the editor's own route when the file gives one).
 
-use crate::syntax::plcopen::diagram::{Diagram, DiagramElement, ElementKind, Point};
+use crate::syntax::plcopen::diagram::{BlockPin, Diagram, DiagramElement, ElementKind, Point};
+
+/// Vertical distance between two pins of a block drawn without positions.
+const PIN_STEP: f64 = 20.0;
+/// Where the first pin of such a block sits below its top.
+const FIRST_PIN: f64 = 30.0;
 
 /// A connection line, from the output it comes from to the input it feeds.
 #[derive(Debug, Clone, PartialEq)]
@@ -20,9 +25,20 @@ pub fn size(el: &DiagramElement) -> (f64, f64) {
     match &el.kind {
         ElementKind::Contact | ElementKind::Coil => (21.0, 15.0),
         ElementKind::LeftRail | ElementKind::RightRail => (3.0, 40.0),
-        ElementKind::Block { .. } => {
-            let pins = el.pins.len().max(1) as f64;
-            (80.0, 20.0 + pins * 10.0)
+        ElementKind::Block { type_name, .. } => {
+            let ins = el.pins.iter().filter(|p| p.input.is_some()).count();
+            let outs = el.pins.iter().filter(|p| p.output.is_some()).count();
+            let longest = |input: bool| {
+                el.pins
+                    .iter()
+                    .filter(|p| (p.input.is_some() && input) || (p.output.is_some() && !input))
+                    .map(|p| p.name.chars().count())
+                    .max()
+                    .unwrap_or(0)
+            };
+            let chars = (longest(true) + longest(false) + 2).max(type_name.chars().count() + 2);
+            let rows = ins.max(outs).max(1) as f64;
+            (chars as f64 * 7.2 + 16.0, FIRST_PIN + (rows - 0.5) * PIN_STEP)
         }
         ElementKind::Comment => (160.0, 40.0),
         _ => {
@@ -43,6 +59,31 @@ fn place(el: &DiagramElement, rel: Option<Point>, input: bool) -> (f64, f64) {
     (el.position.x + r.x, el.position.y + r.y)
 }
 
+/// The place of a block's pin on its `input` side (its input point, or
+/// its output point): the file's, else one row per pin down the side.
+pub fn pin_place(el: &DiagramElement, pin: &BlockPin, input: bool) -> (f64, f64) {
+    let rel = if input {
+        pin.input.as_ref().and_then(|p| p.rel)
+    } else {
+        pin.output.as_ref().and_then(|p| p.rel)
+    };
+    if rel.is_some() {
+        return place(el, rel, input);
+    }
+    let row = el
+        .pins
+        .iter()
+        .filter(|p| if input { p.input.is_some() } else { p.output.is_some() })
+        .position(|p| std::ptr::eq(p, pin))
+        .unwrap_or(0);
+    let (w, _) = size(el);
+    let x = if input { 0.0 } else { w };
+    (
+        el.position.x + x,
+        el.position.y + FIRST_PIN + row as f64 * PIN_STEP,
+    )
+}
+
 /// The place of output `pin` of `el` (its only output when `pin` names
 /// none of them).
 pub fn output_place(el: &DiagramElement, pin: Option<&str>) -> (f64, f64) {
@@ -52,7 +93,7 @@ pub fn output_place(el: &DiagramElement, pin: Option<&str>) -> (f64, f64) {
             .and_then(|n| outs.iter().find(|p| p.name.eq_ignore_ascii_case(n)))
             .or(outs.first());
         return match chosen {
-            Some(p) => place(el, p.output.as_ref().and_then(|o| o.rel), false),
+            Some(p) => pin_place(el, p, false),
             None => place(el, None, false),
         };
     }
@@ -81,15 +122,22 @@ pub fn out_place(el: &DiagramElement, rel: Option<Point>) -> (f64, f64) {
 pub fn wires(d: &Diagram) -> Vec<Wire> {
     let mut out = Vec::new();
     for el in &d.elements {
-        let block_inputs = el.pins.iter().filter_map(|p| p.input.as_ref());
-        for point in el.inputs.iter().chain(block_inputs) {
-            let to = input_place(el, point.rel);
+        let block_inputs = el
+            .pins
+            .iter()
+            .filter_map(|p| p.input.as_ref().map(|i| (i, pin_place(el, p, true))));
+        let own = el.inputs.iter().map(|i| (i, input_place(el, i.rel)));
+        for (point, to) in own.chain(block_inputs) {
             for c in &point.connections {
                 let Some(src) = d.element(&c.from) else {
                     continue;
                 };
                 let points = if c.route.len() >= 2 {
                     c.route.iter().rev().map(|p| (p.x, p.y)).collect()
+                } else if src.kind == ElementKind::LeftRail && c.pin.is_none() {
+                    // A rail's points are alike: the wire leaves the
+                    // one level with the input, else the nearest.
+                    orthogonal(nearest_rail_point(src, to.1), to)
                 } else {
                     orthogonal(output_place(src, c.pin.as_deref()), to)
                 };
@@ -98,6 +146,22 @@ pub fn wires(d: &Diagram) -> Vec<Wire> {
         }
     }
     out
+}
+
+/// The point of left rail `rail` nearest to height `y` (level with it
+/// when the rail has no points of its own).
+fn nearest_rail_point(rail: &DiagramElement, y: f64) -> (f64, f64) {
+    let (w, _) = size(rail);
+    let mut best = (rail.position.x + w, y);
+    let mut distance = f64::INFINITY;
+    for o in &rail.outputs {
+        let p = out_place(rail, o.rel);
+        if o.rel.is_some() && (p.1 - y).abs() < distance {
+            distance = (p.1 - y).abs();
+            best = p;
+        }
+    }
+    best
 }
 
 /// A route from `a` to `b` in horizontal and vertical segments, turning

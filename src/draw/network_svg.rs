@@ -16,7 +16,7 @@
 //! `return`, `comment`, `negation`) and a `data-id` (its localId), so
 //! tests and style sheets can find them.
 
-use super::network_geometry::{Wire, bounds, input_place, out_place, size, wires};
+use super::network_geometry::{Wire, bounds, input_place, out_place, pin_place, size, wires};
 use super::svg_writer::{Element, SvgWriter, num};
 use crate::syntax::plcopen::diagram::{
     Diagram, DiagramElement, ElementKind, Language, Modifiers, PinList,
@@ -197,13 +197,13 @@ fn block(svg: &mut SvgWriter, el: &DiagramElement, type_name: &str, instance: Op
         label(svg, "instance", (x + w / 2.0, y - 5.0), "middle", i);
     }
     for pin in el.pins.iter().filter(|p| !p.hidden) {
-        if let Some(p) = &pin.input {
-            let at = input_place(el, p.rel);
+        if pin.input.is_some() {
+            let at = pin_place(el, pin, true);
             label(svg, "pin", (x + 4.0, at.1 + 4.0), "start", &pin.name);
             pin_marks(svg, at, pin.modifiers, -1.0);
         }
-        if let Some(p) = &pin.output {
-            let at = out_place(el, p.rel);
+        if pin.output.is_some() {
+            let at = pin_place(el, pin, false);
             if pin.list != PinList::InOut || pin.input.is_none() {
                 label(svg, "pin", (x + w - 4.0, at.1 + 4.0), "end", &pin.name);
             }
