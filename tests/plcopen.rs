@@ -334,7 +334,7 @@ fn the_openplc_shaped_project_round_trips_with_its_bars() {
 }
 
 #[test]
-fn export_is_deterministic_and_refuses_xml_input() {
+fn export_is_deterministic_and_refuses_an_imported_chart() {
     let mut sources = SourceMap::new();
     sources.add("c.sfc", repo_text("programs/chariot.sfc"));
     let a = export_plcopen(&sources).expect("export");
@@ -342,8 +342,9 @@ fn export_is_deterministic_and_refuses_xml_input() {
     assert_eq!(a, b);
     let mut xml = SourceMap::new();
     xml.add("c.xml", a);
-    let e = export_plcopen(&xml).expect_err("XML is not a textual source");
+    let e = export_plcopen(&xml).expect_err("a chart read from XML");
     assert!(e.to_string().contains("c.xml"), "{e}");
+    assert!(e.to_string().contains("an SFC body read from PLCopen XML"), "{e}");
     // TC6 XML has no structure inheritance: refused where it is written.
     let mut extended = SourceMap::new();
     extended.add(

@@ -245,7 +245,7 @@ impl Exporter<'_> {
             // The AST of an imported chart holds its graphical parts
             // lowered to ST: writing it back would not give the chart read.
             return Err(self.refuse(
-                "an SFC body read from PLCopen XML (export writes SFC from textual sources only)",
+                "an SFC body read from PLCopen XML (charts are exported from textual SFC only)",
                 pou.name.span,
             ));
         }
