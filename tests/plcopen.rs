@@ -344,7 +344,10 @@ fn export_is_deterministic_and_refuses_an_imported_chart() {
     xml.add("c.xml", a);
     let e = export_plcopen(&xml).expect_err("a chart read from XML");
     assert!(e.to_string().contains("c.xml"), "{e}");
-    assert!(e.to_string().contains("an SFC body read from PLCopen XML"), "{e}");
+    assert!(
+        e.to_string().contains("an SFC body read from PLCopen XML"),
+        "{e}"
+    );
     // TC6 XML has no structure inheritance: refused where it is written.
     let mut extended = SourceMap::new();
     extended.add(

@@ -86,19 +86,30 @@ fn the_test_projects_hold_every_element_kind_and_modifier() {
     let has = |f: &dyn Fn(&plcrun::syntax::plcopen::diagram::DiagramElement) -> bool| {
         elements.iter().any(|e| f(e))
     };
-    for (kind, what) in [(ElementKind::Contact, "contact"), (ElementKind::Coil, "coil")] {
+    for (kind, what) in [
+        (ElementKind::Contact, "contact"),
+        (ElementKind::Coil, "coil"),
+    ] {
         let of = |e: &&&plcrun::syntax::plcopen::diagram::DiagramElement| e.kind == kind;
         let modifiers: Vec<_> = elements.iter().filter(of).map(|e| e.modifiers).collect();
         assert!(modifiers.iter().any(|m| m.negated), "negated {what}");
         assert!(modifiers.iter().any(|m| m.edge == Edge::Rising), "{what} P");
-        assert!(modifiers.iter().any(|m| m.edge == Edge::Falling), "{what} N");
+        assert!(
+            modifiers.iter().any(|m| m.edge == Edge::Falling),
+            "{what} N"
+        );
     }
-    assert!(has(&|e| e.kind == ElementKind::Coil
-        && e.modifiers.storage == Storage::Set));
-    assert!(has(&|e| e.kind == ElementKind::Coil
-        && e.modifiers.storage == Storage::Reset));
+    assert!(has(
+        &|e| e.kind == ElementKind::Coil && e.modifiers.storage == Storage::Set
+    ));
+    assert!(has(
+        &|e| e.kind == ElementKind::Coil && e.modifiers.storage == Storage::Reset
+    ));
     assert!(has(&|e| e.pins.iter().any(|p| p.modifiers.negated)));
-    assert!(has(&|e| e.pins.iter().any(|p| p.modifiers.edge != Edge::None)));
+    assert!(has(&|e| e
+        .pins
+        .iter()
+        .any(|p| p.modifiers.edge != Edge::None)));
     assert!(has(&|e| matches!(
         &e.kind,
         ElementKind::Block {
@@ -118,15 +129,31 @@ fn the_test_projects_hold_every_element_kind_and_modifier() {
 #[test]
 fn an_exported_project_runs_the_same_and_compiles_to_the_same_code() {
     let runs = [
-        (GRAPHICAL[0], "a,b,c", "n,k", "q_and,q_nor,q_cv,q_t,q_mux,q_sum,q_skip,q_after"),
-        (GRAPHICAL[1], "start,stop,s1,s2,s3", "", "motor,lamp,dark,pulse,fell,latched,cnt,timed"),
-        (GRAPHICAL[2], "start,stop,jog", "", "run,idle,alarm,pulse,fell,done"),
+        (
+            GRAPHICAL[0],
+            "a,b,c",
+            "n,k",
+            "q_and,q_nor,q_cv,q_t,q_mux,q_sum,q_skip,q_after",
+        ),
+        (
+            GRAPHICAL[1],
+            "start,stop,s1,s2,s3",
+            "",
+            "motor,lamp,dark,pulse,fell,latched,cnt,timed",
+        ),
+        (
+            GRAPHICAL[2],
+            "start,stop,jog",
+            "",
+            "run,idle,alarm,pulse,fell,done",
+        ),
         (GRAPHICAL[3], "a,b", "n", "q,done,late,total"),
     ];
     for (path, bools, ints, outputs) in runs {
         let original = repo_text(path);
         let exported = export(&[(path, &original)]).expect("export");
-        let split = |s: &'static str| -> Vec<&str> { s.split(',').filter(|n| !n.is_empty()).collect() };
+        let split =
+            |s: &'static str| -> Vec<&str> { s.split(',').filter(|n| !n.is_empty()).collect() };
         let stimulus = random_stimulus(&split(bools), &split(ints), 80, 4242);
         let files = |xml: &str| vec![(path.to_string(), xml.to_string())];
         let request = TraceRequest {
@@ -168,7 +195,10 @@ fn a_mixed_project_exports_its_textual_and_graphical_pous() {
         .filter(|n| n.has_tag_name("pou"))
         .filter_map(|n| n.attribute("name"))
         .collect();
-    assert!(pous.contains(&"Network") && pous.contains(&"Twice"), "{pous:?}");
+    assert!(
+        pous.contains(&"Network") && pous.contains(&"Twice"),
+        "{pous:?}"
+    );
     // The hidden variables of the lowering are not declarations.
     assert!(!xml.contains("name=\"_T"), "{xml}");
     // The textual POUs of the PLCopen file run as before.
@@ -224,7 +254,11 @@ fn third_party_projects_round_trip() {
                     .filter(|b| after.iter().any(|(n, d)| *n == b.name && *d == b.diagram))
                     .count();
                 same += kept;
-                println!("{}: {kept}/{} networks the same", path.display(), before.len());
+                println!(
+                    "{}: {kept}/{} networks the same",
+                    path.display(),
+                    before.len()
+                );
             }
             Err(e) => println!("{}: not exported: {e}", path.display()),
         }

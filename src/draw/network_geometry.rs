@@ -38,7 +38,10 @@ pub fn size(el: &DiagramElement) -> (f64, f64) {
             };
             let chars = (longest(true) + longest(false) + 2).max(type_name.chars().count() + 2);
             let rows = ins.max(outs).max(1) as f64;
-            (chars as f64 * 7.2 + 16.0, FIRST_PIN + (rows - 0.5) * PIN_STEP)
+            (
+                chars as f64 * 7.2 + 16.0,
+                FIRST_PIN + (rows - 0.5) * PIN_STEP,
+            )
         }
         ElementKind::Comment => (160.0, 40.0),
         _ => {
@@ -73,7 +76,13 @@ pub fn pin_place(el: &DiagramElement, pin: &BlockPin, input: bool) -> (f64, f64)
     let row = el
         .pins
         .iter()
-        .filter(|p| if input { p.input.is_some() } else { p.output.is_some() })
+        .filter(|p| {
+            if input {
+                p.input.is_some()
+            } else {
+                p.output.is_some()
+            }
+        })
         .position(|p| std::ptr::eq(p, pin))
         .unwrap_or(0);
     let (w, _) = size(el);

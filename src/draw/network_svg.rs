@@ -382,7 +382,11 @@ fn jump(svg: &mut SvgWriter, el: &DiagramElement, target: &str) {
     for dx in [0.0, 6.0] {
         svg.empty(
             Element::new("polyline")
-                .points(&[(x + dx, mid - 5.0), (x + dx + 6.0, mid), (x + dx, mid + 5.0)])
+                .points(&[
+                    (x + dx, mid - 5.0),
+                    (x + dx + 6.0, mid),
+                    (x + dx, mid + 5.0),
+                ])
                 .attr("fill", "none")
                 .attr("stroke", "black"),
         );

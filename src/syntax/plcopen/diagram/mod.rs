@@ -7,8 +7,8 @@ pub mod model;
 pub mod read;
 
 pub use model::{
-    BlockPin, Connection, Diagram, DiagramElement, ElementKind, Language, Modifiers, PinList, Point,
-    PointIn, PointOut,
+    BlockPin, Connection, Diagram, DiagramElement, ElementKind, Language, Modifiers, PinList,
+    Point, PointIn, PointOut,
 };
 pub use read::read_diagram;
 

@@ -182,10 +182,17 @@ fn block_pins(node: Node) -> Vec<BlockPin> {
     ];
     let mut pins = Vec::new();
     for (tag, list) in lists {
-        for v in child(node, tag).into_iter().flat_map(|l| named(l, "variable")) {
+        for v in child(node, tag)
+            .into_iter()
+            .flat_map(|l| named(l, "variable"))
+        {
             pins.push(BlockPin {
                 list,
-                name: v.attribute("formalParameter").unwrap_or("").trim().to_string(),
+                name: v
+                    .attribute("formalParameter")
+                    .unwrap_or("")
+                    .trim()
+                    .to_string(),
                 modifiers: modifiers(v, "negated", "edge", "storage"),
                 hidden: is_true(v.attribute("hidden")),
                 input: child(v, "connectionPointIn").map(point_in),

@@ -45,7 +45,11 @@ impl Writer {
 
     /// Writes `<name attrs>text</name>` on one line, the text escaped.
     pub fn text_element(&mut self, name: &str, attrs: &[(&str, &str)], text: &str) {
-        self.line(&format!("<{name}{}>{}</{name}>", attributes(attrs), escape(text)));
+        self.line(&format!(
+            "<{name}{}>{}</{name}>",
+            attributes(attrs),
+            escape(text)
+        ));
     }
 
     /// Writes one indented line.
