@@ -2,13 +2,15 @@
 //! (issue #29, point 3): read, exported and read again, every graphical
 //! body is the same diagram (elements, localIds, positions, sizes, pins,
 //! modifiers, connections and their routes) and the project runs the
-//! same; textual POUs of the same file and of other files go along.
+//! same; charts (with FBD/LD actions, transitions and wired conditions)
+//! and textual POUs of the same file and of other files go along.
 
 use crate::support::{cli, graphic};
 
 use graphic::*;
 use plcrun::syntax::plcopen::diagram::{
-    Diagram, ElementKind, GraphicalPou, Language, graphical_pous,
+    ActionTarget, BodyModel, ConditionKind, Diagram, ElementKind, GraphicalPou, Language, PouBody,
+    graphical_pous, project_pous,
 };
 use plcrun::syntax::plcopen::network::{Edge, Storage};
 use plcrun::{ExportError, SourceMap, export_plcopen};
@@ -20,6 +22,10 @@ const GRAPHICAL: [&str; 4] = [
     "tests/plcopen/drawn_rungs.xml",
     "tests/plcopen/drawn_network.xml",
 ];
+
+/// A chart with a wired condition, FBD actions and transitions, an inline
+/// LD action, divergences, convergences and a jump.
+const CHART: &str = "tests/plcopen/drawn_chart.xml";
 
 /// The export of the files given as (name, text).
 fn export(files: &[(&str, &str)]) -> Result<String, ExportError> {
@@ -39,14 +45,28 @@ fn diagrams(xml: &str) -> Vec<(String, Diagram)> {
         .collect()
 }
 
+/// Every POU body of a project as read, as (name, body).
+fn bodies(xml: &str) -> Vec<(String, PouBody)> {
+    project_pous(xml)
+        .expect("readable")
+        .into_iter()
+        .map(|p| (p.name, p.body))
+        .collect()
+}
+
 #[test]
 fn every_graphical_body_is_the_same_diagram_after_export() {
-    for path in GRAPHICAL {
+    let more = [
+        CHART,
+        "tests/plcopen/chariot.xml",
+        "tests/plcopen/openplc_project.xml",
+    ];
+    for path in GRAPHICAL.into_iter().chain(more) {
         let original = repo_text(path);
         let exported = export(&[(path, &original)]).unwrap_or_else(|e| panic!("{path}: {e}"));
-        let before = diagrams(&original);
+        let before = bodies(&original);
         assert!(!before.is_empty(), "{path}");
-        assert_eq!(before, diagrams(&exported), "{path}");
+        assert_eq!(before, bodies(&exported), "{path}");
         // Exporting the export gives the same bytes: nothing drifts.
         let again = export(&[("again.xml", &exported)]).expect("export of the export");
         assert_eq!(exported, again, "{path}");
@@ -148,6 +168,12 @@ fn an_exported_project_runs_the_same_and_compiles_to_the_same_code() {
             "run,idle,alarm,pulse,fell,done",
         ),
         (GRAPHICAL[3], "a,b", "n", "q,done,late,total"),
+        (
+            CHART,
+            "go,abort",
+            "",
+            "n,lamp,busy,S0.X,S1.X,S2.X,S3.X,S4.X",
+        ),
     ];
     for (path, bools, ints, outputs) in runs {
         let original = repo_text(path);
@@ -211,15 +237,58 @@ fn a_mixed_project_exports_its_textual_and_graphical_pous() {
 }
 
 #[test]
-fn a_chart_read_from_xml_is_refused_by_name() {
-    let chart = repo_text("tests/plcopen/chariot.xml");
-    let e = export(&[("chariot.xml", &chart)]).expect_err("an imported chart");
-    let text = e.to_string();
-    assert!(text.starts_with("chariot.xml:"), "{text}");
-    assert!(text.contains("an SFC body read from PLCopen XML"), "{text}");
-    let (code, _, err) = cli::plcrun(&["export", "--plcopen", "tests/plcopen/chariot.xml"]);
-    assert_eq!(code, 1, "{err}");
-    assert!(err.contains("an SFC body read from PLCopen XML"), "{err}");
+fn a_chart_keeps_its_graphical_actions_transitions_and_conditions() {
+    let original = repo_text(CHART);
+    let Some((_, PouBody::Chart(chart))) = bodies(&original).into_iter().next() else {
+        panic!("a chart");
+    };
+    let kinds: Vec<&str> = chart.chart.elements.iter().map(|e| e.kind.tag()).collect();
+    for tag in [
+        "step",
+        "transition",
+        "selectionDivergence",
+        "selectionConvergence",
+        "simultaneousDivergence",
+        "simultaneousConvergence",
+        "jumpStep",
+        "actionBlock",
+        "leftPowerRail",
+        "contact",
+        "comment",
+    ] {
+        assert!(kinds.contains(&tag), "{tag} in {kinds:?}");
+    }
+    let conditions: Vec<&ConditionKind> = chart
+        .chart
+        .elements
+        .iter()
+        .filter_map(|e| match &e.kind {
+            ElementKind::Transition { condition, .. } => Some(&condition.kind),
+            _ => None,
+        })
+        .collect();
+    assert!(
+        conditions
+            .iter()
+            .any(|c| matches!(c, ConditionKind::Wired(_)))
+    );
+    assert!(
+        conditions
+            .iter()
+            .any(|c| matches!(c, ConditionKind::Reference(_)))
+    );
+    let graphical = |b: &Option<BodyModel>| matches!(b, Some(BodyModel::Diagram(_)));
+    assert!(chart.actions.iter().any(|a| graphical(&a.body)));
+    assert!(chart.transitions.iter().any(|t| graphical(&t.body)));
+    let inline_ld = chart.chart.elements.iter().any(|e| match &e.kind {
+        ElementKind::ActionBlock(list) => list.iter().any(|a| {
+            matches!(&a.action, ActionTarget::Inline(BodyModel::Diagram(d)) if d.language == Language::Ld)
+        }),
+        _ => false,
+    });
+    assert!(inline_ld);
+    let exported = export(&[(CHART, &original)]).expect("export");
+    assert_eq!(bodies(&original), bodies(&exported));
 }
 
 /// Measures the round trip on a folder of third-party projects (not in the
@@ -238,6 +307,7 @@ fn third_party_projects_round_trip() {
         .collect();
     paths.sort();
     let (mut same, mut networks, mut files) = (0, 0, 0);
+    let (mut same_bodies, mut all_bodies) = (0, 0);
     for path in &paths {
         let text = std::fs::read_to_string(path).expect("text");
         let Ok(before) = graphical_pous(&text) else {
@@ -246,8 +316,19 @@ fn third_party_projects_round_trip() {
         };
         files += 1;
         networks += before.len();
+        let all = project_pous(&text).unwrap_or_default();
+        all_bodies += all.len();
         match export(&[("in.xml", &text)]) {
             Ok(xml) => {
+                let after_all = project_pous(&xml).unwrap_or_default();
+                same_bodies += all
+                    .iter()
+                    .filter(|b| {
+                        after_all
+                            .iter()
+                            .any(|a| a.name == b.name && a.body == b.body)
+                    })
+                    .count();
                 let after = diagrams(&xml);
                 let kept = before
                     .iter()
@@ -264,4 +345,5 @@ fn third_party_projects_round_trip() {
         }
     }
     println!("{same} of {networks} FBD/LD bodies in {files} files round trip to the same network");
+    println!("{same_bodies} of {all_bodies} POU bodies (any language) are read back the same");
 }

@@ -18,9 +18,7 @@
 
 use super::network_geometry::{Wire, bounds, input_place, out_place, pin_place, size, wires};
 use super::svg_writer::{Element, SvgWriter, num};
-use crate::syntax::plcopen::diagram::{
-    Diagram, DiagramElement, ElementKind, Language, Modifiers, PinList,
-};
+use crate::syntax::plcopen::diagram::{Diagram, DiagramElement, ElementKind, Modifiers, PinList};
 use crate::syntax::plcopen::network::{Edge, Storage};
 
 /// Width of one character of the 12 px monospace font.
@@ -64,10 +62,7 @@ pub fn networks_svg(networks: &[Network]) -> String {
 
 /// One network: its title, its wires, then its elements on top.
 fn network(svg: &mut SvgWriter, n: &Network, wires: &[Wire], (dx, dy): (f64, f64), top: f64) {
-    let lang = match n.diagram.language {
-        Language::Fbd => "FBD",
-        Language::Ld => "LD",
-    };
+    let lang = n.diagram.language.tag();
     svg.open(
         Element::new("g")
             .attr("class", format!("network {}", lang.to_ascii_lowercase()))
@@ -175,6 +170,15 @@ fn element(svg: &mut SvgWriter, el: &DiagramElement) {
             svg.close();
         }
         ElementKind::Comment => comment(svg, el),
+        // Charts are drawn from the parsed chart (`chart_svg`), never here.
+        ElementKind::Step { .. }
+        | ElementKind::Transition { .. }
+        | ElementKind::SelectionDivergence
+        | ElementKind::SelectionConvergence
+        | ElementKind::SimultaneousDivergence
+        | ElementKind::SimultaneousConvergence
+        | ElementKind::JumpStep(_)
+        | ElementKind::ActionBlock(_) => {}
     }
 }
 

@@ -1,4 +1,4 @@
-//! The drawing of an `<FBD>` or `<LD>` body as the editor laid it out:
+//! The drawing of an `<FBD>`, `<LD>` or `<SFC>` body as the editor laid it out:
 //! every element with its `localId`, position, size, pins, connection
 //! points and the routes of its connections. Unlike the lowering's
 //! network (`super::super::network`), nothing is resolved or dropped
@@ -23,6 +23,8 @@ pub enum Language {
     Fbd,
     /// `<LD>`.
     Ld,
+    /// `<SFC>` (chart elements, and FBD/LD elements wired to conditions).
+    Sfc,
 }
 
 impl Language {
@@ -31,6 +33,7 @@ impl Language {
         match self {
             Language::Fbd => "FBD",
             Language::Ld => "LD",
+            Language::Sfc => "SFC",
         }
     }
 }
@@ -71,6 +74,125 @@ pub enum ElementKind {
     Coil,
     /// `<comment>`: text on the drawing.
     Comment,
+    /// `<step name initialStep>` of a chart.
+    Step {
+        /// The step's name.
+        name: String,
+        /// `initialStep="true"`.
+        initial: bool,
+    },
+    /// `<transition priority>` of a chart, with its condition.
+    Transition {
+        /// `priority`, as written.
+        priority: Option<String>,
+        /// Its `<condition>`.
+        condition: Condition,
+    },
+    /// `<selectionDivergence>`.
+    SelectionDivergence,
+    /// `<selectionConvergence>`.
+    SelectionConvergence,
+    /// `<simultaneousDivergence>`.
+    SimultaneousDivergence,
+    /// `<simultaneousConvergence>`.
+    SimultaneousConvergence,
+    /// `<jumpStep targetName>`.
+    JumpStep(String),
+    /// `<actionBlock>` with its associations.
+    ActionBlock(Vec<Association>),
+}
+
+/// A body written in a language: text, or a drawing.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BodyModel {
+    /// `<ST>` or `<IL>` text (decoded, paragraphs one after another).
+    Text {
+        /// `ST` or `IL`.
+        language: String,
+        /// The text.
+        text: String,
+    },
+    /// An `<FBD>` or `<LD>` body.
+    Diagram(Diagram),
+}
+
+/// What a transition's `<condition>` holds.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ConditionKind {
+    /// No condition element (the importer reports it).
+    Missing,
+    /// `<reference name>`: a named transition of the POU.
+    Reference(String),
+    /// `<inline name>` with its body.
+    Inline {
+        /// `name`, as written.
+        name: String,
+        /// The body.
+        body: BodyModel,
+    },
+    /// `<connectionPointIn>`: wired to the chart's FBD/LD elements.
+    Wired(PointIn),
+}
+
+/// A transition's `<condition>`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Condition {
+    /// `negated="true"`.
+    pub negated: bool,
+    /// What it holds.
+    pub kind: ConditionKind,
+}
+
+/// One `<action>` of an `<actionBlock>`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Association {
+    /// `localId`, when given.
+    pub id: Option<String>,
+    /// `qualifier`, `duration`, `indicator`, as written.
+    pub qualifier: Option<String>,
+    /// `duration`.
+    pub duration: Option<String>,
+    /// `indicator`.
+    pub indicator: Option<String>,
+    /// `<relPosition>`.
+    pub rel: Option<Point>,
+    /// `<reference name>` (a named action) or `<inline>` body.
+    pub action: ActionTarget,
+    /// Its `<connectionPointOut>`, when written.
+    pub output: Option<PointOut>,
+}
+
+/// What an association runs.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ActionTarget {
+    /// A named action of the POU, or a variable.
+    Reference(String),
+    /// An inline body.
+    Inline(BodyModel),
+    /// Neither (the importer reports it).
+    Missing,
+}
+
+/// A named `<action>` or `<transition>` of a POU.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedBody {
+    /// Its name.
+    pub name: String,
+    /// Its body (`None` when it has none plcrun reads).
+    pub body: Option<BodyModel>,
+}
+
+/// An SFC POU's chart as drawn, with its named actions and transitions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChartBody {
+    /// The `<SFC>` body.
+    pub chart: Diagram,
+    /// `<actions>`.
+    pub actions: Vec<NamedBody>,
+    /// `<transitions>`.
+    pub transitions: Vec<NamedBody>,
+    /// plcrun's plain statements of the chart (`<addData>`), if any.
+    pub statements: Option<String>,
 }
 
 impl ElementKind {
@@ -91,6 +213,14 @@ impl ElementKind {
             ElementKind::Contact => "contact",
             ElementKind::Coil => "coil",
             ElementKind::Comment => "comment",
+            ElementKind::Step { .. } => "step",
+            ElementKind::Transition { .. } => "transition",
+            ElementKind::SelectionDivergence => "selectionDivergence",
+            ElementKind::SelectionConvergence => "selectionConvergence",
+            ElementKind::SimultaneousDivergence => "simultaneousDivergence",
+            ElementKind::SimultaneousConvergence => "simultaneousConvergence",
+            ElementKind::JumpStep(_) => "jumpStep",
+            ElementKind::ActionBlock(_) => "actionBlock",
         }
     }
 }
@@ -200,6 +330,8 @@ pub struct DiagramElement {
     pub outputs: Vec<PointOut>,
     /// A block's pins, in document order.
     pub pins: Vec<BlockPin>,
+    /// A step's `<connectionPointOutAction>`.
+    pub action_point: Option<PointOut>,
 }
 
 impl DiagramElement {
@@ -217,6 +349,7 @@ impl DiagramElement {
             inputs: Vec::new(),
             outputs: Vec::new(),
             pins: Vec::new(),
+            action_point: None,
         }
     }
 }

@@ -1,22 +1,26 @@
-//! Reads a [`Diagram`] from the XML of an `<FBD>` or `<LD>` body: every
-//! element as written, nothing resolved. The body is expected to have
+//! Reads a [`Diagram`] from the XML of an `<FBD>`, `<LD>` or `<SFC>`
+//! body: every element as written, nothing resolved. The body is expected to have
 //! passed the importer (which reports what is wrong with a coded
 //! diagnostic); what this reader still cannot take is an error naming the
 //! element.
 
 use super::model::{
-    BlockPin, Connection, Diagram, DiagramElement, Edge, ElementKind, Language, Modifiers, PinList,
-    Point, PointIn, PointOut, Storage,
+    BlockPin, BodyModel, Connection, Diagram, DiagramElement, Edge, ElementKind, Language,
+    Modifiers, PinList, Point, PointIn, PointOut, Storage,
 };
-use crate::syntax::plcopen::emit::{child, elements, is_true};
+use crate::source::FileId;
+use crate::syntax::plcopen::body::text_ranges;
+use crate::syntax::plcopen::emit::{Emitter, child, elements, is_true};
+use crate::syntax::plcopen::raw::decode;
 use roxmltree::Node;
 
-/// Reads the body `lang` (an `<FBD>` or `<LD>` element).
+/// Reads the body `lang` (an `<FBD>`, `<LD>` or `<SFC>` element).
 pub fn read_diagram(lang: Node) -> Result<Diagram, String> {
     let language = match lang.tag_name().name() {
         "LD" => Language::Ld,
         "FBD" => Language::Fbd,
-        other => return Err(format!("`<{other}>` is not an FBD or LD body")),
+        "SFC" => Language::Sfc,
+        other => return Err(format!("`<{other}>` is not an FBD, LD or SFC body")),
     };
     let mut out = Vec::new();
     for node in elements(lang) {
@@ -54,7 +58,10 @@ fn read_element(node: Node) -> Result<Option<DiagramElement>, String> {
         "coil" => ElementKind::Coil,
         "comment" => ElementKind::Comment,
         "addData" | "documentation" => return Ok(None),
-        other => return Err(format!("`<{other}>` has no place in an FBD or LD body")),
+        other => match super::read_chart::chart_kind(node)? {
+            Some(kind) => kind,
+            None => return Err(format!("`<{other}>` has no place in a graphical body")),
+        },
     };
     let Some(id) = node.attribute("localId").map(str::trim) else {
         return Err(format!("`<{name}>` has no localId"));
@@ -87,22 +94,56 @@ fn read_element(node: Node) -> Result<Option<DiagramElement>, String> {
     } else {
         el.inputs = named(node, "connectionPointIn").map(point_in).collect();
         el.outputs = named(node, "connectionPointOut").map(point_out).collect();
+        el.action_point = child(node, "connectionPointOutAction").map(point_out);
     }
     Ok(Some(el))
 }
 
+/// Reads a body written in `lang` (`<ST>`, `<IL>`, `<FBD>` or `<LD>`).
+pub fn read_body(lang: Node) -> Result<BodyModel, String> {
+    match lang.tag_name().name() {
+        "ST" | "IL" => Ok(BodyModel::Text {
+            language: lang.tag_name().name().to_string(),
+            text: body_text(lang),
+        }),
+        "FBD" | "LD" => Ok(BodyModel::Diagram(read_diagram(lang)?)),
+        other => Err(format!(
+            "a `<{other}>` body here has no form plcrun writes back"
+        )),
+    }
+}
+
+/// The decoded text of a textual body, its paragraphs one after another,
+/// each ending with one line break.
+pub fn body_text(lang: Node) -> String {
+    let xml = lang.document().input_text();
+    // The importer has reported what is wrong with the body already.
+    let mut scratch = Emitter::new(FileId(0), xml, 0);
+    let mut text = String::new();
+    for (s, e) in text_ranges(&mut scratch, lang) {
+        if let Ok(d) = decode(xml, s, e) {
+            text.push_str(d.text.trim_matches('\n'));
+            text.push('\n');
+        }
+    }
+    text
+}
+
 /// The children of `node` named `name`.
-fn named<'a, 'i>(node: Node<'a, 'i>, name: &'static str) -> impl Iterator<Item = Node<'a, 'i>> {
+pub(super) fn named<'a, 'i>(
+    node: Node<'a, 'i>,
+    name: &'static str,
+) -> impl Iterator<Item = Node<'a, 'i>> {
     elements(node).filter(move |c| c.tag_name().name() == name)
 }
 
 /// A numeric attribute.
-fn number(node: Node, name: &str) -> Option<f64> {
+pub(super) fn number(node: Node, name: &str) -> Option<f64> {
     node.attribute(name)?.trim().parse().ok()
 }
 
 /// A `<position>` or `<relPosition>` (0 for a missing coordinate).
-fn point(node: Node) -> Point {
+pub(super) fn point(node: Node) -> Point {
     Point {
         x: number(node, "x").unwrap_or(0.0),
         y: number(node, "y").unwrap_or(0.0),
@@ -150,7 +191,7 @@ fn modifiers(node: Node, negated: &str, edge: &str, storage: &str) -> Modifiers 
 }
 
 /// A `<connectionPointIn>` with its connections.
-fn point_in(node: Node) -> PointIn {
+pub(super) fn point_in(node: Node) -> PointIn {
     PointIn {
         rel: child(node, "relPosition").map(point),
         connections: named(node, "connection")
@@ -164,7 +205,7 @@ fn point_in(node: Node) -> PointIn {
 }
 
 /// A `<connectionPointOut>`.
-fn point_out(node: Node) -> PointOut {
+pub(super) fn point_out(node: Node) -> PointOut {
     PointOut {
         name: node
             .attribute("formalParameter")

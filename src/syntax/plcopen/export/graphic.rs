@@ -1,16 +1,25 @@
-//! Export of a graphical body: a [`Diagram`] written back as `<FBD>` or
-//! `<LD>` with every element, its localId, position, size, pins,
+//! Export of a graphical body: a [`Diagram`] written back as `<FBD>`,
+//! `<LD>` or `<SFC>` with every element, its localId, position, size, pins,
 //! connection points and connection routes, so that reading the output
 //! gives the same diagram.
 
 use super::super::diagram::{
-    BlockPin, Connection, Diagram, DiagramElement, ElementKind, Modifiers, PinList, Point, PointIn,
-    PointOut,
+    BlockPin, BodyModel, Connection, Diagram, DiagramElement, ElementKind, Modifiers, PinList,
+    Point, PointIn, PointOut,
 };
 use super::super::network::{Edge, Storage};
+use super::drawn_chart::{associations, condition};
 use super::writer::Writer;
 
-/// Writes `<FBD>`/`<LD>` with the diagram's elements.
+/// A body: ST or IL text, or a drawing.
+pub fn body_model(w: &mut Writer, b: &BodyModel) {
+    match b {
+        BodyModel::Text { language, text } => w.text_body(language, text),
+        BodyModel::Diagram(d) => diagram(w, d),
+    }
+}
+
+/// Writes `<FBD>`/`<LD>`/`<SFC>` with the diagram's elements.
 pub fn diagram(w: &mut Writer, d: &Diagram) {
     let tag = d.language.tag();
     if d.elements.is_empty() {
@@ -30,18 +39,18 @@ fn coordinate(v: f64) -> String {
 }
 
 /// `x="..." y="..."` of a point.
-fn point_attrs(p: Point) -> [(&'static str, String); 2] {
+pub(super) fn point_attrs(p: Point) -> [(&'static str, String); 2] {
     [("x", coordinate(p.x)), ("y", coordinate(p.y))]
 }
 
 /// Writes an element with only attributes made of owned strings.
-fn empty_owned(w: &mut Writer, name: &str, attrs: &[(&'static str, String)]) {
+pub(super) fn empty_owned(w: &mut Writer, name: &str, attrs: &[(&'static str, String)]) {
     let borrowed: Vec<(&str, &str)> = attrs.iter().map(|(k, v)| (*k, v.as_str())).collect();
     w.empty(name, &borrowed);
 }
 
 /// Opens an element with attributes made of owned strings.
-fn open_owned(w: &mut Writer, name: &str, attrs: &[(&'static str, String)]) {
+pub(super) fn open_owned(w: &mut Writer, name: &str, attrs: &[(&'static str, String)]) {
     let borrowed: Vec<(&str, &str)> = attrs.iter().map(|(k, v)| (*k, v.as_str())).collect();
     w.open(name, &borrowed);
 }
@@ -61,6 +70,16 @@ fn element_attrs(el: &DiagramElement) -> Vec<(&'static str, String)> {
         }
         ElementKind::Connector(n) | ElementKind::Continuation(n) => a.push(("name", n.clone())),
         ElementKind::Jump(l) | ElementKind::Label(l) => a.push(("label", l.clone())),
+        ElementKind::Step { name, initial } => {
+            a.push(("name", name.clone()));
+            if *initial {
+                a.push(("initialStep", "true".to_string()));
+            }
+        }
+        ElementKind::Transition {
+            priority: Some(p), ..
+        } => a.push(("priority", p.clone())),
+        ElementKind::JumpStep(target) => a.push(("targetName", target.clone())),
         _ => {}
     }
     if let Some(size) = el.size {
@@ -125,12 +144,17 @@ fn element(w: &mut Writer, el: &DiagramElement) {
     for p in &el.outputs {
         point_out(w, p);
     }
-    match el.kind {
+    if let Some(p) = &el.action_point {
+        write_action_point(w, p);
+    }
+    match &el.kind {
         ElementKind::Contact | ElementKind::Coil => w.text_element("variable", &[], &el.text),
         ElementKind::InVariable | ElementKind::OutVariable | ElementKind::InOutVariable => {
             w.text_element("expression", &[], &el.text)
         }
         ElementKind::Comment => w.text_body("content", &el.text),
+        ElementKind::Transition { condition: c, .. } => condition(w, c),
+        ElementKind::ActionBlock(list) => associations(w, list),
         _ => {}
     }
     w.close(tag);
@@ -158,7 +182,7 @@ fn block_pin(w: &mut Writer, pin: &BlockPin) {
 }
 
 /// A `<connectionPointIn>` with its connections.
-fn point_in(w: &mut Writer, p: &PointIn) {
+pub(super) fn point_in(w: &mut Writer, p: &PointIn) {
     if p.rel.is_none() && p.connections.is_empty() {
         w.empty("connectionPointIn", &[]);
         return;
@@ -190,19 +214,29 @@ fn connection(w: &mut Writer, c: &Connection) {
     w.close("connection");
 }
 
+/// A step's `<connectionPointOutAction>`.
+fn write_action_point(w: &mut Writer, p: &PointOut) {
+    out_point(w, "connectionPointOutAction", p);
+}
+
 /// A `<connectionPointOut>`.
-fn point_out(w: &mut Writer, p: &PointOut) {
+pub(super) fn point_out(w: &mut Writer, p: &PointOut) {
+    out_point(w, "connectionPointOut", p);
+}
+
+/// An output point written as `tag`.
+fn out_point(w: &mut Writer, tag: &str, p: &PointOut) {
     let a: Vec<(&'static str, String)> = p
         .name
         .iter()
         .map(|n| ("formalParameter", n.clone()))
         .collect();
     match p.rel {
-        None => empty_owned(w, "connectionPointOut", &a),
+        None => empty_owned(w, tag, &a),
         Some(rel) => {
-            open_owned(w, "connectionPointOut", &a);
+            open_owned(w, tag, &a);
             empty_owned(w, "relPosition", &point_attrs(rel));
-            w.close("connectionPointOut");
+            w.close(tag);
         }
     }
 }

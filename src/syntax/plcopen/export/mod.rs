@@ -8,19 +8,21 @@
 //! element, so reading the output gives the same networks.
 
 mod config;
+mod drawn_chart;
 mod graphic;
 mod sfc;
 mod types;
 mod writer;
 mod xml_source;
 
+use super::diagram::{PouBody, ProjectPou};
 use crate::diagnostics::Diagnostics;
 use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::ast::{Body, CompilationUnit, Item, Pou, PouKind, Retain, VarBlock, VarKind};
 use std::collections::HashMap;
 use std::fmt;
 use writer::Writer;
-use xml_source::{XmlBody, XmlPou, xml_bodies};
+use xml_source::xml_bodies;
 
 /// Why sources could not be exported.
 #[derive(Debug, Clone, PartialEq)]
@@ -132,7 +134,7 @@ pub fn export_plcopen(sources: &SourceMap) -> Result<String, ExportError> {
 struct Exporter<'s> {
     sources: &'s SourceMap,
     /// The bodies of the POUs of PLCopen files, by file and upper-case name.
-    xml: HashMap<(FileId, String), XmlPou>,
+    xml: HashMap<(FileId, String), ProjectPou>,
 }
 
 impl Exporter<'_> {
@@ -241,21 +243,15 @@ impl Exporter<'_> {
             }
         }
         w.close("interface");
-        if from_xml.is_none() && super::is_plcopen(&self.sources.file(pou.span.file).text) {
-            // The AST of an imported chart holds its graphical parts
-            // lowered to ST: writing it back would not give the chart read.
-            return Err(self.refuse(
-                "an SFC body read from PLCopen XML (charts are exported from textual SFC only)",
-                pou.name.span,
-            ));
-        }
         if let Some(x) = from_xml {
-            w.open("body", &[]);
             match &x.body {
-                XmlBody::Graphic(d) => graphic::diagram(w, d),
-                XmlBody::Text { language, text } => w.text_body(language, text),
+                PouBody::Plain(body) => {
+                    w.open("body", &[]);
+                    graphic::body_model(w, body);
+                    w.close("body");
+                }
+                PouBody::Chart(chart) => drawn_chart::chart_pou(w, chart),
             }
-            w.close("body");
             w.close("pou");
             return Ok(());
         }
