@@ -70,15 +70,7 @@ fn element_attrs(el: &DiagramElement) -> Vec<(&'static str, String)> {
         }
         ElementKind::Connector(n) | ElementKind::Continuation(n) => a.push(("name", n.clone())),
         ElementKind::Jump(l) | ElementKind::Label(l) => a.push(("label", l.clone())),
-        ElementKind::Step { name, initial } => {
-            a.push(("name", name.clone()));
-            if *initial {
-                a.push(("initialStep", "true".to_string()));
-            }
-        }
-        ElementKind::Transition {
-            priority: Some(p), ..
-        } => a.push(("priority", p.clone())),
+        ElementKind::Step { name, .. } => a.push(("name", name.clone())),
         ElementKind::JumpStep(target) => a.push(("targetName", target.clone())),
         _ => {}
     }
@@ -88,6 +80,13 @@ fn element_attrs(el: &DiagramElement) -> Vec<(&'static str, String)> {
     }
     if let Some(order) = el.order {
         a.push(("executionOrderId", order.to_string()));
+    }
+    match &el.kind {
+        ElementKind::Step { initial: true, .. } => a.push(("initialStep", "true".to_string())),
+        ElementKind::Transition {
+            priority: Some(p), ..
+        } => a.push(("priority", p.clone())),
+        _ => {}
     }
     if el.kind == ElementKind::InOutVariable {
         modifier_attrs(&mut a, el.modifiers, ["negatedIn", "edgeIn", "storageIn"]);
