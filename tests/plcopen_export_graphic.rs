@@ -237,6 +237,27 @@ fn a_mixed_project_exports_its_textual_and_graphical_pous() {
 }
 
 #[test]
+fn entities_in_values_and_bodies_are_written_once_escaped() {
+    let text = "<?xml version=\"1.0\"?>\n<project xmlns=\"http://www.plcopen.org/xml/tc6_0201\" xmlns:xhtml=\"http://www.w3.org/1999/xhtml\"><types><dataTypes/><pous>\
+        <pou name=\"P\" pouType=\"program\"><interface><outputVars>\
+        <variable name=\"s\"><type><string/></type><initialValue><simpleValue value=\"&apos;a&lt;b&apos;\"/></initialValue></variable>\
+        <variable name=\"q\"><type><BOOL/></type></variable></outputVars></interface>\
+        <body><ST><xhtml:p>q := s = 'a&lt;b' AND 1 &lt; 2;</xhtml:p></ST></body></pou>\
+        </pous></types><instances><configurations/></instances></project>";
+    let exported = export(&[("e.xml", text)]).expect("export");
+    assert!(exported.contains("value=\"'a&lt;b'\""), "{exported}");
+    assert_eq!(bodies(text), bodies(&exported));
+    let request = TraceRequest {
+        cycles: 1,
+        stimulus: None,
+        trace: Some("q,s"),
+        changes_only: false,
+    };
+    let trace = csv_trace(&[("e.xml", exported.as_str())], &request);
+    assert!(trace.ends_with(",TRUE,'a<b'\n"), "{trace}");
+}
+
+#[test]
 fn a_chart_keeps_its_graphical_actions_transitions_and_conditions() {
     let original = repo_text(CHART);
     let Some((_, PouBody::Chart(chart))) = bodies(&original).into_iter().next() else {

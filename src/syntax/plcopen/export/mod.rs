@@ -145,6 +145,20 @@ impl Exporter<'_> {
             .unwrap_or("")
     }
 
+    /// The text of a value at `span` (a bound, a length, an initial
+    /// value): in a PLCopen file, an attribute's text with its entities
+    /// decoded, so that writing it does not escape them twice.
+    fn value_text(&self, span: Span) -> std::borrow::Cow<'_, str> {
+        let raw = self.text(span);
+        if raw.contains('&')
+            && super::is_plcopen(&self.sources.file(span.file).text)
+            && let Ok(decoded) = super::raw::decode(raw, 0, raw.len())
+        {
+            return decoded.text.into();
+        }
+        raw.into()
+    }
+
     /// An [`ExportError::Unrepresentable`] at `span`.
     fn refuse(&self, what: impl Into<String>, span: Span) -> ExportError {
         ExportError::Unrepresentable {
