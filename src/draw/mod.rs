@@ -7,13 +7,15 @@
 //!   lines, step lines and labelled segments over a time axis.
 //! - [`NetworkPicture`]: the FBD networks and LD rungs of PLCopen
 //!   sources at the editor's positions (`network_geometry`, drawn by
-//!   `network_svg`); [`draw_sources`] chooses between a chart and them.
+//!   `network_svg` and `ld_svg`); [`draw_sources`] chooses between a
+//!   chart and them.
 //!
 //! All SVG text comes out of `svg_writer`.
 
 mod chart_layout;
 mod chart_model;
 mod chart_svg;
+mod ld_svg;
 mod network_geometry;
 mod network_picture;
 mod network_svg;

@@ -1,5 +1,6 @@
 //! Draws FBD networks and LD rungs ([`Diagram`]) as SVG at the editor's
-//! positions, so the picture looks like the editor's.
+//! positions, so the picture looks like the editor's (the LD symbols are
+//! drawn by `ld_svg`).
 //!
 //! Conventions (IEC 61131-3): a block is a box with its type name inside
 //! at the top, its instance name above, its formal parameters inside at
@@ -16,10 +17,11 @@
 //! `return`, `comment`, `negation`) and a `data-id` (its localId), so
 //! tests and style sheets can find them.
 
+use super::ld_svg;
 use super::network_geometry::{Wire, bounds, input_place, out_place, pin_place, size, wires};
 use super::svg_writer::{Element, SvgWriter, num};
 use crate::syntax::plcopen::diagram::{Diagram, DiagramElement, ElementKind, Modifiers, PinList};
-use crate::syntax::plcopen::network::{Edge, Storage};
+use crate::syntax::plcopen::network::Edge;
 
 /// Width of one character of the 12 px monospace font.
 const CHAR_W: f64 = 7.2;
@@ -94,14 +96,20 @@ fn network(svg: &mut SvgWriter, n: &Network, wires: &[Wire], (dx, dy): (f64, f64
 }
 
 /// A group for element `el` with its class and localId.
-fn group(el: &DiagramElement, class: &str) -> Element {
+pub(super) fn group(el: &DiagramElement, class: &str) -> Element {
     Element::new("g")
         .attr("class", class.to_string())
         .attr("data-id", el.id.clone())
 }
 
 /// A text at `(x, y)` anchored as `anchor` (`start`, `middle`, `end`).
-fn label(svg: &mut SvgWriter, class: &str, (x, y): (f64, f64), anchor: &str, text: &str) {
+pub(super) fn label(
+    svg: &mut SvgWriter,
+    class: &str,
+    (x, y): (f64, f64),
+    anchor: &str,
+    text: &str,
+) {
     svg.text(
         Element::new("text")
             .attr("class", class.to_string())
@@ -113,7 +121,7 @@ fn label(svg: &mut SvgWriter, class: &str, (x, y): (f64, f64), anchor: &str, tex
 }
 
 /// A plain black line.
-fn line(svg: &mut SvgWriter, (x1, y1): (f64, f64), (x2, y2): (f64, f64), width: f64) {
+pub(super) fn line(svg: &mut SvgWriter, (x1, y1): (f64, f64), (x2, y2): (f64, f64), width: f64) {
     svg.empty(
         Element::new("line")
             .num("x1", x1)
@@ -149,9 +157,9 @@ fn element(svg: &mut SvgWriter, el: &DiagramElement) {
         ElementKind::InVariable | ElementKind::OutVariable | ElementKind::InOutVariable => {
             variable(svg, el)
         }
-        ElementKind::Contact => contact_or_coil(svg, el, true),
-        ElementKind::Coil => contact_or_coil(svg, el, false),
-        ElementKind::LeftRail | ElementKind::RightRail => rail(svg, el),
+        ElementKind::Contact => ld_svg::contact_or_coil(svg, el, true),
+        ElementKind::Coil => ld_svg::contact_or_coil(svg, el, false),
+        ElementKind::LeftRail | ElementKind::RightRail => ld_svg::rail(svg, el),
         ElementKind::Connector(name) => named_arrow(svg, el, "connector", name, false),
         ElementKind::Continuation(name) => named_arrow(svg, el, "continuation", name, true),
         ElementKind::Jump(target) => jump(svg, el, target),
@@ -273,80 +281,6 @@ fn variable(svg: &mut SvgWriter, el: &DiagramElement) {
     if out_negated && let Some(p) = el.outputs.first() {
         negation(svg, out_place(el, p.rel), 1.0);
     }
-    svg.close();
-}
-
-/// The letter inside a contact or coil, if any.
-fn symbol_letter(m: Modifiers, coil: bool) -> &'static str {
-    match (m.edge, m.storage, m.negated) {
-        (Edge::Rising, _, _) => "P",
-        (Edge::Falling, _, _) => "N",
-        (_, Storage::Set, _) if coil => "S",
-        (_, Storage::Reset, _) if coil => "R",
-        (_, _, true) => "/",
-        _ => "",
-    }
-}
-
-/// A contact `-| |-` or a coil `-( )-` with its variable above.
-fn contact_or_coil(svg: &mut SvgWriter, el: &DiagramElement, contact: bool) {
-    let (w, h) = size(el);
-    let (x, y) = (el.position.x, el.position.y);
-    let mid = y + h / 2.0;
-    let letter = symbol_letter(el.modifiers, !contact);
-    let class = if contact { "contact" } else { "coil" };
-    svg.open(group(el, class).attr("data-symbol", letter));
-    if contact {
-        line(svg, (x + 2.0, y), (x + 2.0, y + h), 2.0);
-        line(svg, (x + w - 2.0, y), (x + w - 2.0, y + h), 2.0);
-    } else {
-        let r = h / 2.0;
-        let d = format!(
-            "M {} {} A {r} {r} 0 0 0 {} {} M {} {} A {r} {r} 0 0 1 {} {}",
-            x + r * 0.6,
-            y,
-            x + r * 0.6,
-            y + h,
-            x + w - r * 0.6,
-            y,
-            x + w - r * 0.6,
-            y + h,
-        );
-        svg.empty(
-            Element::new("path")
-                .attr("d", d)
-                .attr("fill", "none")
-                .attr("stroke", "black")
-                .num("stroke-width", 1.5),
-        );
-    }
-    line(svg, (x, mid), (x + 2.0, mid), 1.0);
-    line(svg, (x + w - 2.0, mid), (x + w, mid), 1.0);
-    if !letter.is_empty() {
-        label(svg, "symbol", (x + w / 2.0, mid + 4.0), "middle", letter);
-    }
-    label(
-        svg,
-        "name",
-        (x + w / 2.0, y - 4.0),
-        "middle",
-        el.text.trim(),
-    );
-    svg.close();
-}
-
-/// A power rail: a thick vertical line.
-fn rail(svg: &mut SvgWriter, el: &DiagramElement) {
-    let (w, h) = size(el);
-    svg.open(group(el, "rail"));
-    svg.empty(
-        Element::new("rect")
-            .num("x", el.position.x)
-            .num("y", el.position.y)
-            .num("width", w.min(4.0))
-            .num("height", h)
-            .attr("fill", "black"),
-    );
     svg.close();
 }
 
