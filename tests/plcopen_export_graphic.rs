@@ -237,6 +237,31 @@ fn a_mixed_project_exports_its_textual_and_graphical_pous() {
 }
 
 #[test]
+fn an_openplc_project_keeps_its_addressing_after_export() {
+    use plcrun::syntax::plcopen::origin::written_by_matiec_tools;
+    // `%QX0.0` and `%QW0` are separate under `openplc` addressing, the
+    // same bytes under `iec`: the export must keep the convention.
+    let original = repo_text("tests/plcopen/openplc_project.xml");
+    assert!(written_by_matiec_tools(&original));
+    let exported = export(&[("tank.xml", &original)]).expect("export");
+    assert!(
+        written_by_matiec_tools(&exported),
+        "the export keeps the mark"
+    );
+    let textual =
+        export(&[("twin.st", &repo_text("tests/plcopen/openplc_project.st"))]).expect("export");
+    assert!(
+        !written_by_matiec_tools(&textual),
+        "textual sources have none"
+    );
+    let out = cli::temp_file("tank.xml", &exported);
+    let (_, _, before) = cli::plcrun(&["check", "tests/plcopen/openplc_project.xml"]);
+    let (_, _, after) = cli::plcrun(&["check", &out]);
+    let warnings = |e: &str| e.lines().filter(|l| l.starts_with("warning")).count();
+    assert_eq!(warnings(&before), warnings(&after), "{before}\n{after}");
+}
+
+#[test]
 fn entities_in_values_and_bodies_are_written_once_escaped() {
     let text = "<?xml version=\"1.0\"?>\n<project xmlns=\"http://www.plcopen.org/xml/tc6_0201\" xmlns:xhtml=\"http://www.w3.org/1999/xhtml\"><types><dataTypes/><pous>\
         <pou name=\"P\" pouType=\"program\"><interface><outputVars>\
@@ -328,7 +353,7 @@ fn third_party_projects_round_trip() {
         .collect();
     paths.sort();
     let (mut same, mut networks, mut files) = (0, 0, 0);
-    let (mut same_bodies, mut all_bodies) = (0, 0);
+    let (mut same_bodies, mut all_bodies, mut same_code) = (0, 0, 0);
     for path in &paths {
         let text = std::fs::read_to_string(path).expect("text");
         let Ok(before) = graphical_pous(&text) else {
@@ -356,10 +381,14 @@ fn third_party_projects_round_trip() {
                     .filter(|b| after.iter().any(|(n, d)| *n == b.name && *d == b.diagram))
                     .count();
                 same += kept;
+                let out = cli::temp_file("exported.xml", &xml);
+                let code = same_compilation(&path.to_string_lossy(), &out);
+                same_code += usize::from(code);
                 println!(
-                    "{}: {kept}/{} networks the same",
+                    "{}: {kept}/{} networks the same, {} compilation",
                     path.display(),
-                    before.len()
+                    before.len(),
+                    if code { "the same" } else { "a different" }
                 );
             }
             Err(e) => println!("{}: not exported: {e}", path.display()),
@@ -367,4 +396,21 @@ fn third_party_projects_round_trip() {
     }
     println!("{same} of {networks} FBD/LD bodies in {files} files round trip to the same network");
     println!("{same_bodies} of {all_bodies} POU bodies (any language) are read back the same");
+    println!("{same_code} of {files} files compile to the same code or the same diagnostics");
+}
+
+/// True when `plcrun check --dump-ir` gives the same exit status, code and
+/// diagnostics (their headlines, without places) for the two files.
+fn same_compilation(a: &str, b: &str) -> bool {
+    let run = |path: &str| {
+        let (status, out, err) = cli::plcrun(&["check", "--dump-ir", path]);
+        let mut heads: Vec<String> = err
+            .lines()
+            .filter(|l| l.starts_with("error") || l.starts_with("warning"))
+            .map(str::to_string)
+            .collect();
+        heads.sort();
+        (status, out, heads)
+    };
+    run(a) == run(b)
 }

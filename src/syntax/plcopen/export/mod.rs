@@ -127,7 +127,17 @@ pub fn export_plcopen(sources: &SourceMap) -> Result<String, ExportError> {
             rendered: diags.render(sources),
         });
     }
-    Exporter { sources, xml }.project(&units)
+    Exporter { sources, xml }.project(&units, matiec_origin(sources))
+}
+
+/// True when a source is a PLCopen project of the OpenPLC Editor or
+/// Beremiz: its direct addresses are numbered by the `openplc`
+/// convention, and the export must say so to run the same.
+fn matiec_origin(sources: &SourceMap) -> bool {
+    sources
+        .files()
+        .iter()
+        .any(|f| super::is_plcopen(&f.text) && super::origin::written_by_matiec_tools(&f.text))
 }
 
 /// The sources being exported (for the text of expressions and bodies).
@@ -168,7 +178,7 @@ impl Exporter<'_> {
     }
 
     /// The whole project.
-    fn project(&self, units: &[CompilationUnit]) -> Result<String, ExportError> {
+    fn project(&self, units: &[CompilationUnit], matiec: bool) -> Result<String, ExportError> {
         let items: Vec<&Item> = units.iter().flat_map(|u| &u.items).collect();
         let name = items
             .iter()
@@ -178,14 +188,17 @@ impl Exporter<'_> {
             })
             .unwrap_or("plcrun");
         let mut w = Writer::new();
-        w.open(
-            "project",
-            &[
-                ("xmlns", super::NAMESPACE_0201),
-                ("xmlns:xhtml", "http://www.w3.org/1999/xhtml"),
-                ("xmlns:xsd", "http://www.w3.org/2001/XMLSchema"),
-            ],
-        );
+        let mut root = vec![
+            ("xmlns", super::NAMESPACE_0201),
+            ("xmlns:xhtml", "http://www.w3.org/1999/xhtml"),
+            ("xmlns:xsd", "http://www.w3.org/2001/XMLSchema"),
+        ];
+        if matiec {
+            // The mark of Beremiz's writer (`super::origin`): the project
+            // keeps the `openplc` addressing of its sources.
+            root.push(("xmlns:ns1", super::NAMESPACE_0201));
+        }
+        w.open("project", &root);
         header(&mut w, name);
         w.open("types", &[]);
         w.open("dataTypes", &[]);
