@@ -308,7 +308,7 @@ pub struct CheckArgs {
 /// `plcrun export --plcopen FILES... [-o OUT.xml]`.
 #[derive(Debug, Args)]
 pub struct ExportArgs {
-    /// Source files (IL, ST, SFC).
+    /// Source files (IL, ST, SFC, and PLCopen XML, whose FBD, LD and SFC bodies are written back as drawn).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// Write PLCopen TC6 XML 2.01 (the only export format, required).
