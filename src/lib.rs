@@ -64,8 +64,8 @@ pub use compare::{
 };
 pub use diagnostics::{Diagnostic, Diagnostics, STRICT_NOTE, Severity, is_compatibility_code};
 pub use draw::{
-    ActionLine, ChartModel, ChartPicture, DrawError, MAX_CHANGES, StepNode, TimingDiagram,
-    TransitionNode, draw_chart,
+    ActionLine, ChartModel, ChartPicture, DrawError, MAX_CHANGES, NetworkPicture, StepNode,
+    TimingDiagram, TransitionNode, draw_chart, draw_sources,
 };
 pub use driver::{
     CheckOptions, CheckReport, LoadError, add_source_bytes, check, check_reporting, load_files,

@@ -510,7 +510,10 @@ fn the_pictures_of_the_docs_render() {
             rendered += 1;
         }
     }
-    assert_eq!(rendered, 4, "the pictures of docs/sfc.md");
+    assert_eq!(
+        rendered, 6,
+        "the pictures of docs/sfc.md and docs/plcopen.md"
+    );
 }
 
 #[test]
@@ -565,5 +568,66 @@ fn enumerations_are_labelled_segments() {
             .filter(|n| has_class(n, "segment"))
             .count(),
         6
+    );
+}
+
+/// The PLCopen test projects with FBD and LD bodies.
+const NETWORKS: [&str; 4] = [
+    "tests/plcopen/drawn_rungs.xml",
+    "tests/plcopen/drawn_network.xml",
+    "tests/plcopen/fbd_elements.xml",
+    "tests/plcopen/ld_elements.xml",
+];
+
+#[test]
+fn every_element_of_a_network_is_drawn_once_and_the_picture_renders() {
+    for path in NETWORKS {
+        let picture = plcrun::NetworkPicture::from_sources(&sources(&[path]), None).unwrap();
+        let svg = picture.to_svg();
+        assert_eq!(svg, picture.to_svg(), "{path}: deterministic");
+        let doc = Document::parse(&svg).unwrap();
+        for pou in picture.pous() {
+            let mut drawn: Vec<&str> = doc
+                .descendants()
+                .filter(|n| {
+                    n.ancestors()
+                        .any(|a| a.attribute("data-pou") == Some(&pou.name))
+                })
+                .filter_map(|n| n.attribute("data-id"))
+                .collect();
+            drawn.sort_unstable();
+            let mut ids: Vec<&str> = pou.diagram.elements.iter().map(|e| e.id.as_str()).collect();
+            ids.sort_unstable();
+            assert_eq!(drawn, ids, "{path}: {}", pou.name);
+        }
+        let name = path.rsplit('/').next().unwrap().replace(".xml", "");
+        render(&svg, &name);
+    }
+}
+
+#[test]
+fn draw_sources_draws_the_chart_or_the_networks_and_says_why_not() {
+    use plcrun::{DrawError, draw_sources};
+    let chart = draw_sources(&sources(&["programs/chariot.sfc"]), None).unwrap();
+    assert!(chart.contains("class=\"step"), "a chart");
+    let rungs = draw_sources(&sources(&[NETWORKS[0]]), None).unwrap();
+    assert!(rungs.contains("class=\"network ld\""), "the rungs");
+    let both = sources(&[NETWORKS[0], NETWORKS[1]]);
+    let all = draw_sources(&both, None).unwrap();
+    assert_eq!(all.matches("class=\"network ").count(), 2);
+    let one = draw_sources(&both, Some("network")).unwrap();
+    assert_eq!(one.matches("class=\"network fbd\"").count(), 1);
+    assert_eq!(
+        draw_sources(&both, Some("nope")).unwrap_err(),
+        DrawError::NoSuchPou("nope".into())
+    );
+    let textual = sources(&["tests/plcopen/comparator.xml"]);
+    assert_eq!(
+        draw_sources(&textual, Some("COMPA")).unwrap_err(),
+        DrawError::NotDrawable("COMPA".into())
+    );
+    assert_eq!(
+        draw_sources(&textual, None).unwrap_err(),
+        DrawError::NothingToDraw
     );
 }

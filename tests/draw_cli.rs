@@ -55,6 +55,107 @@ fn draw_refuses_what_it_cannot_draw() {
     assert!(err.contains("error"), "{err}");
 }
 
+/// The `data-*` attribute `name` of every element of class `class`.
+fn data_of(doc: &Document, class: &str, name: &str) -> Vec<String> {
+    classed(doc, class)
+        .iter()
+        .filter_map(|n| n.attribute(name).map(str::to_string))
+        .collect()
+}
+
+#[test]
+fn draw_draws_ld_rungs_with_their_symbols() {
+    let svg = plcrun_ok(&["draw", "tests/plcopen/drawn_rungs.xml"]);
+    let doc = Document::parse(&svg).expect("well-formed SVG");
+    // One symbol per contact and coil, with the letter its kind shows.
+    let mut contacts = data_of(&doc, "contact", "data-symbol");
+    contacts.sort();
+    assert_eq!(contacts, ["", "", "", "", "/", "N", "P"]);
+    let mut coils = data_of(&doc, "coil", "data-symbol");
+    coils.sort();
+    assert_eq!(coils, ["", "", "/", "N", "P", "R", "S"]);
+    assert_eq!(classed(&doc, "rail").len(), 2);
+    assert_eq!(classed(&doc, "comment").len(), 1);
+    assert_eq!(data_of(&doc, "block", "data-type"), ["TON"]);
+    // Every contact and coil names its variable, every wire is a polyline.
+    let names: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.attribute("class") == Some("name"))
+        .filter_map(|n| n.text())
+        .collect();
+    for v in [
+        "start", "stop", "run", "jog", "alarm", "idle", "pulse", "fell", "done",
+    ] {
+        assert!(names.contains(&v), "{v} in {names:?}");
+    }
+    assert!(classed(&doc, "wire").len() >= 18);
+    // The same input gives the same bytes.
+    assert_eq!(svg, plcrun_ok(&["draw", "tests/plcopen/drawn_rungs.xml"]));
+}
+
+#[test]
+fn draw_draws_an_fbd_network_with_blocks_variables_and_flow_control() {
+    let svg = plcrun_ok(&[
+        "draw",
+        "tests/plcopen/drawn_network.xml",
+        "--program",
+        "network",
+    ]);
+    let doc = Document::parse(&svg).expect("well-formed SVG");
+    assert_eq!(data_of(&doc, "block", "data-type"), ["AND", "TON", "ADD"]);
+    let instances: Vec<&str> = classed(&doc, "instance")
+        .iter()
+        .filter_map(|n| n.text())
+        .collect();
+    assert_eq!(instances, ["t1"]);
+    // A text for each variable, a circle for each negation.
+    let expressions: Vec<&str> = classed(&doc, "expression")
+        .iter()
+        .filter_map(|n| n.text())
+        .collect();
+    assert_eq!(
+        expressions,
+        [
+            "a", "b", "q", "T#1s", "done", "n", "1", "count", "total", "n > 100", "n < 0", "TRUE",
+            "late"
+        ]
+    );
+    assert_eq!(classed(&doc, "negation").len(), 2);
+    for class in [
+        "connector",
+        "continuation",
+        "jump",
+        "label",
+        "return",
+        "comment",
+    ] {
+        assert_eq!(classed(&doc, class).len(), 1, "{class}");
+    }
+    let pins: Vec<&str> = classed(&doc, "pin")
+        .iter()
+        .filter_map(|n| n.text())
+        .collect();
+    assert!(pins.contains(&"PT") && pins.contains(&"ET"), "{pins:?}");
+}
+
+#[test]
+fn draw_says_what_it_cannot_draw_in_a_plcopen_project() {
+    let (code, _, err) = plcrun(&["draw", "tests/plcopen/comparator.xml"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("and no POU an FBD or LD body"), "{err}");
+    let (code, _, err) = plcrun(&[
+        "draw",
+        "tests/plcopen/openplc_project.xml",
+        "--pou",
+        "Counter",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("the body of `Counter` is neither a chart (SFC) nor an FBD or LD network"),
+        "{err}"
+    );
+}
+
 #[test]
 fn a_run_writes_a_timing_diagram_and_the_chart_at_a_cycle() {
     let timing = temp_path("timing.svg");
@@ -178,6 +279,21 @@ const DOC_IMAGES: &[(&str, &[&str])] = &[
             "--trace",
             "Dcy,FcA,FcB,INIT.X,AV.X,ATT.X,KMAV,VOM,ATT.T",
             "--svg",
+            "OUT",
+        ],
+    ),
+    (
+        "ld_rungs.svg",
+        &["draw", "tests/plcopen/drawn_rungs.xml", "-o", "OUT"],
+    ),
+    (
+        "fbd_network.svg",
+        &[
+            "draw",
+            "tests/plcopen/drawn_network.xml",
+            "--pou",
+            "Network",
+            "-o",
             "OUT",
         ],
     ),

@@ -199,6 +199,8 @@ mod plcopen_cli;
 mod plcopen_codesys_members;
 #[path = "plcopen_config_vars.rs"]
 mod plcopen_config_vars;
+#[path = "plcopen_export_graphic.rs"]
+mod plcopen_export_graphic;
 #[path = "plcopen_fbd.rs"]
 mod plcopen_fbd;
 #[path = "plcopen_ld.rs"]

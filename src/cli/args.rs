@@ -43,12 +43,12 @@ pub enum Command {
     Run(Box<RunArgs>),
     /// Parse and check sources; exit 0 iff there is no error.
     Check(CheckArgs),
-    /// Draw the chart (SFC) of a program as SVG.
+    /// Draw the chart (SFC) of a program, or FBD networks and LD rungs, as SVG.
     Draw(DrawArgs),
     /// Run two programs side by side and compare their outputs
     /// (`plcrun compare A_FILES... -- B_FILES... --cycles N`).
     Compare(Box<super::compare::CompareArgs>),
-    /// Write textual sources (IL, ST, SFC) in another format (PLCopen XML).
+    /// Write sources (IL, ST, SFC, PLCopen FBD/LD) as one PLCopen XML project.
     Export(ExportArgs),
     /// Run the unit tests written in IEC (`plcrun test FILES...`; docs/testing.md).
     Test(super::test::TestArgs),
@@ -94,9 +94,10 @@ pub struct DrawArgs {
     /// Source files (checked first; errors stop the drawing).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// The PROGRAM or FUNCTION_BLOCK whose chart to draw (needed when
-    /// several have one).
-    #[arg(long)]
+    /// The POU whose chart (SFC) or FBD/LD network to draw (needed when
+    /// several have a chart; without it and without a chart, every FBD
+    /// and LD body is drawn).
+    #[arg(long, visible_alias = "pou")]
     pub program: Option<String>,
     /// Write the SVG to FILE instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
@@ -315,7 +316,7 @@ pub struct CheckArgs {
 /// `plcrun export --plcopen FILES... [-o OUT.xml]`.
 #[derive(Debug, Args)]
 pub struct ExportArgs {
-    /// Source files (IL, ST, SFC).
+    /// Source files (IL, ST, SFC, and PLCopen XML, whose FBD, LD and SFC bodies are written back as drawn).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// Write PLCopen TC6 XML 2.01 (the only export format, required).

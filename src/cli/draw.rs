@@ -5,7 +5,7 @@ use super::args::{DrawArgs, RunArgs};
 use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};
 use plcrun::{
     ChartPicture, CheckOptions, Diagnostics, Session, TimingDiagram, check as check_sources,
-    load_files_with,
+    draw_sources, load_files_with,
 };
 use std::path::Path;
 use std::sync::{Arc, Mutex, PoisonError};
@@ -14,7 +14,9 @@ fn write_file(path: &Path, text: &str) -> Result<(), String> {
     std::fs::write(path, text).map_err(|e| format!("cannot write `{}`: {e}", path.display()))
 }
 
-/// `plcrun draw FILES... [--program P] [-o OUT.svg]`
+/// `plcrun draw FILES... [--program P] [-o OUT.svg]`: the chart of P (or
+/// the only chart), or P's FBD/LD network (or every one when there is no
+/// chart).
 pub fn draw(args: &DrawArgs) -> i32 {
     let mut diags = Diagnostics::new();
     let sources = match load_files_with(&args.files, args.reading.encoding, &mut diags) {
@@ -40,14 +42,13 @@ pub fn draw(args: &DrawArgs) -> i32 {
     if diags.has_errors() {
         return EXIT_COMPILE;
     }
-    let picture = match ChartPicture::from_sources(&sources, args.program.as_deref()) {
-        Ok(p) => p,
+    let svg = match draw_sources(&sources, args.program.as_deref()) {
+        Ok(svg) => svg,
         Err(e) => {
             sayln!("error: {e}");
             return EXIT_USAGE;
         }
     };
-    let svg = picture.to_svg();
     match &args.output {
         Some(path) => {
             if let Err(e) = write_file(path, &svg) {

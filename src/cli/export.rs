@@ -1,4 +1,5 @@
-//! The `export` command: textual sources written as PLCopen XML.
+//! The `export` command: sources (IL, ST, SFC, PLCopen XML) written as one
+//! PLCopen XML project.
 
 use super::args::ExportArgs;
 use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};

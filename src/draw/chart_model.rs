@@ -96,7 +96,7 @@ fn charts(sources: &SourceMap) -> Vec<Pou> {
 }
 
 /// Whether `sources` declare a POU named `name` (any body).
-fn declares(sources: &SourceMap, name: &str) -> bool {
+pub(super) fn declares(sources: &SourceMap, name: &str) -> bool {
     sources.files().iter().enumerate().any(|(i, file)| {
         let mut diags = Diagnostics::new();
         let unit = crate::syntax::parse(crate::source::FileId(i as u32), &file.text, &mut diags);

@@ -5,16 +5,25 @@
 //!   active steps of a running PLC marked.
 //! - [`TimingDiagram`]: values recorded cycle by cycle, drawn as logic
 //!   lines, step lines and labelled segments over a time axis.
+//! - [`NetworkPicture`]: the FBD networks and LD rungs of PLCopen
+//!   sources at the editor's positions (`network_geometry`, drawn by
+//!   `network_svg` and `ld_svg`); [`draw_sources`] chooses between a
+//!   chart and them.
 //!
 //! All SVG text comes out of `svg_writer`.
 
 mod chart_layout;
 mod chart_model;
 mod chart_svg;
+mod ld_svg;
+mod network_geometry;
+mod network_picture;
+mod network_svg;
 mod svg_writer;
 mod timing_svg;
 
 pub use chart_model::{ActionLine, ChartModel, StepNode, TransitionNode};
+pub use network_picture::{NetworkPicture, draw_sources};
 pub use timing_svg::{MAX_CHANGES, TimingDiagram};
 
 use crate::runtime::engine::Plc;
@@ -31,6 +40,13 @@ pub enum DrawError {
     NoSuchPou(String),
     /// The POU exists but its body is not a chart.
     NotAChart(String),
+    /// The POU exists but its body is neither a chart nor an FBD or LD
+    /// network.
+    NotDrawable(String),
+    /// No POU has a chart, an FBD or an LD body.
+    NothingToDraw,
+    /// A PLCopen file's graphical body cannot be read (the file and why).
+    Unreadable(String),
     /// A transition names a step the chart does not declare (the sources
     /// were not checked).
     UnknownStep {
@@ -52,6 +68,15 @@ impl std::fmt::Display for DrawError {
             ),
             DrawError::NoSuchPou(n) => write!(f, "there is no POU named `{n}`"),
             DrawError::NotAChart(n) => write!(f, "the body of `{n}` is not a chart (SFC)"),
+            DrawError::NotDrawable(n) => write!(
+                f,
+                "the body of `{n}` is neither a chart (SFC) nor an FBD or LD network; plcrun draws those"
+            ),
+            DrawError::NothingToDraw => write!(
+                f,
+                "no PROGRAM or FUNCTION_BLOCK has a chart (SFC) body, and no POU an FBD or LD body"
+            ),
+            DrawError::Unreadable(why) => write!(f, "{why}"),
             DrawError::UnknownStep { transition, step } => {
                 write!(f, "transition {transition} names an unknown step `{step}`")
             }

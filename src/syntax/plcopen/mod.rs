@@ -8,14 +8,16 @@
 //! represent (macro steps, graphical conditions...) is refused by name
 //! with an `E8xx` code, never skipped. FBD and LD bodies are lowered to ST
 //! statements ([`graphic`]). Export
-//! ([`export::export_plcopen`]) writes parsed textual sources back as a
-//! PLCopen project. See `docs/plcopen.md`.
+//! ([`export::export_plcopen`]) writes parsed sources back as a PLCopen
+//! project; the bodies of PLCopen files as drawn ([`diagram`]). See
+//! `docs/plcopen.md`.
 
 pub mod body;
 pub mod codes;
 pub mod codesys_members;
 pub mod config;
 pub mod config_vars;
+pub mod diagram;
 pub mod emit;
 pub mod export;
 pub mod fbd;

@@ -35,7 +35,7 @@ impl Exporter<'_> {
                     "SINGLE" => "single",
                     other => return Err(self.refuse(format!("task setting `{other}`"), key.span)),
                 };
-                attrs.push((attr.into(), self.text(value.span).to_string()));
+                attrs.push((attr.into(), self.value_text(value.span).into_owned()));
             }
             if !attrs.iter().any(|(k, _)| k == "priority") {
                 // TC6 requires a priority; 0 is what IEC assumes without one.

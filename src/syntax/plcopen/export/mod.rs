@@ -1,25 +1,33 @@
-//! Export: parsed textual sources (IL, ST, SFC) written as a PLCopen TC6
-//! 2.01 project. Declarations come from the AST; bodies, initial values
-//! and other expressions are the source text as written (so comments in
-//! bodies survive). SFC charts become real TC6 networks (steps,
-//! transitions, divergences, convergences, action blocks) with localIds,
-//! connections and a simple layout.
+//! Export: parsed sources (IL, ST, SFC, and PLCopen XML) written as a
+//! PLCopen TC6 2.01 project. Declarations come from the AST; bodies,
+//! initial values and other expressions are the source text as written
+//! (so comments in bodies survive). SFC charts become real TC6 networks
+//! (steps, transitions, divergences, convergences, action blocks) with
+//! localIds, connections and a simple layout. The FBD and LD bodies of a
+//! PLCopen file are written back as drawn ([`graphic`]), element for
+//! element, so reading the output gives the same networks.
 
 mod config;
+mod drawn_chart;
+mod graphic;
 mod sfc;
 mod types;
 mod writer;
+mod xml_source;
 
+use super::diagram::{PouBody, ProjectPou};
 use crate::diagnostics::Diagnostics;
 use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::ast::{Body, CompilationUnit, Item, Pou, PouKind, Retain, VarBlock, VarKind};
+use std::collections::HashMap;
 use std::fmt;
 use writer::Writer;
+use xml_source::xml_bodies;
 
 /// Why sources could not be exported.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ExportError {
-    /// A file is already PLCopen XML (export writes textual sources).
+    /// A file is XML export cannot read back (a TwinCAT project).
     NotTextual {
         /// The file's name.
         file: String,
@@ -49,7 +57,7 @@ impl fmt::Display for ExportError {
             ExportError::NotTextual { file } => {
                 write!(
                     f,
-                    "`{file}` is PLCopen XML already; export writes IL, ST and SFC sources"
+                    "`{file}` is XML that is not a PLCopen project; export writes IL, ST, SFC and PLCopen sources"
                 )
             }
             ExportError::S7Source { file } => {
@@ -71,9 +79,10 @@ impl fmt::Display for ExportError {
 
 impl std::error::Error for ExportError {}
 
-/// Writes every POU, data type and configuration of `sources` (IL, ST and
-/// SFC files) as one PLCopen TC6 2.01 project, in the shape the OpenPLC
-/// Editor and Beremiz read. The output is deterministic.
+/// Writes every POU, data type and configuration of `sources` (IL, ST,
+/// SFC and PLCopen files) as one PLCopen TC6 2.01 project, in the shape
+/// the OpenPLC Editor and Beremiz read. The FBD and LD bodies of PLCopen
+/// files are written back as drawn. The output is deterministic.
 ///
 /// ```
 /// use plcrun::{SourceMap, export_plcopen};
@@ -86,11 +95,21 @@ impl std::error::Error for ExportError {}
 pub fn export_plcopen(sources: &SourceMap) -> Result<String, ExportError> {
     let mut diags = Diagnostics::new();
     let mut units = Vec::new();
+    let mut xml = HashMap::new();
     for (i, file) in sources.files().iter().enumerate() {
-        if super::is_plcopen(&file.text) {
+        if crate::syntax::twincat::is_twincat(&file.text) {
             return Err(ExportError::NotTextual {
                 file: file.name.clone(),
             });
+        }
+        if super::is_plcopen(&file.text) {
+            let bodies = xml_bodies(FileId(i as u32), &file.text).map_err(|what| {
+                ExportError::Unrepresentable {
+                    what,
+                    location: file.name.clone(),
+                }
+            })?;
+            xml.extend(bodies);
         }
         if crate::syntax::s7::recognise(&file.name, &file.text) {
             return Err(ExportError::S7Source {
@@ -108,12 +127,24 @@ pub fn export_plcopen(sources: &SourceMap) -> Result<String, ExportError> {
             rendered: diags.render(sources),
         });
     }
-    Exporter { sources }.project(&units)
+    Exporter { sources, xml }.project(&units, matiec_origin(sources))
+}
+
+/// True when a source is a PLCopen project of the OpenPLC Editor or
+/// Beremiz: its direct addresses are numbered by the `openplc`
+/// convention, and the export must say so to run the same.
+fn matiec_origin(sources: &SourceMap) -> bool {
+    sources
+        .files()
+        .iter()
+        .any(|f| super::is_plcopen(&f.text) && super::origin::written_by_matiec_tools(&f.text))
 }
 
 /// The sources being exported (for the text of expressions and bodies).
 struct Exporter<'s> {
     sources: &'s SourceMap,
+    /// The bodies of the POUs of PLCopen files, by file and upper-case name.
+    xml: HashMap<(FileId, String), ProjectPou>,
 }
 
 impl Exporter<'_> {
@@ -122,6 +153,20 @@ impl Exporter<'_> {
         let text = &self.sources.file(span.file).text;
         text.get(span.start as usize..span.end as usize)
             .unwrap_or("")
+    }
+
+    /// The text of a value at `span` (a bound, a length, an initial
+    /// value): in a PLCopen file, an attribute's text with its entities
+    /// decoded, so that writing it does not escape them twice.
+    fn value_text(&self, span: Span) -> std::borrow::Cow<'_, str> {
+        let raw = self.text(span);
+        if raw.contains('&')
+            && super::is_plcopen(&self.sources.file(span.file).text)
+            && let Ok(decoded) = super::raw::decode(raw, 0, raw.len())
+        {
+            return decoded.text.into();
+        }
+        raw.into()
     }
 
     /// An [`ExportError::Unrepresentable`] at `span`.
@@ -133,7 +178,7 @@ impl Exporter<'_> {
     }
 
     /// The whole project.
-    fn project(&self, units: &[CompilationUnit]) -> Result<String, ExportError> {
+    fn project(&self, units: &[CompilationUnit], matiec: bool) -> Result<String, ExportError> {
         let items: Vec<&Item> = units.iter().flat_map(|u| &u.items).collect();
         let name = items
             .iter()
@@ -143,14 +188,17 @@ impl Exporter<'_> {
             })
             .unwrap_or("plcrun");
         let mut w = Writer::new();
-        w.open(
-            "project",
-            &[
-                ("xmlns", super::NAMESPACE_0201),
-                ("xmlns:xhtml", "http://www.w3.org/1999/xhtml"),
-                ("xmlns:xsd", "http://www.w3.org/2001/XMLSchema"),
-            ],
-        );
+        let mut root = vec![
+            ("xmlns", super::NAMESPACE_0201),
+            ("xmlns:xhtml", "http://www.w3.org/1999/xhtml"),
+            ("xmlns:xsd", "http://www.w3.org/2001/XMLSchema"),
+        ];
+        if matiec {
+            // The mark of Beremiz's writer (`super::origin`): the project
+            // keeps the `openplc` addressing of its sources.
+            root.push(("xmlns:ns1", super::NAMESPACE_0201));
+        }
+        w.open("project", &root);
         header(&mut w, name);
         w.open("types", &[]);
         w.open("dataTypes", &[]);
@@ -212,10 +260,28 @@ impl Exporter<'_> {
             self.type_spec(w, ret)?;
             w.close("returnType");
         }
+        let from_xml = self
+            .xml
+            .get(&(pou.span.file, pou.name.name.to_ascii_uppercase()));
         for block in &pou.var_blocks {
-            self.var_block(w, block)?;
+            let hidden = from_xml.is_some_and(|x| x.range.contains(&(block.span.start as usize)));
+            if !hidden {
+                self.var_block(w, block)?;
+            }
         }
         w.close("interface");
+        if let Some(x) = from_xml {
+            match &x.body {
+                PouBody::Plain(body) => {
+                    w.open("body", &[]);
+                    graphic::body_model(w, body);
+                    w.close("body");
+                }
+                PouBody::Chart(chart) => drawn_chart::chart_pou(w, chart),
+            }
+            w.close("pou");
+            return Ok(());
+        }
         match &pou.body {
             Body::Sfc(elements) => self.sfc_pou(w, pou, elements)?,
             Body::St(_) | Body::Il(_) => {

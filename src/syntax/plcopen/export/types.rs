@@ -61,7 +61,7 @@ impl Exporter<'_> {
             TypeSpec::String { wide, len, .. } => {
                 let el = if *wide { "wstring" } else { "string" };
                 match len {
-                    Some(l) => w.empty(el, &[("length", self.text(l.span))]),
+                    Some(l) => w.empty(el, &[("length", &self.value_text(l.span))]),
                     None => w.empty(el, &[]),
                 }
             }
@@ -70,7 +70,10 @@ impl Exporter<'_> {
                 for (lo, hi) in ranges {
                     w.empty(
                         "dimension",
-                        &[("lower", self.text(lo.span)), ("upper", self.text(hi.span))],
+                        &[
+                            ("lower", &self.value_text(lo.span)),
+                            ("upper", &self.value_text(hi.span)),
+                        ],
                     );
                 }
                 w.open("baseType", &[]);
@@ -88,7 +91,10 @@ impl Exporter<'_> {
                 w.open(el, &[]);
                 w.empty(
                     "range",
-                    &[("lower", self.text(lo.span)), ("upper", self.text(hi.span))],
+                    &[
+                        ("lower", &self.value_text(lo.span)),
+                        ("upper", &self.value_text(hi.span)),
+                    ],
                 );
                 w.open("baseType", &[]);
                 self.type_spec(w, &TypeSpec::Named(base.clone()))?;
@@ -102,7 +108,7 @@ impl Exporter<'_> {
                     match value {
                         Some(v) => w.empty(
                             "value",
-                            &[("name", &name.name), ("value", self.text(v.span))],
+                            &[("name", &name.name), ("value", &self.value_text(v.span))],
                         ),
                         None => w.empty("value", &[("name", &name.name)]),
                     }
@@ -173,7 +179,7 @@ impl Exporter<'_> {
     /// `simpleValue`, `arrayValue` or `structValue`.
     fn value(&self, w: &mut Writer, init: &Initializer) -> Result<(), ExportError> {
         match init {
-            Initializer::Expr(e) => w.empty("simpleValue", &[("value", self.text(e.span))]),
+            Initializer::Expr(e) => w.empty("simpleValue", &[("value", &self.value_text(e.span))]),
             Initializer::Array(elems, _) => {
                 w.open("arrayValue", &[]);
                 for el in elems {
@@ -183,7 +189,9 @@ impl Exporter<'_> {
                         );
                     };
                     match &el.repeat {
-                        Some(n) => w.open("value", &[("repetitionValue", self.text(n.span))]),
+                        Some(n) => {
+                            w.open("value", &[("repetitionValue", &self.value_text(n.span))])
+                        }
                         None => w.open("value", &[]),
                     }
                     self.value(w, value)?;

@@ -43,6 +43,15 @@ impl Writer {
         ));
     }
 
+    /// Writes `<name attrs>text</name>` on one line, the text escaped.
+    pub fn text_element(&mut self, name: &str, attrs: &[(&str, &str)], text: &str) {
+        self.line(&format!(
+            "<{name}{}>{}</{name}>",
+            attributes(attrs),
+            escape(text)
+        ));
+    }
+
     /// Writes one indented line.
     fn line(&mut self, text: &str) {
         for _ in 0..self.depth {
