@@ -7,7 +7,11 @@
 /// On a rising IN the clock is preset to PDT; while IN stays TRUE, CDT is
 /// PDT plus the time since that call. Q follows IN; CDT is
 /// DT#1970-01-01-00:00:00 while IN is FALSE.
-#[inline(always)]
+///
+/// Out of line, unlike the other blocks: inlined into the executor's
+/// dispatch loop it made benchmarks that never call it 9-20 % slower
+/// (scripts/ab.sh; the loop's code layout decides its speed, ADR 0006).
+#[inline(never)]
 pub fn rtc(s: &mut [u64], now: i64) {
     let input = s[0] != 0;
     if input {
