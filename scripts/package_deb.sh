@@ -24,4 +24,6 @@ gzip -9n "$out"/man/*.1
 "$bin" completions bash >"$out/plcrun.bash"
 "$bin" completions zsh >"$out/_plcrun"
 "$bin" completions fish >"$out/plcrun.fish"
-cargo deb --no-build --no-strip --output target/debian/ 2>&1 | tail -n 1
+# Stripped (the release profile keeps debug info for profiling: 117 MB
+# unstripped against 24 MB): panics still name file:line.
+cargo deb --no-build --strip --output target/debian/ 2>&1 | tail -n 1
