@@ -132,7 +132,7 @@ pub use source::{FileId, SourceFile, SourceMap, Span};
 pub use syntax::plcopen::export::{ExportError, export_plcopen};
 pub use testing::{
     AssertionFailure, TEST_PREFIX, TestCase, TestError, TestOptions, TestOutcome, TestReport,
-    check_tcunit_suites, run_tests, run_tests_reporting,
+    check_test_sources, run_tests, run_tests_reporting,
 };
 pub use value::literal::{LiteralError, format_duration, parse_time_literal};
 pub use vm::{Fault, FaultKind, HostFailure, UnstableCycle};

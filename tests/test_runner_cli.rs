@@ -107,3 +107,29 @@ fn cycle_time_and_watchdog_options() {
         "{out}"
     );
 }
+
+#[test]
+fn check_accepts_the_assertions_of_sources_that_hold_tests() {
+    // `plcrun check` compiles test sources as `plcrun test` does: the
+    // assertions are declared (the test file and the program it tests).
+    let (code, _, err) = plcrun(&[
+        "check",
+        "programs/comparator.st",
+        "tests/plc/comparator_test.st",
+    ]);
+    assert_eq!((code, err.as_str()), (0, "ok: 2 files checked\n"));
+    let file = temp_file("half_test.st", TESTS);
+    let (code, _, err) = plcrun(&["check", &file]);
+    assert_eq!((code, err.as_str()), (0, "ok: 1 file checked\n"));
+    // Without a TEST_ POU the assertions are unknown functions, as before.
+    let plain = temp_file(
+        "plain.st",
+        "PROGRAM P\nAssertEquals(INT#1, INT#1, 'x');\nEND_PROGRAM\n",
+    );
+    let (code, _, err) = plcrun(&["check", &plain]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("E201") && err.contains("AssertEquals"),
+        "{err}"
+    );
+}

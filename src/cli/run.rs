@@ -110,7 +110,7 @@ pub(super) fn check_as_cli(
             addressing: options.addressing,
             ..plcrun::TestOptions::default()
         };
-        if let Some(found) = plcrun::check_tcunit_suites(sources, &test_options) {
+        if let Some(found) = plcrun::check_test_sources(sources, &test_options) {
             report.diagnostics = found?;
         }
     }

@@ -206,28 +206,38 @@ impl std::error::Error for TestError {
     }
 }
 
-/// When `sources` hold TcUnit suites: every diagnostic of `sources`
-/// checked as `plcrun test` compiles them, with TcUnit's functions and
-/// assertions declared (so that `plcrun check` accepts what the test
-/// runner accepts); `None` when they hold no suite.
-pub fn check_tcunit_suites(
+/// When `sources` hold tests (TcUnit suites, or plcrun's `TEST_` POUs):
+/// every diagnostic of `sources` checked as `plcrun test` compiles them,
+/// with the assertions (and TcUnit's functions) declared, so that `plcrun
+/// check` accepts what the test runner accepts; `None` when they hold no
+/// test, and a plain check is the whole answer.
+pub fn check_test_sources(
     sources: &SourceMap,
     options: &TestOptions,
 ) -> Option<Result<Diagnostics, TestError>> {
-    // A suite extends FB_TestSuite, so its name is written somewhere:
-    // without it, the sources need not be parsed a second time.
-    let named = sources
-        .files()
-        .iter()
-        .any(|f| tcunit::names_the_base(&f.text));
-    if !named {
+    // A suite extends FB_TestSuite and a test's name starts with TEST_, so
+    // those words are written somewhere: without them, the sources need
+    // not be parsed a second time.
+    let files = sources.files();
+    if files.iter().any(|f| tcunit::names_the_base(&f.text)) {
+        let plan = tcunit::plan(sources, &mut Diagnostics::new());
+        if !plan.suites.is_empty() {
+            return Some(check::check(sources, options, &plan));
+        }
+    }
+    let prefix = TEST_PREFIX.as_bytes();
+    let writes_prefix = |text: &str| {
+        text.as_bytes()
+            .windows(prefix.len())
+            .any(|w| w.eq_ignore_ascii_case(prefix))
+    };
+    if !files.iter().any(|f| writes_prefix(&f.text)) {
         return None;
     }
-    let plan = tcunit::plan(sources, &mut Diagnostics::new());
-    if plan.suites.is_empty() {
+    if discover::find_tests(sources, &mut Diagnostics::new()).is_empty() {
         return None;
     }
-    Some(check::check(sources, options, &plan))
+    Some(check::check(sources, options, &tcunit::Plan::default()))
 }
 
 /// Finds the tests of `sources` and runs each on its own fresh runtime.
