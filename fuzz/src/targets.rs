@@ -189,9 +189,7 @@ pub fn modbus_seeds() -> Vec<(String, Vec<u8>)> {
 }
 
 /// The OPC UA server's Write handling: any bytes decoded by async-opcua's
-/// decoder as a WriteRequest's WriteValues (the request header is
-/// async-opcua's: src/runtime/opcua/fuzzing.rs says why it is left out),
-/// each write checked as the server checks a
+/// decoder as a WriteRequest, each write checked as the server checks a
 /// client's and applied as the scan side applies it (a write the server
 /// accepts must land), then a cycle.
 #[cfg(feature = "opcua")]

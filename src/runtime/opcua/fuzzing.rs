@@ -1,15 +1,8 @@
 //! The OPC UA server's Write handling without a network, for the fuzz
 //! targets (fuzz/src/targets.rs): bytes are decoded by `async-opcua`'s own
-//! decoder as a WriteRequest's list of WriteValues, each WriteValue is
-//! checked as the server checks a client's, and what is accepted is
-//! applied to a PLC as the scan side applies it.
-//!
-//! The request's header is left out: it is async-opcua's alone (plcrun
-//! reads nothing of it), and its decoding holds an unbounded allocation in
-//! async-opcua 0.19.0 that this target found (an `Argument` in the
-//! header's additional ExtensionObject with a large ValueRank allocates
-//! 4 GB; fixed upstream after that release; docs/robustness.md). With the
-//! header in, every run stops there instead of reaching plcrun's code.
+//! decoder as a WriteRequest, each WriteValue is checked as the server
+//! checks a client's, and what is accepted is applied to a PLC as the
+//! scan side applies it.
 
 use super::glob::Globs;
 use super::model::Model;
@@ -22,7 +15,7 @@ use crate::runtime::engine::{Options, Plc};
 use async_opcua::server::node_manager::ParsedWriteValue;
 use async_opcua::types::{
     Array, AttributeId, BinaryDecodable, BinaryEncodable, ContextOwned, DataValue, NodeId,
-    NumericRange, Variant, WriteValue,
+    NumericRange, Variant, WriteRequest, WriteValue,
 };
 use std::sync::atomic::AtomicU16;
 
@@ -130,18 +123,16 @@ impl WriteFuzz {
         seeds
     }
 
-    /// Decodes `bytes` as a WriteRequest's WriteValues and applies each
-    /// accepted write to the PLC, then runs a cycle. Returns the writes
-    /// accepted; panics if a write the server would accept is refused by
-    /// the PLC.
+    /// Decodes `bytes` as a WriteRequest and applies each accepted write
+    /// to the PLC, then runs a cycle. Returns the writes accepted; panics
+    /// if a write the server would accept is refused by the PLC.
     pub fn feed(&mut self, bytes: &[u8]) -> usize {
         let context = ContextOwned::default();
-        let decoded = <Option<Vec<WriteValue>>>::decode(&mut &bytes[..], &context.context());
-        let Ok(writes) = decoded else {
+        let Ok(request) = WriteRequest::decode(&mut &bytes[..], &context.context()) else {
             return 0;
         };
         let mut accepted = 0;
-        for write in writes.into_iter().flatten() {
+        for write in request.nodes_to_write.into_iter().flatten() {
             let Ok(parsed) = ParsedWriteValue::parse(write) else {
                 continue;
             };
@@ -170,11 +161,15 @@ fn write_value(node_id: NodeId, index_range: NumericRange, value: Variant) -> Wr
     }
 }
 
-/// The WriteValues of a WriteRequest, as a client puts them on the wire.
+/// A WriteRequest of `writes`, as a client puts it on the wire.
 fn encode(writes: Vec<WriteValue>) -> Vec<u8> {
+    let request = WriteRequest {
+        request_header: Default::default(),
+        nodes_to_write: Some(writes),
+    };
     let context = ContextOwned::default();
     let mut bytes = Vec::new();
-    Some(writes)
+    request
         .encode(&mut bytes, &context.context())
         .expect("a request of served values encodes");
     bytes
