@@ -18,7 +18,9 @@ USER plcrun
 WORKDIR /var/lib/plcrun
 # Modbus TCP (when [modbus] listens on it), OPC UA, the web monitor.
 EXPOSE 5020 4840 8080
-# The project must parse and check, or the container is unhealthy.
-HEALTHCHECK --interval=30s --timeout=10s CMD ["/usr/bin/plcrun", "check", "--project", "/etc/plcrun/plcrun.toml"]
+# Healthy while the PLC runs: the web monitor (turned on by CMD, on every
+# interface of the container; reads only without its token, printed at
+# start) answers /api/state with "running"; faulted or silent is unhealthy.
+HEALTHCHECK --interval=30s --timeout=10s --start-period=20s CMD ["/usr/bin/plcrun", "health", "127.0.0.1:8080"]
 ENTRYPOINT ["/usr/bin/plcrun", "serve"]
-CMD ["/etc/plcrun/plcrun.toml"]
+CMD ["/etc/plcrun/plcrun.toml", "--web", "0.0.0.0:8080"]

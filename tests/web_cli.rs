@@ -4,7 +4,7 @@
 //! stream, the charts, and `/metrics` read by a strict parser of the
 //! Prometheus text format.
 
-use crate::support::cli::temp_file;
+use crate::support::cli::{plcrun, temp_file};
 use crate::support::http::{Answer, Events, get, post, request};
 use serde_json::json;
 use std::collections::BTreeMap;
@@ -355,6 +355,10 @@ fn a_faulted_plc_is_shown_and_reset_from_the_monitor() {
          END_PROGRAM",
     );
     let m = Monitor::start(&["--cycle-time", "2ms", "--web-token", TOKEN, &src]);
+    // `plcrun health` (the container's health check) says it runs.
+    let (code, out, _) = plcrun(&["health", &m.addr]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.starts_with("running: cycle "), "{out}");
     refused(&post(&m.addr, "/api/reset", Some(TOKEN), &json!({})), 409);
     let a = post(
         &m.addr,
@@ -381,6 +385,9 @@ fn a_faulted_plc_is_shown_and_reset_from_the_monitor() {
         "{state}"
     );
     let cycle = state["cycle"].as_u64().unwrap();
+    let (code, out, _) = plcrun(&["health", &format!("http://{}/", m.addr)]);
+    assert_eq!(code, 1, "faulted is unhealthy: {out}");
+    assert!(out.starts_with("faulted: R001 in cycle "), "{out}");
     let metrics = get(&m.addr, "/metrics").body;
     assert!(metrics.contains("\nplcrun_faulted 1\n"), "{metrics}");
     // No cycle runs while faulted.
@@ -415,7 +422,13 @@ fn a_faulted_plc_is_shown_and_reset_from_the_monitor() {
         std::thread::sleep(Duration::from_millis(50));
     }
     assert_eq!(value(&m.addr, "trip"), "FALSE");
+    assert_eq!(plcrun(&["health", &m.addr]).0, 0, "healthy again");
+    let addr = m.addr.clone();
     assert_eq!(m.stop(), 0, "stopped cleanly after the reset");
+    // Nobody answers: unhealthy, saying why.
+    let (code, _, err) = plcrun(&["health", &addr, "--timeout", "1s"]);
+    assert_eq!(code, 1);
+    assert!(err.starts_with(&format!("unreachable: {addr}: ")), "{err}");
 }
 
 #[test]

@@ -76,6 +76,10 @@ pub enum Command {
     /// Serve the Language Server Protocol on standard input and output,
     /// for editors (docs/editors.md).
     Lsp(super::lsp::LspArgs),
+    /// Ask a running plcrun's web monitor whether its PLC runs: exit 0 if
+    /// it runs, 1 if it is faulted or does not answer (container health
+    /// checks; docs/web.md).
+    Health(super::health::HealthArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish,
     /// powershell): `plcrun completions bash > /etc/bash_completion.d/plcrun`.
     Completions(super::completions::CompletionsArgs),

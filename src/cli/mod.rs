@@ -11,6 +11,7 @@ mod completions;
 mod draw;
 mod export;
 mod given;
+mod health;
 mod init;
 mod lsp;
 mod modbus;
@@ -83,6 +84,7 @@ fn dispatch(cli: args::Cli, given: &Given) -> i32 {
         Some(args::Command::Serve(a)) => serve::serve(&a, given),
         Some(args::Command::Init(a)) => init::init(&a),
         Some(args::Command::Lsp(a)) => lsp::lsp(&a),
+        Some(args::Command::Health(a)) => health::health(&a),
         Some(args::Command::Completions(a)) => completions::completions(&a),
         Some(args::Command::Man(a)) => completions::man(&a),
         #[cfg(feature = "opcua")]
