@@ -25,7 +25,7 @@ fn files(dir: &str, exts: &[&str]) -> Vec<PathBuf> {
 #[test]
 fn each_stdlib_file_defines_its_reference_block() {
     let expected_stems = [
-        "r_trig", "f_trig", "sr", "rs", "ctu", "ctd", "ctud", "ton", "tof", "tp",
+        "r_trig", "f_trig", "sr", "rs", "ctu", "ctd", "ctud", "ton", "tof", "tp", "rtc",
     ]
     .into_iter()
     .map(String::from)
