@@ -171,7 +171,8 @@ pub fn chart_svg(model: &ChartModel, active: &[String]) -> String {
     w.finish()
 }
 
-fn line(x1: f64, y1: f64, x2: f64, y2: f64) -> Element {
+/// A thin black line from (x1, y1) to (x2, y2).
+pub(super) fn line(x1: f64, y1: f64, x2: f64, y2: f64) -> Element {
     Element::new("line")
         .num("x1", x1)
         .num("y1", y1)

@@ -17,6 +17,7 @@
 //! `return`, `comment`, `negation`) and a `data-id` (its localId), so
 //! tests and style sheets can find them.
 
+use super::chart_svg;
 use super::ld_svg;
 use super::network_geometry::{Wire, bounds, input_place, out_place, pin_place, size, wires};
 use super::svg_writer::{Element, SvgWriter, num};
@@ -122,15 +123,18 @@ pub(super) fn label(
 
 /// A plain black line.
 pub(super) fn line(svg: &mut SvgWriter, (x1, y1): (f64, f64), (x2, y2): (f64, f64), width: f64) {
-    svg.empty(
-        Element::new("line")
-            .num("x1", x1)
-            .num("y1", y1)
-            .num("x2", x2)
-            .num("y2", y2)
-            .attr("stroke", "black")
-            .num("stroke-width", width),
-    );
+    svg.empty(chart_svg::line(x1, y1, x2, y2).num("stroke-width", width));
+}
+
+/// The `<rect>` of an element's box, at its place and size; the caller
+/// adds fill and stroke.
+fn frame(el: &DiagramElement) -> Element {
+    let (w, h) = size(el);
+    Element::new("rect")
+        .num("x", el.position.x)
+        .num("y", el.position.y)
+        .num("width", w)
+        .num("height", h)
 }
 
 /// A negation circle whose edge touches the point `(x, y)` on the side
@@ -192,18 +196,10 @@ fn element(svg: &mut SvgWriter, el: &DiagramElement) {
 
 /// A block: box, type name, instance name above, pins.
 fn block(svg: &mut SvgWriter, el: &DiagramElement, type_name: &str, instance: Option<&str>) {
-    let (w, h) = size(el);
+    let (w, _) = size(el);
     let (x, y) = (el.position.x, el.position.y);
     svg.open(group(el, "block").attr("data-type", type_name.to_string()));
-    svg.empty(
-        Element::new("rect")
-            .num("x", x)
-            .num("y", y)
-            .num("width", w)
-            .num("height", h)
-            .attr("fill", "white")
-            .attr("stroke", "black"),
-    );
+    svg.empty(frame(el).attr("fill", "white").attr("stroke", "black"));
     label(svg, "type", (x + w / 2.0, y + 14.0), "middle", type_name);
     if let Some(i) = instance {
         label(svg, "instance", (x + w / 2.0, y - 5.0), "middle", i);
@@ -253,11 +249,7 @@ fn variable(svg: &mut SvgWriter, el: &DiagramElement) {
     let (x, y) = (el.position.x, el.position.y);
     svg.open(group(el, "variable").attr("data-kind", el.kind.tag()));
     svg.empty(
-        Element::new("rect")
-            .num("x", x)
-            .num("y", y)
-            .num("width", w)
-            .num("height", h)
+        frame(el)
             .num("rx", 6.0)
             .attr("fill", "white")
             .attr("stroke", "black"),
@@ -335,18 +327,10 @@ fn jump(svg: &mut SvgWriter, el: &DiagramElement, target: &str) {
 
 /// A comment: a pale box with its lines.
 fn comment(svg: &mut SvgWriter, el: &DiagramElement) {
-    let (w, h) = size(el);
+    let (_, h) = size(el);
     let (x, y) = (el.position.x, el.position.y);
     svg.open(group(el, "comment"));
-    svg.empty(
-        Element::new("rect")
-            .num("x", x)
-            .num("y", y)
-            .num("width", w)
-            .num("height", h)
-            .attr("fill", "#fffbe6")
-            .attr("stroke", "#b0a060"),
-    );
+    svg.empty(frame(el).attr("fill", "#fffbe6").attr("stroke", "#b0a060"));
     for (i, text) in el.text.lines().enumerate() {
         let ty = y + 16.0 + i as f64 * 14.0;
         if ty > y + h {
