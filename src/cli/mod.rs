@@ -43,13 +43,13 @@ pub const EXIT_FAULT: i32 = 3;
 pub fn main() -> i32 {
     let words = compare::reorder(std::env::args_os().collect());
     let color = style::choice_in(&words);
-    let command = args::Cli::command().color(style::for_clap(color));
+    let mut command = args::Cli::command().color(style::for_clap(color));
     let subcommands: Vec<String> = command
         .get_subcommands()
         .map(|c| c.get_name().to_string())
         .collect();
     let words = style::globals_after_subcommand(words, &subcommands);
-    let matches = match command.try_get_matches_from(words) {
+    let matches = match command.try_get_matches_from_mut(words) {
         Ok(m) => m,
         Err(e) => return usage(e),
     };
@@ -57,11 +57,7 @@ pub fn main() -> i32 {
     // override a project file.
     let given = matches
         .subcommand()
-        .and_then(|(name, sub)| {
-            let command = args::Cli::command();
-            let parser = command.find_subcommand(name)?;
-            Some(Given::of(sub, parser))
-        })
+        .and_then(|(name, sub)| Some(Given::of(sub, command.find_subcommand(name)?)))
         .unwrap_or_default();
     match args::Cli::from_arg_matches(&matches) {
         Ok(cli) => {

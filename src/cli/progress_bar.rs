@@ -56,21 +56,18 @@ impl Bar {
 
 impl Progress for Bar {
     fn report(&self, done: u64, total: u64, stage: &str) {
-        if !self.shown.load(Ordering::Relaxed) {
-            if self.started.elapsed() < SHOW_AFTER || done >= total {
-                return;
-            }
-            self.bar.set_length(total);
-            self.bar.set_position(done);
-            self.bar.set_message(stage.to_string());
-            if !self.shown.swap(true, Ordering::Relaxed) {
-                self.bar.set_draw_target(ProgressDrawTarget::stderr());
-            }
+        if !self.shown.load(Ordering::Relaxed)
+            && (self.started.elapsed() < SHOW_AFTER || done >= total)
+        {
             return;
         }
         self.bar.set_length(total);
         self.bar.set_position(done);
         self.bar.set_message(stage.to_string());
+        // Drawn from the first report after the wait, values already set.
+        if !self.shown.swap(true, Ordering::Relaxed) {
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        }
     }
 }
 
