@@ -257,3 +257,22 @@ END_PROGRAM
         assert_eq!(codes, [code], "{src}");
     }
 }
+
+/// An enumeration value indexes an array as its base type's integer
+/// (CODESYS; W485, refused by `--strict`): SOUTH is 2, TOP 3.
+#[test]
+fn an_enumeration_value_indexes_an_array_as_its_integer() {
+    let src = "
+TYPE E_Blade : (NORTH := 1, SOUTH, TOP); END_TYPE
+PROGRAM P
+VAR a : ARRAY[1..3] OF INT; x : INT; b : E_Blade := E_Blade.TOP; END_VAR
+a[E_Blade.SOUTH] := 7; a[b] := 9;
+x := a[2] + a[3];
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "x"), "16");
+    let codes: Vec<&str> = plc.warnings().iter().map(|d| d.code).collect();
+    assert_eq!(codes, ["W485", "W485"]);
+}

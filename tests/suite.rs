@@ -110,6 +110,8 @@ mod fault_path;
 #[cfg(feature = "cli")]
 #[path = "fault_path_cli.rs"]
 mod fault_path_cli;
+#[path = "fb_init.rs"]
+mod fb_init;
 #[path = "fb_internals.rs"]
 mod fb_internals;
 #[path = "fb_self_reference.rs"]

@@ -104,6 +104,19 @@ pub struct ProgramInstance {
     pub outputs: Vec<(u32, u32)>,
 }
 
+/// A block the runtime runs before the first cycle and after each reset:
+/// the `FB_init` calls of the instances of a program instance or of the
+/// global lists (`src/sema/fb_init_calls.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StartCall {
+    /// The code block (a method of the program, or a function).
+    pub code: CodeIdx,
+    /// The absolute base it runs at.
+    pub base: u32,
+    /// The absolute slot of its `bInitRetains` input, set before the run.
+    pub retains: u32,
+}
+
 /// A cyclic (or event) task.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Task {
@@ -149,6 +162,9 @@ pub struct Image {
     pub hosts: Vec<String>,
     /// The retained values (RETAIN, PERSISTENT), in declaration order.
     pub retained: Vec<crate::ir::retained::RetainedVar>,
+    /// The start calls, in order: the global lists', then each program
+    /// instance's.
+    pub start: Vec<StartCall>,
 }
 
 impl Image {

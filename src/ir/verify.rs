@@ -124,6 +124,9 @@ pub enum Problem {
     ConnectionOutsideMemory,
     /// A SINGLE task's trigger is outside memory.
     TriggerOutsideMemory,
+    /// A start call names a missing block, or its frame or flag is
+    /// outside memory.
+    StartCall,
     /// A retained variable's slot is outside memory, or its string is not
     /// the one its slot holds.
     RetainedOutsideMemory,
@@ -160,6 +163,7 @@ impl fmt::Display for Problem {
             Problem::ProgramTask => "program instance on a missing task",
             Problem::ConnectionOutsideMemory => "program connection outside memory",
             Problem::TriggerOutsideMemory => "task trigger outside memory",
+            Problem::StartCall => "start call outside the code or memory",
             Problem::RetainedOutsideMemory => "retained variable outside memory or strings",
         })
     }
@@ -400,6 +404,16 @@ fn check_programs(image: &Image) -> Result<(), VerifyError> {
         let mut connections = p.inputs.iter().chain(&p.outputs);
         if connections.any(|&(a, b)| a as u64 >= mem || b as u64 >= mem) {
             return Err(fail(Problem::ConnectionOutsideMemory));
+        }
+    }
+    for s in &image.start {
+        let c = image.codes.get(s.code.index());
+        let fits = c.is_some_and(|c| s.base as u64 + c.frame_size as u64 <= mem);
+        if !fits || s.retains as u64 >= mem {
+            return Err(VerifyError {
+                place: format!("start call of code {}", s.code.index()),
+                problem: Problem::StartCall,
+            });
         }
     }
     for t in &image.tasks {

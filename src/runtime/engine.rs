@@ -353,7 +353,7 @@ impl Plc {
         }
         let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
         let io = ProcessImage::new(&image, &machine.mem, addressing);
-        Plc {
+        let mut plc = Plc {
             image,
             machine,
             sources,
@@ -368,7 +368,9 @@ impl Plc {
             io,
             forces: Forces::default(),
             host_code,
-        }
+        };
+        plc.start(true);
+        plc
     }
 
     /// A handle that asks this PLC's run to stop, from any thread.

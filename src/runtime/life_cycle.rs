@@ -66,6 +66,30 @@ impl Plc {
     /// ```
     pub fn reset_cold(&mut self) {
         self.reinitialise();
+        self.start(true);
+    }
+
+    /// Runs the start calls (the `FB_init` methods of every instance, see
+    /// docs/semantics.md) with `bInitRetains` = `init_retains`, then lets
+    /// the process image show what they wrote. A fault in one stops the
+    /// PLC as a fault in a cycle does.
+    pub(crate) fn start(&mut self, init_retains: bool) {
+        if self.image.start.is_empty() {
+            return;
+        }
+        for k in 0..self.image.start.len() {
+            let call = self.image.start[k];
+            self.machine.mem[call.retains as usize] = u64::from(init_retains);
+            if let Err(fault) = self.machine.run(&self.image, call.code, call.base) {
+                self.fail(fault, call.base as usize);
+                return;
+            }
+        }
+        self.io = super::process_image::ProcessImage::new(
+            &self.image,
+            &self.machine.mem,
+            self.io.addressing(),
+        );
     }
 
     /// The part every reset shares: initial values everywhere, cycle 0,

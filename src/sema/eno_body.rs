@@ -98,6 +98,7 @@ fn implicit_block(pou: &Pou) -> VarBlock {
             init: None,
             span,
             edge: None,
+            init_args: None,
         }],
         span,
     }

@@ -61,6 +61,17 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// An enumeration value as an array index: its base type's integer
+    /// (W485; strict enumerations too, as where an integer is expected).
+    pub(super) fn enum_index(&mut self, v: &Val, span: Span) -> bool {
+        let Ty::T(t) = v.ty() else { return false };
+        let Some(base) = self.any_enum_base(t).filter(|b| b.is_int()) else {
+            return false;
+        };
+        self.enum_to_int_warning(t, base, span);
+        true
+    }
+
     /// An untyped integer literal stored in an enumeration: W486, or
     /// refused (false) for a strict one.
     pub(super) fn literal_to_enum(&mut self, from: Ty, to: TypeId, span: Span) -> bool {

@@ -58,6 +58,7 @@ mod enum_int;
 mod enum_qualified;
 mod expr;
 mod fb_copy;
+pub(crate) mod fb_init_calls;
 mod fb_init_values;
 mod fb_member_read;
 mod fn_call;
@@ -161,6 +162,9 @@ pub fn compile(
         return None;
     }
     en_params::check(units, diags);
+    // Instances whose blocks declare FB_init: hidden methods call it.
+    let with_init = fb_init_calls::with_init_calls(units, diags);
+    let units = with_init.as_deref().unwrap_or(units);
     let lowered = oop::lower::lower(units, diags);
     let units = lowered.as_ref().map_or(units, |(u, _)| u.as_slice());
     if let Some(too_deep) = nesting::check(units) {

@@ -407,7 +407,8 @@ impl BodyBuilder<'_> {
         self.element_place(e, b, idx, elem, shape)
     }
 
-    /// Evaluates array indexes (integers, not enumerations).
+    /// Evaluates array indexes (integers; an enumeration as its base
+    /// type's integer, W485, as CODESYS allows it).
     pub(super) fn index_values(&mut self, indexes: &[Expr]) -> Option<Vec<(Val, Span)>> {
         let mut vals = Vec::new();
         for ix in indexes {
@@ -416,7 +417,8 @@ impl BodyBuilder<'_> {
                 Ty::AnyInt => true,
                 Ty::T(t) => self.scalar(t).is_some_and(|e| e.is_int()) && !self.is_enum(t),
                 Ty::AnyReal => false,
-            } || self.codesys_bit_string_index(&v, ix.span);
+            } || self.codesys_bit_string_index(&v, ix.span)
+                || self.enum_index(&v, ix.span);
             if !ok {
                 if !v.is_error() {
                     self.diags.error(

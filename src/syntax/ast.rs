@@ -149,6 +149,21 @@ pub struct VarDecl {
     pub span: Span,
     /// `R_EDGE` / `F_EDGE` after the type of a VAR_INPUT (edition 3).
     pub edge: Option<EdgeQualifier>,
+    /// `fb : FB_X(a := 1)`: the arguments of the instance's `FB_init`
+    /// (CODESYS V3, TwinCAT 3; `src/sema/fb_init_calls.rs`).
+    pub init_args: Option<InitArgs>,
+}
+
+/// The arguments an instance declaration gives its `FB_init`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InitArgs {
+    /// The arguments in source order (formal or positional).
+    pub args: Vec<Arg>,
+    /// For an array of instances (`ARRAY[1..2] OF FB_X[(1), (2)]`): the
+    /// arguments of its first elements, in order (`args` is empty).
+    pub elements: Vec<Vec<Arg>>,
+    /// From the type's name to the closing parenthesis.
+    pub span: Span,
 }
 
 /// The edge qualifier of a BOOL input: the input reads TRUE only on the

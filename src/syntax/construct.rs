@@ -1037,6 +1037,7 @@ pub fn edge_decl(
         init: None,
         span: st.span(l, r),
         edge,
+        init_args: None,
     }
 }
 

@@ -2,7 +2,7 @@
 //! with no arguments, as CODESYS and TwinCAT allow: with nothing to pass
 //! it declares the instance like `trig : R_TRIG;`, so a token pass drops
 //! the empty parentheses. (`fb : FB_X(arg := 1)`, FB_init with arguments,
-//! is not supported and stays a syntax error.)
+//! is [`super::init_arguments`]'s.)
 
 use super::lexer::Spanned;
 use super::token::{Kw, Tok};

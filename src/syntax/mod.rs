@@ -14,6 +14,7 @@ mod empty_args;
 mod empty_init_call;
 mod header_semicolon;
 pub mod il_lines;
+pub mod init_arguments;
 pub mod lexer;
 pub mod literal;
 mod method_bodies;
@@ -85,6 +86,7 @@ pub(crate) fn textual_passes(
     let tokens = set_reset_assign::set_reset_assignments(tokens);
     let tokens = empty_args::drop_empty_arguments(tokens);
     let tokens = empty_init_call::drop_empty_init_calls(tokens);
+    let tokens = init_arguments::mark_init_arguments(tokens);
     header_semicolon::drop_header_semicolons(tokens)
 }
 

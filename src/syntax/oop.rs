@@ -80,6 +80,9 @@ pub struct Method {
     /// For a `PROPERTY`: its GET and SET accessors as methods (replaced by
     /// them in the FB or interface, see [`crate::syntax::oop_property`]).
     pub property: Option<Vec<Method>>,
+    /// Declared after `{attribute 'call_after_init'}`: called on every
+    /// instance right after its `FB_init` (`src/sema/fb_init_calls.rs`).
+    pub call_after_init: bool,
 }
 
 /// What a FUNCTION_BLOCK declares beyond edition 2.
@@ -177,6 +180,11 @@ pub fn method(
         body,
         span: st.span(l, r),
         property: None,
+        call_after_init: crate::syntax::qualified_only::before_type(
+            st.text(),
+            l,
+            crate::syntax::qualified_only::is_call_after_init,
+        ),
     }
 }
 

@@ -129,6 +129,7 @@ pub fn property(
         body: Body::St(Vec::new()),
         span,
         property: Some(methods),
+        call_after_init: false,
     }
 }
 
@@ -155,6 +156,7 @@ fn accessor_method(name: &Ident, ty: &TypeSpec, prop: Modifiers, a: Accessor) ->
         body: a.body,
         span: a.span,
         property: None,
+        call_after_init: false,
     }
 }
 
@@ -171,6 +173,7 @@ fn value_input(name: &Ident, ty: &TypeSpec, span: Span) -> VarBlock {
             init: None,
             span: name.span,
             edge: None,
+            init_args: None,
         }],
         span,
     }

@@ -54,10 +54,25 @@ fn attribute(name: &str) -> Option<(&'static str, String)> {
              list to be qualified"
                 .to_string(),
         ),
-        "call_after_init" | "call_after_online_change_slot" | "init_on_onlchange" => (
+        "call_after_init" => (
             "W151",
             format!(
-                "attribute '{name}' ignored: plcrun calls no method at initialisation or online change"
+                "attribute '{name}' ignored: plcrun honours it right before a METHOD or \
+                 FUNCTION_BLOCK only (the method is then called after FB_init)"
+            ),
+        ),
+        "call_after_online_change_slot" | "init_on_onlchange" => (
+            "W151",
+            format!(
+                "attribute '{name}' ignored: plcrun's online change keeps instances in place and \
+                 calls no method"
+            ),
+        ),
+        "tcinitsymbol" => (
+            "W151",
+            format!(
+                "attribute '{name}' ignored: TwinCAT initialises this variable from its symbol \
+                 configuration, plcrun from its declaration"
             ),
         ),
         other if LAYOUT_ATTRIBUTES.contains(&other) => (
@@ -99,6 +114,7 @@ mod tests {
         let code = |t: &str| named(t).map(|(c, _)| c);
         assert_eq!(code("{attribute 'qualified_only'}"), Some("W150"));
         assert_eq!(code("{ attribute 'call_after_init' }"), Some("W151"));
+        assert_eq!(code("{attribute 'TcInitSymbol'}"), Some("W151"));
         assert_eq!(code("{IF defined(SIMULATION)}"), Some("W152"));
         assert_eq!(code("{END_IF}"), Some("W152"));
         assert_eq!(code("{attribute 'pack_mode' := '1'}"), Some("W153"));

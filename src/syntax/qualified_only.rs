@@ -16,6 +16,32 @@ pub fn is_strict(pragma: &str) -> bool {
     is_attribute(pragma, "strict")
 }
 
+/// Whether pragma text `{...}` is `{attribute 'call_after_init'}`.
+pub fn is_call_after_init(pragma: &str) -> bool {
+    is_attribute(pragma, "call_after_init")
+}
+
+/// Whether `METHOD` or `FUNCTION_BLOCK` (with its modifiers) follows
+/// `rest`, with only blanks and pragmas before it: where
+/// `call_after_init` is honoured.
+pub fn method_or_block_follows(rest: &str) -> bool {
+    let mut rest = rest.trim_start();
+    while rest.starts_with('{') {
+        match rest.find('}') {
+            Some(close) => rest = rest[close + 1..].trim_start(),
+            None => return false,
+        }
+    }
+    let word: String = rest
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect();
+    matches!(
+        word.to_ascii_uppercase().as_str(),
+        "METHOD" | "FUNCTION_BLOCK" | "FUNCTIONBLOCK"
+    )
+}
+
 /// Whether pragma text `{...}` is `{attribute 'name'}`.
 fn is_attribute(pragma: &str, name: &str) -> bool {
     let inner = pragma.trim_start_matches('{').trim_end_matches('}').trim();

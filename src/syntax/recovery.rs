@@ -85,6 +85,7 @@ pub fn salvage_names(st: &State, l: usize, r: usize) -> Option<VarDecl> {
         init: None,
         span: st.span(l, r),
         edge: None,
+        init_args: None,
     })
 }
 

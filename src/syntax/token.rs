@@ -626,6 +626,13 @@ pub enum Tok {
     IlFun(String),
     /// `?=`: the assignment attempt (edition 3).
     AssignAttempt,
+    /// The `(` of an instance's FB_init arguments in a declaration
+    /// (`fb : FB_X(a := 1);`), told from a subrange's or an enumeration's
+    /// by [`crate::syntax::init_arguments`].
+    InitArgsOpen,
+    /// The `[` that opens one list of FB_init arguments per element of an
+    /// array of instances (`a : ARRAY[1..2] OF FB_X[(1), (2)];`).
+    InitArgsArray,
 }
 
 impl fmt::Display for Tok {
@@ -644,7 +651,8 @@ impl fmt::Display for Tok {
             Tok::Comma => p(f, ","),
             Tok::Dot => p(f, "."),
             Tok::DotDot => p(f, ".."),
-            Tok::LParen => p(f, "("),
+            Tok::LParen | Tok::InitArgsOpen => p(f, "("),
+            Tok::InitArgsArray => p(f, "["),
             Tok::RParen => p(f, ")"),
             Tok::LBracket => p(f, "["),
             Tok::RBracket => p(f, "]"),

@@ -78,6 +78,7 @@ fn program(ops: Vec<Op>) -> VerifiedImage {
         charts: Vec::new(),
         hosts: Vec::new(),
         retained: Vec::new(),
+        start: Vec::new(),
     };
     verify(image).expect("a valid image")
 }

@@ -34,5 +34,6 @@ impl Plc {
         layout.put(&kept, &mut self.machine, now, None);
         // Retained located variables: the image shows their kept values.
         self.io = ProcessImage::new(&self.image, &self.machine.mem, self.io.addressing());
+        self.start(false);
     }
 }

@@ -12,6 +12,7 @@ mod oop_resets;
 mod recursion;
 mod retained;
 mod schedule;
+mod start_calls;
 mod var_config;
 
 use super::CompileOptions;
@@ -127,6 +128,7 @@ impl Linker<'_> {
         );
         roots.extend(configured);
         let retained = self.retained_vars(&instances);
+        let start = self.start_calls(&instances);
         if !options.unoptimized {
             for c in &mut self.out.codes {
                 crate::ir::fuse::fuse_loops(&mut c.ops);
@@ -151,6 +153,7 @@ impl Linker<'_> {
             charts: std::mem::take(&mut self.out.charts),
             hosts: options.host_pous.clone(),
             retained,
+            start,
         };
         if self.diags.has_errors() {
             return None;

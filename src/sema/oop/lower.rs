@@ -409,7 +409,11 @@ impl Lowering<'_> {
                         ),
                     );
                 }
-                if o.sig != v.sig {
+                // A derived FB_init repeats its parent's parameters and may
+                // add more (CODESYS, TwinCAT).
+                let extends_init =
+                    mk == "FB_INIT" && v.sig.0.starts_with(&o.sig.0) && v.sig.1 == o.sig.1;
+                if o.sig != v.sig && !extends_init {
                     self.diags.error(
                         "E906",
                         m.name.span,
@@ -606,6 +610,7 @@ impl Lowering<'_> {
                     init: scoped.init,
                     span: d.span,
                     edge: None,
+                    init_args: None,
                 });
             }
             blocks.push(VarBlock {
@@ -647,6 +652,7 @@ impl Lowering<'_> {
                     init: None,
                     span: m.name.span,
                     edge: None,
+                    init_args: None,
                 }],
                 span: m.name.span,
             });
@@ -733,6 +739,7 @@ fn field(name: &str, ty: &str, span: Span) -> VarDecl {
         init: None,
         span,
         edge: None,
+        init_args: None,
     }
 }
 

@@ -37,6 +37,7 @@ fn decl(at: At, name: &str, elem: &str, hi: Option<u32>, init: Option<bool>) -> 
         init: init.map(|b| Initializer::Expr(at.boolean(b))),
         span: at.0,
         edge: None,
+        init_args: None,
     }
 }
 

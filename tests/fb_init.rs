@@ -1,0 +1,285 @@
+//! `FB_init` (CODESYS V3, TwinCAT 3): called for every instance before the
+//! first cycle and at every reset, with the arguments of the instance's
+//! declaration (`fb : FB_X(a := 1)`, positional ones by rank after
+//! `bInitRetains` and `bInCopyCode`); members before their container; a
+//! derived block's after its parent's. Expected values derived by hand in
+//! each test's comment.
+
+use crate::support::plc;
+
+use plc::{compile, error_codes, lit, run};
+
+/// FB_Counter's FB_init sets `count` from its arguments and counts its
+/// own calls; FB_Pair's reads its members' counts, so it must run after
+/// theirs: 100 + 10 = 110. Each cycle adds `inc` (1 for `a`, 5 for `b`).
+const COUNTERS: &str = "
+FUNCTION_BLOCK FB_Counter
+VAR_INPUT inc : INT; END_VAR
+VAR count, inits : INT; retains : BOOL; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT
+  bInitRetains : BOOL;
+  bInCopyCode : BOOL;
+  start : INT;
+  incBy : INT := 1;
+END_VAR
+count := start;
+inc := incBy;
+inits := inits + 1;
+retains := bInitRetains;
+END_METHOD
+count := count + inc;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK FB_Pair
+VAR a : FB_Counter(start := 100); b : FB_Counter(10, 5); order : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; END_VAR
+order := a.count + b.count;
+END_METHOD
+a(); b();
+END_FUNCTION_BLOCK
+
+VAR_GLOBAL
+  g : FB_Counter(start := 7);
+END_VAR
+
+PROGRAM Main
+VAR
+  p : FB_Pair;
+  arr : ARRAY[1..3, 0..1] OF FB_Counter;
+  plain : FB_Counter;
+  n : INT;
+END_VAR
+VAR RETAIN kept : INT; END_VAR
+n := n + 1;
+kept := kept + 1;
+p();
+END_PROGRAM
+";
+
+#[test]
+fn every_instance_is_initialised_with_its_declaration_arguments_members_first() {
+    let mut plc = compile(COUNTERS);
+    // Before any cycle: FB_init has run everywhere.
+    assert_eq!(lit(&plc, "p.a.count"), "100");
+    assert_eq!(lit(&plc, "p.b.count"), "10");
+    assert_eq!(lit(&plc, "p.b.inc"), "5");
+    assert_eq!(lit(&plc, "p.a.inc"), "1"); // the input's default
+    assert_eq!(lit(&plc, "p.order"), "110");
+    assert_eq!(lit(&plc, "g.count"), "7");
+    assert_eq!(lit(&plc, "p.a.retains"), "TRUE");
+    // Every element of an array, and an instance without arguments, once.
+    for name in ["arr[1, 0]", "arr[3, 1]", "arr[2, 1]", "plain"] {
+        assert_eq!(lit(&plc, &format!("{name}.inits")), "1", "{name}");
+    }
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "p.a.count"), "103");
+    assert_eq!(lit(&plc, "p.b.count"), "25");
+    assert_eq!(lit(&plc, "p.order"), "110");
+}
+
+/// A cold reset starts over (bInitRetains TRUE); a warm reset keeps the
+/// RETAIN `kept` and runs FB_init with bInitRetains FALSE. Either way
+/// FB_init runs once more on fresh instances (`inits` is 1 again).
+#[test]
+fn resets_run_fb_init_again_retains_true_when_cold_and_false_when_warm() {
+    let mut plc = compile(COUNTERS);
+    run(&mut plc, 2);
+    plc.reset_warm();
+    assert_eq!(lit(&plc, "kept"), "2");
+    assert_eq!(lit(&plc, "n"), "0");
+    assert_eq!(lit(&plc, "p.a.count"), "100");
+    assert_eq!(lit(&plc, "p.a.inits"), "1");
+    assert_eq!(lit(&plc, "p.a.retains"), "FALSE");
+    assert_eq!(lit(&plc, "g.retains"), "FALSE");
+    plc.reset_cold();
+    assert_eq!(lit(&plc, "kept"), "0");
+    assert_eq!(lit(&plc, "p.a.retains"), "TRUE");
+    assert_eq!(lit(&plc, "p.b.count"), "10");
+}
+
+/// FB_Base's FB_init runs before FB_Derived's (trail 1 then 2: 12), with
+/// the same arguments; a derived FB_init may add parameters. The
+/// arguments bind an interface to a sibling instance and a reference to
+/// an array element, which the body then uses every cycle.
+#[test]
+fn a_derived_block_runs_its_parents_fb_init_first_with_interface_and_reference_arguments() {
+    let src = "
+INTERFACE I_Log
+METHOD Log : INT
+VAR_INPUT n : INT; END_VAR
+END_METHOD
+END_INTERFACE
+FUNCTION_BLOCK FB_Logger IMPLEMENTS I_Log
+VAR total : INT; END_VAR
+METHOD Log : INT
+VAR_INPUT n : INT; END_VAR
+total := total + n;
+Log := total;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Base
+VAR trail : INT; log : I_Log; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; itf : I_Log; END_VAR
+log := itf;
+trail := trail * 10 + 1;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Derived EXTENDS FB_Base
+VAR ax : REFERENCE TO INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; itf : I_Log; axis : REFERENCE TO INT; END_VAR
+trail := trail * 10 + 2;
+ax REF= axis;
+END_METHOD
+log.Log(1);
+ax := ax + 1;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR
+  logger : FB_Logger;
+  axes : ARRAY[1..2] OF INT := [5, 50];
+  d : FB_Derived(itf := logger, axis := axes[2]);
+END_VAR
+d();
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    assert_eq!(lit(&plc, "d.trail"), "12");
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "axes[2]"), "53");
+    assert_eq!(lit(&plc, "logger.total"), "3");
+}
+
+/// A fault in FB_init stops the PLC before its first cycle, at the
+/// statement's line, and a reset does not hide it.
+#[test]
+fn a_fault_in_fb_init_stops_the_plc_before_the_first_cycle() {
+    let src = "
+FUNCTION_BLOCK FB_Div
+VAR q : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; d : INT; END_VAR
+q := 10 / d;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : FB_Div(d := 0); n : INT; END_VAR
+n := n + 1;
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    let fault = plc.run_cycle().expect_err("FB_init divides by zero");
+    assert_eq!(fault.code(), "R001", "{fault:?}");
+    assert_eq!(fault.cycle, 0);
+    assert!(fault.location.ends_with(":6:6"), "{}", fault.location);
+    assert_eq!(lit(&plc, "n"), "0");
+    plc.reset_cold();
+    assert!(plc.run_cycle().is_err());
+}
+
+#[test]
+fn arguments_a_block_cannot_take_are_errors_at_the_declaration() {
+    let fb = "
+FUNCTION_BLOCK FB_A
+VAR x : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; a : INT; END_VAR
+x := a;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Plain
+VAR x : INT; END_VAR
+END_FUNCTION_BLOCK
+";
+    let errors = |decls: &str| {
+        let main = format!("PROGRAM Main\nVAR\n{decls}\nEND_VAR\nEND_PROGRAM\n");
+        error_codes(&[("fb.st", fb), ("main.st", &main)])
+    };
+    // A block without FB_init takes no arguments.
+    assert_eq!(errors("p : FB_Plain(1);"), [("E931".into(), "3:5".into())]);
+    assert_eq!(errors("t : TON(T#1s);"), [("E931".into(), "3:5".into())]);
+    // One input after the two implicit ones: a second positional is E932.
+    assert_eq!(errors("a : FB_A(1, 2);"), [("E932".into(), "3:13".into())]);
+    // A name FB_init does not declare: the call's own error.
+    assert!(!errors("a : FB_A(b := 1);").is_empty());
+    assert!(errors("a : FB_A(a := 1);").is_empty());
+    // In a FUNCTION (its instances live for one call) and in VAR_TEMP.
+    let in_function =
+        format!("{fb}FUNCTION F : INT\nVAR a : FB_A(a := 1); END_VAR\nF := 1;\nEND_FUNCTION\n");
+    assert_eq!(
+        error_codes(&[("f.st", &in_function)]),
+        [("E931".into(), "13:9".into())]
+    );
+    assert_eq!(
+        errors("x : INT; END_VAR VAR_TEMP t : FB_A(a := 1);"),
+        [("E931".into(), "3:31".into())]
+    );
+}
+
+/// `ARRAY[1..4] OF FB_S[(...), (...)]`: one argument list per element, in
+/// order (formal or positional); the elements after the list get FB_init
+/// without arguments (fDelta's default 9, an empty name).
+#[test]
+fn an_array_of_instances_takes_one_argument_list_per_element() {
+    let src = "
+FUNCTION_BLOCK FB_S
+VAR nm : STRING; d : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; sName : STRING; fDelta : INT := 9; END_VAR
+nm := sName; d := fDelta;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR
+  a : ARRAY[1..4] OF FB_S[
+      (sName := 'OUT', fDelta := 1),
+      ('T1')
+  ];
+END_VAR
+END_PROGRAM
+";
+    let plc = compile(src);
+    let got: Vec<String> = [
+        "a[1].nm", "a[1].d", "a[2].nm", "a[2].d", "a[3].nm", "a[4].d",
+    ]
+    .iter()
+    .map(|n| lit(&plc, n))
+    .collect();
+    assert_eq!(got, ["'OUT'", "1", "'T1'", "9", "''", "9"]);
+}
+
+/// `{attribute 'call_after_init'}` before a METHOD: called on every
+/// instance right after FB_init (order 1 then 2; x = 21 * 2); other
+/// methods are not; no W151 for the honoured attribute.
+#[test]
+fn a_call_after_init_method_runs_right_after_fb_init() {
+    let src = "
+{attribute 'call_after_init'}
+FUNCTION_BLOCK FB_C
+VAR x, order : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; v : INT; END_VAR
+x := v;
+order := order * 10 + 1;
+END_METHOD
+{attribute 'call_after_init'}
+METHOD AfterInit
+x := x * 2;
+order := order * 10 + 2;
+END_METHOD
+METHOD NotCalled
+x := -1;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR c : FB_C(21); END_VAR
+END_PROGRAM
+";
+    let plc = compile(src);
+    assert_eq!(lit(&plc, "c.x"), "42");
+    assert_eq!(lit(&plc, "c.order"), "12");
+    assert!(plc.warnings().iter().all(|d| d.code != "W151"));
+}
