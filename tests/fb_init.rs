@@ -283,3 +283,58 @@ END_PROGRAM
     assert_eq!(lit(&plc, "c.order"), "12");
     assert!(plc.warnings().iter().all(|d| d.code != "W151"));
 }
+
+/// FB_exit when the program is unloaded: the derived block's first, then
+/// its parent's (TwinCAT's order), then the members' (the reverse of the
+/// start). Each appends its digit to `log`: d's 2 then 1, then the member
+/// `inner`'s 1: 211. Cycles do not call it.
+const EXITS: &str = "
+FUNCTION_BLOCK FB_Base
+METHOD FB_exit : BOOL
+VAR_INPUT bInCopyCode : BOOL; END_VAR
+G_log := G_log * 10 + 1;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_D EXTENDS FB_Base
+VAR inner : FB_Base; END_VAR
+METHOD FB_exit : BOOL
+VAR_INPUT bInCopyCode : BOOL; END_VAR
+G_log := G_log * 10 + 2;
+END_METHOD
+END_FUNCTION_BLOCK
+VAR_GLOBAL RETAIN
+  G_log : DINT;
+END_VAR
+PROGRAM Main
+VAR d : FB_D; n : INT; END_VAR
+VAR_OUTPUT out : DINT; END_VAR
+n := n + 1;
+out := G_log;
+END_PROGRAM
+";
+
+#[test]
+fn unloading_runs_fb_exit_derived_first_then_parent_then_members() {
+    let mut plc = compile(EXITS);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "G_log"), "0");
+    plc.unload().expect("FB_exit runs");
+    assert_eq!(lit(&plc, "G_log"), "211");
+}
+
+/// `plcrun` unloads the program after the last cycle and before the last
+/// retain save, so what FB_exit writes to a RETAIN variable is there at
+/// the next start: the second run's first cycle reads 211.
+#[cfg(feature = "cli")]
+#[test]
+fn the_command_line_runs_fb_exit_before_the_last_retain_save() {
+    use crate::support::cli::{plcrun, temp_file};
+    let src = temp_file("exit.st", EXITS);
+    let retain = temp_file("exit.json", "");
+    std::fs::remove_file(&retain).unwrap();
+    let (code, _, err) = plcrun(&[&src, "--cycles", "2", "--retain", &retain]);
+    assert_eq!(code, 0, "{err}");
+    let (code, out, err) = plcrun(&[&src, "--cycles", "1", "--retain", &retain]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out, "cycle,time,out\n0,T#0s,211\n");
+}

@@ -577,6 +577,7 @@ pub fn run(args: &RunArgs) -> i32 {
     if let Some(server) = web_server {
         server.shutdown();
     }
+    let result = result.and_then(|()| unload(&mut session));
     // A fault leaves the faulting cycle half done: the last periodic save
     // is the consistent one, so only a run ending at a cycle boundary saves.
     let boundary = !matches!(result, Err(RunError::Fault(_)));
@@ -618,4 +619,10 @@ pub fn run(args: &RunArgs) -> i32 {
         }
     }
     status
+}
+
+/// Unloads the program after a run that ended at a cycle boundary: its
+/// FB_exit methods run (docs/semantics.md §24) before the last retain save.
+fn unload(session: &mut Session) -> Result<(), RunError> {
+    session.plc_mut().unload().map_err(RunError::Fault)
 }

@@ -104,17 +104,19 @@ pub struct ProgramInstance {
     pub outputs: Vec<(u32, u32)>,
 }
 
-/// A block the runtime runs before the first cycle and after each reset:
-/// the `FB_init` calls of the instances of a program instance or of the
-/// global lists (`src/sema/fb_init_calls.rs`).
+/// A block the runtime runs outside the cycles: the `FB_init` calls of
+/// the instances of a program instance or of the global lists before the
+/// first cycle and after each reset, or their `FB_exit` calls when the
+/// program is unloaded (`src/sema/instance_calls/`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct StartCall {
+pub struct InstanceCall {
     /// The code block (a method of the program, or a function).
     pub code: CodeIdx,
     /// The absolute base it runs at.
     pub base: u32,
-    /// The absolute slot of its `bInitRetains` input, set before the run.
-    pub retains: u32,
+    /// The absolute slot of its BOOL input (`bInitRetains` at start,
+    /// `bInCopyCode` at exit), set before the run.
+    pub flag: u32,
 }
 
 /// A cyclic (or event) task.
@@ -164,7 +166,10 @@ pub struct Image {
     pub retained: Vec<crate::ir::retained::RetainedVar>,
     /// The start calls, in order: the global lists', then each program
     /// instance's.
-    pub start: Vec<StartCall>,
+    pub start: Vec<InstanceCall>,
+    /// The exit calls, in order: each program instance's (the last one
+    /// first), then the global lists'.
+    pub exit: Vec<InstanceCall>,
 }
 
 impl Image {

@@ -124,9 +124,9 @@ pub enum Problem {
     ConnectionOutsideMemory,
     /// A SINGLE task's trigger is outside memory.
     TriggerOutsideMemory,
-    /// A start call names a missing block, or its frame or flag is
-    /// outside memory.
-    StartCall,
+    /// A start or exit call names a missing block, or its frame or flag
+    /// is outside memory.
+    InstanceCall,
     /// A retained variable's slot is outside memory, or its string is not
     /// the one its slot holds.
     RetainedOutsideMemory,
@@ -163,7 +163,7 @@ impl fmt::Display for Problem {
             Problem::ProgramTask => "program instance on a missing task",
             Problem::ConnectionOutsideMemory => "program connection outside memory",
             Problem::TriggerOutsideMemory => "task trigger outside memory",
-            Problem::StartCall => "start call outside the code or memory",
+            Problem::InstanceCall => "instance call outside the code or memory",
             Problem::RetainedOutsideMemory => "retained variable outside memory or strings",
         })
     }
@@ -406,13 +406,13 @@ fn check_programs(image: &Image) -> Result<(), VerifyError> {
             return Err(fail(Problem::ConnectionOutsideMemory));
         }
     }
-    for s in &image.start {
+    for s in image.start.iter().chain(&image.exit) {
         let c = image.codes.get(s.code.index());
         let fits = c.is_some_and(|c| s.base as u64 + c.frame_size as u64 <= mem);
-        if !fits || s.retains as u64 >= mem {
+        if !fits || s.flag as u64 >= mem {
             return Err(VerifyError {
-                place: format!("start call of code {}", s.code.index()),
-                problem: Problem::StartCall,
+                place: format!("instance call of code {}", s.code.index()),
+                problem: Problem::InstanceCall,
             });
         }
     }

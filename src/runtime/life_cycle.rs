@@ -70,26 +70,70 @@ impl Plc {
     }
 
     /// Runs the start calls (the `FB_init` methods of every instance, see
-    /// docs/semantics.md) with `bInitRetains` = `init_retains`, then lets
-    /// the process image show what they wrote. A fault in one stops the
-    /// PLC as a fault in a cycle does.
+    /// docs/semantics.md §24) with `bInitRetains` = `init_retains`, then
+    /// lets the process image show what they wrote. A fault in one stops
+    /// the PLC as a fault in a cycle does.
     pub(crate) fn start(&mut self, init_retains: bool) {
         if self.image.start.is_empty() {
             return;
         }
-        for k in 0..self.image.start.len() {
-            let call = self.image.start[k];
-            self.machine.mem[call.retains as usize] = u64::from(init_retains);
+        if self.run_instance_calls(false, init_retains).is_ok() {
+            self.io = super::process_image::ProcessImage::new(
+                &self.image,
+                &self.machine.mem,
+                self.io.addressing(),
+            );
+        }
+    }
+
+    /// Unloads the program as a controller does before it removes it: runs
+    /// the `FB_exit` method of every instance that has one (with
+    /// `bInCopyCode` FALSE), the program instances' from the last one, then
+    /// the global lists' (docs/semantics.md §24). Call it once, after the
+    /// last cycle; `plcrun` does before its last retain save, so that
+    /// values `FB_exit` writes to RETAIN variables are kept. A fault in
+    /// `FB_exit` stops the PLC and is returned; a stopped PLC runs nothing.
+    ///
+    /// ```
+    /// use plcrun::{Options, Plc};
+    /// let src = "FUNCTION_BLOCK FB_Log VAR n : INT; END_VAR
+    ///            METHOD FB_exit : BOOL VAR_INPUT bInCopyCode : BOOL; END_VAR
+    ///            n := n + 100; END_METHOD
+    ///            n := n + 1; END_FUNCTION_BLOCK
+    ///            PROGRAM P VAR log : FB_Log; END_VAR log(); END_PROGRAM";
+    /// let mut plc = Plc::compile_files(&[("p.st", src)], &Options::default())?;
+    /// plc.run_cycle()?;
+    /// plc.unload()?;
+    /// assert_eq!(plc.read("P.log.n")?.to_literal(), "101");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn unload(&mut self) -> Result<(), RuntimeFault> {
+        if let Some(fault) = &self.faulted {
+            return Err(fault.clone());
+        }
+        self.run_instance_calls(true, false)
+    }
+
+    /// Runs the start calls (`exit` false) or the exit calls with their
+    /// flag set to `flag`; stops the PLC at a fault.
+    fn run_instance_calls(&mut self, exit: bool, flag: bool) -> Result<(), RuntimeFault> {
+        let n = if exit {
+            self.image.exit.len()
+        } else {
+            self.image.start.len()
+        };
+        for k in 0..n {
+            let call = if exit {
+                self.image.exit[k]
+            } else {
+                self.image.start[k]
+            };
+            self.machine.mem[call.flag as usize] = u64::from(flag);
             if let Err(fault) = self.machine.run(&self.image, call.code, call.base) {
-                self.fail(fault, call.base as usize);
-                return;
+                return Err(self.fail(fault, call.base as usize));
             }
         }
-        self.io = super::process_image::ProcessImage::new(
-            &self.image,
-            &self.machine.mem,
-            self.io.addressing(),
-        );
+        Ok(())
     }
 
     /// The part every reset shares: initial values everywhere, cycle 0,

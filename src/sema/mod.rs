@@ -58,7 +58,6 @@ mod enum_int;
 mod enum_qualified;
 mod expr;
 mod fb_copy;
-pub(crate) mod fb_init_calls;
 mod fb_init_values;
 mod fb_member_read;
 mod fn_call;
@@ -70,6 +69,7 @@ mod il_recovery;
 mod in_out_constant;
 mod in_out_read;
 mod input_write;
+pub(crate) mod instance_calls;
 mod int_bit_ops;
 mod literal_widening;
 mod mixed_args;
@@ -162,8 +162,9 @@ pub fn compile(
         return None;
     }
     en_params::check(units, diags);
-    // Instances whose blocks declare FB_init: hidden methods call it.
-    let with_init = fb_init_calls::with_init_calls(units, diags);
+    // Instances whose blocks declare FB_init or FB_exit: hidden methods
+    // call them.
+    let with_init = instance_calls::with_instance_calls(units, diags);
     let units = with_init.as_deref().unwrap_or(units);
     let lowered = oop::lower::lower(units, diags);
     let units = lowered.as_ref().map_or(units, |(u, _)| u.as_slice());

@@ -150,7 +150,7 @@ pub struct VarDecl {
     /// `R_EDGE` / `F_EDGE` after the type of a VAR_INPUT (edition 3).
     pub edge: Option<EdgeQualifier>,
     /// `fb : FB_X(a := 1)`: the arguments of the instance's `FB_init`
-    /// (CODESYS V3, TwinCAT 3; `src/sema/fb_init_calls.rs`).
+    /// (CODESYS V3, TwinCAT 3; `src/sema/instance_calls/`).
     pub init_args: Option<InitArgs>,
 }
 

@@ -81,7 +81,7 @@ pub struct Method {
     /// them in the FB or interface, see [`crate::syntax::oop_property`]).
     pub property: Option<Vec<Method>>,
     /// Declared after `{attribute 'call_after_init'}`: called on every
-    /// instance right after its `FB_init` (`src/sema/fb_init_calls.rs`).
+    /// instance right after its `FB_init` (`src/sema/instance_calls/`).
     pub call_after_init: bool,
 }
 

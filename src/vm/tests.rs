@@ -79,6 +79,7 @@ fn program(ops: Vec<Op>) -> VerifiedImage {
         hosts: Vec::new(),
         retained: Vec::new(),
         start: Vec::new(),
+        exit: Vec::new(),
     };
     verify(image).expect("a valid image")
 }

@@ -7,17 +7,18 @@ mod auto_address;
 mod call_depth;
 mod config_elements;
 mod init;
+mod instance_calls;
 mod located_overlap;
 mod oop_resets;
 mod recursion;
 mod retained;
 mod schedule;
-mod start_calls;
 mod var_config;
 
 use super::CompileOptions;
 use super::decl_consts::DeclConsts;
 use super::declare::Declared;
+use super::instance_calls::{EXIT, INIT};
 use super::model::{Model, Storage};
 use super::program::Program;
 use crate::diagnostics::Diagnostics;
@@ -128,7 +129,8 @@ impl Linker<'_> {
         );
         roots.extend(configured);
         let retained = self.retained_vars(&instances);
-        let start = self.start_calls(&instances);
+        let start = self.instance_calls(&instances, INIT);
+        let exit = self.instance_calls(&instances, EXIT);
         if !options.unoptimized {
             for c in &mut self.out.codes {
                 crate::ir::fuse::fuse_loops(&mut c.ops);
@@ -154,6 +156,7 @@ impl Linker<'_> {
             hosts: options.host_pous.clone(),
             retained,
             start,
+            exit,
         };
         if self.diags.has_errors() {
             return None;

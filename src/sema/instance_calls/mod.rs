@@ -1,0 +1,217 @@
+//! The implicit `FB_init` and `FB_exit` calls of CODESYS V3 and TwinCAT 3.
+//!
+//! A FUNCTION_BLOCK may declare a method `FB_init` (inputs `bInitRetains`,
+//! `bInCopyCode`, then its own) and a method `FB_exit` (input
+//! `bInCopyCode`). Each instance that lives from start to stop has its
+//! `FB_init` called before the first cycle and again at every reset, with
+//! the arguments of its declaration (`fb : FB_X(a := 1);`), and its
+//! `FB_exit` when the program is unloaded. This pass writes those calls
+//! as ST, in hidden methods the rest of the compiler builds like any
+//! other, one family per [`Phase`]:
+//!
+//! - every FUNCTION_BLOCK and PROGRAM whose instances hold instances that
+//!   need calls (directly, in arrays, or deeper down) gets a method
+//!   (`FB_init@members(bInitRetains)`, `FB_exit@members(bInCopyCode)`).
+//!   At start it runs, for each of its members in declaration order, the
+//!   member's own members' start (the innermost instances first), the
+//!   member's `FB_init` and its `call_after_init` methods, after its
+//!   parent's members (`SUPER^`). At exit the reverse: members in reverse
+//!   order, each member's `FB_exit` before its members', the parent's
+//!   members last;
+//! - an explicit `FB_init` of a block whose ancestor has one starts by
+//!   calling the ancestor's with the same arguments; an explicit `FB_exit`
+//!   ends by calling the ancestor's (TwinCAT's order);
+//! - the global variable lists get a FUNCTION per phase
+//!   (`FB_init@globals`, `FB_exit@globals`).
+//!
+//! The linker lists these entry points ([`crate::ir::image::InstanceCall`]);
+//! the runtime runs them (docs/semantics.md §24).
+
+mod build;
+mod exit;
+mod index;
+mod init;
+
+use crate::diagnostics::Diagnostics;
+use crate::syntax::ast::{CompilationUnit, Item, PouKind, Stmt, VarDecl};
+use crate::syntax::oop::PouOop;
+use index::{Index, lives_with_instance};
+
+/// One family of implicit calls.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Phase {
+    /// The key of the method a block declares.
+    pub key: &'static str,
+    /// Its name as written in the calls.
+    pub method: &'static str,
+    /// The hidden method that calls it on an instance's members (a name no
+    /// identifier can spell).
+    pub members: &'static str,
+    /// The hidden FUNCTION that calls it on the global lists' instances.
+    pub globals: &'static str,
+    /// The BOOL input of both, which the runtime sets before the call.
+    pub flag: &'static str,
+}
+
+/// Before the first cycle and at every reset.
+pub(crate) const INIT: Phase = Phase {
+    key: "FB_INIT",
+    method: "FB_init",
+    members: "FB_init@members",
+    globals: "FB_init@globals",
+    flag: "bInitRetains",
+};
+
+/// When the program is unloaded.
+pub(crate) const EXIT: Phase = Phase {
+    key: "FB_EXIT",
+    method: "FB_exit",
+    members: "FB_exit@members",
+    globals: "FB_exit@globals",
+    flag: "bInCopyCode",
+};
+
+/// A copy of `units` with the hidden methods and functions of the module
+/// comment; `None` when no block declares `FB_init`, `FB_exit` or a
+/// `call_after_init` method and no declaration gives FB_init arguments
+/// (the units are used as they are). Arguments an instance cannot take
+/// are E931-E933.
+pub(super) fn with_instance_calls(
+    units: &[CompilationUnit],
+    diags: &mut Diagnostics,
+) -> Option<Vec<CompilationUnit>> {
+    let index = Index::new(units);
+    let any_method = index.blocks.values().any(|b| {
+        b.method(INIT.key).is_some()
+            || b.method(EXIT.key).is_some()
+            || b.methods.iter().any(|m| m.call_after_init)
+    });
+    let any_args = units
+        .iter()
+        .flat_map(|u| &u.items)
+        .any(|i| declarations_of(i).any(|d| d.init_args.is_some()));
+    if !any_method && !any_args {
+        return None;
+    }
+    init::refuse_arguments_elsewhere(units, diags);
+    let mut copy = units.to_vec();
+    for phase in [INIT, EXIT] {
+        add_phase(units, &mut copy, &index, phase, diags);
+    }
+    Some(copy)
+}
+
+/// The declarations of an item's variable sections.
+fn declarations_of(item: &Item) -> Box<dyn Iterator<Item = &VarDecl> + '_> {
+    match item {
+        Item::Pou(p) => Box::new(p.var_blocks.iter().flat_map(|b| &b.decls)),
+        Item::Globals(b) => Box::new(b.decls.iter()),
+        _ => Box::new(std::iter::empty()),
+    }
+}
+
+/// The calls of `phase` for the instances `d` declares.
+fn calls_of(
+    index: &Index,
+    phase: Phase,
+    d: &VarDecl,
+    loops: &mut usize,
+    diags: &mut Diagnostics,
+) -> Vec<Stmt> {
+    match phase {
+        INIT => init::start_of(index, d, loops, diags),
+        _ => exit::exit_of(index, d, loops),
+    }
+}
+
+/// Adds `phase`'s hidden methods to the blocks of `copy` (a copy of
+/// `units`) and its hidden function to the last unit.
+fn add_phase(
+    units: &[CompilationUnit],
+    copy: &mut [CompilationUnit],
+    index: &Index,
+    phase: Phase,
+    diags: &mut Diagnostics,
+) {
+    for (u, unit) in copy.iter_mut().enumerate() {
+        for (i, item) in unit.items.iter_mut().enumerate() {
+            let Item::Pou(pou) = item else { continue };
+            if pou.kind == PouKind::Function {
+                continue;
+            }
+            let key = pou.name.key();
+            let lineage = index.lineage(&key);
+            // A second POU of the same name is reported elsewhere.
+            if lineage.first().is_none_or(|b| b.at != (u, i)) {
+                continue;
+            }
+            let mut decls: Vec<&VarDecl> = pou
+                .var_blocks
+                .iter()
+                .filter(|b| lives_with_instance(b.kind))
+                .flat_map(|b| &b.decls)
+                .collect();
+            if phase == EXIT {
+                decls.reverse();
+            }
+            let mut loops = 0;
+            let mut stmts: Vec<Stmt> = Vec::new();
+            for d in decls {
+                stmts.extend(calls_of(index, phase, d, &mut loops, diags));
+            }
+            let parent = lineage.iter().skip(1).find_map(|b| b.method(phase.key));
+            let derived = lineage[0].method(phase.key).is_some() && parent.is_some();
+            if stmts.is_empty() && !derived {
+                continue;
+            }
+            let parent_tree = lineage
+                .get(1)
+                .is_some_and(|p| index.has_tree(&p.pou.name.key(), phase));
+            let span = pou.name.span;
+            let oop = pou.oop.get_or_insert_with(|| Box::new(PouOop::default()));
+            if derived {
+                let own = oop.methods.iter_mut().find(|m| m.name.key() == phase.key);
+                match (own, parent, phase) {
+                    (Some(own), Some(parent), INIT) => init::prepend_parent_init(own, parent),
+                    (Some(own), Some(_), _) => exit::append_parent_exit(own),
+                    _ => {}
+                }
+            }
+            if !stmts.is_empty() {
+                if parent_tree {
+                    let call = build::super_members(phase, span);
+                    match phase {
+                        INIT => stmts.insert(0, call),
+                        _ => stmts.push(call),
+                    }
+                }
+                oop.methods
+                    .push(build::members_method(phase, stmts, loops, span));
+            }
+        }
+    }
+    // The global lists, from the sources (this pass does not change them).
+    let mut decls: Vec<&VarDecl> = units
+        .iter()
+        .flat_map(|u| &u.items)
+        .filter_map(|i| match i {
+            Item::Globals(b) => Some(b),
+            _ => None,
+        })
+        .flat_map(|b| &b.decls)
+        .collect();
+    if phase == EXIT {
+        decls.reverse();
+    }
+    let mut loops = 0;
+    let mut globals = Vec::new();
+    for d in decls {
+        globals.extend(calls_of(index, phase, d, &mut loops, diags));
+    }
+    if !globals.is_empty()
+        && let Some(last) = copy.last_mut()
+    {
+        let function = build::globals_function(phase, globals, loops);
+        last.items.push(Item::Pou(function));
+    }
+}
