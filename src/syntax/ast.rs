@@ -154,6 +154,26 @@ pub struct VarDecl {
     pub init_args: Option<InitArgs>,
 }
 
+impl VarDecl {
+    /// `name : ty;` with no location, initial value or qualifier: a
+    /// declaration the compiler writes itself (its span: `span`).
+    pub fn simple(name: &str, ty: &str, span: Span) -> VarDecl {
+        let ident = |n: &str| Ident {
+            name: n.to_string(),
+            span,
+        };
+        VarDecl {
+            names: vec![ident(name)],
+            location: None,
+            ty: TypeSpec::Named(ident(ty)),
+            init: None,
+            span,
+            edge: None,
+            init_args: None,
+        }
+    }
+}
+
 /// The arguments an instance declaration gives its `FB_init`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InitArgs {

@@ -7,7 +7,7 @@ use super::Phase;
 use crate::source::Span;
 use crate::syntax::ast::{
     Arg, BinaryOp, Body, Call, Expr, ExprKind, Ident, Literal, LiteralValue, Pou, PouKind, Stmt,
-    StmtKind, TypeSpec, VarBlock, VarDecl, VarKind,
+    StmtKind, VarBlock, VarDecl, VarKind,
 };
 use crate::syntax::oop::{Method, Modifiers};
 
@@ -108,18 +108,7 @@ pub(super) fn members_method(phase: Phase, stmts: Vec<Stmt>, loops: usize, span:
 
 /// `VAR_INPUT <flag> : BOOL; END_VAR VAR counters : DINT; END_VAR`.
 fn parameters(phase: Phase, loops: usize, span: Span) -> Vec<VarBlock> {
-    let decl = |n: String, ty: &str| VarDecl {
-        names: vec![Ident { name: n, span }],
-        location: None,
-        ty: TypeSpec::Named(Ident {
-            name: ty.to_string(),
-            span,
-        }),
-        init: None,
-        span,
-        edge: None,
-        init_args: None,
-    };
+    let decl = |n: String, ty: &str| VarDecl::simple(&n, ty, span);
     let block = |kind, decls| VarBlock {
         kind,
         constant: false,

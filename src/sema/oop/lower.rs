@@ -726,21 +726,7 @@ fn body_is_empty(b: &Body) -> bool {
 
 /// `name : ty;` as a structure field.
 fn field(name: &str, ty: &str, span: Span) -> VarDecl {
-    VarDecl {
-        names: vec![Ident {
-            name: name.to_string(),
-            span,
-        }],
-        location: None,
-        ty: TypeSpec::Named(Ident {
-            name: ty.to_string(),
-            span,
-        }),
-        init: None,
-        span,
-        edge: None,
-        init_args: None,
-    }
+    VarDecl::simple(name, ty, span)
 }
 
 /// Adds a method's variable block to its FB's flattened blocks; a
