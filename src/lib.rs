@@ -73,9 +73,9 @@ pub use driver::{
 };
 pub use elementary::ElemType;
 pub use ide::{
-    Analysis, Completion, CompletionKind, Fold, Hover, Occurrence, OutlineItem, RenameError, Shape,
-    Signature, SignatureParam, StdFunction, Symbol, SymbolId, SymbolKind, TokenKind, TokenMark,
-    VarSection, std_function, std_functions,
+    Analysis, Completion, CompletionKind, Fold, Hover, LiveName, Occurrence, OutlineItem,
+    RenameError, Shape, Signature, SignatureParam, StdFunction, Symbol, SymbolId, SymbolKind,
+    TokenKind, TokenMark, VarSection, std_function, std_functions,
 };
 pub use progress::Progress;
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};

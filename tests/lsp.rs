@@ -414,3 +414,61 @@ fn neovims_own_client_gets_diagnostics_hover_and_definition() {
     );
     assert_eq!(result["definition_line"], 3);
 }
+
+/// `plcrun lsp --live ADDR` shows the values of a running plcrun (its web
+/// monitor at ADDR) as inlay hints after the program's variables, and
+/// asks the client to fetch them again as the scan goes on: the counter
+/// `n` is shown, and grows between two requests a second apart.
+#[cfg(feature = "cli")]
+#[test]
+fn live_values_of_a_running_plc_are_inlay_hints_that_follow_the_scan() {
+    let counter = "PROGRAM Main\nVAR n : DINT; fb : TON; END_VAR\nn := n + 1;\nfb(IN := n > 5, PT := T#1h);\nEND_PROGRAM\n";
+    let main = PathBuf::from(temp_file("live.st", counter));
+    let dir = main.parent().unwrap().to_path_buf();
+    let monitor = crate::web_cli::Monitor::start(&[main.to_str().unwrap()]);
+    let capabilities = json!({"workspace": {"inlayHint": {"refreshSupport": true}}});
+    let (mut client, caps) = LspClient::start_with(&dir, &["--live", &monitor.addr], capabilities);
+    assert!(!caps["inlayHintProvider"].is_null(), "{caps}");
+    client.open(&main, counter);
+    let all = json!({"start": {"line": 0, "character": 0}, "end": {"line": 5, "character": 0}});
+    let values_of_n = |client: &mut LspClient| -> Vec<i64> {
+        let hints = client.request(
+            "textDocument/inlayHint",
+            json!({"textDocument": {"uri": uri(&main)}, "range": all}),
+        );
+        // `n` is written three times: twice on line 2, once on line 3; the
+        // TON instance `fb` has no single value and gets no hint.
+        let hints = hints.as_array().unwrap_or_else(|| panic!("not a list of hints: {hints}")).clone();
+        assert_eq!(hints.len(), 3, "{hints:?}");
+        hints
+            .iter()
+            .map(|h| {
+                let label = h["label"].as_str().unwrap();
+                label.strip_prefix("= ").unwrap().parse().unwrap()
+            })
+            .collect()
+    };
+    let first = values_of_n(&mut client);
+    std::thread::sleep(std::time::Duration::from_secs(1));
+    let second = values_of_n(&mut client);
+    assert!(second[0] > first[0], "{first:?} then {second:?}");
+    // The server asked the client to refresh its hints on its own.
+    assert!(
+        client
+            .notifications
+            .iter()
+            .any(|m| m["method"] == "workspace/inlayHint/refresh"),
+        "no refresh request among {:?}",
+        client.notifications
+    );
+    assert_eq!(client.shutdown(), Some(0));
+    assert_eq!(monitor.stop(), 0);
+}
+
+#[test]
+fn without_live_values_no_inlay_hints_are_offered() {
+    let (dir, _, _) = project();
+    let (client, caps) = LspClient::start(&dir);
+    assert!(caps["inlayHintProvider"].is_null(), "{caps}");
+    assert_eq!(client.shutdown(), Some(0));
+}

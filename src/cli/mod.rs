@@ -15,6 +15,7 @@ mod health;
 mod init;
 mod lsp;
 mod modbus;
+mod monitor_client;
 mod online;
 #[cfg(feature = "opcua")]
 mod opcua;

@@ -8,6 +8,7 @@ mod collect;
 mod complete;
 mod doc_comment;
 mod hover;
+mod live_names;
 mod outline;
 mod rename;
 mod resolve;
@@ -19,6 +20,7 @@ mod text_context;
 
 pub use complete::{Completion, CompletionKind};
 pub use hover::Hover;
+pub use live_names::LiveName;
 pub use outline::{Fold, OutlineItem, TokenKind, TokenMark};
 pub use rename::RenameError;
 pub use resolve::Occurrence;

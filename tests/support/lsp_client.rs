@@ -56,8 +56,15 @@ impl LspClient {
     /// the initialisation handshake; returns the client and the server's
     /// capabilities.
     pub fn start(root: &Path) -> (LspClient, Value) {
+        LspClient::start_with(root, &[], json!({}))
+    }
+
+    /// [`LspClient::start`] with more command-line arguments for `plcrun
+    /// lsp` and the client capabilities to announce.
+    pub fn start_with(root: &Path, args: &[&str], capabilities: Value) -> (LspClient, Value) {
         let mut child = Command::new(env!("CARGO_BIN_EXE_plcrun"))
             .args(["lsp", "--stdio"])
+            .args(args)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::inherit())
@@ -88,7 +95,7 @@ impl LspClient {
                 "processId": null,
                 "rootUri": root_uri,
                 "workspaceFolders": [{"uri": root_uri, "name": "test"}],
-                "capabilities": {}
+                "capabilities": capabilities
             }),
         );
         client.notify("initialized", json!({}));
@@ -120,7 +127,8 @@ impl LspClient {
             let message = self
                 .receive(deadline)
                 .unwrap_or_else(|| panic!("no answer to {method} in {PATIENCE:?}"));
-            if message["id"] == json!(id) {
+            // A request from the server may carry the same number.
+            if message["id"] == json!(id) && message.get("method").is_none() {
                 return match message.get("error") {
                     Some(e) => Err(e.clone()),
                     None => Ok(message["result"].clone()),

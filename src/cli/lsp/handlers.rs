@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 /// What the server can do, announced at initialisation.
-pub fn capabilities(utf8: bool) -> lsp::ServerCapabilities {
+pub fn capabilities(utf8: bool, live: bool) -> lsp::ServerCapabilities {
     lsp::ServerCapabilities {
         position_encoding: Some(if utf8 {
             lsp::PositionEncodingKind::UTF8
@@ -63,6 +63,8 @@ pub fn capabilities(utf8: bool) -> lsp::ServerCapabilities {
         ),
         // No formatter: plcrun has none yet (docs/editors.md).
         document_formatting_provider: None,
+        // Live values, when a running plcrun is named (`--live`).
+        inlay_hint_provider: live.then_some(lsp::OneOf::Left(true)),
         ..lsp::ServerCapabilities::default()
     }
 }
@@ -100,6 +102,7 @@ pub fn dispatch(server: &mut Server, method: &str, params: Value) -> Answer {
         WorkspaceSymbolRequest::METHOD => workspace_symbols(server, parse(params)?),
         SemanticTokensFullRequest::METHOD => semantic_tokens(server, parse(params)?),
         FoldingRangeRequest::METHOD => folding(server, parse(params)?),
+        InlayHintRequest::METHOD => inlay_hints(server, parse(params)?),
         Formatting::METHOD => Err(Failure::refused(
             "plcrun has no formatter yet: formatting is not offered",
         )),
@@ -108,6 +111,25 @@ pub fn dispatch(server: &mut Server, method: &str, params: Value) -> Answer {
             message: format!("plcrun lsp does not answer `{method}`"),
         }),
     }
+}
+
+/// The running PLC's values beside the names of the requested range.
+fn inlay_hints(server: &mut Server, p: lsp::InlayHintParams) -> Answer {
+    if server.live.is_none() {
+        return json(Vec::<lsp::InlayHint>::new());
+    }
+    let start = server.place(&p.text_document, p.range.start)?;
+    let end = server.place(&p.text_document, p.range.end)?;
+    let columns = server.columns;
+    let mut live = server.live.take();
+    let hints = match (&mut live, server.analysis(&start.project)) {
+        (Some(live), Some(analysis)) => {
+            live.hints(analysis, start.file, (start.offset, end.offset), columns)
+        }
+        _ => Vec::new(),
+    };
+    server.live = live;
+    json(hints)
 }
 
 fn parse<T: serde::de::DeserializeOwned>(params: Value) -> Result<T, Failure> {

@@ -4,6 +4,7 @@
 
 mod convert;
 mod handlers;
+mod live;
 mod position;
 mod server;
 mod uri;
@@ -20,12 +21,18 @@ pub struct LspArgs {
     /// are the only transport.
     #[arg(long)]
     pub stdio: bool,
+    /// Show the values of a running plcrun as inlay hints: the address of
+    /// its web monitor (`--web` of the run; HOST:PORT, a port, or an
+    /// http:// URL). An editor may also give it as the initialization
+    /// option `live`.
+    #[arg(long, value_name = "ADDR")]
+    pub live: Option<String>,
 }
 
 /// Runs the server until the client says `exit`.
-pub fn lsp(_args: &LspArgs) -> i32 {
+pub fn lsp(args: &LspArgs) -> i32 {
     let (connection, threads) = Connection::stdio();
-    let outcome = server::serve(&connection);
+    let outcome = server::serve(&connection, args.live.as_deref());
     drop(connection);
     // The reader thread may fail on a message sent after `exit` (an
     // editor closing its documents as it quits): the session is over.

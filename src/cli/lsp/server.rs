@@ -27,6 +27,12 @@ pub struct Server {
     stale: HashSet<PathBuf>,
     /// The files each project last published diagnostics for.
     published: HashMap<PathBuf, Vec<PathBuf>>,
+    /// Live values from a running plcrun, when asked for.
+    pub live: Option<super::live::Live>,
+    /// The client takes `workspace/inlayHint/refresh` requests.
+    refresh_hints: bool,
+    /// The number of the next request to the client.
+    next_request: i32,
 }
 
 /// Where a request points: a project, a file of it and a byte offset.
@@ -59,7 +65,7 @@ impl Failure {
 }
 
 /// Initialises the session and answers until `exit`.
-pub fn serve(connection: &Connection) -> Result<(), String> {
+pub fn serve(connection: &Connection, live: Option<&str>) -> Result<(), String> {
     let (id, params) = connection.initialize_start().map_err(|e| e.to_string())?;
     let init: lsp::InitializeParams =
         serde_json::from_value(params).map_err(|e| format!("bad initialize request: {e}"))?;
@@ -70,8 +76,20 @@ pub fn serve(connection: &Connection) -> Result<(), String> {
         .and_then(|g| g.position_encodings.as_ref())
         .is_some_and(|e| e.contains(&lsp::PositionEncodingKind::UTF8));
     let columns = if utf8 { Columns::Utf8 } else { Columns::Utf16 };
+    let option = init
+        .initialization_options
+        .as_ref()
+        .and_then(|o| o["live"].as_str());
+    let live = live.or(option).map(super::live::Live::new);
+    let refresh_hints = init
+        .capabilities
+        .workspace
+        .as_ref()
+        .and_then(|w| w.inlay_hint.as_ref())
+        .and_then(|h| h.refresh_support)
+        .unwrap_or(false);
     let result = lsp::InitializeResult {
-        capabilities: handlers::capabilities(utf8),
+        capabilities: handlers::capabilities(utf8, live.is_some()),
         server_info: Some(lsp::ServerInfo {
             name: "plcrun".into(),
             version: Some(env!("CARGO_PKG_VERSION").into()),
@@ -86,6 +104,9 @@ pub fn serve(connection: &Connection) -> Result<(), String> {
         columns,
         stale: HashSet::new(),
         published: HashMap::new(),
+        live,
+        refresh_hints,
+        next_request: 1,
     };
     server.run(connection)
 }
@@ -112,6 +133,7 @@ impl Server {
                 Ok(m) => m,
                 Err(e) if e.is_timeout() => {
                     self.publish(connection)?;
+                    self.refresh_live_values(connection)?;
                     continue;
                 }
                 Err(_) => return Ok(()),
@@ -141,6 +163,22 @@ impl Server {
                 Message::Response(_) => {}
             }
         }
+    }
+
+    /// Asks the client to fetch the inlay hints again when the running
+    /// PLC's values moved on since it last did.
+    fn refresh_live_values(&mut self, connection: &Connection) -> Result<(), String> {
+        let Some(live) = &mut self.live else {
+            return Ok(());
+        };
+        if !self.refresh_hints || !live.poll() {
+            return Ok(());
+        }
+        let id = RequestId::from(self.next_request);
+        self.next_request += 1;
+        let method = <lsp::request::InlayHintRefreshRequest as lsp::request::Request>::METHOD;
+        let request = Request::new(id, method.to_string(), serde_json::Value::Null);
+        send(connection, Message::Request(request))
     }
 
     fn answer(&mut self, request: Request) -> Response {
