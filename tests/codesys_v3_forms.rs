@@ -276,3 +276,52 @@ END_PROGRAM
     let codes: Vec<&str> = plc.warnings().iter().map(|d| d.code).collect();
     assert_eq!(codes, ["W485", "W485"]);
 }
+
+/// `VAR_STAT` (CODESYS, TwinCAT): one copy for every instance and call,
+/// initialised once. By hand: `shared` starts at 100 and both instances
+/// add 1 a cycle (102, 104, 106); `own` is per instance; a FUNCTION's
+/// static `n` keeps its value while its VAR `t` is reset at every call
+/// (n * 10 + t: 11, 21, 31); a METHOD's static `calls` is shared by the
+/// two instances (1 + 2, 3 + 4, 5 + 6). A cold reset starts them over.
+#[test]
+fn static_variables_are_shared_by_every_instance_and_call() {
+    let src = "
+FUNCTION_BLOCK FB_Count
+VAR_STAT shared : INT := 100; name : STRING := 'x'; END_VAR
+VAR own : INT; END_VAR
+METHOD GetShared : INT
+GetShared := shared;
+END_METHOD
+METHOD Hit : INT
+VAR_STAT calls : INT; END_VAR
+calls := calls + 1;
+Hit := calls;
+END_METHOD
+shared := shared + 1;
+own := own + 1;
+name := CONCAT(name, 'y');
+END_FUNCTION_BLOCK
+FUNCTION F : INT
+VAR_STAT n : INT; END_VAR
+VAR t : INT; END_VAR
+n := n + 1; t := t + 1;
+F := n * 10 + t;
+END_FUNCTION
+PROGRAM P
+VAR a, b : FB_Count; s, oa, f, h : INT; END_VAR
+a(); b();
+s := b.GetShared(); oa := a.own; f := F(); h := a.Hit() + b.Hit();
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    let mut seen = Vec::new();
+    for _ in 0..3 {
+        run(&mut plc, 1);
+        seen.push(["s", "oa", "f", "h"].map(|n| lit(&plc, n)).join(","));
+    }
+    assert_eq!(seen, ["102,1,11,3", "104,2,21,7", "106,3,31,11"]);
+    plc.reset_cold();
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "s"), "102");
+    assert_eq!(lit(&plc, "f"), "11");
+}

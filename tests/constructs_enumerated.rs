@@ -215,6 +215,12 @@ const ROWS: &[Row] = &[
         expect: &[("v", "3")],
     },
     Row {
+        covers: &["VAR_STAT"],
+        // One static for both instances: two calls a cycle, three cycles: 6.
+        source: "FUNCTION_BLOCK F\nVAR_STAT\n  n : INT;\nEND_VAR\nMETHOD Inc : INT\nn := n + 1;\nInc := n;\nEND_METHOD\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  a, b : F; v : INT;\nEND_VAR\na.Inc();\nv := b.Inc();\nEND_PROGRAM\n",
+        expect: &[("v", "6")],
+    },
+    Row {
         covers: &["INTERFACE", "END_INTERFACE", "IMPLEMENTS"],
         // A call through the interface variable reaches F's method.
         source: "INTERFACE I\nMETHOD M : INT\nEND_METHOD\nEND_INTERFACE\nFUNCTION_BLOCK F IMPLEMENTS I\nVAR\n  n : INT;\nEND_VAR\nMETHOD M : INT\nn := n + 1;\nM := n;\nEND_METHOD\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR\n  f : F; itf : I; v : INT;\nEND_VAR\nitf := f;\nv := itf.M();\nEND_PROGRAM\n",

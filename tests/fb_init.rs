@@ -338,3 +338,43 @@ fn the_command_line_runs_fb_exit_before_the_last_retain_save() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(out, "cycle,time,out\n0,T#0s,211\n");
 }
+
+/// An interface variable whose initial value is an instance
+/// (`out : I_Log := logger;`, CODESYS) is bound at start, before any
+/// FB_init: the member and the global interfaces call their instances
+/// (2 and 5 a cycle).
+#[test]
+fn an_interface_initialised_with_an_instance_is_bound_at_start() {
+    let src = "
+INTERFACE I_Log
+METHOD Log : INT
+VAR_INPUT n : INT; END_VAR
+END_METHOD
+END_INTERFACE
+FUNCTION_BLOCK FB_Logger IMPLEMENTS I_Log
+VAR total : INT; END_VAR
+METHOD Log : INT
+VAR_INPUT n : INT; END_VAR
+total := total + n;
+Log := total;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_User
+VAR logger : FB_Logger; out : I_Log := logger; END_VAR
+out.Log(2);
+END_FUNCTION_BLOCK
+VAR_GLOBAL
+  gl : FB_Logger;
+  gi : I_Log := gl;
+END_VAR
+PROGRAM Main
+VAR u : FB_User; END_VAR
+u();
+gi.Log(5);
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "u.logger.total"), "4");
+    assert_eq!(lit(&plc, "gl.total"), "10");
+}

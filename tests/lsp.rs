@@ -438,7 +438,10 @@ fn live_values_of_a_running_plc_are_inlay_hints_that_follow_the_scan() {
         );
         // `n` is written three times: twice on line 2, once on line 3; the
         // TON instance `fb` has no single value and gets no hint.
-        let hints = hints.as_array().unwrap_or_else(|| panic!("not a list of hints: {hints}")).clone();
+        let hints = hints
+            .as_array()
+            .unwrap_or_else(|| panic!("not a list of hints: {hints}"))
+            .clone();
         assert_eq!(hints.len(), 3, "{hints:?}");
         hints
             .iter()

@@ -247,6 +247,7 @@ impl Collector<'_> {
             VarKind::External => SymbolKind::Variable(VarSection::External),
             VarKind::Temp => SymbolKind::Variable(VarSection::Temp),
             VarKind::Inst => SymbolKind::Variable(VarSection::Inst),
+            VarKind::Stat => SymbolKind::Variable(VarSection::Stat),
         };
         for decl in &block.decls {
             for name in &decl.names {

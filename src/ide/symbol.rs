@@ -73,6 +73,8 @@ pub enum VarSection {
     Temp,
     /// `VAR_INST`
     Inst,
+    /// `VAR_STAT`
+    Stat,
 }
 
 impl VarSection {
@@ -86,6 +88,7 @@ impl VarSection {
             VarSection::External => "VAR_EXTERNAL",
             VarSection::Temp => "VAR_TEMP",
             VarSection::Inst => "VAR_INST",
+            VarSection::Stat => "VAR_STAT",
         }
     }
 

@@ -13,7 +13,7 @@ use indexmap::IndexMap;
 fn member_kind(k: VarKind) -> MemberKind {
     match k {
         // VAR_INST outside a METHOD was refused (E434).
-        VarKind::Local | VarKind::Global | VarKind::Inst => MemberKind::Local,
+        VarKind::Local | VarKind::Global | VarKind::Inst | VarKind::Stat => MemberKind::Local,
         VarKind::Input => MemberKind::Input,
         VarKind::Output => MemberKind::Output,
         VarKind::InOut => MemberKind::InOut,
@@ -384,6 +384,12 @@ impl Declarer<'_> {
         }
         match block.kind {
             VarKind::External => self.external_storage(block, name, ty),
+            // One copy for every instance and call: absolute memory,
+            // initialised once by the linker.
+            VarKind::Stat => {
+                let size = self.types.size(ty).max(1);
+                Some((Storage::Abs(self.out.alloc_abs(self.diags, size)), None))
+            }
             VarKind::InOut => {
                 let s = Storage::Ref(frame.offset);
                 frame.offset += 1;

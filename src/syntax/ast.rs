@@ -105,6 +105,9 @@ pub enum VarKind {
     /// `VAR_INST` (CODESYS / TwinCAT, in a METHOD only): the method's
     /// variables that keep their values between calls, one set per instance.
     Inst,
+    /// `VAR_STAT` (CODESYS, TwinCAT): one copy shared by every instance
+    /// and call of the POU, kept from call to call.
+    Stat,
 }
 
 /// RETAIN / NON_RETAIN / PERSISTENT qualifier.

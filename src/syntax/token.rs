@@ -343,6 +343,7 @@ pub enum Kw {
     VarExternal,
     VarGlobal,
     VarTemp,
+    VarStat,
     VarInst,
     EndVar,
     Constant,
@@ -432,7 +433,7 @@ pub enum Kw {
 }
 
 /// Every keyword with its spelling.
-pub const KEYWORDS: [(&str, Kw); 91] = [
+pub const KEYWORDS: [(&str, Kw); 92] = [
     ("PROGRAM", Kw::Program),
     ("END_PROGRAM", Kw::EndProgram),
     ("FUNCTION", Kw::Function),
@@ -447,6 +448,7 @@ pub const KEYWORDS: [(&str, Kw); 91] = [
     ("VAR_GLOBAL", Kw::VarGlobal),
     ("VAR_TEMP", Kw::VarTemp),
     ("VAR_INST", Kw::VarInst),
+    ("VAR_STAT", Kw::VarStat),
     ("END_VAR", Kw::EndVar),
     ("CONSTANT", Kw::Constant),
     ("RETAIN", Kw::Retain),

@@ -3,7 +3,10 @@
 //! methods, and which ones hold members that need calls.
 
 use super::Phase;
-use crate::syntax::ast::{CompilationUnit, Expr, Ident, Item, Pou, PouKind, TypeSpec, VarKind};
+use crate::syntax::ast::{
+    CompilationUnit, Expr, ExprKind, Ident, Initializer, Item, Pou, PouKind, TypeSpec, VarDecl,
+    VarKind,
+};
 use crate::syntax::oop::Method;
 use std::collections::{HashMap, HashSet};
 
@@ -40,6 +43,8 @@ pub(super) struct Index<'a> {
     pub blocks: HashMap<String, Block<'a>>,
     /// The keys of the declared TYPEs, POUs and interfaces.
     types: HashSet<String>,
+    /// The keys of the interfaces.
+    interfaces: HashSet<String>,
     /// (phase's hidden method, block key) -> whether its members (own or
     /// inherited) need calls in that phase.
     tree: HashMap<(&'static str, String), bool>,
@@ -97,9 +102,18 @@ impl<'a> Index<'a> {
                 _ => Vec::new(),
             })
             .collect();
+        let interfaces = units
+            .iter()
+            .flat_map(|u| &u.items)
+            .filter_map(|i| match i {
+                Item::Interface(x) => Some(x.name.key()),
+                _ => None,
+            })
+            .collect();
         let mut index = Index {
             blocks,
             types,
+            interfaces,
             tree: HashMap::new(),
         };
         let keys: Vec<String> = index.blocks.keys().cloned().collect();
@@ -157,6 +171,27 @@ impl<'a> Index<'a> {
         out
     }
 
+    /// Whether `d` declares interface variables bound to an instance by
+    /// their initial value (`itf : I_Log := logger;`), which the start
+    /// assigns.
+    pub fn binds_interface(&self, d: &VarDecl) -> bool {
+        let TypeSpec::Named(n) = &d.ty else {
+            return false;
+        };
+        let value = matches!(&d.init, Some(Initializer::Expr(e)) if !matches!(e.kind, ExprKind::Literal(_)));
+        value && self.interfaces.contains(&type_key(n))
+    }
+
+    /// Whether the block `b` (its own sections) binds interfaces.
+    fn block_binds_interfaces(&self, b: &Block) -> bool {
+        b.pou
+            .var_blocks
+            .iter()
+            .filter(|v| lives_with_instance(v.kind))
+            .flat_map(|v| &v.decls)
+            .any(|d| self.binds_interface(d))
+    }
+
     /// Whether a declared type is one the compiler knows without this
     /// pass (an elementary type, a standard block, a declared TYPE, POU or
     /// interface): an unknown name is reported once, as an unknown type,
@@ -212,12 +247,17 @@ impl<'a> Index<'a> {
             return false;
         }
         self.tree.insert(slot.clone(), false);
+        let binds = phase == super::INIT
+            && self
+                .lineage(key)
+                .iter()
+                .any(|b| self.block_binds_interfaces(b));
         let types: Vec<TypeSpec> = self
             .lineage(key)
             .iter()
             .flat_map(|b| member_types(b.pou))
             .collect();
-        let mut needed = false;
+        let mut needed = binds;
         for ty in &types {
             if let Some((k, _)) = self.block_type(ty)
                 && self.needs_calls(&k, phase, depth + 1)

@@ -4,14 +4,39 @@
 
 use super::INIT;
 use super::build::{
-    all_elements, bool_lit, call_stmt, input, listed_elements, member, members_call, name,
+    all_elements, bool_lit, call_stmt, input, listed_elements, member, members_call, name, named,
 };
 use super::index::{Index, lives_with_instance};
 use crate::diagnostics::Diagnostics;
 use crate::syntax::ast::{
-    Arg, Body, CompilationUnit, Expr, Ident, Item, PouKind, Stmt, VarDecl, VarKind,
+    Arg, Body, CompilationUnit, Expr, Ident, Initializer, Item, PouKind, Stmt, StmtKind, VarDecl,
+    VarKind,
 };
 use crate::syntax::oop::{Method, SUPER};
+
+/// `itf := value;` for the interface variables of `decls` bound by their
+/// initial value, which is taken out of the declaration (the start
+/// assigns it, before any FB_init runs).
+pub(super) fn interface_bindings(index: &Index, decls: &mut [&mut VarDecl]) -> Vec<Stmt> {
+    let mut out = Vec::new();
+    for d in decls.iter_mut() {
+        if !index.binds_interface(d) {
+            continue;
+        }
+        let Some(Initializer::Expr(value)) = d.init.take() else {
+            continue;
+        };
+        for n in &d.names {
+            let target = named(n, d.span);
+            let kind = StmtKind::Assign {
+                target,
+                value: value.clone(),
+            };
+            out.push(Stmt { kind, span: d.span });
+        }
+    }
+    out
+}
 
 /// The start of the instances `d` declares (none when their block needs
 /// nothing at start); E931-E933 for arguments it cannot take.

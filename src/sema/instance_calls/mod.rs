@@ -81,11 +81,16 @@ pub(super) fn with_instance_calls(
     diags: &mut Diagnostics,
 ) -> Option<Vec<CompilationUnit>> {
     let index = Index::new(units);
-    let any_method = index.blocks.values().any(|b| {
-        b.method(INIT.key).is_some()
-            || b.method(EXIT.key).is_some()
-            || b.methods.iter().any(|m| m.call_after_init)
-    });
+    let any_binding = units
+        .iter()
+        .flat_map(|u| &u.items)
+        .any(|i| declarations_of(i).any(|d| index.binds_interface(d)));
+    let any_method = any_binding
+        || index.blocks.values().any(|b| {
+            b.method(INIT.key).is_some()
+                || b.method(EXIT.key).is_some()
+                || b.methods.iter().any(|m| m.call_after_init)
+        });
     let any_args = units
         .iter()
         .flat_map(|u| &u.items)
@@ -145,6 +150,16 @@ fn add_phase(
             if lineage.first().is_none_or(|b| b.at != (u, i)) {
                 continue;
             }
+            let mut stmts: Vec<Stmt> = Vec::new();
+            if phase == INIT {
+                let mut own: Vec<&mut VarDecl> = pou
+                    .var_blocks
+                    .iter_mut()
+                    .filter(|b| lives_with_instance(b.kind))
+                    .flat_map(|b| &mut b.decls)
+                    .collect();
+                stmts = init::interface_bindings(index, &mut own);
+            }
             let mut decls: Vec<&VarDecl> = pou
                 .var_blocks
                 .iter()
@@ -155,7 +170,6 @@ fn add_phase(
                 decls.reverse();
             }
             let mut loops = 0;
-            let mut stmts: Vec<Stmt> = Vec::new();
             for d in decls {
                 stmts.extend(calls_of(index, phase, d, &mut loops, diags));
             }
@@ -190,7 +204,21 @@ fn add_phase(
             }
         }
     }
-    // The global lists, from the sources (this pass does not change them).
+    // The global lists: their interface bindings (taken out of the
+    // copy), then the calls, read from the sources.
+    let mut globals = Vec::new();
+    if phase == INIT {
+        let mut own: Vec<&mut VarDecl> = copy
+            .iter_mut()
+            .flat_map(|u| &mut u.items)
+            .filter_map(|i| match i {
+                Item::Globals(b) => Some(b),
+                _ => None,
+            })
+            .flat_map(|b| &mut b.decls)
+            .collect();
+        globals = init::interface_bindings(index, &mut own);
+    }
     let mut decls: Vec<&VarDecl> = units
         .iter()
         .flat_map(|u| &u.items)
@@ -204,7 +232,6 @@ fn add_phase(
         decls.reverse();
     }
     let mut loops = 0;
-    let mut globals = Vec::new();
     for d in decls {
         globals.extend(calls_of(index, phase, d, &mut loops, diags));
     }

@@ -219,8 +219,23 @@ impl Linker<'_> {
         }
     }
 
-    /// Initial values of globals and of located variables of programs.
+    /// Initial values of globals, of located variables of programs and of
+    /// every POU's VAR_STAT variables.
     fn initialise_globals(&mut self) {
+        let statics: Vec<_> = self
+            .model
+            .pous
+            .iter()
+            .flat_map(|p| p.vars.values())
+            .filter(|v| v.kind == MemberKind::Local && v.location.is_none())
+            .filter_map(|v| match v.storage {
+                Storage::Abs(a) => Some((a, v.ty, v.init.clone())),
+                _ => None,
+            })
+            .collect();
+        for (a, ty, init) in statics {
+            self.instantiate(a, ty, init.as_ref());
+        }
         let globals: Vec<_> = self.model.globals.values().cloned().collect();
         for g in &globals {
             if let Storage::Abs(a) = g.storage {

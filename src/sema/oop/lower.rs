@@ -542,6 +542,7 @@ impl Lowering<'_> {
                     | VarKind::Local
                     | VarKind::Temp
                     | VarKind::Inst
+                    | VarKind::Stat
             ) {
                 for n in b.decls.iter().flat_map(|d| &d.names) {
                     let hidden = hidden_name(origin, &m.name.name, &n.name);
@@ -558,12 +559,12 @@ impl Lowering<'_> {
             let input = match b.kind {
                 VarKind::Input | VarKind::InOut => Some(true),
                 VarKind::Output => Some(false),
-                VarKind::Local | VarKind::Temp | VarKind::Inst => None,
+                VarKind::Local | VarKind::Temp | VarKind::Inst | VarKind::Stat => None,
                 _ => {
                     self.diags.error(
                         "E915",
                         b.span,
-                        "a METHOD may declare VAR_INPUT, VAR_OUTPUT, VAR_IN_OUT, VAR_EXTERNAL, VAR, VAR_TEMP and VAR_INST only",
+                        "a METHOD may declare VAR_INPUT, VAR_OUTPUT, VAR_IN_OUT, VAR_EXTERNAL, VAR, VAR_TEMP, VAR_INST and VAR_STAT only",
                     );
                     continue;
                 }
@@ -594,7 +595,7 @@ impl Lowering<'_> {
                             }
                         }
                         // VAR_INST keeps its value from call to call.
-                        None if b.kind == VarKind::Inst => {}
+                        None if matches!(b.kind, VarKind::Inst | VarKind::Stat) => {}
                         None => resets.push(hk),
                     }
                     names.push(Ident {
@@ -614,10 +615,11 @@ impl Lowering<'_> {
                 });
             }
             blocks.push(VarBlock {
-                kind: if in_out {
-                    VarKind::InOut
-                } else {
-                    VarKind::Local
+                kind: match b.kind {
+                    _ if in_out => VarKind::InOut,
+                    // A method's statics stay statics of its block.
+                    VarKind::Stat => VarKind::Stat,
+                    _ => VarKind::Local,
                 },
                 constant: b.constant,
                 retain: None,

@@ -337,6 +337,7 @@ impl Exporter<'_> {
             VarKind::Global => "globalVars",
             VarKind::Temp => "tempVars",
             VarKind::Inst => return Err(self.refuse("a VAR_INST block", block.span)),
+            VarKind::Stat => return Err(self.refuse("a VAR_STAT block", block.span)),
         };
         let mut attrs: Vec<(&str, &str)> = Vec::new();
         if block.constant {
