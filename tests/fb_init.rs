@@ -9,6 +9,23 @@ use crate::support::plc;
 
 use plc::{compile, error_codes, lit, run};
 
+/// An interface and a block implementing it that sums what it is given.
+const LOGGER: &str = "
+INTERFACE I_Log
+METHOD Log : INT
+VAR_INPUT n : INT; END_VAR
+END_METHOD
+END_INTERFACE
+FUNCTION_BLOCK FB_Logger IMPLEMENTS I_Log
+VAR total : INT; END_VAR
+METHOD Log : INT
+VAR_INPUT n : INT; END_VAR
+total := total + n;
+Log := total;
+END_METHOD
+END_FUNCTION_BLOCK
+";
+
 /// FB_Counter's FB_init sets `count` from its arguments and counts its
 /// own calls; FB_Pair's reads its members' counts, so it must run after
 /// theirs: 100 + 10 = 110. Each cycle adds `inc` (1 for `a`, 5 for `b`).
@@ -105,20 +122,8 @@ fn resets_run_fb_init_again_retains_true_when_cold_and_false_when_warm() {
 /// an array element, which the body then uses every cycle.
 #[test]
 fn a_derived_block_runs_its_parents_fb_init_first_with_interface_and_reference_arguments() {
-    let src = "
-INTERFACE I_Log
-METHOD Log : INT
-VAR_INPUT n : INT; END_VAR
-END_METHOD
-END_INTERFACE
-FUNCTION_BLOCK FB_Logger IMPLEMENTS I_Log
-VAR total : INT; END_VAR
-METHOD Log : INT
-VAR_INPUT n : INT; END_VAR
-total := total + n;
-Log := total;
-END_METHOD
-END_FUNCTION_BLOCK
+    let src = LOGGER.to_string()
+        + "
 FUNCTION_BLOCK FB_Base
 VAR trail : INT; log : I_Log; END_VAR
 METHOD FB_init : BOOL
@@ -146,7 +151,7 @@ END_VAR
 d();
 END_PROGRAM
 ";
-    let mut plc = compile(src);
+    let mut plc = compile(&src);
     assert_eq!(lit(&plc, "d.trail"), "12");
     run(&mut plc, 3);
     assert_eq!(lit(&plc, "axes[2]"), "53");
@@ -345,20 +350,8 @@ fn the_command_line_runs_fb_exit_before_the_last_retain_save() {
 /// (2 and 5 a cycle).
 #[test]
 fn an_interface_initialised_with_an_instance_is_bound_at_start() {
-    let src = "
-INTERFACE I_Log
-METHOD Log : INT
-VAR_INPUT n : INT; END_VAR
-END_METHOD
-END_INTERFACE
-FUNCTION_BLOCK FB_Logger IMPLEMENTS I_Log
-VAR total : INT; END_VAR
-METHOD Log : INT
-VAR_INPUT n : INT; END_VAR
-total := total + n;
-Log := total;
-END_METHOD
-END_FUNCTION_BLOCK
+    let src = LOGGER.to_string()
+        + "
 FUNCTION_BLOCK FB_User
 VAR logger : FB_Logger; out : I_Log := logger; END_VAR
 out.Log(2);
@@ -373,7 +366,7 @@ u();
 gi.Log(5);
 END_PROGRAM
 ";
-    let mut plc = compile(src);
+    let mut plc = compile(&src);
     run(&mut plc, 2);
     assert_eq!(lit(&plc, "u.logger.total"), "4");
     assert_eq!(lit(&plc, "gl.total"), "10");

@@ -129,6 +129,25 @@ fn calls_of(
     }
 }
 
+/// The calls of `phase` for the instances `decls` declare (in source
+/// order at start, reversed at exit), and the loop counters they use.
+fn phase_calls(
+    index: &Index,
+    phase: Phase,
+    mut decls: Vec<&VarDecl>,
+    diags: &mut Diagnostics,
+) -> (Vec<Stmt>, usize) {
+    if phase == EXIT {
+        decls.reverse();
+    }
+    let mut loops = 0;
+    let mut out = Vec::new();
+    for d in decls {
+        out.extend(calls_of(index, phase, d, &mut loops, diags));
+    }
+    (out, loops)
+}
+
 /// Adds `phase`'s hidden methods to the blocks of `copy` (a copy of
 /// `units`) and its hidden function to the last unit.
 fn add_phase(
@@ -160,19 +179,14 @@ fn add_phase(
                     .collect();
                 stmts = init::interface_bindings(index, &mut own);
             }
-            let mut decls: Vec<&VarDecl> = pou
+            let decls = pou
                 .var_blocks
                 .iter()
                 .filter(|b| lives_with_instance(b.kind))
                 .flat_map(|b| &b.decls)
                 .collect();
-            if phase == EXIT {
-                decls.reverse();
-            }
-            let mut loops = 0;
-            for d in decls {
-                stmts.extend(calls_of(index, phase, d, &mut loops, diags));
-            }
+            let (calls, loops) = phase_calls(index, phase, decls, diags);
+            stmts.extend(calls);
             let parent = lineage.iter().skip(1).find_map(|b| b.method(phase.key));
             let derived = lineage[0].method(phase.key).is_some() && parent.is_some();
             if stmts.is_empty() && !derived {
@@ -219,7 +233,7 @@ fn add_phase(
             .collect();
         globals = init::interface_bindings(index, &mut own);
     }
-    let mut decls: Vec<&VarDecl> = units
+    let decls = units
         .iter()
         .flat_map(|u| &u.items)
         .filter_map(|i| match i {
@@ -228,13 +242,8 @@ fn add_phase(
         })
         .flat_map(|b| &b.decls)
         .collect();
-    if phase == EXIT {
-        decls.reverse();
-    }
-    let mut loops = 0;
-    for d in decls {
-        globals.extend(calls_of(index, phase, d, &mut loops, diags));
-    }
+    let (calls, loops) = phase_calls(index, phase, decls, diags);
+    globals.extend(calls);
     if !globals.is_empty()
         && let Some(last) = copy.last_mut()
     {
