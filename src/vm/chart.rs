@@ -18,7 +18,7 @@ use crate::ir::type_table::step_layout as sl;
 
 /// Runs one call of chart `chart` for the instance at `base`.
 #[inline(always)]
-pub(super) fn run(
+pub(super) fn run<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     chart: crate::ir::op::ChartIdx,
@@ -29,7 +29,7 @@ pub(super) fn run(
     };
     // The evolution rules are chosen once, at compile time, per chart.
     if c.evolution == Evolution::Grafcet {
-        return super::grafcet::run(m, img, c, chart, base);
+        return super::grafcet::run::<DEBUG>(m, img, c, chart, base);
     }
     let now = m.now;
     let h = base + c.header as usize;
@@ -41,8 +41,8 @@ pub(super) fn run(
     }
     let epoch = m.mem[h + hd::EPOCH as usize].wrapping_add(1);
     m.mem[h + hd::EPOCH as usize] = epoch;
-    evolve(m, img, c, base, epoch, now)?;
-    actions(m, img, c, base, epoch, now)
+    evolve::<DEBUG>(m, img, c, base, epoch, now)?;
+    actions::<DEBUG>(m, img, c, base, epoch, now)
 }
 
 /// Marks step `s` active from `now` and inserts it into the active list.
@@ -80,7 +80,7 @@ pub(super) fn active(m: &Machine, c: &Chart, base: usize, s: u32) -> bool {
 
 /// Evaluates transition `t`'s condition (at most once per call).
 #[inline(always)]
-pub(super) fn condition(
+pub(super) fn condition<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -97,7 +97,7 @@ pub(super) fn condition(
             if cached >> 1 == epoch {
                 return Ok(cached & 1 != 0);
             }
-            exec::run(m, img, code, base)?;
+            exec::run::<DEBUG>(m, img, code, base)?;
             let v = m.mem[base + (c.header + hd::COND) as usize] != 0;
             m.mem[slot] = (epoch << 1) | v as u64;
             Ok(v)
@@ -108,7 +108,7 @@ pub(super) fn condition(
 /// Evolution: `.T` update, choice of the transitions that fire on the
 /// current situation, then deactivation and activation of their steps.
 #[inline(always)]
-fn evolve(
+fn evolve<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -137,7 +137,7 @@ fn evolve(
             if !tr.from.iter().all(|&p| active(m, c, base, p)) {
                 continue;
             }
-            if condition(m, img, c, base, t, epoch)? {
+            if condition::<DEBUG>(m, img, c, base, t, epoch)? {
                 winner = t as u64 + 1;
                 break;
             }
@@ -219,7 +219,7 @@ pub(super) fn duration(m: &Machine, base: usize, d: Duration) -> u64 {
 
 /// Action control for every live action, in execution order.
 #[inline(always)]
-fn actions(
+fn actions<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -279,7 +279,7 @@ fn actions(
                 m.mem[rec + al::Q as usize] = q as u64;
                 if q || old_q {
                     m.mem[rec + al::A as usize] = 1;
-                    exec::run(m, img, code, base)?;
+                    exec::run::<DEBUG>(m, img, code, base)?;
                 }
                 m.mem[rec + al::A as usize] = q as u64;
             }

@@ -45,7 +45,7 @@ const fn bit(q: Qualifier) -> u64 {
 /// Runs one call of chart `c` (number `index`) for the instance at `base`.
 /// Kept out of line: the IEC path that calls it must not change shape.
 #[inline(never)]
-pub(super) fn run(
+pub(super) fn run<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -69,11 +69,11 @@ pub(super) fn run(
         step_times(m, c, base, now);
         epoch
     } else {
-        stabilize(m, img, c, base, epoch, now).map_err(|f| locate(img, index, f))?
+        stabilize::<DEBUG>(m, img, c, base, epoch, now).map_err(|f| locate(img, index, f))?
     };
     m.mem[h + hd::EPOCH as usize] = last;
     apply_forcings(m, c, base, now);
-    actions(m, img, c, base, epoch, now)
+    actions::<DEBUG>(m, img, c, base, epoch, now)
 }
 
 /// `.T := now - activation` for every active step.
@@ -96,7 +96,7 @@ fn bound(c: &Chart) -> usize {
 
 /// Fires rounds until none fires; returns the last condition stamp used.
 /// Each round evaluates conditions afresh (stamp `epoch + round`).
-fn stabilize(
+fn stabilize<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -107,7 +107,7 @@ fn stabilize(
     let mut stamp = epoch;
     let mut rounds = 0usize;
     loop {
-        if round(m, img, c, base, stamp, epoch, now)? == 0 {
+        if round::<DEBUG>(m, img, c, base, stamp, epoch, now)? == 0 {
             return Ok(stamp);
         }
         rounds += 1;
@@ -122,7 +122,7 @@ fn stabilize(
 /// fire (same choice as IEC: priorities per step, a transition fires when
 /// it wins all its preceding steps), deactivation, then activation with
 /// the events. Returns how many fired; their indexes are at the fired list.
-fn round(
+fn round<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -148,7 +148,7 @@ fn round(
             if !tr.from.iter().all(|&p| active(m, c, base, p)) {
                 continue;
             }
-            if condition(m, img, c, base, t, stamp)? {
+            if condition::<DEBUG>(m, img, c, base, t, stamp)? {
                 winner = t as u64 + 1;
                 break;
             }
@@ -293,7 +293,7 @@ fn unstable(
     let (mut power, mut lambda) = (1usize, 0usize);
     let mut period = None;
     for _ in 0..64 * bound(c).max(16) {
-        match round(m, img, c, base, stamp, epoch, now) {
+        match round::<false>(m, img, c, base, stamp, epoch, now) {
             Ok(0) => break,
             Ok(_) => {}
             Err(f) => return f,
@@ -314,7 +314,7 @@ fn unstable(
     let mut names: Vec<String> = Vec::new();
     let fired_at = base + c.cache as usize + c.transitions.len();
     for _ in 0..period.unwrap_or(bound(c)) {
-        let fired = match round(m, img, c, base, stamp, epoch, now) {
+        let fired = match round::<false>(m, img, c, base, stamp, epoch, now) {
             Ok(0) => break,
             Ok(k) => k,
             Err(f) => return f,
@@ -430,7 +430,7 @@ fn apply_forcings(m: &mut Machine, c: &Chart, base: usize, now: i64) {
 /// Action control: the continuous inputs of the stable situation's steps
 /// join the events recorded during evolution; every live action is then
 /// controlled and drives its output as under IEC evolution.
-fn actions(
+fn actions<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -468,7 +468,7 @@ fn actions(
             ActionKind::Body(code) => {
                 if q || old_q {
                     m.mem[rec + al::A as usize] = 1;
-                    exec::run(m, img, code, base)?;
+                    exec::run::<DEBUG>(m, img, code, base)?;
                 }
                 m.mem[rec + al::A as usize] = q as u64;
             }
