@@ -147,6 +147,45 @@ fn a_breakpoint_in_chariot_stops_there_with_its_variables_and_stack() {
 }
 
 #[test]
+fn a_breakpoint_in_chariots_action_stops_when_the_action_runs() {
+    // Line 23: step AV's association `KMAV(N, fcB)`; the stimulus presses
+    // Dcy at cycle 5, with the trolley at A: AV becomes active and its
+    // action runs in that cycle.
+    let mut c = launched(
+        &[CHARIOT],
+        &["--cycles", "200", "--stimulus", "programs/chariot.csv"],
+        CHARIOT,
+        json!([{"line": 23}]),
+    );
+    assert_eq!(c.event("stopped")["reason"], "breakpoint");
+    let st = c.ok("stackTrace", json!({"threadId": 1}));
+    let frames = st["stackFrames"].as_array().unwrap();
+    assert_eq!(frames[0]["name"], "CHARIOT.KMAV");
+    assert_eq!(frames[0]["line"], 23);
+    assert_eq!(frames[1]["name"], "CHARIOT");
+    assert_eq!(evaluate(&mut c, "AV.X"), "TRUE");
+    assert_eq!(evaluate(&mut c, "INIT.X"), "FALSE");
+    let io = scope_vars(&mut c, "Inputs/Outputs");
+    assert_eq!(value_of(&io, "Dcy"), "TRUE");
+    assert_eq!(value_of(&io, "FcA"), "TRUE");
+    // The step line stops when the step becomes active; the transition
+    // header when it fires (FcB at cycle 100).
+    c.ok(
+        "setBreakpoints",
+        json!({"source": {"path": CHARIOT}, "breakpoints": [{"line": 25}, {"line": 28}]}),
+    );
+    c.ok("continue", json!({"threadId": 1}));
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("CHARIOT.AV -> ATT".into(), 25));
+    assert_eq!(evaluate(&mut c, "FcB"), "TRUE");
+    c.ok("continue", json!({"threadId": 1}));
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("CHARIOT.ATT".into(), 28));
+    assert_eq!(evaluate(&mut c, "ATT.X"), "TRUE");
+    c.ok("disconnect", json!({}));
+}
+
+#[test]
 fn a_breakpoint_in_a_chariot_transition_names_it_in_the_stack() {
     // Line 20: INIT -> AV's condition `dcy & fcA`.
     let mut c = launched(

@@ -106,8 +106,7 @@ fn tokens(text: &str) -> Result<Vec<Tok>, String> {
                 let more = d.is_alphanumeric()
                     || matches!(d, '_' | '.' | '#' | '%' | ':')
                     || d == '['
-                    || (depth > 0 && d != ']')
-                    || (d == ']' && depth > 0)
+                    || depth > 0
                     // A signed exponent or a literal's sign after `#`.
                     || ((d == '-' || d == '+')
                         && i > start

@@ -8,7 +8,7 @@
 //! instruction; a multi-line ST expression gives one place per line).
 
 use crate::ir::image::Image;
-use crate::ir::op::{CodeIdx, Op};
+use crate::ir::op::{ChartIdx, CodeIdx, Op};
 use crate::source::SourceMap;
 use std::path::Path;
 use std::sync::Arc;
@@ -23,6 +23,32 @@ pub struct LineTable {
     starts: Arc<Vec<Vec<bool>>>,
     /// The files' names, as loaded.
     files: Vec<String>,
+    /// The lines of the SFC charts' steps, action associations and
+    /// transitions (textual SFC).
+    sfc: Vec<SfcPlace>,
+}
+
+/// What of an SFC chart a breakpoint watches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum SfcElement {
+    /// A step becoming active.
+    Step(u32),
+    /// An action running (an association of it in a step).
+    Action(u32),
+    /// A transition firing.
+    Transition(u32),
+}
+
+/// An SFC element's line.
+#[derive(Debug, Clone)]
+pub(crate) struct SfcPlace {
+    pub chart: ChartIdx,
+    pub element: SfcElement,
+    /// The file's index and the 1-based line.
+    pub file: usize,
+    pub line: u32,
+    /// The step's or action's name; `FROM -> TO` for a transition.
+    pub name: String,
 }
 
 impl LineTable {
@@ -51,10 +77,12 @@ impl LineTable {
             lines.push(bl);
             starts.push(st);
         }
+        let sfc = sfc_places(image, sources);
         LineTable {
             lines,
             starts: Arc::new(starts),
             files,
+            sfc,
         }
     }
 
@@ -112,4 +140,128 @@ impl LineTable {
         }
         Some((at, places))
     }
+
+    /// The SFC elements on `line` of file number `file`.
+    pub(crate) fn sfc_at(&self, file: usize, line: u32) -> Vec<&SfcPlace> {
+        self.sfc
+            .iter()
+            .filter(|p| p.file == file && p.line == line)
+            .collect()
+    }
+
+    /// The place of an SFC element.
+    pub(crate) fn sfc_place(&self, chart: ChartIdx, element: SfcElement) -> Option<&SfcPlace> {
+        self.sfc
+            .iter()
+            .find(|p| p.chart == chart && p.element == element)
+    }
+
+    /// A loaded file's name.
+    pub(crate) fn file_name(&self, file: usize) -> Option<&str> {
+        self.files.get(file).map(String::as_str)
+    }
+}
+
+/// The words (identifiers) of a line, in order.
+fn words(line: &str) -> Vec<&str> {
+    line.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .filter(|w| !w.is_empty())
+        .collect()
+}
+
+/// The lines of the steps, associations and transitions of every chart
+/// written in textual SFC, read from the text of the POU that runs it
+/// (from its `Sfc` instruction's place to its `END_` line).
+fn sfc_places(image: &Image, sources: &SourceMap) -> Vec<SfcPlace> {
+    let mut places = Vec::new();
+    for block in &image.codes {
+        for (pc, op) in block.ops.iter().enumerate() {
+            let Op::Sfc { chart } = *op else {
+                continue;
+            };
+            let Some(c) = image.charts.get(chart.index()) else {
+                continue;
+            };
+            let span = block.spans.get(pc).copied().unwrap_or_default();
+            if span.end == 0 || span.file.0 as usize >= sources.files().len() {
+                continue;
+            }
+            let file = sources.file(span.file);
+            let (first, _) = file.line_col(span.start);
+            let step_of = |name: &str| {
+                c.steps
+                    .iter()
+                    .position(|s| s.name.eq_ignore_ascii_case(name))
+                    .map(|k| k as u32)
+            };
+            let mut in_step = false;
+            for (k, text) in file.text.lines().enumerate().skip(first.saturating_sub(1)) {
+                let line = k as u32 + 1;
+                let w = words(text);
+                let Some(head) = w.first().map(|h| h.to_ascii_uppercase()) else {
+                    continue;
+                };
+                let mut add = |element, name: String| {
+                    places.push(SfcPlace {
+                        chart,
+                        element,
+                        file: span.file.0 as usize,
+                        line,
+                        name,
+                    })
+                };
+                match head.as_str() {
+                    "END_PROGRAM" | "END_FUNCTION_BLOCK" => break,
+                    "STEP" | "INITIAL_STEP" => {
+                        if let Some(s) = w.get(1).and_then(|n| step_of(n)) {
+                            add(SfcElement::Step(s), c.steps[s as usize].name.clone());
+                        }
+                        in_step = !text.to_ascii_uppercase().contains("END_STEP");
+                    }
+                    "END_STEP" => in_step = false,
+                    "ACTION" => in_step = false,
+                    "TRANSITION" => {
+                        let upper: Vec<String> = w.iter().map(|x| x.to_ascii_uppercase()).collect();
+                        let from_at = upper.iter().position(|x| x == "FROM");
+                        let to_at = upper.iter().position(|x| x == "TO");
+                        let (Some(f), Some(t)) = (from_at, to_at) else {
+                            continue;
+                        };
+                        let mut from: Vec<u32> =
+                            w[f + 1..t].iter().filter_map(|n| step_of(n)).collect();
+                        let mut to: Vec<u32> =
+                            w[t + 1..].iter().map_while(|n| step_of(n)).collect();
+                        from.sort_unstable();
+                        to.sort_unstable();
+                        let found = c.transitions.iter().position(|tr| {
+                            let mut a = tr.from.clone();
+                            let mut b = tr.to.clone();
+                            a.sort_unstable();
+                            b.sort_unstable();
+                            a == from && b == to
+                        });
+                        if let Some(tr) = found {
+                            let name = format!(
+                                "{} -> {}",
+                                w[f + 1..t].join(", "),
+                                w[t + 1..t + 1 + to.len()].join(", ")
+                            );
+                            add(SfcElement::Transition(tr as u32), name);
+                        }
+                    }
+                    _ if in_step => {
+                        if let Some(a) = c
+                            .actions
+                            .iter()
+                            .position(|a| a.name.eq_ignore_ascii_case(w[0]))
+                        {
+                            add(SfcElement::Action(a as u32), c.actions[a].name.clone());
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    places
 }

@@ -236,6 +236,30 @@ impl<'a> StoppedPlc<'a> {
         }
     }
 
+    /// Shows an SFC element (`name` at `file:line`) as a frame above the
+    /// top one, whose instance and variables it shares.
+    pub(super) fn push_sfc_frame(&mut self, name: &str, file: Option<String>, line: u32) {
+        let (Some(raw), Some(top), Some(instance)) = (
+            self.raw.first().copied(),
+            self.frames.first().cloned(),
+            self.instances.first().cloned(),
+        ) else {
+            return;
+        };
+        self.raw.insert(0, raw);
+        self.instances.insert(0, instance.clone());
+        self.frames.insert(
+            0,
+            StackFrame {
+                name: format!("{instance}.{name}"),
+                pou: format!("{}.{name}", top.pou),
+                file,
+                line,
+                column: 1,
+            },
+        );
+    }
+
     /// The stack, innermost first. At a cycle boundary, the program
     /// instances at their first statement.
     pub fn frames(&self) -> &[StackFrame] {

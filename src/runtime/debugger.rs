@@ -38,13 +38,13 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::debug_lines::LineTable;
+use super::debug_lines::{LineTable, SfcElement};
 use super::debug_view::{self, StoppedPlc};
 use super::engine::{Plc, RuntimeFault};
 use crate::ir::image::Image;
-use crate::ir::op::CodeIdx;
+use crate::ir::op::{ChartIdx, CodeIdx};
 use crate::source::SourceMap;
-use crate::vm::{DebugFrame, DebugHook, FaultKind, Machine};
+use crate::vm::{ChartEvent, DebugFrame, DebugHook, FaultKind, Machine};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
@@ -135,6 +135,9 @@ pub trait DebugFrontEnd: Send {
 struct SetBreakpoint {
     id: u32,
     places: Vec<(CodeIdx, u32)>,
+    /// The SFC elements it watches (a line of a step, an association or
+    /// a transition header).
+    sfc: Vec<(ChartIdx, SfcElement)>,
     condition: Option<String>,
     hit: Option<HitCondition>,
 }
@@ -232,12 +235,35 @@ impl DebugControl {
                 },
                 _ => None,
             };
+            let sfc: Vec<(ChartIdx, SfcElement)> = index
+                .map(|f| self.lines.sfc_at(f, b.line))
+                .unwrap_or_default()
+                .into_iter()
+                .map(|p| (p.chart, p.element))
+                .collect();
+            if !sfc.is_empty() {
+                set.push(SetBreakpoint {
+                    id,
+                    places: Vec::new(),
+                    sfc,
+                    condition: b.condition.clone().filter(|c| !c.trim().is_empty()),
+                    hit,
+                });
+                places.push(BreakpointPlace {
+                    id,
+                    verified: true,
+                    line: b.line,
+                    message: None,
+                });
+                continue;
+            }
             let found = index.and_then(|f| self.lines.statements_at(f, b.line));
             match found {
                 Some((line, at)) => {
                     set.push(SetBreakpoint {
                         id,
                         places: at,
+                        sfc: Vec::new(),
                         condition: b.condition.clone().filter(|c| !c.trim().is_empty()),
                         hit,
                     });
@@ -324,6 +350,8 @@ pub(crate) struct Core {
     /// into `set`), empty for none.
     flags: Vec<Vec<Vec<usize>>>,
     set: Vec<SetBreakpoint>,
+    /// The breakpoints on SFC elements (indexes into `set`).
+    sfc_flags: BTreeMap<(ChartIdx, SfcElement), Vec<usize>>,
     hits: BTreeMap<u32, u64>,
 }
 
@@ -345,7 +373,11 @@ impl Core {
             .iter()
             .map(|c| vec![Vec::new(); c.ops.len()])
             .collect();
+        self.sfc_flags.clear();
         for (k, b) in self.set.iter().enumerate() {
+            for &e in &b.sfc {
+                self.sfc_flags.entry(e).or_default().push(k);
+            }
             for &(code, pc) in &b.places {
                 if let Some(slot) = self
                     .flags
@@ -361,6 +393,79 @@ impl Core {
     /// Stops: asks the front end, takes its answer as the next mode.
     fn stop(&mut self, reason: StopReason, view: StoppedPlc<'_>) {
         self.mode = ask(&mut self.front, &self.control, reason, view);
+    }
+
+    /// Which of the breakpoints `here` (indexes into `set`) stop now:
+    /// their conditions hold and their hit counts say so.
+    fn hits_of(
+        &mut self,
+        here: &[usize],
+        img: &Image,
+        m: &mut Machine,
+        stack: &[DebugFrame],
+    ) -> Vec<u32> {
+        let mut hit = Vec::new();
+        for &k in here {
+            let b = self.set[k].clone();
+            if let Some(cond) = &b.condition {
+                let view = StoppedPlc::in_cycle(img, &self.sources, m, stack, &self.control);
+                match view.evaluate(0, cond) {
+                    Ok(v) if v.as_bool() == Some(true) => {}
+                    Ok(_) => continue,
+                    // A condition that cannot be evaluated stops, so that
+                    // the user sees why.
+                    Err(_) => {}
+                }
+            }
+            let n = self.hits.entry(b.id).or_insert(0);
+            *n += 1;
+            if b.hit.is_none_or(|h| h.stops(*n)) {
+                hit.push(b.id);
+            }
+        }
+        hit
+    }
+
+    /// An SFC chart's event: a breakpoint on its element stops, shown as
+    /// a frame at the element's line above the program's.
+    fn chart_event(
+        &mut self,
+        img: &Image,
+        m: &mut Machine,
+        stack: &[DebugFrame],
+        chart: ChartIdx,
+        event: ChartEvent,
+    ) {
+        if self.control.is_detached() {
+            return;
+        }
+        self.refresh(img);
+        let element = match event {
+            ChartEvent::Step(s) => SfcElement::Step(s),
+            ChartEvent::Fired(t) => SfcElement::Transition(t),
+            ChartEvent::Action(a) => SfcElement::Action(a),
+        };
+        let Some(here) = self.sfc_flags.get(&(chart, element)).cloned() else {
+            return;
+        };
+        let hit = self.hits_of(&here, img, m, stack);
+        if hit.is_empty() {
+            return;
+        }
+        let place = self.control.lines.sfc_place(chart, element).map(|p| {
+            let file = self.control.lines.file_name(p.file).map(str::to_string);
+            (p.name.clone(), file, p.line)
+        });
+        let mut view = StoppedPlc::in_cycle(img, &self.sources, m, stack, &self.control);
+        if let Some((name, file, line)) = place {
+            view.push_sfc_frame(&name, file, line);
+        }
+        self.mode = ask(
+            &mut self.front,
+            &self.control,
+            StopReason::Breakpoint(hit),
+            view,
+        );
     }
 
     /// A statement start of the debugging executor.
@@ -393,25 +498,7 @@ impl Core {
             .and_then(|f| f.get(top.pc as usize))
             .cloned()
             .unwrap_or_default();
-        let mut hit = Vec::new();
-        for k in here {
-            let b = self.set[k].clone();
-            if let Some(cond) = &b.condition {
-                let view = StoppedPlc::in_cycle(img, &self.sources, m, stack, &self.control);
-                match view.evaluate(0, cond) {
-                    Ok(v) if v.as_bool() == Some(true) => {}
-                    Ok(_) => continue,
-                    // A condition that cannot be evaluated stops, so that
-                    // the user sees why.
-                    Err(_) => {}
-                }
-            }
-            let n = self.hits.entry(b.id).or_insert(0);
-            *n += 1;
-            if b.hit.is_none_or(|h| h.stops(*n)) {
-                hit.push(b.id);
-            }
-        }
+        let hit = self.hits_of(&here, img, m, stack);
         if !hit.is_empty() {
             reason = Some(StopReason::Breakpoint(hit));
         }
@@ -458,6 +545,17 @@ impl DebugHook for Hook {
         lock(&self.0).statement(img, m, stack);
         Ok(())
     }
+
+    fn chart(
+        &mut self,
+        img: &Image,
+        m: &mut Machine,
+        stack: &[DebugFrame],
+        chart: ChartIdx,
+        event: ChartEvent,
+    ) {
+        lock(&self.0).chart_event(img, m, stack, chart, event);
+    }
 }
 
 impl Plc {
@@ -491,6 +589,7 @@ impl Plc {
             seen: 0,
             flags: Vec::new(),
             set: Vec::new(),
+            sfc_flags: BTreeMap::new(),
             hits: BTreeMap::new(),
         }));
         self.machine

@@ -9,6 +9,7 @@
 //! `vm::grafcet` shares some of them, which would otherwise leave them out
 //! of line and cost the IEC path calls (callgrind: +15 % on CHARIOT).
 
+use super::debug::ChartEvent;
 use super::{Fault, Machine, exec};
 use crate::ir::chart::{
     ActionKind, Chart, Condition, Duration, Evolution, Qualifier, action_layout as al, header as hd,
@@ -37,12 +38,15 @@ pub(super) fn run<const DEBUG: bool>(
         m.mem[h + hd::STARTED as usize] = 1;
         for &s in &c.initial {
             activate(m, c, base, s, now);
+            if DEBUG {
+                m.debug_chart(img, chart, ChartEvent::Step(s));
+            }
         }
     }
     let epoch = m.mem[h + hd::EPOCH as usize].wrapping_add(1);
     m.mem[h + hd::EPOCH as usize] = epoch;
-    evolve::<DEBUG>(m, img, c, base, epoch, now)?;
-    actions::<DEBUG>(m, img, c, base, epoch, now)
+    evolve::<DEBUG>(m, img, c, chart, base, epoch, now)?;
+    actions::<DEBUG>(m, img, c, chart, base, epoch, now)
 }
 
 /// Marks step `s` active from `now` and inserts it into the active list.
@@ -112,6 +116,7 @@ fn evolve<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
+    chart: crate::ir::op::ChartIdx,
     base: usize,
     epoch: u64,
     now: i64,
@@ -203,6 +208,15 @@ fn evolve<const DEBUG: bool>(
             }
         }
     }
+    if DEBUG {
+        for k in 0..fired {
+            let t = m.mem[fired_at + k] as u32;
+            m.debug_chart(img, chart, ChartEvent::Fired(t));
+            for &q in &c.transitions[t as usize].to {
+                m.debug_chart(img, chart, ChartEvent::Step(q));
+            }
+        }
+    }
     Ok(())
 }
 
@@ -223,6 +237,7 @@ fn actions<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
+    chart: crate::ir::op::ChartIdx,
     base: usize,
     epoch: u64,
     now: i64,
@@ -274,6 +289,9 @@ fn actions<const DEBUG: bool>(
         };
         let q = control(m, rec, inputs, now);
         let old_q = m.mem[rec + al::Q as usize] != 0;
+        if DEBUG && q {
+            m.debug_chart(img, chart, ChartEvent::Action(a as u32));
+        }
         match action.kind {
             ActionKind::Body(code) => {
                 m.mem[rec + al::Q as usize] = q as u64;

@@ -14,7 +14,7 @@
 
 use super::{FaultKind, Machine};
 use crate::ir::image::Image;
-use crate::ir::op::CodeIdx;
+use crate::ir::op::{ChartIdx, CodeIdx};
 use std::sync::Arc;
 
 /// One block running under the debugger: its code, the instruction it is
@@ -40,6 +40,27 @@ pub(crate) trait DebugHook: Send {
         m: &mut Machine,
         stack: &[DebugFrame],
     ) -> Result<(), FaultKind>;
+
+    /// Chart `chart`, run by the top frame's block, did `event`.
+    fn chart(
+        &mut self,
+        img: &Image,
+        m: &mut Machine,
+        stack: &[DebugFrame],
+        chart: ChartIdx,
+        event: ChartEvent,
+    );
+}
+
+/// What an SFC chart did, for chart breakpoints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum ChartEvent {
+    /// Step `n` became active.
+    Step(u32),
+    /// Transition `n` fired.
+    Fired(u32),
+    /// Action `n` is about to run (its Q is TRUE).
+    Action(u32),
 }
 
 /// A machine's debugging state (see the module's documentation).
@@ -130,5 +151,17 @@ impl Machine {
             self.debug = Some(d);
         }
         done
+    }
+
+    /// An SFC chart event (debugging variant only).
+    #[inline(never)]
+    pub(super) fn debug_chart(&mut self, img: &Image, chart: ChartIdx, event: ChartEvent) {
+        let Some(mut d) = self.debug.take() else {
+            return;
+        };
+        d.hook.chart(img, self, &d.stack, chart, event);
+        if self.debug.is_none() {
+            self.debug = Some(d);
+        }
     }
 }

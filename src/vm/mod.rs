@@ -22,7 +22,7 @@ mod refs;
 mod string_ops;
 mod strings;
 
-pub(crate) use debug::{DebugFrame, DebugHook};
+pub(crate) use debug::{ChartEvent, DebugFrame, DebugHook};
 pub(crate) use fault::CallSite;
 pub use fault::{Fault, FaultKind, HostFailure, UnstableCycle};
 pub(crate) use host::{HostDispatch, HostFrame, HostLink};
