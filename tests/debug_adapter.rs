@@ -186,6 +186,26 @@ fn a_breakpoint_in_chariots_action_stops_when_the_action_runs() {
 }
 
 #[test]
+fn under_grafcet_evolution_chariots_action_stops_too() {
+    let mut c = launched(
+        &[CHARIOT],
+        &[
+            "--grafcet",
+            "--cycles",
+            "200",
+            "--stimulus",
+            "programs/chariot.csv",
+        ],
+        CHARIOT,
+        json!([{"line": 23}]),
+    );
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("CHARIOT.KMAV".into(), 23));
+    assert_eq!(evaluate(&mut c, "AV.X"), "TRUE");
+    c.ok("disconnect", json!({}));
+}
+
+#[test]
 fn a_breakpoint_in_a_chariot_transition_names_it_in_the_stack() {
     // Line 20: INIT -> AV's condition `dcy & fcA`.
     let mut c = launched(

@@ -2,10 +2,10 @@
 //! every statement start.
 //!
 //! Nothing here runs on a machine without a debugger: [`Machine::run`]
-//! then runs the plain variant of the executor (`exec::run::<false>`),
+//! then runs the plain variant of the executor (`exec::call::<false>`),
 //! whose code has no check, no call and no stack for debugging, and the
 //! program's instructions are the ones the compiler emitted. With a
-//! debugger attached it runs the debugging variant (`exec::run::<true>`),
+//! debugger attached it runs the debugging variant (`exec::call::<true>`),
 //! which pushes a frame at every block entry and, before every
 //! instruction, records the instruction in the top frame and, at a
 //! statement start, calls the [`DebugHook`]. The hook may stop the PLC

@@ -150,7 +150,7 @@ fn int_pow(base: i64, exp: i64) -> Option<u64> {
 /// trace of debugging in its code; `true` keeps the debugger's call stack
 /// and gives it every statement start (see [`super::debug`]), and runs only
 /// on a machine a debugger is attached to ([`Machine::run`] chooses).
-pub(super) fn run<const DEBUG: bool>(
+pub(super) fn call<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     code: CodeIdx,
@@ -158,16 +158,17 @@ pub(super) fn run<const DEBUG: bool>(
 ) -> Result<(), Fault> {
     if DEBUG {
         m.debug_enter(code, base);
-        let done = body::<true>(m, img, code, base);
+        let done = run::<true>(m, img, code, base);
         m.debug_leave();
         return done;
     }
-    body::<false>(m, img, code, base)
+    run::<false>(m, img, code, base)
 }
 
-/// The body of [`run`] (inlined into it: the plain variant is this code).
+/// The dispatch loop of [`call`] (inlined into it: the plain variant is
+/// this code).
 #[inline(always)]
-fn body<const DEBUG: bool>(
+fn run<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     code: CodeIdx,
@@ -767,14 +768,14 @@ fn body<const DEBUG: bool>(
             // A fault unwinding through a call notes the caller's block,
             // instruction and base: nothing the normal path keeps for it.
             Op::CallFb { code: c, inst } => {
-                if let Err(f) = run::<DEBUG>(m, img, c, base + inst.index()) {
+                if let Err(f) = call::<DEBUG>(m, img, c, base + inst.index()) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }
             }
             Op::CallFbInd { code: c, p } => {
                 let at = r!(p) as usize;
-                if let Err(f) = run::<DEBUG>(m, img, c, at) {
+                if let Err(f) = call::<DEBUG>(m, img, c, at) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }
@@ -795,7 +796,7 @@ fn body<const DEBUG: bool>(
             }
             Op::CallFn { code: c } => {
                 let frame = img.codes[c.index()].frame as usize;
-                if let Err(f) = run::<DEBUG>(m, img, c, frame) {
+                if let Err(f) = call::<DEBUG>(m, img, c, frame) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }

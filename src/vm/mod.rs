@@ -107,9 +107,9 @@ impl Machine {
     /// unwound through wait in [`Self::take_callers`].
     pub fn run(&mut self, image: &VerifiedImage, code: CodeIdx, base: u32) -> Result<(), Fault> {
         if self.debug.is_some() {
-            return exec::run::<true>(self, image.image(), code, base as usize);
+            return exec::call::<true>(self, image.image(), code, base as usize);
         }
-        exec::run::<false>(self, image.image(), code, base as usize)
+        exec::call::<false>(self, image.image(), code, base as usize)
     }
 
     /// The calls the last fault unwound through, innermost first (the
