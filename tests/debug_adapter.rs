@@ -269,6 +269,26 @@ fn steps_go_by_statement_into_and_out_of_a_block() {
 }
 
 #[test]
+fn il_steps_by_instruction() {
+    let il = temp_file(
+        "count.il",
+        "PROGRAM Count\nVAR a : INT; b : INT; END_VAR\nLD a\nADD 1\nST a\nST b\nEND_PROGRAM\n",
+    );
+    let mut c = launched(&[&il], &["--cycles", "3"], &il, json!([{"line": 4}]));
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("Count".into(), 4));
+    c.ok("next", json!({"threadId": 1}));
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("Count".into(), 5));
+    assert_eq!(evaluate(&mut c, "a"), "0");
+    c.ok("next", json!({"threadId": 1}));
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("Count".into(), 6));
+    assert_eq!(evaluate(&mut c, "a"), "1");
+    c.ok("disconnect", json!({}));
+}
+
+#[test]
 fn a_cycle_step_advances_the_clock_by_one_cycle() {
     let main = temp_file("main.st", MAIN);
     let mut c = launched_with(&[&main], &["--cycles", "10"], &main, json!([]), true);

@@ -489,18 +489,24 @@ impl Core {
             }
             _ => None,
         };
-        if self.control.pause.swap(false, Ordering::AcqRel) {
+        if self.control.pause.load(Ordering::Relaxed)
+            && self.control.pause.swap(false, Ordering::AcqRel)
+        {
             reason = Some(StopReason::Pause);
         }
+        // Cloned only where a breakpoint is (the hits may stop, which
+        // needs `self`).
         let here = self
             .flags
             .get(top.code.index())
             .and_then(|f| f.get(top.pc as usize))
-            .cloned()
-            .unwrap_or_default();
-        let hit = self.hits_of(&here, img, m, stack);
-        if !hit.is_empty() {
-            reason = Some(StopReason::Breakpoint(hit));
+            .filter(|h| !h.is_empty())
+            .cloned();
+        if let Some(here) = here {
+            let hit = self.hits_of(&here, img, m, stack);
+            if !hit.is_empty() {
+                reason = Some(StopReason::Breakpoint(hit));
+            }
         }
         if let Some(reason) = reason {
             let view = StoppedPlc::in_cycle(img, &self.sources, m, stack, &self.control);
