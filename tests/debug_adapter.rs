@@ -226,7 +226,11 @@ fn a_breakpoint_in_a_chariot_transition_names_it_in_the_stack() {
     assert!(names[0].starts_with("CHARIOT."), "{names:?}");
     assert_eq!(names[1], "CHARIOT");
     assert_eq!(st["stackFrames"][0]["line"], 20);
+    // `terminate` ends the program; the `disconnect` after it, the adapter.
+    c.ok("terminate", json!({}));
+    c.event("terminated");
     c.ok("disconnect", json!({}));
+    assert_eq!(c.finish(), 0);
 }
 
 #[test]
@@ -306,6 +310,10 @@ fn a_cycle_step_advances_the_clock_by_one_cycle() {
         ("T#0s", "T#10ms")
     );
     assert_eq!(evaluate(&mut c, "n"), "2");
+    // From a boundary, a step goes to the cycle's first statement.
+    c.ok("next", json!({"threadId": 1}));
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("Main".into(), 10));
     c.ok("disconnect", json!({}));
 }
 

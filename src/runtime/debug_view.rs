@@ -382,7 +382,7 @@ impl<'a> StoppedPlc<'a> {
                 })
                 .map(|m| {
                     let shown = names::shown_member(self.image, &m.name).to_string();
-                    let mut at = addr + m.offset;
+                    let mut at = addr.wrapping_add(m.offset);
                     if m.kind == MemberKind::InOut {
                         at = self.machine.mem.get(at as usize).copied().unwrap_or(0) as u32;
                     }
@@ -405,7 +405,7 @@ impl<'a> StoppedPlc<'a> {
                         }
                         let text: Vec<String> = idx.iter().map(i64::to_string).collect();
                         let name = format!("[{}]", text.join(","));
-                        let at = addr + (k as u32) * size;
+                        let at = addr.wrapping_add((k as u32).wrapping_mul(size));
                         self.variable(name.clone(), format!("{path}{name}"), at, *elem)
                     })
                     .collect()
@@ -502,7 +502,10 @@ impl<'a> StoppedPlc<'a> {
         let value = match &children {
             Some(_) => type_name.clone(),
             None => match &types.get(ty).kind {
-                TypeKind::Ref { .. } => format!("16#{:X}", self.machine.mem[addr as usize]),
+                TypeKind::Ref { .. } => {
+                    let raw = self.machine.mem.get(addr as usize).copied().unwrap_or(0);
+                    format!("16#{raw:X}")
+                }
                 _ => value_in(self.image, self.machine, addr, ty).to_literal(),
             },
         };
@@ -536,7 +539,7 @@ impl<'a> StoppedPlc<'a> {
                 .iter()
                 .find(|m| m.name.eq_ignore_ascii_case(path.trim()))
         {
-            return Ok((f.base as u32 + m.offset, m.ty, None));
+            return Ok(((f.base as u32).wrapping_add(m.offset), m.ty, None));
         }
         let r = names::resolve(self.image, path, 0)?;
         Ok((r.addr, r.ty, r.read_only))

@@ -524,6 +524,10 @@ fn ask(
 ) -> Mode {
     match front.stopped(reason, &mut view) {
         Resume::Continue => Mode::Run,
+        // At a cycle boundary (no block runs): a step goes to the first
+        // statement, a step out to the next boundary.
+        Resume::StepIn | Resume::Next if view.depth() == 0 => Mode::StepIn,
+        Resume::StepOut if view.depth() == 0 => Mode::Cycle,
         Resume::StepIn => Mode::StepIn,
         Resume::Next => Mode::Over(view.depth()),
         Resume::StepOut => {
@@ -644,10 +648,8 @@ impl Plc {
         };
         let control = core.control.clone();
         let view = debug_view::at_boundary(self, &control);
+        // After a cycle step, the mode stays `Cycle`: the next boundary stops.
         core.stop(reason, view);
-        if core.mode == Mode::Cycle {
-            // The cycle about to run is the step: stop at the next boundary.
-        }
         drop(core);
         self.apply_debug_forces(&control);
     }

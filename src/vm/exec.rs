@@ -318,8 +318,6 @@ fn run<const DEBUG: bool>(
         }};
     }
     loop {
-        // SAFETY: blocks end with Ret and jump targets are inside the block
-        // (verified), so ip never leaves `ops`.
         if DEBUG {
             // The debugging variant only: the debugger sees the
             // instruction about to run and may stop there (its hook runs
@@ -331,6 +329,8 @@ fn run<const DEBUG: bool>(
             // SAFETY: as at entry (same buffer, same length).
             fp = unsafe { mem.add(base) };
         }
+        // SAFETY: blocks end with Ret and jump targets are inside the block
+        // (verified), so ip never leaves `ops`.
         let op = unsafe { &*ip };
         match *op {
             Op::Nop => {}

@@ -104,23 +104,19 @@ pub(super) fn serve(mut input: impl BufRead, out: Arc<Output>) {
                 }
                 out.respond(&req, Ok(Value::Null));
             }
+            // `terminate` ends the program and waits for the `disconnect`
+            // that follows; `disconnect` ends both.
             "disconnect" | "terminate" => {
-                if let Some(mut l) = launched.take() {
-                    l.control.detach();
-                    l.stop.stop();
-                    if let Some(go) = l.go.take() {
-                        let _ = go.send(());
-                    }
+                if let Some(l) = launched.take() {
                     if l.stopped.load(Ordering::Acquire) {
                         let _ = l.to_plc.send(req.clone());
                     }
-                    drop(l.to_plc);
-                    if let Some(t) = l.thread.take() {
-                        let _ = t.join();
-                    }
+                    end(l);
                 }
                 out.respond(&req, Ok(Value::Null));
-                break;
+                if req.command == "disconnect" {
+                    break;
+                }
             }
             _ => {
                 let Some(l) = &launched else {
@@ -147,16 +143,22 @@ pub(super) fn serve(mut input: impl BufRead, out: Arc<Output>) {
         }
     }
     // The input ended without a disconnect: stop the program.
-    if let Some(mut l) = launched {
-        l.control.detach();
-        l.stop.stop();
-        if let Some(go) = l.go.take() {
-            let _ = go.send(());
-        }
-        drop(l.to_plc);
-        if let Some(t) = l.thread.take() {
-            let _ = t.join();
-        }
+    if let Some(l) = launched {
+        end(l);
+    }
+}
+
+/// Ends a launched program: the debugger lets go, the run stops at the
+/// next cycle boundary, and its thread is waited for.
+fn end(mut l: Launched) {
+    l.control.detach();
+    l.stop.stop();
+    if let Some(go) = l.go.take() {
+        let _ = go.send(());
+    }
+    drop(l.to_plc);
+    if let Some(t) = l.thread.take() {
+        let _ = t.join();
     }
 }
 
