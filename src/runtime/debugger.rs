@@ -197,6 +197,9 @@ pub struct DebugControl {
     pause: AtomicBool,
     pause_at_cycle: AtomicBool,
     detached: AtomicBool,
+    /// A step (in, over, out) is under way: every statement start is
+    /// looked at.
+    stepping: AtomicBool,
     pub(crate) forces: Mutex<Vec<ForceRequest>>,
 }
 
@@ -392,7 +395,15 @@ impl Core {
 
     /// Stops: asks the front end, takes its answer as the next mode.
     fn stop(&mut self, reason: StopReason, view: StoppedPlc<'_>) {
-        self.mode = ask(&mut self.front, &self.control, reason, view);
+        let mode = ask(&mut self.front, &self.control, reason, view);
+        self.set_mode(mode);
+    }
+
+    /// The next mode; the hook's fast path learns whether a step is under way.
+    fn set_mode(&mut self, mode: Mode) {
+        self.mode = mode;
+        let stepping = matches!(mode, Mode::StepIn | Mode::Over(_) | Mode::Out(..));
+        self.control.stepping.store(stepping, Ordering::Release);
     }
 
     /// Which of the breakpoints `here` (indexes into `set`) stop now:
@@ -460,12 +471,13 @@ impl Core {
         if let Some((name, file, line)) = place {
             view.push_sfc_frame(&name, file, line);
         }
-        self.mode = ask(
+        let mode = ask(
             &mut self.front,
             &self.control,
             StopReason::Breakpoint(hit),
             view,
         );
+        self.set_mode(mode);
     }
 
     /// A statement start of the debugging executor.
@@ -510,7 +522,8 @@ impl Core {
         }
         if let Some(reason) = reason {
             let view = StoppedPlc::in_cycle(img, &self.sources, m, stack, &self.control);
-            self.mode = ask(&mut self.front, &self.control, reason, view);
+            let mode = ask(&mut self.front, &self.control, reason, view);
+            self.set_mode(mode);
         }
     }
 }
@@ -543,7 +556,50 @@ fn ask(
 }
 
 /// The hook the machine calls (the PLC's thread only).
-struct Hook(Arc<Mutex<Core>>);
+struct Hook {
+    core: Arc<Mutex<Core>>,
+    control: Arc<DebugControl>,
+    /// Per code block, per instruction: a line breakpoint is there.
+    armed: Vec<Vec<bool>>,
+    /// The breakpoint version `armed` was built from.
+    seen: u64,
+}
+
+impl Hook {
+    /// Whether the statement at `top` may stop: a breakpoint is there, a
+    /// step is under way or a pause was asked (looked at without locking
+    /// the debugger's state).
+    fn may_stop(&mut self, img: &Image, top: &DebugFrame) -> bool {
+        if self.control.is_detached() {
+            return false;
+        }
+        let version = self.control.version.load(Ordering::Acquire);
+        if version != self.seen {
+            self.seen = version;
+            self.armed = img.codes.iter().map(|c| vec![false; c.ops.len()]).collect();
+            for b in lock(&self.control.breakpoints).values().flatten() {
+                for &(code, pc) in &b.places {
+                    if let Some(flag) = self
+                        .armed
+                        .get_mut(code.index())
+                        .and_then(|f| f.get_mut(pc as usize))
+                    {
+                        *flag = true;
+                    }
+                }
+            }
+        }
+        let armed = self
+            .armed
+            .get(top.code.index())
+            .and_then(|f| f.get(top.pc as usize))
+            .copied()
+            .unwrap_or(false);
+        armed
+            || self.control.stepping.load(Ordering::Acquire)
+            || self.control.pause.load(Ordering::Relaxed)
+    }
+}
 
 impl DebugHook for Hook {
     fn statement(
@@ -552,7 +608,11 @@ impl DebugHook for Hook {
         m: &mut Machine,
         stack: &[DebugFrame],
     ) -> Result<(), FaultKind> {
-        lock(&self.0).statement(img, m, stack);
+        if let Some(top) = stack.last()
+            && self.may_stop(img, top)
+        {
+            lock(&self.core).statement(img, m, stack);
+        }
         Ok(())
     }
 
@@ -564,7 +624,7 @@ impl DebugHook for Hook {
         chart: ChartIdx,
         event: ChartEvent,
     ) {
-        lock(&self.0).chart_event(img, m, stack, chart, event);
+        lock(&self.core).chart_event(img, m, stack, chart, event);
     }
 }
 
@@ -588,6 +648,7 @@ impl Plc {
             pause: AtomicBool::new(false),
             pause_at_cycle: AtomicBool::new(false),
             detached: AtomicBool::new(false),
+            stepping: AtomicBool::new(false),
             forces: Mutex::default(),
         });
         let core = Arc::new(Mutex::new(Core {
@@ -602,8 +663,13 @@ impl Plc {
             sfc_flags: BTreeMap::new(),
             hits: BTreeMap::new(),
         }));
-        self.machine
-            .attach_debugger(starts, Box::new(Hook(core.clone())));
+        let hook = Hook {
+            core: core.clone(),
+            control: control.clone(),
+            armed: Vec::new(),
+            seen: 0,
+        };
+        self.machine.attach_debugger(starts, Box::new(hook));
         self.debugger = Some(core);
         control
     }
