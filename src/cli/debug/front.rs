@@ -70,7 +70,16 @@ impl DebugFrontEnd for Front {
             ),
             StopReason::Breakpoint(ids) => ("breakpoint", "Breakpoint".into(), None, ids.clone()),
             StopReason::Step => ("step", "Step".into(), None, vec![]),
-            StopReason::Pause => ("pause", "Paused".into(), None, vec![]),
+            StopReason::Pause => match plc.cycle() {
+                // At a boundary the frames are the program instances.
+                Some(n) => (
+                    "pause",
+                    format!("Paused at the cycle boundary: before cycle {n}"),
+                    None,
+                    vec![],
+                ),
+                None => ("pause", "Paused".into(), None, vec![]),
+            },
             StopReason::Cycle => (
                 "step",
                 format!("Cycle boundary: before cycle {}", plc.cycle().unwrap_or(0)),
