@@ -6,9 +6,9 @@
 //! whose code has no check, no call and no stack for debugging, and the
 //! program's instructions are the ones the compiler emitted. With a
 //! debugger attached it runs the debugging variant (`exec::call::<true>`),
-//! which pushes a frame at every block entry, records the instruction of
-//! each call and statement start in the top frame and, at a statement
-//! start, calls the [`DebugHook`]. The hook may stop the PLC
+//! which pushes a frame at every block entry and, before every
+//! instruction, records the instruction in the top frame and, at a
+//! statement start, calls the [`DebugHook`]. The hook may stop the PLC
 //! there (block its thread until the user resumes), read and write the
 //! memory, or end the cycle with a fault kind (`Aborted`).
 
@@ -117,28 +117,31 @@ impl Machine {
         }
     }
 
-    /// The statement starts of every block (debugging variant only: read
-    /// once per block entry).
-    pub(super) fn debug_starts(&self) -> Option<Arc<Vec<Vec<bool>>>> {
-        self.debug.as_ref().map(|d| d.starts.clone())
-    }
-
-    /// The top frame is at instruction `pc` (a call: the callee's frame
-    /// goes above it).
+    /// Instruction `pc` of `code` is about to run (debugging variant
+    /// only): noted in the top frame, and given to the hook when a
+    /// statement starts there.
     #[inline(never)]
-    pub(super) fn debug_pc(&mut self, pc: usize) {
-        if let Some(d) = &mut self.debug
-            && let Some(top) = d.stack.last_mut()
-        {
+    pub(super) fn debug_at(
+        &mut self,
+        img: &Image,
+        code: CodeIdx,
+        pc: usize,
+    ) -> Result<(), FaultKind> {
+        let Some(d) = &mut self.debug else {
+            return Ok(());
+        };
+        if let Some(top) = d.stack.last_mut() {
             top.pc = pc as u32;
         }
-    }
-
-    /// A statement starts at instruction `pc` of the top frame's block
-    /// (debugging variant only): noted in the frame and given to the hook.
-    #[inline(never)]
-    pub(super) fn debug_statement(&mut self, img: &Image, pc: usize) -> Result<(), FaultKind> {
-        self.debug_pc(pc);
+        let start = d
+            .starts
+            .get(code.index())
+            .and_then(|b| b.get(pc))
+            .copied()
+            .unwrap_or(false);
+        if !start {
+            return Ok(());
+        }
         // The hook gets the machine: the state is taken out meanwhile.
         let Some(mut d) = self.debug.take() else {
             return Ok(());

@@ -237,13 +237,6 @@ fn run<const DEBUG: bool>(
         m.strings[id].set(&img.str_consts[k.index()]);
     }
     let ops = &block.ops[..];
-    // The debugging variant's statement starts in this block (the plain
-    // variant has none: its `None` folds away with every use below).
-    let starts = if DEBUG { m.debug_starts() } else { None };
-    let starts: &[bool] = match &starts {
-        Some(all) => all.get(code.index()).map_or(&[][..], |b| &b[..]),
-        None => &[],
-    };
     // The instruction pointer: it points at the running instruction until
     // the end of its arm, which moves it on (a jump sets it and skips
     // that). One pointer, not the instruction and the next one: the loop
@@ -325,11 +318,11 @@ fn run<const DEBUG: bool>(
         }};
     }
     loop {
-        if DEBUG && starts.get(pc!()).copied().unwrap_or(false) {
-            // The debugging variant only: at a statement start the
-            // debugger may stop (block this thread), read and write
-            // memory, or end the run.
-            if let Err(kind) = m.debug_statement(img, pc!()) {
+        if DEBUG {
+            // The debugging variant only: the debugger sees the
+            // instruction about to run and may stop there (its hook runs
+            // at statement starts), read and write memory, or end the run.
+            if let Err(kind) = m.debug_at(img, code, pc!()) {
                 fault!(kind);
             }
             mem = m.mem.as_mut_ptr();
@@ -775,20 +768,12 @@ fn run<const DEBUG: bool>(
             // A fault unwinding through a call notes the caller's block,
             // instruction and base: nothing the normal path keeps for it.
             Op::CallFb { code: c, inst } => {
-                if DEBUG {
-                    // The caller's place, for the debugger's stack.
-                    m.debug_pc(pc!());
-                }
                 if let Err(f) = call::<DEBUG>(m, img, c, base + inst.index()) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }
             }
             Op::CallFbInd { code: c, p } => {
-                if DEBUG {
-                    // The caller's place, for the debugger's stack.
-                    m.debug_pc(pc!());
-                }
                 let at = r!(p) as usize;
                 if let Err(f) = call::<DEBUG>(m, img, c, at) {
                     m.unwound(code, pc!(), base);
@@ -810,10 +795,6 @@ fn run<const DEBUG: bool>(
                 unsafe { stdlib::call_raw(fb, mem.add(start), m.now) }
             }
             Op::CallFn { code: c } => {
-                if DEBUG {
-                    // The caller's place, for the debugger's stack.
-                    m.debug_pc(pc!());
-                }
                 let frame = img.codes[c.index()].frame as usize;
                 if let Err(f) = call::<DEBUG>(m, img, c, frame) {
                     m.unwound(code, pc!(), base);
@@ -835,10 +816,6 @@ fn run<const DEBUG: bool>(
             }
             Op::Ret => return Ok(()),
             Op::Sfc { chart } => {
-                if DEBUG {
-                    // The caller's place, for the debugger's stack.
-                    m.debug_pc(pc!());
-                }
                 if let Err(f) = super::chart::run::<DEBUG>(m, img, chart, base) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
