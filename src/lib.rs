@@ -80,6 +80,11 @@ pub use ide::{
 pub use progress::Progress;
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::clock::Clock;
+pub use runtime::debug_lines::LineTable;
+pub use runtime::debug_view::{Container, DebugVariable, Scope, StackFrame, StoppedPlc};
+pub use runtime::debugger::{
+    Breakpoint, BreakpointPlace, DebugControl, DebugFrontEnd, Resume, StopReason,
+};
 pub use runtime::engine::{CompileError, Options, Plc, RuntimeFault};
 pub use runtime::fault_path::FaultFrame;
 pub use runtime::forcing::Force;

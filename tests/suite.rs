@@ -12,6 +12,8 @@ mod support {
     pub mod access_diags;
     pub mod arith_model;
     pub mod cli;
+    #[cfg(feature = "cli")]
+    pub mod dap_client;
     pub mod grafcet_models;
     pub mod graphic;
     #[cfg(feature = "cli")]
@@ -87,6 +89,9 @@ mod compare_cli;
 mod compat_left;
 #[path = "constructs_enumerated.rs"]
 mod constructs_enumerated;
+#[cfg(feature = "cli")]
+#[path = "debug_adapter.rs"]
+mod debug_adapter;
 #[path = "declaration_order.rs"]
 mod declaration_order;
 #[cfg(feature = "cli")]

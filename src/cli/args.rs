@@ -76,6 +76,9 @@ pub enum Command {
     /// Serve the Language Server Protocol on standard input and output,
     /// for editors (docs/editors.md).
     Lsp(super::lsp::LspArgs),
+    /// Serve the Debug Adapter Protocol on standard input and output: run
+    /// a program under a debugger from an editor (docs/editors.md).
+    Debug(super::debug::DebugArgs),
     /// Ask a running plcrun's web monitor whether its PLC runs: exit 0 if
     /// it runs, 1 if it is faulted or does not answer (container health
     /// checks; docs/web.md).

@@ -8,6 +8,7 @@ mod style;
 mod args;
 mod compare;
 mod completions;
+mod debug;
 mod draw;
 mod export;
 mod given;
@@ -81,6 +82,7 @@ fn dispatch(cli: args::Cli, given: &Given) -> i32 {
         Some(args::Command::Serve(a)) => serve::serve(&a, given),
         Some(args::Command::Init(a)) => init::init(&a),
         Some(args::Command::Lsp(a)) => lsp::lsp(&a),
+        Some(args::Command::Debug(a)) => debug::debug(&a),
         Some(args::Command::Health(a)) => health::health(&a),
         Some(args::Command::Completions(a)) => completions::completions(&a),
         Some(args::Command::Man(a)) => completions::man(&a),

@@ -471,6 +471,13 @@ fn refused_combination(args: &RunArgs) -> Option<&'static str> {
 
 /// `plcrun FILES... --cycles N ...`
 pub fn run(args: &RunArgs) -> i32 {
+    run_with(args, &mut |_| {})
+}
+
+/// [`run`], with `prepare` given the PLC once it is compiled and set up
+/// (`--set`, `--force`, stimulus), before anything runs (`plcrun debug`
+/// attaches its debugger there).
+pub(super) fn run_with(args: &RunArgs, prepare: &mut dyn FnMut(&mut Plc)) -> i32 {
     if let Some(why) = refused_combination(args) {
         return usage_error(why);
     }
@@ -494,6 +501,7 @@ pub fn run(args: &RunArgs) -> i32 {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
+    prepare(session.plc_mut());
     if let Some(saver) = saver {
         session.save_retain_every(saver, args.retain_every);
     }

@@ -6,9 +6,11 @@ use super::names::{self, VarRef};
 use super::plc_value::Value;
 use super::var_error::{ValueProblem, VarError};
 use crate::elementary::ElemType;
-use crate::ir::type_table::TypeKind;
+use crate::ir::image::Image;
+use crate::ir::type_table::{TypeId, TypeKind};
 use crate::value::encode::is_canonical;
 use crate::value::text::{Lit, parse_literal_text, parse_scalar};
+use crate::vm::Machine;
 
 impl Plc {
     /// Resolves a variable name (see `docs/cli.md` for the syntax).
@@ -45,33 +47,13 @@ impl Plc {
     }
 
     /// The value of a variable of this PLC (`r` resolved by it).
+    #[inline]
     pub(super) fn value_at(&self, r: &VarRef) -> Value {
         if let Some(view) = r.view {
             let ty = self.image.types.scalar(r.ty).unwrap_or(ElemType::Lint);
             return Value::Scalar(ty, view.read(&self.machine.mem, r.addr));
         }
-        let raw = self.machine.mem[r.addr as usize];
-        match &self.image.types.get(r.ty).kind {
-            TypeKind::Str { wide, .. } => {
-                let s = self
-                    .machine
-                    .strings
-                    .get(raw as usize)
-                    .map(|s| s.text.clone())
-                    .unwrap_or_default();
-                Value::String(s, *wide)
-            }
-            TypeKind::Enum { values, .. } => {
-                let v = raw as i64;
-                let name = values
-                    .iter()
-                    .find(|(_, x)| *x == v)
-                    .map(|(n, _)| n.clone())
-                    .unwrap_or_else(|| v.to_string());
-                Value::Enum(name, v)
-            }
-            _ => Value::Scalar(self.image.types.scalar(r.ty).unwrap_or(ElemType::Lint), raw),
-        }
+        value_in(&self.image, &self.machine, r.addr, r.ty)
     }
 
     /// Reads a variable by name.
@@ -91,39 +73,7 @@ impl Plc {
     /// Decodes an IEC literal for the type of `r` (checks it fits).
     pub fn parse_value(&self, r: &VarRef, text: &str) -> Result<Value, VarError> {
         self.owned(r)?;
-        let t = text.trim();
-        let bad = |problem| VarError::BadValue {
-            literal: t.to_string(),
-            ty: self.image.types.name(r.ty).to_string(),
-            problem,
-        };
-        match &self.image.types.get(r.ty).kind {
-            TypeKind::Str { wide, .. } => match parse_literal_text(t) {
-                Ok((Lit::Str { value, .. }, _)) => Ok(Value::String(value, *wide)),
-                _ => Err(bad(ValueProblem::NotAString)),
-            },
-            TypeKind::Enum { values, .. } => {
-                let name = t.rsplit('#').next().unwrap_or(t);
-                values
-                    .iter()
-                    .find(|(n, _)| n.eq_ignore_ascii_case(name))
-                    .map(|(n, v)| Value::Enum(n.clone(), *v))
-                    .ok_or_else(|| bad(ValueProblem::NotAnEnumValue))
-            }
-            TypeKind::Subrange { base, lo, hi } => {
-                let raw = parse_scalar(t, *base).ok_or_else(|| bad(ValueProblem::Invalid))?;
-                let v = raw as i64;
-                if v < *lo || v > *hi {
-                    return Err(bad(ValueProblem::OutsideSubrange(v)));
-                }
-                Ok(Value::Scalar(*base, raw))
-            }
-            _ => {
-                let e = self.image.types.scalar(r.ty).unwrap_or(ElemType::Lint);
-                let raw = parse_scalar(t, e).ok_or_else(|| bad(ValueProblem::Invalid))?;
-                Ok(Value::Scalar(e, raw))
-            }
-        }
+        parse_for(&self.image, r.ty, text)
     }
 
     /// Writes a value into a resolved variable. The value must be of the
@@ -217,5 +167,87 @@ impl Plc {
         let r = self.resolve(name)?;
         let v = self.parse_value(&r, literal)?;
         self.set(&r, &v)
+    }
+}
+
+/// The value of the variable of type `ty` (a single value: elementary,
+/// string, enumeration, subrange) at slot `addr` of machine `m`.
+pub(super) fn value_in(image: &Image, m: &Machine, addr: u32, ty: TypeId) -> Value {
+    let raw = m.mem.get(addr as usize).copied().unwrap_or(0);
+    match &image.types.get(ty).kind {
+        TypeKind::Str { wide, .. } => {
+            let s = m
+                .strings
+                .get(raw as usize)
+                .map(|s| s.text.clone())
+                .unwrap_or_default();
+            Value::String(s, *wide)
+        }
+        TypeKind::Enum { values, .. } => {
+            let v = raw as i64;
+            let name = values
+                .iter()
+                .find(|(_, x)| *x == v)
+                .map(|(n, _)| n.clone())
+                .unwrap_or_else(|| v.to_string());
+            Value::Enum(name, v)
+        }
+        _ => Value::Scalar(image.types.scalar(ty).unwrap_or(ElemType::Lint), raw),
+    }
+}
+
+/// Decodes IEC literal `text` as a value of type `ty` (checks it fits).
+pub(super) fn parse_for(image: &Image, ty: TypeId, text: &str) -> Result<Value, VarError> {
+    let t = text.trim();
+    let bad = |problem| VarError::BadValue {
+        literal: t.to_string(),
+        ty: image.types.name(ty).to_string(),
+        problem,
+    };
+    match &image.types.get(ty).kind {
+        TypeKind::Str { wide, .. } => match parse_literal_text(t) {
+            Ok((Lit::Str { value, .. }, _)) => Ok(Value::String(value, *wide)),
+            _ => Err(bad(ValueProblem::NotAString)),
+        },
+        TypeKind::Enum { values, .. } => {
+            let name = t.rsplit('#').next().unwrap_or(t);
+            values
+                .iter()
+                .find(|(n, _)| n.eq_ignore_ascii_case(name))
+                .map(|(n, v)| Value::Enum(n.clone(), *v))
+                .ok_or_else(|| bad(ValueProblem::NotAnEnumValue))
+        }
+        TypeKind::Subrange { base, lo, hi } => {
+            let raw = parse_scalar(t, *base).ok_or_else(|| bad(ValueProblem::Invalid))?;
+            let v = raw as i64;
+            if v < *lo || v > *hi {
+                return Err(bad(ValueProblem::OutsideSubrange(v)));
+            }
+            Ok(Value::Scalar(*base, raw))
+        }
+        _ => {
+            let e = image.types.scalar(ty).unwrap_or(ElemType::Lint);
+            let raw = parse_scalar(t, e).ok_or_else(|| bad(ValueProblem::Invalid))?;
+            Ok(Value::Scalar(e, raw))
+        }
+    }
+}
+
+/// Stores value `v` (of type `ty`, checked by the caller) into the slot
+/// `addr` of machine `m` (memory and strings only: the caller keeps the
+/// process image in step).
+pub(super) fn store_in(m: &mut Machine, addr: u32, v: &Value) {
+    let Some(slot) = m.mem.get_mut(addr as usize) else {
+        return;
+    };
+    match v {
+        Value::Scalar(_, raw) => *slot = *raw,
+        Value::Enum(_, x) => *slot = *x as u64,
+        Value::String(s, _) => {
+            let id = *slot as usize;
+            if let Some(string) = m.strings.get_mut(id) {
+                string.set(s);
+            }
+        }
     }
 }

@@ -260,6 +260,8 @@ pub struct Plc {
     /// The host bodies' dispatcher (also linked into the machine), kept
     /// typed for online change to move host instances' state.
     pub(super) host_code: Option<Arc<Mutex<HostDispatcher>>>,
+    /// The attached debugger (see [`super::debugger`]), if any.
+    pub(super) debugger: Option<Arc<Mutex<super::debugger::Core>>>,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -368,6 +370,7 @@ impl Plc {
             io,
             forces: Forces::default(),
             host_code,
+            debugger: None,
         };
         plc.start(true);
         plc
@@ -461,6 +464,9 @@ impl Plc {
     pub(super) fn begin_tick(&mut self) -> Result<i64, RuntimeFault> {
         if let Some(fault) = &self.faulted {
             return Err(fault.clone());
+        }
+        if self.debugger.is_some() {
+            self.debug_boundary();
         }
         let scheduled = self.scheduler.scheduled_time();
         self.machine.now = self.clock.now(scheduled);

@@ -41,10 +41,10 @@ pub(crate) struct FaultPlace {
 
 /// A block that ran: its code, the instruction, and the frame base.
 #[derive(Debug, Clone, Copy)]
-struct Frame {
-    code: CodeIdx,
-    pc: u32,
-    base: usize,
+pub(super) struct Frame {
+    pub code: CodeIdx,
+    pub pc: u32,
+    pub base: usize,
 }
 
 /// The instance path of the faulting block and its callers, innermost
@@ -76,13 +76,7 @@ pub(super) fn trace(
     // A fault raised by the chart runtime itself (unstable GRAFCET) is
     // located at the chart's instruction, which also appears as its caller.
     frames.dedup_by(|outer, inner| inner.code == outer.code && inner.pc == outer.pc);
-    // Named outermost first: a FUNCTION's local instance is named after
-    // its caller.
-    let mut names = vec![String::new(); frames.len()];
-    for k in (0..frames.len()).rev() {
-        let caller = names.get(k + 1).map(String::as_str);
-        names[k] = frame_name(image, frames[k], caller);
-    }
+    let mut names = frame_names(image, &frames);
     let chain = frames
         .iter()
         .zip(&names)
@@ -94,6 +88,45 @@ pub(super) fn trace(
         })
         .collect();
     (names.swap_remove(0), chain)
+}
+
+/// The instance path of each frame of `frames` (innermost first), as a
+/// fault names them.
+pub(super) fn frame_names(image: &Image, frames: &[Frame]) -> Vec<String> {
+    // Named outermost first: a FUNCTION's local instance is named after
+    // its caller.
+    let mut names = vec![String::new(); frames.len()];
+    for k in (0..frames.len()).rev() {
+        let caller = names.get(k + 1).map(String::as_str);
+        names[k] = frame_name(image, frames[k], caller);
+    }
+    names
+}
+
+/// The frames of a fault, innermost first (as [`trace`] names them).
+pub(super) fn fault_frames(
+    image: &Image,
+    mem: &[u64],
+    fault: (CodeIdx, u32),
+    callers: &[CallSite],
+    program_base: usize,
+) -> Vec<Frame> {
+    let innermost = Frame {
+        code: fault.0,
+        pc: fault.1,
+        base: callers
+            .first()
+            .map_or(program_base, |site| callee_base(image, mem, site)),
+    };
+    let mut frames: Vec<Frame> = std::iter::once(innermost)
+        .chain(callers.iter().map(|site| Frame {
+            code: site.code,
+            pc: site.pc,
+            base: site.base,
+        }))
+        .collect();
+    frames.dedup_by(|outer, inner| inner.code == outer.code && inner.pc == outer.pc);
+    frames
 }
 
 /// The frame base the call at `site` gave its callee: the instance in the

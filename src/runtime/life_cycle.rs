@@ -163,12 +163,26 @@ impl Plc {
     /// watchdog fault, and stops the PLC.
     #[cold]
     pub(super) fn fail(&mut self, fault: Fault, program_base: usize) -> RuntimeFault {
+        // With a debugger: the stack as the fault left it (before `locate`
+        // takes the calls it unwound through).
+        let frames = self.debugger.is_some().then(|| {
+            super::fault_path::fault_frames(
+                self.image.image(),
+                &self.machine.mem,
+                (fault.code, fault.pc),
+                self.machine.callers(),
+                program_base,
+            )
+        });
         let mut located = self.locate(fault, program_base);
         if located.fault.kind == FaultKind::Watchdog {
             let tasks = &self.image.tasks;
             located.watchdog = self.watchdog.trip(|k| tasks[k].name.clone()).map(Box::new);
         }
         self.watchdog.leave();
+        if let Some(frames) = frames {
+            self.debug_fault(&located, frames);
+        }
         self.faulted = Some(located.clone());
         located
     }

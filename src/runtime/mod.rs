@@ -19,6 +19,9 @@
 //! - [`online_change`]: a new program version taking over a running PLC,
 //!   with its [`change_report`];
 //! - [`stop`]: asking a run to end from another thread;
+//! - [`debugger`]: breakpoints, steps and stops for a debugger front end,
+//!   with [`debug_lines`] (where statements start), [`debug_view`] (what a
+//!   stopped PLC shows) and [`debug_eval`] (watch expressions);
 //! - [`life_cycle`]: the faulted STOP state and the resets;
 //! - [`fault_path`]: a fault's instance path and chain of callers;
 //! - [`watchdog`]: per-task cycle-time limits and the thread enforcing them;
@@ -40,6 +43,10 @@ mod addressing;
 mod byte_view;
 pub mod change_report;
 pub mod clock;
+pub mod debug_eval;
+pub mod debug_lines;
+pub mod debug_view;
+pub mod debugger;
 pub mod default_trace;
 pub mod engine;
 pub mod fault_path;

@@ -9,6 +9,7 @@
 //! `vm::grafcet` shares some of them, which would otherwise leave them out
 //! of line and cost the IEC path calls (callgrind: +15 % on CHARIOT).
 
+use super::debug::ChartEvent;
 use super::{Fault, Machine, exec};
 use crate::ir::chart::{
     ActionKind, Chart, Condition, Duration, Evolution, Qualifier, action_layout as al, header as hd,
@@ -18,7 +19,7 @@ use crate::ir::type_table::step_layout as sl;
 
 /// Runs one call of chart `chart` for the instance at `base`.
 #[inline(always)]
-pub(super) fn run(
+pub(super) fn run<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     chart: crate::ir::op::ChartIdx,
@@ -29,7 +30,7 @@ pub(super) fn run(
     };
     // The evolution rules are chosen once, at compile time, per chart.
     if c.evolution == Evolution::Grafcet {
-        return super::grafcet::run(m, img, c, chart, base);
+        return super::grafcet::run::<DEBUG>(m, img, c, chart, base);
     }
     let now = m.now;
     let h = base + c.header as usize;
@@ -37,12 +38,15 @@ pub(super) fn run(
         m.mem[h + hd::STARTED as usize] = 1;
         for &s in &c.initial {
             activate(m, c, base, s, now);
+            if DEBUG {
+                m.debug_chart(img, chart, ChartEvent::Step(s));
+            }
         }
     }
     let epoch = m.mem[h + hd::EPOCH as usize].wrapping_add(1);
     m.mem[h + hd::EPOCH as usize] = epoch;
-    evolve(m, img, c, base, epoch, now)?;
-    actions(m, img, c, base, epoch, now)
+    evolve::<DEBUG>(m, img, c, chart, base, epoch, now)?;
+    actions::<DEBUG>(m, img, c, chart, base, epoch, now)
 }
 
 /// Marks step `s` active from `now` and inserts it into the active list.
@@ -80,7 +84,7 @@ pub(super) fn active(m: &Machine, c: &Chart, base: usize, s: u32) -> bool {
 
 /// Evaluates transition `t`'s condition (at most once per call).
 #[inline(always)]
-pub(super) fn condition(
+pub(super) fn condition<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -97,7 +101,7 @@ pub(super) fn condition(
             if cached >> 1 == epoch {
                 return Ok(cached & 1 != 0);
             }
-            exec::run(m, img, code, base)?;
+            exec::call::<DEBUG>(m, img, code, base)?;
             let v = m.mem[base + (c.header + hd::COND) as usize] != 0;
             m.mem[slot] = (epoch << 1) | v as u64;
             Ok(v)
@@ -108,10 +112,11 @@ pub(super) fn condition(
 /// Evolution: `.T` update, choice of the transitions that fire on the
 /// current situation, then deactivation and activation of their steps.
 #[inline(always)]
-fn evolve(
+fn evolve<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
+    chart: crate::ir::op::ChartIdx,
     base: usize,
     epoch: u64,
     now: i64,
@@ -137,7 +142,7 @@ fn evolve(
             if !tr.from.iter().all(|&p| active(m, c, base, p)) {
                 continue;
             }
-            if condition(m, img, c, base, t, epoch)? {
+            if condition::<DEBUG>(m, img, c, base, t, epoch)? {
                 winner = t as u64 + 1;
                 break;
             }
@@ -203,6 +208,15 @@ fn evolve(
             }
         }
     }
+    if DEBUG {
+        for k in 0..fired {
+            let t = m.mem[fired_at + k] as u32;
+            m.debug_chart(img, chart, ChartEvent::Fired(t));
+            for &q in &c.transitions[t as usize].to {
+                m.debug_chart(img, chart, ChartEvent::Step(q));
+            }
+        }
+    }
     Ok(())
 }
 
@@ -219,10 +233,11 @@ pub(super) fn duration(m: &Machine, base: usize, d: Duration) -> u64 {
 
 /// Action control for every live action, in execution order.
 #[inline(always)]
-fn actions(
+fn actions<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
+    chart: crate::ir::op::ChartIdx,
     base: usize,
     epoch: u64,
     now: i64,
@@ -274,12 +289,15 @@ fn actions(
         };
         let q = control(m, rec, inputs, now);
         let old_q = m.mem[rec + al::Q as usize] != 0;
+        if DEBUG && q {
+            m.debug_chart(img, chart, ChartEvent::Action(a as u32));
+        }
         match action.kind {
             ActionKind::Body(code) => {
                 m.mem[rec + al::Q as usize] = q as u64;
                 if q || old_q {
                     m.mem[rec + al::A as usize] = 1;
-                    exec::run(m, img, code, base)?;
+                    exec::call::<DEBUG>(m, img, code, base)?;
                 }
                 m.mem[rec + al::A as usize] = q as u64;
             }

@@ -145,7 +145,35 @@ fn int_pow(base: i64, exp: i64) -> Option<u64> {
 /// `img` must have passed [`crate::ir::verify::verify`] (callers hold a
 /// `VerifiedImage`); `m` may hold any memory, since every frame is checked
 /// against it on entry.
-pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> Result<(), Fault> {
+///
+/// `DEBUG` chooses the variant: `false` is the plain executor, with no
+/// trace of debugging in its code; `true` keeps the debugger's call stack
+/// and gives it every statement start (see [`super::debug`]), and runs only
+/// on a machine a debugger is attached to ([`Machine::run`] chooses).
+pub(super) fn call<const DEBUG: bool>(
+    m: &mut Machine,
+    img: &Image,
+    code: CodeIdx,
+    base: usize,
+) -> Result<(), Fault> {
+    if DEBUG {
+        m.debug_enter(code, base);
+        let done = run::<true>(m, img, code, base);
+        m.debug_leave();
+        return done;
+    }
+    run::<false>(m, img, code, base)
+}
+
+/// The dispatch loop of [`call`] (inlined into it: the plain variant is
+/// this code).
+#[inline(always)]
+fn run<const DEBUG: bool>(
+    m: &mut Machine,
+    img: &Image,
+    code: CodeIdx,
+    base: usize,
+) -> Result<(), Fault> {
     let block = &img.codes[code.index()];
     let len = m.mem.len();
     // `base` may come from a pointer slot: compared without overflow.
@@ -290,6 +318,17 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
         }};
     }
     loop {
+        if DEBUG {
+            // The debugging variant only: the debugger sees the
+            // instruction about to run and may stop there (its hook runs
+            // at statement starts), read and write memory, or end the run.
+            if let Err(kind) = m.debug_at(img, code, pc!()) {
+                fault!(kind);
+            }
+            mem = m.mem.as_mut_ptr();
+            // SAFETY: as at entry (same buffer, same length).
+            fp = unsafe { mem.add(base) };
+        }
         // SAFETY: blocks end with Ret and jump targets are inside the block
         // (verified), so ip never leaves `ops`.
         let op = unsafe { &*ip };
@@ -729,14 +768,14 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             // A fault unwinding through a call notes the caller's block,
             // instruction and base: nothing the normal path keeps for it.
             Op::CallFb { code: c, inst } => {
-                if let Err(f) = run(m, img, c, base + inst.index()) {
+                if let Err(f) = call::<DEBUG>(m, img, c, base + inst.index()) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }
             }
             Op::CallFbInd { code: c, p } => {
                 let at = r!(p) as usize;
-                if let Err(f) = run(m, img, c, at) {
+                if let Err(f) = call::<DEBUG>(m, img, c, at) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }
@@ -757,7 +796,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             }
             Op::CallFn { code: c } => {
                 let frame = img.codes[c.index()].frame as usize;
-                if let Err(f) = run(m, img, c, frame) {
+                if let Err(f) = call::<DEBUG>(m, img, c, frame) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }
@@ -777,7 +816,7 @@ pub(super) fn run(m: &mut Machine, img: &Image, code: CodeIdx, base: usize) -> R
             }
             Op::Ret => return Ok(()),
             Op::Sfc { chart } => {
-                if let Err(f) = super::chart::run(m, img, chart, base) {
+                if let Err(f) = super::chart::run::<DEBUG>(m, img, chart, base) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }

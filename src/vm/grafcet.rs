@@ -14,6 +14,7 @@
 //! in its next call. See docs/grafcet.md.
 
 use super::chart::{activate, active, condition, duration, insert_sorted};
+use super::debug::ChartEvent;
 use super::fault::UnstableCycle;
 use super::{Fault, FaultKind, Machine, exec};
 use crate::ir::chart::{
@@ -45,7 +46,7 @@ const fn bit(q: Qualifier) -> u64 {
 /// Runs one call of chart `c` (number `index`) for the instance at `base`.
 /// Kept out of line: the IEC path that calls it must not change shape.
 #[inline(never)]
-pub(super) fn run(
+pub(super) fn run<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
@@ -69,11 +70,11 @@ pub(super) fn run(
         step_times(m, c, base, now);
         epoch
     } else {
-        stabilize(m, img, c, base, epoch, now).map_err(|f| locate(img, index, f))?
+        stabilize::<DEBUG>(m, img, c, index, base, epoch, now).map_err(|f| locate(img, index, f))?
     };
     m.mem[h + hd::EPOCH as usize] = last;
     apply_forcings(m, c, base, now);
-    actions(m, img, c, base, epoch, now)
+    actions::<DEBUG>(m, img, c, index, base, epoch, now)
 }
 
 /// `.T := now - activation` for every active step.
@@ -96,10 +97,11 @@ fn bound(c: &Chart) -> usize {
 
 /// Fires rounds until none fires; returns the last condition stamp used.
 /// Each round evaluates conditions afresh (stamp `epoch + round`).
-fn stabilize(
+fn stabilize<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
+    index: ChartIdx,
     base: usize,
     epoch: u64,
     now: i64,
@@ -107,13 +109,13 @@ fn stabilize(
     let mut stamp = epoch;
     let mut rounds = 0usize;
     loop {
-        if round(m, img, c, base, stamp, epoch, now)? == 0 {
+        if round::<DEBUG>(m, img, c, index, base, stamp, epoch, now)? == 0 {
             return Ok(stamp);
         }
         rounds += 1;
         stamp = stamp.wrapping_add(1);
         if rounds > bound(c) {
-            return Err(unstable(m, img, c, base, stamp, epoch, now));
+            return Err(unstable(m, img, c, index, base, stamp, epoch, now));
         }
     }
 }
@@ -122,10 +124,12 @@ fn stabilize(
 /// fire (same choice as IEC: priorities per step, a transition fires when
 /// it wins all its preceding steps), deactivation, then activation with
 /// the events. Returns how many fired; their indexes are at the fired list.
-fn round(
+#[allow(clippy::too_many_arguments)]
+fn round<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
+    index: ChartIdx,
     base: usize,
     stamp: u64,
     epoch: u64,
@@ -148,7 +152,7 @@ fn round(
             if !tr.from.iter().all(|&p| active(m, c, base, p)) {
                 continue;
             }
-            if condition(m, img, c, base, t, stamp)? {
+            if condition::<DEBUG>(m, img, c, base, t, stamp)? {
                 winner = t as u64 + 1;
                 break;
             }
@@ -219,6 +223,15 @@ fn round(
             }
         }
     }
+    if DEBUG {
+        for k in 0..fired {
+            let t = m.mem[fired_at + k] as u32;
+            m.debug_chart(img, index, ChartEvent::Fired(t));
+            for &q in &c.transitions[t as usize].to {
+                m.debug_chart(img, index, ChartEvent::Step(q));
+            }
+        }
+    }
     for k in 0..fired {
         let t = m.mem[fired_at + k] as usize;
         for &p in &c.transitions[t].from {
@@ -274,10 +287,12 @@ fn input(m: &mut Machine, c: &Chart, base: usize, a: &crate::ir::chart::Associat
 /// The fault of an evolution that reached the bound: evolution goes on
 /// (the PLC stops anyway) until a situation repeats, and the transitions
 /// fired over one period of that repetition are named.
+#[allow(clippy::too_many_arguments)]
 fn unstable(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
+    index: ChartIdx,
     base: usize,
     mut stamp: u64,
     epoch: u64,
@@ -293,7 +308,7 @@ fn unstable(
     let (mut power, mut lambda) = (1usize, 0usize);
     let mut period = None;
     for _ in 0..64 * bound(c).max(16) {
-        match round(m, img, c, base, stamp, epoch, now) {
+        match round::<false>(m, img, c, index, base, stamp, epoch, now) {
             Ok(0) => break,
             Ok(_) => {}
             Err(f) => return f,
@@ -314,7 +329,7 @@ fn unstable(
     let mut names: Vec<String> = Vec::new();
     let fired_at = base + c.cache as usize + c.transitions.len();
     for _ in 0..period.unwrap_or(bound(c)) {
-        let fired = match round(m, img, c, base, stamp, epoch, now) {
+        let fired = match round::<false>(m, img, c, index, base, stamp, epoch, now) {
             Ok(0) => break,
             Ok(k) => k,
             Err(f) => return f,
@@ -430,10 +445,11 @@ fn apply_forcings(m: &mut Machine, c: &Chart, base: usize, now: i64) {
 /// Action control: the continuous inputs of the stable situation's steps
 /// join the events recorded during evolution; every live action is then
 /// controlled and drives its output as under IEC evolution.
-fn actions(
+fn actions<const DEBUG: bool>(
     m: &mut Machine,
     img: &Image,
     c: &Chart,
+    index: ChartIdx,
     base: usize,
     epoch: u64,
     now: i64,
@@ -463,12 +479,15 @@ fn actions(
         };
         let q = control(m, rec, inputs, now);
         let old_q = m.mem[rec + al::Q as usize] != 0;
+        if DEBUG && q {
+            m.debug_chart(img, index, ChartEvent::Action(a as u32));
+        }
         m.mem[rec + al::Q as usize] = q as u64;
         match action.kind {
             ActionKind::Body(code) => {
                 if q || old_q {
                     m.mem[rec + al::A as usize] = 1;
-                    exec::run(m, img, code, base)?;
+                    exec::call::<DEBUG>(m, img, code, base)?;
                 }
                 m.mem[rec + al::A as usize] = q as u64;
             }

@@ -12,6 +12,7 @@
 
 mod byte_view;
 mod chart;
+mod debug;
 mod exec;
 mod fault;
 mod grafcet;
@@ -21,6 +22,7 @@ mod refs;
 mod string_ops;
 mod strings;
 
+pub(crate) use debug::{ChartEvent, DebugFrame, DebugHook};
 pub(crate) use fault::CallSite;
 pub use fault::{Fault, FaultKind, HostFailure, UnstableCycle};
 pub(crate) use host::{HostDispatch, HostFrame, HostLink};
@@ -50,6 +52,9 @@ pub struct Machine {
     /// The calls a fault unwound through, innermost first (filled on the
     /// error path only; see [`Self::take_callers`]).
     unwind: Vec<CallSite>,
+    /// The attached debugger, if any (see [`debug`]): while there is
+    /// none, [`Self::run`] runs the plain executor.
+    debug: Option<Box<debug::Debugging>>,
 }
 
 impl Machine {
@@ -67,6 +72,7 @@ impl Machine {
             host: HostLink::default(),
             refs: refs::RefTable::default(),
             unwind: Vec::new(),
+            debug: None,
         }
     }
 
@@ -100,7 +106,10 @@ impl Machine {
     /// memory faults with `BadAddress`). After a fault, the calls it
     /// unwound through wait in [`Self::take_callers`].
     pub fn run(&mut self, image: &VerifiedImage, code: CodeIdx, base: u32) -> Result<(), Fault> {
-        exec::run(self, image.image(), code, base as usize)
+        if self.debug.is_some() {
+            return exec::call::<true>(self, image.image(), code, base as usize);
+        }
+        exec::call::<false>(self, image.image(), code, base as usize)
     }
 
     /// The calls the last fault unwound through, innermost first (the
@@ -108,6 +117,12 @@ impl Machine {
     /// last); empties the list for the next fault.
     pub(crate) fn take_callers(&mut self) -> Vec<CallSite> {
         std::mem::take(&mut self.unwind)
+    }
+
+    /// The calls the last fault unwound through (as [`Self::take_callers`]
+    /// gives them, without taking them).
+    pub(crate) fn callers(&self) -> &[CallSite] {
+        &self.unwind
     }
 
     /// Notes, while a fault unwinds, the call at `pc` of `code` running at

@@ -1,6 +1,8 @@
-// The plcrun extension: starts `plcrun lsp` for IEC 61131-3 files and adds
+// The plcrun extension: starts `plcrun lsp` for IEC 61131-3 files, adds
 // two commands that run plcrun in a terminal ("Run with plcrun",
-// "Compare with another program").
+// "Compare with another program"), and runs `plcrun debug` as the debug
+// adapter of "plcrun" launch configurations, with commands for its custom
+// requests (a cycle step, forcing).
 import * as path from "path";
 import * as vscode from "vscode";
 import {
@@ -88,8 +90,43 @@ async function compare(): Promise<void> {
   );
 }
 
+// The debug session of plcrun running now, if any.
+function debugSession(): vscode.DebugSession | undefined {
+  const session = vscode.debug.activeDebugSession;
+  return session?.type === "plcrun" ? session : undefined;
+}
+
+async function cycleStep(): Promise<void> {
+  await debugSession()?.customRequest("cycleStep", { threadId: 1 });
+}
+
+async function force(release: boolean): Promise<void> {
+  const session = debugSession();
+  if (!session) {
+    return;
+  }
+  const name = await vscode.window.showInputBox({ prompt: "Variable (e.g. Main.motor.run)" });
+  if (!name) {
+    return;
+  }
+  if (release) {
+    await session.customRequest("unforce", { name });
+    return;
+  }
+  const value = await vscode.window.showInputBox({ prompt: `Force ${name} to (IEC literal)` });
+  if (value !== undefined) {
+    await session.customRequest("force", { name, value });
+  }
+}
+
 export async function activate(context: vscode.ExtensionContext): Promise<void> {
   context.subscriptions.push(
+    vscode.debug.registerDebugAdapterDescriptorFactory("plcrun", {
+      createDebugAdapterDescriptor: () => new vscode.DebugAdapterExecutable(executable(), ["debug"]),
+    }),
+    vscode.commands.registerCommand("plcrun.cycleStep", cycleStep),
+    vscode.commands.registerCommand("plcrun.force", () => force(false)),
+    vscode.commands.registerCommand("plcrun.unforce", () => force(true)),
     vscode.commands.registerCommand("plcrun.run", run),
     vscode.commands.registerCommand("plcrun.compare", compare),
     vscode.commands.registerCommand("plcrun.restartServer", async () => {
