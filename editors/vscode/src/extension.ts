@@ -25,8 +25,11 @@ function cycles(): number {
 
 async function startClient(context: vscode.ExtensionContext): Promise<void> {
   const server: ServerOptions = { command: executable(), args: ["lsp"] };
+  const live = vscode.workspace.getConfiguration("plcrun").get<string>("liveValues");
   const options: LanguageClientOptions = {
     documentSelector: LANGUAGES.map((language) => ({ scheme: "file", language })),
+    // `plcrun lsp`'s live values (docs/editors.md, "Live values").
+    initializationOptions: live ? { live } : undefined,
     synchronize: {
       fileEvents: vscode.workspace.createFileSystemWatcher("**/{plcrun.toml,*.plcproj}"),
     },
