@@ -586,12 +586,7 @@ pub(super) fn run_with(args: &RunArgs, prepare: &mut dyn FnMut(&mut Plc)) -> i32
         server.shutdown();
     }
     let result = result.and_then(|()| unload(&mut session));
-    // A fault leaves the faulting cycle half done: the last periodic save
-    // is the consistent one, so only a run ending at a cycle boundary saves.
-    let boundary = !matches!(result, Err(RunError::Fault(_)));
-    if let Some(saver) = session.take_retain_saver()
-        && let Err(e) = super::retain::finish(saver, session.plc(), boundary)
-    {
+    if let Err(e) = last_retain_save(&mut session, &result) {
         sayln!("error: {e}");
         return EXIT_USAGE;
     }
@@ -633,4 +628,16 @@ pub(super) fn run_with(args: &RunArgs, prepare: &mut dyn FnMut(&mut Plc)) -> i32
 /// FB_exit methods run (docs/semantics.md §24) before the last retain save.
 fn unload(session: &mut Session) -> Result<(), RunError> {
     session.plc_mut().unload().map_err(RunError::Fault)
+}
+
+/// The last retain save, if the run saves: only after a run that ended at
+/// a cycle boundary (a fault leaves the faulting cycle half done, so the
+/// last periodic save is the consistent one). Its error, or one met by
+/// the saver during the run.
+fn last_retain_save(session: &mut Session, result: &Result<(), RunError>) -> Result<(), String> {
+    let boundary = !matches!(result, Err(RunError::Fault(_)));
+    match session.take_retain_saver() {
+        Some(saver) => super::retain::finish(saver, session.plc(), boundary),
+        None => Ok(()),
+    }
 }
