@@ -14,6 +14,8 @@ mod support {
     pub mod cli;
     #[cfg(feature = "cli")]
     pub mod dap_client;
+    #[cfg(feature = "cli")]
+    pub mod framed;
     pub mod grafcet_models;
     pub mod graphic;
     #[cfg(feature = "cli")]

@@ -580,11 +580,15 @@ impl<'a> StoppedPlc<'a> {
         }
     }
 
-    /// Writes IEC literal `literal` into `path` as seen from frame `k` (a
-    /// soft write: a forced variable keeps its forced value from the next
-    /// force application on). Returns the value written.
-    pub fn write(&mut self, k: usize, path: &str, literal: &str) -> Result<Value, VarError> {
-        let (addr, ty, read_only) = self.resolve(k, path)?;
+    /// Stores IEC literal `literal` into the resolved variable `path`
+    /// (its address, type and why it is read-only, if it is), once it is
+    /// known to hold a single writable value. Returns the value stored.
+    fn store_literal(
+        &mut self,
+        path: &str,
+        (addr, ty, read_only): (u32, TypeId, Option<ReadOnlyReason>),
+        literal: &str,
+    ) -> Result<Value, VarError> {
         self.single(path, ty)?;
         if let Some(why) = read_only {
             return Err(VarError::ReadOnly {
@@ -594,6 +598,15 @@ impl<'a> StoppedPlc<'a> {
         }
         let v = parse_for(self.image, ty, literal)?;
         store_in(self.machine, addr, &v);
+        Ok(v)
+    }
+
+    /// Writes IEC literal `literal` into `path` as seen from frame `k` (a
+    /// soft write: a forced variable keeps its forced value from the next
+    /// force application on). Returns the value written.
+    pub fn write(&mut self, k: usize, path: &str, literal: &str) -> Result<Value, VarError> {
+        let (addr, ty, read_only) = self.resolve(k, path)?;
+        let v = self.store_literal(path, (addr, ty, read_only), literal)?;
         Ok(v)
     }
 
@@ -613,15 +626,7 @@ impl<'a> StoppedPlc<'a> {
                 name: name.to_string(),
             })?;
         let r = names::resolve(self.image, &found.path, 0)?;
-        self.single(&found.path, r.ty)?;
-        if let Some(why) = r.read_only {
-            return Err(VarError::ReadOnly {
-                path: found.path,
-                why,
-            });
-        }
-        let v = parse_for(self.image, r.ty, literal)?;
-        store_in(self.machine, r.addr, &v);
+        let v = self.store_literal(&found.path, (r.addr, r.ty, r.read_only), literal)?;
         Ok(DebugVariable {
             value: v.to_literal(),
             ..found
@@ -632,15 +637,7 @@ impl<'a> StoppedPlc<'a> {
     /// held from the next cycle boundary on until unforced.
     pub fn force(&mut self, k: usize, path: &str, literal: &str) -> Result<Value, VarError> {
         let (addr, ty, read_only) = self.resolve(k, path)?;
-        self.single(path, ty)?;
-        if let Some(why) = read_only {
-            return Err(VarError::ReadOnly {
-                path: path.to_string(),
-                why,
-            });
-        }
-        let v = parse_for(self.image, ty, literal)?;
-        store_in(self.machine, addr, &v);
+        let v = self.store_literal(path, (addr, ty, read_only), literal)?;
         let full = self.outside_path(k, path);
         self.control
             .forces

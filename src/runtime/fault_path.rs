@@ -59,23 +59,7 @@ pub(super) fn trace(
     callers: &[CallSite],
     program_base: usize,
 ) -> (String, Vec<FaultFrame>) {
-    let innermost = Frame {
-        code: fault.0,
-        pc: fault.1,
-        base: callers
-            .first()
-            .map_or(program_base, |site| callee_base(image, mem, site)),
-    };
-    let mut frames: Vec<Frame> = std::iter::once(innermost)
-        .chain(callers.iter().map(|site| Frame {
-            code: site.code,
-            pc: site.pc,
-            base: site.base,
-        }))
-        .collect();
-    // A fault raised by the chart runtime itself (unstable GRAFCET) is
-    // located at the chart's instruction, which also appears as its caller.
-    frames.dedup_by(|outer, inner| inner.code == outer.code && inner.pc == outer.pc);
+    let frames = fault_frames(image, mem, fault, callers, program_base);
     let mut names = frame_names(image, &frames);
     let chain = frames
         .iter()
@@ -125,6 +109,8 @@ pub(super) fn fault_frames(
             base: site.base,
         }))
         .collect();
+    // A fault raised by the chart runtime itself (unstable GRAFCET) is
+    // located at the chart's instruction, which also appears as its caller.
     frames.dedup_by(|outer, inner| inner.code == outer.code && inner.pc == outer.pc);
     frames
 }
