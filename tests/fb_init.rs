@@ -371,3 +371,82 @@ END_PROGRAM
     assert_eq!(lit(&plc, "u.logger.total"), "4");
     assert_eq!(lit(&plc, "gl.total"), "10");
 }
+
+/// An axis whose FB_exit (in a copy) saves its position in a global and
+/// whose FB_reinit takes it back, as a block written for online change
+/// does; the second version adds a variable to the block.
+const AXIS_V1: &str = "
+VAR_GLOBAL saved : INT; exits : INT; reinits : INT; END_VAR
+FUNCTION_BLOCK FB_Axis
+VAR pos : INT; END_VAR
+METHOD FB_exit : BOOL
+VAR_INPUT bInCopyCode : BOOL; END_VAR
+IF bInCopyCode THEN saved := pos; exits := exits + 1; END_IF
+END_METHOD
+METHOD FB_reinit : BOOL
+pos := saved + 1000;
+reinits := reinits + 1;
+END_METHOD
+pos := pos + 1;
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR a : FB_Axis; b : FB_Axis; n : INT; END_VAR
+a(); n := n + 1;
+END_PROGRAM
+";
+
+#[test]
+fn online_change_calls_fb_exit_and_fb_reinit_on_the_instances_it_copies() {
+    let mut plc = compile(AXIS_V1);
+    run(&mut plc, 3); // a.pos = 3, b.pos = 0
+    // The body alone changes: the instances stay, nothing is called.
+    let body_only = AXIS_V1.replace(
+        "pos := pos + 1;\nEND_FUNCTION_BLOCK",
+        "pos := pos + 2;\nEND_FUNCTION_BLOCK",
+    );
+    let report = plc
+        .online_change(compile(&body_only))
+        .expect("the change applies");
+    assert!(report.copied.is_empty(), "{report:?}");
+    assert_eq!(lit(&plc, "exits"), "0");
+    run(&mut plc, 1); // a.pos = 5
+    // The declaration changes: both instances are copied. FB_exit runs on
+    // each old instance (b last, so saved = b's 0), then the copy carries
+    // pos (5 and 0), then FB_reinit sets pos := saved + 1000 on each.
+    let declared = body_only.replace(
+        "VAR pos : INT; END_VAR",
+        "VAR pos : INT; speed : REAL; END_VAR",
+    );
+    let report = plc
+        .online_change(compile(&declared))
+        .expect("the change applies");
+    assert_eq!(report.copied, ["P.a", "P.b"]);
+    assert_eq!(lit(&plc, "exits"), "2");
+    assert_eq!(lit(&plc, "reinits"), "2");
+    assert_eq!(lit(&plc, "saved"), "0");
+    assert_eq!(lit(&plc, "P.a.pos"), "1000");
+    assert_eq!(lit(&plc, "P.b.pos"), "1000");
+    assert_eq!(lit(&plc, "P.n"), "4"); // the program's own state is kept
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.a.pos"), "1002");
+}
+
+#[test]
+fn a_fault_in_fb_reinit_stops_the_plc_after_the_change() {
+    let mut plc = compile(AXIS_V1);
+    run(&mut plc, 1);
+    let faulty = AXIS_V1
+        .replace(
+            "VAR pos : INT; END_VAR",
+            "VAR pos : INT; zero : INT; END_VAR",
+        )
+        .replace("pos := saved + 1000;", "pos := saved / zero;");
+    let err = plc
+        .online_change(compile(&faulty))
+        .expect_err("FB_reinit divides by zero");
+    let text = err.to_string();
+    assert!(text.contains("FB_reinit"), "{text}");
+    assert!(text.contains("R001"), "{text}");
+    let fault = plc.run_cycle().expect_err("the PLC stays stopped");
+    assert_eq!(fault.code(), "R001");
+}

@@ -194,6 +194,8 @@ mod opcua_python;
 #[cfg(feature = "opcua")]
 #[path = "opcua_server.rs"]
 mod opcua_server;
+#[path = "open_arrays.rs"]
+mod open_arrays;
 #[cfg(feature = "cli")]
 #[path = "packaging.rs"]
 mod packaging;

@@ -353,3 +353,44 @@ fn a_global_named_with_its_list_reads_and_sizes_like_the_global() {
         "{err}"
     );
 }
+
+#[test]
+fn a_structure_is_sized_by_a_parameter_list_constant_declared_after_it() {
+    // TcUnit's ST_TestSuiteResults: `ARRAY[1..GVL_Param.Max] OF ...` in a
+    // DUT, the parameter list being a `.TcGVL` of the same project. Types
+    // are resolved before globals, so plain constants come first.
+    let dut = "<?xml version=\"1.0\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <DUT Name=\"ST_Results\" Id=\"{0}\">\n    <Declaration><![CDATA[TYPE ST_Results :\nSTRUCT\n    Count : UINT(0..GVL_Param.MaxN);\n    Items : ARRAY[1..GVL_Param.MaxN] OF UINT;\nEND_STRUCT\nEND_TYPE\n]]></Declaration>\n  </DUT>\n</TcPlcObject>\n";
+    let gvl = "<?xml version=\"1.0\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <GVL Name=\"GVL_Param\" Id=\"{1}\" ParameterList=\"True\">\n    <Declaration><![CDATA[{attribute 'qualified_only'}\nVAR_GLOBAL CONSTANT\n    MaxN : UINT := 4;\n    Path : T_MaxString := 'x';\nEND_VAR\n]]></Declaration>\n  </GVL>\n</TcPlcObject>\n";
+    // An interface method prototype ends with `;` (TwinCAT writes it so).
+    let itf = "<?xml version=\"1.0\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <Itf Name=\"I_Count\" Id=\"{2}\">\n    <Declaration><![CDATA[INTERFACE I_Count\n]]></Declaration>\n    <Method Name=\"Total\" Id=\"{3}\">\n      <Declaration><![CDATA[METHOD Total : DINT;\n]]></Declaration>\n    </Method>\n  </Itf>\n</TcPlcObject>\n";
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    r : ST_Results;\n    n : DINT;\n    h : SysFile.SysTypes.RTS_IEC_HANDLE;\nEND_VAR\n",
+        "r.Items[GVL_Param.MaxN] := 7;\nr.Count := GVL_Param.MaxN;\nn := r.Items[4] + r.Count;\n",
+        "",
+    );
+    let dir = project(&[
+        ("DUTs/ST_Results.TcDUT", dut),
+        ("GVLs/GVL_Param.TcGVL", gvl),
+        ("ITFs/I_Count.TcIO", itf),
+        ("POUs/MAIN.TcPOU", &main),
+    ]);
+    // The type of a nested library namespace is named by its last part:
+    // an unknown type, not a syntax error.
+    let (code, _, err) = plcrun(&["check", &dir]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("error[E203]: unknown type `RTS_IEC_HANDLE`"),
+        "{err}"
+    );
+    assert_eq!(err.matches("error[").count(), 1, "{err}");
+    let fixed = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    r : ST_Results;\n    n : DINT;\nEND_VAR\n",
+        "r.Items[GVL_Param.MaxN] := 7;\nr.Count := GVL_Param.MaxN;\nn := r.Items[4] + r.Count;\n",
+        "",
+    );
+    std::fs::write(Path::new(&dir).join("POUs/MAIN.TcPOU"), fixed).unwrap();
+    let out = plcrun_ok(&[&dir, "--cycles", "1", "--trace", "MAIN.n"]);
+    assert_eq!(out, "cycle,time,MAIN.n\n0,T#0s,11\n");
+}

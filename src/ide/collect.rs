@@ -167,7 +167,9 @@ impl Collector<'_> {
             TypeSpec::Named(name) => Shape::Named(name.key()),
             TypeSpec::Subrange { base, .. } => Shape::Named(base.key()),
             TypeSpec::String { .. } => Shape::Opaque,
-            TypeSpec::Array { elem, .. } => Shape::Array(Box::new(self.shape(elem, owner))),
+            TypeSpec::Array { elem, .. } | TypeSpec::OpenArray { elem, .. } => {
+                Shape::Array(Box::new(self.shape(elem, owner)))
+            }
             TypeSpec::Ref { target, .. } => Shape::Ref(Box::new(self.shape(target, owner))),
             TypeSpec::Enum { values, span, .. } => {
                 for (value, _) in values {

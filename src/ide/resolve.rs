@@ -228,6 +228,7 @@ impl Resolver<'_> {
                 }
                 self.type_spec(elem);
             }
+            TypeSpec::OpenArray { elem, .. } => self.type_spec(elem),
             TypeSpec::Subrange { lo, hi, .. } => {
                 self.expr(lo);
                 self.expr(hi);
@@ -337,9 +338,7 @@ impl Resolver<'_> {
                 by,
                 body,
             } => {
-                if let Some(id) = self.lookup(&var.key()) {
-                    self.record(var, id);
-                }
+                self.expr(var);
                 self.expr(from);
                 self.expr(to);
                 if let Some(by) = by {

@@ -119,6 +119,21 @@ pub struct InstanceCall {
     pub flag: u32,
 }
 
+/// The methods an online change calls on an instance of a user FB whose
+/// declaration changed (CODESYS and TwinCAT copy such an instance into
+/// the new layout): `FB_exit` on the old instance before the copy, with
+/// `bInCopyCode` TRUE, and `FB_reinit` on the new one after it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CopyCalls {
+    /// The FB's instance type.
+    pub ty: TypeId,
+    /// Its `FB_exit` (own or inherited) and the offset of `bInCopyCode`
+    /// in the instance.
+    pub exit: Option<(CodeIdx, u32)>,
+    /// Its `FB_reinit` (own or inherited).
+    pub reinit: Option<CodeIdx>,
+}
+
 /// A cyclic (or event) task.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Task {
@@ -170,6 +185,9 @@ pub struct Image {
     /// The exit calls, in order: each program instance's (the last one
     /// first), then the global lists'.
     pub exit: Vec<InstanceCall>,
+    /// Per user FB with `FB_exit` or `FB_reinit`, what an online change
+    /// calls on its copied instances.
+    pub copy_calls: Vec<CopyCalls>,
 }
 
 impl Image {

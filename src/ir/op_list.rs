@@ -79,6 +79,10 @@ macro_rules! for_each_op {
             ElemRef { d: Slot => Def, idx: Slot => In, desc: ArrayIdx => Array(Span) };
             /// Linearised multi-dimensional index step: `acc := acc * len + checked(idx - lo)`.
             IndexStep { acc: Slot => InOut, idx: Slot => In, desc: ArrayIdx => Array(Any) };
+            /// The same step against bounds held in slots (an `ARRAY[*]`
+            /// parameter's), `lo` in `bounds` and `hi` after it:
+            /// `acc := acc * (hi - lo + 1) + checked(idx - lo)`.
+            OpenIndexStep { acc: Slot => InOut, idx: Slot => In, bounds: Slot => Run(2) };
 
             /// Signed add wrapped at `64 - shift` bits.
             AddS { d: Slot => Out, a: Slot => In, b: Slot => In, shift: u8 => Data };

@@ -106,6 +106,16 @@ pub enum TypeKind {
         /// Element type.
         elem: TypeId,
     },
+    /// `ARRAY[*, ...] OF elem`: the type of a VAR_IN_OUT whose bounds come
+    /// with the argument. The parameter holds the argument's address, then
+    /// its lower and upper bound per dimension ([`open_array_layout`]);
+    /// the type itself has no size.
+    OpenArray {
+        /// Number of dimensions.
+        rank: u32,
+        /// Element type.
+        elem: TypeId,
+    },
     /// A structure.
     Struct {
         /// Fields in declaration order.
@@ -182,6 +192,20 @@ pub struct TypeDef {
 #[derive(Debug, Clone)]
 pub struct TypeTable {
     defs: Vec<TypeDef>,
+}
+
+/// Slot layout of an `ARRAY[*]` parameter: the address of the array it
+/// refers to, then `lo, hi` for each dimension.
+pub mod open_array_layout {
+    /// Slots of a parameter of `rank` dimensions.
+    pub fn size(rank: u32) -> u32 {
+        1 + 2 * rank
+    }
+    /// Offset of dimension `k`'s lower bound (`k` from 0); the upper
+    /// bound follows it.
+    pub fn lower(k: u32) -> u32 {
+        1 + 2 * k
+    }
 }
 
 /// Slot layout of a step record.

@@ -416,6 +416,17 @@ fn check_programs(image: &Image) -> Result<(), VerifyError> {
             });
         }
     }
+    for c in &image.copy_calls {
+        let exit = c.exit.map(|(code, _)| code);
+        let known = |k: CodeIdx| k.index() < image.codes.len();
+        let flag_in = c.exit.is_none_or(|(_, o)| o < image.types.size(c.ty));
+        if !(exit.into_iter().chain(c.reinit).all(known) && flag_in) {
+            return Err(VerifyError {
+                place: format!("copy calls of type {}", image.types.name(c.ty)),
+                problem: Problem::InstanceCall,
+            });
+        }
+    }
     for t in &image.tasks {
         if t.single.is_some_and(|a| a as u64 >= mem) {
             return Err(VerifyError {

@@ -1,7 +1,7 @@
 //! What an online change did ([`ChangeReport`]) and why one was refused
 //! ([`OnlineChangeError`]).
 
-use super::engine::CompileError;
+use super::engine::{CompileError, RuntimeFault};
 use super::session::StimulusBindError;
 use super::var_error::VarError;
 use std::fmt;
@@ -38,6 +38,12 @@ pub struct ChangeReport {
     /// Instances whose SFC chart changed shape (steps, transitions or
     /// actions): the chart starts again at its initial steps.
     pub charts_restarted: Vec<String>,
+    /// Instances of a function block whose declaration changed: copied
+    /// into the new layout, with `FB_exit(bInCopyCode := TRUE)` called on
+    /// the old instance before and `FB_reinit` on the new one after, where
+    /// the block has them (docs/semantics.md §24). Their variables are
+    /// also listed above.
+    pub copied: Vec<String>,
 }
 
 impl ChangeReport {
@@ -96,6 +102,11 @@ pub enum OnlineChangeError {
         /// New base tick, in nanoseconds.
         new: i64,
     },
+    /// `FB_exit` on a copied instance of the running version, or
+    /// `FB_reinit` on one of the new version, faulted: the PLC is stopped
+    /// with this fault (after `FB_exit`, the running version; after
+    /// `FB_reinit`, the new one, which took over).
+    Fault(Box<RuntimeFault>),
     /// A forced variable is gone from the new version, or its forced value
     /// does not fit its new type: a force is never dropped silently (it may
     /// hold a machine in a safe state); unforce it first.
@@ -132,6 +143,10 @@ impl fmt::Display for OnlineChangeError {
                 f,
                 "online change refused: the forced variable `{path}` does not fit the new \
                  version ({error}); unforce it first"
+            ),
+            OnlineChangeError::Fault(fault) => write!(
+                f,
+                "online change stopped the PLC: FB_exit or FB_reinit of a copied instance faulted\n{fault}"
             ),
         }
     }

@@ -43,6 +43,7 @@ mod addressing;
 mod byte_view;
 pub mod change_report;
 pub mod clock;
+mod copy_calls;
 pub mod debug_eval;
 pub mod debug_lines;
 pub mod debug_view;

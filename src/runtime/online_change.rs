@@ -75,18 +75,15 @@ impl Plc {
                 error: Box::new(error),
             }
         })?;
-        let mut carry = Carry {
-            old: &self.image,
-            old_m: &self.machine,
-            new: &new.image,
-            new_m: &mut new.machine,
-            entries: Vec::new(),
-            host_moves: Vec::new(),
+        let (report, host_moves, copied) = self.carry_into(&mut new);
+        // Copied instances get FB_exit(bInCopyCode := TRUE) before the
+        // copy, which then carries what it wrote.
+        let exited = self.exit_copied(&copied).map_err(fault)?;
+        let (report, host_moves, copied) = if exited {
+            self.carry_into(&mut new)
+        } else {
+            (report, host_moves, copied)
         };
-        carry.programs();
-        carry.globals();
-        let host_moves = std::mem::take(&mut carry.host_moves);
-        let report = carry.report();
         if let (Some(old), Some(code)) = (&self.host_code, &new.host_code) {
             let mut old = old.lock().unwrap_or_else(|p| p.into_inner());
             let mut code = code.lock().unwrap_or_else(|p| p.into_inner());
@@ -95,7 +92,29 @@ impl Plc {
         new.machine.now = self.machine.now;
         new.scheduler.carry_over(&self.scheduler);
         self.take_over(new, forces);
+        self.reinit_copied(&copied).map_err(fault)?;
         Ok(report)
+    }
+
+    /// Carries the running state into `new`: the report, the host
+    /// blocks' moves and the instances copied into a changed layout.
+    fn carry_into(&self, new: &mut Plc) -> (ChangeReport, HostMoves, Vec<Copied>) {
+        let mut carry = Carry {
+            old: &self.image,
+            old_m: &self.machine,
+            new: &new.image,
+            new_m: &mut new.machine,
+            entries: Vec::new(),
+            host_moves: Vec::new(),
+            copied: Vec::new(),
+        };
+        carry.programs();
+        carry.globals();
+        let host_moves = std::mem::take(&mut carry.host_moves);
+        let copied = std::mem::take(&mut carry.copied);
+        let mut report = carry.report();
+        report.copied = copied.iter().map(|c| c.path.clone()).collect();
+        (report, host_moves, copied)
     }
 
     /// Compiles `files` with `options` and applies them with
@@ -139,6 +158,11 @@ impl Plc {
         self.io = ProcessImage::new(&self.image, &self.machine.mem, new.io.addressing());
         self.forces = forces;
     }
+}
+
+/// The error of a fault in `FB_exit` or `FB_reinit` of a copied instance.
+fn fault(f: super::engine::RuntimeFault) -> OnlineChangeError {
+    OnlineChangeError::Fault(Box::new(f))
 }
 
 /// Tasks as the refusal message shows them.
@@ -193,10 +217,26 @@ struct Carry<'a> {
     entries: Vec<Entry>,
     /// Host FUNCTION_BLOCK instances carried: `(block, old base, new base)`.
     host_moves: Vec<(String, usize, usize)>,
+    /// Instances of a user FB whose declaration changed, in walk order.
+    copied: Vec<Copied>,
 }
 
 /// A variable seen in one version: its type and absolute address.
-type At = (TypeId, u32);
+pub(super) type At = (TypeId, u32);
+
+/// Host FUNCTION_BLOCK instances carried: `(block, old base, new base)`.
+type HostMoves = Vec<(String, usize, usize)>;
+
+/// An instance of a user FB whose declaration changed: the online change
+/// copies it into the new layout (`super::copy_calls`).
+pub(super) struct Copied {
+    /// Its path, as the report gives it.
+    pub path: String,
+    /// Where it was.
+    pub old: At,
+    /// Where it is in the new version.
+    pub new: At,
+}
 
 impl Carry<'_> {
     fn report(self) -> ChangeReport {
@@ -298,6 +338,14 @@ impl Carry<'_> {
             | (TypeKind::Pou { .. }, TypeKind::Pou { .. })
                 if od.name.eq_ignore_ascii_case(&nd.name) =>
             {
+                let is_fb = matches!(nd.kind, TypeKind::Pou { program: false, .. });
+                if is_fb && !same_type(self.old, o.0, self.new, n.0) {
+                    self.copied.push(Copied {
+                        path: path.to_string(),
+                        old: o,
+                        new: n,
+                    });
+                }
                 if self
                     .new
                     .hosts

@@ -67,7 +67,7 @@ fn stmt(s: &Stmt, found: &mut dyn FnMut(&str) -> bool) -> bool {
             by,
             body,
         } => {
-            found(&var.name)
+            expr(var, found)
                 || expr(from, found)
                 || expr(to, found)
                 || by.iter().any(|b| expr(b, found))

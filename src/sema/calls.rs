@@ -97,7 +97,7 @@ impl BodyBuilder<'_> {
 
     /// A call used in an expression: must be a function.
     pub(super) fn call_expr(&mut self, call: &Call, expect: Option<TypeId>) -> Val {
-        if let Some(v) = self.ref_call(call) {
+        if let Some(v) = self.ref_call(call).or_else(|| self.bound_call(call)) {
             return v;
         }
         if let Some(v) = self.oop_call(call, true) {
@@ -451,6 +451,9 @@ impl BodyBuilder<'_> {
     /// Connects VAR_IN_OUT `p` of an FB instance to the variable `e`: the
     /// variable's address goes into the pointer slot `slot_place`.
     pub(super) fn connect_in_out(&mut self, p: &Param, slot_place: &PlaceRef, e: &Expr) {
+        if self.is_open_array(p.ty) {
+            return self.connect_open_array(p, slot_place, e);
+        }
         let Some(arg) = self.place(e) else {
             return;
         };

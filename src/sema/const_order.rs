@@ -90,6 +90,31 @@ fn order(deps: &[Vec<usize>]) -> (Vec<usize>, Vec<Vec<usize>>) {
 }
 
 /// Every plain name an initializer reads, as keys (upper case).
+/// The declarations of a CONSTANT block that can be declared before any
+/// TYPE is resolved: an elementary type and an initial value that names
+/// nothing (`MaxN : UINT := 100;`).
+pub(super) fn plain_constants(block: &VarBlock) -> Vec<usize> {
+    use crate::syntax::ast::TypeSpec;
+    if !block.constant {
+        return Vec::new();
+    }
+    let plain = |d: &crate::syntax::ast::VarDecl| {
+        let elementary = match &d.ty {
+            TypeSpec::Named(id) => crate::elementary::ElemType::from_name(&id.name).is_some(),
+            TypeSpec::String { len: None, .. } => true,
+            _ => false,
+        };
+        let mut names = Vec::new();
+        if let Some(init) = &d.init {
+            init_names(init, &mut names);
+        }
+        elementary && d.location.is_none() && d.init_args.is_none() && names.is_empty()
+    };
+    (0..block.decls.len())
+        .filter(|&d| plain(&block.decls[d]))
+        .collect()
+}
+
 fn init_names(init: &Initializer, out: &mut Vec<String>) {
     let mut inits = vec![init];
     let mut exprs: Vec<&Expr> = Vec::new();

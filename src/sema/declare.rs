@@ -246,12 +246,31 @@ impl Declarer<'_> {
             }
         }
         self.report_type_pou_clashes();
+        // Constants of plain values first: a TYPE may size an array with
+        // one (TwinCAT's parameter lists, `ARRAY[1..GVL.MaxN]`).
+        let mut early: Vec<((usize, usize), Vec<usize>)> = Vec::new();
+        for (u, unit) in units.iter().enumerate() {
+            for (i, item) in unit.items.iter().enumerate() {
+                if let Item::Globals(block) = item {
+                    let plain = super::const_order::plain_constants(block);
+                    self.declare_global_decls(block, &|d| plain.contains(&d), false);
+                    early.push(((u, i), plain));
+                }
+            }
+        }
         self.resolve_types();
         // Globals: top-level lists, then configurations and resources.
-        for unit in units {
-            for item in &unit.items {
+        for (u, unit) in units.iter().enumerate() {
+            for (i, item) in unit.items.iter().enumerate() {
                 match item {
-                    Item::Globals(block) => self.declare_globals(block),
+                    Item::Globals(block) => {
+                        let plain = early
+                            .iter()
+                            .find(|(at, _)| *at == (u, i))
+                            .map(|(_, p)| p.as_slice())
+                            .unwrap_or_default();
+                        self.declare_global_decls(block, &|d| !plain.contains(&d), true);
+                    }
                     Item::Configuration(cfg) => {
                         for b in &cfg.globals {
                             self.declare_globals(b);
@@ -430,12 +449,24 @@ impl Declarer<'_> {
     /// Declares the globals of one VAR_GLOBAL block: storage, initial value,
     /// constants after the constants they are computed from.
     fn declare_globals(&mut self, block: &VarBlock) {
+        self.declare_global_decls(block, &|_| true, true);
+    }
+
+    /// Declares the declarations `pick` accepts of a VAR_GLOBAL block;
+    /// `report` says whether the block's own errors (E210, E121) are
+    /// reported by this call.
+    fn declare_global_decls(
+        &mut self,
+        block: &VarBlock,
+        pick: &dyn Fn(usize) -> bool,
+        report: bool,
+    ) {
         use crate::ir::type_table::Retention;
         let retained = matches!(
             super::layout::retention(block),
             Retention::Retain | Retention::Persistent
         );
-        if retained && block.constant {
+        if retained && block.constant && report {
             self.diags.error(
                 "E210",
                 block.span,
@@ -443,10 +474,10 @@ impl Declarer<'_> {
             );
         }
         let (order, cycles) = super::const_order::dependency_order(block);
-        for cycle in cycles {
-            self.report_constant_cycle(block, &cycle);
+        for cycle in cycles.iter().filter(|_| report) {
+            self.report_constant_cycle(block, cycle);
         }
-        for decl in order.iter().map(|&d| &block.decls[d]) {
+        for decl in order.iter().filter(|&&d| pick(d)).map(|&d| &block.decls[d]) {
             let ty = self.resolve_type(&decl.ty, None);
             if matches!(self.types.get(ty).kind, TypeKind::Pou { program: true, .. }) {
                 self.diags.error(

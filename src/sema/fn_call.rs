@@ -23,6 +23,8 @@ enum Ready {
     Pointer(Slot),
     /// The address and type of an array or structure passed by value.
     Aggregate(Slot, crate::ir::type_table::TypeId),
+    /// An `ARRAY[*]` VAR_IN_OUT's slots: the address, then the bounds.
+    OpenArray(Vec<Slot>),
 }
 
 /// The parameters of function `callee`, in interface order.
@@ -124,6 +126,9 @@ impl BodyBuilder<'_> {
     ) -> Option<Ready> {
         let what = format!("argument `{}`", prm.name);
         match (prm.kind, given) {
+            (MemberKind::InOut, Some(e)) if self.is_open_array(prm.ty) => {
+                self.open_array_argument(prm, e).map(Ready::OpenArray)
+            }
             (MemberKind::InOut, Some(e)) => {
                 let arg = self.place(e)?;
                 if arg.ty != prm.ty {
@@ -323,6 +328,13 @@ impl BodyBuilder<'_> {
                     s: a,
                 });
                 self.block.fixups.push((at, p));
+            }
+            Ready::OpenArray(slots) => {
+                for (k, s) in slots.into_iter().enumerate() {
+                    let abs = prm.offset + k as u32;
+                    let at = self.block.emit(Op::StoreAbs { abs, s });
+                    self.block.fixups.push((at, p));
+                }
             }
             Ready::Aggregate(a, ty) => {
                 let d = self.block.temp();

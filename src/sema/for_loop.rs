@@ -13,7 +13,6 @@ use crate::ir::op::{Cmp, Op, ShortArrayIdx, Slot, Target};
 use crate::ir::type_table::TypeId;
 use crate::ir::type_table::TypeKind;
 use crate::source::Span;
-use crate::syntax::ast::Ident;
 use crate::syntax::ast::{Expr, ExprKind, Stmt, StmtKind};
 
 /// A FOR loop's control variable, limit and step.
@@ -42,7 +41,7 @@ impl BodyBuilder<'_> {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn for_loop(
         &mut self,
-        var: &Ident,
+        var: &Expr,
         from: &Expr,
         to: &Expr,
         by: Option<&Expr>,
@@ -81,6 +80,7 @@ impl BodyBuilder<'_> {
             && !self.model.unoptimized
             && e.is_signed_int()
             && let Some(lim) = fl.lim_imm
+            && let ExprKind::Name(var) = &var.kind
         {
             self.fill_idiom(var, body, i, lim, shift_of(e));
         }
@@ -116,17 +116,13 @@ impl BodyBuilder<'_> {
 
     /// The FOR control variable: a writable local integer of this POU.
     /// Returns its slot, elementary type and type.
-    fn for_control(&mut self, var: &Ident) -> Option<(Slot, ElemType, TypeId)> {
-        let var_expr = Expr {
-            kind: ExprKind::Name(var.clone()),
-            span: var.span,
-        };
-        let p = self.place(&var_expr)?;
+    fn for_control(&mut self, var: &Expr) -> Option<(Slot, ElemType, TypeId)> {
+        let p = self.place(var)?;
         let super::emit::Place::Frame(i) = p.place else {
             self.diags.error(
                 "E407",
                 var.span,
-                "the FOR control variable must be a local variable of this POU",
+                "the FOR control variable must be a local variable of this POU (or an element or field of one at a constant position)",
             );
             return None;
         };

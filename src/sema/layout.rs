@@ -5,7 +5,9 @@
 use super::decl_consts::init_const;
 use super::declare::{Declarer, normalize_address};
 use super::model::{ConstInit, LayoutState, Storage, VarInfo};
-use crate::ir::type_table::{Member, MemberKind, Retention, TypeDef, TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{
+    Member, MemberKind, Retention, TypeDef, TypeId, TypeKind, TypeTable, open_array_layout,
+};
 use crate::source::Span;
 use crate::syntax::ast::{Ident, Item, Pou, PouKind, Retain, VarBlock, VarDecl, VarKind};
 use indexmap::IndexMap;
@@ -296,7 +298,9 @@ impl Declarer<'_> {
             }
             _ => None,
         };
-        let ty = own.unwrap_or_else(|| self.resolve_type(&decl.ty, Some(&frame.vars)));
+        let ty = own
+            .or_else(|| self.open_array_param(block.kind, &decl.ty, Some(&frame.vars)))
+            .unwrap_or_else(|| self.resolve_type(&decl.ty, Some(&frame.vars)));
         let tkind = &self.types.get(ty).kind;
         let is_fb = matches!(tkind, TypeKind::NativeFb(_) | TypeKind::Pou { .. });
         let (code, why) = if matches!(tkind, TypeKind::Pou { program: true, .. }) {
@@ -392,7 +396,11 @@ impl Declarer<'_> {
             }
             VarKind::InOut => {
                 let s = Storage::Ref(frame.offset);
-                frame.offset += 1;
+                // An `ARRAY[*]` also holds the argument's bounds.
+                frame.offset += match self.types.get(ty).kind {
+                    TypeKind::OpenArray { rank, .. } => open_array_layout::size(rank),
+                    _ => 1,
+                };
                 Some((s, None))
             }
             _ => {

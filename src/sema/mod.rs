@@ -74,6 +74,7 @@ mod int_bit_ops;
 mod literal_widening;
 mod mixed_args;
 mod namespace_calls;
+mod open_arrays;
 mod partial_access;
 mod place;
 mod pointer_index;

@@ -103,7 +103,7 @@ fn spec_names(spec: &TypeSpec, out: &mut Vec<String>) {
             TypeSpec::Named(id) => out.push(id.key()),
             TypeSpec::Subrange { base, .. } => out.push(base.key()),
             TypeSpec::Enum { base, .. } => out.extend(base.iter().map(|b| b.key())),
-            TypeSpec::Array { elem, .. } => work.push(elem),
+            TypeSpec::Array { elem, .. } | TypeSpec::OpenArray { elem, .. } => work.push(elem),
             TypeSpec::Struct { fields, .. } => work.extend(fields.iter().map(|f| &f.ty)),
             TypeSpec::String { .. } => {}
             // A reference does not contain its target: no nesting.

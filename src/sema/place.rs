@@ -381,6 +381,9 @@ impl BodyBuilder<'_> {
             return self.pointer_index(e, base, indexes);
         }
         let b = self.place(base)?;
+        if self.is_open_array(b.ty) {
+            return self.open_array_element(e, base, &b, indexes);
+        }
         let (dims, elem) = self.array_shape(e, b.ty, indexes.len())?;
         let elem_size = self.types.size(elem);
         let vals = self.index_values(indexes)?;

@@ -336,6 +336,7 @@ impl BodyBuilder<'_> {
                     "program instances and SFC steps cannot be assigned",
                 );
             }
+            TypeKind::OpenArray { .. } => self.open_array_misused(target.span),
             _ => {
                 self.check_ref_escape(target, value);
                 let v = self.expr(value, Some(p.ty));

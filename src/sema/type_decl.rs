@@ -79,6 +79,7 @@ impl Declarer<'_> {
             TypeSpec::Named(id) => self.named_type(id),
             TypeSpec::String { wide, len, span } => self.string_type(*wide, len, *span, local),
             TypeSpec::Array { ranges, elem, span } => self.array_type(ranges, elem, *span, local),
+            TypeSpec::OpenArray { span, .. } => self.open_array_refused(*span),
             TypeSpec::Subrange { base, lo, hi, span } => {
                 self.subrange_type(base, lo, hi, *span, local)
             }

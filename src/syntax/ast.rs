@@ -265,6 +265,16 @@ pub enum TypeSpec {
         /// Where.
         span: Span,
     },
+    /// `ARRAY[*, ...] OF elem`: an array whose bounds the caller's
+    /// argument gives (CODESYS and TwinCAT, VAR_IN_OUT only).
+    OpenArray {
+        /// Number of dimensions (one `*` each).
+        rank: usize,
+        /// Element type.
+        elem: Box<TypeSpec>,
+        /// Where.
+        span: Span,
+    },
     /// `INT (lo..hi)`.
     Subrange {
         /// Base integer type.
@@ -324,6 +334,7 @@ impl TypeSpec {
             TypeSpec::Named(i) => i.span,
             TypeSpec::String { span, .. }
             | TypeSpec::Array { span, .. }
+            | TypeSpec::OpenArray { span, .. }
             | TypeSpec::Subrange { span, .. }
             | TypeSpec::Enum { span, .. }
             | TypeSpec::Struct { span, .. }
@@ -593,8 +604,9 @@ pub enum StmtKind {
     },
     /// `FOR v := a TO b BY c DO ... END_FOR`.
     For {
-        /// Control variable.
-        var: Ident,
+        /// Control variable: a name, or (CODESYS) an element or field of
+        /// a local at a constant position (`FOR Offset[1] := ...`).
+        var: Box<Expr>,
         /// Start.
         from: Expr,
         /// End.

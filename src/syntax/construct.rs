@@ -702,6 +702,20 @@ pub fn array_type(
     }
 }
 
+/// `ARRAY[*, ...] OF elem`.
+pub fn open_array_type(st: &State, rank: usize, elem: TypeSpec, l: usize, r: usize) -> TypeSpec {
+    let span = st.span(l, r);
+    if type_depth(&elem) >= MAX_INIT_DEPTH {
+        st.too_deep(span, "array type", MAX_INIT_DEPTH);
+        return elem;
+    }
+    TypeSpec::OpenArray {
+        rank,
+        elem: Box::new(elem),
+        span,
+    }
+}
+
 fn guard_init(st: &State, init: Initializer, span: Span) -> Initializer {
     if init_depth(&init) > MAX_INIT_DEPTH {
         st.too_deep(span, "initializer", MAX_INIT_DEPTH);

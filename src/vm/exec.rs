@@ -413,6 +413,20 @@ fn run<const DEBUG: bool>(
                 }
                 w!(acc, r!(acc).wrapping_mul(ad.len).wrapping_add(i));
             }
+            Op::OpenIndexStep { acc, idx, bounds } => {
+                let hi = bounds.offset(1);
+                let (i, l, h) = (r!(idx) as i64, r!(bounds) as i64, r!(hi) as i64);
+                if i < l || i > h {
+                    fault!(FaultKind::IndexOutOfRange {
+                        index: i,
+                        lo: l,
+                        hi: h
+                    });
+                }
+                let len = h.wrapping_sub(l).wrapping_add(1) as u64;
+                let k = i.wrapping_sub(l) as u64;
+                w!(acc, r!(acc).wrapping_mul(len).wrapping_add(k));
+            }
 
             Op::AddS { d, a, b, shift } => w!(d, wrap_s(r!(a).wrapping_add(r!(b)), shift)),
             Op::AddU { d, a, b, shift } => w!(d, wrap_u(r!(a).wrapping_add(r!(b)), shift)),

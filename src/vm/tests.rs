@@ -80,6 +80,7 @@ fn program(ops: Vec<Op>) -> VerifiedImage {
         retained: Vec::new(),
         start: Vec::new(),
         exit: Vec::new(),
+        copy_calls: Vec::new(),
     };
     verify(image).expect("a valid image")
 }

@@ -176,7 +176,7 @@ pub(super) fn offset(lo: &Expr, k: i128, span: Span) -> Expr {
 pub(super) fn for_loop(var: String, from: Expr, to: Expr, body: Vec<Stmt>, span: Span) -> Stmt {
     Stmt {
         kind: StmtKind::For {
-            var: Ident { name: var, span },
+            var: Box::new(name(&var, span)),
             from,
             to,
             by: None,

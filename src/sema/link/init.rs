@@ -125,7 +125,8 @@ impl Linker<'_> {
                     *slot = crate::ir::refs::NULL;
                 }
             }
-            TypeKind::Step | TypeKind::Void | TypeKind::Error => {}
+            // An `ARRAY[*]` is only ever a VAR_IN_OUT: the caller binds it.
+            TypeKind::Step | TypeKind::Void | TypeKind::Error | TypeKind::OpenArray { .. } => {}
         }
     }
 

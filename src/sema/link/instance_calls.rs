@@ -3,10 +3,13 @@
 //! hidden method of each program instance (`src/sema/instance_calls/`).
 
 use super::Linker;
-use crate::ir::image::{InstanceCall, ProgramInstance};
-use crate::sema::instance_calls::{INIT, Phase};
+use crate::ir::image::{CopyCalls, InstanceCall, ProgramInstance};
+use crate::sema::instance_calls::{EXIT, INIT, Phase};
 use crate::sema::model::Storage;
 use crate::syntax::ast::PouKind;
+
+/// The key of the method an online change calls after copying an instance.
+const REINIT: &str = "FB_REINIT";
 
 impl Linker<'_> {
     /// The calls of `phase`: at start the global lists' first, then each
@@ -43,6 +46,36 @@ impl Linker<'_> {
         } else {
             out.reverse();
             out.extend(global_call);
+        }
+        out
+    }
+
+    /// The `FB_exit` and `FB_reinit` of every user FB that has one of them
+    /// (its own or inherited), for the instances an online change copies.
+    pub(super) fn copy_calls(&self) -> Vec<CopyCalls> {
+        let mut out = Vec::new();
+        for pou in self.model.pous.iter() {
+            if pou.kind != PouKind::FunctionBlock {
+                continue;
+            }
+            let Some(fb) = self.model.oop.fbs.get(&pou.name.to_ascii_uppercase()) else {
+                continue;
+            };
+            let exit = fb.dispatch.get(EXIT.key).and_then(|&v| {
+                let hidden = &fb.versions[v].params.first()?.hidden;
+                match pou.vars.get(hidden)?.storage {
+                    Storage::Frame(o) => Some((fb.codes[v], o)),
+                    _ => None,
+                }
+            });
+            let reinit = fb.dispatch.get(REINIT).map(|&v| fb.codes[v]);
+            if exit.is_some() || reinit.is_some() {
+                out.push(CopyCalls {
+                    ty: pou.ty,
+                    exit,
+                    reinit,
+                });
+            }
         }
         out
     }

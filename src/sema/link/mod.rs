@@ -131,6 +131,7 @@ impl Linker<'_> {
         let retained = self.retained_vars(&instances);
         let start = self.instance_calls(&instances, INIT);
         let exit = self.instance_calls(&instances, EXIT);
+        let copy_calls = self.copy_calls();
         if !options.unoptimized {
             for c in &mut self.out.codes {
                 crate::ir::fuse::fuse_loops(&mut c.ops);
@@ -157,6 +158,7 @@ impl Linker<'_> {
             retained,
             start,
             exit,
+            copy_calls,
         };
         if self.diags.has_errors() {
             return None;

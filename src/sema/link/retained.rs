@@ -129,7 +129,11 @@ impl Linker<'_> {
                 }
             }
             // References are not retained: they start NULL after a restart.
-            TypeKind::Step | TypeKind::Void | TypeKind::Error | TypeKind::Ref { .. } => {}
+            TypeKind::Step
+            | TypeKind::Void
+            | TypeKind::Error
+            | TypeKind::Ref { .. }
+            | TypeKind::OpenArray { .. } => {}
         }
     }
 

@@ -9,8 +9,8 @@ use super::model::{
 use crate::diagnostics::Diagnostics;
 use crate::source::Span;
 use crate::syntax::ast::{
-    Body, CompilationUnit, Ident, Item, Pou, PouKind, TypeDecl, TypeSpec, VarBlock, VarDecl,
-    VarKind,
+    Body, CompilationUnit, Ident, Item, Pou, PouKind, StmtKind, TypeDecl, TypeSpec, VarBlock,
+    VarDecl, VarKind,
 };
 use crate::syntax::oop::{Interface, Method, PouOop};
 use indexmap::IndexMap;
@@ -720,7 +720,8 @@ impl Lowering<'_> {
 /// True for a body without statements.
 fn body_is_empty(b: &Body) -> bool {
     match b {
-        Body::St(s) => s.is_empty(),
+        // A `;` after the header (TwinCAT) is an empty statement.
+        Body::St(s) => s.iter().all(|s| matches!(s.kind, StmtKind::Empty)),
         Body::Il(l) => l.iter().all(|l| l.instr.is_none() && l.label.is_none()),
         Body::Sfc(e) => e.is_empty(),
     }

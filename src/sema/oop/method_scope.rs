@@ -35,6 +35,7 @@ fn spec(t: &mut TypeSpec, locals: &HashMap<String, String>) {
             }
             spec(elem, locals);
         }
+        TypeSpec::OpenArray { elem, .. } => spec(elem, locals),
         TypeSpec::Subrange { lo, hi, .. } => {
             expr(lo, locals);
             expr(hi, locals);

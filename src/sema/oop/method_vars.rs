@@ -43,6 +43,15 @@ impl BodyBuilder<'_> {
     /// The address of the variable connected to VAR_IN_OUT `p` of a method
     /// called through an interface, in a temporary (checked as an FB's).
     pub(super) fn in_out_address(&mut self, p: &Param, e: &Expr) -> Option<Slot> {
+        if self.is_open_array(p.ty) {
+            // The call keeps one slot per argument: no room for the bounds.
+            self.diags.error(
+                "E307",
+                e.span,
+                "an ARRAY[*] parameter cannot be given in a call through an interface or a pointer; call the method on the instance",
+            );
+            return None;
+        }
         let arg = self.place(e)?;
         if arg.ty != p.ty && arg.ty != TypeTable::error() {
             self.mismatch(

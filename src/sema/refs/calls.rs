@@ -95,6 +95,10 @@ impl BodyBuilder<'_> {
         if p.ty == TypeTable::error() {
             return Val::error();
         }
+        if self.is_open_array(p.ty) {
+            self.open_array_misused(x.span);
+            return Val::error();
+        }
         let len = self.types.size(p.ty).max(1);
         let layout = layout_code(self.types, p.ty);
         let addr = self.address_of(&p);
@@ -127,6 +131,10 @@ impl BodyBuilder<'_> {
             }
             return Val::error();
         };
+        if self.is_open_array(ty) {
+            self.open_array_misused(x.span);
+            return Val::error();
+        }
         match size_bytes(self.types, ty) {
             Some(b) => Val::Const(Const::Int(b as i128), Ty::AnyInt),
             None => Val::error(),

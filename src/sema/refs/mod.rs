@@ -78,7 +78,7 @@ pub(super) fn size_bytes(types: &TypeTable, t: TypeId) -> Option<u64> {
             .sum(),
         TypeKind::Step => 8 + 8,
         TypeKind::Ref { .. } => 8,
-        TypeKind::Void | TypeKind::Error => return None,
+        TypeKind::Void | TypeKind::Error | TypeKind::OpenArray { .. } => return None,
     })
 }
 

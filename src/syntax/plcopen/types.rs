@@ -151,6 +151,11 @@ fn array(em: &mut Emitter, node: Node) {
             em.synth(",", em.at(dim));
         }
         first = false;
+        if dim.attribute("lower") == Some("*") {
+            // `ARRAY[*]`: a VAR_IN_OUT taking the argument's bounds.
+            em.synth("*", em.at(dim));
+            continue;
+        }
         em.lex_attr(dim, "lower");
         em.synth("..", em.at(dim));
         em.lex_attr(dim, "upper");

@@ -81,6 +81,17 @@ impl Exporter<'_> {
                 w.close("baseType");
                 w.close("array");
             }
+            TypeSpec::OpenArray { rank, elem, .. } => {
+                // Read back by the importer as `ARRAY[*, ...]`.
+                w.open("array", &[]);
+                for _ in 0..*rank {
+                    w.empty("dimension", &[("lower", "*"), ("upper", "*")]);
+                }
+                w.open("baseType", &[]);
+                self.type_spec(w, elem)?;
+                w.close("baseType");
+                w.close("array");
+            }
             TypeSpec::Subrange { base, lo, hi, .. } => {
                 let unsigned = base.name.to_ascii_uppercase().starts_with('U');
                 let el = if unsigned {
