@@ -24,7 +24,6 @@ let page;
 
 const QUICK_INPUT = '.quick-input-widget:not([style*="display: none"]) input';
 
-// Runs a command of the command palette by its title.
 // Runs a command of the command palette by its title: the row whose label
 // is exactly the title is clicked (the palette puts recently used commands
 // first, so the first row may be another one).
@@ -32,16 +31,22 @@ async function command(title) {
   await page.keyboard.press("F1");
   await page.waitForSelector(QUICK_INPUT);
   await page.keyboard.type(title);
+  await pick(title);
+  await sleep(700);
+}
+
+// Clicks the row of the open quick pick whose label is exactly `label`.
+async function pick(label) {
   const row = page
     .locator(".quick-input-list .monaco-list-row")
-    .filter({ has: page.locator(".label-name", { hasText: new RegExp(`^${escape(title)}$`) }) })
+    .filter({ has: page.locator(".label-name", { hasText: new RegExp(`^${escape(label)}$`) }) })
     .first();
   await row.waitFor({ timeout: 10000 });
   await row.click();
   await page.mouse.move(200, 640); // off the title bar and breadcrumbs, whose tooltips would show
-  await sleep(700);
 }
 
+// Hides the panel (Problems, Output, Debug Console...) if it shows.
 async function hidePanel() {
   if (await page.locator(".part.panel").isVisible()) await command("View: Toggle Panel Visibility");
 }
@@ -54,13 +59,7 @@ async function openFile(name) {
   await page.keyboard.press("Control+P");
   await page.waitForSelector(QUICK_INPUT);
   await page.keyboard.type(name);
-  const row = page
-    .locator(".quick-input-list .monaco-list-row")
-    .filter({ has: page.locator(".label-name", { hasText: new RegExp(`^${escape(name)}$`) }) })
-    .first();
-  await row.waitFor({ timeout: 10000 });
-  await row.click();
-  await page.mouse.move(200, 640);
+  await pick(name);
   await page.waitForSelector(`.tab[data-resource-name="${name}"]`, { timeout: 10000 });
   await sleep(1500);
 }
@@ -122,17 +121,27 @@ async function debug() {
   await gotoLine("23");
   await command("Debug: Toggle Breakpoint");
   await command("Debug: Select and Start Debugging");
-  await page.keyboard.type("CHARIOT"); // the configuration of .vscode/launch.json
-  await sleep(700);
-  await page.keyboard.press("Enter");
+  await page.keyboard.type("CHARIOT");
+  await pick("CHARIOT"); // the configuration of .vscode/launch.json
   await page.waitForSelector(".debug-top-stack-frame-line", { timeout: 60000 });
   await sleep(2000);
-  // Unfold the second scope (Inputs/Outputs) too.
+  // Fold the Watch view (empty) to give the variables its room, unfold
+  // the second scope (Inputs/Outputs) and the active step AV.
+  const watch = page.locator('.pane-header:has(h3.title:text-is("Watch"))');
+  if ((await watch.getAttribute("aria-expanded")) === "true") await watch.click();
+  await sleep(500);
+  const box = await watch.boundingBox(); // drag the sash above it down
+  await page.mouse.move(box.x + 100, box.y - 1);
+  await page.mouse.down();
+  await page.mouse.move(box.x + 100, box.y + 120, { steps: 10 });
+  await page.mouse.up();
   const scope = page.locator('.debug-variables .monaco-list-row[aria-level="1"]').nth(1);
-  if (await scope.count()) {
-    if ((await scope.getAttribute("aria-expanded")) === "false") await scope.click();
-  }
+  if ((await scope.getAttribute("aria-expanded")) === "false") await scope.click();
+  await sleep(500);
+  const step = page.locator(".debug-variables .monaco-list-row").filter({ hasText: /^\s*AV\s*=\s*STEP\s*$/ });
+  await step.first().click();
   await hidePanel();
+  await page.mouse.move(200, 700);
   await sleep(1500);
   await shot("vscode-debug");
   await command("Debug: Stop");
