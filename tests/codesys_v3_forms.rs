@@ -325,3 +325,66 @@ END_PROGRAM
     assert_eq!(lit(&plc, "s"), "102");
     assert_eq!(lit(&plc, "f"), "11");
 }
+
+#[test]
+fn a_function_or_method_may_return_a_subrange() {
+    // TcUnit's `METHOD GetTestOrder : UINT(0..N)`.
+    let src = "
+FUNCTION_BLOCK FB_Order
+METHOD Next : UINT(0..3)
+VAR_INPUT k : UINT; END_VAR
+Next := k MOD 4;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION Clip : INT(-5..5)
+VAR_INPUT x : INT; END_VAR
+Clip := LIMIT(-5, x, 5);
+END_FUNCTION
+PROGRAM P
+VAR o : FB_Order; a : UINT; b : INT; END_VAR
+a := o.Next(7);
+b := Clip(-9);
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "a"), "3");
+    assert_eq!(lit(&plc, "b"), "-5");
+}
+
+#[test]
+fn a_reference_is_bound_to_what_a_method_returns_by_reference() {
+    // TcUnit: `UnitTestResults REF= TestResults.GetTestSuiteResults();`,
+    // through an interface.
+    let src = "
+INTERFACE I_Get
+METHOD Get : REFERENCE TO INT
+END_METHOD
+END_INTERFACE
+FUNCTION_BLOCK FB_Store IMPLEMENTS I_Get
+VAR data : INT := 7; END_VAR
+METHOD Get : REFERENCE TO INT
+Get REF= data;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION Plain : INT
+Plain := 1;
+END_FUNCTION
+PROGRAM P
+VAR s : FB_Store; itf : I_Get; r : REFERENCE TO INT; v : INT; END_VAR
+itf := s;
+r REF= itf.Get();
+v := r;
+r := 42;
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "v"), "7");
+    assert_eq!(lit(&plc, "s.data"), "42");
+    let bad = src.replace("r REF= itf.Get();", "r REF= Plain();");
+    assert_eq!(
+        error_codes(&[("t.st", &bad)]),
+        [("E301".to_string(), "18:8".to_string())]
+    );
+}

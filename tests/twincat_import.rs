@@ -394,3 +394,46 @@ fn a_structure_is_sized_by_a_parameter_list_constant_declared_after_it() {
     let out = plcrun_ok(&[&dir, "--cycles", "1", "--trace", "MAIN.n"]);
     assert_eq!(out, "cycle,time,MAIN.n\n0,T#0s,11\n");
 }
+
+#[test]
+fn a_call_into_a_library_that_is_not_there_is_one_named_error() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    r : UDINT;\nEND_VAR\n",
+        "r := SysFile.SysFileClose(hFile := 0);\n",
+        "",
+    );
+    let dir = project(&[("POUs/MAIN.TcPOU", &main)]);
+    let (code, _, err) = plcrun(&["check", &dir]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("error[E201]: unknown function `SysFile.SysFileClose`: no POU, variable or global list is named `SysFile`"),
+        "{err}"
+    );
+    assert_eq!(err.matches("error[").count(), 1, "{err}");
+}
+
+#[test]
+fn the_hex_string_case_and_wstring_length_functions_of_the_tc2_libraries() {
+    // The examples of Beckhoff's DWORD_TO_HEXSTR page: 43981 gives 'ABCD' or
+    // 'abcd', 15 with 4 digits '000F', 0 with 0 digits ''; a longer number
+    // is never cut.
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    s1, s2, s3, s4, s5, s6, lc, uc : T_MaxString;\n    n : INT;\nEND_VAR\n",
+        "s1 := DWORD_TO_HEXSTR(43981, 1, FALSE);\ns2 := WORD_TO_HEXSTR(43981, 1, TRUE);\ns3 := BYTE_TO_HEXSTR(15, 4, FALSE);\ns4 := DWORD_TO_HEXSTR(0, 0, FALSE);\ns5 := LWORD_TO_HEXSTR(16#1234567890ABCDEF, 2, FALSE);\ns6 := BYTE_TO_HEXSTR(0, 1, FALSE);\nlc := F_ToLCase('TcUnit 1.3-XYZ');\nuc := F_ToUCase('TcUnit 1.3-xyz');\nn := WLEN(\"Grüße\");\n",
+        "",
+    );
+    let dir = project(&[("MAIN.TcPOU", &main)]);
+    let out = plcrun_ok(&[
+        &dir,
+        "--cycles",
+        "1",
+        "--trace",
+        "s1,s2,s3,s4,s5,s6,lc,uc,n",
+    ]);
+    assert_eq!(
+        out,
+        "cycle,time,s1,s2,s3,s4,s5,s6,lc,uc,n\n0,T#0s,'ABCD','abcd','000F','','1234567890ABCDEF','0','tcunit 1.3-xyz','TCUNIT 1.3-XYZ',5\n"
+    );
+}

@@ -109,6 +109,9 @@ impl BodyBuilder<'_> {
         if self.calls_a_function(call) {
             return self.call_function(call, expect, true);
         }
+        if self.unknown_library_call(call) {
+            return Val::error();
+        }
         self.diags.error(
             "E406",
             call.callee.span,

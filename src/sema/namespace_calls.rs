@@ -44,4 +44,36 @@ impl BodyBuilder<'_> {
             span: call.span,
         })
     }
+
+    /// E201 for `ns.f(...)` where `ns` names nothing here (a library that
+    /// is not loaded, `SysFile.SysFileClose(...)`) and `f` is no function:
+    /// one named error instead of a misleading one about instances.
+    pub(super) fn unknown_library_call(&mut self, call: &Call) -> bool {
+        let ExprKind::Member(base, f) = &call.callee.kind else {
+            return false;
+        };
+        let ExprKind::Name(ns) = &base.kind else {
+            return false;
+        };
+        let key = ns.key();
+        let named = self.lookup_var(&key).is_some()
+            || self.model.pou_index.contains_key(&key)
+            || self.model.type_ids.contains_key(&key)
+            || self.model.globals.contains_key(&key)
+            || is_this(base)
+            || super::oop::calls::is_super(base);
+        // `GVL.inst(...)`: a global read through its list's name.
+        if named || self.model.globals.contains_key(&f.key()) {
+            return false;
+        }
+        self.diags.error(
+            "E201",
+            call.callee.span,
+            format!(
+                "unknown function `{}.{}`: no POU, variable or global list is named `{}` (a library plcrun does not have?)",
+                ns.name, f.name, ns.name
+            ),
+        );
+        true
+    }
 }

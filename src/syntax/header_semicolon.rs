@@ -39,7 +39,6 @@ pub fn drop_header_semicolons(tokens: Vec<Spanned>) -> Vec<Spanned> {
 /// gone wrong, not a header).
 fn header_end(rest: &[Spanned], colon_ok: bool) -> Option<usize> {
     let mut names = 0;
-    let mut colons = 0;
     let mut after_name = false;
     for (k, t) in rest.iter().enumerate() {
         let is_name = matches!(t.1, Tok::Ident(_));
@@ -51,7 +50,9 @@ fn header_end(rest: &[Spanned], colon_ok: bool) -> Option<usize> {
             Tok::Semi => return (names > 0).then_some(k),
             Tok::Ident(_) => names += 1,
             Tok::Dot | Tok::Comma => {}
-            Tok::Colon if colon_ok && colons == 0 && names > 0 => colons += 1,
+            Tok::Colon if colon_ok && names > 0 => {
+                return type_end(&rest[k + 1..]).map(|e| k + 1 + e);
+            }
             Tok::Kw(
                 Kw::Abstract
                 | Kw::Final
@@ -62,6 +63,41 @@ fn header_end(rest: &[Spanned], colon_ok: bool) -> Option<usize> {
                 | Kw::Extends
                 | Kw::Implements,
             ) => {}
+            _ => return None,
+        }
+    }
+    None
+}
+
+/// The index in `rest` of the `;` that ends a result type written at
+/// its start: a name, or a subrange, string, array or reference type
+/// (`UINT(0..N)`, `STRING(80)`, `ARRAY[1..N] OF INT`, `REFERENCE TO T`).
+fn type_end(rest: &[Spanned]) -> Option<usize> {
+    let mut depth = 0usize;
+    for (k, t) in rest.iter().enumerate() {
+        // Two words in a row are a statement after the header (`F : INT
+        // Reset;`), not one type.
+        let word = |t: &Tok| matches!(t, Tok::Ident(_) | Tok::Lit(_) | Tok::RParen | Tok::RBracket);
+        if matches!(t.1, Tok::Ident(_) | Tok::Lit(_)) && k > 0 && word(&rest[k - 1].1) {
+            return None;
+        }
+        match &t.1 {
+            Tok::Semi if depth == 0 && k > 0 => return Some(k),
+            Tok::LParen | Tok::LBracket => depth += 1,
+            Tok::RParen | Tok::RBracket => depth = depth.checked_sub(1)?,
+            Tok::Comma if depth > 0 => {}
+            Tok::Ident(_)
+            | Tok::Dot
+            | Tok::Lit(_)
+            | Tok::DotDot
+            | Tok::Plus
+            | Tok::Minus
+            | Tok::Star
+            | Tok::Slash
+            | Tok::RefTo
+            | Tok::PointerTo
+            | Tok::ReferenceTo
+            | Tok::Kw(Kw::Array | Kw::Of | Kw::String | Kw::WString) => {}
             _ => return None,
         }
     }
@@ -112,5 +148,29 @@ mod tests {
         assert_eq!(drop_header_semicolons(bare).len(), 5);
         let two = toks(&[Tok::Kw(Kw::Program), name("p"), name("x"), Tok::Semi]);
         assert_eq!(drop_header_semicolons(two).len(), 4);
+        // `METHOD M : UINT(0..N);` (TcUnit) loses its `;`.
+        let sub = toks(&[
+            Tok::Kw(Kw::Method),
+            name("M"),
+            Tok::Colon,
+            name("UINT"),
+            Tok::LParen,
+            name("LO"),
+            Tok::DotDot,
+            name("N"),
+            Tok::RParen,
+            Tok::Semi,
+        ]);
+        assert_eq!(drop_header_semicolons(sub).len(), 9);
+        // `FUNCTION F : INT` then the statement `Reset;` keeps it.
+        let stmt = toks(&[
+            Tok::Kw(Kw::Function),
+            name("F"),
+            Tok::Colon,
+            name("INT"),
+            name("Reset"),
+            Tok::Semi,
+        ]);
+        assert_eq!(drop_header_semicolons(stmt).len(), 6);
     }
 }

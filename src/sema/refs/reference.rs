@@ -10,7 +10,7 @@ use crate::ir::op::{Op, Slot};
 use crate::ir::type_table::{RefFlavor, TypeId};
 use crate::sema::body::BodyBuilder;
 use crate::sema::emit::{Place, PlaceRef, Ty, Val};
-use crate::syntax::ast::Expr;
+use crate::syntax::ast::{Expr, ExprKind};
 
 /// The outcome of [`BodyBuilder::reference_argument`].
 pub(in crate::sema) enum RefArg {
@@ -124,6 +124,20 @@ impl BodyBuilder<'_> {
             return;
         }
         self.check_escape_of(target, value, value.span);
+        if let ExprKind::Call(_) = &value.kind {
+            // `r REF= obj.Get();`: a call that returns a REFERENCE TO (TcUnit)
+            // gives the reference itself.
+            let v = self.expr(value, None);
+            match v.ty().id().and_then(|ty| ref_parts(self.types, ty)) {
+                Some((vt, RefFlavor::Reference)) if vt == t => {
+                    let s = self.materialize(&v);
+                    self.write_place(&p, s);
+                }
+                _ if v.is_error() => {}
+                _ => self.mismatch(value.span, v.ty(), p.ty, "REF="),
+            }
+            return;
+        }
         let Some(q) = self.place(value) else {
             return;
         };
