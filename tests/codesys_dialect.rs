@@ -856,8 +856,8 @@ END_FUNCTION";
 fn a_function_called_with_its_librarys_namespace_is_that_function() {
     // Tc2_Standard.CONCAT and .LEN are the standard functions, MyLib.F_Add
     // the FUNCTION declared here; a method call on an instance is not
-    // touched, and a misspelt instance before a method's name is reported
-    // as it was before (not taken for a namespace).
+    // touched, and a misspelt instance before a method's name is an
+    // unknown name (E201: nothing is called `mm`), not a namespace.
     let prelude = "FUNCTION F_Add : INT
 VAR_INPUT a, b : INT; END_VAR
 F_Add := a + b;
@@ -877,7 +877,7 @@ END_FUNCTION_BLOCK";
     let src = program(prelude, "m : FB_M; r : INT;", "r := mm.Get();");
     assert_eq!(
         error_codes(&[("test.st", &src)]),
-        [("E406".to_string(), "14:6".to_string())]
+        [("E201".to_string(), "14:6".to_string())]
     );
 }
 

@@ -407,7 +407,9 @@ fn a_call_into_a_library_that_is_not_there_is_one_named_error() {
     let (code, _, err) = plcrun(&["check", &dir]);
     assert_eq!(code, 1, "{err}");
     assert!(
-        err.contains("error[E201]: unknown function `SysFile.SysFileClose`: no POU, variable or global list is named `SysFile`"),
+        err.contains(
+            "error[E201]: unknown function `SysFile.SysFileClose`: nothing here is named `SysFile`"
+        ),
         "{err}"
     );
     assert_eq!(err.matches("error[").count(), 1, "{err}");
@@ -420,8 +422,8 @@ fn the_hex_string_case_and_wstring_length_functions_of_the_tc2_libraries() {
     // is never cut.
     let main = pou(
         "MAIN",
-        "PROGRAM MAIN\nVAR\n    s1, s2, s3, s4, s5, s6, lc, uc : T_MaxString;\n    n : INT;\nEND_VAR\n",
-        "s1 := DWORD_TO_HEXSTR(43981, 1, FALSE);\ns2 := WORD_TO_HEXSTR(43981, 1, TRUE);\ns3 := BYTE_TO_HEXSTR(15, 4, FALSE);\ns4 := DWORD_TO_HEXSTR(0, 0, FALSE);\ns5 := LWORD_TO_HEXSTR(16#1234567890ABCDEF, 2, FALSE);\ns6 := BYTE_TO_HEXSTR(0, 1, FALSE);\nlc := F_ToLCase('TcUnit 1.3-XYZ');\nuc := F_ToUCase('TcUnit 1.3-xyz');\nn := WLEN(\"Grüße\");\n",
+        "PROGRAM MAIN\nVAR\n    s1, s2, s3, s4, s5, s6, lc, uc : T_MaxString;\n    n : INT;\n    cpu : GETCPUCOUNTER;\n    lo : UDINT;\nEND_VAR\n",
+        "s1 := DWORD_TO_HEXSTR(43981, 1, FALSE);\ns2 := WORD_TO_HEXSTR(43981, 1, TRUE);\ns3 := BYTE_TO_HEXSTR(15, 4, FALSE);\ns4 := DWORD_TO_HEXSTR(0, 0, FALSE);\ns5 := LWORD_TO_HEXSTR(16#1234567890ABCDEF, 2, FALSE);\ns6 := BYTE_TO_HEXSTR(0, 1, FALSE);\nlc := F_ToLCase('TcUnit 1.3-XYZ');\nuc := F_ToUCase('TcUnit 1.3-xyz');\nn := WLEN(\"Grüße\");\ncpu();\nlo := cpu.cpuCntLoDW;\n",
         "",
     );
     let dir = project(&[("MAIN.TcPOU", &main)]);

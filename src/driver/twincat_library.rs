@@ -137,7 +137,15 @@ mod tests {
                 "F_GetCurDcTaskTime64",
                 "F_GetCurDcTickTime64",
                 "F_GetActualDcTime64",
-                "DCTIME64_TO_STRING"
+                "DCTIME64_TO_STRING",
+                "WLEN",
+                "LWORD_TO_HEXSTR",
+                "DWORD_TO_HEXSTR",
+                "WORD_TO_HEXSTR",
+                "BYTE_TO_HEXSTR",
+                "F_ToLCase",
+                "F_ToUCase",
+                "GETCPUCOUNTER"
             ]
         );
     }

@@ -70,7 +70,7 @@ impl BodyBuilder<'_> {
             "E201",
             call.callee.span,
             format!(
-                "unknown function `{}.{}`: no POU, variable or global list is named `{}` (a library plcrun does not have?)",
+                "unknown function `{}.{}`: nothing here is named `{}` (no variable, POU or global list; a library plcrun does not have?)",
                 ns.name, f.name, ns.name
             ),
         );
