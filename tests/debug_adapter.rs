@@ -479,3 +479,36 @@ fn bad_requests_get_error_responses() {
     c.ok("disconnect", json!({}));
     assert_eq!(c.finish(), 0);
 }
+
+#[test]
+fn breakpoints_on_a_chart_drawn_in_plcopen_xml_stop_at_its_elements() {
+    // tests/plcopen/chariot.xml is CHARIOT drawn: line 55 is step AV's
+    // `<step>`, 70 the `<action>` of its action block (KMAV), 75 the
+    // `<transition>` AV -> ATT, 84 step ATT's `<step>`. The stimulus
+    // presses Dcy at cycle 5 (AV), FcB comes at cycle 100 (ATT).
+    const DRAWN: &str = "tests/plcopen/chariot.xml";
+    let mut c = launched(
+        &[DRAWN],
+        &["--cycles", "200", "--stimulus", "programs/chariot.csv"],
+        DRAWN,
+        json!([{"line": 55}, {"line": 70}]),
+    );
+    assert_eq!(c.event("stopped")["reason"], "breakpoint");
+    assert_eq!(top(&mut c), ("CHARIOT.AV".into(), 55));
+    assert_eq!(evaluate(&mut c, "AV.X"), "TRUE");
+    c.ok("continue", json!({"threadId": 1}));
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("CHARIOT.KMAV".into(), 70));
+    c.ok(
+        "setBreakpoints",
+        json!({"source": {"path": DRAWN}, "breakpoints": [{"line": 75}, {"line": 84}]}),
+    );
+    c.ok("continue", json!({"threadId": 1}));
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("CHARIOT.AV -> ATT".into(), 75));
+    assert_eq!(evaluate(&mut c, "FcB"), "TRUE");
+    c.ok("continue", json!({"threadId": 1}));
+    c.event("stopped");
+    assert_eq!(top(&mut c), ("CHARIOT.ATT".into(), 84));
+    c.ok("disconnect", json!({}));
+}

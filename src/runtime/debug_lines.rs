@@ -24,7 +24,8 @@ pub struct LineTable {
     /// The files' names, as loaded.
     files: Vec<String>,
     /// The lines of the SFC charts' steps, action associations and
-    /// transitions (textual SFC).
+    /// transitions (textual SFC, or the elements of a chart drawn in
+    /// PLCopen XML).
     sfc: Vec<SfcPlace>,
 }
 
@@ -187,6 +188,18 @@ fn sfc_places(image: &Image, sources: &SourceMap) -> Vec<SfcPlace> {
                 continue;
             }
             let file = sources.file(span.file);
+            if file.text.trim_start().starts_with('<') {
+                // A chart drawn in PLCopen XML.
+                let found = super::debug_sfc_xml::xml_places(c, &file.text, span.start as usize);
+                places.extend(found.into_iter().map(|(element, line, name)| SfcPlace {
+                    chart,
+                    element,
+                    file: span.file.0 as usize,
+                    line,
+                    name,
+                }));
+                continue;
+            }
             let (first, _) = file.line_col(span.start);
             let step_of = |name: &str| {
                 c.steps

@@ -46,6 +46,7 @@ pub mod clock;
 mod copy_calls;
 pub mod debug_eval;
 pub mod debug_lines;
+mod debug_sfc_xml;
 pub mod debug_view;
 pub mod debugger;
 pub mod default_trace;
