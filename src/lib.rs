@@ -43,6 +43,7 @@ mod driver;
 mod elementary;
 mod ide;
 pub(crate) mod ir;
+mod native;
 mod progress;
 mod runtime;
 mod sema;
@@ -77,6 +78,7 @@ pub use ide::{
     RenameError, Shape, Signature, SignatureParam, StdFunction, Symbol, SymbolId, SymbolKind,
     TokenKind, TokenMark, VarSection, std_function, std_functions,
 };
+pub use native::{Engine, NativeFallback, NativeReport, UnknownEngine};
 pub use progress::Progress;
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::clock::Clock;
