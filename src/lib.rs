@@ -43,7 +43,6 @@ mod driver;
 mod elementary;
 mod ide;
 pub(crate) mod ir;
-mod native;
 mod progress;
 mod runtime;
 mod sema;
@@ -78,7 +77,6 @@ pub use ide::{
     RenameError, Shape, Signature, SignatureParam, StdFunction, Symbol, SymbolId, SymbolKind,
     TokenKind, TokenMark, VarSection, std_function, std_functions,
 };
-pub use native::{Engine, NativeFallback, NativeReport, UnknownEngine};
 pub use progress::Progress;
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::clock::Clock;
@@ -104,6 +102,7 @@ pub use runtime::modbus::{
 pub use runtime::names::VarRef;
 #[cfg(feature = "opcua")]
 pub use runtime::opcua::{OpcUaConfig, OpcUaExchange, OpcUaServer, Users};
+pub use vm::native::{Engine, NativeFallback, NativeReport, UnknownEngine};
 #[cfg(feature = "opcua")]
 pub mod opcua {
     //! The OPC UA server (cargo feature `opcua`, on by default): docs/opcua.md.

@@ -101,7 +101,7 @@ fn native_code(
     }
     #[cfg(feature = "native")]
     {
-        let compiled = crate::native::compile(image);
+        let compiled = crate::vm::native::compile(image);
         let report = compiled.report().clone();
         machine.set_native(Some(Box::new(compiled)));
         Some(report)
@@ -109,7 +109,7 @@ fn native_code(
     #[cfg(not(feature = "native"))]
     {
         let _ = machine;
-        Some(crate::native::unavailable(image.image()))
+        Some(crate::vm::native::unavailable(image.image()))
     }
 }
 

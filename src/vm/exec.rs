@@ -163,7 +163,7 @@ pub(super) fn call<const DEBUG: bool, const NATIVE: bool>(
 ) -> Result<(), Fault> {
     #[cfg(feature = "native")]
     if NATIVE && !DEBUG {
-        if let Some(done) = crate::native::enter(m, img, code, base) {
+        if let Some(done) = super::native::enter(m, img, code, base) {
             return done;
         }
     }

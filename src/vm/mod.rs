@@ -18,6 +18,7 @@ mod fault;
 mod grafcet;
 mod host;
 mod interrupt;
+pub(crate) mod native;
 mod refs;
 mod string_ops;
 mod strings;
@@ -60,7 +61,7 @@ pub struct Machine {
     /// Machine code of the image's blocks (`--engine native`); `None`
     /// runs everything in the interpreter.
     #[cfg(feature = "native")]
-    native: Option<Box<crate::native::Compiled>>,
+    native: Option<Box<native::Compiled>>,
 }
 
 impl Machine {
@@ -130,13 +131,13 @@ impl Machine {
     /// everything in the interpreter). Native code is used only while the
     /// image the machine runs is the one it was compiled from.
     #[cfg(feature = "native")]
-    pub(crate) fn set_native(&mut self, native: Option<Box<crate::native::Compiled>>) {
+    pub(crate) fn set_native(&mut self, native: Option<Box<native::Compiled>>) {
         self.native = native;
     }
 
     /// The native code this machine holds.
     #[cfg(feature = "native")]
-    pub(crate) fn native(&self) -> Option<&crate::native::Compiled> {
+    pub(crate) fn native(&self) -> Option<&native::Compiled> {
         self.native.as_deref()
     }
 

@@ -6,7 +6,7 @@
 
 use super::{I32, I64, Lower};
 use crate::ir::op::{CodeIdx, Op};
-use crate::native::helpers::{self, WHY_BAD_ADDRESS};
+use crate::vm::native::helpers::{self, WHY_BAD_ADDRESS};
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{InstBuilder, MemFlagsData, Value};
 

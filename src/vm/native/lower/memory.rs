@@ -5,7 +5,7 @@
 
 use super::{I64, Lower};
 use crate::ir::op::{ArrayIdx, Op, Slot, wrap_s};
-use crate::native::helpers::{WHY_BAD_ADDRESS, WHY_OPERANDS};
+use crate::vm::native::helpers::{WHY_BAD_ADDRESS, WHY_OPERANDS};
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{InstBuilder, MemFlagsData, Value};
 use std::mem::offset_of;

@@ -5,7 +5,7 @@
 use super::flow::{signed, unsigned};
 use super::{I64, Lower};
 use crate::ir::op::{Op, ShiftKind, Slot};
-use crate::native::helpers::WHY_OPERANDS as DIVISION;
+use crate::vm::native::helpers::WHY_OPERANDS as DIVISION;
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{InstBuilder, Value};
 
