@@ -64,11 +64,11 @@ pub struct Options {
     /// Beremiz, `iec` otherwise.
     pub addressing: Option<Addressing>,
     /// Which executor runs the code blocks (`--engine`; default
-    /// [`crate::Engine::Interp`]). With [`crate::Engine::Native`] the
+    /// [`crate::vm::native::Engine::Interp`]). With [`crate::vm::native::Engine::Native`] the
     /// blocks are compiled to machine code when the program is built and
     /// every block the tier cannot compile runs in the interpreter;
     /// [`Plc::native_report`] tells which.
-    pub engine: crate::Engine,
+    pub engine: crate::vm::native::Engine,
 }
 
 impl Default for Options {
@@ -84,7 +84,7 @@ impl Default for Options {
             encoding: SourceEncoding::Detect,
             optimize: true,
             addressing: None,
-            engine: crate::Engine::Interp,
+            engine: crate::vm::native::Engine::Interp,
         }
     }
 }
@@ -94,9 +94,9 @@ impl Default for Options {
 fn native_code(
     machine: &mut Machine,
     image: &VerifiedImage,
-    engine: crate::Engine,
-) -> Option<crate::NativeReport> {
-    if engine != crate::Engine::Native {
+    engine: crate::vm::native::Engine,
+) -> Option<crate::vm::native::NativeReport> {
+    if engine != crate::vm::native::Engine::Native {
         return None;
     }
     #[cfg(feature = "native")]
@@ -294,7 +294,7 @@ pub struct Plc {
     /// The attached debugger (see [`super::debugger`]), if any.
     pub(super) debugger: Option<Arc<Mutex<super::debugger::Core>>>,
     /// What the native tier compiled (`None` with the interpreter).
-    pub(super) native_report: Option<crate::NativeReport>,
+    pub(super) native_report: Option<crate::vm::native::NativeReport>,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -411,11 +411,11 @@ impl Plc {
         plc
     }
 
-    /// What [`crate::Engine::Native`] did with this program's code blocks:
+    /// What [`crate::vm::native::Engine::Native`] did with this program's code blocks:
     /// which run as machine code, which in the interpreter and why, the
     /// size of the code and the time it took (`None` when the program
     /// runs on the interpreter, [`Options::engine`]'s default).
-    pub fn native_report(&self) -> Option<&crate::NativeReport> {
+    pub fn native_report(&self) -> Option<&crate::vm::native::NativeReport> {
         self.native_report.as_ref()
     }
 

@@ -162,10 +162,11 @@ pub(super) fn call<const DEBUG: bool, const NATIVE: bool>(
     base: usize,
 ) -> Result<(), Fault> {
     #[cfg(feature = "native")]
-    if NATIVE && !DEBUG {
-        if let Some(done) = super::native::enter(m, img, code, base) {
-            return done;
-        }
+    if NATIVE
+        && !DEBUG
+        && let Some(done) = super::native::enter(m, img, code, base)
+    {
+        return done;
     }
     if DEBUG {
         m.debug_enter(code, base);

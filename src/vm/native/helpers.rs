@@ -164,31 +164,33 @@ pub(super) unsafe extern "C" fn step(
     let (ctx, op) = unsafe { (&mut *ctx, &*op) };
     // SAFETY: slots of a verified instruction lie in the frame.
     let r = |s: Slot| unsafe { *fp.add(s.index()) };
-    let w = |s: Slot, v: u64| unsafe { *fp.add(s.index()) = v };
+    let w = |s: Slot, v: u64| -> Result<(), FaultKind> {
+        // SAFETY: as for `r`.
+        unsafe { *fp.add(s.index()) = v };
+        Ok(())
+    };
     let f32_of = |x: u64| f32::from_bits(x as u32);
     let of_f32 = |x: f32| x.to_bits() as u64;
     let result: Result<(), FaultKind> = match *op {
         Op::PowS { d, a, b, shift } => match int_pow(r(a) as i64, r(b) as i64) {
-            Some(v) => Ok(w(d, crate::ir::op::wrap_s(v, shift))),
+            Some(v) => w(d, crate::ir::op::wrap_s(v, shift)),
             None => Err(FaultKind::NegativeExponent),
         },
-        Op::PowF32 { d, a, b } => Ok(w(d, of_f32(f32_of(r(a)).powf(f32_of(r(b)))))),
-        Op::MathF32 { d, a, f } => Ok(w(d, of_f32(f.apply_f32(f32_of(r(a)))))),
-        Op::PowF64 { d, a, b } => Ok(w(
-            d,
-            f64::from_bits(r(a)).powf(f64::from_bits(r(b))).to_bits(),
-        )),
-        Op::MathF64 { d, a, f } => Ok(w(d, f.apply_f64(f64::from_bits(r(a))).to_bits())),
-        Op::Convert { d, a, conv } => convert::convert(conv, r(a))
-            .map(|v| w(d, v))
-            .map_err(FaultKind::from),
+        Op::PowF32 { d, a, b } => w(d, of_f32(f32_of(r(a)).powf(f32_of(r(b))))),
+        Op::MathF32 { d, a, f } => w(d, of_f32(f.apply_f32(f32_of(r(a))))),
+        Op::PowF64 { d, a, b } => w(d, f64::from_bits(r(a)).powf(f64::from_bits(r(b))).to_bits()),
+        Op::MathF64 { d, a, f } => w(d, f.apply_f64(f64::from_bits(r(a))).to_bits()),
+        Op::Convert { d, a, conv } => match convert::convert(conv, r(a)) {
+            Ok(v) => w(d, v),
+            Err(e) => Err(FaultKind::from(e)),
+        },
         Op::MinMaxF32 { d, a, b, max } => {
             let (x, y) = (f32_of(r(a)), f32_of(r(b)));
-            Ok(w(d, of_f32(if max { x.max(y) } else { x.min(y) })))
+            w(d, of_f32(if max { x.max(y) } else { x.min(y) }))
         }
         Op::MinMaxF64 { d, a, b, max } => {
             let (x, y) = (f64::from_bits(r(a)), f64::from_bits(r(b)));
-            Ok(w(d, (if max { x.max(y) } else { x.min(y) }).to_bits()))
+            w(d, (if max { x.max(y) } else { x.min(y) }).to_bits())
         }
         Op::Mux { d, k, first, n } => {
             let sel = r(k) as i64;
@@ -199,13 +201,13 @@ pub(super) unsafe extern "C" fn step(
                 })
             } else {
                 // The run `first .. first + n` lies in the frame (verified).
-                Ok(w(d, r(first.offset(sel as u32))))
+                w(d, r(first.offset(sel as u32)))
             }
         }
         Op::MulTimeF64 { d, a, b } => {
             let v = (r(a) as i64) as f64 * f64::from_bits(r(b));
             match convert::f64_to_i64(v.round()) {
-                Some(x) => Ok(w(d, x as u64)),
+                Some(x) => w(d, x as u64),
                 None => Err(FaultKind::ConversionOverflow),
             }
         }
@@ -215,7 +217,7 @@ pub(super) unsafe extern "C" fn step(
                 Err(FaultKind::DivisionByZero)
             } else {
                 match convert::f64_to_i64(((r(a) as i64) as f64 / y).round()) {
-                    Some(x) => Ok(w(d, x as u64)),
+                    Some(x) => w(d, x as u64),
                     None => Err(FaultKind::ConversionOverflow),
                 }
             }
