@@ -190,8 +190,8 @@ impl Machine {
         }
     }
 
-    /// Sets the string whose id slot `slot` of the frame at `fp` holds to
-    /// constant `k` (a block's entry strings, for native code).
+    /// Sets string `id` to `text` (a block's entry strings, for native
+    /// code).
     #[cfg(feature = "native")]
     pub(crate) fn set_string(&mut self, id: u64, text: &str) {
         self.strings[id as usize].set(text);
