@@ -11,7 +11,8 @@
 //! any checksum is wrong.
 //!
 //! Usage: `cargo bench --bench perf -- [--quick]
-//! [--rounds=N] [NAME...]` — `--quick` (or `PLCRUN_BENCH_QUICK=1`) uses
+//! [--rounds=N] [NAME...]` (`PLCRUN_BENCH_ENGINE=native` for the native
+//! tier) — `--quick` (or `PLCRUN_BENCH_QUICK=1`) uses
 //! small cycle counts; names select benchmarks by prefix (`a`, `c`,
 //! `c_fb_array`, `empty`, ...).
 
@@ -204,8 +205,20 @@ mod plc {
 
     impl PlcRunner {
         /// Compiles `text` (named `file` in diagnostics).
+        /// `PLCRUN_BENCH_ENGINE=native` runs the native tier instead of
+        /// the interpreter.
         pub fn compile(file: &str, text: &str, var: &'static str) -> Result<Self, String> {
-            let plc = plcrun::Plc::compile_files(&[(file, text)], &plcrun::Options::default())
+            let engine = match std::env::var("PLCRUN_BENCH_ENGINE") {
+                Ok(name) => name
+                    .parse()
+                    .map_err(|e| format!("PLCRUN_BENCH_ENGINE: {e}"))?,
+                Err(_) => plcrun::Engine::Interp,
+            };
+            let options = plcrun::Options {
+                engine,
+                ..plcrun::Options::default()
+            };
+            let plc = plcrun::Plc::compile_files(&[(file, text)], &options)
                 .map_err(|e| format!("{file} does not compile:\n{e}"))?;
             Ok(Self { plc, var })
         }

@@ -102,6 +102,7 @@ pub use runtime::modbus::{
 pub use runtime::names::VarRef;
 #[cfg(feature = "opcua")]
 pub use runtime::opcua::{OpcUaConfig, OpcUaExchange, OpcUaServer, Users};
+pub use vm::native::{Engine, NativeFallback, NativeReport, UnknownEngine};
 #[cfg(feature = "opcua")]
 pub mod opcua {
     //! The OPC UA server (cargo feature `opcua`, on by default): docs/opcua.md.

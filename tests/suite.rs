@@ -170,6 +170,8 @@ mod modbus;
 mod modbus_cli;
 #[path = "modbus_openplc.rs"]
 mod modbus_openplc;
+#[path = "native_engine.rs"]
+mod native_engine;
 #[path = "native_reference.rs"]
 mod native_reference;
 #[path = "one_typo.rs"]

@@ -267,6 +267,16 @@ pub struct RunArgs {
     /// for checking the optimizations).
     #[arg(long)]
     pub no_optimize: bool,
+    /// Which executor runs the program: interp (the interpreter, the
+    /// reference) or native (machine code compiled at load with
+    /// Cranelift; blocks it cannot compile run in the interpreter). See
+    /// docs/performance.md, "The native tier".
+    #[arg(long, value_name = "ENGINE", default_value = "interp")]
+    pub engine: plcrun::Engine,
+    /// With --engine native: print on standard error which code blocks
+    /// were compiled and which run in the interpreter (and why).
+    #[arg(long)]
+    pub native_report: bool,
 }
 
 /// How every subcommand that reads sources reads them and how strictly it

@@ -85,6 +85,14 @@ pub struct CompareArgs {
     /// Print the cycles compared and the throughput on standard error.
     #[arg(long)]
     pub timing: bool,
+    /// The executor of program A: interp or native (see `plcrun run --engine`).
+    #[arg(long, value_name = "ENGINE", default_value = "interp")]
+    pub engine_a: plcrun::Engine,
+    /// The executor of program B: interp or native. The same files as A
+    /// with `--engine-b native` compare the native tier with the
+    /// interpreter.
+    #[arg(long, value_name = "ENGINE", default_value = "interp")]
+    pub engine_b: plcrun::Engine,
 }
 
 /// Moves the options written after B's files in front of the `--`, so that
@@ -129,6 +137,7 @@ impl Program {
         program: &Option<String>,
         cycle_time: i64,
         reading: &ReadingArgs,
+        engine: plcrun::Engine,
     ) -> Result<Program, i32> {
         let mut diags = Diagnostics::new();
         let sources = load_files_with(files, reading.encoding, &mut diags).map_err(usage_error)?;
@@ -148,6 +157,7 @@ impl Program {
                 strict: reading.strict,
                 encoding: reading.encoding,
                 addressing: reading.addressing,
+                engine,
                 ..Options::default()
             },
         })
@@ -195,8 +205,20 @@ fn prepare(args: &CompareArgs) -> Result<(Program, Program, CompareOptions, Pair
             "give the stimulus: --stimulus FILE, or --random SEED (with --seeds K)",
         ));
     }
-    let a = Program::load(&args.a_files, &args.program_a, cycle_time, &args.reading)?;
-    let b = Program::load(&args.b_files, &args.program_b, cycle_time, &args.reading)?;
+    let a = Program::load(
+        &args.a_files,
+        &args.program_a,
+        cycle_time,
+        &args.reading,
+        args.engine_a,
+    )?;
+    let b = Program::load(
+        &args.b_files,
+        &args.program_b,
+        cycle_time,
+        &args.reading,
+        args.engine_b,
+    )?;
     let mut map = Vec::new();
     for item in &args.map {
         map.push(parse_map(item).map_err(usage_error)?);

@@ -146,6 +146,7 @@ fn options(args: &RunArgs) -> Result<Options, String> {
         encoding: args.reading.encoding,
         optimize: !args.no_optimize,
         addressing: args.reading.addressing,
+        engine: args.engine,
         ..Options::default()
     })
 }
@@ -174,6 +175,12 @@ fn compile(args: &RunArgs, options: &Options) -> Result<Plc, i32> {
     })?;
     if !plc.warnings().is_empty() {
         say!("{}", plc.warnings().render(plc.sources()));
+    }
+    if args.native_report {
+        match plc.native_report() {
+            Some(report) => say!("{report}"),
+            None => sayln!("native: not used (--engine interp)"),
+        }
     }
     Ok(plc)
 }

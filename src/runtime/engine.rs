@@ -63,6 +63,12 @@ pub struct Options {
     /// `openplc` for a PLCopen project from the OpenPLC Editor or
     /// Beremiz, `iec` otherwise.
     pub addressing: Option<Addressing>,
+    /// Which executor runs the code blocks (`--engine`; default
+    /// [`crate::vm::native::Engine::Interp`]). With [`crate::vm::native::Engine::Native`] the
+    /// blocks are compiled to machine code when the program is built and
+    /// every block the tier cannot compile runs in the interpreter;
+    /// [`Plc::native_report`] tells which.
+    pub engine: crate::vm::native::Engine,
 }
 
 impl Default for Options {
@@ -78,7 +84,32 @@ impl Default for Options {
             encoding: SourceEncoding::Detect,
             optimize: true,
             addressing: None,
+            engine: crate::vm::native::Engine::Interp,
         }
+    }
+}
+
+/// Compiles `image` for `machine` when `engine` asks for native code; the
+/// report of what was compiled.
+fn native_code(
+    machine: &mut Machine,
+    image: &VerifiedImage,
+    engine: crate::vm::native::Engine,
+) -> Option<crate::vm::native::NativeReport> {
+    if engine != crate::vm::native::Engine::Native {
+        return None;
+    }
+    #[cfg(feature = "native")]
+    {
+        let compiled = crate::vm::native::compile(image);
+        let report = compiled.report().clone();
+        machine.set_native(Some(Box::new(compiled)));
+        Some(report)
+    }
+    #[cfg(not(feature = "native"))]
+    {
+        let _ = machine;
+        Some(crate::vm::native::unavailable(image.image()))
     }
 }
 
@@ -262,6 +293,8 @@ pub struct Plc {
     pub(super) host_code: Option<Arc<Mutex<HostDispatcher>>>,
     /// The attached debugger (see [`super::debugger`]), if any.
     pub(super) debugger: Option<Arc<Mutex<super::debugger::Core>>>,
+    /// What the native tier compiled (`None` with the interpreter).
+    pub(super) native_report: Option<crate::vm::native::NativeReport>,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -342,6 +375,7 @@ impl Plc {
         addressing: Addressing,
     ) -> Plc {
         let mut machine = Machine::new(&image);
+        let native_report = native_code(&mut machine, &image, options.engine);
         let stop = StopHandle::interrupting(machine.interrupt().clone());
         let watchdog = Watchdog::new(
             machine.interrupt().clone(),
@@ -371,9 +405,18 @@ impl Plc {
             forces: Forces::default(),
             host_code,
             debugger: None,
+            native_report,
         };
         plc.start(true);
         plc
+    }
+
+    /// What [`crate::vm::native::Engine::Native`] did with this program's code blocks:
+    /// which run as machine code, which in the interpreter and why, the
+    /// size of the code and the time it took (`None` when the program
+    /// runs on the interpreter, [`Options::engine`]'s default).
+    pub fn native_report(&self) -> Option<&crate::vm::native::NativeReport> {
+        self.native_report.as_ref()
     }
 
     /// A handle that asks this PLC's run to stop, from any thread.

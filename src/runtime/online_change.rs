@@ -147,6 +147,10 @@ impl Plc {
         // References are not carried (they start NULL): the objects the
         // old ones designated belong to the old layout.
         std::mem::swap(&mut self.machine.refs, &mut new.machine.refs);
+        // The new version's native code goes with its image.
+        #[cfg(feature = "native")]
+        self.machine.swap_native(&mut new.machine);
+        std::mem::swap(&mut self.native_report, &mut new.native_report);
         self.machine.now = new.machine.now;
         std::mem::swap(&mut self.scheduler, &mut new.scheduler);
         std::mem::swap(&mut self.sources, &mut new.sources);

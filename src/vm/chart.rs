@@ -101,7 +101,7 @@ pub(super) fn condition<const DEBUG: bool>(
             if cached >> 1 == epoch {
                 return Ok(cached & 1 != 0);
             }
-            exec::call::<DEBUG>(m, img, code, base)?;
+            exec::call::<DEBUG, false>(m, img, code, base)?;
             let v = m.mem[base + (c.header + hd::COND) as usize] != 0;
             m.mem[slot] = (epoch << 1) | v as u64;
             Ok(v)
@@ -297,7 +297,7 @@ fn actions<const DEBUG: bool>(
                 m.mem[rec + al::Q as usize] = q as u64;
                 if q || old_q {
                     m.mem[rec + al::A as usize] = 1;
-                    exec::call::<DEBUG>(m, img, code, base)?;
+                    exec::call::<DEBUG, false>(m, img, code, base)?;
                 }
                 m.mem[rec + al::A as usize] = q as u64;
             }

@@ -113,7 +113,7 @@ fn for_next(i: u64, step: i16, lim: i64, shift: u8) -> (u64, bool) {
     (v, go)
 }
 
-fn int_pow(base: i64, exp: i64) -> Option<u64> {
+pub(crate) fn int_pow(base: i64, exp: i64) -> Option<u64> {
     if exp < 0 {
         return None;
     }
@@ -150,25 +150,37 @@ fn int_pow(base: i64, exp: i64) -> Option<u64> {
 /// trace of debugging in its code; `true` keeps the debugger's call stack
 /// and gives it every statement start (see [`super::debug`]), and runs only
 /// on a machine a debugger is attached to ([`Machine::run`] chooses).
-pub(super) fn call<const DEBUG: bool>(
+///
+/// `NATIVE` is `true` when the machine holds native code (`--engine
+/// native`, docs/adr/0009-native-tier.md): a block compiled to machine
+/// code runs there, every other block here. The interpreter-only variant
+/// (`false`) has no trace of the native tier in its code.
+pub(super) fn call<const DEBUG: bool, const NATIVE: bool>(
     m: &mut Machine,
     img: &Image,
     code: CodeIdx,
     base: usize,
 ) -> Result<(), Fault> {
+    #[cfg(feature = "native")]
+    if NATIVE
+        && !DEBUG
+        && let Some(done) = super::native::enter(m, img, code, base)
+    {
+        return done;
+    }
     if DEBUG {
         m.debug_enter(code, base);
-        let done = run::<true>(m, img, code, base);
+        let done = run::<true, NATIVE>(m, img, code, base);
         m.debug_leave();
         return done;
     }
-    run::<false>(m, img, code, base)
+    run::<false, NATIVE>(m, img, code, base)
 }
 
 /// The dispatch loop of [`call`] (inlined into it: the plain variant is
 /// this code).
 #[inline(always)]
-fn run<const DEBUG: bool>(
+fn run<const DEBUG: bool, const NATIVE: bool>(
     m: &mut Machine,
     img: &Image,
     code: CodeIdx,
@@ -782,14 +794,14 @@ fn run<const DEBUG: bool>(
             // A fault unwinding through a call notes the caller's block,
             // instruction and base: nothing the normal path keeps for it.
             Op::CallFb { code: c, inst } => {
-                if let Err(f) = call::<DEBUG>(m, img, c, base + inst.index()) {
+                if let Err(f) = call::<DEBUG, NATIVE>(m, img, c, base + inst.index()) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }
             }
             Op::CallFbInd { code: c, p } => {
                 let at = r!(p) as usize;
-                if let Err(f) = call::<DEBUG>(m, img, c, at) {
+                if let Err(f) = call::<DEBUG, NATIVE>(m, img, c, at) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }
@@ -810,7 +822,7 @@ fn run<const DEBUG: bool>(
             }
             Op::CallFn { code: c } => {
                 let frame = img.codes[c.index()].frame as usize;
-                if let Err(f) = call::<DEBUG>(m, img, c, frame) {
+                if let Err(f) = call::<DEBUG, NATIVE>(m, img, c, frame) {
                     m.unwound(code, pc!(), base);
                     return Err(f);
                 }
@@ -880,7 +892,7 @@ fn run<const DEBUG: bool>(
     }
 }
 
-fn index_fault(raw: u64, ad: &crate::ir::image::ArrayDesc) -> FaultKind {
+pub(crate) fn index_fault(raw: u64, ad: &crate::ir::image::ArrayDesc) -> FaultKind {
     if ad.stride == 0 {
         // Descriptors with stride 0 describe subranges, not arrays.
         return FaultKind::SubrangeViolation {

@@ -487,7 +487,7 @@ fn actions<const DEBUG: bool>(
             ActionKind::Body(code) => {
                 if q || old_q {
                     m.mem[rec + al::A as usize] = 1;
-                    exec::call::<DEBUG>(m, img, code, base)?;
+                    exec::call::<DEBUG, false>(m, img, code, base)?;
                 }
                 m.mem[rec + al::A as usize] = q as u64;
             }

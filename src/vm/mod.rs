@@ -18,11 +18,14 @@ mod fault;
 mod grafcet;
 mod host;
 mod interrupt;
+pub(crate) mod native;
 mod refs;
 mod string_ops;
 mod strings;
 
 pub(crate) use debug::{ChartEvent, DebugFrame, DebugHook};
+#[cfg(feature = "native")]
+pub(crate) use exec::{index_fault, int_pow};
 pub(crate) use fault::CallSite;
 pub use fault::{Fault, FaultKind, HostFailure, UnstableCycle};
 pub(crate) use host::{HostDispatch, HostFrame, HostLink};
@@ -55,6 +58,10 @@ pub struct Machine {
     /// The attached debugger, if any (see [`debug`]): while there is
     /// none, [`Self::run`] runs the plain executor.
     debug: Option<Box<debug::Debugging>>,
+    /// Machine code of the image's blocks (`--engine native`); `None`
+    /// runs everything in the interpreter.
+    #[cfg(feature = "native")]
+    native: Option<Box<native::Compiled>>,
 }
 
 impl Machine {
@@ -73,6 +80,8 @@ impl Machine {
             refs: refs::RefTable::default(),
             unwind: Vec::new(),
             debug: None,
+            #[cfg(feature = "native")]
+            native: None,
         }
     }
 
@@ -107,9 +116,85 @@ impl Machine {
     /// unwound through wait in [`Self::take_callers`].
     pub fn run(&mut self, image: &VerifiedImage, code: CodeIdx, base: u32) -> Result<(), Fault> {
         if self.debug.is_some() {
-            return exec::call::<true>(self, image.image(), code, base as usize);
+            return exec::call::<true, false>(self, image.image(), code, base as usize);
         }
-        exec::call::<false>(self, image.image(), code, base as usize)
+        #[cfg(feature = "native")]
+        if let Some(native) = &self.native
+            && native.fits(image.image())
+        {
+            return exec::call::<false, true>(self, image.image(), code, base as usize);
+        }
+        exec::call::<false, false>(self, image.image(), code, base as usize)
+    }
+
+    /// Gives this machine the native code of its image (`None`: run
+    /// everything in the interpreter). Native code is used only while the
+    /// image the machine runs is the one it was compiled from.
+    #[cfg(feature = "native")]
+    pub(crate) fn set_native(&mut self, native: Option<Box<native::Compiled>>) {
+        self.native = native;
+    }
+
+    /// The native code this machine holds.
+    #[cfg(feature = "native")]
+    pub(crate) fn native(&self) -> Option<&native::Compiled> {
+        self.native.as_deref()
+    }
+
+    /// Swaps the native code of two machines (online change: the new
+    /// version's code goes with its image).
+    #[cfg(feature = "native")]
+    pub(crate) fn swap_native(&mut self, other: &mut Machine) {
+        std::mem::swap(&mut self.native, &mut other.native);
+    }
+
+    /// Runs a block for native code that calls one it could not compile
+    /// (the interpreter, which runs compiled callees natively again).
+    #[cfg(feature = "native")]
+    pub(crate) fn call_mixed(
+        &mut self,
+        img: &crate::ir::image::Image,
+        code: CodeIdx,
+        base: usize,
+    ) -> Result<(), Fault> {
+        exec::call::<false, true>(self, img, code, base)
+    }
+
+    /// Runs one string or reference instruction for native code, exactly
+    /// as the interpreter does.
+    ///
+    /// # Safety
+    /// `fp` is the frame of a verified block that holds `op`, inside this
+    /// machine's memory.
+    #[cfg(feature = "native")]
+    pub(crate) unsafe fn out_of_line(
+        &mut self,
+        img: &crate::ir::image::Image,
+        fp: *mut u64,
+        op: &crate::ir::op::Op,
+    ) -> Result<(), FaultKind> {
+        use crate::ir::op::Op;
+        match op {
+            Op::CmpStr { .. }
+            | Op::StrMov { .. }
+            | Op::StrConst { .. }
+            | Op::StrCall { .. }
+            | Op::ToStr { .. }
+            | Op::FromStr { .. } => {
+                // SAFETY: the caller's contract.
+                unsafe { string_ops::run(self, img, fp, op) }
+            }
+            // SAFETY: the caller's contract (refs::run answers any other
+            // instruction with a fault).
+            _ => unsafe { refs::run(self, img, fp, op) },
+        }
+    }
+
+    /// Sets string `id` to `text` (a block's entry strings, for native
+    /// code).
+    #[cfg(feature = "native")]
+    pub(crate) fn set_string(&mut self, id: u64, text: &str) {
+        self.strings[id as usize].set(text);
     }
 
     /// The calls the last fault unwound through, innermost first (the

@@ -51,12 +51,20 @@ pub fn run_csv(
     files: &[(impl AsRef<str>, impl AsRef<str>)],
     request: &TraceRequest,
 ) -> (String, Result<(), RunError>) {
+    run_csv_with(files, request, &Options::default())
+}
+
+/// [`run_csv`] with the program compiled with `options`.
+pub fn run_csv_with(
+    files: &[(impl AsRef<str>, impl AsRef<str>)],
+    request: &TraceRequest,
+    options: &Options,
+) -> (String, Result<(), RunError>) {
     let named: Vec<(&str, &str)> = files
         .iter()
         .map(|(name, text)| (name.as_ref(), text.as_ref()))
         .collect();
-    let plc = Plc::compile_files(&named, &Options::default())
-        .unwrap_or_else(|e| panic!("compile error:\n{e}"));
+    let plc = Plc::compile_files(&named, options).unwrap_or_else(|e| panic!("compile error:\n{e}"));
     let names: Vec<String> = match request.trace {
         None => plc.default_trace(),
         Some(list) => list

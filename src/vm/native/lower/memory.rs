@@ -1,0 +1,236 @@
+//! Loads, stores, addresses and array elements. Frame operands need no
+//! check (verified); an element index is checked against its descriptor
+//! and an address computed at run time against memory, as the
+//! interpreter checks them, with the same faults.
+
+use super::{I64, Lower};
+use crate::ir::op::{ArrayIdx, Op, Slot, wrap_s};
+use crate::vm::native::helpers::{WHY_BAD_ADDRESS, WHY_OPERANDS};
+use cranelift_codegen::ir::condcodes::IntCC;
+use cranelift_codegen::ir::{InstBuilder, MemFlagsData, Value};
+use std::mem::offset_of;
+
+impl Lower<'_, '_> {
+    /// Translates a memory instruction; false when `op` is not one.
+    pub(super) fn memory(&mut self, op: &Op) -> bool {
+        match *op {
+            Op::LoadK { d, k } => {
+                let v = self.b.ins().iconst(I64, self.img.consts[k.index()] as i64);
+                self.set(d, v);
+            }
+            Op::LoadI { d, imm } => {
+                let v = self.b.ins().iconst(I64, imm as i64);
+                self.set(d, v);
+            }
+            Op::Mov { d, s } => {
+                let v = self.get(s);
+                self.set(d, v);
+            }
+            Op::LoadAbs { d, abs } => {
+                let a = self.b.ins().iconst(I64, abs as i64);
+                let at = self.checked_address(a);
+                let v = self.b.ins().load(I64, MemFlagsData::trusted(), at, 0);
+                self.set(d, v);
+            }
+            Op::StoreAbs { abs, s } => {
+                let v = self.get(s);
+                let a = self.b.ins().iconst(I64, abs as i64);
+                let at = self.checked_address(a);
+                self.b.ins().store(MemFlagsData::trusted(), v, at, 0);
+            }
+            Op::LoadInd { d, p, off } => {
+                let base = self.get(p);
+                let a = self.b.ins().iadd_imm_s(base, off as i64);
+                let at = self.checked_address(a);
+                let v = self.b.ins().load(I64, MemFlagsData::trusted(), at, 0);
+                self.set(d, v);
+            }
+            Op::StoreInd { p, off, s } => {
+                let base = self.get(p);
+                let a = self.b.ins().iadd_imm_s(base, off as i64);
+                let v = self.get(s);
+                let at = self.checked_address(a);
+                self.b.ins().store(MemFlagsData::trusted(), v, at, 0);
+            }
+            Op::AddrOf { d, off } => {
+                let v = self.b.ins().iadd_imm_s(self.base, off.index() as i64);
+                self.set(d, v);
+            }
+            Op::AddrAdd { d, p, off } => {
+                let x = self.get(p);
+                let v = self.b.ins().iadd_imm_s(x, off as i64);
+                self.set(d, v);
+            }
+            Op::Clock { d } => {
+                let flags = MemFlagsData::trusted();
+                let v = self
+                    .b
+                    .ins()
+                    .load(I64, flags, self.ctx, offset_of!(super::Ctx, now) as i32);
+                self.set(d, v);
+            }
+            _ => return self.elements(op),
+        }
+        true
+    }
+
+    fn elements(&mut self, op: &Op) -> bool {
+        let flags = MemFlagsData::trusted();
+        match *op {
+            Op::LoadElem { d, idx, desc } => {
+                let at = self.element(idx, desc);
+                let v = self.b.ins().load(I64, flags, at, 0);
+                self.set(d, v);
+            }
+            // The fused store loop runs as its plain element store; its
+            // partner `AddBr`, the next instruction, is compiled in place.
+            Op::StoreElem { idx, s, desc } | Op::StoreStep { idx, s, desc } => {
+                let at = self.element(idx, desc);
+                let v = self.get(s);
+                self.b.ins().store(flags, v, at, 0);
+            }
+            Op::ElemAddr { d, idx, desc } => {
+                let i = self.index(idx, desc);
+                let rel = self.relative(i, desc);
+                let x = self.get(d);
+                let v = self.b.ins().iadd(x, rel);
+                self.set(d, v);
+            }
+            Op::ElemRef { d, idx, desc } => {
+                let i = self.index(idx, desc);
+                let rel = self.relative(i, desc);
+                let v = self.b.ins().iadd(self.base, rel);
+                self.set(d, v);
+            }
+            Op::IndexStep { acc, idx, desc } => {
+                let i = self.index(idx, desc);
+                let x = self.get(acc);
+                let len = self.img.arrays[desc.index()].len;
+                let v = self.b.ins().imul_imm_s(x, len as i64);
+                let v = self.b.ins().iadd(v, i);
+                self.set(acc, v);
+            }
+            Op::LoadElemU { d, idx, bias } | Op::StoreElemU { idx, s: d, bias } => {
+                // Proved in range by the compiler; staying inside the frame
+                // is still checked, as the interpreter checks it.
+                let x = self.get(idx);
+                let at = self.b.ins().iadd_imm_s(x, bias as i64);
+                let frame = self.img.codes[self.code.index()].frame_size as i64;
+                let out = self
+                    .b
+                    .ins()
+                    .icmp_imm_s(IntCC::UnsignedGreaterThanOrEqual, at, frame);
+                self.fault_if(out, WHY_BAD_ADDRESS);
+                let bytes = self.b.ins().ishl_imm_s(at, 3);
+                let addr = self.b.ins().iadd(self.fp, bytes);
+                if matches!(op, Op::LoadElemU { .. }) {
+                    let v = self.b.ins().load(I64, flags, addr, 0);
+                    self.set(d, v);
+                } else {
+                    let v = self.get(d);
+                    self.b.ins().store(flags, v, addr, 0);
+                }
+            }
+            Op::FillElems {
+                i,
+                v,
+                lim,
+                desc,
+                shift,
+            } => self.fill(i, v, lim, desc.index(), shift),
+            _ => return false,
+        }
+        true
+    }
+
+    /// The element index `idx - lo`, checked against the descriptor's
+    /// length (the interpreter's index fault otherwise).
+    fn index(&mut self, idx: Slot, desc: ArrayIdx) -> Value {
+        let ad = self.img.arrays[desc.index()];
+        let x = self.get(idx);
+        let i = self.b.ins().iadd_imm_s(x, ad.lo.wrapping_neg());
+        let out = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::UnsignedGreaterThanOrEqual, i, ad.len as i64);
+        self.fault_if(out, WHY_OPERANDS);
+        i
+    }
+
+    /// `offset + i * stride` in slots.
+    fn relative(&mut self, i: Value, desc: ArrayIdx) -> Value {
+        let ad = self.img.arrays[desc.index()];
+        let scaled = self.b.ins().imul_imm_s(i, ad.stride as i64);
+        self.b.ins().iadd_imm_s(scaled, ad.offset as i64)
+    }
+
+    /// The checked address of element `idx` of the frame array `desc`.
+    pub(super) fn element(&mut self, idx: Slot, desc: ArrayIdx) -> Value {
+        let i = self.index(idx, desc);
+        let rel = self.relative(i, desc);
+        let bytes = self.b.ins().ishl_imm_s(rel, 3);
+        self.b.ins().iadd(self.fp, bytes)
+    }
+
+    /// The machine address of absolute slot `a`, which must lie in memory
+    /// (a `BadAddress` fault otherwise).
+    fn checked_address(&mut self, a: Value) -> Value {
+        let out = self
+            .b
+            .ins()
+            .icmp(IntCC::UnsignedGreaterThanOrEqual, a, self.len);
+        self.fault_if(out, WHY_BAD_ADDRESS);
+        let bytes = self.b.ins().ishl_imm_s(a, 3);
+        self.b.ins().iadd(self.mem, bytes)
+    }
+
+    /// `FillElems`: when the whole range `i ..= lim` lies in the array and
+    /// `lim + 1` fits the type, every element gets `v`, `i` becomes
+    /// `lim + 1` and the interrupt word is looked at once; otherwise
+    /// nothing happens (the loop after it does the work).
+    fn fill(&mut self, i: Slot, v: Slot, lim: i32, desc: usize, shift: u8) {
+        let ad = self.img.arrays[desc];
+        let last = lim as i64;
+        let after = wrap_s((last + 1) as u64, shift);
+        let b = last.wrapping_sub(ad.lo);
+        if after as i64 != last + 1 || b < 0 || b as u64 >= ad.len {
+            return;
+        }
+        let start = self.get(i);
+        let first = self.b.ins().iadd_imm_s(start, ad.lo.wrapping_neg());
+        let in_order = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedLessThanOrEqual, start, last);
+        let inside = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, first, 0);
+        let go = self.b.ins().band(in_order, inside);
+        let looping = self.b.create_block();
+        let k = self.b.append_block_param(looping, I64);
+        let done = self.b.create_block();
+        let value = self.get(v);
+        let args = [cranelift_codegen::ir::BlockArg::Value(first)];
+        self.b.ins().brif(go, looping, &args, done, &[]);
+        self.b.switch_to_block(looping);
+        let slot = self.b.ins().iadd_imm_s(k, ad.offset as i64);
+        let bytes = self.b.ins().ishl_imm_s(slot, 3);
+        let at = self.b.ins().iadd(self.fp, bytes);
+        self.b.ins().store(MemFlagsData::trusted(), value, at, 0);
+        let next = self.b.ins().iadd_imm_s(k, 1);
+        let more = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedLessThanOrEqual, next, b);
+        let after_fill = self.b.create_block();
+        let args = [cranelift_codegen::ir::BlockArg::Value(next)];
+        self.b.ins().brif(more, looping, &args, after_fill, &[]);
+        self.b.switch_to_block(after_fill);
+        let end = self.b.ins().iconst(I64, after as i64);
+        self.set(i, end);
+        self.tick();
+        self.b.ins().jump(done, &[]);
+        self.b.switch_to_block(done);
+    }
+}
