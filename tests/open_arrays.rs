@@ -290,3 +290,38 @@ END_PROGRAM
     plc::run(&mut plc, 1);
     assert_eq!(lit(&plc, "s"), "24");
 }
+
+#[test]
+fn the_native_engine_leaves_open_array_indexing_to_the_interpreter() {
+    // The native tier does not lower OpenIndexStep yet: the block that
+    // indexes an ARRAY[*] runs in the interpreter, the others natively,
+    // with the same results.
+    let src = format!(
+        "{SUM}
+PROGRAM Main
+VAR a : ARRAY[3..5] OF INT := [7, 8, 9]; s : DINT; n : DINT; END_VAR
+s := SumOf(a);
+n := n + 1;
+END_PROGRAM
+"
+    );
+    let options = plcrun::Options {
+        engine: plcrun::Engine::Native,
+        ..plcrun::Options::default()
+    };
+    let mut plc = plcrun::Plc::compile_files(&[("p.st", src.as_str())], &options).unwrap();
+    plc::run(&mut plc, 2);
+    assert_eq!(lit(&plc, "s"), "24");
+    assert_eq!(lit(&plc, "n"), "2");
+    let report = plc.native_report().expect("a report");
+    if cfg!(all(feature = "native", target_arch = "x86_64")) {
+        assert!(report.compiled.iter().any(|b| b == "Main"), "{report:?}");
+        assert!(
+            report
+                .fell_back
+                .iter()
+                .any(|f| f.block == "SumOf" && f.reason.contains("ARRAY[*]")),
+            "{report:?}"
+        );
+    }
+}

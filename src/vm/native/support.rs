@@ -20,6 +20,7 @@ fn refused(img: &Image, op: &Op) -> Option<&'static str> {
     match *op {
         Op::Sfc { .. } => Some("SFC charts run in the interpreter"),
         Op::CallHost { .. } => Some("host-registered POUs run in the interpreter"),
+        Op::OpenIndexStep { .. } => Some("ARRAY[*] indexing is not lowered yet"),
         // The interpreter would panic on these: leave them to it.
         Op::ModSI { imm: 0, .. } => Some("MOD by a zero immediate"),
         Op::Shift { bits, .. } if bits == 0 || bits > 64 => Some("shift of an unusual width"),
