@@ -75,11 +75,15 @@ benches=(
 # build REV: prints the path of a release plcrun binary of REV.
 build() {
     local rev=$1 sha out src
+    # A function called in `$(...) || exit` runs without errexit: every
+    # step checks its own status, so a failed build never leaves a stale
+    # binary under the revision's name.
     if [ "$rev" = WORK ]; then
-        (cd "$root" && cargo build --release --quiet --bin plcrun >&2)
+        (cd "$root" && cargo build --release --quiet --bin plcrun >&2) ||
+            { echo "ab.sh: building the working tree failed" >&2; return 1; }
         out="$ab_dir/bin/WORK"
-        mkdir -p "$ab_dir/bin"
-        cp "$root/target/release/plcrun" "$out"
+        mkdir -p "$ab_dir/bin" || return 1
+        cp "$root/target/release/plcrun" "$out" || return 1
         echo "$out"
         return
     fi
@@ -87,16 +91,21 @@ build() {
         { echo "ab.sh: $rev is not a commit" >&2; exit 2; }
     out="$ab_dir/bin/$sha"
     if [ ! -x "$out" ]; then
-        src="$ab_dir/src"
-        mkdir -p "$ab_dir/bin"
-        rm -rf "$src"
-        mkdir -p "$src"
-        git -C "$root" archive "$sha" | tar -x -C "$src"
-        echo "ab.sh: building $rev ($sha)" >&2
-        # One target directory for every revision: the dependencies are
-        # built once; only plcrun itself is rebuilt per revision.
-        (cd "$src" && CARGO_TARGET_DIR="$ab_dir/target" cargo build --release --quiet --bin plcrun >&2)
-        cp "$ab_dir/target/release/plcrun" "$out"
+        mkdir -p "$ab_dir/bin" || return 1
+        # One target directory for every revision (the dependencies are
+        # built once; only plcrun itself is rebuilt per revision), so two
+        # runs at once take turns: the lock covers the source tree, the
+        # build and the copy of its binary.
+        (
+            flock 9
+            src="$ab_dir/src"
+            rm -rf "$src" && mkdir -p "$src" || exit 1
+            git -C "$root" archive "$sha" | tar -x -C "$src" || exit 1
+            echo "ab.sh: building $rev ($sha)" >&2
+            (cd "$src" && CARGO_TARGET_DIR="$ab_dir/target" cargo build --release --quiet --bin plcrun >&2) ||
+                exit 1
+            cp "$ab_dir/target/release/plcrun" "$out.part" && mv "$out.part" "$out"
+        ) 9>"$ab_dir/lock" || { echo "ab.sh: building $rev failed" >&2; return 1; }
     fi
     echo "$out"
 }
