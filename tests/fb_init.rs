@@ -421,6 +421,10 @@ fn online_change_calls_fb_exit_and_fb_reinit_on_the_instances_it_copies() {
         .online_change(compile(&declared))
         .expect("the change applies");
     assert_eq!(report.copied, ["P.a", "P.b"]);
+    assert!(
+        report.to_string().contains("copied P.a\ncopied P.b\n"),
+        "{report}"
+    );
     assert_eq!(lit(&plc, "exits"), "2");
     assert_eq!(lit(&plc, "reinits"), "2");
     assert_eq!(lit(&plc, "saved"), "0");

@@ -100,11 +100,21 @@ impl Drop for Monitor {
     }
 }
 
-/// The literal value of `path` as the API gives it.
+/// The literal value of `path` as the API gives it. Until the first
+/// cycle's values are published the API says `null`: that is waited out
+/// (up to 5 s; CI saw it on a loaded machine).
 fn value(addr: &str, path: &str) -> String {
-    let a = get(addr, &format!("/api/variables/{path}"));
-    assert_eq!(a.status, 200, "{path}: {a:?}");
-    a.json()["value"].as_str().unwrap().to_string()
+    let deadline = Instant::now() + Duration::from_secs(5);
+    loop {
+        let a = get(addr, &format!("/api/variables/{path}"));
+        assert_eq!(a.status, 200, "{path}: {a:?}");
+        let json = a.json();
+        if let Some(v) = json["value"].as_str() {
+            return v.to_string();
+        }
+        assert!(Instant::now() < deadline, "{path} has no value: {json}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
 }
 
 /// Waits (up to 5 s) until `path` reads `expected`.

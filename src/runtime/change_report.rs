@@ -59,7 +59,8 @@ impl ChangeReport {
 
 impl fmt::Display for ChangeReport {
     /// One line per path: `kept Main.t`, `initialised Main.extra`,
-    /// `dropped Main.old`, `retyped Main.x (INT -> REAL)`, `chart restarted Main`.
+    /// `dropped Main.old`, `retyped Main.x (INT -> REAL)`, `chart restarted Main`,
+    /// `copied Main.axis`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         for p in &self.kept {
             writeln!(f, "kept {p}")?;
@@ -76,12 +77,15 @@ impl fmt::Display for ChangeReport {
         for p in &self.charts_restarted {
             writeln!(f, "chart restarted {p}")?;
         }
+        for p in &self.copied {
+            writeln!(f, "copied {p}")?;
+        }
         Ok(())
     }
 }
 
-/// Why an online change was refused. The running program is left exactly
-/// as it was.
+/// Why an online change was refused (the running program is left exactly
+/// as it was), or, for [`OnlineChangeError::Fault`], stopped the PLC.
 #[derive(Debug, Clone)]
 pub enum OnlineChangeError {
     /// The new sources do not compile.
