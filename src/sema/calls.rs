@@ -469,13 +469,8 @@ impl BodyBuilder<'_> {
             );
             return;
         }
-        if !arg.writable && !p.constant {
-            self.in_out_not_writable(p, e.span);
+        if !self.in_out_bindable(p, &arg, e.span) {
             return;
-        }
-        // The callee does not write a CONSTANT in-out.
-        if !p.constant {
-            self.note_input_write(&arg, e.span);
         }
         let a = self.address_of(&arg);
         let ptr_place = PlaceRef {

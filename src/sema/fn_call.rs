@@ -135,13 +135,8 @@ impl BodyBuilder<'_> {
                     self.mismatch(e.span, Ty::T(arg.ty), prm.ty, &what);
                     return None;
                 }
-                if !arg.writable && !prm.constant {
-                    self.in_out_not_writable(prm, e.span);
+                if !self.in_out_bindable(prm, &arg, e.span) {
                     return None;
-                }
-                // The callee does not write a CONSTANT in-out.
-                if !prm.constant {
-                    self.note_input_write(&arg, e.span);
                 }
                 Some(Ready::Pointer(self.address_of(&arg)))
             }

@@ -6,9 +6,25 @@
 
 use super::body::BodyBuilder;
 use super::calls::Param;
+use super::emit::PlaceRef;
 use crate::source::Span;
 
 impl BodyBuilder<'_> {
+    /// Whether `arg` may be bound to in-out `p`: a variable the caller may
+    /// write, or any variable for a CONSTANT in-out (E412 otherwise). The
+    /// binding counts as a write of `arg` unless `p` is CONSTANT (the
+    /// callee does not write it).
+    pub(super) fn in_out_bindable(&mut self, p: &Param, arg: &PlaceRef, at: Span) -> bool {
+        if !arg.writable && !p.constant {
+            self.in_out_not_writable(p, at);
+            return false;
+        }
+        if !p.constant {
+            self.note_input_write(arg, at);
+        }
+        true
+    }
+
     /// E412: the variable given to in-out `p` cannot be written.
     pub(super) fn in_out_not_writable(&mut self, p: &Param, at: Span) {
         self.diags.push(

@@ -224,12 +224,8 @@ impl BodyBuilder<'_> {
                 return None;
             }
         };
-        if !arg.writable && !prm.constant {
-            self.in_out_not_writable(prm, e.span);
+        if !self.in_out_bindable(prm, &arg, e.span) {
             return None;
-        }
-        if !prm.constant {
-            self.note_input_write(&arg, e.span);
         }
         let mut slots = vec![self.address_of(&arg)];
         slots.extend(bounds);
