@@ -15,17 +15,44 @@ pub(super) fn unsupported(img: &Image, block: &CodeBlock) -> Option<String> {
     })
 }
 
+/// How the tier runs one instruction.
+enum Lowering {
+    /// Inline machine code (lower/).
+    Inline,
+    /// A call into Rust that runs it as the interpreter does (helpers.rs,
+    /// `step`).
+    OutOfLine,
+    /// Not at all: its block stays in the interpreter, for this reason.
+    Refused(&'static str),
+}
+
 /// Why the tier does not compile `op`, or `None` when it does.
 fn refused(img: &Image, op: &Op) -> Option<&'static str> {
-    match *op {
-        Op::Sfc { .. } => Some("SFC charts run in the interpreter"),
-        Op::CallHost { .. } => Some("host-registered POUs run in the interpreter"),
-        Op::OpenIndexStep { .. } => Some("ARRAY[*] indexing is not lowered yet"),
-        // The interpreter would panic on these: leave them to it.
-        Op::ModSI { imm: 0, .. } => Some("MOD by a zero immediate"),
-        Op::Shift { bits, .. } if bits == 0 || bits > 64 => Some("shift of an unusual width"),
-        Op::FillElems { desc, .. } if img.arrays[desc.index()].stride != 1 => {
+    match (*op, lowering(op)) {
+        (Op::FillElems { desc, .. }, _) if img.arrays[desc.index()].stride != 1 => {
             Some("array fill over a strided array")
+        }
+        (_, Lowering::Refused(why)) => Some(why),
+        _ => None,
+    }
+}
+
+/// Whether `op` runs out of line through the `step` helper.
+pub(super) fn out_of_line(op: &Op) -> bool {
+    matches!(lowering(op), Lowering::OutOfLine)
+}
+
+/// How `op` runs (the array a `FillElems` fills is checked by
+/// [`refused`]).
+fn lowering(op: &Op) -> Lowering {
+    match *op {
+        Op::Sfc { .. } => Lowering::Refused("SFC charts run in the interpreter"),
+        Op::CallHost { .. } => Lowering::Refused("host-registered POUs run in the interpreter"),
+        Op::OpenIndexStep { .. } => Lowering::Refused("ARRAY[*] indexing is not lowered yet"),
+        // The interpreter would panic on these: leave them to it.
+        Op::ModSI { imm: 0, .. } => Lowering::Refused("MOD by a zero immediate"),
+        Op::Shift { bits, .. } if bits == 0 || bits > 64 => {
+            Lowering::Refused("shift of an unusual width")
         }
         // Inline machine code (lower/).
         Op::Nop
@@ -109,7 +136,7 @@ fn refused(img: &Image, op: &Op) -> Option<&'static str> {
         | Op::CallNativeInd { .. }
         | Op::CallFn { .. }
         | Op::Clock { .. }
-        | Op::Ret => None,
+        | Op::Ret => Lowering::Inline,
         // Out of line: a call into Rust that runs the instruction as the
         // interpreter does (helpers.rs, `step`).
         Op::PowS { .. }
@@ -140,42 +167,6 @@ fn refused(img: &Image, op: &Op) -> Option<&'static str> {
         | Op::RefStore { .. }
         | Op::RefView { .. }
         | Op::PtrToInt { .. }
-        | Op::IntToPtr { .. } => None,
+        | Op::IntToPtr { .. } => Lowering::OutOfLine,
     }
-}
-
-/// Whether `op` runs out of line through the `step` helper.
-pub(super) fn out_of_line(op: &Op) -> bool {
-    matches!(
-        op,
-        Op::PowS { .. }
-            | Op::PowF32 { .. }
-            | Op::MathF32 { .. }
-            | Op::PowF64 { .. }
-            | Op::MathF64 { .. }
-            | Op::Convert { .. }
-            | Op::MinMaxF32 { .. }
-            | Op::MinMaxF64 { .. }
-            | Op::Mux { .. }
-            | Op::MulTimeF64 { .. }
-            | Op::DivTimeF64 { .. }
-            | Op::MemCopy { .. }
-            | Op::CmpStr { .. }
-            | Op::StrMov { .. }
-            | Op::StrCall { .. }
-            | Op::StrConst { .. }
-            | Op::ToStr { .. }
-            | Op::FromStr { .. }
-            | Op::RefMake { .. }
-            | Op::RefAddr { .. }
-            | Op::RefIndex { .. }
-            | Op::PtrAdd { .. }
-            | Op::RefValid { .. }
-            | Op::FaultNullItf
-            | Op::RefLoad { .. }
-            | Op::RefStore { .. }
-            | Op::RefView { .. }
-            | Op::PtrToInt { .. }
-            | Op::IntToPtr { .. }
-    )
 }
