@@ -307,6 +307,8 @@ mod timer_pt_changes;
 mod twincat_import;
 #[path = "typing_compat.rs"]
 mod typing_compat;
+#[path = "unions.rs"]
+mod unions;
 #[path = "var_config.rs"]
 mod var_config;
 #[path = "var_config_elements.rs"]

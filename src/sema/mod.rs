@@ -94,6 +94,7 @@ mod struct_returns;
 mod suggest;
 mod typeck;
 mod undeclared;
+mod unions;
 
 // Phase 3: linking.
 mod link;

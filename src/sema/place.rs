@@ -12,7 +12,7 @@ use crate::ir::image::ArrayDesc;
 use crate::ir::op::NativeFb;
 use crate::ir::op::{Op, Slot};
 use crate::ir::type_table::{
-    Dim, Member, MemberKind, TypeDef, TypeId, TypeKind, TypeTable, step_layout,
+    Dim, Member, MemberKind, RefFlavor, TypeDef, TypeId, TypeKind, TypeTable, step_layout,
 };
 use crate::source::Span;
 use crate::syntax::ast::{DirectAddress, Expr, ExprKind, Ident, PouKind};
@@ -188,6 +188,9 @@ impl BodyBuilder<'_> {
             return None;
         }
         let b = self.place(base)?;
+        if let Some(p) = self.union_member(&b, name) {
+            return Some(p);
+        }
         let def = self.types.get(b.ty).clone();
         let (offset, ty, writable, reason) = match &def.kind {
             TypeKind::Struct { fields } => self.struct_field(&def, fields, name, &b)?,
@@ -381,6 +384,10 @@ impl BodyBuilder<'_> {
             return self.pointer_index(e, base, indexes);
         }
         let b = self.place(base)?;
+        if let Place::View { r, .. } = b.place {
+            // An array member of a UNION: its elements are byte views.
+            return self.reference_element(e, r, b.ty, RefFlavor::Pointer, indexes);
+        }
         if self.is_open_array(b.ty) {
             return self.open_array_element(e, base, &b, indexes);
         }

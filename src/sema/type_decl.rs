@@ -43,6 +43,9 @@ impl Declarer<'_> {
                 let mut def = self.types.get(base).clone();
                 def.name = decl.name.name.clone();
                 let id = self.place_named_type(key, def);
+                if let Some(u) = self.model.unions.get(&base).cloned() {
+                    self.model.unions.insert(id, u);
+                }
                 // Field defaults belong to the named type too.
                 if let Some(ci) = self.model.type_inits.get(&base).cloned() {
                     self.model.type_inits.insert(id, ci);
@@ -84,6 +87,18 @@ impl Declarer<'_> {
                 self.subrange_type(base, lo, hi, *span, local)
             }
             TypeSpec::Enum { base, values, span } => self.enum_type(base, values, *span, local),
+            TypeSpec::Struct {
+                fields,
+                union: true,
+                extends,
+                ..
+            } => {
+                if let Some(base) = extends {
+                    self.diags
+                        .error("E219", base.span, "a UNION cannot extend another type");
+                }
+                self.union_type(fields, local)
+            }
             TypeSpec::Struct {
                 extends, fields, ..
             } => self.struct_type(extends.as_ref(), fields, local),

@@ -304,6 +304,9 @@ pub enum TypeSpec {
         fields: Vec<VarDecl>,
         /// Where.
         span: Span,
+        /// `UNION ... END_UNION` (CODESYS, TwinCAT): the members share
+        /// their memory (docs/semantics.md §26).
+        union: bool,
     },
     /// `REF_TO T`, `POINTER TO T`, `REFERENCE TO T`.
     Ref {

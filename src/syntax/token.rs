@@ -355,6 +355,8 @@ pub enum Kw {
     EndType,
     Struct,
     EndStruct,
+    Union,
+    EndUnion,
     Array,
     Of,
     String,
@@ -433,7 +435,7 @@ pub enum Kw {
 }
 
 /// Every keyword with its spelling.
-pub const KEYWORDS: [(&str, Kw); 92] = [
+pub const KEYWORDS: [(&str, Kw); 94] = [
     ("PROGRAM", Kw::Program),
     ("END_PROGRAM", Kw::EndProgram),
     ("FUNCTION", Kw::Function),
@@ -459,6 +461,8 @@ pub const KEYWORDS: [(&str, Kw); 92] = [
     ("END_TYPE", Kw::EndType),
     ("STRUCT", Kw::Struct),
     ("END_STRUCT", Kw::EndStruct),
+    ("UNION", Kw::Union),
+    ("END_UNION", Kw::EndUnion),
     ("ARRAY", Kw::Array),
     ("OF", Kw::Of),
     ("STRING", Kw::String),

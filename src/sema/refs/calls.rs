@@ -7,7 +7,7 @@ use crate::ir::op::Op;
 use crate::ir::type_table::{MemberKind, RefFlavor, TypeId, TypeTable};
 use crate::sema::body::BodyBuilder;
 use crate::sema::consts::Const;
-use crate::sema::emit::{Ty, Val};
+use crate::sema::emit::{Place, Ty, Val};
 use crate::syntax::ast::{Arg, Call, Expr, ExprKind, PouKind};
 
 /// The built-in a call names, if it is one of ours.
@@ -99,6 +99,10 @@ impl BodyBuilder<'_> {
             self.open_array_misused(x.span);
             return Val::error();
         }
+        if let Place::View { r, .. } = p.place {
+            // A byte view (a UNION member, `p^` of one) is its own address.
+            return Val::Slot(r, intern_ref(self.types, p.ty, flavor));
+        }
         let len = self.types.size(p.ty).max(1);
         let layout = layout_code(self.types, p.ty);
         let addr = self.address_of(&p);
@@ -135,7 +139,7 @@ impl BodyBuilder<'_> {
             self.open_array_misused(x.span);
             return Val::error();
         }
-        match size_bytes(self.types, ty) {
+        match self.union_bytes(ty).or_else(|| size_bytes(self.types, ty)) {
             Some(b) => Val::Const(Const::Int(b as i128), Ty::AnyInt),
             None => Val::error(),
         }

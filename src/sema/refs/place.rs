@@ -95,6 +95,19 @@ impl BodyBuilder<'_> {
         indexes: &[Expr],
     ) -> Option<PlaceRef> {
         let (slot, target, flavor) = self.reference_operand(r)?;
+        self.reference_element(e, slot, target, flavor, indexes)
+    }
+
+    /// Element `indexes` of the array of type `target` reference `slot`
+    /// designates.
+    pub(in crate::sema) fn reference_element(
+        &mut self,
+        e: &Expr,
+        slot: Slot,
+        target: TypeId,
+        flavor: RefFlavor,
+        indexes: &[Expr],
+    ) -> Option<PlaceRef> {
         let (dims, elem) = self.array_shape(e, target, indexes.len())?;
         let vals = self.index_values(indexes)?;
         let idx = self.dynamic_index(&vals, &dims);

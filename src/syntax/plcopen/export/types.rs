@@ -142,6 +142,12 @@ impl Exporter<'_> {
                     base.span,
                 ));
             }
+            TypeSpec::Struct {
+                union: true, span, ..
+            } => {
+                // TC6 XML has no union.
+                return Err(self.refuse("a UNION".to_string(), *span));
+            }
             TypeSpec::Struct { fields, .. } => {
                 w.open("struct", &[]);
                 for f in fields {
