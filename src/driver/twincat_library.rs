@@ -28,8 +28,8 @@ fn items() -> impl Iterator<Item = (&'static str, &'static str)> {
     })
 }
 
-/// The names (upper case) of the POUs, types, interfaces and global
-/// variables `sources` declare.
+/// The names (upper case) of the POUs, types and interfaces `sources`
+/// declare (the library has no global variables).
 fn declared(sources: &SourceMap) -> HashSet<String> {
     let mut names = HashSet::new();
     for (i, file) in sources.files().iter().enumerate() {
@@ -43,10 +43,10 @@ fn declared(sources: &SourceMap) -> HashSet<String> {
                 Item::Interface(i) => {
                     names.insert(i.name.key());
                 }
-                Item::Globals(b) => {
-                    names.extend(b.decls.iter().flat_map(|d| d.names.iter().map(|n| n.key())))
-                }
-                Item::Configuration(_) => {}
+                // A global variable may bear its type's name
+                // (`GetCpuCounter : GETCPUCOUNTER;`, TcUnit): it does not
+                // replace the library's POU or type.
+                Item::Globals(_) | Item::Configuration(_) => {}
             }
         }
     }
