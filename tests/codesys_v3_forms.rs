@@ -388,3 +388,39 @@ END_PROGRAM
         [("E301".to_string(), "18:8".to_string())]
     );
 }
+
+/// `THIS` without `^` is a `POINTER TO` the instance (E918 outside a
+/// function block); a standard function takes a positional argument after
+/// a formal one at its own position (W487), and a parameter given both
+/// ways is E404.
+#[test]
+fn this_is_a_pointer_and_standard_functions_take_mixed_arguments_by_position() {
+    let src = "
+FUNCTION_BLOCK FB_Node
+VAR_INPUT v : INT; END_VAR
+VAR self : POINTER TO FB_Node; END_VAR
+self := THIS;
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR a, b : FB_Node; va, vb : INT; same : BOOL; pos : INT; END_VAR
+a(v := 3); b(v := 4);
+va := a.self^.v; vb := b.self^.v;
+same := a.self = ADR(a);
+pos := FIND(IN1 := 'a.b', '.');
+END_PROGRAM";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "va"), "3");
+    assert_eq!(lit(&plc, "vb"), "4");
+    assert_eq!(lit(&plc, "same"), "TRUE");
+    assert_eq!(lit(&plc, "pos"), "2");
+    let codes = |body: &str| {
+        let src = format!("PROGRAM P VAR p : POINTER TO INT; n : INT; END_VAR {body} END_PROGRAM");
+        error_codes(&[("t.st", &src)])
+            .into_iter()
+            .map(|(c, _)| c)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(codes("p := THIS;"), ["E918"]);
+    assert_eq!(codes("n := FIND(IN2 := 'a', 'b.');"), ["E404"]);
+}

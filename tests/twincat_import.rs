@@ -439,3 +439,45 @@ fn the_hex_string_case_and_wstring_length_functions_of_the_tc2_libraries() {
         "cycle,time,s1,s2,s3,s4,s5,s6,lc,uc,n\n0,T#0s,'ABCD','abcd','000F','','1234567890ABCDEF','0','tcunit 1.3-xyz','TCUNIT 1.3-XYZ',5\n"
     );
 }
+
+/// TcUnit's own forms: a suite registers itself with `THIS` (a pointer to
+/// its instance) in a global array and is called through it
+/// (`addresses[i]^.Method()` in an expression); a global instance named
+/// like its type (`GetCpuCounter : GETCPUCOUNTER`, which keeps the library
+/// block); a library version constant of type `ST_LibVersion`; `FIND`
+/// with a formal then a positional argument (TwinCAT places it at its
+/// position: STR2).
+#[test]
+fn a_block_registers_itself_with_this_and_tcunit_s_other_forms_load() {
+    let suite = pou(
+        "FB_Suite",
+        "FUNCTION_BLOCK FB_Suite\nVAR n : INT; registered : BOOL; END_VAR\n",
+        "IF NOT registered THEN\n    GVL.count := GVL.count + 1;\n    GVL.suites[GVL.count] := THIS;\n    registered := TRUE;\nEND_IF\nn := n + 1;\n",
+        "    <Method Name=\"Done\" Id=\"{00000000-0000-0000-0000-000000000003}\">\n      <Declaration><![CDATA[METHOD Done : BOOL\n]]></Declaration>\n      <Implementation>\n        <ST><![CDATA[Done := n >= 2;]]></ST>\n      </Implementation>\n    </Method>\n",
+    );
+    let gvl = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <GVL Name=\"GVL\" Id=\"{00000000-0000-0000-0000-000000000004}\">\n    <Declaration><![CDATA[{attribute 'qualified_only'}\nVAR_GLOBAL\n    suites : ARRAY[1..4] OF POINTER TO FB_Suite;\n    count : INT;\n    GetCpuCounter : GETCPUCOUNTER;\nEND_VAR\nVAR_GLOBAL CONSTANT\n    stLibVersion_Mine : ST_LibVersion := (iMajor := 1, iMinor := 3, iBuild := 2, sVersion := '1.3.2');\nEND_VAR\n]]></Declaration>\n  </GVL>\n</TcPlcObject>\n";
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    a, b : FB_Suite;\n    nDone : INT;\n    i : INT;\n    nMinor : UINT;\n    nDot : INT;\n    nLo : UDINT;\nEND_VAR\n",
+        "a();\nb();\nnDone := 0;\nFOR i := 1 TO GVL.count DO\n    IF GVL.suites[i]^.Done() THEN nDone := nDone + 1; END_IF\nEND_FOR\nnMinor := GVL.stLibVersion_Mine.iMinor;\nnDot := FIND(STR1 := GVL.stLibVersion_Mine.sVersion, '.');\nGVL.GetCpuCounter();\nnLo := GVL.GetCpuCounter.cpuCntLoDW;\n",
+        "",
+    );
+    let dir = project(&[
+        ("FB_Suite.TcPOU", &suite),
+        ("GVL.TcGVL", gvl),
+        ("MAIN.TcPOU", &main),
+    ]);
+    let out = plcrun_ok(&[
+        &dir,
+        "--cycles",
+        "3",
+        "--trace",
+        "count,nDone,nMinor,nDot,nLo",
+    ]);
+    // Both suites registered in the first cycle; Done from the second
+    // call on. The counter is the clock in 100 ns units: 10 ms = 100 000.
+    assert_eq!(
+        out,
+        "cycle,time,count,nDone,nMinor,nDot,nLo\n0,T#0s,2,0,3,2,0\n1,T#10ms,2,2,3,2,100000\n2,T#20ms,2,2,3,2,200000\n"
+    );
+}

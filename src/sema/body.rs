@@ -114,8 +114,11 @@ impl<'a> BodyBuilder<'a> {
             frame_size = end;
         }
         for c in std::mem::take(&mut self.owned_blocks) {
-            self.out.codes[c.index()].frame_size = frame_size;
+            let block = &mut self.out.codes[c.index()];
+            block.frame_size = frame_size;
+            super::oop::this_pointer::patch_this_lengths(&mut block.ops, frame_size);
         }
+        super::oop::this_pointer::patch_this_lengths(&mut f.ops, frame_size);
         for (at, callee) in std::mem::take(&mut f.fixups) {
             self.out.fixups.push((code, at, callee));
         }

@@ -47,6 +47,9 @@ impl BodyBuilder<'_> {
                 if key == "NULL" && self.lookup_var(&key).is_none() {
                     return self.null_value();
                 }
+                if key == "THIS" && self.lookup_var(&key).is_none() {
+                    return self.this_pointer(e.span);
+                }
                 if self.lookup_var(&key).is_none() && self.unqualified_enum(id) {
                     return Val::error();
                 }

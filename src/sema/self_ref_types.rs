@@ -68,6 +68,33 @@ impl Declarer<'_> {
         self.reserved_structs.get(&key).copied()
     }
 
+    /// The type of the function block `target` names, laid out but its
+    /// body not emitted yet: a reference to it needs only its type, and
+    /// emitting the body now could read globals not declared yet
+    /// (`suites : ARRAY[1..4] OF POINTER TO FB_Suite;` before `count :
+    /// INT;` in a list, and FB_Suite's body writing `count`). `None` for
+    /// any other name, and for a block being laid out (the caller's path
+    /// reports or resolves that).
+    pub(super) fn fb_laid_out(&mut self, target: &TypeSpec) -> Option<TypeId> {
+        let TypeSpec::Named(id) = target else {
+            return None;
+        };
+        let key = id.key();
+        if crate::elementary::ElemType::from_name(&id.name).is_some()
+            || self.type_decls.contains_key(&key)
+        {
+            return None;
+        }
+        let &p = self.model.pou_index.get(&key)?;
+        if self.model.pous[p].kind != PouKind::FunctionBlock
+            || self.pou_state[p] == LayoutState::InProgress
+        {
+            return None;
+        }
+        self.layout_pou(p);
+        (self.pou_state[p] == LayoutState::Done).then(|| self.model.pous[p].ty)
+    }
+
     /// The id of the function block named `key` when it is the POU being
     /// laid out (reserved on first use), for a declaration that refers to
     /// it through a pointer slot.

@@ -242,6 +242,17 @@ impl BodyBuilder<'_> {
         Some(k)
     }
 
+    /// E404: the parameter at one position given twice (once by name,
+    /// once by position).
+    fn std_argument_twice(&mut self, fname: &str, param: Option<&String>, span: Span) {
+        let which = param.map_or(String::new(), |p| format!(" `{p}`"));
+        self.diags.error(
+            "E404",
+            span,
+            format!("{fname}'s parameter{which} is given twice (by name and by position)"),
+        );
+    }
+
     /// Checks and emits a call of a standard function; `None` if `id` is not one.
     pub(super) fn std_call(
         &mut self,
@@ -259,15 +270,21 @@ impl BodyBuilder<'_> {
         let names = param_names(std, args.len());
         let mut exprs: Vec<Option<&crate::syntax::ast::Expr>> = vec![None; names.len()];
         let formal = args.iter().any(|a| !matches!(a, Arg::Positional(_)));
+        if formal && args.iter().any(|a| matches!(a, Arg::Positional(_))) {
+            // TwinCAT accepts `FIND(STR1 := s, '.')` (TcUnit): a standard
+            // function's parameters have a fixed order, so each positional
+            // argument takes the parameter at its own position.
+            self.diags.warning(
+                "W487",
+                span,
+                format!("positional and formal arguments mixed in a call of `{fname}` (a CODESYS extension): each positional one goes to the parameter at its position"),
+            );
+        }
         for (i, a) in args.iter().enumerate() {
             match a {
                 Arg::Positional(e) => {
-                    if formal {
-                        self.diags.error(
-                            "E411",
-                            e.span,
-                            "a call must use either formal or non-formal arguments, not both",
-                        );
+                    if exprs.get(i).is_some_and(|x| x.is_some()) {
+                        self.std_argument_twice(&fname, names.get(i), e.span);
                         return Some(Val::error());
                     }
                     if i < exprs.len() {
@@ -278,6 +295,10 @@ impl BodyBuilder<'_> {
                 }
                 Arg::Input { name, value } => {
                     match self.std_input_position(std, args.len(), &names, name) {
+                        Some(k) if exprs[k].is_some() => {
+                            self.std_argument_twice(&fname, names.get(k), name.span);
+                            return Some(Val::error());
+                        }
                         Some(k) => exprs[k] = Some(value),
                         None => {
                             self.diags.error(

@@ -91,7 +91,8 @@ impl BodyBuilder<'_> {
                 _ => None,
             },
             ExprKind::Member(b, n) => {
-                if is_this(b) {
+                if is_this(b) || self.is_list_qualifier(b, n) {
+                    // `THIS^.x`, or `GVL.x`: a global named with its list.
                     return self.lookup_var(&n.key()).map(|v| v.ty);
                 }
                 let t = self.designated(self.static_type(b)?);

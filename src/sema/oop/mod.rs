@@ -34,6 +34,7 @@ pub(super) mod methods;
 pub(super) mod model;
 pub(super) mod property;
 mod this_call;
+pub(super) mod this_pointer;
 pub(super) mod var_access;
 
 pub(super) use model::OopInfo;

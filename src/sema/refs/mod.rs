@@ -32,7 +32,11 @@ pub(super) fn ref_parts(types: &TypeTable, t: TypeId) -> Option<(TypeId, RefFlav
 }
 
 /// The reference type of `flavor` to `target` (interned).
-pub(super) fn intern_ref(types: &mut TypeTable, target: TypeId, flavor: RefFlavor) -> TypeId {
+pub(in crate::sema) fn intern_ref(
+    types: &mut TypeTable,
+    target: TypeId,
+    flavor: RefFlavor,
+) -> TypeId {
     let name = match flavor {
         RefFlavor::RefTo => format!("REF_TO {}", types.name(target)),
         RefFlavor::Pointer => format!("POINTER TO {}", types.name(target)),

@@ -20,7 +20,10 @@ impl Declarer<'_> {
     ) -> TypeId {
         let t = match self.reference_to_unfinished(target) {
             Some(t) => t,
-            None => self.resolve_type(target, local),
+            None => match self.fb_laid_out(target) {
+                Some(t) => t,
+                None => self.resolve_type(target, local),
+            },
         };
         let flavor = match kind {
             RefKind::RefTo => RefFlavor::RefTo,
