@@ -446,7 +446,7 @@ fn the_hex_string_case_and_wstring_length_functions_of_the_tc2_libraries() {
 /// like its type (`GetCpuCounter : GETCPUCOUNTER`, which keeps the library
 /// block); a library version constant of type `ST_LibVersion`; `FIND`
 /// with a formal then a positional argument (TwinCAT places it at its
-/// position: STR2).
+/// position: STR2); `--trace GVL.count` names a global with its list.
 #[test]
 fn a_block_registers_itself_with_this_and_tcunit_s_other_forms_load() {
     let suite = pou(
@@ -472,12 +472,12 @@ fn a_block_registers_itself_with_this_and_tcunit_s_other_forms_load() {
         "--cycles",
         "3",
         "--trace",
-        "count,nDone,nMinor,nDot,nLo",
+        "GVL.count,nDone,nMinor,nDot,nLo",
     ]);
     // Both suites registered in the first cycle; Done from the second
     // call on. The counter is the clock in 100 ns units: 10 ms = 100 000.
     assert_eq!(
         out,
-        "cycle,time,count,nDone,nMinor,nDot,nLo\n0,T#0s,2,0,3,2,0\n1,T#10ms,2,2,3,2,100000\n2,T#20ms,2,2,3,2,200000\n"
+        "cycle,time,GVL.count,nDone,nMinor,nDot,nLo\n0,T#0s,2,0,3,2,0\n1,T#10ms,2,2,3,2,100000\n2,T#20ms,2,2,3,2,200000\n"
     );
 }

@@ -127,7 +127,13 @@ pub fn resolve(image: &Image, text: &str, owner: u64) -> Result<VarRef, VarError
     if let Some(r) = super::s7_names::resolve(image, text, owner) {
         return r;
     }
-    let (root, segs) = parse_path(text)?;
+    let (mut root, mut segs) = parse_path(text)?;
+    if let Some(global) = list_qualified(image, &root, &segs) {
+        // `GVL.count`: a global named with its list (TwinCAT, CODESYS),
+        // as the program may name it.
+        root = global;
+        segs.remove(0);
+    }
     let (mut addr, mut ty, mut read_only) = if root.starts_with('%') {
         let key = normalize(&root);
         // The text as declared, else the same place in the process image
@@ -228,6 +234,24 @@ fn member_read_only(kind: MemberKind, constant: bool) -> Option<ReadOnlyReason> 
         MemberKind::Action => Some(ReadOnlyReason::ActionFlag),
         _ => None,
     }
+}
+
+/// The global `root.global` names when `root` is no variable, program or
+/// instance and `global` is a global variable: `root` is then the name of
+/// its global variable list, which plcrun does not keep (any such name
+/// qualifies, as in the program's own code).
+fn list_qualified(image: &Image, root: &str, segs: &[Seg]) -> Option<String> {
+    let Some(Seg::Member(global)) = segs.first() else {
+        return None;
+    };
+    if root.starts_with('%') || find_root(image, root).is_ok() {
+        return None;
+    }
+    image
+        .globals
+        .iter()
+        .any(|r| r.name.eq_ignore_ascii_case(global))
+        .then(|| global.clone())
 }
 
 fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId, Option<ReadOnlyReason>), VarError> {
