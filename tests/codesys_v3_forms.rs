@@ -424,3 +424,30 @@ END_PROGRAM";
     assert_eq!(codes("p := THIS;"), ["E918"]);
     assert_eq!(codes("n := FIND(IN2 := 'a', 'b.');"), ["E404"]);
 }
+
+/// `SIZEOF` in an array bound (TcUnit sizes its message buffer so): of a
+/// structure declared further down, of an elementary type, of a constant;
+/// the bytes are those `SIZEOF` gives in code.
+#[test]
+fn sizeof_sizes_an_array_in_its_bounds() {
+    let src = "
+PROGRAM P
+VAR CONSTANT N : INT := 3; END_VAR
+VAR
+    buffer : ARRAY[0..(N * SIZEOF(ST_Message)) - 1] OF BYTE;
+    words : ARRAY[1..SIZEOF(DWORD)] OF WORD;
+    again : ARRAY[1..SIZEOF(N)] OF BOOL;
+    last, n1, n2 : DINT;
+END_VAR
+last := UPPER_BOUND(buffer, 1);
+n1 := UPPER_BOUND(words, 1);
+n2 := UPPER_BOUND(again, 1);
+END_PROGRAM
+TYPE ST_Message : STRUCT id : DINT; text : STRING(10); END_STRUCT END_TYPE";
+    let mut plc = compile(src);
+    run(&mut plc, 1);
+    // ST_Message: 4 + 11 bytes; three of them: 45 bytes, 0..44.
+    assert_eq!(lit(&plc, "last"), "44");
+    assert_eq!(lit(&plc, "n1"), "4");
+    assert_eq!(lit(&plc, "n2"), "2");
+}

@@ -70,6 +70,7 @@ impl DeclConsts<'_> {
                     _ => None,
                 }
             }
+            ExprKind::Call(_) => self.const_sizeof(e, local),
             ExprKind::Name(id) => {
                 let key = id.key();
                 let var = local

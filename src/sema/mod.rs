@@ -23,6 +23,7 @@ mod program;
 
 // Phase 1: declarations.
 mod const_order;
+mod const_sizeof;
 mod decl_consts;
 mod declare;
 mod incomplete_address;

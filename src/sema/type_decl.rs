@@ -213,6 +213,8 @@ impl Declarer<'_> {
         let elem_ty = self.resolve_type(elem, local);
         let mut dims = Vec::new();
         for (lo, hi) in ranges {
+            self.resolve_sizeof_types(lo);
+            self.resolve_sizeof_types(hi);
             let (Some(l), Some(h)) = (
                 self.consts().const_int(lo, local),
                 self.consts().const_int(hi, local),
