@@ -259,29 +259,51 @@ impl Declarer<'_> {
             }
         }
         self.resolve_types();
-        // Globals: top-level lists, then configurations and resources.
+        // Globals: top-level lists, their function block instances last
+        // (laying one out emits its body, which may use a global the list
+        // declares after it: TwinCAT's `TcUnitRunner : FB_TcUnitRunner;`
+        // first in its list), then configurations and resources.
+        let mut instances: Vec<(&VarBlock, Vec<usize>)> = Vec::new();
+        for unit in units.iter() {
+            for item in &unit.items {
+                if let Item::Globals(block) = item {
+                    let held = self.instance_decls(block);
+                    instances.push((block, held));
+                }
+            }
+        }
         for (u, unit) in units.iter().enumerate() {
             for (i, item) in unit.items.iter().enumerate() {
-                match item {
-                    Item::Globals(block) => {
-                        let plain = early
-                            .iter()
-                            .find(|(at, _)| *at == (u, i))
-                            .map(|(_, p)| p.as_slice())
-                            .unwrap_or_default();
-                        self.declare_global_decls(block, &|d| !plain.contains(&d), true);
+                if let Item::Globals(block) = item {
+                    let plain = early
+                        .iter()
+                        .find(|(at, _)| *at == (u, i))
+                        .map(|(_, p)| p.as_slice())
+                        .unwrap_or_default();
+                    let held = instances
+                        .iter()
+                        .find(|(b, _)| std::ptr::eq(*b, block))
+                        .map(|(_, h)| h.as_slice())
+                        .unwrap_or_default();
+                    let pick = |d: usize| !plain.contains(&d) && !held.contains(&d);
+                    self.declare_global_decls(block, &pick, true);
+                }
+            }
+        }
+        for (block, held) in &instances {
+            self.declare_global_decls(block, &|d| held.contains(&d), false);
+        }
+        for unit in units.iter() {
+            for item in &unit.items {
+                if let Item::Configuration(cfg) = item {
+                    for b in &cfg.globals {
+                        self.declare_globals(b);
                     }
-                    Item::Configuration(cfg) => {
-                        for b in &cfg.globals {
+                    for r in &cfg.resources {
+                        for b in &r.globals {
                             self.declare_globals(b);
                         }
-                        for r in &cfg.resources {
-                            for b in &r.globals {
-                                self.declare_globals(b);
-                            }
-                        }
                     }
-                    _ => {}
                 }
             }
         }

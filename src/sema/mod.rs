@@ -26,6 +26,7 @@ mod const_order;
 mod const_sizeof;
 mod decl_consts;
 mod declare;
+mod global_instances;
 mod incomplete_address;
 mod inheritance_depth;
 mod layout;
