@@ -48,6 +48,12 @@ const ROWS: &[Row] = &[
         expect: &[("a", "5"), ("b", "TRUE"), ("c", "9")],
     },
     Row {
+        covers: &["UNION", "END_UNION"],
+        // The members share the bytes: 16#11223344 is 44 33 22 11.
+        source: "TYPE U : UNION dw : DWORD; b : ARRAY[0..3] OF BYTE; END_UNION END_TYPE\nPROGRAM P\nVAR\n  u : U; low : BYTE;\nEND_VAR\nu.dw := 16#11223344;\nlow := u.b[0];\nEND_PROGRAM\n",
+        expect: &[("low", "16#44")],
+    },
+    Row {
         covers: &["AND_THEN", "OR_ELSE"],
         // The right operands would fault (division by zero, index 9 of
         // 0..2) if they were evaluated: short-circuit means they are not.

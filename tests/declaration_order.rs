@@ -38,3 +38,37 @@ fn a_block_laid_out_early_calls_a_function_declared_after_it() {
     // 21 passed down two blocks and doubled by the function
     assert_eq!(lit(&plc, "r"), "42");
 }
+
+/// A global FB instance first in its list, whose body uses globals the
+/// list declares after it (TcUnit's GVL_TcUnit does so), and a pointer to
+/// an FB before the globals its body writes: both load and run.
+#[test]
+fn a_global_instance_uses_the_globals_declared_after_it() {
+    let src = "
+VAR_GLOBAL
+  runner : FB_Runner;
+  suites : ARRAY[1..3] OF POINTER TO FB_Suite;
+  count : INT;
+  ticks : DINT;
+END_VAR
+FUNCTION_BLOCK FB_Suite
+  VAR registered : BOOL; END_VAR
+  IF NOT registered THEN
+    count := count + 1;
+    suites[count] := THIS;
+    registered := TRUE;
+  END_IF
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Runner
+  ticks := ticks + count;
+END_FUNCTION_BLOCK
+PROGRAM main
+  VAR a, b : FB_Suite; END_VAR
+  a(); b();
+  runner();
+END_PROGRAM";
+    let mut plc = compile(src);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "count"), "2");
+    assert_eq!(lit(&plc, "ticks"), "4");
+}
