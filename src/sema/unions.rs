@@ -214,7 +214,7 @@ impl BodyBuilder<'_> {
         self.block.last_def = None;
         // An array member's elements are views too (`place_index`); the
         // array as a whole has no value to read (R037).
-        let elem = viewable(&self.types, ty).map_or(0, crate::ir::refs::elem_code);
+        let elem = viewable(self.types, ty).map_or(0, crate::ir::refs::elem_code);
         Some(PlaceRef {
             place: Place::View { r, elem },
             ty,
