@@ -2,7 +2,8 @@
 //! Tc2_EtherCAT libraries (`T_MaxString`, `PVOID`, `F_LTrim`, `F_RTrim`,
 //! `MEMCPY`, `MEMMOVE`, `MEMSET`, `MEMCMP`, `DRAND`, the distributed-clock
 //! time `T_DCTIME64` and its functions, the `*_TO_HEXSTR` conversions,
-//! `F_ToLCase`, `F_ToUCase`, and Tc2_Standard's `WLEN`), written in ST by plcrun
+//! `F_ToLCase`, `F_ToUCase`, Tc2_Standard's `WLEN`, and the Base Interfaces
+//! library's `TypeClass`), written in ST by plcrun
 //! (`twincat_library.st`) and added as a source of its own when the
 //! sources hold a TwinCAT file. An item the sources declare themselves is
 //! left out: theirs wins. Warnings inside it (its `POINTER TO` is a
@@ -145,7 +146,8 @@ mod tests {
                 "BYTE_TO_HEXSTR",
                 "F_ToLCase",
                 "F_ToUCase",
-                "GETCPUCOUNTER"
+                "GETCPUCOUNTER",
+                "TypeClass"
             ]
         );
     }

@@ -22,6 +22,7 @@ pub mod model;
 mod program;
 
 // Phase 1: declarations.
+mod any_params;
 mod const_order;
 mod decl_consts;
 mod declare;
@@ -35,6 +36,7 @@ mod type_decl;
 
 // Phase 2: one body builder per POU.
 mod aggregate_copy;
+mod any_args;
 pub(crate) mod assert_calls;
 mod assert_enums;
 mod assert_nested;

@@ -115,6 +115,9 @@ impl Declarer<'_> {
             );
             return TypeTable::elem(ElemType::Bool);
         }
+        if super::any_params::GenericClass::from_name(&id.name).is_some() {
+            return self.generic_refused(id);
+        }
         if let Some(fb) = stdlib::lookup_native(&id.name) {
             let params = stdlib::interface(fb);
             return self.types.intern(TypeDef {

@@ -329,6 +329,9 @@ impl BodyBuilder<'_> {
                 Some((_, e)) if prm.kind == MemberKind::InOut => self.connect_in_out(prm, &dst, e),
                 Some((_, e)) => self.store_arg(&dst, e, &prm.name),
                 None if prm.kind == MemberKind::InOut => self.unconnected(prm, &v.name, call.span),
+                None if self.any_class(prm.ty).is_some() => {
+                    self.any_missing(&prm.name, &v.name.name, call.span)
+                }
                 None => self.store_default(&dst, prm.default.as_ref()),
             }
         }
