@@ -29,8 +29,9 @@ fn items() -> impl Iterator<Item = (&'static str, &'static str)> {
     })
 }
 
-/// The names (upper case) of the POUs, types, interfaces and global
-/// variables `sources` declare.
+/// The names (upper case) of the POUs, types and interfaces `sources`
+/// declare. Global variables are not counted: a variable may be named
+/// like a type, case aside (TcUnit's `GetCpuCounter : GETCPUCOUNTER;`).
 fn declared(sources: &SourceMap) -> HashSet<String> {
     let mut names = HashSet::new();
     for (i, file) in sources.files().iter().enumerate() {
@@ -44,10 +45,7 @@ fn declared(sources: &SourceMap) -> HashSet<String> {
                 Item::Interface(i) => {
                     names.insert(i.name.key());
                 }
-                Item::Globals(b) => {
-                    names.extend(b.decls.iter().flat_map(|d| d.names.iter().map(|n| n.key())))
-                }
-                Item::Configuration(_) => {}
+                Item::Globals(_) | Item::Configuration(_) => {}
             }
         }
     }

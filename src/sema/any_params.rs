@@ -331,7 +331,10 @@ impl Declarer<'_> {
             PouKind::Program => false,
         };
         let method_input = block.kind == VarKind::Local
-            && decl.names.iter().all(|n| self.is_method_input(pou, &n.key()));
+            && decl
+                .names
+                .iter()
+                .all(|n| self.is_method_input(pou, &n.key()));
         if !(input || method_input) {
             return Some(self.generic_refused(id));
         }
