@@ -471,3 +471,86 @@ fn a_plcopen_input_typed_with_a_generic_element_is_generic() {
     let trace = graphic::trace_text(&xml, "n", "", 1);
     assert_eq!(trace, "cycle,time,n\n0,T#0s,8\n");
 }
+
+/// `__SYSTEM.TYPE_CLASS` and the Base Interfaces' `TypeClass` are two
+/// enumerations: compared directly they do not mix (E306); TcUnit compares
+/// `UDINT_TO_INT(x.TypeClass)` with the latter's values.
+#[test]
+fn a_type_class_and_a_base_interfaces_type_class_are_not_compared_directly() {
+    let f = "<?xml version=\"1.0\" encoding=\"utf-8\"?>
+<TcPlcObject Version=\"1.1.0.1\">
+  <POU Name=\"F\" Id=\"{00000000-0000-0000-0000-000000000001}\" SpecialFunc=\"None\">
+    <Declaration><![CDATA[FUNCTION F : BOOL
+VAR_INPUT
+    x : ANY;
+END_VAR]]></Declaration>
+    <Implementation>
+      <ST><![CDATA[F := x.TypeClass = IBaseLibrary.TypeClass.TYPE_INT;]]></ST>
+    </Implementation>
+  </POU>
+</TcPlcObject>
+";
+    let main = "PROGRAM MAIN\nVAR i : INT; b : BOOL; END_VAR\nb := F(i);\nEND_PROGRAM\n";
+    let codes = error_codes(&[("F.TcPOU", f), ("main.st", main)]);
+    assert_eq!(codes, [("E306".to_string(), "9:25".to_string())]);
+}
+
+/// A METHOD's generic input must be given (it has no initial value); a
+/// constant is passed through a temporary, so a write through the
+/// pointer leaves it alone.
+#[test]
+fn a_method_s_generic_input_must_be_given_and_a_constant_is_passed_as_a_copy() {
+    let missing = "
+FUNCTION_BLOCK FB_M
+METHOD Put : DINT
+VAR_INPUT v : ANY; n : INT; END_VAR
+Put := v.diSize;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR m : FB_M; d : DINT; END_VAR
+d := m.Put(n := 1);
+END_PROGRAM
+";
+    assert_eq!(
+        error_codes(&[("t.st", missing)]),
+        [("E404".to_string(), "10:6".to_string())]
+    );
+    let constant = "
+FUNCTION Clear : BOOL
+VAR_INPUT v : ANY_INT; END_VAR
+VAR p : POINTER TO INT; END_VAR
+p := v.pValue;
+p^ := 0;
+Clear := TRUE;
+END_FUNCTION
+PROGRAM Main
+VAR CONSTANT k : INT := 7; END_VAR
+VAR seen : INT; done : BOOL; END_VAR
+done := Clear(k);
+seen := k;
+END_PROGRAM
+";
+    let plc = run_once(constant);
+    assert_eq!(lit(&plc, "done"), "TRUE");
+    assert_eq!(lit(&plc, "seen"), "7");
+}
+
+/// An interface's method prototype cannot declare a generic input yet:
+/// E212 at its type.
+#[test]
+fn an_interface_method_with_a_generic_input_is_refused() {
+    let src = "
+INTERFACE I_Log
+METHOD Put : BOOL
+VAR_INPUT v : ANY; END_VAR
+END_METHOD
+END_INTERFACE
+PROGRAM Main
+END_PROGRAM
+";
+    assert_eq!(
+        error_codes(&[("t.st", src)]),
+        [("E212".to_string(), "4:15".to_string())]
+    );
+}
