@@ -3,8 +3,8 @@
 //! `POINTER TO BYTE` to it and its size in bytes. A variable is passed by
 //! its address; anything else (a literal, an expression, a constant, a
 //! function's result) is first computed into a temporary of the caller,
-//! whose address is passed, as CODESYS does. An input of the callee that
-//! is itself generic passes its three fields on.
+//! whose address is passed. A generic input of the caller given as the
+//! argument passes its three fields on.
 //!
 //! Refused at the argument: a type outside the input's class (E439), and
 //! a value plcrun has no byte layout for or CODESYS no type class for (a
