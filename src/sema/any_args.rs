@@ -77,6 +77,36 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// The address of three consecutive temporaries holding what generic
+    /// input `name` (of type `ty`, class `class`) receives for argument
+    /// `e`: a call through an interface copies them into each
+    /// implementing block's input as a structure.
+    pub(super) fn any_block(
+        &mut self,
+        class: GenericClass,
+        ty: TypeId,
+        name: &str,
+        e: &Expr,
+    ) -> Option<Slot> {
+        let slots = self.any_argument(class, name, e)?;
+        let at = self.block.temps(slots.len() as u32);
+        for (k, s) in slots.into_iter().enumerate() {
+            self.block.emit(Op::Mov {
+                d: at.offset(k as u32),
+                s,
+            });
+        }
+        self.block.last_def = None;
+        let place = PlaceRef {
+            place: Place::Frame(at),
+            ty,
+            writable: true,
+            readonly_reason: None,
+            input_image: false,
+        };
+        Some(self.address_of(&place))
+    }
+
     /// E404 for generic input `name` of `callee` left out of a call of a
     /// FUNCTION or METHOD: it has no initial value to take.
     pub(super) fn any_missing(&mut self, name: &str, callee: &str, span: Span) {

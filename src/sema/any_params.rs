@@ -343,6 +343,33 @@ impl Declarer<'_> {
         Some(t)
     }
 
+    /// The type of field `decl` of an interface's signature structure
+    /// (oop/lower.rs) when it holds a generic input of one of the
+    /// interface's method prototypes; `None` otherwise (then a generic
+    /// type there is E212 as anywhere else).
+    pub(super) fn any_signature_field(&mut self, decl: &VarDecl) -> Option<TypeId> {
+        let TypeSpec::Named(id) = &decl.ty else {
+            return None;
+        };
+        let class = GenericClass::from_name(&id.name)?;
+        if self.type_decls.contains_key(&id.key()) {
+            return None;
+        }
+        let prototypes = self.model.oop.interfaces.values();
+        let params = prototypes.flat_map(|i| i.methods.values().flat_map(|m| &m.params));
+        let input = |hidden: &str| {
+            params
+                .clone()
+                .any(|p| p.hidden == hidden && p.input && !p.in_out)
+        };
+        if !decl.names.iter().all(|n| input(&n.key())) {
+            return None;
+        }
+        let t = any_struct(&mut self.types, class);
+        self.model.any_types.insert(t, class);
+        Some(t)
+    }
+
     /// True when `hidden` is the hidden variable of a method's VAR_INPUT
     /// in FB `pou` (methods' variables are the FB's, oop/lower.rs).
     fn is_method_input(&self, pou: &Pou, hidden: &str) -> bool {

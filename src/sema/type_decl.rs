@@ -455,7 +455,9 @@ impl Declarer<'_> {
             None => (Vec::new(), Vec::new(), 0u32),
         };
         for decl in fields {
-            let fty = self.resolve_type(&decl.ty, local);
+            let fty = self
+                .any_signature_field(decl)
+                .unwrap_or_else(|| self.resolve_type(&decl.ty, local));
             let no_value = self.static_reference_init(decl, fty, "a structure field");
             let init = decl
                 .init
