@@ -161,6 +161,25 @@ const INC: &str =
 #[case("E411", prog_after(F2, "x : INT;", "x := F(a := 1, 2);"), "6:16")]
 #[case("E435", prog("p : POINTER TO INT;", "p := __NEW(INT);"), "5:6")]
 #[case("E436", prog("t : TON := (RUNNING := TRUE);", ""), "3:13")]
+#[case("E212", prog("x : ANY;", ""), "3:5")]
+#[case(
+    "E439",
+    prog_after(
+        "FUNCTION F : INT VAR_INPUT v : ANY_NUM; END_VAR F := 1; END_FUNCTION",
+        "s : STRING; i : INT;",
+        "i := F(s);"
+    ),
+    "6:8"
+)]
+#[case(
+    "E440",
+    prog_after(
+        "FUNCTION F : INT VAR_INPUT v : ANY; END_VAR F := 1; END_FUNCTION",
+        "t : TON; i : INT;",
+        "i := F(t);"
+    ),
+    "6:8"
+)]
 #[case("E402", prog_after(INC, "x : INT;", "Inc(v := 5);"), "6:10")]
 #[case("E412", format!("{INC}\nPROGRAM P\nVAR CONSTANT c : INT := 1; END_VAR\nInc(v := c);\nEND_PROGRAM\n"), "4:10")]
 // ---- E5xx: IL

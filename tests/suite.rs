@@ -48,6 +48,8 @@ mod fuzz {
 
 #[path = "addressing.rs"]
 mod addressing;
+#[path = "any_params.rs"]
+mod any_params;
 #[path = "architecture.rs"]
 mod architecture;
 #[path = "arith_conformance.rs"]

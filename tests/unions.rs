@@ -1,6 +1,6 @@
 //! `UNION ... END_UNION` (CODESYS V3, TwinCAT 3): members share the
 //! union's bytes, little-endian, as TwinCAT lays them out
-//! (docs/semantics.md §26). Expected values worked out by hand from the
+//! (docs/semantics.md §27). Expected values worked out by hand from the
 //! byte layout: 16#11223344 is the bytes 44 33 22 11.
 
 use crate::support::plc;

@@ -510,6 +510,9 @@ impl BodyBuilder<'_> {
 
     /// Evaluates an input argument into a parameter place.
     pub(super) fn store_arg(&mut self, dst: &PlaceRef, e: &Expr, name: &str) {
+        if let Some(class) = self.any_class(dst.ty) {
+            return self.connect_any(class, dst, e, name);
+        }
         if self.oop_store(dst, e) {
             return;
         }

@@ -1,7 +1,8 @@
 //! Enumeration values written with their type's name, `E_Mode.Run`
 //! (CODESYS / TwinCAT, as well as IEC's `E_Mode#Run`), and the types
 //! declared after `{attribute 'qualified_only'}`, whose values may only
-//! be written that way (E433 otherwise).
+//! be written that way (E433 otherwise). The type may carry its library's
+//! namespace (`IBaseLibrary.TypeClass.TYPE_INT`), as in declarations.
 
 use super::body::BodyBuilder;
 use super::consts::Const;
@@ -31,8 +32,12 @@ pub(super) fn qualified(
     let ExprKind::Member(base, value) = &e.kind else {
         return None;
     };
-    let ExprKind::Name(ty_name) = &base.kind else {
-        return None;
+    let ty_name = match &base.kind {
+        ExprKind::Name(n) => n,
+        // `__SYSTEM.TYPE_CLASS.TYPE_INT`, `IBaseLibrary.TypeClass.TYPE_INT`:
+        // the type named with its library's namespace, as in declarations.
+        ExprKind::Member(ns, n) if is_namespace(model, ns) => n,
+        _ => return None,
     };
     let t = *model.type_ids.get(&ty_name.key())?;
     let TypeKind::Enum { values, .. } = &types.get(t).kind else {
@@ -54,6 +59,30 @@ pub(super) fn qualified(
             Some(Qualified::Unknown)
         }
     }
+}
+
+/// The name `Ns.Type` or `Type` starts with.
+fn root_name(e: &Expr) -> Option<&Ident> {
+    match &e.kind {
+        ExprKind::Name(n) => Some(n),
+        ExprKind::Member(b, _) => match &b.kind {
+            ExprKind::Name(n) => Some(n),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// True when `e` is a bare name that no POU, type or global list of the
+/// program has: a library's namespace (variables are the caller's check).
+fn is_namespace(model: &Model, e: &Expr) -> bool {
+    let ExprKind::Name(q) = &e.kind else {
+        return false;
+    };
+    let k = q.key();
+    !model.pou_index.contains_key(&k)
+        && !model.type_ids.contains_key(&k)
+        && !model.globals.contains_key(&k)
 }
 
 /// Reports E433 when `id`, written alone, is a value of a
@@ -95,7 +124,7 @@ impl BodyBuilder<'_> {
     /// and no variable of that name is visible.
     pub(super) fn qualified_enum(&mut self, e: &Expr) -> Option<Val> {
         if let ExprKind::Member(base, _) = &e.kind
-            && let ExprKind::Name(b) = &base.kind
+            && let Some(b) = root_name(base)
             && self.lookup_var(&b.key()).is_some()
         {
             return None;

@@ -23,8 +23,9 @@ enum Ready {
     Pointer(Slot),
     /// The address and type of an array or structure passed by value.
     Aggregate(Slot, crate::ir::type_table::TypeId),
-    /// An `ARRAY[*]` VAR_IN_OUT's slots: the address, then the bounds.
-    OpenArray(Vec<Slot>),
+    /// An `ARRAY[*]` VAR_IN_OUT's slots: the address, then the bounds;
+    /// or a generic input's: type class, pointer, size (any_args.rs).
+    Slots(Vec<Slot>),
 }
 
 /// The parameters of function `callee`, in interface order.
@@ -127,7 +128,7 @@ impl BodyBuilder<'_> {
         let what = format!("argument `{}`", prm.name);
         match (prm.kind, given) {
             (MemberKind::InOut, Some(e)) if self.is_open_array(prm.ty) => {
-                self.open_array_argument(prm, e).map(Ready::OpenArray)
+                self.open_array_argument(prm, e).map(Ready::Slots)
             }
             (MemberKind::InOut, Some(e)) => {
                 let arg = self.place(e)?;
@@ -150,6 +151,11 @@ impl BodyBuilder<'_> {
                     ),
                 );
                 None
+            }
+            (_, Some(e)) if self.any_class(prm.ty).is_some() => {
+                let class = self.any_class(prm.ty)?;
+                let slots = self.any_argument(class, &prm.name, e)?;
+                Some(Ready::Slots(slots.to_vec()))
             }
             (_, Some(e)) if prm.ty == TypeTable::error() => {
                 self.refused_parameter_argument(e);
@@ -278,6 +284,11 @@ impl BodyBuilder<'_> {
     /// A missing input: its declared initial value (required for arrays
     /// and structures).
     fn default_argument(&mut self, p: usize, prm: &Param, call_span: Span) -> Option<Ready> {
+        if self.any_class(prm.ty).is_some() {
+            let callee = self.model.pous[p].name.clone();
+            self.any_missing(&prm.name, &callee, call_span);
+            return None;
+        }
         let init = prm
             .default
             .clone()
@@ -324,7 +335,7 @@ impl BodyBuilder<'_> {
                 });
                 self.block.fixups.push((at, p));
             }
-            Ready::OpenArray(slots) => {
+            Ready::Slots(slots) => {
                 for (k, s) in slots.into_iter().enumerate() {
                     let abs = prm.offset + k as u32;
                     let at = self.block.emit(Op::StoreAbs { abs, s });

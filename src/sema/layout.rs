@@ -219,7 +219,7 @@ impl Declarer<'_> {
         frame: &mut Frame,
         earlier: &[String],
     ) {
-        let ty = self.decl_type(block, decl, frame);
+        let ty = self.decl_type(pou, block, decl, frame);
         if ty == TypeTable::void() {
             return;
         }
@@ -290,7 +290,7 @@ impl Declarer<'_> {
     /// refused parameter keeps its place in the interface: calls bind
     /// their arguments as written and the body finds the name, with no
     /// error of their own.
-    fn decl_type(&mut self, block: &VarBlock, decl: &VarDecl, frame: &Frame) -> TypeId {
+    fn decl_type(&mut self, pou: &Pou, block: &VarBlock, decl: &VarDecl, frame: &Frame) -> TypeId {
         // A VAR_IN_OUT is a pointer slot: it may name the block being laid out.
         let own = match (&decl.ty, block.kind) {
             (crate::syntax::ast::TypeSpec::Named(id), VarKind::InOut) => {
@@ -300,6 +300,7 @@ impl Declarer<'_> {
         };
         let ty = own
             .or_else(|| self.open_array_param(block.kind, &decl.ty, Some(&frame.vars)))
+            .or_else(|| self.any_param(pou, block, decl))
             .unwrap_or_else(|| self.resolve_type(&decl.ty, Some(&frame.vars)));
         let tkind = &self.types.get(ty).kind;
         let is_fb = matches!(tkind, TypeKind::NativeFb(_) | TypeKind::Pou { .. });

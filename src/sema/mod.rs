@@ -22,6 +22,7 @@ pub mod model;
 mod program;
 
 // Phase 1: declarations.
+mod any_params;
 mod const_order;
 mod const_sizeof;
 mod decl_consts;
@@ -37,6 +38,7 @@ mod type_decl;
 
 // Phase 2: one body builder per POU.
 mod aggregate_copy;
+mod any_args;
 pub(crate) mod assert_calls;
 mod assert_enums;
 mod assert_nested;

@@ -134,6 +134,9 @@ pub(crate) struct Model {
     pub grafcet: bool,
     /// Methods, inheritance and interfaces (empty without OOP).
     pub oop: super::oop::OopInfo,
+    /// The structure types of generic inputs (`x : ANY_NUM`), with their
+    /// class (any_params.rs).
+    pub any_types: HashMap<TypeId, super::any_params::GenericClass>,
     /// Emit only the plain instruction forms: no fused superinstructions,
     /// no bounds checks dropped by the FOR loop range (`Options::optimize`
     /// off).

@@ -130,6 +130,9 @@ impl Declarer<'_> {
             );
             return TypeTable::elem(ElemType::Bool);
         }
+        if super::any_params::GenericClass::from_name(&id.name).is_some() {
+            return self.generic_refused(id);
+        }
         if let Some(fb) = stdlib::lookup_native(&id.name) {
             let params = stdlib::interface(fb);
             return self.types.intern(TypeDef {
@@ -469,7 +472,9 @@ impl Declarer<'_> {
             None => (Vec::new(), Vec::new(), 0u32),
         };
         for decl in fields {
-            let fty = self.resolve_type(&decl.ty, local);
+            let fty = self
+                .any_signature_field(decl)
+                .unwrap_or_else(|| self.resolve_type(&decl.ty, local));
             let no_value = self.static_reference_init(decl, fty, "a structure field");
             let init = decl
                 .init

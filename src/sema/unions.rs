@@ -8,7 +8,7 @@
 //! 16#44, exactly as in TwinCAT. STRING and WSTRING members cannot be
 //! views here (a view reads elementary values only); they get storage of
 //! their own after the bytes, with a warning that they do not overlay
-//! (docs/semantics.md §26). Members of other types are refused.
+//! (docs/semantics.md §27). Members of other types are refused.
 
 use super::body::BodyBuilder;
 use super::declare::Declarer;

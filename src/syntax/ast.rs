@@ -305,7 +305,7 @@ pub enum TypeSpec {
         /// Where.
         span: Span,
         /// `UNION ... END_UNION` (CODESYS, TwinCAT): the members share
-        /// their memory (docs/semantics.md §26).
+        /// their memory (docs/semantics.md §27).
         union: bool,
     },
     /// `REF_TO T`, `POINTER TO T`, `REFERENCE TO T`.

@@ -330,6 +330,9 @@ impl BodyBuilder<'_> {
                 Some((_, e)) if prm.kind == MemberKind::InOut => self.connect_in_out(prm, &dst, e),
                 Some((_, e)) => self.store_arg(&dst, e, &prm.name),
                 None if prm.kind == MemberKind::InOut => self.unconnected(prm, &v.name, call.span),
+                None if self.any_class(prm.ty).is_some() => {
+                    self.any_missing(&prm.name, &v.name.name, call.span)
+                }
                 None => self.store_default(&dst, prm.default.as_ref()),
             }
         }
@@ -456,13 +459,27 @@ impl BodyBuilder<'_> {
         // Arguments first, once, in order.
         let mut args: Vec<Option<Slot>> = vec![None; params.len()];
         for (i, prm) in params.iter().enumerate() {
-            if prm.kind == MemberKind::InOut && !b.inputs.iter().any(|(j, _)| *j == i) {
+            if b.inputs.iter().any(|(j, _)| *j == i) {
+                continue;
+            }
+            if prm.kind == MemberKind::InOut {
                 self.unconnected(prm, m, call.span);
+                return Val::error();
+            }
+            if self.any_class(prm.ty).is_some() {
+                self.any_missing(&prm.name, &m.name, call.span);
                 return Val::error();
             }
         }
         for &(i, e) in &b.inputs {
             let ty = params[i].ty;
+            if let Some(class) = self.any_class(ty) {
+                let Some(a) = self.any_block(class, ty, &params[i].name, e) else {
+                    return Val::error();
+                };
+                args[i] = Some(a);
+                continue;
+            }
             if params[i].kind == MemberKind::InOut {
                 let Some(a) = self.in_out_address(&params[i], e) else {
                     return Val::error();

@@ -14,6 +14,21 @@ const ELEMENTARY: [&str; 25] = [
     "LDT", "CHAR", "WCHAR",
 ];
 
+/// Generic type elements of TC6 (`<ANY_NUM/>`): the type of a generic
+/// input of a FUNCTION, FUNCTION_BLOCK or METHOD (CODESYS V3), written as
+/// the type name of the same spelling.
+const GENERIC: [&str; 9] = [
+    "ANY",
+    "ANY_ELEMENTARY",
+    "ANY_MAGNITUDE",
+    "ANY_NUM",
+    "ANY_REAL",
+    "ANY_INT",
+    "ANY_BIT",
+    "ANY_STRING",
+    "ANY_DATE",
+];
+
 /// `<dataTypes>`: one `TYPE ... END_TYPE` holding every `<dataType>`.
 pub fn data_types(em: &mut Emitter, node: Node) {
     let decls: Vec<Node> = elements(node).collect();
@@ -102,7 +117,7 @@ fn type_element(em: &mut Emitter, node: Node) {
     let at = em.at(node);
     let name = node.tag_name().name();
     match name {
-        _ if ELEMENTARY.contains(&name) => em.synth(name, at),
+        _ if ELEMENTARY.contains(&name) || GENERIC.contains(&name) => em.synth(name, at),
         "string" | "wstring" => {
             em.synth(
                 if name == "string" {
