@@ -72,6 +72,20 @@ pub struct Member {
     pub retain: Retention,
 }
 
+impl Member {
+    /// A plain structure field: not constant, retained as its parent.
+    pub fn field(name: &str, ty: TypeId, offset: u32) -> Member {
+        Member {
+            name: name.to_string(),
+            ty,
+            offset,
+            kind: MemberKind::Field,
+            constant: false,
+            retain: Retention::Inherit,
+        }
+    }
+}
+
 /// Whether a variable keeps its value over a restart.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Retention {

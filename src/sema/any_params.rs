@@ -13,9 +13,7 @@
 use super::declare::Declarer;
 use super::refs::intern_ref;
 use crate::elementary::ElemType;
-use crate::ir::type_table::{
-    Member, MemberKind, RefFlavor, Retention, TypeDef, TypeId, TypeKind, TypeTable,
-};
+use crate::ir::type_table::{Member, RefFlavor, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::syntax::ast::{Ident, Pou, PouKind, TypeSpec, VarBlock, VarDecl, VarKind};
 
 /// The name of the built-in enumeration of type classes (CODESYS's
@@ -277,14 +275,7 @@ pub(super) const FIELDS: [&str; 3] = ["TypeClass", "pValue", "diSize"];
 fn any_struct(types: &mut TypeTable, class: GenericClass) -> TypeId {
     let class_ty = type_class_enum(types);
     let byte_ptr = intern_ref(types, TypeTable::elem(ElemType::Byte), RefFlavor::Pointer);
-    let field = |name: &str, ty: TypeId, offset: u32| Member {
-        name: name.to_string(),
-        ty,
-        offset,
-        kind: MemberKind::Field,
-        constant: false,
-        retain: Retention::Inherit,
-    };
+    let field = Member::field;
     let fields = vec![
         field(FIELDS[0], class_ty, 0),
         field(FIELDS[1], byte_ptr, 1),

@@ -6,9 +6,7 @@ use super::consts::int_to_slot;
 use super::declare::Declarer;
 use super::model::{ConstInit, LayoutState, VarInfo};
 use crate::elementary::ElemType;
-use crate::ir::type_table::{
-    Dim, Member, MemberKind, Retention, TypeDef, TypeId, TypeKind, TypeTable,
-};
+use crate::ir::type_table::{Dim, Member, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib;
 use crate::syntax::ast::{Expr, Ident, Item, PouKind, TypeSpec, VarDecl};
@@ -496,14 +494,7 @@ impl Declarer<'_> {
                 if let Some(ci) = &init {
                     inits.push((members.len(), ci.clone()));
                 }
-                members.push(Member {
-                    name: name.name.clone(),
-                    ty: fty,
-                    offset,
-                    kind: MemberKind::Field,
-                    constant: false,
-                    retain: Retention::Inherit,
-                });
+                members.push(Member::field(&name.name, fty, offset));
                 offset = self.grow(offset, self.types.size(fty), name.span);
             }
         }

@@ -17,9 +17,7 @@ use super::model::VarInfo;
 use super::refs::{size_bytes, viewable};
 use crate::elementary::ElemType;
 use crate::ir::op::Op;
-use crate::ir::type_table::{
-    Dim, Member, MemberKind, Retention, TypeDef, TypeId, TypeKind, TypeTable,
-};
+use crate::ir::type_table::{Dim, Member, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::{Ident, VarDecl};
 use indexmap::IndexMap;
@@ -128,7 +126,7 @@ impl Declarer<'_> {
             },
             size: slots,
         });
-        let mut fields = vec![field(BYTES_FIELD, storage, 0)];
+        let mut fields = vec![Member::field(BYTES_FIELD, storage, 0)];
         let mut offset = slots;
         for (name, ty, span) in apart {
             self.diags.warning(
@@ -139,7 +137,7 @@ impl Declarer<'_> {
                     self.types.name(ty)
                 ),
             );
-            fields.push(field(&name, ty, offset));
+            fields.push(Member::field(&name, ty, offset));
             offset = offset.saturating_add(self.types.size(ty));
         }
         let id = self.types.add(TypeDef {
@@ -154,17 +152,6 @@ impl Declarer<'_> {
         };
         self.model.unions.insert(id, info);
         id
-    }
-}
-
-fn field(name: &str, ty: TypeId, offset: u32) -> Member {
-    Member {
-        name: name.to_string(),
-        ty,
-        offset,
-        kind: MemberKind::Field,
-        constant: false,
-        retain: Retention::Inherit,
     }
 }
 
