@@ -106,7 +106,12 @@ pub(super) unsafe extern "C" fn unwound(ctx: *mut Ctx, code_pc: u64, base: usize
 ///
 /// # Safety
 /// `ctx` is the running entry's; `code` a block of its image.
-pub(super) unsafe extern "C" fn interpret(ctx: *mut Ctx, base: usize, code: u32) -> u32 {
+pub(super) unsafe extern "C" fn interpret(
+    ctx: *mut Ctx,
+    base: usize,
+    code: u32,
+    _fp: *mut u64,
+) -> u32 {
     // SAFETY: the caller's contract, as for `unwound`.
     let ctx = unsafe { &mut *ctx };
     let (m, img) = unsafe { (&mut *ctx.machine, &*ctx.image) };

@@ -19,8 +19,10 @@ use cranelift_codegen::ir::{InstBuilder, MemFlagsData, Value, types};
 use cranelift_frontend::Variable;
 
 /// The most slots held at once; one more writes back and drops the least
-/// recently used.
-const MAX_HELD: usize = 40;
+/// recently used. About the general registers left beside the frame
+/// pointer and the context: holding more only moves the values to spill
+/// slots on the stack instead of the frame.
+const MAX_HELD: usize = 8;
 
 /// One held slot.
 #[derive(Clone, Copy)]

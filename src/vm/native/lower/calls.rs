@@ -79,10 +79,12 @@ impl Lower<'_, '_> {
         let flags = MemFlagsData::trusted().with_readonly();
         let entry = self.b.ins().load(I64, flags, table, 0);
         let index = self.b.ins().iconst(I32, code.get() as i64);
+        let bytes = self.b.ins().ishl_imm_s(base, 3);
+        let fp = self.b.ins().iadd(self.mem, bytes);
         let inst = self
             .b
             .ins()
-            .call_indirect(self.sigs.entry, entry, &[self.ctx, base, index]);
+            .call_indirect(self.sigs.entry, entry, &[self.ctx, base, index, fp]);
         let status = self.b.inst_results(inst)[0];
         let unwind = self.b.create_block();
         let next = self.b.create_block();

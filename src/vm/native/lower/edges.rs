@@ -197,6 +197,19 @@ impl Lower<'_, '_> {
         }
     }
 
+    /// Writes back and drops the held slots that no instruction after `pc`
+    /// uses (they would only take registers).
+    pub(super) fn retire_after(&mut self, pc: usize) {
+        let mut i = 0;
+        while i < self.cache.held.len() {
+            if self.regions.live_at(self.cache.held[i].slot, pc + 1) {
+                i += 1;
+            } else {
+                self.drop_held(i);
+            }
+        }
+    }
+
     /// Jumps to instruction `t` from the current block. (It changes
     /// nothing in the cache: the other edge of a branch is translated
     /// from the same state after it.)

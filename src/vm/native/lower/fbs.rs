@@ -139,35 +139,66 @@ impl Lower<'_, '_> {
         self.set_pin(p, 3, q);
     }
 
-    /// TON: IN, PT, Q, ET, start, prev_IN (`stdlib::timers::ton`).
+    /// TON: IN, PT, Q, ET, start, prev_IN (`stdlib::timers::ton`). IN
+    /// and prev_IN go through the held slots; PT, Q, ET and start are
+    /// read and written in memory, the timing only where IN is TRUE (most
+    /// timers are idle most of the time).
     fn ton(&mut self, p: Pins) {
         let now = self.now.expect("loaded at entry (needs_clock)");
         let input = self.pin(p, 0);
-        let input = self.b.ins().icmp_imm_s(IntCC::NotEqual, input, 0);
         let prev = self.pin(p, 5);
-        let was_off = self.b.ins().icmp_imm_s(IntCC::Equal, prev, 0);
-        let starts = self.b.ins().band(input, was_off);
-        let start = self.pin(p, 4);
-        let start = self.b.ins().select(starts, now, start);
+        let at = match p {
+            Pins::Frame(s) => {
+                let lo = u64::from(s.get()) + 1;
+                self.drop_range(lo, lo + 4);
+                let (base, off) = self.slot_at(s);
+                self.b.ins().iadd_imm_s(base, i64::from(off))
+            }
+            Pins::At(a) => a,
+        };
+        let mem = Pins::At(at);
+        let (on, off, join) = (
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+        );
+        self.b.ins().brif(input, on, &[], off, &[]);
+        self.b.switch_to_block(off);
+        self.b.seal_block(off);
         let zero = self.b.ins().iconst(I64, 0);
-        let q = self.pin(p, 2);
+        self.set_pin(mem, 2, zero);
+        self.set_pin(mem, 3, zero);
+        self.b.ins().jump(join, &[]);
+        self.b.switch_to_block(on);
+        self.b.seal_block(on);
+        self.ton_on(mem, now, prev);
+        self.b.ins().jump(join, &[]);
+        self.b.switch_to_block(join);
+        self.b.seal_block(join);
+        let on = self.b.ins().icmp_imm_s(IntCC::NotEqual, input, 0);
+        let on = self.b.ins().uextend(I64, on);
+        self.set_pin(p, 5, on);
+    }
+
+    /// TON while IN is TRUE, on the pins in memory at `mem`.
+    fn ton_on(&mut self, mem: Pins, now: Value, prev: Value) {
+        let zero = self.b.ins().iconst(I64, 0);
+        let starts = self.b.ins().icmp_imm_s(IntCC::Equal, prev, 0);
+        let start = self.pin(mem, 4);
+        let start = self.b.ins().select(starts, now, start);
+        let q = self.pin(mem, 2);
         let q = self.b.ins().select(starts, zero, q);
-        let q_off = self.b.ins().icmp_imm_s(IntCC::Equal, q, 0);
-        let timing = self.b.ins().band(input, q_off);
-        let pt = self.pin(p, 1);
+        let timing = self.b.ins().icmp_imm_s(IntCC::Equal, q, 0);
+        let pt = self.pin(mem, 1);
         let et = self.elapsed(now, start, pt);
         let done = self.b.ins().icmp(IntCC::SignedGreaterThanOrEqual, et, pt);
         let done = self.b.ins().uextend(I64, done);
-        let old_et = self.pin(p, 3);
-        let kept_et = self.b.ins().select(input, old_et, zero);
-        let kept_q = self.b.ins().select(input, q, zero);
-        let et = self.b.ins().select(timing, et, kept_et);
-        let q = self.b.ins().select(timing, done, kept_q);
-        let input = self.b.ins().uextend(I64, input);
-        self.set_pin(p, 2, q);
-        self.set_pin(p, 3, et);
-        self.set_pin(p, 4, start);
-        self.set_pin(p, 5, input);
+        let old_et = self.pin(mem, 3);
+        let et = self.b.ins().select(timing, et, old_et);
+        let q = self.b.ins().select(timing, done, q);
+        self.set_pin(mem, 2, q);
+        self.set_pin(mem, 3, et);
+        self.set_pin(mem, 4, start);
     }
 
     /// `(now - start).min(pt).max(0)` on signed values (`timers::elapsed`).

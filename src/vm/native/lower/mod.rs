@@ -1,5 +1,5 @@
 //! Translation of one verified code block into one Cranelift function
-//! with the [`EntryFn`] signature `(ctx, base, code) -> status`.
+//! with the [`EntryFn`] signature `(ctx, base, code, fp) -> status`.
 //!
 //! Frame slots are held in variables across instructions (`cache`) and
 //! written back wherever memory must be current: before a helper, a call,
@@ -46,7 +46,7 @@ pub(super) fn function(
     table: *const EntryFn,
 ) -> Result<Vec<u8>, String> {
     let call_conv = isa.default_call_conv();
-    let sig = signature(call_conv, &[I64, I64, I32], Some(I32));
+    let sig = signature(call_conv, &[I64, I64, I32, I64], Some(I32));
     let mut func = Function::with_name_signature(UserFuncName::default(), sig);
     let mut fctx = FunctionBuilderContext::new();
     let b = FunctionBuilder::new(&mut func, &mut fctx);
@@ -82,7 +82,7 @@ struct Sigs {
     poll: SigRef,
     /// `unwound(ctx, code_pc, base)`
     unwound: SigRef,
-    /// A block: `(ctx, base, code) -> u32`
+    /// A block: `(ctx, base, code, fp) -> u32`
     entry: SigRef,
     /// `call_native(ctx, op, inst)`
     call_native: SigRef,
@@ -143,7 +143,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             raise: import(&[I64, I64, I64, I64, I32], Some(I32)),
             poll: import(&[I64, I64], Some(I32)),
             unwound: import(&[I64, I64, I64], None),
-            entry: import(&[I64, I64, I32], Some(I32)),
+            entry: import(&[I64, I64, I32, I64], Some(I32)),
             call_native: import(&[I64, I64, I64], None),
             step: import(&[I64, I64, I64, I64], Some(I32)),
             entry_strings: import(&[I64, I32, I64], None),
@@ -167,7 +167,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             sigs,
             ctx: p[0],
             base: p[1],
-            fp: zero,
+            fp: p[3],
             mem: zero,
             len: zero,
             irq: zero,
@@ -211,6 +211,9 @@ impl<'a, 'f> Lower<'a, 'f> {
             }
             let ops = self.ops;
             open = self.op(&ops[pc])?;
+            if open {
+                self.retire_after(pc);
+            }
         }
         if open {
             // Verified blocks end with Ret; kept total all the same.
@@ -257,8 +260,8 @@ impl<'a, 'f> Lower<'a, 'f> {
             block.frame_size as i64,
         );
         let bad = self.b.ins().bor(beyond, small);
-        let offset = self.b.ins().ishl_imm_s(self.base, 3);
-        self.fp = self.b.ins().iadd(self.mem, offset);
+        // `fp` (a parameter, `mem + 8 × base` from the caller) is used
+        // only after this check.
         self.fault_if(bad, WHY_BAD_ADDRESS);
         self.tick();
         if self.ops.iter().any(fbs::needs_clock) {
