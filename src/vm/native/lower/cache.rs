@@ -22,7 +22,7 @@ use cranelift_frontend::Variable;
 /// recently used. About the general registers left beside the frame
 /// pointer and the context: holding more only moves the values to spill
 /// slots on the stack instead of the frame.
-const MAX_HELD: usize = 8;
+pub(super) const MAX_HELD: usize = 8;
 
 /// One held slot.
 #[derive(Clone, Copy)]
@@ -118,6 +118,19 @@ impl Lower<'_, '_> {
             f32: None,
             f64: None,
         });
+    }
+
+    /// A variable that neither the current state nor `taken` uses.
+    pub(super) fn spare_var(&mut self, taken: &[(u32, Variable)]) -> Variable {
+        let busy = |v: Variable, c: &Cache| {
+            c.held.iter().any(|h| h.var == v) || taken.iter().any(|&(_, w)| w == v)
+        };
+        if let Some(&v) = self.cache.all.iter().find(|&&v| !busy(v, &self.cache)) {
+            return v;
+        }
+        let v = self.b.declare_var(I64);
+        self.cache.all.push(v);
+        v
     }
 
     fn take_var(&mut self) -> Variable {

@@ -32,6 +32,8 @@ pub(super) struct Regions {
     pub(super) loop_head: Vec<bool>,
     /// Whether each instruction lies inside a loop.
     in_loop: Vec<bool>,
+    /// The farthest back edge to each loop head.
+    loop_end: Vec<usize>,
     /// The last instruction at which each slot may be used again,
     /// counting a use inside a loop as a use at the loop's back edge.
     live_until: HashMap<u32, usize>,
@@ -42,6 +44,7 @@ impl Regions {
     pub(super) fn new(ops: &[Op]) -> Self {
         let n = ops.len();
         let mut loop_head = vec![false; n + 1];
+        let mut loop_end = vec![0; n + 1];
         // The farthest back edge of a loop around each instruction.
         let mut reach: Vec<usize> = (0..n).collect();
         for (pc, op) in ops.iter().enumerate() {
@@ -49,6 +52,7 @@ impl Regions {
                 && t <= pc
             {
                 loop_head[t] = true;
+                loop_end[t] = loop_end[t].max(pc);
                 for r in &mut reach[t..=pc] {
                     *r = (*r).max(pc);
                 }
@@ -72,6 +76,7 @@ impl Regions {
             dirty_in: vec![Vec::new(); n + 1],
             loop_head,
             in_loop,
+            loop_end,
             live_until,
         }
     }
@@ -120,14 +125,38 @@ impl Lower<'_, '_> {
             return;
         }
         let crosses = self.regions.crosses_window(self.pc, t);
-        let entry: Vec<(u32, Variable)> = self
+        let mut entry: Vec<(u32, Variable)> = self
             .cache
             .held
             .iter()
             .filter(|h| !crosses && self.regions.live_at(h.slot, t))
             .map(|h| (h.slot, h.var))
             .collect();
+        if self.regions.loop_head[t] {
+            self.hold_loop_slots(t, &mut entry);
+        }
         self.regions.entry[t] = Some(entry);
+    }
+
+    /// Adds to the entry of loop head `t` the slots its loop names, in
+    /// the order they first appear, up to the cache's size: each edge in
+    /// loads them once and the loop keeps them in registers.
+    fn hold_loop_slots(&mut self, t: usize, entry: &mut Vec<(u32, Variable)>) {
+        let end = self.regions.loop_end[t];
+        for op in &self.ops[t..=end] {
+            let mut o = *op;
+            for (first, len) in slots_of(&mut o) {
+                for slot in first..first + len {
+                    if entry.len() >= super::cache::MAX_HELD {
+                        return;
+                    }
+                    if !entry.iter().any(|&(s, _)| s == slot) {
+                        let var = self.spare_var(entry);
+                        entry.push((slot, var));
+                    }
+                }
+            }
+        }
     }
 
     /// Notes which of region `t`'s slots the edge from here brings dirty.
@@ -252,9 +281,16 @@ impl Lower<'_, '_> {
 
     /// Starts translating the region at instruction `pc`.
     pub(super) fn enter_region(&mut self, pc: usize) {
-        // A region no edge reaches holds nothing (and later back edges
-        // to it bring nothing).
-        let entry = self.regions.entry[pc].get_or_insert_with(Vec::new).clone();
+        // A region no edge has reached yet holds nothing, unless it is a
+        // loop head (the back edges bring the loop's slots).
+        if self.regions.entry[pc].is_none() {
+            let mut entry = Vec::new();
+            if self.regions.loop_head[pc] {
+                self.hold_loop_slots(pc, &mut entry);
+            }
+            self.regions.entry[pc] = Some(entry);
+        }
+        let entry = self.regions.entry[pc].clone().unwrap_or_default();
         let dirty = if self.regions.loop_head[pc] {
             None
         } else {
