@@ -90,7 +90,7 @@ impl Regions {
     /// instructions: values held across a whole long block would make the
     /// register allocator's work grow with the square of its length.
     pub(super) fn window_ends(&self, pc: usize) -> bool {
-        pc % WINDOW == 0 && !self.in_loop[pc]
+        pc.is_multiple_of(WINDOW) && !self.in_loop[pc]
     }
 
     /// Whether an edge from `from` to `t` crosses a window boundary
