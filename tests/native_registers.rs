@@ -74,6 +74,25 @@ fn accesses_through_addresses_see_held_values() {
 }
 
 #[test]
+fn element_addresses_made_in_the_block_write_over_held_elements() {
+    // `sa[1]` by a constant index is a plain slot, held; `sa[k]` and
+    // `cnt[k]` go through an element address (`ElemRef`) whose range is
+    // known when translating: held slots in it must be written back and
+    // dropped around the access.
+    let source = "TYPE S : STRUCT x : DINT; y : DINT; END_STRUCT END_TYPE
+         PROGRAM P
+         VAR sa : ARRAY[0..3] OF S; cnt : ARRAY[0..3] OF CTU; n, k, z : DINT; END_VAR
+           n := n + 1; k := n MOD 4;
+           sa[1].x := sa[1].x + 1; sa[1].y := n;
+           sa[k].x := sa[k].x * 2 + sa[1].y; sa[k].y := sa[k].y - 1;
+           z := sa[1].x + sa[1].y + sa[k].x;
+           cnt[1].PV := 3; cnt[k](CU := (n MOD 2) = 0, R := cnt[1].Q);
+           z := z + INT_TO_DINT(cnt[1].CV) + INT_TO_DINT(cnt[k].CV);
+         END_PROGRAM";
+    assert_eq!(agree(source, 30), None);
+}
+
+#[test]
 fn a_fault_after_values_changed_in_registers_leaves_the_interpreters_memory() {
     // Division by zero, an index out of range and a conversion overflow,
     // each after other variables changed in the same cycle (and in a

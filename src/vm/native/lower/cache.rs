@@ -38,6 +38,9 @@ pub(super) struct Held {
     /// paths merge).
     f32: Option<Value>,
     f64: Option<Value>,
+    /// For an address made by `ElemRef` in this region: the frame slots
+    /// (relative, `lo..hi`) it points at one of.
+    into: Option<(u64, u64)>,
 }
 
 /// The held slots at one point of the translation.
@@ -97,6 +100,7 @@ impl Lower<'_, '_> {
                 h.used = clock;
                 h.f32 = None;
                 h.f64 = None;
+                h.into = None;
                 let var = h.var;
                 self.b.def_var(var, v);
             }
@@ -117,7 +121,24 @@ impl Lower<'_, '_> {
             used: self.cache.clock,
             f32: None,
             f64: None,
+            into: None,
         });
+    }
+
+    /// Slot `s` becomes `v`, an address of one of the frame slots
+    /// `range` (relative to the frame).
+    pub(super) fn set_pointer(&mut self, s: Slot, v: Value, range: (u64, u64)) {
+        self.set(s, v);
+        let i = self.cache.find(s.get()).expect("held after set");
+        self.cache.held[i].into = Some(range);
+    }
+
+    /// The frame slots (relative) the address held in `s` points at one
+    /// of, when known (`set_pointer`).
+    pub(super) fn points_into(&self, s: Slot) -> Option<(u64, u64)> {
+        self.cache
+            .find(s.get())
+            .and_then(|i| self.cache.held[i].into)
     }
 
     /// A variable that neither the current state nor `taken` uses.
@@ -309,6 +330,7 @@ impl Lower<'_, '_> {
                 used: clock,
                 f32: None,
                 f64: None,
+                into: None,
             })
             .collect();
         self.cache.free = self

@@ -43,8 +43,9 @@ impl Lower<'_, '_> {
             Op::CallNativeInd { fb, p } => {
                 // The instance's slots must lie in memory (checked without
                 // overflow, as the interpreter checks them).
-                let start = self.get(p);
                 let n = fb.instance_slots() as i64;
+                let known = self.pointed(p, 0, n as u64);
+                let start = self.get(p);
                 let beyond = self
                     .b
                     .ins()
@@ -55,15 +56,23 @@ impl Lower<'_, '_> {
                 self.fault_if(bad, WHY_BAD_ADDRESS);
                 let bytes = self.b.ins().ishl_imm_s(start, 3);
                 let inst = self.b.ins().iadd(self.mem, bytes);
-                let rel = self.frame_relative(start);
-                self.guarded(rel, n as u64, true, |l| {
+                let run = |l: &mut Self| {
                     if super::fbs::inlined(fb) {
                         l.inline_fb(fb, super::fbs::Pins::At(inst));
                     } else {
                         l.call_standard(inst);
                     }
                     None
-                });
+                };
+                if let Some((lo, hi)) = known {
+                    // An element of a frame array of FBs: the slots it
+                    // may touch are known here.
+                    self.drop_range(lo, hi);
+                    run(self);
+                } else {
+                    let rel = self.frame_relative(start);
+                    self.guarded(rel, n as u64, true, run);
+                }
             }
             _ => return false,
         }

@@ -28,25 +28,27 @@ impl Lower<'_, '_> {
             }
             Op::LoadAbs { d, abs } => {
                 let a = self.b.ins().iconst(I64, abs as i64);
-                let v = self.load_at(a);
+                let v = self.load_at(a, None);
                 self.set(d, v);
             }
             Op::StoreAbs { abs, s } => {
                 let v = self.get(s);
                 let a = self.b.ins().iconst(I64, abs as i64);
-                self.store_at(a, v);
+                self.store_at(a, v, None);
             }
             Op::LoadInd { d, p, off } => {
+                let known = self.pointed(p, i64::from(off), 1);
                 let base = self.get(p);
                 let a = self.b.ins().iadd_imm_s(base, off as i64);
-                let v = self.load_at(a);
+                let v = self.load_at(a, known);
                 self.set(d, v);
             }
             Op::StoreInd { p, off, s } => {
+                let known = self.pointed(p, i64::from(off), 1);
                 let base = self.get(p);
                 let a = self.b.ins().iadd_imm_s(base, off as i64);
                 let v = self.get(s);
-                self.store_at(a, v);
+                self.store_at(a, v, known);
             }
             Op::AddrOf { d, off } => {
                 let v = self.b.ins().iadd_imm_s(self.base, off.index() as i64);
@@ -98,7 +100,10 @@ impl Lower<'_, '_> {
                 let i = self.index(idx, desc);
                 let rel = self.relative(i, desc);
                 let v = self.b.ins().iadd(self.base, rel);
-                self.set(d, v);
+                let ad = self.img.arrays[desc.index()];
+                let lo = u64::from(ad.offset);
+                let hi = lo.saturating_add(ad.len.saturating_mul(u64::from(ad.stride)));
+                self.set_pointer(d, v, (lo, hi));
             }
             Op::IndexStep { acc, idx, desc } => {
                 let i = self.index(idx, desc);
@@ -174,10 +179,25 @@ impl Lower<'_, '_> {
         self.b.ins().iadd(self.fp, bytes)
     }
 
+    /// The frame slots (relative, `lo..hi`) that `n` slots from `off`
+    /// after the address held in `p` may touch, when `p` holds an
+    /// element address made in this region (`ElemRef`).
+    pub(super) fn pointed(&self, p: Slot, off: i64, n: u64) -> Option<(u64, u64)> {
+        let (lo, hi) = self.points_into(p)?;
+        let lo = u64::try_from((lo as i64).checked_add(off)?).ok()?;
+        let hi = u64::try_from((hi as i64).checked_add(off)?).ok()?;
+        Some((lo, hi.checked_add(n)?))
+    }
+
     /// Loads absolute slot `a` (checked against memory; held slots kept
-    /// right if it is one of them).
-    fn load_at(&mut self, a: Value) -> Value {
+    /// right if it is one of them: written back first when it may be,
+    /// in the frame range `known` when that is known).
+    fn load_at(&mut self, a: Value, known: Option<(u64, u64)>) -> Value {
         let at = self.checked_address(a);
+        if let Some((lo, hi)) = known {
+            self.write_back_range(lo, hi);
+            return self.b.ins().load(I64, MemFlagsData::trusted(), at, 0);
+        }
         let rel = self.frame_relative(a);
         let v = self.guarded(rel, 1, false, |l| {
             Some(l.b.ins().load(I64, MemFlagsData::trusted(), at, 0))
@@ -186,8 +206,13 @@ impl Lower<'_, '_> {
     }
 
     /// Stores `v` into absolute slot `a`, as `load_at` loads.
-    fn store_at(&mut self, a: Value, v: Value) {
+    fn store_at(&mut self, a: Value, v: Value, known: Option<(u64, u64)>) {
         let at = self.checked_address(a);
+        if let Some((lo, hi)) = known {
+            self.drop_range(lo, hi);
+            self.b.ins().store(MemFlagsData::trusted(), v, at, 0);
+            return;
+        }
         let rel = self.frame_relative(a);
         self.guarded(rel, 1, true, |l| {
             l.b.ins().store(MemFlagsData::trusted(), v, at, 0);
