@@ -22,7 +22,7 @@
 # -timeout in seconds; FUZZ_NO_BUILD=1 skips the build.
 #
 # AddressSanitizer is on for the targets that execute programs (run,
-# gen_diff, gen_il_diff): the executor's dispatch, references and string
+# gen_diff, gen_il_diff, engines_agree): the executor's dispatch, references and string
 # operations use `unsafe`. The front-end targets (lex, parse, plcopen, s7,
 # check) run only safe Rust, where the sanitizer finds nothing that a
 # panic would not, at a quarter of the speed: they are built without it,
@@ -37,7 +37,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 export RUSTC_BOOTSTRAP=1
-targets=(lex parse plcopen s7 check run gen_diff gen_il_diff modbus opcua_write)
+targets=(lex parse plcopen s7 check run gen_diff gen_il_diff engines_agree modbus opcua_write)
 
 # The sanitizer a target is built with (see above).
 sanitizer_of() {
@@ -46,7 +46,7 @@ sanitizer_of() {
         return
     fi
     case "$1" in
-        run | gen_diff | gen_il_diff) echo address ;;
+        run | gen_diff | gen_il_diff | engines_agree) echo address ;;
         *) echo none ;;
     esac
 }
@@ -103,7 +103,7 @@ run() {
 # The generators' input is choices, not text: long inputs from the start.
 extra_flags() {
     case "$1" in
-        gen_diff | gen_il_diff) echo "-len_control=0 -max_len=4096" ;;
+        gen_diff | gen_il_diff | engines_agree) echo "-len_control=0 -max_len=4096" ;;
     esac
 }
 

@@ -60,6 +60,7 @@ fn target(name: &str) -> fn(&[u8]) {
         "check" => targets::check,
         "run" => targets::run,
         "gen_il_diff" => targets::gen_il_diff,
+        "engines_agree" => targets::engines_agree,
         "modbus" => targets::modbus,
         #[cfg(feature = "opcua")]
         "opcua_write" => targets::opcua_write,

@@ -176,6 +176,8 @@ mod modbus_openplc;
 mod native_engine;
 #[path = "native_reference.rs"]
 mod native_reference;
+#[path = "native_registers.rs"]
+mod native_registers;
 #[path = "one_typo.rs"]
 mod one_typo;
 #[path = "online_change.rs"]

@@ -216,12 +216,13 @@ fn plain_literal(text: &str, start: usize) -> (String, usize) {
 /// The corpus of each target: `(target, file name, bytes)`. The
 /// whole-pipeline targets take every seed behind its kind's prefix byte;
 /// `gen_diff`, whose inputs are the generator's choices, starts from 32
-/// pseudo-random inputs of 0.5 to 4 KiB (a fixed sequence).
+/// pseudo-random inputs of 0.5 to 4 KiB (a fixed sequence), and
+/// `engines_agree` from every fourth of them.
 pub fn corpora(seeds: &[Seed]) -> Vec<(&'static str, String, Vec<u8>)> {
     let mut out = Vec::new();
     let mut state: u64 = 0x2545_F491_4F6C_DD1D;
     for n in 0..32 {
-        let bytes = (0..512 * (n % 8 + 1))
+        let bytes: Vec<u8> = (0..512 * (n % 8 + 1))
             .map(|_| {
                 state ^= state << 13;
                 state ^= state >> 7;
@@ -229,6 +230,9 @@ pub fn corpora(seeds: &[Seed]) -> Vec<(&'static str, String, Vec<u8>)> {
                 (state >> 24) as u8
             })
             .collect();
+        if n % 4 == 0 {
+            out.push(("engines_agree", format!("random{n:02}"), bytes.clone()));
+        }
         out.push(("gen_diff", format!("random{n:02}"), bytes));
     }
     for (n, seed) in seeds.iter().enumerate() {

@@ -118,6 +118,25 @@ pub fn gen_il_diff(data: &[u8]) {
     }
 }
 
+/// A generated program (ST when the first byte is even, IL otherwise) run
+/// on the native tier and on the interpreter, compared cycle by cycle
+/// (see [`super::differential::check_engines`]). Without the native tier
+/// in the build both sides are the interpreter.
+pub fn engines_agree(data: &[u8]) {
+    let Some((&pick, rest)) = data.split_first() else {
+        return;
+    };
+    let mut u = arbitrary::Unstructured::new(rest);
+    let program = if pick % 2 == 0 {
+        super::st_gen::generate(&mut u)
+    } else {
+        super::il_gen::generate(&mut u)
+    };
+    if let Ok(program) = program {
+        super::differential::check_engines(&program);
+    }
+}
+
 /// The Modbus TCP server's request path (frame reader and request
 /// handler): any bytes as one client's stream. Every answer must be a
 /// whole MBAP frame (protocol 0, a length of 2 to 254 that the answer

@@ -156,6 +156,15 @@ fn host_isa() -> Result<std::sync::Arc<dyn cranelift_codegen::isa::TargetIsa>, S
             .map_err(|e| format!("cranelift setting {k}: {e}"))
     };
     set(&mut flags, "opt_level", "speed")?;
+    // Cranelift's IR verifier checks the translation (a bug there would be
+    // a panic, never wrong code); the tests run it, release builds spare
+    // its time at every load.
+    let verify = if cfg!(debug_assertions) {
+        "true"
+    } else {
+        "false"
+    };
+    set(&mut flags, "enable_verifier", verify)?;
     // The code is position dependent (helper and table addresses are
     // constants in it) and never unwound through by Rust panics.
     set(&mut flags, "is_pic", "false")?;

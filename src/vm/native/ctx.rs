@@ -9,9 +9,12 @@ use crate::vm::{Fault, FaultKind, Interrupt, Machine};
 use std::sync::atomic::AtomicU32;
 
 /// The signature of every entry of a [`super::Compiled`] block table:
-/// `(ctx, frame base, block index) -> 0` (returned) or `1` (a fault,
-/// waiting in [`Ctx::fault`]).
-pub(crate) type EntryFn = unsafe extern "C" fn(*mut Ctx, usize, u32) -> u32;
+/// `(ctx, frame base, block index, frame address) -> 0` (returned) or `1`
+/// (a fault, waiting in [`Ctx::fault`]). The frame address is
+/// `mem + 8 × base`, computed by the caller (wrapping, not dereferenced:
+/// the callee checks `base` first); receiving it as one value keeps the
+/// generated code from spending two registers on it.
+pub(crate) type EntryFn = unsafe extern "C" fn(*mut Ctx, usize, u32, *mut u64) -> u32;
 
 /// What a running native block needs besides its frame. `repr(C)`: the
 /// generated code loads `mem`, `len`, `irq` and `now` at their offsets
@@ -67,7 +70,8 @@ pub(crate) fn enter(
     // runs native code only for the image it was compiled from:
     // `Compiled::fits`), and `ctx` describes this machine's memory; the
     // code checks `base` against it before touching the frame.
-    let status = unsafe { entry(&mut ctx, base, code.get()) };
+    let fp = mem.wrapping_add(base);
+    let status = unsafe { entry(&mut ctx, base, code.get(), fp) };
     if status == 0 {
         return Some(Ok(()));
     }

@@ -106,7 +106,12 @@ pub(super) unsafe extern "C" fn unwound(ctx: *mut Ctx, code_pc: u64, base: usize
 ///
 /// # Safety
 /// `ctx` is the running entry's; `code` a block of its image.
-pub(super) unsafe extern "C" fn interpret(ctx: *mut Ctx, base: usize, code: u32) -> u32 {
+pub(super) unsafe extern "C" fn interpret(
+    ctx: *mut Ctx,
+    base: usize,
+    code: u32,
+    _fp: *mut u64,
+) -> u32 {
     // SAFETY: the caller's contract, as for `unwound`.
     let ctx = unsafe { &mut *ctx };
     let (m, img) = unsafe { (&mut *ctx.machine, &*ctx.image) };
@@ -130,6 +135,31 @@ pub(super) unsafe extern "C" fn call_native(ctx: *mut Ctx, op: *const Op, inst: 
     if let Op::CallNative { fb, .. } | Op::CallNativeInd { fb, .. } = *op {
         // SAFETY: the instance holds `fb.instance_slots()` slots.
         unsafe { stdlib::call_raw(fb, inst, now) }
+    }
+}
+
+/// `MathF32` other than ABS and SQRT (which are single IEEE operations,
+/// compiled inline): the interpreter's `MathFn::apply_f32` on `x`.
+///
+/// # Safety
+/// `op` points to an instruction of a compiled block.
+pub(super) unsafe extern "C" fn math_f32(op: *const Op, x: f32) -> f32 {
+    // SAFETY: the caller's contract.
+    match unsafe { *op } {
+        Op::MathF32 { f, .. } => f.apply_f32(x),
+        _ => x,
+    }
+}
+
+/// `MathF64` as `math_f32` for LREAL.
+///
+/// # Safety
+/// `op` points to an instruction of a compiled block.
+pub(super) unsafe extern "C" fn math_f64(op: *const Op, x: f64) -> f64 {
+    // SAFETY: the caller's contract.
+    match unsafe { *op } {
+        Op::MathF64 { f, .. } => f.apply_f64(x),
+        _ => x,
     }
 }
 
@@ -177,9 +207,7 @@ pub(super) unsafe extern "C" fn step(
             None => Err(FaultKind::NegativeExponent),
         },
         Op::PowF32 { d, a, b } => w(d, of_f32(f32_of(r(a)).powf(f32_of(r(b))))),
-        Op::MathF32 { d, a, f } => w(d, of_f32(f.apply_f32(f32_of(r(a))))),
         Op::PowF64 { d, a, b } => w(d, f64::from_bits(r(a)).powf(f64::from_bits(r(b))).to_bits()),
-        Op::MathF64 { d, a, f } => w(d, f.apply_f64(f64::from_bits(r(a))).to_bits()),
         Op::Convert { d, a, conv } => match convert::convert(conv, r(a)) {
             Ok(v) => w(d, v),
             Err(e) => Err(FaultKind::from(e)),

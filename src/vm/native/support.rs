@@ -42,6 +42,22 @@ pub(super) fn out_of_line(op: &Op) -> bool {
     matches!(lowering(op), Lowering::OutOfLine)
 }
 
+/// Whether out-of-line `op` only reads its input slots and writes its
+/// result slot (so held slots other than those stay held across it).
+pub(super) fn pure(op: &Op) -> bool {
+    matches!(
+        op,
+        Op::PowS { .. }
+            | Op::PowF32 { .. }
+            | Op::PowF64 { .. }
+            | Op::Convert { .. }
+            | Op::MinMaxF32 { .. }
+            | Op::MinMaxF64 { .. }
+            | Op::MulTimeF64 { .. }
+            | Op::DivTimeF64 { .. }
+    )
+}
+
 /// How `op` runs (the array a `FillElems` fills is checked by
 /// [`refused`]).
 fn lowering(op: &Op) -> Lowering {
@@ -136,14 +152,14 @@ fn lowering(op: &Op) -> Lowering {
         | Op::CallNativeInd { .. }
         | Op::CallFn { .. }
         | Op::Clock { .. }
+        | Op::MathF32 { .. }
+        | Op::MathF64 { .. }
         | Op::Ret => Lowering::Inline,
         // Out of line: a call into Rust that runs the instruction as the
         // interpreter does (helpers.rs, `step`).
         Op::PowS { .. }
         | Op::PowF32 { .. }
-        | Op::MathF32 { .. }
         | Op::PowF64 { .. }
-        | Op::MathF64 { .. }
         | Op::Convert { .. }
         | Op::MinMaxF32 { .. }
         | Op::MinMaxF64 { .. }

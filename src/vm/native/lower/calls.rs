@@ -1,8 +1,10 @@
 //! Calls: user FBs and functions through the block table (machine code,
 //! or the interpreter for a block the tier did not compile), standard FBs
-//! through one helper. A callee's fault comes back as status 1; the call
-//! is then noted as one the fault unwound through, as the interpreter
-//! notes it.
+//! inline (fbs.rs) or through one helper. A callee's fault comes back as
+//! status 1; the call is then noted as one the fault unwound through, as
+//! the interpreter notes it. A user callee may read and write any memory
+//! (in-out arguments point anywhere): every held slot is written back and
+//! dropped first. A standard FB touches its instance only.
 
 use super::{I32, I64, Lower};
 use crate::ir::op::{CodeIdx, Op};
@@ -27,7 +29,13 @@ impl Lower<'_, '_> {
                 let base = self.b.ins().iconst(I64, frame as i64);
                 self.call_block(code, base);
             }
-            Op::CallNative { inst, .. } => {
+            Op::CallNative { fb, inst } => {
+                if super::fbs::inlined(fb) {
+                    self.inline_fb(fb, super::fbs::Pins::Frame(inst));
+                    return true;
+                }
+                let lo = u64::from(inst.get());
+                self.drop_range(lo, lo + u64::from(fb.instance_slots()));
                 let (at, off) = self.slot_at(inst);
                 let inst = self.b.ins().iadd_imm_s(at, off as i64);
                 self.call_standard(inst);
@@ -35,8 +43,9 @@ impl Lower<'_, '_> {
             Op::CallNativeInd { fb, p } => {
                 // The instance's slots must lie in memory (checked without
                 // overflow, as the interpreter checks them).
-                let start = self.get(p);
                 let n = fb.instance_slots() as i64;
+                let known = self.pointed(p, 0, n as u64);
+                let start = self.get(p);
                 let beyond = self
                     .b
                     .ins()
@@ -47,7 +56,23 @@ impl Lower<'_, '_> {
                 self.fault_if(bad, WHY_BAD_ADDRESS);
                 let bytes = self.b.ins().ishl_imm_s(start, 3);
                 let inst = self.b.ins().iadd(self.mem, bytes);
-                self.call_standard(inst);
+                let run = |l: &mut Self| {
+                    if super::fbs::inlined(fb) {
+                        l.inline_fb(fb, super::fbs::Pins::At(inst));
+                    } else {
+                        l.call_standard(inst);
+                    }
+                    None
+                };
+                if let Some((lo, hi)) = known {
+                    // An element of a frame array of FBs: the slots it
+                    // may touch are known here.
+                    self.drop_range(lo, hi);
+                    run(self);
+                } else {
+                    let rel = self.frame_relative(start);
+                    self.guarded(rel, n as u64, true, run);
+                }
             }
             _ => return false,
         }
@@ -56,27 +81,32 @@ impl Lower<'_, '_> {
 
     /// Block `code` at `base`, through its table entry.
     fn call_block(&mut self, code: CodeIdx, base: Value) {
+        self.drop_all();
         let slot = self.table as i64 + code.index() as i64 * 8;
         let table = self.b.ins().iconst(I64, slot);
         // The table is complete before any code runs and never changes.
         let flags = MemFlagsData::trusted().with_readonly();
         let entry = self.b.ins().load(I64, flags, table, 0);
         let index = self.b.ins().iconst(I32, code.get() as i64);
+        let bytes = self.b.ins().ishl_imm_s(base, 3);
+        let fp = self.b.ins().iadd(self.mem, bytes);
         let inst = self
             .b
             .ins()
-            .call_indirect(self.sigs.entry, entry, &[self.ctx, base, index]);
+            .call_indirect(self.sigs.entry, entry, &[self.ctx, base, index, fp]);
         let status = self.b.inst_results(inst)[0];
         let unwind = self.b.create_block();
         let next = self.b.create_block();
         self.b.set_cold_block(unwind);
         self.b.ins().brif(status, unwind, &[], next, &[]);
         self.b.switch_to_block(unwind);
+        self.b.seal_block(unwind);
         let code_pc = self.code_pc();
         let args = [self.ctx, code_pc, self.base];
         self.call(self.sigs.unwound, helpers::unwound as *const (), &args);
         self.b.ins().jump(self.fail, &[]);
         self.b.switch_to_block(next);
+        self.b.seal_block(next);
     }
 
     /// The standard FB of this instruction on the instance at `inst`.

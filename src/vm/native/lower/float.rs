@@ -4,9 +4,10 @@
 //! a multiply, then an add: never fused), so results match to the bit.
 
 use super::flow::float;
-use super::{I32, I64, Lower};
-use crate::ir::op::{Op, Slot};
-use cranelift_codegen::ir::{InstBuilder, MemFlagsData, Value, types};
+use super::{I64, Lower};
+use crate::ir::op::{MathFn, Op};
+use crate::vm::native::helpers;
+use cranelift_codegen::ir::{InstBuilder, Value};
 
 impl Lower<'_, '_> {
     /// Translates a float instruction; false when `op` is not one.
@@ -57,9 +58,33 @@ impl Lower<'_, '_> {
                 let v = self.arith(O::Fadd, product, z);
                 self.set_float(d, v, wide);
             }
+            Op::MathF32 { d, a, f } | Op::MathF64 { d, a, f } => {
+                let wide = matches!(op, Op::MathF64 { .. });
+                let x = self.get_float(a, wide);
+                let v = match f {
+                    // Single IEEE operations, as Rust's `abs` and `sqrt`.
+                    MathFn::Abs => self.b.ins().fabs(x),
+                    MathFn::Sqrt => self.b.ins().sqrt(x),
+                    _ => self.math_call(x, wide),
+                };
+                self.set_float(d, v, wide);
+            }
             _ => return false,
         }
         true
+    }
+
+    /// The interpreter's `MathFn::apply_*` on `x`, through a helper that
+    /// takes and returns the value in a register.
+    fn math_call(&mut self, x: Value, wide: bool) -> Value {
+        let op = self.op_ptr();
+        let (sig, addr) = if wide {
+            (self.sigs.math_f64, helpers::math_f64 as *const ())
+        } else {
+            (self.sigs.math_f32, helpers::math_f32 as *const ())
+        };
+        self.call(sig, addr, &[op, x])
+            .expect("a math helper returns")
     }
 
     fn arith(&mut self, opcode: cranelift_codegen::ir::Opcode, x: Value, y: Value) -> Value {
@@ -70,29 +95,5 @@ impl Lower<'_, '_> {
             O::Fmul => self.b.ins().fmul(x, y),
             _ => self.b.ins().fdiv(x, y),
         }
-    }
-
-    /// Slot `s` as an `f64` (`wide`) or as the `f32` in its low 32 bits.
-    pub(super) fn get_float(&mut self, s: Slot, wide: bool) -> Value {
-        let (at, off) = self.slot_at(s);
-        let flags = MemFlagsData::trusted();
-        if wide {
-            self.b.ins().load(types::F64, flags, at, off)
-        } else {
-            // Little-endian: the low half of the slot is its first 4 bytes.
-            let bits = self.b.ins().load(I32, flags, at, off);
-            self.b.ins().bitcast(types::F32, MemFlagsData::new(), bits)
-        }
-    }
-
-    /// Stores `v` into slot `s`: an `f32` zero-extended to 64 bits.
-    fn set_float(&mut self, s: Slot, v: Value, wide: bool) {
-        let bits = if wide {
-            self.b.ins().bitcast(I64, MemFlagsData::new(), v)
-        } else {
-            let b = self.b.ins().bitcast(I32, MemFlagsData::new(), v);
-            self.b.ins().uextend(I64, b)
-        };
-        self.set(s, bits);
     }
 }

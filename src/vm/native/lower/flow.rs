@@ -73,6 +73,7 @@ impl Lower<'_, '_> {
     pub(super) fn flow(&mut self, op: &Op) -> Option<bool> {
         match *op {
             Op::Ret => {
+                self.write_back_all();
                 let zero = self.b.ins().iconst(super::I32, 0);
                 self.b.ins().return_(&[zero]);
                 Some(false)
@@ -116,6 +117,7 @@ impl Lower<'_, '_> {
             }
             Op::JzElem { idx, desc, t } | Op::JnzElem { idx, desc, t } => {
                 let at = self.element(idx, desc);
+                self.element_access(desc, false);
                 let v =
                     self.b
                         .ins()
@@ -229,21 +231,25 @@ impl Lower<'_, '_> {
         if t <= self.pc {
             self.tick();
         }
-        let to = self.start(t);
-        self.b.ins().jump(to, &[]);
+        self.jump_to(t);
     }
 
     /// To instruction `t` when `cond` is non-zero, else to the next one.
     fn branch(&mut self, cond: Value, t: usize) {
-        let next = self.start(self.pc + 1);
+        let next = self.pc + 1;
         if t <= self.pc {
+            self.retire(&[t, next]);
             let back = self.b.create_block();
-            self.b.ins().brif(cond, back, &[], next, &[]);
+            let (to_next, fill) = self.edge_block(next);
+            self.b.ins().brif(cond, back, &[], to_next, &[]);
             self.b.switch_to_block(back);
+            self.b.seal_block(back);
             self.goto(t);
+            if fill {
+                self.fill_edge(to_next, next);
+            }
         } else {
-            let to = self.start(t);
-            self.b.ins().brif(cond, to, &[], next, &[]);
+            self.branch_two(cond, t, next);
         }
     }
 }

@@ -28,29 +28,27 @@ impl Lower<'_, '_> {
             }
             Op::LoadAbs { d, abs } => {
                 let a = self.b.ins().iconst(I64, abs as i64);
-                let at = self.checked_address(a);
-                let v = self.b.ins().load(I64, MemFlagsData::trusted(), at, 0);
+                let v = self.load_at(a, None);
                 self.set(d, v);
             }
             Op::StoreAbs { abs, s } => {
                 let v = self.get(s);
                 let a = self.b.ins().iconst(I64, abs as i64);
-                let at = self.checked_address(a);
-                self.b.ins().store(MemFlagsData::trusted(), v, at, 0);
+                self.store_at(a, v, None);
             }
             Op::LoadInd { d, p, off } => {
+                let known = self.pointed(p, i64::from(off), 1);
                 let base = self.get(p);
                 let a = self.b.ins().iadd_imm_s(base, off as i64);
-                let at = self.checked_address(a);
-                let v = self.b.ins().load(I64, MemFlagsData::trusted(), at, 0);
+                let v = self.load_at(a, known);
                 self.set(d, v);
             }
             Op::StoreInd { p, off, s } => {
+                let known = self.pointed(p, i64::from(off), 1);
                 let base = self.get(p);
                 let a = self.b.ins().iadd_imm_s(base, off as i64);
                 let v = self.get(s);
-                let at = self.checked_address(a);
-                self.b.ins().store(MemFlagsData::trusted(), v, at, 0);
+                self.store_at(a, v, known);
             }
             Op::AddrOf { d, off } => {
                 let v = self.b.ins().iadd_imm_s(self.base, off.index() as i64);
@@ -79,6 +77,7 @@ impl Lower<'_, '_> {
         match *op {
             Op::LoadElem { d, idx, desc } => {
                 let at = self.element(idx, desc);
+                self.element_access(desc, false);
                 let v = self.b.ins().load(I64, flags, at, 0);
                 self.set(d, v);
             }
@@ -87,6 +86,7 @@ impl Lower<'_, '_> {
             Op::StoreElem { idx, s, desc } | Op::StoreStep { idx, s, desc } => {
                 let at = self.element(idx, desc);
                 let v = self.get(s);
+                self.element_access(desc, true);
                 self.b.ins().store(flags, v, at, 0);
             }
             Op::ElemAddr { d, idx, desc } => {
@@ -100,7 +100,10 @@ impl Lower<'_, '_> {
                 let i = self.index(idx, desc);
                 let rel = self.relative(i, desc);
                 let v = self.b.ins().iadd(self.base, rel);
-                self.set(d, v);
+                let ad = self.img.arrays[desc.index()];
+                let lo = u64::from(ad.offset);
+                let hi = lo.saturating_add(ad.len.saturating_mul(u64::from(ad.stride)));
+                self.set_pointer(d, v, (lo, hi));
             }
             Op::IndexStep { acc, idx, desc } => {
                 let i = self.index(idx, desc);
@@ -124,11 +127,15 @@ impl Lower<'_, '_> {
                 let bytes = self.b.ins().ishl_imm_s(at, 3);
                 let addr = self.b.ins().iadd(self.fp, bytes);
                 if matches!(op, Op::LoadElemU { .. }) {
-                    let v = self.b.ins().load(I64, flags, addr, 0);
-                    self.set(d, v);
+                    let v =
+                        self.guarded(at, 1, false, |l| Some(l.b.ins().load(I64, flags, addr, 0)));
+                    self.set(d, v.expect("a loaded value"));
                 } else {
                     let v = self.get(d);
-                    self.b.ins().store(flags, v, addr, 0);
+                    self.guarded(at, 1, true, |l| {
+                        l.b.ins().store(flags, v, addr, 0);
+                        None
+                    });
                 }
             }
             Op::FillElems {
@@ -172,6 +179,47 @@ impl Lower<'_, '_> {
         self.b.ins().iadd(self.fp, bytes)
     }
 
+    /// The frame slots (relative, `lo..hi`) that `n` slots from `off`
+    /// after the address held in `p` may touch, when `p` holds an
+    /// element address made in this region (`ElemRef`).
+    pub(super) fn pointed(&self, p: Slot, off: i64, n: u64) -> Option<(u64, u64)> {
+        let (lo, hi) = self.points_into(p)?;
+        let lo = u64::try_from((lo as i64).checked_add(off)?).ok()?;
+        let hi = u64::try_from((hi as i64).checked_add(off)?).ok()?;
+        Some((lo, hi.checked_add(n)?))
+    }
+
+    /// Loads absolute slot `a` (checked against memory; held slots kept
+    /// right if it is one of them: written back first when it may be,
+    /// in the frame range `known` when that is known).
+    fn load_at(&mut self, a: Value, known: Option<(u64, u64)>) -> Value {
+        let at = self.checked_address(a);
+        if let Some((lo, hi)) = known {
+            self.write_back_range(lo, hi);
+            return self.b.ins().load(I64, MemFlagsData::trusted(), at, 0);
+        }
+        let rel = self.frame_relative(a);
+        let v = self.guarded(rel, 1, false, |l| {
+            Some(l.b.ins().load(I64, MemFlagsData::trusted(), at, 0))
+        });
+        v.expect("a loaded value")
+    }
+
+    /// Stores `v` into absolute slot `a`, as `load_at` loads.
+    fn store_at(&mut self, a: Value, v: Value, known: Option<(u64, u64)>) {
+        let at = self.checked_address(a);
+        if let Some((lo, hi)) = known {
+            self.drop_range(lo, hi);
+            self.b.ins().store(MemFlagsData::trusted(), v, at, 0);
+            return;
+        }
+        let rel = self.frame_relative(a);
+        self.guarded(rel, 1, true, |l| {
+            l.b.ins().store(MemFlagsData::trusted(), v, at, 0);
+            None
+        });
+    }
+
     /// The machine address of absolute slot `a`, which must lie in memory
     /// (a `BadAddress` fault otherwise).
     fn checked_address(&mut self, a: Value) -> Value {
@@ -196,6 +244,7 @@ impl Lower<'_, '_> {
         if after as i64 != last + 1 || b < 0 || b as u64 >= ad.len {
             return;
         }
+        self.drop_range(ad.offset as u64, (ad.offset as u64).saturating_add(ad.len));
         let start = self.get(i);
         let first = self.b.ins().iadd_imm_s(start, ad.lo.wrapping_neg());
         let in_order = self
@@ -226,11 +275,14 @@ impl Lower<'_, '_> {
         let after_fill = self.b.create_block();
         let args = [cranelift_codegen::ir::BlockArg::Value(next)];
         self.b.ins().brif(more, looping, &args, after_fill, &[]);
+        self.b.seal_block(looping);
         self.b.switch_to_block(after_fill);
+        self.b.seal_block(after_fill);
         let end = self.b.ins().iconst(I64, after as i64);
         self.set(i, end);
         self.tick();
         self.b.ins().jump(done, &[]);
         self.b.switch_to_block(done);
+        self.b.seal_block(done);
     }
 }

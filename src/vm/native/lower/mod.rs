@@ -1,13 +1,19 @@
 //! Translation of one verified code block into one Cranelift function
-//! with the [`EntryFn`] signature `(ctx, base, code) -> status`.
+//! with the [`EntryFn`] signature `(ctx, base, code, fp) -> status`.
 //!
-//! Frame slots stay in memory: every instruction loads its operands from
-//! the frame and stores its result there, as the interpreter does, so a
-//! helper, a callee or the interpreter always sees the current values.
-//! What disappears is the dispatch between instructions. Each
-//! instruction's family is lowered in its own file.
+//! Frame slots are held in variables across instructions (`cache`) and
+//! written back wherever memory must be current: before a helper, a call,
+//! a fault report, a poll that may stop the code, an access through an
+//! address that may land on a held slot, and the return. So a helper, a
+//! callee, the interpreter and the runtime see the interpreter's memory
+//! whenever they can look at it. Each instruction's family is lowered in
+//! its own file.
 
+mod alias;
+mod cache;
 mod calls;
+mod edges;
+mod fbs;
 mod float;
 mod flow;
 mod int;
@@ -40,7 +46,7 @@ pub(super) fn function(
     table: *const EntryFn,
 ) -> Result<Vec<u8>, String> {
     let call_conv = isa.default_call_conv();
-    let sig = signature(call_conv, &[I64, I64, I32], Some(I32));
+    let sig = signature(call_conv, &[I64, I64, I32, I64], Some(I32));
     let mut func = Function::with_name_signature(UserFuncName::default(), sig);
     let mut fctx = FunctionBuilderContext::new();
     let b = FunctionBuilder::new(&mut func, &mut fctx);
@@ -76,7 +82,7 @@ struct Sigs {
     poll: SigRef,
     /// `unwound(ctx, code_pc, base)`
     unwound: SigRef,
-    /// A block: `(ctx, base, code) -> u32`
+    /// A block: `(ctx, base, code, fp) -> u32`
     entry: SigRef,
     /// `call_native(ctx, op, inst)`
     call_native: SigRef,
@@ -84,6 +90,10 @@ struct Sigs {
     step: SigRef,
     /// `entry_strings(ctx, code, fp)`
     entry_strings: SigRef,
+    /// `math_f32(op, x) -> f32`
+    math_f32: SigRef,
+    /// `math_f64(op, x) -> f64`
+    math_f64: SigRef,
 }
 
 /// The state of one block's translation.
@@ -109,6 +119,12 @@ struct Lower<'a, 'f> {
     /// The instruction being translated.
     pc: usize,
     frontend: cranelift_codegen::isa::TargetFrontendConfig,
+    /// The slots held in variables now.
+    cache: cache::Cache,
+    /// The regions' entries and the slots' last uses.
+    regions: edges::Regions,
+    /// The cycle's clock, loaded at entry when an inlined timer needs it.
+    now: Option<Value>,
 }
 
 impl<'a, 'f> Lower<'a, 'f> {
@@ -127,14 +143,17 @@ impl<'a, 'f> Lower<'a, 'f> {
             raise: import(&[I64, I64, I64, I64, I32], Some(I32)),
             poll: import(&[I64, I64], Some(I32)),
             unwound: import(&[I64, I64, I64], None),
-            entry: import(&[I64, I64, I32], Some(I32)),
+            entry: import(&[I64, I64, I32, I64], Some(I32)),
             call_native: import(&[I64, I64, I64], None),
             step: import(&[I64, I64, I64, I64], Some(I32)),
             entry_strings: import(&[I64, I32, I64], None),
+            math_f32: import(&[I64, types::F32], Some(types::F32)),
+            math_f64: import(&[I64, types::F64], Some(types::F64)),
         };
         let entry = b.create_block();
         b.append_block_params_for_function_params(entry);
         b.switch_to_block(entry);
+        b.seal_block(entry);
         let p = b.block_params(entry).to_vec();
         let fail = b.create_block();
         b.set_cold_block(fail);
@@ -148,7 +167,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             sigs,
             ctx: p[0],
             base: p[1],
-            fp: zero,
+            fp: p[3],
             mem: zero,
             len: zero,
             irq: zero,
@@ -156,6 +175,9 @@ impl<'a, 'f> Lower<'a, 'f> {
             fail,
             pc: 0,
             frontend: isa.frontend_config(),
+            cache: cache::Cache::default(),
+            regions: edges::Regions::new(ops),
+            now: None,
         }
     }
 
@@ -168,17 +190,30 @@ impl<'a, 'f> Lower<'a, 'f> {
             self.pc = pc;
             if let Some(start) = self.starts[pc] {
                 if open {
-                    self.b.ins().jump(start, &[]);
+                    self.jump_to(pc);
                 }
                 self.b.switch_to_block(start);
+                if !self.regions.loop_head[pc] {
+                    // Every edge into it is translated (none comes back).
+                    self.b.seal_block(start);
+                }
+                self.enter_region(pc);
             } else if !open {
                 // Unreachable straight-line code after a jump: compiled
                 // into a block of its own, which nothing enters.
                 let dead = self.b.create_block();
                 self.b.switch_to_block(dead);
+                self.b.seal_block(dead);
+                self.enter(&[], None);
+            }
+            if open && self.starts[pc].is_none() && self.regions.window_ends(pc) {
+                self.drop_all();
             }
             let ops = self.ops;
             open = self.op(&ops[pc])?;
+            if open {
+                self.retire_after(pc);
+            }
         }
         if open {
             // Verified blocks end with Ret; kept total all the same.
@@ -225,15 +260,25 @@ impl<'a, 'f> Lower<'a, 'f> {
             block.frame_size as i64,
         );
         let bad = self.b.ins().bor(beyond, small);
-        let offset = self.b.ins().ishl_imm_s(self.base, 3);
-        self.fp = self.b.ins().iadd(self.mem, offset);
+        // `fp` (a parameter, `mem + 8 × base` from the caller) is used
+        // only after this check.
         self.fault_if(bad, WHY_BAD_ADDRESS);
         self.tick();
+        if self.ops.iter().any(fbs::needs_clock) {
+            let flags = MemFlagsData::trusted();
+            let now = self
+                .b
+                .ins()
+                .load(I64, flags, ctx, offset_of!(Ctx, now) as i32);
+            self.now = Some(now);
+        }
         for &(slot, value) in &block.entry_init {
             let v = self.b.ins().iconst(I64, value as i64);
             self.set(slot, v);
         }
         if !block.entry_strings.is_empty() {
+            // The helper reads the frame.
+            self.drop_all();
             let code = self.b.ins().iconst(I32, self.code.get() as i64);
             let args = [self.ctx, code, self.fp];
             self.call(
@@ -284,7 +329,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             return Ok(true);
         }
         if super::support::out_of_line(op) {
-            self.out_of_line();
+            self.out_of_line(op);
             return Ok(true);
         }
         if let Some(open) = self.flow(op) {
@@ -312,18 +357,6 @@ impl<'a, 'f> Lower<'a, 'f> {
         }
     }
 
-    /// Loads frame slot `s`.
-    fn get(&mut self, s: Slot) -> Value {
-        let (at, off) = self.slot_at(s);
-        self.b.ins().load(I64, MemFlagsData::trusted(), at, off)
-    }
-
-    /// Stores `v` into frame slot `s`.
-    fn set(&mut self, s: Slot, v: Value) {
-        let (at, off) = self.slot_at(s);
-        self.b.ins().store(MemFlagsData::trusted(), v, at, off);
-    }
-
     // --- helpers, faults, interrupts ---
 
     /// `(block << 32) | instruction`, as the helpers take it.
@@ -346,11 +379,19 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.inst_results(inst).first().copied()
     }
 
-    /// Goes on when `status` is 0, returns 1 (the fault recorded) otherwise.
+    /// Goes on when `status` is 0, returns 1 (the fault recorded)
+    /// otherwise, with every held value written back first.
     fn fail_if(&mut self, status: Value) {
+        let cold = self.b.create_block();
         let next = self.b.create_block();
-        self.b.ins().brif(status, self.fail, &[], next, &[]);
+        self.b.set_cold_block(cold);
+        self.b.ins().brif(status, cold, &[], next, &[]);
+        self.b.switch_to_block(cold);
+        self.b.seal_block(cold);
+        self.write_back_copy();
+        self.b.ins().jump(self.fail, &[]);
         self.b.switch_to_block(next);
+        self.b.seal_block(next);
     }
 
     /// When `cond` holds: the fault of this instruction (`why`, see
@@ -361,6 +402,10 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.set_cold_block(cold);
         self.b.ins().brif(cond, cold, &[], next, &[]);
         self.b.switch_to_block(cold);
+        self.b.seal_block(cold);
+        // The report reads the operands, and memory is what the
+        // interpreter would leave.
+        self.write_back_copy();
         let (op, code_pc) = (self.op_ptr(), self.code_pc());
         let why = self.b.ins().iconst(I32, why as i64);
         let args = [self.ctx, op, code_pc, self.fp, why];
@@ -368,6 +413,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             self.b.ins().return_(&[status]);
         }
         self.b.switch_to_block(next);
+        self.b.seal_block(next);
     }
 
     /// The interpreter's `tick`: the interrupt word, and when it is set
@@ -384,16 +430,27 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.set_cold_block(slow);
         self.b.ins().brif(word, slow, &[], next, &[]);
         self.b.switch_to_block(slow);
+        self.b.seal_block(slow);
+        // The poll may stop the code here: memory must be current.
+        self.write_back_copy();
         let code_pc = self.code_pc();
         let args = [self.ctx, code_pc];
         if let Some(status) = self.call(self.sigs.poll, helpers::poll as *const (), &args) {
             self.b.ins().brif(status, self.fail, &[], next, &[]);
         }
         self.b.switch_to_block(next);
+        self.b.seal_block(next);
     }
 
-    /// An instruction that runs in Rust (`helpers::step`).
-    fn out_of_line(&mut self) {
+    /// An instruction that runs in Rust (`helpers::step`). A pure one
+    /// (`support::pure`) reads its input slots and writes its result
+    /// only; any other may touch the whole frame.
+    fn out_of_line(&mut self, op: &Op) {
+        if super::support::pure(op) {
+            self.around_pure(op);
+        } else {
+            self.drop_all();
+        }
         let (op, code_pc) = (self.op_ptr(), self.code_pc());
         let args = [self.ctx, op, code_pc, self.fp];
         if let Some(status) = self.call(self.sigs.step, helpers::step as *const (), &args) {
