@@ -299,16 +299,7 @@ impl BodyBuilder<'_> {
     /// A `POINTER TO BYTE` to the whole of `arg`: a byte view (§23 of
     /// docs/semantics.md) unless its elements are bytes already.
     fn any_pointer(&mut self, arg: &PlaceRef) -> Slot {
-        let len = self.types.size(arg.ty).max(1);
-        let layout = layout_code(self.types, arg.ty);
-        let addr = self.address_of(arg);
-        let d = self.block.temp();
-        self.block.emit(Op::RefMake {
-            d,
-            p: addr,
-            len,
-            layout,
-        });
+        let d = self.reference_value(arg);
         let inner = innermost(self.types, arg.ty);
         if self.types.get(inner).kind != TypeKind::Elem(ElemType::Byte) {
             self.block.emit(Op::RefView {

@@ -1,7 +1,7 @@
 //! `REF`, `ADR`, `SIZEOF`, `__ISVALIDREF` / `ISVALIDREF`, and the rule
 //! that a reference to a temporary may not be stored where it outlives it.
 
-use super::{intern_ref, layout_code, ref_parts, size_bytes};
+use super::{intern_ref, ref_parts, size_bytes};
 use crate::elementary::ElemType;
 use crate::ir::op::Op;
 use crate::ir::type_table::{MemberKind, RefFlavor, TypeId, TypeTable};
@@ -103,16 +103,7 @@ impl BodyBuilder<'_> {
             // A byte view (a UNION member, `p^` of one) is its own address.
             return Val::Slot(r, intern_ref(self.types, p.ty, flavor));
         }
-        let len = self.types.size(p.ty).max(1);
-        let layout = layout_code(self.types, p.ty);
-        let addr = self.address_of(&p);
-        let d = self.block.temp();
-        self.block.emit(Op::RefMake {
-            d,
-            p: addr,
-            len,
-            layout,
-        });
+        let d = self.reference_value(&p);
         let ty = intern_ref(self.types, p.ty, flavor);
         Val::Slot(d, ty)
     }

@@ -71,7 +71,7 @@ impl BodyBuilder<'_> {
     }
 
     /// A new reference value designating the variable at `q`.
-    fn reference_value(&mut self, q: &PlaceRef) -> Slot {
+    pub(in crate::sema) fn reference_value(&mut self, q: &PlaceRef) -> Slot {
         let len = self.types.size(q.ty).max(1);
         let layout = layout_code(self.types, q.ty);
         let addr = self.address_of(q);
