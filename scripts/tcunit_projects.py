@@ -2,7 +2,7 @@
 """Runs `plcrun test` on TwinCAT projects with TcUnit suites and prints
 the table of docs/compatibility.md ("TwinCAT projects and TcUnit").
 
-    python3 scripts/tcunit_projects.py [--plcrun BIN] PROJECT...
+    python3 scripts/tcunit_projects.py [--plcrun BIN] [--keep-going] PROJECT...
 
 Each PROJECT is a folder holding one .plcproj, or a .plcproj file
 (docs/twincat.md). The projects are public repositories fetched outside
@@ -15,7 +15,9 @@ For each project it runs `plcrun check PROJECT` and `plcrun test PROJECT`
 
 "compiles" is `ok` or the number of errors `plcrun test` reports before
 running anything (the sources checked with TcUnit's functions declared),
-with the three most frequent codes. "tests" counts the TcUnit tests (and `TEST_`
+with the three most frequent codes. With --keep-going, `plcrun test
+--keep-going` runs what compiles, and "compiles" gives the number of
+files it left out (their suites count as errored tests). "tests" counts the TcUnit tests (and `TEST_`
 tests) reported; "assertions" the assertion calls they ran, each counted
 once per test (the figure `plcrun test` prints per test). When the sources
 do not compile, the test columns are empty.
@@ -32,7 +34,8 @@ import sys
 import time
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-CASE = re.compile(r"^(PASS |FAIL |ERROR) (\S+) \((.*), (\d+) cycles?(?:, (\d+) assertions?)?\)$")
+# A test's name may hold spaces (`TEST('Lookups for Ge')`).
+CASE = re.compile(r"^(PASS |FAIL |ERROR) (.+) \(([^()]*), (\d+) cycles?(?:, (\d+) assertions?)?\)$")
 CODE = re.compile(r"^error\[(\w+)\]")
 COUNT = re.compile(r"^(\d+) errors?, ")
 
@@ -43,7 +46,13 @@ def run(args):
     return proc, time.monotonic() - start
 
 
+LEFT_OUT = re.compile(r"^note: --keep-going left out (\d+) file")
+
+
 def compile_column(stdout, stderr):
+    left = next((m.group(1) for line in stderr.splitlines() if (m := LEFT_OUT.match(line))), None)
+    if left:
+        return f"{left} files left out"
     if any(CASE.match(line) for line in stdout.splitlines()):
         return "ok"
     usage = next((line for line in stderr.splitlines() if line.startswith("error: ")), None)
@@ -57,9 +66,9 @@ def compile_column(stdout, stderr):
     return f"{total} errors ({top})" if top else f"{total} errors"
 
 
-def measure(plcrun, project):
+def measure(plcrun, project, keep_going):
     _, check_s = run([plcrun, "check", project])
-    test, test_s = run([plcrun, "test", project])
+    test, test_s = run([plcrun, "test", project] + (["--keep-going"] if keep_going else []))
     verdicts = collections.Counter()
     assertions = 0
     for line in test.stdout.splitlines():
@@ -82,6 +91,9 @@ def main(argv):
     plcrun = os.path.join(ROOT, "target", "release", "plcrun")
     if len(argv) >= 2 and argv[0] == "--plcrun":
         plcrun, argv = argv[1], argv[2:]
+    keep_going = bool(argv) and argv[0] == "--keep-going"
+    if keep_going:
+        argv = argv[1:]
     if not argv:
         print(__doc__.strip(), file=sys.stderr)
         return 2
@@ -91,7 +103,7 @@ def main(argv):
     print("| project | compiles | tests | passed | failed | errored | assertions | check s | test s |")
     print("|---|---|---|---|---|---|---|---|---|")
     for project in argv:
-        print("| " + " | ".join(measure(plcrun, project)) + " |")
+        print("| " + " | ".join(measure(plcrun, project, keep_going)) + " |")
     return 0
 
 

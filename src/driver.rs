@@ -241,6 +241,20 @@ pub struct CheckOptions {
     pub addressing: Option<Addressing>,
 }
 
+/// The files of `sources` written in the CODESYS V3 / TwinCAT 3 dialect:
+/// TwinCAT project files and PLCopen XML exported by CODESYS. CODESYS's
+/// implicit integer conversions (W490) are accepted in them only.
+pub(crate) fn codesys_files(sources: &SourceMap) -> Vec<FileId> {
+    let dialect = |text: &str| {
+        crate::syntax::twincat::is_twincat(text)
+            || (crate::syntax::plcopen::is_plcopen(text) && text.contains("productName=\"CODESYS"))
+    };
+    (0..sources.files().len())
+        .filter(|&i| dialect(&sources.files()[i].text))
+        .map(|i| FileId(i as u32))
+        .collect()
+}
+
 /// The addressing convention for `sources` when none is given
 /// (`docs/runtime.md`, "Addressing"): `byte` when a file is S7-200 STL,
 /// `openplc` when a PLCopen project comes from the OpenPLC Editor or
@@ -308,6 +322,7 @@ pub fn check_reporting(
         strict: options.strict,
         unoptimized: false,
         addressing: options.addressing.unwrap_or_else(|| addressing_of(sources)),
+        codesys_files: codesys_files(sources),
     };
     // The library's own diagnostics are dropped or moved into the given
     // files by the compile (twincat_library.rs), so every one renders

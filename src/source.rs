@@ -158,6 +158,18 @@ impl SourceMap {
         &self.files
     }
 
+    /// The map without the files `drop` names, the others in their order
+    /// (their ids renumbered).
+    pub fn without(&self, drop: &std::collections::HashSet<FileId>) -> SourceMap {
+        let files = self.files.iter().enumerate();
+        SourceMap {
+            files: files
+                .filter(|(i, _)| !drop.contains(&FileId(*i as u32)))
+                .map(|(_, f)| f.clone())
+                .collect(),
+        }
+    }
+
     /// `name:line:column` of the start of `span`.
     pub fn location(&self, span: Span) -> String {
         let file = self.file(span.file);

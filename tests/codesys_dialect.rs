@@ -997,3 +997,31 @@ fn string_function_inputs_take_codesys_s_names_with_a_warning() {
         .collect();
     assert_eq!(codes, ["E403"]);
 }
+
+/// An enumeration of the default base type (DINT in plcrun, INT in
+/// CODESYS) goes into a narrower integer that holds all its values, strict
+/// or not (PMPS: `nAperture : INT := L_Apertures.SL1L0`), with W485; one
+/// whose values do not all fit is still E301.
+#[test]
+fn an_enumeration_goes_into_an_integer_that_holds_all_its_values() {
+    let types = "
+{attribute 'qualified_only'}
+{attribute 'strict'}
+TYPE L_Apertures : (SL1L0 := 1, SL2L0 := 2); END_TYPE
+TYPE E_Big : (Small := 1, Huge := 100000); END_TYPE";
+    let src = program(
+        types,
+        "n : INT; u : USINT; e : L_Apertures := L_Apertures.SL2L0;",
+        "n := L_Apertures.SL1L0; u := e;",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "n"), "1");
+    assert_eq!(lit(&plc, "u"), "2");
+    let big = program(types, "n : INT;", "n := E_Big.Small;");
+    let codes: Vec<String> = error_codes(&[("test.st", &big)])
+        .into_iter()
+        .map(|(c, _)| c)
+        .collect();
+    assert_eq!(codes, ["E301"]);
+}

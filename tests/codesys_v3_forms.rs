@@ -167,26 +167,70 @@ END_PROGRAM
     assert_eq!(lit(&plc, "fb.total"), "12");
 }
 
-/// What an initial value may not read: an input (its value comes from the
-/// caller), a variable of another block (a method's temporary cannot see
-/// its block's state as it is at the call), a variable declared after it.
+/// An FB's static variable may read the inputs, outputs and variables
+/// of its earlier blocks: their declared initial values, what they hold
+/// when the instance starts (lcls-twincat-general's `FB_Index` starts
+/// its counter at `LowerLimit`). Later calls with other inputs do not
+/// change it.
+#[test]
+fn an_instance_variable_starts_from_an_earlier_blocks_initial_value() {
+    let src = "
+TYPE E_Sub : (Vacuum, Motion, Optics); END_TYPE
+FUNCTION_BLOCK FB_Log
+VAR_INPUT eSub : E_Sub; END_VAR
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Index
+VAR_INPUT LowerLimit : INT := 4; Step : INT := 1; eSub : E_Sub := E_Sub.Optics; END_VAR
+VAR_OUTPUT first : INT := LowerLimit * 10; END_VAR
+VAR
+  nVal : INT := LowerLimit;
+  seed : INT := first + Step;
+  logger : FB_Log := (eSub := eSub);
+END_VAR
+nVal := nVal + Step;
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR fb : FB_Index; END_VAR
+fb(LowerLimit := 100, Step := 2);
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "fb.nVal"), "8");
+    assert_eq!(lit(&plc, "fb.first"), "40");
+    assert_eq!(lit(&plc, "fb.seed"), "41");
+    assert_eq!(lit(&plc, "fb.logger.eSub"), "Optics");
+}
+
+/// What an initial value may not read: a FUNCTION's input (its value comes
+/// from the caller at each call), a variable of another block read by a
+/// VAR_TEMP (a temporary cannot see the block's state as it is at the
+/// call), a variable declared after it.
 #[test]
 fn an_initial_value_from_an_input_another_block_or_a_later_variable_is_refused() {
-    for (decls, why) in [
+    for (pou, decls, why) in [
         (
+            "FUNCTION F : INT",
             "VAR_INPUT i : INT; END_VAR VAR x : INT := i; END_VAR",
-            "input",
+            "a function's input",
         ),
         (
+            "FUNCTION_BLOCK FB",
             "VAR s : INT := 1; END_VAR VAR_TEMP x : INT := s; END_VAR",
             "another block",
         ),
         (
+            "FUNCTION_BLOCK FB",
             "VAR x : INT := later; later : INT := 1; END_VAR",
             "declared later",
         ),
     ] {
-        let src = format!("FUNCTION_BLOCK FB {decls} x := x + 1; END_FUNCTION_BLOCK");
+        let end = if pou.starts_with("FUNCTION ") {
+            "END_FUNCTION"
+        } else {
+            "END_FUNCTION_BLOCK"
+        };
+        let src = format!("{pou} {decls} x := x + 1; {end}");
         let codes: Vec<String> = error_codes(&[("t.st", &src)])
             .into_iter()
             .map(|(code, _)| code)

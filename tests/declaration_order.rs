@@ -72,3 +72,53 @@ END_PROGRAM";
     assert_eq!(lit(&plc, "count"), "2");
     assert_eq!(lit(&plc, "ticks"), "4");
 }
+
+/// A global instance whose block's code names another global instance of
+/// its list declared after it (TcUnit's runner reads
+/// `GVL_TcUnit.GetCpuCounter`, declared 12 lines later), by its list's
+/// name or bare, from its own body, a method, or an instance it holds:
+/// the named instances are declared first, every list keeps the rest of
+/// its order, and each body sees the others' values.
+#[test]
+fn a_global_instance_names_instances_declared_after_it() {
+    let src = "
+VAR_GLOBAL
+  runner : FB_Runner;
+  seen : DINT;
+  counter : FB_Counter;
+END_VAR
+VAR_GLOBAL
+  watcher : FB_Watcher;
+  clock : FB_Counter;
+END_VAR
+FUNCTION_BLOCK FB_Counter
+  VAR_OUTPUT n : DINT; END_VAR
+  n := n + 1;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Probe
+  VAR_OUTPUT v : DINT; END_VAR
+  v := clock.n * 100;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Runner
+  VAR probe : FB_Probe; END_VAR
+  METHOD Late : DINT
+    Late := watcher.w;
+  END_METHOD
+  GVL_Main.counter();
+  probe();
+  seen := GVL_Main.counter.n + probe.v + Late();
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Watcher
+  VAR_OUTPUT w : DINT; END_VAR
+  w := w + 1000;
+END_FUNCTION_BLOCK
+PROGRAM main
+  clock();
+  watcher();
+  runner();
+END_PROGRAM";
+    let mut plc = compile(src);
+    run(&mut plc, 2);
+    // counter 2 + clock 2 * 100 + watcher 2 * 1000
+    assert_eq!(lit(&plc, "seen"), "2202");
+}

@@ -256,6 +256,58 @@ END_PROGRAM
     assert_eq!(got, ["'OUT'", "1", "'T1'", "9", "''", "9"]);
 }
 
+/// A METHOD's `VAR_INST` instance lives in the block's instance, so it
+/// takes FB_init arguments as the block's own do (PMPS's tests declare
+/// `fbArbiter : FB_Arbiter(1);` there), initialised before the first
+/// cycle; a METHOD's `VAR` instance lives for one call: E931.
+#[test]
+fn a_methods_instance_variable_takes_fb_init_arguments() {
+    let fb = "
+FUNCTION_BLOCK FB_S
+VAR nm : STRING; d : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; sName : STRING; fDelta : INT := 9; END_VAR
+nm := sName; d := fDelta;
+END_METHOD
+END_FUNCTION_BLOCK
+";
+    let src = format!(
+        "{fb}
+FUNCTION_BLOCK FB_T
+VAR_OUTPUT seen : INT; name : STRING; END_VAR
+METHOD M : INT
+VAR_INST inst : FB_S(sName := 'kept', fDelta := 4); END_VAR
+M := inst.d;
+name := inst.nm;
+END_METHOD
+seen := M();
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR t : FB_T; END_VAR
+t();
+END_PROGRAM
+"
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "t.seen"), "4");
+    assert_eq!(lit(&plc, "t.name"), "'kept'");
+    let local = format!(
+        "{fb}FUNCTION_BLOCK FB_U
+METHOD M : INT
+VAR inst : FB_S(sName := 'x'); END_VAR
+M := inst.d;
+END_METHOD
+END_FUNCTION_BLOCK
+"
+    );
+    let codes: Vec<String> = error_codes(&[("u.st", &local)])
+        .into_iter()
+        .map(|(c, _)| c)
+        .collect();
+    assert_eq!(codes, ["E931"]);
+}
+
 /// `{attribute 'call_after_init'}` before a METHOD: called on every
 /// instance right after FB_init (order 1 then 2; x = 21 * 2); other
 /// methods are not; no W151 for the honoured attribute.

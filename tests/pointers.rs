@@ -188,8 +188,9 @@ fn pointer_misuse_is_refused() {
             "b := p < q;",
             "E252",
         ),
-        // pointer difference
-        ("p, q : POINTER TO INT; n : DINT;", "n := p - q;", "E252"),
+        // the distance between pointers to structures (between pointers
+        // to elementary values it is a number of bytes: element_addresses.rs)
+        ("p, q : POINTER TO T; n : DINT;", "n := p - q;", "E252"),
         // moving by a REAL
         ("p : POINTER TO INT;", "p := p + 1.5;", "E252"),
     ];

@@ -135,8 +135,10 @@ fn rs_is_reset_dominant(#[case] call: &str) {
 
 // ---------------------------------------------------------------- counters
 
-#[test]
-fn ctu_counts_rising_edges_and_resets() {
+#[rstest]
+#[case("c(CU := cu, R := r, PV := 3);")]
+#[case("c(CU := cu, RESET := r, PV := 3);")]
+fn ctu_counts_rising_edges_and_resets(#[case] call: &str) {
     // cu: rises at 0, 3, 5, 7, 10 (held TRUE at 1: no count)
     let cu = [
         true, true, false, true, false, true, false, true, false, false, true,
@@ -144,11 +146,7 @@ fn ctu_counts_rising_edges_and_resets() {
     let r = [
         false, false, false, false, false, false, false, false, true, false, false,
     ];
-    let src = program(
-        "",
-        "c : CTU; cu, r : BOOL;",
-        "c(CU := cu, R := r, PV := 3);",
-    );
+    let src = program("", "c : CTU; cu, r : BOOL;", call);
     let rows = simulate(
         &src,
         cu.len(),
@@ -241,16 +239,14 @@ fn ctd_stops_at_the_smallest_value_of_its_type(
     assert_eq!(lit(&plc, "c.Q"), "TRUE"); // CV <= 0
 }
 
-#[test]
-fn ctd_loads_and_counts_down() {
+#[rstest]
+#[case("c(CD := cd, LD := ld, PV := 2);")]
+#[case("c(CD := cd, LOAD := ld, PV := 2);")]
+fn ctd_loads_and_counts_down(#[case] call: &str) {
     // LD at 0 loads PV = 2; CD rises at 1, 3, 5
     let cd = [false, true, false, true, false, true, false];
     let ld = [true, false, false, false, false, false, true];
-    let src = program(
-        "",
-        "c : CTD; cd, ld : BOOL;",
-        "c(CD := cd, LD := ld, PV := 2);",
-    );
+    let src = program("", "c : CTD; cd, ld : BOOL;", call);
     let rows = simulate(
         &src,
         cd.len(),
@@ -262,8 +258,10 @@ fn ctd_loads_and_counts_down() {
     assert_eq!(cycles_where(&rows, 1, "TRUE"), [3, 4, 5]);
 }
 
-#[test]
-fn ctud_counts_both_ways_and_ignores_simultaneous_edges() {
+#[rstest]
+#[case("c(CU := cu, CD := cd, R := r, LD := ld, PV := 2);")]
+#[case("c(CU := cu, CD := cd, RESET := r, LOAD := ld, PV := 2);")]
+fn ctud_counts_both_ways_and_ignores_simultaneous_edges(#[case] call: &str) {
     // (cu, cd, r, ld)
     let seq = [
         (true, false, false, false),  // 0: up -> 1
@@ -280,11 +278,7 @@ fn ctud_counts_both_ways_and_ignores_simultaneous_edges() {
         (true, false, false, false),  // 11: up -> 1
     ];
     let cv = ["1", "1", "1", "1", "0", "0", "-1", "2", "2", "0", "0", "1"];
-    let src = program(
-        "",
-        "c : CTUD; cu, cd, r, ld : BOOL;",
-        "c(CU := cu, CD := cd, R := r, LD := ld, PV := 2);",
-    );
+    let src = program("", "c : CTUD; cu, cd, r, ld : BOOL;", call);
     let rows = simulate(
         &src,
         seq.len(),

@@ -1,6 +1,6 @@
 //! `--strict` (docs/diagnostics.md, "Compatibility extensions (W300-W399)
 //! and strict mode"): every compatibility-extension warning, any code
-//! W300-W399 (or the dialect's W485-W489) whichever stage reports it,
+//! W300-W399 (or the dialect's W485-W490) whichever stage reports it,
 //! becomes an error with the same code; no other diagnostic changes.
 
 use plcrun::{
@@ -33,7 +33,7 @@ END_PROGRAM
 ";
 
 /// The rule itself: strict mode changes a diagnostic exactly when its code
-/// is W300-W399 or W485-W489, keeps its code, span and message, and adds the note.
+/// is W300-W399 or W485-W490, keeps its code, span and message, and adds the note.
 fn assert_strict_rule(lax: &Diagnostics, strict: &Diagnostics) {
     assert_eq!(lax.len(), strict.len());
     for (a, b) in lax.iter().zip(strict.iter()) {
@@ -97,7 +97,7 @@ fn strict_leaves_an_encoding_warning_alone() {
 }
 
 #[test]
-fn the_rule_covers_every_code_from_w300_to_w399_and_the_dialects_w485_to_w489_and_no_other() {
+fn the_rule_covers_every_code_from_w300_to_w399_and_the_dialects_w485_to_w490_and_no_other() {
     let mut all = Diagnostics::new();
     for letter in ['W', 'E', 'R'] {
         for n in 0..1000 {
@@ -109,7 +109,7 @@ fn the_rule_covers_every_code_from_w300_to_w399_and_the_dialects_w485_to_w489_an
     all.push(Diagnostic::warning("W3000", Span::default(), "long"));
     all.push(Diagnostic::warning("W3x0", Span::default(), "not a number"));
     let lax = all.clone();
-    assert_eq!(all.make_strict(), 105);
+    assert_eq!(all.make_strict(), 106);
     assert_strict_rule(&lax, &all);
     let upgraded: Vec<_> = all
         .iter()
@@ -118,7 +118,10 @@ fn the_rule_covers_every_code_from_w300_to_w399_and_the_dialects_w485_to_w489_an
         .collect();
     assert_eq!(upgraded.first(), Some(&"W300"));
     assert_eq!(upgraded[99], "W399");
-    assert_eq!(upgraded[100..], ["W485", "W486", "W487", "W488", "W489"]);
+    assert_eq!(
+        upgraded[100..],
+        ["W485", "W486", "W487", "W488", "W489", "W490"]
+    );
     // An error already is left as it is (no second note).
     let mut twice = all.clone();
     assert_eq!(twice.make_strict(), 0);

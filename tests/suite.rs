@@ -106,6 +106,8 @@ mod draw;
 #[cfg(feature = "cli")]
 #[path = "draw_cli.rs"]
 mod draw_cli;
+#[path = "element_addresses.rs"]
+mod element_addresses;
 #[path = "embedding_api.rs"]
 mod embedding_api;
 #[path = "en_parameters.rs"]
@@ -149,6 +151,8 @@ mod host_blocks;
 mod il_literal_join;
 #[path = "il_operators.rs"]
 mod il_operators;
+#[path = "implicit_int_conversions.rs"]
+mod implicit_int_conversions;
 #[path = "input_qualifiers.rs"]
 mod input_qualifiers;
 #[path = "input_writes.rs"]

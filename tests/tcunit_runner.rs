@@ -219,3 +219,75 @@ fn check_accepts_what_the_test_runner_accepts() {
     assert_eq!(code, 1);
     assert!(err.contains("E201") && err.contains("TEST"), "{err}");
 }
+
+/// `--keep-going` (`TestOptions::keep_going`): a file that does not
+/// compile (here a block of a library plcrun does not have) is left out,
+/// then the files that needed it; the suites of the others run, the
+/// suites left out are errors naming the first error of their file, and
+/// the report lists the files left out. Without it nothing runs.
+#[test]
+fn keep_going_runs_the_suites_that_compile_and_reports_the_others() {
+    let motion = "
+FUNCTION_BLOCK FB_Axis
+VAR ref : AXIS_REF; power : MC_Power; END_VAR
+power(Axis := ref, Enable := TRUE);
+END_FUNCTION_BLOCK";
+    let motion_test = "
+FUNCTION_BLOCK FB_AxisTest EXTENDS FB_TestSuite
+VAR axis : FB_Axis; END_VAR
+TEST('Powers');
+axis();
+TEST_FINISHED();
+END_FUNCTION_BLOCK";
+    let math_test = "
+FUNCTION_BLOCK FB_MathTest EXTENDS FB_TestSuite
+TEST('Adds');
+AssertEquals_INT(Expected := 4, Actual := 2 + 2, Message := 'sum');
+TEST_FINISHED();
+TEST('Fails');
+AssertEquals_INT(Expected := 5, Actual := 2 + 2, Message := 'wrong on purpose');
+TEST_FINISHED();
+END_FUNCTION_BLOCK";
+    let prg = "
+PROGRAM PRG_TEST
+VAR fbAxis : FB_AxisTest; fbMath : FB_MathTest; END_VAR
+TcUnit.RUN();
+END_PROGRAM";
+    let mut sources = SourceMap::new();
+    for (name, text) in [
+        ("FB_Axis.st", motion),
+        ("FB_AxisTest.st", motion_test),
+        ("FB_MathTest.st", math_test),
+        ("PRG_TEST.st", prg),
+    ] {
+        sources.add(name, text);
+    }
+    assert!(run_tests(&sources, &TestOptions::default()).is_err());
+    let options = TestOptions {
+        keep_going: true,
+        ..TestOptions::default()
+    };
+    let report = run_tests(&sources, &options).expect("the rest compiles");
+    let verdicts: Vec<(String, TestOutcome)> = report
+        .cases
+        .iter()
+        .map(|c| (c.full_name(), c.outcome()))
+        .collect();
+    assert_eq!(
+        verdicts,
+        [
+            ("PRG_TEST.fbAxis".to_string(), TestOutcome::Errored),
+            ("PRG_TEST.fbMath.Adds".to_string(), TestOutcome::Passed),
+            ("PRG_TEST.fbMath.Fails".to_string(), TestOutcome::Failed),
+        ]
+    );
+    let why = report.cases[0].left_out.as_deref().unwrap_or_default();
+    assert!(why.contains("FB_AxisTest.st"), "{why}");
+    let files: Vec<&str> = report.left_out.iter().map(|(f, _)| f.as_str()).collect();
+    assert_eq!(files, ["FB_Axis.st", "FB_AxisTest.st", "PRG_TEST.st"]);
+    assert!(
+        report.left_out[0].1.starts_with("E203"),
+        "{:?}",
+        report.left_out
+    );
+}

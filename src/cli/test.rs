@@ -39,6 +39,11 @@ pub struct TestArgs {
     /// Wall-clock limit of one cycle of a test (e.g. 1s, 250ms); 0 disables it.
     #[arg(long, default_value = "1s")]
     pub watchdog: String,
+    /// Leave out the files that do not compile (and those that need them),
+    /// run the tests of the others, and report the tests left out as
+    /// errors (a library that references one plcrun does not have).
+    #[arg(long)]
+    pub keep_going: bool,
     /// How the sources are read and how strictly they are checked.
     #[command(flatten)]
     pub reading: ReadingArgs,
@@ -72,6 +77,7 @@ fn options(args: &TestArgs) -> Result<TestOptions, String> {
         watchdog,
         strict: args.reading.strict,
         addressing: args.reading.addressing,
+        keep_going: args.keep_going,
     })
 }
 
@@ -122,6 +128,15 @@ pub fn test(mut args: TestArgs, given: &Given) -> i32 {
     };
     if !report.warnings.is_empty() {
         say!("{}", report.warnings.render(&sources));
+    }
+    if !report.left_out.is_empty() {
+        sayln!(
+            "note: --keep-going left out {} file(s) that do not compile, or need one that does not:",
+            report.left_out.len()
+        );
+        for (file, why) in &report.left_out {
+            sayln!("  {file}: {why}");
+        }
     }
     print!("{}", super::style::report(&report.to_text()));
     if let Some(path) = &args.junit

@@ -134,6 +134,7 @@ impl Options {
             addressing: self
                 .addressing
                 .unwrap_or_else(|| driver::addressing_of(sources)),
+            codesys_files: driver::codesys_files(sources),
         }
     }
 }

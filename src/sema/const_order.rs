@@ -48,7 +48,7 @@ pub fn dependency_order(block: &VarBlock) -> (Vec<usize>, Vec<Vec<usize>>) {
 
 /// Depth-first post-order over `deps` with an explicit stack; a back edge
 /// is a cycle (reported once, its members then treated as declared).
-fn order(deps: &[Vec<usize>]) -> (Vec<usize>, Vec<Vec<usize>>) {
+pub(super) fn order(deps: &[Vec<usize>]) -> (Vec<usize>, Vec<Vec<usize>>) {
     #[derive(Clone, Copy, PartialEq)]
     enum Mark {
         New,

@@ -25,7 +25,9 @@ pub(super) struct DeclConsts<'a> {
     /// is being folded: their initial values may be read (CODESYS
     /// initialises a block's variables in order, so `b : INT := a;` sees
     /// `a`'s initial value, at start for static variables and at each call
-    /// for temporaries). Empty elsewhere, and for inputs (set by callers).
+    /// for temporaries), and for an FB's or PROGRAM's static variables
+    /// also those of its earlier input, output and VAR blocks (layout.rs).
+    /// Empty elsewhere, and for inputs (set by callers).
     pub(super) same_block: &'a [String],
 }
 
@@ -272,6 +274,18 @@ impl DeclConsts<'_> {
             {
                 return Some(Const::Bits(*v as u64));
             }
+            // A constant or an earlier variable of the same enumeration.
+            if let ExprKind::Name(id) = &e.kind {
+                let key = id.key();
+                let var = local
+                    .and_then(|l| l.get(&key))
+                    .or_else(|| self.model.globals.get(&key));
+                if let Some(v) = var.filter(|v| v.ty == ty)
+                    && let Some(c @ Const::Bits(_)) = self.readable_value(&key, v)
+                {
+                    return Some(c);
+                }
+            }
             self.diags.error(
                 "E301",
                 e.span,
@@ -387,7 +401,7 @@ impl DeclConsts<'_> {
                     _ => Err((
                         "E205",
                         format!(
-                            "`{}` is not a constant; an initial value may read constants and the variables declared before it in the same VAR block",
+                            "`{}` is not a constant; an initial value may read constants and the variables declared before it (in the same VAR block; in a FUNCTION_BLOCK or PROGRAM, also its earlier VAR_INPUT, VAR_OUTPUT and VAR blocks)",
                             id.name
                         ),
                     )),

@@ -134,6 +134,11 @@ impl<'a> Declarer<'a> {
         self.model.grafcet = grafcet;
     }
 
+    /// The files in the CODESYS V3 / TwinCAT dialect (`CompileOptions`).
+    pub(super) fn set_codesys_files(&mut self, files: &[crate::source::FileId]) {
+        self.model.codesys_files = files.iter().copied().collect();
+    }
+
     /// Turns the fusions and the bounds proofs off (or on again).
     pub(super) fn set_unoptimized(&mut self, unoptimized: bool) {
         self.model.unoptimized = unoptimized;
@@ -291,8 +296,12 @@ impl Declarer<'_> {
                 }
             }
         }
-        for (block, held) in &instances {
-            self.declare_global_decls(block, &|d| held.contains(&d), false);
+        // One call per run of declarations in written order within a list.
+        let order = self.instance_order(&instances);
+        for run in order.chunk_by(|a, b| a.0 == b.0 && a.1 < b.1) {
+            let block = instances[run[0].0].0;
+            let pick = |d: usize| run.binary_search_by_key(&d, |&(_, x)| x).is_ok();
+            self.declare_global_decls(block, &pick, false);
         }
         for unit in units.iter() {
             for item in &unit.items {

@@ -1,7 +1,9 @@
 //! Implicit conversion between an enumeration and integers, as CODESYS
 //! allows it (without `{attribute 'strict'}`): an enumeration value is
 //! its base type's integer where an integer is expected or combined with
-//! one (W485), and an integer may be stored in an enumeration variable
+//! one (W485; also an integer type narrower than the base type that holds
+//! every one of its values: CODESYS's default base type is INT, plcrun's
+//! DINT), and an integer may be stored in an enumeration variable
 //! (W486: the value is not checked against the named ones). Both are
 //! compatibility warnings: `--strict` refuses them. An enumeration
 //! declared after `{attribute 'strict'}` takes part in no arithmetic and
@@ -41,7 +43,7 @@ impl BodyBuilder<'_> {
                 let Some(t) = self.types.scalar(to).filter(|t| t.is_int() || t.is_bit()) else {
                     return false;
                 };
-                if base != t && !base.widens_to(t) {
+                if base != t && !base.widens_to(t) && !self.values_fit(from, t) {
                     return false;
                 }
                 self.enum_to_int_warning(from, t, span);
@@ -59,6 +61,20 @@ impl BodyBuilder<'_> {
             }
             _ => false,
         }
+    }
+
+    /// Whether every value of enumeration `t` is a value of integer type
+    /// `to`: an enumeration of the default base type (DINT here, INT in
+    /// CODESYS) whose values are small goes into an INT as in CODESYS.
+    fn values_fit(&self, t: TypeId, to: ElemType) -> bool {
+        let (TypeKind::Enum { values, .. }, Some((lo, hi))) =
+            (&self.types.get(t).kind, to.int_range())
+        else {
+            return false;
+        };
+        values
+            .iter()
+            .all(|&(_, v)| (lo..=hi).contains(&i128::from(v)))
     }
 
     /// An enumeration value as an array index: its base type's integer

@@ -1,35 +1,127 @@
 //! Which declarations of a global variable list hold function block
-//! instances. They are declared after the list's other globals: laying
-//! out an instance emits its FB's body, and that body may use any global
-//! of the list (TcUnit's `GVL_TcUnit` starts with `TcUnitRunner :
-//! FB_TcUnitRunner;`, whose body reads the list's later variables). Their
-//! memory comes after the others'; nothing else depends on the order.
+//! instances, and in which order to declare them. They are declared after
+//! the lists' other globals: laying out an instance emits its FB's body,
+//! and that body may use any global (TcUnit's `GVL_TcUnit` starts with
+//! `TcUnitRunner : FB_TcUnitRunner;`, whose body reads the list's later
+//! variables). Among themselves, an instance whose block's code names
+//! another list instance (`GVL_TcUnit.GetCpuCounter`) comes after it; the
+//! written order is kept wherever it works. Their memory comes after the
+//! other globals'; nothing else depends on the order.
 
 use super::declare::Declarer;
 use crate::syntax::ast::{PouKind, TypeSpec, VarBlock};
+use std::collections::{HashMap, HashSet};
 
 impl Declarer<'_> {
     /// The indexes of `block`'s declarations whose type is a user
     /// FUNCTION_BLOCK or an array of one.
     pub(super) fn instance_decls(&self, block: &VarBlock) -> Vec<usize> {
         (0..block.decls.len())
-            .filter(|&d| self.names_an_fb(&block.decls[d].ty))
+            .filter(|&d| self.fb_named(&block.decls[d].ty).is_some())
             .collect()
     }
 
-    fn names_an_fb(&self, spec: &TypeSpec) -> bool {
+    /// The order in which to declare the instances `lists` holds (each
+    /// list with the indexes of its instance declarations), as (list,
+    /// declaration) pairs: every instance after the instances its block's
+    /// code names, the written order where nothing asks otherwise (a ring
+    /// of such names keeps the written order).
+    pub(super) fn instance_order(&self, lists: &[(&VarBlock, Vec<usize>)]) -> Vec<(usize, usize)> {
+        let all: Vec<(usize, usize)> = lists
+            .iter()
+            .enumerate()
+            .flat_map(|(l, (_, decls))| decls.iter().map(move |&d| (l, d)))
+            .collect();
+        let mut owner: HashMap<String, usize> = HashMap::new();
+        for (n, &(l, d)) in all.iter().enumerate() {
+            for name in &lists[l].0.decls[d].names {
+                owner.entry(name.key()).or_insert(n);
+            }
+        }
+        let mut named_by_fb: HashMap<usize, Vec<usize>> = HashMap::new();
+        let deps: Vec<Vec<usize>> = all
+            .iter()
+            .enumerate()
+            .map(|(n, &(l, d))| {
+                let Some(p) = self.fb_named(&lists[l].0.decls[d].ty) else {
+                    return Vec::new();
+                };
+                let named = named_by_fb
+                    .entry(p)
+                    .or_insert_with(|| self.instances_named_by(p, &owner));
+                named.iter().copied().filter(|&o| o != n).collect()
+            })
+            .collect();
+        let (order, _rings) = super::const_order::order(&deps);
+        order.into_iter().map(|n| all[n]).collect()
+    }
+
+    /// The entries of `owner` that the code of FB `p` names: its body,
+    /// methods and properties, and those of the blocks it extends or holds
+    /// instances of (their bodies are emitted when it is laid out).
+    fn instances_named_by(&self, p: usize, owner: &HashMap<String, usize>) -> Vec<usize> {
+        let mut named = HashSet::new();
+        let mut note = |name: &str| {
+            if let Some(&o) = owner.get(&name.to_ascii_uppercase()) {
+                named.insert(o);
+            }
+            false
+        };
+        let mut seen = HashSet::from([p]);
+        let mut work = vec![p];
+        while let Some(q) = work.pop() {
+            let (u, i) = self.model.pous[q].ast;
+            let crate::syntax::ast::Item::Pou(pou) = &self.units[u].items[i] else {
+                continue;
+            };
+            super::body_names::any_name_or_member(&pou.body, &mut note);
+            let mut held: Vec<&TypeSpec> = pou
+                .var_blocks
+                .iter()
+                .flat_map(|b| b.decls.iter().map(|d| &d.ty))
+                .collect();
+            let mut parent = None;
+            if let Some(oop) = &pou.oop {
+                for m in &oop.methods {
+                    super::body_names::any_name_or_member(&m.body, &mut note);
+                    for accessor in m.property.iter().flatten() {
+                        super::body_names::any_name_or_member(&accessor.body, &mut note);
+                    }
+                    held.extend(
+                        m.var_blocks
+                            .iter()
+                            .flat_map(|b| b.decls.iter().map(|d| &d.ty)),
+                    );
+                }
+                parent = oop.extends.as_ref().map(|e| e.key());
+            }
+            let inner = held.into_iter().filter_map(|t| self.fb_named(t));
+            let parent = parent.and_then(|k| self.model.pou_index.get(&k).copied());
+            for r in inner.chain(parent) {
+                if seen.insert(r) {
+                    work.push(r);
+                }
+            }
+        }
+        let mut named: Vec<usize> = named.into_iter().collect();
+        named.sort_unstable();
+        named
+    }
+
+    /// The user FUNCTION_BLOCK `spec` names, directly or as the element
+    /// type of an array.
+    fn fb_named(&self, spec: &TypeSpec) -> Option<usize> {
         match spec {
             TypeSpec::Named(id) => {
                 let key = id.key();
-                !self.type_decls.contains_key(&key)
-                    && self
-                        .model
-                        .pou_index
-                        .get(&key)
-                        .is_some_and(|&p| self.model.pous[p].kind == PouKind::FunctionBlock)
+                if self.type_decls.contains_key(&key) {
+                    return None;
+                }
+                let &p = self.model.pou_index.get(&key)?;
+                (self.model.pous[p].kind == PouKind::FunctionBlock).then_some(p)
             }
-            TypeSpec::Array { elem, .. } => self.names_an_fb(elem),
-            _ => false,
+            TypeSpec::Array { elem, .. } => self.fb_named(elem),
+            _ => None,
         }
     }
 }

@@ -45,6 +45,11 @@ struct Frame {
     offset: u32,
     /// Members of the instance type.
     members: Vec<Member>,
+    /// Variables of the blocks laid out so far whose initial value an FB's
+    /// or PROGRAM's later static variable may read (`nVal : INT :=
+    /// LowerLimit;` with `LowerLimit` an input): what they hold when the
+    /// instance starts.
+    initialised: Vec<String>,
 }
 
 impl Declarer<'_> {
@@ -200,11 +205,29 @@ impl Declarer<'_> {
             block.kind,
             VarKind::Input | VarKind::InOut | VarKind::External
         );
-        let mut earlier = Vec::new();
+        // Variables of an FB's or PROGRAM's earlier blocks start with their
+        // declared initial values, which its later static variables may
+        // read; a FUNCTION's inputs and any VAR_TEMP change at each call.
+        let instance = matches!(pou.kind, PouKind::FunctionBlock | PouKind::Program);
+        let mut earlier = if instance && reads_earlier && block.kind != VarKind::Temp {
+            frame.initialised.clone()
+        } else {
+            Vec::new()
+        };
+        let starts_set = instance
+            && !block.constant
+            && matches!(
+                block.kind,
+                VarKind::Input | VarKind::Output | VarKind::Local
+            );
         for decl in order.iter().map(|&d| &block.decls[d]) {
             self.layout_decl(pou, block, decl, frame, &earlier);
+            let names = decl.names.iter().map(|n| n.key());
             if reads_earlier {
-                earlier.extend(decl.names.iter().map(|n| n.key()));
+                earlier.extend(names.clone());
+            }
+            if starts_set {
+                frame.initialised.extend(names);
             }
         }
     }

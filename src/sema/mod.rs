@@ -28,6 +28,7 @@ mod const_sizeof;
 mod decl_consts;
 mod declare;
 mod global_instances;
+mod implicit_int;
 mod incomplete_address;
 mod inheritance_depth;
 mod layout;
@@ -137,6 +138,10 @@ pub struct CompileOptions {
     /// How direct addresses are numbered: decides which located
     /// variables overlap (W204).
     pub addressing: crate::address::Addressing,
+    /// The files written in the CODESYS V3 / TwinCAT 3 dialect (TwinCAT
+    /// project files, CODESYS PLCopen XML exports): the implicit integer
+    /// conversions CODESYS makes (W490) are accepted in them only.
+    pub codesys_files: Vec<crate::source::FileId>,
 }
 
 /// Default limit of a program's data: 512 MiB (one instance or structure
@@ -185,6 +190,7 @@ pub fn compile(
     let mut declarer = declare::Declarer::new(units, diags);
     declarer.set_host_pous(&options.host_pous);
     declarer.set_grafcet(options.grafcet);
+    declarer.set_codesys_files(&options.codesys_files);
     declarer.set_data_limit(options.max_data_slots());
     if let Some((_, info)) = lowered.as_ref() {
         oop::methods::allocate(&mut declarer, info.clone());

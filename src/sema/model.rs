@@ -132,6 +132,9 @@ pub(crate) struct Model {
     /// Charts follow IEC 60848 evolution (`--grafcet`) instead of IEC
     /// 61131-3's.
     pub grafcet: bool,
+    /// The files in the CODESYS V3 / TwinCAT dialect, where CODESYS's
+    /// implicit integer conversions are accepted (implicit_int.rs).
+    pub codesys_files: std::collections::HashSet<crate::source::FileId>,
     /// Methods, inheritance and interfaces (empty without OOP).
     pub oop: super::oop::OopInfo,
     /// The structure types of generic inputs (`x : ANY_NUM`), with their

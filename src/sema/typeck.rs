@@ -220,7 +220,7 @@ impl BodyBuilder<'_> {
                             (Family::Real, ElemType::Lreal) if fe == ElemType::Real => {
                                 Some(Conv::F32ToF64)
                             }
-                            _ => None,
+                            _ => super::implicit_int::wrap(fe, te),
                         };
                         let slot = match conv {
                             Some(conv) => {
@@ -302,7 +302,7 @@ impl BodyBuilder<'_> {
             return false;
         };
         if !super::bits_arith::codesys_widens(f, t) {
-            return false;
+            return self.implicit_int_conversion(f, t, span);
         }
         self.diags.warning(
             "W351",

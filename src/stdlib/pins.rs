@@ -97,11 +97,22 @@ const RTC: [NativeParam; 6] = [
     pin("IN_PREV", Hidden, ElemType::Bool),
 ];
 
+/// The counters' reset and load inputs, also under the names CODESYS and
+/// TwinCAT's Tc2_Standard give them (`CTU(CU := x, RESET := r)`).
+const RESET: NativeParam = NativeParam {
+    aliases: &["RESET"],
+    ..pin("R", Input, ElemType::Bool)
+};
+const LOAD: NativeParam = NativeParam {
+    aliases: &["LOAD"],
+    ..pin("LD", Input, ElemType::Bool)
+};
+
 macro_rules! counters {
     ($($ty:ident => $ctu:ident, $ctd:ident, $ctud:ident);* $(;)?) => {$(
         const $ctu: [NativeParam; 6] = [
             pin("CU", Input, ElemType::Bool),
-            pin("R", Input, ElemType::Bool),
+            RESET,
             pin("PV", Input, ElemType::$ty),
             pin("Q", Output, ElemType::Bool),
             pin("CV", Output, ElemType::$ty),
@@ -109,7 +120,7 @@ macro_rules! counters {
         ];
         const $ctd: [NativeParam; 6] = [
             pin("CD", Input, ElemType::Bool),
-            pin("LD", Input, ElemType::Bool),
+            LOAD,
             pin("PV", Input, ElemType::$ty),
             pin("Q", Output, ElemType::Bool),
             pin("CV", Output, ElemType::$ty),
@@ -118,8 +129,8 @@ macro_rules! counters {
         const $ctud: [NativeParam; 10] = [
             pin("CU", Input, ElemType::Bool),
             pin("CD", Input, ElemType::Bool),
-            pin("R", Input, ElemType::Bool),
-            pin("LD", Input, ElemType::Bool),
+            RESET,
+            LOAD,
             pin("PV", Input, ElemType::$ty),
             pin("QU", Output, ElemType::Bool),
             pin("QD", Output, ElemType::Bool),

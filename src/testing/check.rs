@@ -40,13 +40,26 @@ pub(super) fn check(
 }
 
 /// The warnings of `diags` that point into `sources` (not into the
-/// declarations of the assertions).
-pub(super) fn warnings_in(diags: &Diagnostics, sources: &SourceMap) -> Diagnostics {
+/// declarations of the assertions), their spans in `given`, the files
+/// `sources` were taken from (the same, or more when files were left out).
+pub(super) fn warnings_in(
+    diags: &Diagnostics,
+    sources: &SourceMap,
+    given: &SourceMap,
+) -> Diagnostics {
     let mut out = Diagnostics::new();
-    let files = sources.files().len();
+    let files = sources.files();
+    let in_given =
+        |f: &crate::source::SourceFile| given.files().iter().position(|g| g.name == f.name);
+    let ids: Vec<Option<usize>> = files.iter().map(in_given).collect();
     for d in diags.iter() {
-        if d.severity == Severity::Warning && (d.span.file.0 as usize) < files {
-            out.push(d.clone());
+        if d.severity != Severity::Warning {
+            continue;
+        }
+        if let Some(Some(id)) = ids.get(d.span.file.0 as usize) {
+            let mut d = d.clone();
+            d.span.file = crate::source::FileId(*id as u32);
+            out.push(d);
         }
     }
     out

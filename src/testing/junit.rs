@@ -58,12 +58,13 @@ pub(super) fn render(report: &TestReport, suite: &str) -> String {
                 );
             }
             TestOutcome::Errored => {
-                let (message, kind) = match &case.fault {
-                    Some(f) => (
+                let (message, kind) = match (&case.fault, &case.left_out) {
+                    (Some(f), _) => (
                         format!("{} in cycle {} at {}", f.fault.kind, f.cycle, f.location),
                         f.code(),
                     ),
-                    None => (String::new(), "R000"),
+                    (None, Some(why)) => (why.clone(), "NotCompiled"),
+                    (None, None) => (String::new(), "R000"),
                 };
                 let _ = writeln!(
                     out,

@@ -8,6 +8,7 @@ mod assertions;
 mod check;
 mod discover;
 mod junit;
+mod keep_going;
 mod run_one;
 mod tcunit;
 mod text;
@@ -38,6 +39,11 @@ pub struct TestOptions {
     /// How direct addresses are numbered (`--addressing`); `None` (the
     /// default) chooses from the sources, as [`crate::Options::addressing`].
     pub addressing: Option<crate::address::Addressing>,
+    /// Leave out the files that do not compile (and those that need them)
+    /// and run the tests of the others; the tests of the files left out
+    /// are reported as errors (`--keep-going`, default false: any error
+    /// stops the run before a test runs).
+    pub keep_going: bool,
 }
 
 impl Default for TestOptions {
@@ -48,6 +54,7 @@ impl Default for TestOptions {
             watchdog: Some(Duration::from_secs(1)),
             strict: false,
             addressing: None,
+            keep_going: false,
         }
     }
 }
@@ -111,6 +118,9 @@ pub struct TestCase {
     pub assertions: usize,
     /// The lines a TcUnit test logged with `TCUNIT_ADSLOGSTR`.
     pub output: Vec<String>,
+    /// Why it did not run: its file was left out because it does not
+    /// compile (`TestOptions::keep_going`).
+    pub left_out: Option<String>,
 }
 
 impl TestCase {
@@ -127,7 +137,7 @@ impl TestCase {
 impl TestCase {
     /// The verdict.
     pub fn outcome(&self) -> TestOutcome {
-        if self.fault.is_some() {
+        if self.fault.is_some() || self.left_out.is_some() {
             TestOutcome::Errored
         } else if !self.failures.is_empty() || self.unfinished {
             TestOutcome::Failed
@@ -147,6 +157,10 @@ pub struct TestReport {
     /// The sources' warnings, as `plcrun check` gives them (spans in the
     /// sources given to [`run_tests`]).
     pub warnings: Diagnostics,
+    /// The files left out because they do not compile
+    /// ([`TestOptions::keep_going`]), in the order given, each with its
+    /// first error (`code: message at file:line:col`).
+    pub left_out: Vec<(String, String)>,
 }
 
 impl TestReport {
@@ -291,6 +305,41 @@ pub fn run_tests_reporting(
     // syntax error in one file does not hide the others'), then those of
     // the runner's own reading of the tests.
     let mut checked = check::check(sources, options, &suites)?;
+    let mut cases = Vec::with_capacity(tests.len());
+    let given = sources;
+    let mut left_out = Vec::new();
+    let kept;
+    let (sources, suites, tests) = if checked.has_errors() && options.keep_going {
+        kept = keep_going::leave_out_broken(sources, options, &suites, checked)?;
+        // The runner's own reading again, of what is left.
+        diags = Diagnostics::new();
+        discover::find_tests(&kept.sources, &mut diags);
+        cases = keep_going::left_out_cases(&tests, &suites, &kept.left_out);
+        left_out = given
+            .files()
+            .iter()
+            .filter_map(|f| {
+                kept.left_out
+                    .get(&f.name)
+                    .map(|w| (f.name.clone(), w.clone()))
+            })
+            .collect();
+        checked = kept.checked.clone();
+        let remaining = keep_going::remaining(&suites, &kept.sources);
+        let names: Vec<&str> = kept
+            .sources
+            .files()
+            .iter()
+            .map(|f| f.name.as_str())
+            .collect();
+        let tests: Vec<_> = tests
+            .into_iter()
+            .filter(|t| names.contains(&t.file.as_str()))
+            .collect();
+        (&kept.sources, remaining, tests)
+    } else {
+        (sources, suites, tests)
+    };
     if checked.has_errors() || diags.has_errors() {
         checked.extend(discover::runner_errors(diags));
         return Err(TestError::Compile(CompileError {
@@ -298,10 +347,9 @@ pub fn run_tests_reporting(
             sources: sources.clone(),
         }));
     }
-    if tests.is_empty() && suites.suites.is_empty() {
+    if tests.is_empty() && suites.suites.is_empty() && cases.is_empty() {
         return Err(TestError::NoTests);
     }
-    let mut cases = Vec::with_capacity(tests.len());
     for (i, test) in tests.iter().enumerate() {
         progress.report(1 + i as u64, total, &test.name);
         cases.push(run_one::run(sources, test, options)?);
@@ -318,6 +366,7 @@ pub fn run_tests_reporting(
     Ok(TestReport {
         cases,
         elapsed: start.elapsed(),
-        warnings: check::warnings_in(&checked, sources),
+        warnings: check::warnings_in(&checked, sources, given),
+        left_out,
     })
 }

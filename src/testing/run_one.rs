@@ -98,6 +98,7 @@ pub(super) fn run(
         unfinished: test.has_done,
         assertions: 0,
         output: Vec::new(),
+        left_out: None,
     };
     for cycle in 0..test.cycle_limit() {
         let result = plc.run_cycle();

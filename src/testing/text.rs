@@ -22,7 +22,8 @@ pub(crate) fn failure_line(f: &AssertionFailure) -> String {
 
 /// The detail lines of a test that did not pass (empty when it passed).
 pub(crate) fn details(case: &TestCase) -> Vec<String> {
-    let mut lines: Vec<String> = case.failures.iter().map(failure_line).collect();
+    let mut lines: Vec<String> = case.left_out.iter().cloned().collect();
+    lines.extend(case.failures.iter().map(failure_line));
     if case.more_failures > 0 {
         lines.push(format!(
             "... and {} more failed assertions",

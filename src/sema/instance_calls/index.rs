@@ -61,13 +61,40 @@ pub(super) fn lives_with_instance(kind: VarKind) -> bool {
     matches!(kind, VarKind::Local | VarKind::Input | VarKind::Output)
 }
 
-/// The declared types of a block's own instance members.
+/// The declared types of a block's own instance members, its methods'
+/// VAR_INST variables included.
 fn member_types(pou: &Pou) -> Vec<TypeSpec> {
+    let methods = pou.oop.iter().flat_map(|o| &o.methods);
     pou.var_blocks
         .iter()
         .filter(|b| lives_with_instance(b.kind))
+        .chain(
+            methods
+                .flat_map(|m| &m.var_blocks)
+                .filter(|b| b.kind == VarKind::Inst),
+        )
         .flat_map(|b| b.decls.iter().map(|d| d.ty.clone()))
         .collect()
+}
+
+/// The VAR_INST declarations of `pou`'s methods, renamed as the lowering
+/// names them in the instance (`oop::lower::hidden_name`): instances that
+/// live as long as the block's own.
+pub(super) fn method_instance_decls(pou: &Pou) -> Vec<VarDecl> {
+    let mut out = Vec::new();
+    for m in pou.oop.iter().flat_map(|o| &o.methods) {
+        for b in m.var_blocks.iter().filter(|b| b.kind == VarKind::Inst) {
+            for d in &b.decls {
+                let mut d = d.clone();
+                for n in &mut d.names {
+                    n.name =
+                        crate::sema::oop::lower::hidden_name(&pou.name.name, &m.name.name, &n.name);
+                }
+                out.push(d);
+            }
+        }
+    }
+    out
 }
 
 impl<'a> Index<'a> {

@@ -202,12 +202,15 @@ pub(super) fn prepend_parent_init(own: &mut Method, parent: &Method) {
 }
 
 /// E931 for FB_init arguments where no instance lives from start to stop:
-/// in a FUNCTION, a METHOD, VAR_TEMP and VAR_EXTERNAL.
+/// in a FUNCTION, a METHOD (but its VAR_INST, which lives in the
+/// instance), VAR_TEMP and VAR_EXTERNAL.
 pub(super) fn refuse_arguments_elsewhere(units: &[CompilationUnit], diags: &mut Diagnostics) {
     for item in units.iter().flat_map(|u| &u.items) {
         let Item::Pou(pou) = item else { continue };
         let methods = pou.oop.iter().flat_map(|o| &o.methods);
-        let in_methods = methods.flat_map(|m| &m.var_blocks);
+        let in_methods = methods
+            .flat_map(|m| &m.var_blocks)
+            .filter(|b| b.kind != crate::syntax::ast::VarKind::Inst);
         let in_pou = pou
             .var_blocks
             .iter()
@@ -217,7 +220,7 @@ pub(super) fn refuse_arguments_elsewhere(units: &[CompilationUnit], diags: &mut 
                 diags.error(
                     "E931",
                     args.span,
-                    "FB_init arguments are given to the instances of a PROGRAM, a FUNCTION_BLOCK or a global variable list only (VAR, VAR_INPUT, VAR_OUTPUT, VAR_GLOBAL)",
+                    "FB_init arguments are given to the instances of a PROGRAM, a FUNCTION_BLOCK or a global variable list only (VAR, VAR_INPUT, VAR_OUTPUT, VAR_GLOBAL, a METHOD's VAR_INST)",
                 );
             }
         }

@@ -179,11 +179,13 @@ fn add_phase(
                     .collect();
                 stmts = init::interface_bindings(index, &mut own);
             }
+            let in_methods = index::method_instance_decls(pou);
             let decls = pou
                 .var_blocks
                 .iter()
                 .filter(|b| lives_with_instance(b.kind))
                 .flat_map(|b| &b.decls)
+                .chain(&in_methods)
                 .collect();
             let (calls, loops) = phase_calls(index, phase, decls, diags);
             stmts.extend(calls);

@@ -4,7 +4,7 @@
 use super::{intern_ref, ref_parts, size_bytes};
 use crate::elementary::ElemType;
 use crate::ir::op::Op;
-use crate::ir::type_table::{MemberKind, RefFlavor, TypeId, TypeTable};
+use crate::ir::type_table::{MemberKind, RefFlavor, TypeId, TypeKind, TypeTable};
 use crate::sema::body::BodyBuilder;
 use crate::sema::consts::Const;
 use crate::sema::emit::{Place, Ty, Val};
@@ -89,6 +89,11 @@ impl BodyBuilder<'_> {
             );
             return Val::error();
         }
+        if flavor == RefFlavor::Pointer
+            && let Some(v) = self.address_in_array(x)
+        {
+            return v;
+        }
         let Some(p) = self.place(x) else {
             return Val::error();
         };
@@ -106,6 +111,35 @@ impl BodyBuilder<'_> {
         let d = self.reference_value(&p);
         let ty = intern_ref(self.types, p.ty, flavor);
         Val::Slot(d, ty)
+    }
+
+    /// `ADR(a[i])` of an element of an array variable: a pointer into the
+    /// whole array's object, so it may move along the array as CODESYS
+    /// code does (`MEMCPY(ADR(buf[0]), src, SIZEOF(buf))`) and still never
+    /// leaves it. `None` when `x` is no such element (the element alone is
+    /// then the object).
+    fn address_in_array(&mut self, x: &Expr) -> Option<Val> {
+        let ExprKind::Index(base, indexes) = &x.kind else {
+            return None;
+        };
+        let array = self.static_type(base)?;
+        if !matches!(self.types.get(array).kind, TypeKind::Array { .. }) {
+            return None;
+        }
+        let Some(q) = self.place(base) else {
+            return Some(Val::error());
+        };
+        if matches!(q.place, Place::View { .. }) || q.ty != array {
+            return None;
+        }
+        let whole = self.reference_value(&q);
+        let Some((d, elem, _)) = self.element_reference(x, whole, array, indexes) else {
+            return Some(Val::error());
+        };
+        Some(Val::Slot(
+            d,
+            intern_ref(self.types, elem, RefFlavor::Pointer),
+        ))
     }
 
     /// `SIZEOF(x)` or `SIZEOF(T)`: bytes, an untyped integer constant.

@@ -134,6 +134,43 @@ impl BodyBuilder<'_> {
         d
     }
 
+    /// `p1 - p2` between two pointers to elementary values (CODESYS): the
+    /// distance in bytes, a DINT, as the difference of their integer
+    /// images (W307). Within one object it is the byte distance CODESYS
+    /// gives (`ADR(a[1]) - ADR(a[0])` is `SIZEOF(a[0])`); between two
+    /// objects it is a number of no use, as an address difference is.
+    pub(in crate::sema) fn pointer_distance(
+        &mut self,
+        va: &Val,
+        vb: &Val,
+        ta: TypeId,
+        tb: TypeId,
+        span: Span,
+    ) -> Val {
+        let elementary = |me: &Self, t: TypeId| viewable(me.types, innermost(me.types, t));
+        if elementary(self, ta).is_none() || elementary(self, tb).is_none() {
+            let (a, b) = (self.ty_name(va.ty()), self.ty_name(vb.ty()));
+            self.diags.error(
+                "E252",
+                span,
+                format!(
+                    "the distance between two pointers is measured between pointers to elementary values (and arrays of them), not {a} and {b}"
+                ),
+            );
+            return Val::error();
+        }
+        self.diags.warning(
+            "W307",
+            span,
+            "the distance between two pointers, in bytes (a CODESYS extension): their objects' numbers and byte offsets subtracted",
+        );
+        let a = self.pointer_image(va, ta);
+        let b = self.pointer_image(vb, tb);
+        let d = self.block.temp();
+        self.block.emit(Op::SubS { d, a, b, shift: 32 });
+        Val::Slot(d, TypeTable::elem(ElemType::Dint))
+    }
+
     /// `p1 < p2`, `p = q`, `pt < end` and `p = 0` between pointers, or a
     /// pointer and an integer: their integer images compared (W307 for
     /// an order or an integer). `None` when this is not such a comparison

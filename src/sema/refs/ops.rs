@@ -91,6 +91,9 @@ impl BodyBuilder<'_> {
             (BinaryOp::Add | BinaryOp::Sub, Some((target, RefFlavor::Pointer)), None) => {
                 self.pointer_add(op, va, vb, target, span)
             }
+            (BinaryOp::Sub, Some((ta, RefFlavor::Pointer)), Some((tb, RefFlavor::Pointer))) => {
+                self.pointer_distance(va, vb, ta, tb, span)
+            }
             (BinaryOp::Add | BinaryOp::Sub, Some((_, RefFlavor::RefTo)), None) => {
                 self.diags.error(
                     "E252",

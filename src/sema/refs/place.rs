@@ -108,6 +108,25 @@ impl BodyBuilder<'_> {
         flavor: RefFlavor,
         indexes: &[Expr],
     ) -> Option<PlaceRef> {
+        let (moved, elem, stride) = self.element_reference(e, slot, target, indexes)?;
+        if let Some(p) = self.view_place(moved, elem, flavor) {
+            return Some(p);
+        }
+        let p = self.checked_address(moved, stride);
+        Some(Self::deref_place(p, elem))
+    }
+
+    /// A new reference to element `indexes` of the array of type `target`
+    /// reference `slot` designates, in the same object (the index checked
+    /// against the declared bounds): the reference, the element type and
+    /// its size in slots.
+    pub(in crate::sema) fn element_reference(
+        &mut self,
+        e: &Expr,
+        slot: Slot,
+        target: TypeId,
+        indexes: &[Expr],
+    ) -> Option<(Slot, TypeId, u32)> {
         let (dims, elem) = self.array_shape(e, target, indexes.len())?;
         let vals = self.index_values(indexes)?;
         let idx = self.dynamic_index(&vals, &dims);
@@ -131,10 +150,6 @@ impl BodyBuilder<'_> {
             unit,
         });
         self.block.last_def = None;
-        if let Some(p) = self.view_place(moved, elem, flavor) {
-            return Some(p);
-        }
-        let p = self.checked_address(moved, stride);
-        Some(Self::deref_place(p, elem))
+        Some((moved, elem, stride))
     }
 }

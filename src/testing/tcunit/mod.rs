@@ -275,6 +275,7 @@ pub(crate) fn run(
                 unfinished: test.finished.is_none(),
                 assertions: test.assertions.len(),
                 output: std::mem::take(&mut test.output),
+                left_out: None,
             };
             if test.duplicate {
                 case.failures.push(AssertionFailure {
