@@ -1025,3 +1025,40 @@ TYPE E_Big : (Small := 1, Huge := 100000); END_TYPE";
         .collect();
     assert_eq!(codes, ["E301"]);
 }
+
+/// Runs of underscores between the digits of an integer literal, as
+/// CODESYS and TwinCAT accept them (lcls-twincat-general writes
+/// `16#7f_ff_ff_ff__ff_ff_ff_ff`): W349, read as single ones; refused by
+/// `--strict`; an underscore at an end is still E005.
+#[test]
+fn consecutive_underscores_in_an_integer_literal_are_w349() {
+    let src = program(
+        "",
+        "x : LWORD; n : DINT;",
+        "x := 16#7f_ff_ff_ff__ff_ff_ff_ff; n := 1__000;",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "x"), "16#7FFFFFFFFFFFFFFF");
+    assert_eq!(lit(&plc, "n"), "1000");
+    let codes: Vec<&str> = plc.warnings().iter().map(|d| d.code).collect();
+    assert_eq!(
+        codes.iter().filter(|c| **c == "W349").count(),
+        2,
+        "{codes:?}"
+    );
+    let strict = plcrun::Options {
+        strict: true,
+        ..Default::default()
+    };
+    let err = plcrun::Plc::compile_files(&[("test.st", &src)], &strict)
+        .err()
+        .expect("strict refuses");
+    assert!(err.to_string().contains("error[W349]"), "{err}");
+    let end = program("", "n : DINT;", "n := 16#FF__;");
+    let codes: Vec<String> = error_codes(&[("test.st", &end)])
+        .into_iter()
+        .map(|(c, _)| c)
+        .collect();
+    assert_eq!(codes.first().map(String::as_str), Some("E005"), "{codes:?}");
+}

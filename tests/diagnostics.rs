@@ -63,7 +63,7 @@ const INC: &str =
 #[case("E002", prog("x : INT;", "x := 1; /* never closed"), "5:9")]
 #[case("E003", prog("s : STRING;", "s := 'abc;"), "5:6")]
 #[case("E004", prog("s : STRING;", "s := 'a$Zb';"), "5:8")]
-#[case("E005", prog("x : INT;", "x := 1__0;"), "5:6")]
+#[case("E005", prog("x : INT;", "x := 16#_FF;"), "5:6")]
 #[case(
     "E005",
     prog("x : LINT;", "x := 999999999999999999999999999999999999999999;"),

@@ -4,7 +4,8 @@
 //! an expression; and a `REFERENCE TO` input of a FUNCTION, FUNCTION_BLOCK
 //! or METHOD bound by the call to the variable given (an FB instance or an
 //! elementary variable), as `r REF= x` would; a PROPERTY read and
-//! written through a reference.
+//! written through a reference; the body of an instance called through
+//! a `REFERENCE TO` bound to it.
 
 use crate::support::plc;
 
@@ -142,4 +143,37 @@ END_PROGRAM
     assert_eq!(lit(&plc, "P.a"), "7");
     assert_eq!(lit(&plc, "P.b"), "9");
     assert_eq!(lit(&plc, "P.c"), "10");
+}
+
+/// The body of the instance a `REFERENCE TO FB` is bound to, called
+/// through it (`fbCurrentSegment(fbElectronEnergy := e);` in PMPS), with
+/// inputs and outputs; bound again to another instance, the next call
+/// runs that one.
+#[test]
+fn an_instance_is_called_through_a_reference_bound_to_it() {
+    let src = "
+FUNCTION_BLOCK FB_Seg
+VAR_INPUT e : REAL; END_VAR
+VAR_OUTPUT p : REAL; calls : INT; END_VAR
+p := e * 2.0;
+calls := calls + 1;
+END_FUNCTION_BLOCK
+PROGRAM main
+VAR
+  segs : ARRAY[1..2] OF FB_Seg;
+  cur : REFERENCE TO FB_Seg;
+  x, y : REAL;
+END_VAR
+cur REF= segs[1];
+cur(e := 3.0, p => x);
+cur REF= segs[2];
+cur(e := 5.0);
+y := cur.p;
+END_PROGRAM";
+    let mut plc = compile(src);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "x"), "6.0");
+    assert_eq!(lit(&plc, "y"), "10.0");
+    assert_eq!(lit(&plc, "segs[1].calls"), "2");
+    assert_eq!(lit(&plc, "segs[2].calls"), "2");
 }

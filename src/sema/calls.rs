@@ -69,9 +69,10 @@ impl BodyBuilder<'_> {
         let ExprKind::Name(id) = &call.callee.kind else {
             return false;
         };
+        // A REFERENCE TO an FB stands for the instance it is bound to.
         self.lookup_var(&id.key()).is_none_or(|v| {
             !matches!(
-                self.types.get(v.ty).kind,
+                self.types.get(self.designated(v.ty)).kind,
                 TypeKind::Pou { .. } | TypeKind::NativeFb(_) | TypeKind::Error
             )
         })

@@ -84,10 +84,12 @@ pub fn lex_in(
             Raw::SuperDeref => Tok::Kw(Kw::SuperDeref),
             Raw::Typed => typed(file, slice, r.start, diags),
             Raw::Int | Raw::Based => {
-                let value = parse_int_text(slice).unwrap_or_else(|m| {
-                    diags.error("E005", span(r.start, r.end), m);
-                    0
-                });
+                let value = parse_int_text(slice)
+                    .or_else(|m| doubled_underscores(slice, span(r.start, r.end), diags).ok_or(m))
+                    .unwrap_or_else(|m| {
+                        diags.error("E005", span(r.start, r.end), m);
+                        0
+                    });
                 lit(LiteralValue::Int(value), None)
             }
             Raw::Real => {
@@ -468,4 +470,27 @@ pub fn without_marked(tokens: Vec<Spanned>, drop: Vec<bool>) -> Vec<Spanned> {
         .filter(|(_, d)| !d)
         .map(|(t, _)| t)
         .collect()
+}
+
+/// An integer literal with runs of underscores between its digits
+/// (`16#7f_ff_ff_ff__ff_ff_ff_ff`): IEC allows single ones only, CODESYS
+/// and TwinCAT accept more (W349, refused by `--strict`). `None` when it
+/// is malformed otherwise.
+fn doubled_underscores(slice: &str, at: Span, diags: &mut Diagnostics) -> Option<i128> {
+    if !slice.contains("__") {
+        return None;
+    }
+    let mut single = String::with_capacity(slice.len());
+    for c in slice.chars() {
+        if !(c == '_' && single.ends_with('_')) {
+            single.push(c);
+        }
+    }
+    let value = parse_int_text(&single).ok()?;
+    diags.warning(
+        "W349",
+        at,
+        format!("consecutive `_` in `{slice}` (a CODESYS extension: IEC separates digits with single underscores)"),
+    );
+    Some(value)
 }
