@@ -440,6 +440,32 @@ fn the_hex_string_case_and_wstring_length_functions_of_the_tc2_libraries() {
     );
 }
 
+/// Tc2_System's `WRITE_PROTECTED_<type>(ADDR, VAL)`: writes where the
+/// address points, here a block's internal variable as lcls-twincat-
+/// general's tests set them; a null address writes nothing and gives
+/// FALSE.
+#[test]
+fn write_protected_functions_write_through_the_address() {
+    let block = pou(
+        "FB_Mon",
+        "FUNCTION_BLOCK FB_Mon\nVAR\n    iSeverity : INT;\n    fValue : LREAL;\n    tDelay : TIME;\nEND_VAR\n",
+        "",
+        "",
+    );
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    fb : FB_Mon;\n    s : INT;\n    v : LREAL;\n    t : TIME;\n    ok, none : BOOL;\nEND_VAR\n",
+        "ok := WRITE_PROTECTED_INT(ADR(fb.iSeverity), 3);\nWRITE_PROTECTED_LREAL(ADR(fb.fValue), 2.5);\nWRITE_PROTECTED_TIME(ADR(fb.tDelay), T#1s);\nnone := WRITE_PROTECTED_INT(0, 7);\ns := fb.iSeverity;\nv := fb.fValue;\nt := fb.tDelay;\n",
+        "",
+    );
+    let dir = project(&[("FB_Mon.TcPOU", &block), ("MAIN.TcPOU", &main)]);
+    let out = plcrun_ok(&[&dir, "--cycles", "1", "--trace", "ok,none,s,v,t"]);
+    assert_eq!(
+        out,
+        "cycle,time,ok,none,s,v,t\n0,T#0s,TRUE,FALSE,3,2.5,T#1s\n"
+    );
+}
+
 /// TcUnit's own forms: a suite registers itself with `THIS` (a pointer to
 /// its instance) in a global array and is called through it
 /// (`addresses[i]^.Method()` in an expression); a global instance named
