@@ -224,12 +224,8 @@ END_FUNCTION_BLOCK
     );
 }
 
-/// `ARRAY[1..4] OF FB_S[(...), (...)]`: one argument list per element, in
-/// order (formal or positional); the elements after the list get FB_init
-/// without arguments (fDelta's default 9, an empty name).
-#[test]
-fn an_array_of_instances_takes_one_argument_list_per_element() {
-    let src = "
+/// A block whose FB_init names it and sets a step (`fDelta`, 9 unless given).
+const FB_S: &str = "
 FUNCTION_BLOCK FB_S
 VAR nm : STRING; d : INT; END_VAR
 METHOD FB_init : BOOL
@@ -237,6 +233,15 @@ VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; sName : STRING; fDelta : INT 
 nm := sName; d := fDelta;
 END_METHOD
 END_FUNCTION_BLOCK
+";
+
+/// `ARRAY[1..4] OF FB_S[(...), (...)]`: one argument list per element, in
+/// order (formal or positional); the elements after the list get FB_init
+/// without arguments (fDelta's default 9, an empty name).
+#[test]
+fn an_array_of_instances_takes_one_argument_list_per_element() {
+    let src = format!(
+        "{FB_S}
 PROGRAM Main
 VAR
   a : ARRAY[1..4] OF FB_S[
@@ -245,8 +250,9 @@ VAR
   ];
 END_VAR
 END_PROGRAM
-";
-    let plc = compile(src);
+"
+    );
+    let plc = compile(&src);
     let got: Vec<String> = [
         "a[1].nm", "a[1].d", "a[2].nm", "a[2].d", "a[3].nm", "a[4].d",
     ]
@@ -262,15 +268,7 @@ END_PROGRAM
 /// cycle; a METHOD's `VAR` instance lives for one call: E931.
 #[test]
 fn a_methods_instance_variable_takes_fb_init_arguments() {
-    let fb = "
-FUNCTION_BLOCK FB_S
-VAR nm : STRING; d : INT; END_VAR
-METHOD FB_init : BOOL
-VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; sName : STRING; fDelta : INT := 9; END_VAR
-nm := sName; d := fDelta;
-END_METHOD
-END_FUNCTION_BLOCK
-";
+    let fb = FB_S;
     let src = format!(
         "{fb}
 FUNCTION_BLOCK FB_T

@@ -25,6 +25,14 @@ fn compile(
     plcrun::Plc::compile_files(&[(name, text)], &options)
 }
 
+fn error_codes(err: &plcrun::CompileError) -> Vec<&'static str> {
+    err.diagnostics
+        .iter()
+        .filter(|d| d.severity == plcrun::Severity::Error)
+        .map(|d| d.code)
+        .collect()
+}
+
 fn w490s(plc: &plcrun::Plc) -> usize {
     plc.warnings().iter().filter(|d| d.code == "W490").count()
 }
@@ -71,23 +79,11 @@ fn strict_mode_plain_iec_files_and_other_types_refuse_them() {
     let err = compile("p.st", &st, &Default::default())
         .err()
         .expect("IEC refuses");
-    let codes: Vec<&str> = err
-        .diagnostics
-        .iter()
-        .filter(|d| d.severity == plcrun::Severity::Error)
-        .map(|d| d.code)
-        .collect();
-    assert_eq!(codes, ["E301"; 5]);
+    assert_eq!(error_codes(&err), ["E301"; 5]);
     // TIME and REAL are not integers: E301 in TwinCAT files too.
     let other = tcpou("t : TIME; d : DINT; r : REAL; i : INT;", "d := t; i := r;");
     let err = compile("P.TcPOU", &other, &Default::default())
         .err()
         .expect("no conversion");
-    let codes: Vec<&str> = err
-        .diagnostics
-        .iter()
-        .filter(|d| d.severity == plcrun::Severity::Error)
-        .map(|d| d.code)
-        .collect();
-    assert_eq!(codes, ["E301", "E301"]);
+    assert_eq!(error_codes(&err), ["E301", "E301"]);
 }
