@@ -70,6 +70,28 @@ fn bit_strings_mix_with_unsigned_and_wider_signed_integers() {
     assert_eq!(w, ["W350", "W350", "W351", "W351", "W351"]);
 }
 
+/// A bit string compared with an integer of no common IEC type (PMPS:
+/// `nActiveID <> nRequestID` with a DWORD and a UDINT) compares as the
+/// unsigned integer of its width, with W350; a comparison IEC types
+/// already (`w = 16#FFFF`) gives no warning.
+#[test]
+fn a_bit_string_compares_with_an_integer_as_its_unsigned_value() {
+    let w = check(
+        "",
+        "d : DWORD := 16#FFFF_FFFF; u : UDINT := 4294967295; b : BYTE := 7; i : DINT := -1;
+         w : WORD := 16#FFFF; r1, r2, r3, r4 : BOOL;",
+        "r1 := d = u; r2 := b < u; r3 := b <> i; r4 := w = 16#FFFF;",
+        1,
+        &[
+            ("r1", "TRUE"),
+            ("r2", "TRUE"),
+            ("r3", "TRUE"),
+            ("r4", "TRUE"),
+        ],
+    );
+    assert_eq!(w, ["W350", "W350", "W350"]);
+}
+
 #[test]
 fn narrowing_and_signed_mixes_stay_errors() {
     // BYTE into SINT could lose values; WORD + INT has no common type

@@ -150,7 +150,23 @@ mod tests {
                 "F_ToUCase",
                 "GETCPUCOUNTER",
                 "ST_LibVersion",
-                "TypeClass"
+                "TypeClass",
+                "WRITE_PROTECTED_BOOL",
+                "WRITE_PROTECTED_BYTE",
+                "WRITE_PROTECTED_WORD",
+                "WRITE_PROTECTED_DWORD",
+                "WRITE_PROTECTED_SINT",
+                "WRITE_PROTECTED_USINT",
+                "WRITE_PROTECTED_INT",
+                "WRITE_PROTECTED_UINT",
+                "WRITE_PROTECTED_DINT",
+                "WRITE_PROTECTED_UDINT",
+                "WRITE_PROTECTED_REAL",
+                "WRITE_PROTECTED_LREAL",
+                "WRITE_PROTECTED_LINT",
+                "WRITE_PROTECTED_ULINT",
+                "WRITE_PROTECTED_LWORD",
+                "WRITE_PROTECTED_TIME",
             ]
         );
     }

@@ -60,6 +60,9 @@ impl BodyBuilder<'_> {
         }
         let (va, vb) = self.enum_operands(va, vb, span);
         let Some(common) = self.unify(va.ty(), vb.ty()) else {
+            if let Some(v) = self.bit_string_compare(op, &va, &vb, span) {
+                return v;
+            }
             let (x, y) = (self.ty_name(va.ty()), self.ty_name(vb.ty()));
             self.diags.push(
                 crate::diagnostics::Diagnostic::error(

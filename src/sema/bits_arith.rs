@@ -105,6 +105,38 @@ impl BodyBuilder<'_> {
         })
     }
 
+    /// `a op b` for a comparison of a bit string with an integer of no
+    /// common IEC type (`dw <> udi`), the CODESYS way: the bit string
+    /// compares as the unsigned integer of its width (W350). `None` when
+    /// the operands are not such a case.
+    pub(super) fn bit_string_compare(
+        &mut self,
+        op: BinaryOp,
+        va: &Val,
+        vb: &Val,
+        span: Span,
+    ) -> Option<Val> {
+        if !matches!(
+            op,
+            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
+        ) {
+            return None;
+        }
+        let (ba, bb) = (self.bit_string(va.ty()), self.bit_string(vb.ty()));
+        if ba.is_some() == bb.is_some() {
+            return None;
+        }
+        let a = self.as_integer(va, ba, vb.ty())?;
+        let b = self.as_integer(vb, bb, va.ty())?;
+        self.diags.warning(
+            "W350",
+            span,
+            "comparing a bit string (BYTE..LWORD) with an integer is a CODESYS extension: \
+             it compares as the unsigned integer of the same width",
+        );
+        Some(self.binary_vals(op, a, b, span))
+    }
+
     /// CODESYS indexes arrays with a bit string (BYTE..LWORD) too; warns
     /// W358 when `v` is one.
     pub(super) fn codesys_bit_string_index(&mut self, v: &Val, span: Span) -> bool {

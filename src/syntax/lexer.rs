@@ -84,12 +84,16 @@ pub fn lex_in(
             Raw::SuperDeref => Tok::Kw(Kw::SuperDeref),
             Raw::Typed => typed(file, slice, r.start, diags),
             Raw::Int | Raw::Based => {
-                let value = parse_int_text(slice)
-                    .or_else(|m| doubled_underscores(slice, span(r.start, r.end), diags).ok_or(m))
-                    .unwrap_or_else(|m| {
+                let value = match parse_int_text(slice) {
+                    Ok(v) => {
+                        doubled_underscores(slice, span(r.start, r.end), diags);
+                        v
+                    }
+                    Err(m) => {
                         diags.error("E005", span(r.start, r.end), m);
                         0
-                    });
+                    }
+                };
                 lit(LiteralValue::Int(value), None)
             }
             Raw::Real => {
@@ -472,25 +476,16 @@ pub fn without_marked(tokens: Vec<Spanned>, drop: Vec<bool>) -> Vec<Spanned> {
         .collect()
 }
 
-/// An integer literal with runs of underscores between its digits
-/// (`16#7f_ff_ff_ff__ff_ff_ff_ff`): IEC allows single ones only, CODESYS
-/// and TwinCAT accept more (W349, refused by `--strict`). `None` when it
-/// is malformed otherwise.
-fn doubled_underscores(slice: &str, at: Span, diags: &mut Diagnostics) -> Option<i128> {
-    if !slice.contains("__") {
-        return None;
+/// W349 for an integer literal with runs of underscores between its
+/// digits (`16#7f_ff_ff_ff__ff_ff_ff_ff`): IEC allows single ones only,
+/// CODESYS and TwinCAT accept more, and so does the literal reader
+/// (`parse_int_text`); `--strict` refuses it.
+fn doubled_underscores(slice: &str, at: Span, diags: &mut Diagnostics) {
+    if slice.contains("__") {
+        diags.warning(
+            "W349",
+            at,
+            format!("consecutive `_` in `{slice}` (a CODESYS extension: IEC separates digits with single underscores)"),
+        );
     }
-    let mut single = String::with_capacity(slice.len());
-    for c in slice.chars() {
-        if !(c == '_' && single.ends_with('_')) {
-            single.push(c);
-        }
-    }
-    let value = parse_int_text(&single).ok()?;
-    diags.warning(
-        "W349",
-        at,
-        format!("consecutive `_` in `{slice}` (a CODESYS extension: IEC separates digits with single underscores)"),
-    );
-    Some(value)
 }
