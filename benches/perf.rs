@@ -1,13 +1,17 @@
-//! Benchmark harness: plcrun against hand-written native Rust references.
+//! Benchmark harness: plcrun against hand-written native Rust and C
+//! references.
 //!
-//! For every benchmark program the harness runs the native reference and
-//! plcrun alternately in the same process, `rounds` times each. Every batch
+//! For every benchmark program the harness runs the native Rust reference,
+//! the C reference (when a C compiler is found) and plcrun alternately,
+//! `rounds` times each; the Rust reference and plcrun in this process, the C
+//! reference (`benches/c/`, built with `cc -O2` when the harness starts) in
+//! a child process that times its own loop of cycles the same way. Every batch
 //! uses a fresh instance, starts at cycle 0 on the virtual clock (cycle `k`
 //! at `k × 10 ms`) and stops at a cycle count for which the benchmark README
 //! gives the checksum, so every batch is also a correctness check. The
-//! table shows the median ns/cycle of each runner, their ratio and whether
-//! all checksums matched, plus the geometric mean of the ratios of the four
-//! main benchmarks (a, b, c unrolled, d). The process exits with status 1 if
+//! table shows the median ns/cycle of each runner, plcrun's ratio to each
+//! reference and whether all checksums matched, plus the geometric means of
+//! the ratios of the four main benchmarks (a, b, c unrolled, d). The process exits with status 1 if
 //! any checksum is wrong.
 //!
 //! Usage: `cargo bench --bench perf -- [--quick]
@@ -98,6 +102,8 @@ struct Case {
     in_geomean: bool,
     /// Fresh native reference.
     native: fn() -> Box<dyn Runner>,
+    /// Name of the C reference in `benches/c/main.c` (`None`: there is none).
+    c_name: Option<&'static str>,
 }
 
 macro_rules! program {
@@ -115,7 +121,8 @@ fn cases() -> Vec<Case> {
                 quick: Target,
                 tolerance: i64,
                 in_geomean: bool,
-                native: fn() -> Box<dyn Runner>| Case {
+                native: fn() -> Box<dyn Runner>,
+                c_name: Option<&'static str>| Case {
         name,
         file,
         source,
@@ -125,6 +132,7 @@ fn cases() -> Vec<Case> {
         tolerance,
         in_geomean,
         native,
+        c_name,
     };
     let mut empty = case(
         "empty",
@@ -134,6 +142,7 @@ fn cases() -> Vec<Case> {
         0,
         false,
         native_runner::<BenchEmpty>,
+        None,
     );
     empty.checksum_var = "x";
     vec![
@@ -145,6 +154,7 @@ fn cases() -> Vec<Case> {
             0,
             true,
             native_runner::<BenchA>,
+            Some("a"),
         ),
         case(
             "b_int_sieve",
@@ -154,6 +164,7 @@ fn cases() -> Vec<Case> {
             0,
             true,
             native_runner::<BenchB>,
+            Some("b"),
         ),
         case(
             "c_fb_unrolled",
@@ -163,6 +174,7 @@ fn cases() -> Vec<Case> {
             0,
             true,
             native_runner::<BenchC>,
+            Some("c"),
         ),
         case(
             "c_fb_array",
@@ -172,6 +184,7 @@ fn cases() -> Vec<Case> {
             0,
             false,
             native_runner::<BenchC>,
+            Some("c"),
         ),
         case(
             "d_real_math",
@@ -181,6 +194,7 @@ fn cases() -> Vec<Case> {
             1,
             true,
             native_runner::<BenchD>,
+            Some("d"),
         ),
         empty,
     ]
@@ -320,14 +334,16 @@ struct Row {
     name: &'static str,
     cycles: u64,
     native: f64,
+    c: Option<f64>,
     plcrun: Option<f64>,
     errors: Vec<String>,
     in_geomean: bool,
 }
 
-fn measure(case: &Case, opts: &Opts) -> Row {
+fn measure(case: &Case, opts: &Opts, c_bin: Option<&std::path::Path>) -> Row {
     let target = if opts.quick { case.quick } else { case.full };
     let mut native_ns = Vec::new();
+    let mut c_ns = Vec::new();
     let mut plcrun_ns = Vec::new();
     let mut errors = Vec::new();
     let mut plcrun_available = true;
@@ -336,6 +352,21 @@ fn measure(case: &Case, opts: &Opts) -> Row {
         let (ns, ok) = batch(n.as_mut(), target, case.tolerance);
         native_ns.push(ns);
         errors.extend(ok.err());
+
+        if let (Some(bin), Some(name)) = (c_bin, case.c_name) {
+            match c_ref::batch(bin, name, target.cycles) {
+                Ok((ns, got)) => {
+                    c_ns.push(ns);
+                    if (got - target.checksum).abs() > case.tolerance {
+                        errors.push(format!(
+                            "C: checksum {got} after {} cycles, expected {}",
+                            target.cycles, target.checksum
+                        ));
+                    }
+                }
+                Err(e) => errors.push(e),
+            }
+        }
 
         // The plcrun runner plugs in here (see `plcrun_runner`).
         if plcrun_available {
@@ -358,6 +389,7 @@ fn measure(case: &Case, opts: &Opts) -> Row {
         name: case.name,
         cycles: target.cycles,
         native: median(&mut native_ns),
+        c: (!c_ns.is_empty()).then(|| median(&mut c_ns)),
         plcrun: (!plcrun_ns.is_empty()).then(|| median(&mut plcrun_ns)),
         errors,
         in_geomean: case.in_geomean,
@@ -372,44 +404,70 @@ fn main() {
             opts.filters.is_empty() || opts.filters.iter().any(|f| c.name.starts_with(f.as_str()))
         })
         .collect();
+    let mut failed = false;
+    let c_bin = match c_ref::build() {
+        Ok(bin) => bin,
+        Err(e) => {
+            println!("{e}");
+            failed = true;
+            None
+        }
+    };
     println!(
         "plcrun benchmarks: {} rounds, {} cycle counts, median ns/cycle",
         opts.rounds,
         if opts.quick { "quick" } else { "full" }
     );
     println!(
-        "{:<14} {:>10} {:>14} {:>14} {:>8}  checksum",
-        "bench", "cycles", "native ns/cyc", "plcrun ns/cyc", "ratio"
+        "{:<14} {:>10} {:>12} {:>12} {:>14} {:>8} {:>8}  checksum",
+        "bench", "cycles", "Rust ns/cyc", "C ns/cyc", "plcrun ns/cyc", "÷ Rust", "÷ C"
     );
-    let mut failed = false;
     let mut log_ratios = Vec::new();
+    let mut log_ratios_c = Vec::new();
     for case in &selected {
-        let row = measure(case, &opts);
-        let (plcrun, ratio) = match row.plcrun {
-            Some(p) => {
-                let ratio = p / row.native;
-                if row.in_geomean && row.errors.is_empty() {
-                    log_ratios.push(ratio.ln());
+        let row = measure(case, &opts, c_bin.as_deref());
+        let counted = row.in_geomean && row.errors.is_empty();
+        let ratio = |reference: Option<f64>, logs: &mut Vec<f64>| match (row.plcrun, reference) {
+            (Some(p), Some(r)) => {
+                let ratio = p / r;
+                if counted {
+                    logs.push(ratio.ln());
                 }
-                (format!("{p:.1}"), format!("{ratio:.2}"))
+                format!("{ratio:.2}")
             }
-            None => ("-".to_string(), "-".to_string()),
+            _ => "-".to_string(),
         };
+        let ratio_rust = ratio(Some(row.native), &mut log_ratios);
+        let ratio_c = ratio(row.c, &mut log_ratios_c);
+        let show = |ns: Option<f64>| ns.map_or("-".to_string(), |ns| format!("{ns:.1}"));
         let status = if row.errors.is_empty() { "ok" } else { "WRONG" };
         println!(
-            "{:<14} {:>10} {:>14.1} {:>14} {:>8}  {status}",
-            row.name, row.cycles, row.native, plcrun, ratio
+            "{:<14} {:>10} {:>12.1} {:>12} {:>14} {:>8} {:>8}  {status}",
+            row.name,
+            row.cycles,
+            row.native,
+            show(row.c),
+            show(row.plcrun),
+            ratio_rust,
+            ratio_c
         );
         for e in &row.errors {
             println!("    {}: {e}", row.name);
         }
         failed |= !row.errors.is_empty();
     }
-    if log_ratios.is_empty() {
-        println!("geomean ratio: - (no benchmark selected)");
-    } else {
-        let geomean = (log_ratios.iter().sum::<f64>() / log_ratios.len() as f64).exp();
-        println!("geomean ratio (a, b, c unrolled, d): {geomean:.2}");
+    for (what, logs) in [("Rust", &log_ratios), ("C", &log_ratios_c)] {
+        if logs.is_empty() {
+            println!("geomean plcrun ÷ {what}: - (no benchmark of a, b, c unrolled, d measured)");
+        } else {
+            let geomean = (logs.iter().sum::<f64>() / logs.len() as f64).exp();
+            let of = if logs.len() == 4 {
+                "a, b, c unrolled, d".to_string()
+            } else {
+                format!("{} of a, b, c unrolled, d", logs.len())
+            };
+            println!("geomean plcrun ÷ {what} ({of}): {geomean:.2}");
+        }
     }
 
     {
@@ -419,6 +477,75 @@ fn main() {
     if failed {
         eprintln!("checksum or compile errors: see above");
         std::process::exit(1);
+    }
+}
+
+/// The hand-written C references (`benches/c/`), timed like the others.
+///
+/// They are compiled when the harness starts, with `$CC` (default `cc`)
+/// `-O2 -std=c11 -ffp-contract=off` (ISO C: a float expression is rounded
+/// as written, as in plcrun and the Rust references), into one program that
+/// runs one batch per invocation: a fresh state, `cycles` cycles in a loop
+/// timed with `CLOCK_MONOTONIC` (not the process start, not the
+/// allocation), printing ns/cycle and the checksum.
+mod c_ref {
+    use std::path::{Path, PathBuf};
+    use std::process::Command;
+
+    /// Builds the C references: `Ok(None)` (with a message printed) when
+    /// there is no C compiler, `Err` when the build fails.
+    pub fn build() -> Result<Option<PathBuf>, String> {
+        let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/c");
+        let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plcrun-bench-c");
+        let cc = std::env::var("CC").unwrap_or_else(|_| "cc".to_string());
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&src)
+            .map_err(|e| format!("C references: cannot read {}: {e}", src.display()))?
+            .filter_map(|entry| entry.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|x| x == "c"))
+            .collect();
+        files.sort();
+        let output = Command::new(&cc)
+            .args(["-O2", "-std=c11", "-ffp-contract=off", "-o"])
+            .arg(&out)
+            .args(&files)
+            .arg("-lm")
+            .output();
+        match output {
+            Err(e) => {
+                println!("no C compiler (`{cc}`: {e}): the C references are skipped");
+                Ok(None)
+            }
+            Ok(o) if !o.status.success() => Err(format!(
+                "C references: `{cc}` failed:\n{}",
+                String::from_utf8_lossy(&o.stderr)
+            )),
+            Ok(_) => Ok(Some(out)),
+        }
+    }
+
+    /// Runs one batch of C reference `name` for `cycles` cycles: its
+    /// ns/cycle and checksum.
+    pub fn batch(bin: &Path, name: &str, cycles: u64) -> Result<(f64, i64), String> {
+        let output = Command::new(bin)
+            .arg(name)
+            .arg(cycles.to_string())
+            .output()
+            .map_err(|e| format!("C: cannot run {}: {e}", bin.display()))?;
+        let text = String::from_utf8_lossy(&output.stdout);
+        let mut fields = text.split_whitespace();
+        match (
+            output.status.success(),
+            fields.next().and_then(|f| f.parse().ok()),
+            fields.next().and_then(|f| f.parse().ok()),
+        ) {
+            (true, Some(ns), Some(checksum)) => Ok((ns, checksum)),
+            _ => Err(format!(
+                "C: `{} {name} {cycles}` failed: {}{}",
+                bin.display(),
+                text.trim(),
+                String::from_utf8_lossy(&output.stderr).trim()
+            )),
+        }
     }
 }
 

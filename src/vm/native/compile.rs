@@ -60,6 +60,28 @@ impl Compiled {
     }
 }
 
+/// With `PLCRUN_NATIVE_DUMP=DIR` in the environment, the machine code of
+/// each compiled block goes to `DIR/<block index>.bin` (raw bytes, e.g.
+/// `objdump -D -b binary -m i386:x86-64 DIR/0.bin`) and its name to
+/// `DIR/blocks.txt`: a debugging aid for reading the generated code. A
+/// failed write is ignored (it changes nothing the code does).
+fn dump(k: usize, name: &str, bytes: &[u8]) {
+    use std::io::Write;
+    let Some(dir) = std::env::var_os("PLCRUN_NATIVE_DUMP") else {
+        return;
+    };
+    let dir = std::path::Path::new(&dir);
+    let _ = std::fs::create_dir_all(dir);
+    let _ = std::fs::write(dir.join(format!("{k}.bin")), bytes);
+    if let Ok(mut list) = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(dir.join("blocks.txt"))
+    {
+        let _ = writeln!(list, "{k} {name} {} bytes", bytes.len());
+    }
+}
+
 fn key(img: &Image) -> (usize, usize) {
     (img.codes.as_ptr() as usize, img.codes.len())
 }
@@ -94,6 +116,7 @@ pub(crate) fn compile(image: &VerifiedImage) -> Compiled {
                 let table = compiled.table.as_ptr();
                 match lower::function(&*isa, img, CodeIdx::new(k as u32), &ops, table) {
                     Ok(bytes) => {
+                        dump(k, &block.name, &bytes);
                         compiled._ops.push(ops);
                         pieces.push(bytes);
                         which.push(k);

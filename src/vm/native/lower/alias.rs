@@ -68,8 +68,10 @@ impl Lower<'_, '_> {
         self.b.ins().brif(hit, flush, &[], mid, &[]);
         self.b.switch_to_block(flush);
         self.b.seal_block(flush);
-        self.write_back_copy();
-        self.b.ins().jump(mid, &[]);
+        self.aside(|l| {
+            l.write_back_copy();
+            l.b.ins().jump(mid, &[]);
+        });
         self.b.switch_to_block(mid);
         self.b.seal_block(mid);
         let result = access(self);
@@ -80,8 +82,10 @@ impl Lower<'_, '_> {
             self.b.ins().brif(hit, reload, &[], after, &[]);
             self.b.switch_to_block(reload);
             self.b.seal_block(reload);
-            self.reload_copy();
-            self.b.ins().jump(after, &[]);
+            self.aside(|l| {
+                l.reload_copy();
+                l.b.ins().jump(after, &[]);
+            });
             self.b.switch_to_block(after);
             self.b.seal_block(after);
             self.forget_floats();
@@ -91,7 +95,8 @@ impl Lower<'_, '_> {
 
     /// The frame-relative slot of absolute slot `a`.
     pub(super) fn frame_relative(&mut self, a: Value) -> Value {
-        self.b.ins().isub(a, self.base)
+        let base = self.base();
+        self.b.ins().isub(a, base)
     }
 }
 

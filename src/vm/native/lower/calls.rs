@@ -17,7 +17,8 @@ impl Lower<'_, '_> {
     pub(super) fn calls(&mut self, op: &Op) -> bool {
         match *op {
             Op::CallFb { code, inst } => {
-                let base = self.b.ins().iadd_imm_s(self.base, inst.index() as i64);
+                let base = self.base();
+                let base = self.b.ins().iadd_imm_s(base, inst.index() as i64);
                 self.call_block(code, base);
             }
             Op::CallFbInd { code, p } => {
@@ -46,16 +47,15 @@ impl Lower<'_, '_> {
                 let n = fb.instance_slots() as i64;
                 let known = self.pointed(p, 0, n as u64);
                 let start = self.get(p);
-                let beyond = self
-                    .b
-                    .ins()
-                    .icmp(IntCC::UnsignedGreaterThan, start, self.len);
-                let room = self.b.ins().isub(self.len, start);
+                let len = self.len();
+                let beyond = self.b.ins().icmp(IntCC::UnsignedGreaterThan, start, len);
+                let room = self.b.ins().isub(len, start);
                 let short = self.b.ins().icmp_imm_s(IntCC::UnsignedLessThan, room, n);
                 let bad = self.b.ins().bor(beyond, short);
                 self.fault_if(bad, WHY_BAD_ADDRESS);
                 let bytes = self.b.ins().ishl_imm_s(start, 3);
-                let inst = self.b.ins().iadd(self.mem, bytes);
+                let mem = self.mem();
+                let inst = self.b.ins().iadd(mem, bytes);
                 let run = |l: &mut Self| {
                     if super::fbs::inlined(fb) {
                         l.inline_fb(fb, super::fbs::Pins::At(inst));
@@ -89,11 +89,14 @@ impl Lower<'_, '_> {
         let entry = self.b.ins().load(I64, flags, table, 0);
         let index = self.b.ins().iconst(I32, code.get() as i64);
         let bytes = self.b.ins().ishl_imm_s(base, 3);
-        let fp = self.b.ins().iadd(self.mem, bytes);
+        let mem = self.mem();
+        let fp = self.b.ins().iadd(mem, bytes);
+        let ctx = self.ctx();
         let inst = self
             .b
             .ins()
-            .call_indirect(self.sigs.entry, entry, &[self.ctx, base, index, fp]);
+            .call_indirect(self.sigs.entry, entry, &[ctx, base, index, fp]);
+        self.after_call();
         let status = self.b.inst_results(inst)[0];
         let unwind = self.b.create_block();
         let next = self.b.create_block();
@@ -101,10 +104,12 @@ impl Lower<'_, '_> {
         self.b.ins().brif(status, unwind, &[], next, &[]);
         self.b.switch_to_block(unwind);
         self.b.seal_block(unwind);
-        let code_pc = self.code_pc();
-        let args = [self.ctx, code_pc, self.base];
-        self.call(self.sigs.unwound, helpers::unwound as *const (), &args);
-        self.b.ins().jump(self.fail, &[]);
+        self.aside(|l| {
+            let code_pc = l.code_pc();
+            let args = [l.ctx(), code_pc, l.base()];
+            l.call(l.sigs.unwound, helpers::unwound as *const (), &args);
+            l.b.ins().jump(l.fail, &[]);
+        });
         self.b.switch_to_block(next);
         self.b.seal_block(next);
     }
@@ -112,7 +117,7 @@ impl Lower<'_, '_> {
     /// The standard FB of this instruction on the instance at `inst`.
     fn call_standard(&mut self, inst: Value) {
         let op = self.op_ptr();
-        let args = [self.ctx, op, inst];
+        let args = [self.ctx(), op, inst];
         self.call(
             self.sigs.call_native,
             helpers::call_native as *const (),

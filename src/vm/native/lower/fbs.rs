@@ -144,7 +144,8 @@ impl Lower<'_, '_> {
     /// read and written in memory, the timing only where IN is TRUE (most
     /// timers are idle most of the time).
     fn ton(&mut self, p: Pins) {
-        let now = self.now.expect("loaded at entry (needs_clock)");
+        // Defined at entry (`needs_clock`).
+        let now = self.now();
         let input = self.pin(p, 0);
         let prev = self.pin(p, 5);
         let at = match p {

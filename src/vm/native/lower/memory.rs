@@ -7,7 +7,7 @@ use super::{I64, Lower};
 use crate::ir::op::{ArrayIdx, Op, Slot, wrap_s};
 use crate::vm::native::helpers::{WHY_BAD_ADDRESS, WHY_OPERANDS};
 use cranelift_codegen::ir::condcodes::IntCC;
-use cranelift_codegen::ir::{InstBuilder, MemFlagsData, Value};
+use cranelift_codegen::ir::{InstBuilder, MemFlagsData, Value, types};
 use std::mem::offset_of;
 
 impl Lower<'_, '_> {
@@ -51,7 +51,8 @@ impl Lower<'_, '_> {
                 self.store_at(a, v, known);
             }
             Op::AddrOf { d, off } => {
-                let v = self.b.ins().iadd_imm_s(self.base, off.index() as i64);
+                let base = self.base();
+                let v = self.b.ins().iadd_imm_s(base, off.index() as i64);
                 self.set(d, v);
             }
             Op::AddrAdd { d, p, off } => {
@@ -61,10 +62,11 @@ impl Lower<'_, '_> {
             }
             Op::Clock { d } => {
                 let flags = MemFlagsData::trusted();
+                let ctx = self.ctx();
                 let v = self
                     .b
                     .ins()
-                    .load(I64, flags, self.ctx, offset_of!(super::Ctx, now) as i32);
+                    .load(I64, flags, ctx, offset_of!(super::Ctx, now) as i32);
                 self.set(d, v);
             }
             _ => return self.elements(op),
@@ -99,7 +101,8 @@ impl Lower<'_, '_> {
             Op::ElemRef { d, idx, desc } => {
                 let i = self.index(idx, desc);
                 let rel = self.relative(i, desc);
-                let v = self.b.ins().iadd(self.base, rel);
+                let base = self.base();
+                let v = self.b.ins().iadd(base, rel);
                 let ad = self.img.arrays[desc.index()];
                 let lo = u64::from(ad.offset);
                 let hi = lo.saturating_add(ad.len.saturating_mul(u64::from(ad.stride)));
@@ -125,7 +128,8 @@ impl Lower<'_, '_> {
                     .icmp_imm_s(IntCC::UnsignedGreaterThanOrEqual, at, frame);
                 self.fault_if(out, WHY_BAD_ADDRESS);
                 let bytes = self.b.ins().ishl_imm_s(at, 3);
-                let addr = self.b.ins().iadd(self.fp, bytes);
+                let fp = self.fp();
+                let addr = self.b.ins().iadd(fp, bytes);
                 if matches!(op, Op::LoadElemU { .. }) {
                     let v =
                         self.guarded(at, 1, false, |l| Some(l.b.ins().load(I64, flags, addr, 0)));
@@ -176,7 +180,8 @@ impl Lower<'_, '_> {
         let i = self.index(idx, desc);
         let rel = self.relative(i, desc);
         let bytes = self.b.ins().ishl_imm_s(rel, 3);
-        self.b.ins().iadd(self.fp, bytes)
+        let fp = self.fp();
+        self.b.ins().iadd(fp, bytes)
     }
 
     /// The frame slots (relative, `lo..hi`) that `n` slots from `off`
@@ -223,13 +228,12 @@ impl Lower<'_, '_> {
     /// The machine address of absolute slot `a`, which must lie in memory
     /// (a `BadAddress` fault otherwise).
     fn checked_address(&mut self, a: Value) -> Value {
-        let out = self
-            .b
-            .ins()
-            .icmp(IntCC::UnsignedGreaterThanOrEqual, a, self.len);
+        let len = self.len();
+        let out = self.b.ins().icmp(IntCC::UnsignedGreaterThanOrEqual, a, len);
         self.fault_if(out, WHY_BAD_ADDRESS);
         let bytes = self.b.ins().ishl_imm_s(a, 3);
-        self.b.ins().iadd(self.mem, bytes)
+        let mem = self.mem();
+        self.b.ins().iadd(mem, bytes)
     }
 
     /// `FillElems`: when the whole range `i ..= lim` lies in the array and
@@ -256,26 +260,64 @@ impl Lower<'_, '_> {
             .ins()
             .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, first, 0);
         let go = self.b.ins().band(in_order, inside);
-        let looping = self.b.create_block();
-        let k = self.b.append_block_param(looping, I64);
         let done = self.b.create_block();
         let value = self.get(v);
-        let args = [cranelift_codegen::ir::BlockArg::Value(first)];
-        self.b.ins().brif(go, looping, &args, done, &[]);
-        self.b.switch_to_block(looping);
-        let slot = self.b.ins().iadd_imm_s(k, ad.offset as i64);
-        let bytes = self.b.ins().ishl_imm_s(slot, 3);
-        let at = self.b.ins().iadd(self.fp, bytes);
-        self.b.ins().store(MemFlagsData::trusted(), value, at, 0);
-        let next = self.b.ins().iadd_imm_s(k, 1);
+        // The elements `first ..= b`: four at a time (two 16-byte
+        // stores of the value twice) while four remain, then one at a
+        // time. Every store lies in the array, as the interpreter's loop's.
+        let fp = self.fp();
+        let pair = self.b.ins().splat(types::I64X2, value);
+        let arg = cranelift_codegen::ir::BlockArg::Value;
+        let (fours, four, ones, one, after_fill) = (
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+        );
+        let k4 = self.b.append_block_param(fours, I64);
+        let k4_in = self.b.append_block_param(four, I64);
+        let k1 = self.b.append_block_param(ones, I64);
+        let k1_in = self.b.append_block_param(one, I64);
+        self.b.ins().brif(go, fours, &[arg(first)], done, &[]);
+        // Whether four more elements from `k` lie in the range: k + 3 <= b.
+        let room4 =
+            |l: &mut Self, k: Value| l.b.ins().icmp_imm_s(IntCC::SignedLessThanOrEqual, k, b - 3);
+        let at = |l: &mut Self, k: Value| {
+            let slot = l.b.ins().iadd_imm_s(k, ad.offset as i64);
+            let bytes = l.b.ins().ishl_imm_s(slot, 3);
+            l.b.ins().iadd(fp, bytes)
+        };
+        // Vector stores need not be aligned: slots are 8-byte aligned.
+        let unaligned = MemFlagsData::new().with_notrap();
+        self.b.switch_to_block(fours);
+        let more = room4(self, k4);
+        self.b.ins().brif(more, four, &[arg(k4)], ones, &[arg(k4)]);
+        self.b.switch_to_block(four);
+        let a = at(self, k4_in);
+        self.b.ins().store(unaligned, pair, a, 0);
+        self.b.ins().store(unaligned, pair, a, 16);
+        let next = self.b.ins().iadd_imm_s(k4_in, 4);
+        let more = room4(self, next);
+        self.b
+            .ins()
+            .brif(more, four, &[arg(next)], ones, &[arg(next)]);
+        self.b.seal_block(fours);
+        self.b.seal_block(four);
+        self.b.switch_to_block(ones);
+        let more = self.b.ins().icmp_imm_s(IntCC::SignedLessThanOrEqual, k1, b);
+        self.b.ins().brif(more, one, &[arg(k1)], after_fill, &[]);
+        self.b.switch_to_block(one);
+        let a = at(self, k1_in);
+        self.b.ins().store(MemFlagsData::trusted(), value, a, 0);
+        let next = self.b.ins().iadd_imm_s(k1_in, 1);
         let more = self
             .b
             .ins()
             .icmp_imm_s(IntCC::SignedLessThanOrEqual, next, b);
-        let after_fill = self.b.create_block();
-        let args = [cranelift_codegen::ir::BlockArg::Value(next)];
-        self.b.ins().brif(more, looping, &args, after_fill, &[]);
-        self.b.seal_block(looping);
+        self.b.ins().brif(more, one, &[arg(next)], after_fill, &[]);
+        self.b.seal_block(ones);
+        self.b.seal_block(one);
         self.b.switch_to_block(after_fill);
         self.b.seal_block(after_fill);
         let end = self.b.ins().iconst(I64, after as i64);

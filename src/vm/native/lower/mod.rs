@@ -25,11 +25,11 @@ use crate::ir::image::Image;
 use crate::ir::op::{CodeIdx, Op, Slot};
 use cranelift_codegen::control::ControlPlane;
 use cranelift_codegen::ir::{
-    AbiParam, Block, Function, InstBuilder, MemFlagsData, SigRef, Signature, UserFuncName, Value,
-    types,
+    AbiParam, Block, Function, InstBuilder, MemFlagsData, SigRef, Signature, StackSlot,
+    StackSlotData, StackSlotKind, UserFuncName, Value, types,
 };
 use cranelift_codegen::isa::TargetIsa;
-use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
+use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext, Variable};
 use std::mem::offset_of;
 
 const I64: types::Type = types::I64;
@@ -96,6 +96,36 @@ struct Sigs {
     math_f64: SigRef,
 }
 
+/// The entry's parameters and the values it reads from [`Ctx`], each a
+/// variable (see [`Env`]), by index.
+const CTX: usize = 0;
+const BASE: usize = 1;
+const FP: usize = 2;
+const MEM: usize = 3;
+const LEN: usize = 4;
+const IRQ: usize = 5;
+const NOW: usize = 6;
+const ALL_ENV: u8 = 0x7f;
+
+/// The values every instruction may need: the context, the frame's base
+/// and address, and memory's address and length, the interrupt word's
+/// address and the cycle's clock as read from the context. They never
+/// change while the block runs, but a value kept across a call must sit
+/// in a callee-saved register or on the stack, and the register
+/// allocator then tends to spill it for the whole function and reload it
+/// at every use. So each is a variable, and after a call (`stale`) the
+/// next use loads it again (the first three from a stack slot written at
+/// entry, the others from the context) and keeps the new value in a
+/// register until the next call.
+struct Env {
+    vars: [Variable; 7],
+    /// Which of them a call made since their last definition on the path
+    /// being translated (bit `1 << k`): the next use reloads it.
+    stale: u8,
+    /// `ctx`, `base` and `fp`, stored at entry.
+    saved: StackSlot,
+}
+
 /// The state of one block's translation.
 struct Lower<'a, 'f> {
     b: FunctionBuilder<'f>,
@@ -104,13 +134,8 @@ struct Lower<'a, 'f> {
     ops: &'a [Op],
     table: *const EntryFn,
     sigs: Sigs,
-    /// The function's parameters, and values computed once at entry.
-    ctx: Value,
-    base: Value,
-    fp: Value,
-    mem: Value,
-    len: Value,
-    irq: Value,
+    /// The function's parameters, and values read at entry.
+    env: Env,
     /// The block starting at each instruction that is a jump target or
     /// follows a branch.
     starts: Vec<Option<Block>>,
@@ -123,8 +148,6 @@ struct Lower<'a, 'f> {
     cache: cache::Cache,
     /// The regions' entries and the slots' last uses.
     regions: edges::Regions,
-    /// The cycle's clock, loaded at entry when an inlined timer needs it.
-    now: Option<Value>,
 }
 
 impl<'a, 'f> Lower<'a, 'f> {
@@ -157,7 +180,13 @@ impl<'a, 'f> Lower<'a, 'f> {
         let p = b.block_params(entry).to_vec();
         let fail = b.create_block();
         b.set_cold_block(fail);
-        let zero = b.ins().iconst(I64, 0);
+        let vars = [(); 7].map(|()| b.declare_var(I64));
+        let saved =
+            b.create_sized_stack_slot(StackSlotData::new(StackSlotKind::ExplicitSlot, 24, 3));
+        for (k, param) in [(CTX, p[0]), (BASE, p[1]), (FP, p[3])] {
+            b.def_var(vars[k], param);
+            b.ins().stack_store(I64, param, saved, 8 * k as i32);
+        }
         Lower {
             b,
             img,
@@ -165,19 +194,17 @@ impl<'a, 'f> Lower<'a, 'f> {
             ops,
             table,
             sigs,
-            ctx: p[0],
-            base: p[1],
-            fp: p[3],
-            mem: zero,
-            len: zero,
-            irq: zero,
+            env: Env {
+                vars,
+                stale: 0,
+                saved,
+            },
             starts: vec![None; ops.len() + 1],
             fail,
             pc: 0,
             frontend: isa.frontend_config(),
             cache: cache::Cache::default(),
             regions: edges::Regions::new(ops),
-            now: None,
         }
     }
 
@@ -233,27 +260,18 @@ impl<'a, 'f> Lower<'a, 'f> {
     /// temporaries reset: the interpreter's order, with its faults at
     /// instruction 0.
     fn prologue(&mut self) {
-        let flags = MemFlagsData::trusted();
-        let ctx = self.ctx;
-        self.mem = self
-            .b
-            .ins()
-            .load(I64, flags, ctx, offset_of!(Ctx, mem) as i32);
-        self.len = self
-            .b
-            .ins()
-            .load(I64, flags, ctx, offset_of!(Ctx, len) as i32);
-        self.irq = self
-            .b
-            .ins()
-            .load(I64, flags, ctx, offset_of!(Ctx, irq) as i32);
+        for k in [MEM, LEN, IRQ] {
+            let v = self.reload_env(k);
+            self.b.def_var(self.env.vars[k], v);
+        }
         let block = &self.img.codes[self.code.index()];
+        let (base, len) = (self.base(), self.len());
         let beyond = self.b.ins().icmp(
             cranelift_codegen::ir::condcodes::IntCC::UnsignedGreaterThan,
-            self.base,
-            self.len,
+            base,
+            len,
         );
-        let room = self.b.ins().isub(self.len, self.base);
+        let room = self.b.ins().isub(len, base);
         let small = self.b.ins().icmp_imm_s(
             cranelift_codegen::ir::condcodes::IntCC::UnsignedLessThan,
             room,
@@ -265,12 +283,8 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.fault_if(bad, WHY_BAD_ADDRESS);
         self.tick();
         if self.ops.iter().any(fbs::needs_clock) {
-            let flags = MemFlagsData::trusted();
-            let now = self
-                .b
-                .ins()
-                .load(I64, flags, ctx, offset_of!(Ctx, now) as i32);
-            self.now = Some(now);
+            let now = self.reload_env(NOW);
+            self.b.def_var(self.env.vars[NOW], now);
         }
         for &(slot, value) in &block.entry_init {
             let v = self.b.ins().iconst(I64, value as i64);
@@ -280,7 +294,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             // The helper reads the frame.
             self.drop_all();
             let code = self.b.ins().iconst(I32, self.code.get() as i64);
-            let args = [self.ctx, code, self.fp];
+            let args = [self.ctx(), code, self.fp()];
             self.call(
                 self.sigs.entry_strings,
                 helpers::entry_strings as *const (),
@@ -345,15 +359,100 @@ impl<'a, 'f> Lower<'a, 'f> {
         ))
     }
 
+    // --- the entry's values ---
+
+    /// Value `k` of [`Env`], loaded again when a call came since its last
+    /// definition.
+    fn env_value(&mut self, k: usize) -> Value {
+        let bit = 1u8 << k;
+        if self.env.stale & bit != 0 {
+            self.env.stale &= !bit;
+            let v = self.reload_env(k);
+            self.b.def_var(self.env.vars[k], v);
+            return v;
+        }
+        self.b.use_var(self.env.vars[k])
+    }
+
+    /// Value `k` of [`Env`] read again from where it is kept.
+    fn reload_env(&mut self, k: usize) -> Value {
+        let field = match k {
+            CTX | BASE | FP => {
+                let saved = self.env.saved;
+                return self.b.ins().stack_load(I64, I64, saved, 8 * k as i32);
+            }
+            MEM => offset_of!(Ctx, mem),
+            LEN => offset_of!(Ctx, len),
+            IRQ => offset_of!(Ctx, irq),
+            _ => offset_of!(Ctx, now),
+        };
+        let ctx = self.ctx();
+        self.b
+            .ins()
+            .load(I64, MemFlagsData::trusted(), ctx, field as i32)
+    }
+
+    /// After a call: every value of [`Env`] is loaded again at its next
+    /// use.
+    fn after_call(&mut self) {
+        self.env.stale = ALL_ENV;
+    }
+
+    /// Translates a path that leaves the main one (`side`), with the main
+    /// path's knowledge of which values are current kept for when the
+    /// translation comes back to it.
+    fn aside<R>(&mut self, side: impl FnOnce(&mut Self) -> R) -> R {
+        let stale = self.env.stale;
+        let r = side(self);
+        self.env.stale = stale;
+        r
+    }
+
+    /// The running entry's context.
+    fn ctx(&mut self) -> Value {
+        self.env_value(CTX)
+    }
+
+    /// The frame's base (a slot index in memory).
+    fn base(&mut self) -> Value {
+        self.env_value(BASE)
+    }
+
+    /// The frame's machine address.
+    fn fp(&mut self) -> Value {
+        self.env_value(FP)
+    }
+
+    /// Memory's machine address.
+    fn mem(&mut self) -> Value {
+        self.env_value(MEM)
+    }
+
+    /// Memory's length in slots.
+    fn len(&mut self) -> Value {
+        self.env_value(LEN)
+    }
+
+    /// The interrupt word's address.
+    fn irq(&mut self) -> Value {
+        self.env_value(IRQ)
+    }
+
+    /// The cycle's clock (read at entry when an inlined timer needs it).
+    fn now(&mut self) -> Value {
+        self.env_value(NOW)
+    }
+
     // --- frame access ---
 
     /// The address and displacement of frame slot `s` (displacements
     /// beyond 2 GiB are added to the address instead).
     fn slot_at(&mut self, s: Slot) -> (Value, i32) {
         let off = s.index() as u64 * 8;
+        let fp = self.fp();
         match i32::try_from(off) {
-            Ok(off) => (self.fp, off),
-            Err(_) => (self.b.ins().iadd_imm_s(self.fp, off as i64), 0),
+            Ok(off) => (fp, off),
+            Err(_) => (self.b.ins().iadd_imm_s(fp, off as i64), 0),
         }
     }
 
@@ -376,6 +475,7 @@ impl<'a, 'f> Lower<'a, 'f> {
     fn call(&mut self, sig: SigRef, addr: *const (), args: &[Value]) -> Option<Value> {
         let callee = self.b.ins().iconst(I64, addr as i64);
         let inst = self.b.ins().call_indirect(sig, callee, args);
+        self.after_call();
         self.b.inst_results(inst).first().copied()
     }
 
@@ -388,8 +488,10 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.ins().brif(status, cold, &[], next, &[]);
         self.b.switch_to_block(cold);
         self.b.seal_block(cold);
-        self.write_back_copy();
-        self.b.ins().jump(self.fail, &[]);
+        self.aside(|l| {
+            l.write_back_copy();
+            l.b.ins().jump(l.fail, &[]);
+        });
         self.b.switch_to_block(next);
         self.b.seal_block(next);
     }
@@ -403,15 +505,17 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.ins().brif(cond, cold, &[], next, &[]);
         self.b.switch_to_block(cold);
         self.b.seal_block(cold);
-        // The report reads the operands, and memory is what the
-        // interpreter would leave.
-        self.write_back_copy();
-        let (op, code_pc) = (self.op_ptr(), self.code_pc());
-        let why = self.b.ins().iconst(I32, why as i64);
-        let args = [self.ctx, op, code_pc, self.fp, why];
-        if let Some(status) = self.call(self.sigs.raise, helpers::raise as *const (), &args) {
-            self.b.ins().return_(&[status]);
-        }
+        self.aside(|l| {
+            // The report reads the operands, and memory is what the
+            // interpreter would leave.
+            l.write_back_copy();
+            let (op, code_pc) = (l.op_ptr(), l.code_pc());
+            let why = l.b.ins().iconst(I32, why as i64);
+            let args = [l.ctx(), op, code_pc, l.fp(), why];
+            if let Some(status) = l.call(l.sigs.raise, helpers::raise as *const (), &args) {
+                l.b.ins().return_(&[status]);
+            }
+        });
         self.b.switch_to_block(next);
         self.b.seal_block(next);
     }
@@ -421,25 +525,45 @@ impl<'a, 'f> Lower<'a, 'f> {
     fn tick(&mut self) {
         // An atomic load: never merged with an earlier one or moved out of
         // a loop, so an empty endless loop still sees the watchdog.
-        let word = self
-            .b
-            .ins()
-            .atomic_load(I32, MemFlagsData::trusted(), self.irq);
+        let irq = self.irq();
+        let word = self.b.ins().atomic_load(I32, MemFlagsData::trusted(), irq);
         let slow = self.b.create_block();
         let next = self.b.create_block();
         self.b.set_cold_block(slow);
         self.b.ins().brif(word, slow, &[], next, &[]);
         self.b.switch_to_block(slow);
         self.b.seal_block(slow);
-        // The poll may stop the code here: memory must be current.
-        self.write_back_copy();
-        let code_pc = self.code_pc();
-        let args = [self.ctx, code_pc];
-        if let Some(status) = self.call(self.sigs.poll, helpers::poll as *const (), &args) {
-            self.b.ins().brif(status, self.fail, &[], next, &[]);
-        }
+        self.aside(|l| {
+            // The poll may stop the code here: memory must be current.
+            l.write_back_copy();
+            let current = !l.env.stale & ALL_ENV;
+            let code_pc = l.code_pc();
+            let args = [l.ctx(), code_pc];
+            if let Some(status) = l.call(l.sigs.poll, helpers::poll as *const (), &args) {
+                let resume = l.b.create_block();
+                l.b.set_cold_block(resume);
+                l.b.ins().brif(status, l.fail, &[], resume, &[]);
+                l.b.switch_to_block(resume);
+                l.b.seal_block(resume);
+                // Going on: what the main path holds is defined again
+                // here (the poll changed no memory, and every held value
+                // is in it), so no value of the hot path lives across
+                // the call.
+                l.env.stale |= current;
+                for k in 0..7 {
+                    if current & (1 << k) != 0 {
+                        l.env_value(k);
+                    }
+                }
+                l.reload_copy();
+                l.b.ins().jump(next, &[]);
+            }
+        });
         self.b.switch_to_block(next);
         self.b.seal_block(next);
+        // Floats computed from held values before the poll would live
+        // across it on the slow path: computed again from the variables.
+        self.forget_floats();
     }
 
     /// An instruction that runs in Rust (`helpers::step`). A pure one
@@ -452,7 +576,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             self.drop_all();
         }
         let (op, code_pc) = (self.op_ptr(), self.code_pc());
-        let args = [self.ctx, op, code_pc, self.fp];
+        let args = [self.ctx(), op, code_pc, self.fp()];
         if let Some(status) = self.call(self.sigs.step, helpers::step as *const (), &args) {
             self.fail_if(status);
         }
