@@ -247,7 +247,8 @@ pub struct CheckOptions {
 pub(crate) fn codesys_files(sources: &SourceMap) -> Vec<FileId> {
     let dialect = |text: &str| {
         crate::syntax::twincat::is_twincat(text)
-            || (crate::syntax::plcopen::is_plcopen(text) && text.contains("productName=\"CODESYS"))
+            || (crate::syntax::plcopen::is_plcopen(text)
+                && crate::syntax::plcopen::origin::written_by_codesys(text))
     };
     (0..sources.files().len())
         .filter(|&i| dialect(&sources.files()[i].text))

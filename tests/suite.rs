@@ -313,6 +313,8 @@ mod timer_pt_changes;
 #[cfg(feature = "cli")]
 #[path = "twincat_import.rs"]
 mod twincat_import;
+#[path = "twincat_library_forms.rs"]
+mod twincat_library_forms;
 #[path = "typing_compat.rs"]
 mod typing_compat;
 #[path = "unions.rs"]

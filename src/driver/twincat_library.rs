@@ -2,7 +2,9 @@
 //! Tc2_EtherCAT libraries (`T_MaxString`, `PVOID`, `F_LTrim`, `F_RTrim`,
 //! `MEMCPY`, `MEMMOVE`, `MEMSET`, `MEMCMP`, `DRAND`, the distributed-clock
 //! time `T_DCTIME64` and its functions, the `*_TO_HEXSTR` conversions,
-//! `F_ToLCase`, `F_ToUCase`, `GETCPUCOUNTER`, `ST_LibVersion`,
+//! `F_ToLCase`, `F_ToUCase`, `GETCPUCOUNTER`, `ST_LibVersion`, the task
+//! information `_TaskInfo` with `GETCURTASKINDEX`/`GETCURTASKINDEXEX`,
+//! `IQueryInterface`,
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
 //! written in ST by plcrun
 //! (`twincat_library.st`) and added as a source of its own when the
@@ -167,6 +169,11 @@ mod tests {
                 "WRITE_PROTECTED_ULINT",
                 "WRITE_PROTECTED_LWORD",
                 "WRITE_PROTECTED_TIME",
+                "IQueryInterface",
+                "PlcTaskSystemInfo",
+                "_TaskInfo",
+                "GETCURTASKINDEX",
+                "GETCURTASKINDEXEX",
             ]
         );
     }

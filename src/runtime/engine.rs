@@ -296,6 +296,8 @@ pub struct Plc {
     pub(super) debugger: Option<Arc<Mutex<super::debugger::Core>>>,
     /// What the native tier compiled (`None` with the interpreter).
     pub(super) native_report: Option<crate::vm::native::NativeReport>,
+    /// TwinCAT's task information, when the program declares it.
+    pub(super) task_info: Option<super::task_info::TaskInfo>,
 }
 
 /// The next PLC identity (handles resolved by one PLC are refused by another).
@@ -390,6 +392,10 @@ impl Plc {
         }
         let scheduler = Scheduler::new(&image.tasks, &image.programs, options.cycle_time);
         let io = ProcessImage::new(&image, &machine.mem, addressing);
+        let mut task_info = super::task_info::TaskInfo::of(&image);
+        if let Some(info) = &mut task_info {
+            info.reset(&image, &mut machine, scheduler.base_tick());
+        }
         let mut plc = Plc {
             image,
             machine,
@@ -407,6 +413,7 @@ impl Plc {
             host_code,
             debugger: None,
             native_report,
+            task_info,
         };
         plc.start(true);
         plc
@@ -539,8 +546,12 @@ impl Plc {
     #[inline(always)]
     pub(super) fn run_program(&mut self, p: usize) -> Result<(), RuntimeFault> {
         let inst = &self.image.programs[p];
-        let (code, base) = (inst.code, inst.base);
-        self.watchdog.enter(inst.task);
+        let (code, base, task) = (inst.code, inst.base, inst.task);
+        self.watchdog.enter(task);
+        if let Some(info) = &mut self.task_info {
+            info.enter(task, self.cycle, self.machine.now, &mut self.machine.mem);
+        }
+        let inst = &self.image.programs[p];
         for &(from, to) in &inst.inputs {
             self.machine.mem[to as usize] = self.machine.mem[from as usize];
         }

@@ -146,6 +146,9 @@ impl Plc {
             &self.image.programs,
             self.scheduler.base_tick(),
         );
+        if let Some(info) = &mut self.task_info {
+            info.reset(&self.image, &mut self.machine, self.scheduler.base_tick());
+        }
         // The image follows the variables back to their initial values, so
         // that it does not publish or latch stale bits afterwards.
         self.io = super::process_image::ProcessImage::new(

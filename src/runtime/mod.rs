@@ -73,6 +73,7 @@ pub mod session;
 pub mod stimulus;
 pub mod stop;
 mod table_rows;
+mod task_info;
 pub mod task_stats;
 pub mod tasks;
 pub mod trace;

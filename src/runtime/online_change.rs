@@ -153,6 +153,10 @@ impl Plc {
         std::mem::swap(&mut self.native_report, &mut new.native_report);
         self.machine.now = new.machine.now;
         std::mem::swap(&mut self.scheduler, &mut new.scheduler);
+        if let (Some(info), Some(old)) = (&mut new.task_info, &self.task_info) {
+            info.carry_over(old);
+        }
+        std::mem::swap(&mut self.task_info, &mut new.task_info);
         std::mem::swap(&mut self.sources, &mut new.sources);
         std::mem::swap(&mut self.warnings, &mut new.warnings);
         self.id = new.id;

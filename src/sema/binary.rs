@@ -58,7 +58,7 @@ impl BodyBuilder<'_> {
         if let Some(v) = self.time_arith(op, &va, &vb, span) {
             return v;
         }
-        let (va, vb) = self.enum_operands(va, vb, span);
+        let (va, vb) = self.enum_operands(op, va, vb, span);
         let Some(common) = self.unify(va.ty(), vb.ty()) else {
             if let Some(v) = self.bit_string_compare(op, &va, &vb, span) {
                 return v;

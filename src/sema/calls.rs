@@ -397,7 +397,7 @@ impl BodyBuilder<'_> {
     }
 
     /// The call interface of an FB type (`None` for what cannot be called).
-    fn fb_params(&mut self, def: &TypeDef, span: Span) -> Option<Vec<Param>> {
+    pub(super) fn fb_params(&mut self, def: &TypeDef, span: Span) -> Option<Vec<Param>> {
         match &def.kind {
             TypeKind::NativeFb(fb) => Some(
                 stdlib::interface(*fb)

@@ -9,7 +9,7 @@ use super::enum_qualified::Qualified;
 use super::model::{ConstInit, Model, VarInfo};
 use crate::diagnostics::Diagnostics;
 use crate::elementary::ElemType;
-use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{RefFlavor, TypeId, TypeKind, TypeTable};
 use crate::syntax::ast::{BinaryOp, Expr, ExprKind, Initializer, LiteralValue, UnaryOp};
 use indexmap::IndexMap;
 
@@ -134,6 +134,37 @@ impl DeclConsts<'_> {
         }
     }
 
+    /// The initial value of a structure or array named by `e`, of the same
+    /// type `ty`: a CONSTANT, a variable declared earlier in the same
+    /// block, or a global variable (CODESYS initialises the global lists
+    /// first: `PG : ST_VG := g_DummyVG;`, `st : ST_X := GVL.cstDefault;`).
+    fn whole_value(
+        &self,
+        e: &Expr,
+        ty: TypeId,
+        local: Option<&IndexMap<String, VarInfo>>,
+    ) -> Option<ConstInit> {
+        if let Some(global) = self.list_qualified(e, local) {
+            return self.whole_value(&global, ty, local);
+        }
+        let e = match &e.kind {
+            ExprKind::Paren(x) => return self.whole_value(x, ty, local),
+            ExprKind::Name(id) => id,
+            _ => return None,
+        };
+        let key = e.key();
+        let (v, global) = match local.and_then(|l| l.get(&key)) {
+            Some(v) => (v, false),
+            None => (self.model.globals.get(&key)?, true),
+        };
+        let readable = v.constant || global || self.same_block.contains(&key);
+        (v.ty == ty && readable && v.location.is_none()).then(|| {
+            v.init
+                .clone()
+                .unwrap_or_else(|| self.model.default_init(self.types, v.ty))
+        })
+    }
+
     /// Resolves an initializer against type `ty`.
     pub(super) fn resolve_init(
         &mut self,
@@ -199,6 +230,11 @@ impl DeclConsts<'_> {
                     }
                 }
                 Some(ConstInit::Struct(out))
+            }
+            (Initializer::Expr(e), TypeKind::Struct { .. } | TypeKind::Array { .. })
+                if self.whole_value(e, ty, local).is_some() =>
+            {
+                self.whole_value(e, ty, local)
             }
             (Initializer::Expr(e), _) => {
                 let c = self.const_value(e, ty, local)?;
@@ -292,6 +328,16 @@ impl DeclConsts<'_> {
                 format!("expected a value of enumeration {}", def.name),
             );
             return None;
+        }
+        // `p : POINTER TO T := 0;`: CODESYS's null pointer, spelled as the
+        // address 0.
+        if let TypeKind::Ref {
+            flavor: RefFlavor::Pointer,
+            ..
+        } = def.kind
+            && is_zero_literal(e)
+        {
+            return Some(Const::Bits(0));
         }
         let Some(elem) = self.types.scalar(ty) else {
             self.diags.error(
@@ -396,6 +442,16 @@ impl DeclConsts<'_> {
                             }
                         }
                         (Some(Const::Str(s)), _) if elem.is_string() => Ok(Const::Str(s.clone())),
+                        // CODESYS converts between integers and bit strings
+                        // implicitly (`nID : DWORD := GVL.ID_UDINT`), keeping
+                        // the low bits as in an assignment (W490 there).
+                        (Some(Const::Bits(b)), Some(t))
+                            if self.model.codesys_files.contains(&id.span.file)
+                                && (super::bits_arith::codesys_widens(t, elem)
+                                    || super::implicit_int::may_change(t, elem)) =>
+                        {
+                            Ok(Const::Bits(low_bits(slot_to_int(*b, t), elem)))
+                        }
                         _ => Err(("E301", format!("constant `{}` is not a {elem}", id.name))),
                     },
                     _ => Err((
@@ -461,5 +517,26 @@ pub(super) fn init_const(ci: &ConstInit) -> Option<Const> {
         ConstInit::Scalar(b) => Some(Const::Bits(*b)),
         ConstInit::Str(s) => Some(Const::Str(s.clone())),
         _ => None,
+    }
+}
+
+/// True for the integer literal `0` (in parentheses or not).
+fn is_zero_literal(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Paren(x) => is_zero_literal(x),
+        ExprKind::Literal(l) => matches!(l.value, LiteralValue::Int(0)),
+        _ => false,
+    }
+}
+
+/// The slot of a `to` holding the low bits of `v` (two's complement),
+/// sign-extended when `to` is signed.
+fn low_bits(v: i128, to: ElemType) -> u64 {
+    let width = to.bits();
+    let low = (v as u128 & ((1u128 << width) - 1)) as u64;
+    if to.is_signed_int() && width < 64 && low >> (width - 1) & 1 == 1 {
+        low | !((1u64 << width) - 1)
+    } else {
+        low
     }
 }

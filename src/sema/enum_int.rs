@@ -9,13 +9,14 @@
 //! declared after `{attribute 'strict'}` takes part in no arithmetic and
 //! takes no integer, as TwinCAT's manual lists; it still converts to an
 //! integer where one is expected (TcUnit's own examples pass such values
-//! to `AssertEquals_USINT`).
+//! to `AssertEquals_USINT`) and is compared with integers.
 
 use super::body::BodyBuilder;
 use super::emit::{Ty, Val};
 use crate::elementary::ElemType;
 use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
+use crate::syntax::ast::BinaryOp;
 
 impl BodyBuilder<'_> {
     /// The base type of enumeration `t`, unless it is declared strict.
@@ -102,19 +103,41 @@ impl BodyBuilder<'_> {
     }
 
     /// Operands of a binary operator where one is an enumeration and the
-    /// other an integer: the enumeration taken as its base type (W485).
-    pub(super) fn enum_operands(&mut self, va: Val, vb: Val, span: Span) -> (Val, Val) {
-        let (ea, eb) = (self.val_enum(&va), self.val_enum(&vb));
+    /// other an integer: the enumeration taken as its base type (W485). A
+    /// strict enumeration only in a comparison: `{attribute 'strict'}`
+    /// forbids arithmetic, not `nCommand = E_Cmd.HOME`.
+    pub(super) fn enum_operands(
+        &mut self,
+        op: BinaryOp,
+        va: Val,
+        vb: Val,
+        span: Span,
+    ) -> (Val, Val) {
+        let strict_too = matches!(
+            op,
+            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
+        );
+        let (ea, eb) = (
+            self.val_enum(&va, strict_too),
+            self.val_enum(&vb, strict_too),
+        );
         match (ea, eb) {
-            (Some(_), None) if self.is_integer(&vb) => (self.as_base(va, span), vb),
-            (None, Some(_)) if self.is_integer(&va) => (va, self.as_base(vb, span)),
+            (Some(t), None) if self.is_integer(&vb) => (self.as_base(va, t, span), vb),
+            (None, Some(t)) if self.is_integer(&va) => (va, self.as_base(vb, t, span)),
             _ => (va, vb),
         }
     }
 
-    /// The (not strict) enumeration type of `v`, if it has one.
-    fn val_enum(&self, v: &Val) -> Option<TypeId> {
-        v.ty().id().filter(|t| self.enum_base(*t).is_some())
+    /// The enumeration type of `v`, if it has one (and is not strict,
+    /// unless `strict_too`).
+    fn val_enum(&self, v: &Val, strict_too: bool) -> Option<TypeId> {
+        v.ty().id().filter(|t| {
+            if strict_too {
+                self.any_enum_base(*t).is_some()
+            } else {
+                self.enum_base(*t).is_some()
+            }
+        })
     }
 
     /// Whether `v` is an integer or bit string (typed or a literal).
@@ -132,12 +155,10 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// Enumeration value `v` retyped as its base type, with W485.
-    fn as_base(&mut self, v: Val, span: Span) -> Val {
-        let Some(t) = self.val_enum(&v) else {
-            return v;
-        };
-        let Some(base) = self.enum_base(t) else {
+    /// Enumeration value `v`, of enumeration `t`, retyped as its base
+    /// type, with W485.
+    fn as_base(&mut self, v: Val, t: TypeId, span: Span) -> Val {
+        let Some(base) = self.any_enum_base(t) else {
             return v;
         };
         self.enum_to_int_warning(t, base, span);

@@ -176,9 +176,16 @@ impl BodyBuilder<'_> {
             // `GVL.x`: a global variable named with its list (or library).
             return self.place_name(name);
         }
+        // `SUPER^.x`: the parent's variables are the instance's own (an
+        // FB may not declare a name its parent declares).
         if super::oop::calls::is_this(base) {
             return self
                 .this_allowed(base.span)
+                .then(|| self.place_name(name))?;
+        }
+        if super::oop::calls::is_super(base) {
+            return self
+                .super_allowed(base.span)
                 .then(|| self.place_name(name))?;
         }
         if self.names_nothing(base) {

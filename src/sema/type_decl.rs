@@ -9,7 +9,7 @@ use crate::elementary::ElemType;
 use crate::ir::type_table::{Dim, Member, TypeDef, TypeId, TypeKind, TypeTable};
 use crate::source::Span;
 use crate::stdlib;
-use crate::syntax::ast::{Expr, Ident, Item, PouKind, TypeSpec, VarDecl};
+use crate::syntax::ast::{Expr, ExprKind, Ident, Initializer, Item, PouKind, TypeSpec, VarDecl};
 use indexmap::IndexMap;
 
 impl Declarer<'_> {
@@ -59,10 +59,12 @@ impl Declarer<'_> {
             }
             _ => base,
         };
-        if let Some(init) = &decl.init
-            && let Some(ci) = self.consts().resolve_init(init, ty, None)
-        {
-            self.model.type_inits.insert(ty, ci);
+        if let Some(init) = &decl.init {
+            let ci = own_enum_value(self.types.get(ty), init)
+                .or_else(|| self.consts().resolve_init(init, ty, None));
+            if let Some(ci) = ci {
+                self.model.type_inits.insert(ty, ci);
+            }
         }
         self.model.type_ids.insert(key.to_string(), ty);
         self.type_state.insert(key.to_string(), LayoutState::Done);
@@ -508,4 +510,20 @@ impl Declarer<'_> {
         }
         id
     }
+}
+
+/// The initial value of an enumeration type named by one of its own values
+/// written alone (`(LOCAL, REMOTE) USINT := REMOTE;`), which CODESYS takes
+/// even under `qualified_only`: the declaration is the value's scope.
+fn own_enum_value(def: &TypeDef, init: &Initializer) -> Option<ConstInit> {
+    let (TypeKind::Enum { values, .. }, Initializer::Expr(e)) = (&def.kind, init) else {
+        return None;
+    };
+    let ExprKind::Name(id) = &e.kind else {
+        return None;
+    };
+    values
+        .iter()
+        .find(|(n, _)| n.eq_ignore_ascii_case(&id.name))
+        .map(|(_, v)| ConstInit::Scalar(*v as u64))
 }

@@ -8,7 +8,7 @@ use crate::source::encoding::TextEncoding;
 use crate::source::{FileId, Span};
 use crate::syntax::ast::{AddrSize, Area, DirectAddress, Ident, Literal, LiteralValue};
 use crate::syntax::literal::decode_typed_body;
-use crate::syntax::token::{Kw, PrefixKind, Raw, Tok, prefix_kind};
+use crate::syntax::token::{CommentNesting, Kw, PrefixKind, Raw, Tok, prefix_kind};
 use crate::value::literal::{
     decode_string, parse_date_body, parse_dt_body, parse_duration_body, parse_int_text,
     parse_real_text, parse_tod_body,
@@ -24,6 +24,17 @@ pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
     lex_in(file, text, TextEncoding::Utf8, diags)
 }
 
+/// [`lex`] of CODESYS / TwinCAT code, where `(* ... *)` comments nest.
+pub fn lex_codesys(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Spanned> {
+    lex_with(
+        file,
+        text,
+        TextEncoding::Utf8,
+        CommentNesting::Nested,
+        diags,
+    )
+}
+
 /// [`lex`] of text read from a file in `encoding`: a STRING literal of a
 /// Windows-1252 file keeps the file's bytes ([`TextEncoding::string_byte`]).
 pub fn lex_in(
@@ -32,8 +43,18 @@ pub fn lex_in(
     encoding: TextEncoding,
     diags: &mut Diagnostics,
 ) -> Vec<Spanned> {
+    lex_with(file, text, encoding, CommentNesting::Flat, diags)
+}
+
+fn lex_with(
+    file: FileId,
+    text: &str,
+    encoding: TextEncoding,
+    nesting: CommentNesting,
+    diags: &mut Diagnostics,
+) -> Vec<Spanned> {
     let mut out = Vec::with_capacity(text.len() / 4);
-    let mut lexer = Raw::lexer(text);
+    let mut lexer = Raw::lexer_with_extras(text, nesting);
     let mut bad_run: Option<(usize, usize)> = None;
     let span = |s: usize, e: usize| Span::new(file, s, e);
     while let Some(raw) = lexer.next() {

@@ -11,6 +11,7 @@ pub mod config_path;
 pub mod construct;
 pub mod depth;
 mod empty_args;
+mod empty_declarations;
 mod empty_init_call;
 mod header_semicolon;
 pub mod il_lines;
@@ -86,6 +87,7 @@ pub(crate) fn textual_passes(
     let tokens = set_reset_assign::set_reset_assignments(tokens);
     let tokens = empty_args::drop_empty_arguments(tokens);
     let tokens = empty_init_call::drop_empty_init_calls(tokens);
+    let tokens = empty_declarations::drop_empty_declarations(file, tokens, diags);
     let tokens = init_arguments::mark_init_arguments(tokens);
     header_semicolon::drop_header_semicolons(tokens)
 }

@@ -15,6 +15,7 @@ use std::fmt;
 /// and can be reported precisely.
 #[derive(Logos, Debug, Clone, Copy, PartialEq, Eq)]
 #[logos(skip r"[ \t\r\u{0c}\u{feff}]+")]
+#[logos(extras = CommentNesting)]
 pub enum Raw {
     /// A line break.
     #[token("\n")]
@@ -147,12 +148,54 @@ pub enum Raw {
     AssignAttempt,
 }
 
-/// Consumes a block comment body up to and including the first `*)`
-/// (comments do not nest), or to the end of input when unterminated.
+/// Whether `(* ... *)` comments nest: not in IEC text (the first `*)`
+/// ends the comment), but in CODESYS and TwinCAT code, where
+/// `(* a (* b *) c *)` is one comment (code commented out with its own
+/// comments inside).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum CommentNesting {
+    /// The first `*)` closes the comment (IEC 61131-3).
+    #[default]
+    Flat,
+    /// Each `(*` inside opens a level that its `*)` closes (CODESYS).
+    Nested,
+}
+
+/// Consumes a block comment body up to and including the `*)` that closes
+/// it (the first one, or the matching one when comments nest), or to the
+/// end of input when unterminated.
 fn block_comment(lex: &mut Lexer<Raw>) {
     let rest = lex.remainder();
-    let n = rest.find("*)").map(|i| i + 2).unwrap_or(rest.len());
-    lex.bump(n);
+    let n = match lex.extras {
+        CommentNesting::Flat => rest.find("*)").map(|i| i + 2),
+        CommentNesting::Nested => nested_comment_end(rest),
+    };
+    lex.bump(n.unwrap_or(rest.len()));
+}
+
+/// The length of a nested comment's body and closing `*)` in `rest` (the
+/// text after the opening `(*`), or `None` when it is not closed.
+fn nested_comment_end(rest: &str) -> Option<usize> {
+    let bytes = rest.as_bytes();
+    let mut depth = 1usize;
+    let mut i = 0;
+    while i + 1 < bytes.len() {
+        match (bytes[i], bytes[i + 1]) {
+            (b'(', b'*') => {
+                depth += 1;
+                i += 2;
+            }
+            (b'*', b')') => {
+                depth -= 1;
+                i += 2;
+                if depth == 0 {
+                    return Some(i);
+                }
+            }
+            _ => i += 1,
+        }
+    }
+    None
 }
 
 /// Consumes an edition-3 `/* ... */` comment body up to and including

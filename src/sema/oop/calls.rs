@@ -167,6 +167,11 @@ impl BodyBuilder<'_> {
                     return Some(Val::error());
                 };
                 let Some(&vi) = self.model.oop.fbs[&fb].dispatch.get(&m.key()) else {
+                    // `THIS^.tmr(...)`: an FB instance of the block, which
+                    // the ordinary call path calls.
+                    if self.own_member(&fb, m) {
+                        return None;
+                    }
                     self.unknown_method(&fb, m);
                     return Some(Val::error());
                 };
@@ -197,6 +202,15 @@ impl BodyBuilder<'_> {
             }
             _ => None,
         }
+    }
+
+    /// Whether FB `fb` (a key) has a variable named `m`.
+    fn own_member(&self, fb: &str, m: &Ident) -> bool {
+        let Some(&p) = self.model.pou_index.get(fb) else {
+            return false;
+        };
+        matches!(&self.types.get(self.model.pous[p].ty).kind,
+            TypeKind::Pou { members, .. } if members.iter().any(|x| x.name.eq_ignore_ascii_case(&m.name)))
     }
 
     fn unknown_method(&mut self, fb: &str, m: &Ident) {
@@ -316,7 +330,16 @@ impl BodyBuilder<'_> {
         let Some(&p) = model.pou_index.get(fb) else {
             return Val::error();
         };
-        let params = self.version_params(p, &v.params);
+        let mut params = self.version_params(p, &v.params);
+        // An action or `SUPER^()` has no parameters of its own: CODESYS
+        // binds the arguments of such a call to the FB's own inputs and
+        // outputs (`fb.A_Add(key := k, bOk => ok)`), the others keeping
+        // their values as in a call of the instance.
+        let fb_own = params.is_empty() && !call.args.is_empty();
+        if fb_own {
+            let def = self.types.get(model.pous[p].ty).clone();
+            params = self.fb_params(&def, call.span).unwrap_or_default();
+        }
         let Some(b) = self.bind(&params, &call.args, &v.name.name, call.span) else {
             return Val::error();
         };
@@ -329,6 +352,7 @@ impl BodyBuilder<'_> {
             match b.inputs.iter().find(|(j, _)| *j == i) {
                 Some((_, e)) if prm.kind == MemberKind::InOut => self.connect_in_out(prm, &dst, e),
                 Some((_, e)) => self.store_arg(&dst, e, &prm.name),
+                None if fb_own => {}
                 None if prm.kind == MemberKind::InOut => self.unconnected(prm, &v.name, call.span),
                 None if self.any_class(prm.ty).is_some() => {
                     self.any_missing(&prm.name, &v.name.name, call.span)
@@ -720,6 +744,22 @@ impl BodyBuilder<'_> {
                 .error("E918", span, "`THIS^` can only be used in a FUNCTION_BLOCK");
         }
         in_fb
+    }
+
+    /// E918 unless the code is a FUNCTION_BLOCK's that EXTENDS another
+    /// (where `SUPER^.x` names the instance's inherited `x`).
+    pub(in crate::sema) fn super_allowed(&mut self, span: Span) -> bool {
+        let derived = self.oop.as_ref().is_some_and(|scope| {
+            (self.model.oop.fbs.get(&scope.origin)).is_some_and(|f| f.parent.is_some())
+        });
+        if !derived {
+            self.diags.error(
+                "E918",
+                span,
+                "`SUPER^` can only be used in a FUNCTION_BLOCK that EXTENDS another",
+            );
+        }
+        derived
     }
 }
 

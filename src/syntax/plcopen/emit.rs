@@ -31,6 +31,9 @@ pub struct Emitter<'x> {
     pub toks: Vec<Spanned>,
     /// The diagnostics so far.
     pub diags: Diagnostics,
+    /// Whether the ST text's `(* *)` comments nest (CODESYS and TwinCAT
+    /// files: true; other PLCopen writers: false).
+    pub nested_comments: bool,
 }
 
 impl<'x> Emitter<'x> {
@@ -42,6 +45,7 @@ impl<'x> Emitter<'x> {
             base,
             toks: Vec::new(),
             diags: Diagnostics::new(),
+            nested_comments: false,
         }
     }
 
@@ -148,7 +152,11 @@ impl<'x> Emitter<'x> {
     /// Emits the tokens of decoded text, mapping positions to the file.
     fn lex_decoded(&mut self, decoded: &Decoded, keep_eol: bool) {
         let mut scratch = Diagnostics::new();
-        let tokens = lexer::lex(self.file, &decoded.text, &mut scratch);
+        let tokens = if self.nested_comments {
+            lexer::lex_codesys(self.file, &decoded.text, &mut scratch)
+        } else {
+            lexer::lex(self.file, &decoded.text, &mut scratch)
+        };
         for mut d in scratch.iter().cloned() {
             let (s, e) = decoded.file_range(d.span.start as usize, d.span.end as usize);
             d.span = self.span((s, e));

@@ -17,6 +17,12 @@
 
 use super::NAMESPACE_0201;
 
+/// True when the PLCopen project `text` was exported by CODESYS (its
+/// `<fileHeader>` names the product), whose dialect its ST is written in.
+pub fn written_by_codesys(text: &str) -> bool {
+    text.contains("productName=\"CODESYS")
+}
+
 /// Words in `companyName`/`productName` that name the matiec family.
 const TOOL_NAMES: [&str; 2] = ["openplc", "beremiz"];
 

@@ -63,6 +63,7 @@ pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUn
     let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
     let xml = &text[base..];
     let mut em = Emitter::new(file, xml, base);
+    em.nested_comments = true;
     let doc = match crate::syntax::plcopen::read_xml(xml) {
         Ok(doc) => doc,
         Err((at, e)) => {
