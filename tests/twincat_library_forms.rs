@@ -379,3 +379,41 @@ fn task_information_follows_each_task_s_activations() {
     assert_eq!(lit(&plc, "PFast.nCount"), "1");
     assert_eq!(lit(&plc, "PFast.nFirst"), "1");
 }
+
+#[test]
+fn a_pointer_to_a_block_in_one_list_does_not_hide_another_list_s_globals() {
+    // `POINTER TO FB_Suite` in the first list lays the block out (which
+    // compiles its body) before the second list is read: the body's
+    // global must be declared by then (TcUnit's `GVL_TcUnit` points to
+    // its suites, whose body reads TwinCAT's `_TaskInfo`).
+    let first = declaration(
+        "GVL",
+        "GVL_A",
+        "VAR_GLOBAL\n    pCurrent : POINTER TO FB_Suite;\n    aSuites : ARRAY[1..2] OF POINTER TO FB_Suite;\nEND_VAR",
+    );
+    let suite = pou(
+        "FB_Suite",
+        "FUNCTION_BLOCK FB_Suite\nVAR n : INT; END_VAR",
+        "n := nLimit;",
+        "",
+    );
+    let second = declaration(
+        "GVL",
+        "GVL_B",
+        "VAR_GLOBAL\n    nLimit : INT := 7;\nEND_VAR",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR s : FB_Suite; x : INT; END_VAR",
+        "GVL_A.pCurrent := ADR(s); s(); x := GVL_A.pCurrent^.n;",
+        "",
+    );
+    let mut plc = compile_ok(&[
+        ("GVL_A.TcGVL", &first),
+        ("FB_Suite.TcPOU", &suite),
+        ("GVL_B.TcGVL", &second),
+        ("P.TcPOU", &main),
+    ]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "x"), "7");
+}

@@ -110,6 +110,18 @@ impl Declarer<'_> {
 
     /// The user FUNCTION_BLOCK `spec` names, directly or as the element
     /// type of an array.
+    /// Whether `spec` names a user FUNCTION_BLOCK, directly or through
+    /// arrays and references (`POINTER TO FB_TestSuite`): resolving it
+    /// lays the block out, which emits its body, so the globals that body
+    /// may read must be declared before (docs of `declare_all`).
+    pub(super) fn names_block(&self, spec: &TypeSpec) -> bool {
+        match spec {
+            TypeSpec::Ref { target, .. } => self.names_block(target),
+            TypeSpec::Array { elem, .. } => self.names_block(elem),
+            spec => self.fb_named(spec).is_some(),
+        }
+    }
+
     fn fb_named(&self, spec: &TypeSpec) -> Option<usize> {
         match spec {
             TypeSpec::Named(id) => {
