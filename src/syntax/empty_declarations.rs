@@ -2,27 +2,11 @@
 //! after `VAR`), which CODESYS and TwinCAT accept as an empty declaration:
 //! dropped before parsing, with a compatibility warning (W360).
 
+use super::empty_init_call::opens_declarations;
 use super::lexer::Spanned;
 use super::token::{Kw, Tok};
 use crate::diagnostics::{Diagnostic, Diagnostics};
 use crate::source::{FileId, Span};
-
-/// Whether `t` opens a block of variable declarations.
-fn opens_declarations(t: &Tok) -> bool {
-    matches!(
-        t,
-        Tok::Kw(
-            Kw::Var
-                | Kw::VarInput
-                | Kw::VarOutput
-                | Kw::VarInOut
-                | Kw::VarExternal
-                | Kw::VarGlobal
-                | Kw::VarTemp
-                | Kw::VarInst
-        )
-    )
-}
 
 /// Removes each `;` of a declaration block that follows another `;` or
 /// the block's opening line (`VAR`, `VAR CONSTANT`, `VAR RETAIN`...).

@@ -8,7 +8,7 @@ use super::lexer::Spanned;
 use super::token::{Kw, Tok};
 
 /// True for the keyword that opens a block of variable declarations.
-fn opens_declarations(t: &Tok) -> bool {
+pub(super) fn opens_declarations(t: &Tok) -> bool {
     matches!(
         t,
         Tok::Kw(
