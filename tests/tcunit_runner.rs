@@ -291,3 +291,14 @@ END_PROGRAM";
         report.left_out
     );
 }
+
+#[test]
+fn tc2_system_s_adslogstr_writes_into_the_test_s_log() {
+    // A TwinCAT file: plcrun's Tc2_System brings the message kinds.
+    let suite = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n<POU Name=\"FB_Log\" Id=\"{00000000-0000-0000-0000-000000000001}\" SpecialFunc=\"None\">\n<Declaration><![CDATA[FUNCTION_BLOCK FB_Log EXTENDS FB_TestSuite\nVAR nResult : DINT := -1; END_VAR]]></Declaration>\n<Implementation><ST><![CDATA[TEST('Logs');\nnResult := ADSLOGSTR(msgCtrlMask := ADSLOG_MSGTYPE_HINT OR ADSLOG_MSGTYPE_LOG, msgFmtStr := 'valve %s closed', strArg := 'V1');\nAssertEquals_DINT(Expected := 0, Actual := nResult, Message := 'ADSLOGSTR returns 0');\nAssertEquals_DWORD(Expected := 16#11, Actual := ADSLOG_MSGTYPE_HINT OR ADSLOG_MSGTYPE_LOG, Message := 'kinds');\nTEST_FINISHED();]]></ST></Implementation>\n</POU>\n</TcPlcObject>\n";
+    let program = "PROGRAM PRG_TEST\nVAR s : FB_Log; END_VAR\nRUN();\nEND_PROGRAM\n";
+    let cases = run(&[("FB_Log.TcPOU", suite), ("p.st", program)]);
+    let logs = case(&cases, "PRG_TEST.s.Logs");
+    assert_eq!(logs.outcome(), TestOutcome::Passed, "{:?}", logs.failures);
+    assert_eq!(logs.output, ["valve V1 closed"]);
+}

@@ -2,7 +2,8 @@
 //! Tc2_EtherCAT libraries (`T_MaxString`, `PVOID`, `F_LTrim`, `F_RTrim`,
 //! `MEMCPY`, `MEMMOVE`, `MEMSET`, `MEMCMP`, `DRAND`, the distributed-clock
 //! time `T_DCTIME64` and its functions, the `*_TO_HEXSTR` conversions,
-//! `F_ToLCase`, `F_ToUCase`, `GETCPUCOUNTER`, `ST_LibVersion`, the task
+//! `F_ToLCase`, `F_ToUCase`, `GETCPUCOUNTER`, `ST_LibVersion`, the
+//! `ADSLOG_MSGTYPE_*` constants, the task
 //! information `_TaskInfo` with `GETCURTASKINDEX`/`GETCURTASKINDEXEX`,
 //! `IQueryInterface`,
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
@@ -174,6 +175,7 @@ mod tests {
                 "_TaskInfo",
                 "GETCURTASKINDEX",
                 "GETCURTASKINDEXEX",
+                "ADSLOG_MSGTYPE",
             ]
         );
     }

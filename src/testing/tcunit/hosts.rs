@@ -1,6 +1,7 @@
 //! TcUnit's functions as host functions recording into the run's
 //! [`State`]: `TEST`, `TEST_ORDERED`, `TEST_FINISHED`,
-//! `TEST_FINISHED_NAMED`, `TCUNIT_ADSLOGSTR`, and `RUN` /
+//! `TEST_FINISHED_NAMED`, `TCUNIT_ADSLOGSTR` (and Tc2_System's
+//! `ADSLOGSTR`), and `RUN` /
 //! `RUN_IN_SEQUENCE` (which do nothing here: the runner calls the suites
 //! itself), plus the runner's own `PLCRUN_TCUNIT_ENTER`.
 
@@ -68,19 +69,29 @@ pub(crate) fn register(
             Ok(())
         },
     )?;
-    let s = state.clone();
-    hosts.function(
-        HostSignature::function("TCUNIT_ADSLOGSTR", ElemType::Bool)
-            .input("msgCtrlMask", ElemType::Dword)
-            .input("msgFmtStr", ElemType::String)
-            .input("strArg", ElemType::String),
-        move |io| {
-            let line = format_log(&io.get_str("msgFmtStr")?, &io.get_str("strArg")?);
-            lock(&s).log(line);
-            io.set_bool("TCUNIT_ADSLOGSTR", true)?;
-            Ok(())
-        },
-    )?;
+    // TcUnit's logger, and Tc2_System's ADSLOGSTR (result 0: no ADS
+    // error), both into the test's log.
+    for (name, result) in [
+        ("TCUNIT_ADSLOGSTR", ElemType::Bool),
+        ("ADSLOGSTR", ElemType::Dint),
+    ] {
+        let s = state.clone();
+        hosts.function(
+            HostSignature::function(name, result)
+                .input("msgCtrlMask", ElemType::Dword)
+                .input("msgFmtStr", ElemType::String)
+                .input("strArg", ElemType::String),
+            move |io| {
+                let line = format_log(&io.get_str("msgFmtStr")?, &io.get_str("strArg")?);
+                lock(&s).log(line);
+                match result {
+                    ElemType::Bool => io.set_bool(name, true)?,
+                    _ => io.set_i64(name, 0)?,
+                }
+                Ok(())
+            },
+        )?;
+    }
     for name in ["RUN", "RUN_IN_SEQUENCE"] {
         hosts.function(HostSignature::function(name, ElemType::Bool), move |io| {
             io.set_bool(name, true)?;
