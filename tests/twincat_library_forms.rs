@@ -417,3 +417,23 @@ fn a_pointer_to_a_block_in_one_list_does_not_hide_another_list_s_globals() {
     run(&mut plc, 1);
     assert_eq!(lit(&plc, "x"), "7");
 }
+
+#[test]
+fn extending_a_block_that_is_not_declared_says_so() {
+    let derived = pou(
+        "FB_Gauge",
+        "FUNCTION_BLOCK FB_Gauge EXTENDS FB_GaugeBase\nVAR x : INT; END_VAR",
+        "",
+        "",
+    );
+    let main = pou("P", "PROGRAM P\nVAR g : FB_Gauge; END_VAR", "g();", "");
+    let err = refused(&[("FB_Gauge.TcPOU", &derived), ("P.TcPOU", &main)]);
+    assert!(
+        err.contains("error[E902]: `FB_GaugeBase` is not declared"),
+        "{err}"
+    );
+    // A declared name that is no block keeps the first message.
+    let st = "TYPE ST_Base : STRUCT a : INT; END_STRUCT END_TYPE\nFUNCTION_BLOCK F EXTENDS ST_Base END_FUNCTION_BLOCK\nPROGRAM P VAR f : F; END_VAR END_PROGRAM\n";
+    let err = refused(&[("p.st", st)]);
+    assert!(err.contains("`ST_Base` is not a FUNCTION_BLOCK"), "{err}");
+}

@@ -84,6 +84,25 @@ fn spec_text(t: &TypeSpec) -> String {
 }
 
 impl Lowering<'_> {
+    /// Whether `key` names an elementary type, a standard block, or a POU,
+    /// type or interface of the sources.
+    fn declares(&self, key: &str) -> bool {
+        if crate::elementary::ElemType::from_name(key).is_some()
+            || crate::stdlib::lookup_native(key).is_some()
+        {
+            return true;
+        }
+        self.units
+            .iter()
+            .flat_map(|u| &u.items)
+            .any(|item| match item {
+                Item::Pou(p) => p.name.key() == key,
+                Item::Types(ts) => ts.iter().any(|t| t.name.key() == key),
+                Item::Interface(i) => i.name.key() == key,
+                Item::Globals(_) | Item::Configuration(_) => false,
+            })
+    }
+
     fn pou(&self, at: (usize, usize)) -> Option<&Pou> {
         match &self.units[at.0].items[at.1] {
             Item::Pou(p) => Some(p),
@@ -259,14 +278,13 @@ impl Lowering<'_> {
             let Some(ext) = &oop.extends else { continue };
             let pk = ext.key();
             let Some(&pat) = self.fb_at.get(&pk) else {
-                self.diags.error(
-                    "E902",
-                    ext.span,
-                    format!(
-                        "`{}` is not a FUNCTION_BLOCK: only function blocks can be extended",
-                        ext.name
-                    ),
-                );
+                let why = if self.declares(&pk) {
+                    "is not a FUNCTION_BLOCK: only function blocks can be extended"
+                } else {
+                    "is not declared: there is no function block of that name to extend"
+                };
+                self.diags
+                    .error("E902", ext.span, format!("`{}` {why}", ext.name));
                 continue;
             };
             if self
