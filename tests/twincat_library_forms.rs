@@ -437,3 +437,43 @@ fn extending_a_block_that_is_not_declared_says_so() {
     let err = refused(&[("p.st", st)]);
     assert!(err.contains("`ST_Base` is not a FUNCTION_BLOCK"), "{err}");
 }
+
+#[test]
+fn an_enumeration_connects_to_an_in_out_of_its_base_type_and_isvalidref_takes_members() {
+    let states = declaration(
+        "DUT",
+        "E_InOut",
+        "{attribute 'qualified_only'}\nTYPE E_InOut : (UNKNOWN := 0, OUT := 1, IN := 2) INT; END_TYPE",
+    );
+    // The block writes 2 through its INT in-out into the enumeration.
+    let mover = pou(
+        "FB_Move",
+        "FUNCTION_BLOCK FB_Move\nVAR_IN_OUT setState : INT; END_VAR\nVAR r : REFERENCE TO INT; bValid : BOOL; END_VAR",
+        "bValid := __ISVALIDREF(THIS^.r);\nIF setState = 1 THEN setState := 2; END_IF",
+        "",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR e : E_InOut := E_InOut.OUT; m : FB_Move; v : BOOL := TRUE; END_VAR",
+        "m(setState := e); v := m.bValid;",
+        "",
+    );
+    let mut plc = compile_ok(&[
+        ("E_InOut.TcDUT", &states),
+        ("FB_Move.TcPOU", &mover),
+        ("P.TcPOU", &main),
+    ]);
+    run(&mut plc, 1);
+    assert_eq!([lit(&plc, "e"), lit(&plc, "v")], ["IN", "FALSE"]);
+    // A strict enumeration does not take the block's integers.
+    let strict = states.replace(
+        "{attribute 'qualified_only'}",
+        "{attribute 'qualified_only'}\n{attribute 'strict'}",
+    );
+    let err = refused(&[
+        ("E_InOut.TcDUT", &strict),
+        ("FB_Move.TcPOU", &mover),
+        ("P.TcPOU", &main),
+    ]);
+    assert!(err.contains("error[E301]"), "{err}");
+}

@@ -548,8 +548,8 @@ impl Plc {
         let inst = &self.image.programs[p];
         let (code, base, task) = (inst.code, inst.base, inst.task);
         self.watchdog.enter(task);
-        if let Some(info) = &mut self.task_info {
-            info.enter(task, self.cycle, self.machine.now, &mut self.machine.mem);
+        if self.task_info.is_some() {
+            self.enter_task(task);
         }
         let inst = &self.image.programs[p];
         for &(from, to) in &inst.inputs {
@@ -566,6 +566,16 @@ impl Plc {
             self.apply_forces();
         }
         Ok(())
+    }
+
+    /// TwinCAT's task information before a program of `task` runs; out
+    /// of the cycle's inlined path, which only tests for it.
+    #[cold]
+    #[inline(never)]
+    fn enter_task(&mut self, task: usize) {
+        if let Some(info) = &mut self.task_info {
+            info.enter(task, self.cycle, self.machine.now, &mut self.machine.mem);
+        }
     }
 
     /// Gives a fault of the program instance at `program_base` its source

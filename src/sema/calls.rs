@@ -461,7 +461,8 @@ impl BodyBuilder<'_> {
         let Some(arg) = self.place(e) else {
             return;
         };
-        if arg.ty != p.ty && arg.ty != TypeTable::error() {
+        if arg.ty != p.ty && arg.ty != TypeTable::error() && !self.enum_in_out(arg.ty, p.ty, e.span)
+        {
             self.mismatch(
                 e.span,
                 Ty::T(arg.ty),

@@ -64,6 +64,26 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// A variable of an enumeration connected to a VAR_IN_OUT of its base
+    /// type, or an integer variable of that type to a VAR_IN_OUT of the
+    /// enumeration: the same memory, which CODESYS connects (W485 / W486);
+    /// never for a strict enumeration.
+    pub(super) fn enum_in_out(&mut self, arg: TypeId, param: TypeId, span: Span) -> bool {
+        match (self.enum_base(arg), self.enum_base(param)) {
+            (Some(base), None)
+                if !self.is_enum(param) && self.types.scalar(param) == Some(base) =>
+            {
+                self.enum_to_int_warning(arg, base, span);
+                true
+            }
+            (None, Some(base)) if !self.is_enum(arg) && self.types.scalar(arg) == Some(base) => {
+                self.int_to_enum_warning(base.name(), param, span);
+                true
+            }
+            _ => false,
+        }
+    }
+
     /// Whether every value of enumeration `t` is a value of integer type
     /// `to`: an enumeration of the default base type (DINT here, INT in
     /// CODESYS) whose values are small goes into an INT as in CODESYS.

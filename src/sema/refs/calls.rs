@@ -185,8 +185,9 @@ impl BodyBuilder<'_> {
 
     /// `__ISVALIDREF(r)`: TRUE if `r^` would not fault.
     fn is_valid_ref(&mut self, r: &Expr) -> Val {
-        // A REFERENCE TO variable is asked about itself, not its target.
-        let v = if let ExprKind::Name(_) = &r.kind {
+        // A REFERENCE TO variable is asked about itself, not its target
+        // (also a member: `THIS^.stFilter`, `fb.refIn`).
+        let v = if let ExprKind::Name(_) | ExprKind::Member(..) = &r.kind {
             let Some(p) = self.place_raw(r) else {
                 return Val::error();
             };
