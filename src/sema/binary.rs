@@ -28,15 +28,7 @@ impl BodyBuilder<'_> {
         if let Some(v) = self.oop_compare(op, a, b, span) {
             return v;
         }
-        let hint = match op {
-            BinaryOp::Eq
-            | BinaryOp::Ne
-            | BinaryOp::Lt
-            | BinaryOp::Le
-            | BinaryOp::Gt
-            | BinaryOp::Ge => None,
-            _ => expect,
-        };
+        let hint = if op.is_comparison() { None } else { expect };
         let va = self.expr(a, hint);
         let vb = self.expr(b, hint.or(va.ty().id()));
         self.binary_vals(op, va, vb, span)
@@ -74,10 +66,7 @@ impl BodyBuilder<'_> {
             );
             return Val::error();
         };
-        let is_cmp = matches!(
-            op,
-            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
-        );
+        let is_cmp = op.is_comparison();
         if !self.operands_fit(op, common) {
             self.bad_operand(span, op_name, common);
             return Val::error();
@@ -414,10 +403,7 @@ impl BodyBuilder<'_> {
         common: Ty,
     ) -> Result<Option<Val>, String> {
         let bool_t = Ty::T(TypeTable::elem(ElemType::Bool));
-        let is_cmp = matches!(
-            op,
-            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
-        );
+        let is_cmp = op.is_comparison();
         // Bring both to the common representation.
         enum N {
             I(i128),

@@ -116,10 +116,7 @@ impl BodyBuilder<'_> {
         vb: &Val,
         span: Span,
     ) -> Option<Val> {
-        if !matches!(
-            op,
-            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
-        ) {
+        if !op.is_comparison() {
             return None;
         }
         let (ba, bb) = (self.bit_string(va.ty()), self.bit_string(vb.ty()));

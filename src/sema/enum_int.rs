@@ -133,10 +133,7 @@ impl BodyBuilder<'_> {
         vb: Val,
         span: Span,
     ) -> (Val, Val) {
-        let strict_too = matches!(
-            op,
-            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
-        );
+        let strict_too = op.is_comparison();
         let (ea, eb) = (
             self.val_enum(&va, strict_too),
             self.val_enum(&vb, strict_too),

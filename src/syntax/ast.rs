@@ -474,6 +474,16 @@ pub enum BinaryOp {
     OrElse,
 }
 
+impl BinaryOp {
+    /// True for the six comparisons (`=`, `<>`, `<`, `<=`, `>`, `>=`).
+    pub fn is_comparison(self) -> bool {
+        matches!(
+            self,
+            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
+        )
+    }
+}
+
 /// A literal as written, already decoded by the lexer.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Literal {

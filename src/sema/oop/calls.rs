@@ -169,7 +169,12 @@ impl BodyBuilder<'_> {
                 let Some(&vi) = self.model.oop.fbs[&fb].dispatch.get(&m.key()) else {
                     // `THIS^.tmr(...)`: an FB instance of the block, which
                     // the ordinary call path calls.
-                    if self.own_member(&fb, m) {
+                    let own = self
+                        .model
+                        .pou_index
+                        .get(&fb)
+                        .map(|&p| self.model.pous[p].ty);
+                    if own.is_some_and(|ty| self.has_member(ty, m)) {
                         return None;
                     }
                     self.unknown_method(&fb, m);
@@ -185,9 +190,7 @@ impl BodyBuilder<'_> {
                 }
                 let fb = self.oop_fb_of(ty)?;
                 let Some(&vi) = self.model.oop.fbs[&fb].dispatch.get(&m.key()) else {
-                    if let TypeKind::Pou { members, .. } = &self.types.get(ty).kind
-                        && members.iter().any(|x| x.name.eq_ignore_ascii_case(&m.name))
-                    {
+                    if self.has_member(ty, m) {
                         return None;
                     }
                     self.unknown_method(&fb, m);
@@ -204,12 +207,9 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// Whether FB `fb` (a key) has a variable named `m`.
-    fn own_member(&self, fb: &str, m: &Ident) -> bool {
-        let Some(&p) = self.model.pou_index.get(fb) else {
-            return false;
-        };
-        matches!(&self.types.get(self.model.pous[p].ty).kind,
+    /// Whether the POU type `ty` has a variable named `m`.
+    fn has_member(&self, ty: TypeId, m: &Ident) -> bool {
+        matches!(&self.types.get(ty).kind,
             TypeKind::Pou { members, .. } if members.iter().any(|x| x.name.eq_ignore_ascii_case(&m.name)))
     }
 
