@@ -231,12 +231,12 @@ impl DeclConsts<'_> {
                 }
                 Some(ConstInit::Struct(out))
             }
-            (Initializer::Expr(e), TypeKind::Struct { .. } | TypeKind::Array { .. })
-                if self.whole_value(e, ty, local).is_some() =>
-            {
-                self.whole_value(e, ty, local)
-            }
             (Initializer::Expr(e), _) => {
+                if matches!(def.kind, TypeKind::Struct { .. } | TypeKind::Array { .. })
+                    && let Some(whole) = self.whole_value(e, ty, local)
+                {
+                    return Some(whole);
+                }
                 let c = self.const_value(e, ty, local)?;
                 Some(match c {
                     Const::Str(s) => ConstInit::Str(s),
