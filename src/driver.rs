@@ -73,18 +73,47 @@ pub fn load_files_with<P: AsRef<Path>>(
     diags: &mut Diagnostics,
 ) -> Result<SourceMap, LoadError> {
     let mut sources = SourceMap::new();
-    for path in &project_files(paths)? {
-        let bytes = std::fs::read(path).map_err(|error| LoadError {
+    let read = |path: &Path| {
+        std::fs::read(path).map_err(|error| LoadError {
             path: path.to_path_buf(),
             error,
-        })?;
-        add_source_bytes(
-            &mut sources,
-            path.display().to_string(),
-            &bytes,
-            encoding,
-            diags,
-        );
+        })
+    };
+    for path in paths {
+        let path = path.as_ref();
+        let (files, pinned) = if project::is_project(path) {
+            let project = project::project_files(path).map_err(|error| LoadError {
+                path: path.to_path_buf(),
+                error,
+            })?;
+            (project.sources, project.pinned)
+        } else {
+            (vec![path.to_path_buf()], None)
+        };
+        for file in &files {
+            let bytes = read(file)?;
+            add_source_bytes(
+                &mut sources,
+                file.display().to_string(),
+                &bytes,
+                encoding,
+                diags,
+            );
+        }
+        if let Some(project::PinnedTypes {
+            description: Some(description),
+            names,
+        }) = pinned
+        {
+            let bytes = read(&description)?;
+            let text = String::from_utf8_lossy(&bytes);
+            // Only the pinned types: the `.tmc` describes every type of
+            // the project, its own DUTs and the libraries' too. A file
+            // that is not XML is kept whole, for the reader to report.
+            let narrowed = crate::syntax::twincat::type_description::narrowed(&text, &names)
+                .unwrap_or_else(|| text.into_owned());
+            sources.add(description.display().to_string(), narrowed);
+        }
     }
     Ok(sources)
 }

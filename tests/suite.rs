@@ -32,6 +32,7 @@ mod support {
     pub mod seed_models;
     pub mod sfc_run;
     pub mod trace_text;
+    pub mod twincat;
 }
 
 /// The fuzz targets' bodies and generators (fuzz/src), which the fuzz
@@ -315,6 +316,8 @@ mod timer_pt_changes;
 mod twincat_import;
 #[path = "twincat_library_forms.rs"]
 mod twincat_library_forms;
+#[path = "twincat_pmps_forms.rs"]
+mod twincat_pmps_forms;
 #[path = "typing_compat.rs"]
 mod typing_compat;
 #[path = "unions.rs"]

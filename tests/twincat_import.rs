@@ -507,3 +507,58 @@ fn a_block_registers_itself_with_this_and_tcunit_s_other_forms_load() {
         "cycle,time,GVL.count,nDone,nMinor,nDot,nLo\n0,T#0s,2,0,3,2,0\n1,T#10ms,2,2,3,2,100000\n2,T#20ms,2,2,3,2,200000\n"
     );
 }
+
+/// A `.plcproj` compiling MAIN and pinning `ST_Io` from the type system.
+const PINNING_PROJECT: &str = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Project xmlns=\"http://schemas.microsoft.com/developer/msbuild/2003\">\n  <ItemGroup>\n    <Compile Include=\"MAIN.TcPOU\" />\n    <PinnedGlobalDataType Include=\"ST_Io\" />\n  </ItemGroup>\n</Project>\n";
+
+/// The type system's `ST_Io` (an old version it hides, then the current
+/// one), an enumeration, and a type the project does not pin.
+const TYPE_SYSTEM: &str = "<?xml version=\"1.0\"?>\n<TcSmProject>\n\t<DataTypes>\n\t\t<DataType>\n\t\t\t<Name GUID=\"{B}\">ST_Io</Name>\n\t\t\t<SubItem><Name>fWidth</Name><Type>REAL</Type><Default><Value>2.5</Value></Default></SubItem>\n\t\t\t<SubItem><Name>aRaw</Name><Type>BYTE</Type><ArrayInfo><LBound>1</LBound><Elements>2</Elements></ArrayInfo></SubItem>\n\t\t\t<Hides><Hide GUID=\"{A}\"/></Hides>\n\t\t</DataType>\n\t\t<DataType>\n\t\t\t<Name GUID=\"{A}\">ST_Io</Name>\n\t\t\t<SubItem><Name>nOld</Name><Type>INT</Type></SubItem>\n\t\t</DataType>\n\t\t<DataType><Name>ST_Other</Name><SubItem><Name>x</Name><Type>NOPE</Type></SubItem></DataType>\n\t</DataTypes>\n</TcSmProject>\n";
+
+#[test]
+fn types_pinned_from_the_type_system_are_read_from_the_tmc_or_the_tsproj() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    stIo : ST_Io;\n    i_stIo AT %I* : ST_Io;\n    f : REAL;\nEND_VAR\n",
+        "stIo.aRaw[2] := 7;\nf := stIo.fWidth + BYTE_TO_REAL(stIo.aRaw[2]);\n",
+        "",
+    );
+    // The solution's .tsproj, the folder above the PLC project: its
+    // current version of ST_Io (the other is hidden), and only that type.
+    let dir = project(&[
+        ("Plc/Plc.plcproj", PINNING_PROJECT),
+        ("Plc/MAIN.TcPOU", &main),
+        ("Solution.tsproj", TYPE_SYSTEM),
+    ]);
+    let plc = format!("{dir}/Plc/Plc.plcproj");
+    let out = plcrun_ok(&[&plc, "--cycles", "1", "--trace", "MAIN.f"]);
+    assert_eq!(out, "cycle,time,MAIN.f\n0,T#0s,9.5\n");
+    // Its fields get I/O addresses like any structure at %I*.
+    let (code, out, err) = plcrun(&["check", "--map", &plc]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        out,
+        "%ID0  MAIN.i_stIo.fWidth : REAL\n%IB4  MAIN.i_stIo.aRaw[1] : BYTE\n%IB5  MAIN.i_stIo.aRaw[2] : BYTE\n"
+    );
+    // The PLC project's own .tmc, beside it and named like it, comes first.
+    let tmc = TYPE_SYSTEM
+        .replace("TcSmProject", "TcModuleClass")
+        .replace("2.5", "4.5");
+    std::fs::write(format!("{dir}/Plc/Plc.tmc"), tmc).unwrap();
+    let out = plcrun_ok(&[&plc, "--cycles", "1", "--trace", "MAIN.f"]);
+    assert_eq!(out, "cycle,time,MAIN.f\n0,T#0s,11.5\n");
+    // A pinned type that is no structure, enumeration or alias is E874,
+    // pointing into the type description.
+    let broken = TYPE_SYSTEM.replace(
+        "<SubItem><Name>fWidth</Name>",
+        "<Method/><SubItem><Name>fWidth</Name>",
+    );
+    std::fs::write(format!("{dir}/Plc/Plc.tmc"), broken).unwrap();
+    let (code, _, err) = plcrun(&["check", &plc]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("error[E874]: `ST_Io` is not a structure"),
+        "{err}"
+    );
+    assert!(err.contains("Plc.tmc:4:3"), "{err}");
+}

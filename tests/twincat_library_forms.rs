@@ -8,50 +8,7 @@
 //! integers. Each program's results are worked out by hand beside it.
 
 use crate::support::plc::{lit, run};
-
-const HEAD: &str =
-    "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n";
-
-/// A `.TcPOU` holding `declaration`, an ST `body`, then `inner` (actions).
-fn pou(name: &str, declaration: &str, body: &str, inner: &str) -> String {
-    format!(
-        "{HEAD}<POU Name=\"{name}\" Id=\"{{00000000-0000-0000-0000-000000000001}}\" SpecialFunc=\"None\">\n<Declaration><![CDATA[{declaration}]]></Declaration>\n<Implementation><ST><![CDATA[{body}]]></ST></Implementation>\n{inner}</POU>\n</TcPlcObject>\n"
-    )
-}
-
-/// An `<Action>` of a POU.
-fn action(name: &str, body: &str) -> String {
-    format!(
-        "<Action Name=\"{name}\" Id=\"{{00000000-0000-0000-0000-000000000009}}\"><Implementation><ST><![CDATA[{body}]]></ST></Implementation></Action>\n"
-    )
-}
-
-/// A `.TcDUT` (or, with `tag` "GVL", a `.TcGVL`) holding `declaration`.
-fn declaration(tag: &str, name: &str, declaration: &str) -> String {
-    format!(
-        "{HEAD}<{tag} Name=\"{name}\" Id=\"{{00000000-0000-0000-0000-000000000002}}\">\n<Declaration><![CDATA[{declaration}]]></Declaration>\n</{tag}>\n</TcPlcObject>\n"
-    )
-}
-
-fn compile(files: &[(&str, &str)]) -> Result<plcrun::Plc, plcrun::CompileError> {
-    let options = plcrun::Options {
-        program: Some("P".into()),
-        ..Default::default()
-    };
-    plcrun::Plc::compile_files(files, &options)
-}
-
-/// The rendered diagnostics of sources that must not compile.
-fn refused(files: &[(&str, &str)]) -> String {
-    match compile(files) {
-        Ok(_) => panic!("compiled"),
-        Err(e) => e.to_string(),
-    }
-}
-
-fn compile_ok(files: &[(&str, &str)]) -> plcrun::Plc {
-    compile(files).unwrap_or_else(|e| panic!("compile error:\n{e}"))
-}
+use crate::support::twincat::{HEAD, action, compile, compile_ok, declaration, pou, refused};
 
 #[test]
 fn comments_nest_in_twincat_code_but_not_in_iec_text() {

@@ -120,7 +120,12 @@ fn a_bad_index_or_an_index_on_no_array_is_e711() {
 }
 
 #[test]
-fn an_incomplete_address_on_an_array_of_non_scalars_is_still_e207() {
-    let src = "TYPE S : STRUCT a : INT; END_STRUCT END_TYPE\nPROGRAM P\nVAR x AT %Q* : ARRAY[1..2] OF S; END_VAR\nEND_PROGRAM\n";
+fn an_incomplete_address_on_an_array_of_instances_is_still_e207() {
+    let src = "PROGRAM P\nVAR x AT %Q* : ARRAY[1..2] OF TON; END_VAR\nEND_PROGRAM\n";
     assert_eq!(error_codes(src), vec!["E207"]);
+    // An array of structures: each field of each element has an address.
+    let src = "TYPE S : STRUCT a : INT; b : BOOL; END_STRUCT END_TYPE\nPROGRAM P\nVAR x AT %Q* : ARRAY[1..2] OF S; END_VAR\nEND_PROGRAM\n";
+    if let Err(e) = compile(src) {
+        panic!("{e}");
+    }
 }

@@ -10,6 +10,10 @@
 //!   folder holding several is an error naming them; a folder with none is
 //!   every TwinCAT object and IEC source file in it (`.st`, `.il`, `.sfc`),
 //!   in path order.
+//! - A project that pins global data types of the TwinCAT type system
+//!   (`<PinnedGlobalDataType Include="ST_X_IO"/>`) finds them in its `.tmc`
+//!   (beside the `.plcproj`, named like it) or else in the solution's
+//!   `.tsproj` (the folder above): [`PinnedTypes`].
 
 use std::io;
 use std::path::{Path, PathBuf};
@@ -36,8 +40,32 @@ fn has_extension(path: &Path, exts: &[&str]) -> bool {
         .is_some_and(|e| exts.iter().any(|x| e.eq_ignore_ascii_case(x)))
 }
 
+/// What a project is read from: its source files, and where its pinned
+/// types are described.
+pub(crate) struct ProjectFiles {
+    /// The source files, in the project's order.
+    pub(crate) sources: Vec<PathBuf>,
+    /// The pinned global data types, if the project pins any.
+    pub(crate) pinned: Option<PinnedTypes>,
+}
+
+/// The global data types a `.plcproj` pins from the type system, and the
+/// file that describes them (`None` when neither the project's `.tmc` nor a
+/// `.tsproj` above it is there: the types are then unknown where used).
+pub(crate) struct PinnedTypes {
+    /// The `.tmc` or `.tsproj` holding their `<DataType>`s.
+    pub(crate) description: Option<PathBuf>,
+    /// Their names, as the `.plcproj` lists them.
+    pub(crate) names: Vec<String>,
+}
+
 /// The source files `path` (a folder or a `.plcproj`) stands for.
 pub(crate) fn source_files(path: &Path) -> io::Result<Vec<PathBuf>> {
+    project_files(path).map(|p| p.sources)
+}
+
+/// The files `path` (a folder or a `.plcproj`) is read from.
+pub(crate) fn project_files(path: &Path) -> io::Result<ProjectFiles> {
     if !path.is_dir() {
         return project_items(path);
     }
@@ -58,7 +86,10 @@ pub(crate) fn source_files(path: &Path) -> io::Result<Vec<PathBuf>> {
         )),
         0 => {
             sources.sort();
-            Ok(sources)
+            Ok(ProjectFiles {
+                sources,
+                pinned: None,
+            })
         }
         _ => {
             projects.sort();
@@ -95,8 +126,9 @@ fn walk(dir: &Path, depth: usize, found: &mut dyn FnMut(&Path)) -> io::Result<()
     Ok(())
 }
 
-/// The sources a `.plcproj` compiles, in its order, as paths next to it.
-fn project_items(project: &Path) -> io::Result<Vec<PathBuf>> {
+/// The sources a `.plcproj` compiles, in its order, as paths next to it,
+/// and the types it pins.
+fn project_items(project: &Path) -> io::Result<ProjectFiles> {
     let text = std::fs::read_to_string(project)?;
     let text = text.trim_start_matches('\u{FEFF}');
     let doc = crate::syntax::plcopen::read_xml(text).map_err(|(_, e)| {
@@ -125,5 +157,35 @@ fn project_items(project: &Path) -> io::Result<Vec<PathBuf>> {
             "the project compiles no POU, DUT, GVL, interface or task file",
         ));
     }
-    Ok(files)
+    let names: Vec<String> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("PinnedGlobalDataType"))
+        .filter_map(|n| n.attribute("Include"))
+        .map(|name| name.trim().to_string())
+        .collect();
+    let pinned = (!names.is_empty()).then(|| PinnedTypes {
+        description: type_description(project),
+        names,
+    });
+    Ok(ProjectFiles {
+        sources: files,
+        pinned,
+    })
+}
+
+/// Where the types a `.plcproj` pins are described: its `.tmc` (TwinCAT
+/// writes it beside the project, with the project's name), else the one
+/// `.tsproj` of the folder above (the solution's type system).
+fn type_description(project: &Path) -> Option<PathBuf> {
+    let tmc = project.with_extension("tmc");
+    if tmc.is_file() {
+        return Some(tmc);
+    }
+    let above = project.parent()?.parent()?;
+    let mut found = std::fs::read_dir(above)
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| has_extension(p, &["tsproj"]));
+    let first = found.next()?;
+    found.next().is_none().then_some(first)
 }

@@ -3,7 +3,7 @@
 //! `MEMCPY`, `MEMMOVE`, `MEMSET`, `MEMCMP`, `DRAND`, the distributed-clock
 //! time `T_DCTIME64` and its functions, the `*_TO_HEXSTR` conversions,
 //! `F_ToLCase`, `F_ToUCase`, `GETCPUCOUNTER`, `ST_LibVersion`, the
-//! `ADSLOG_MSGTYPE_*` constants, the task
+//! `ADSLOG_MSGTYPE_*` constants, `DEFAULT_ADS_TIMEOUT`, the task
 //! information `_TaskInfo` with `GETCURTASKINDEX`/`GETCURTASKINDEXEX`,
 //! `IQueryInterface`,
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
@@ -175,6 +175,7 @@ mod tests {
                 "_TaskInfo",
                 "GETCURTASKINDEX",
                 "GETCURTASKINDEXEX",
+                "DEFAULT_ADS_TIMEOUT",
                 "ADSLOG_MSGTYPE",
             ]
         );

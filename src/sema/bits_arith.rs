@@ -13,7 +13,7 @@ use crate::source::Span;
 use crate::syntax::ast::BinaryOp;
 
 /// The unsigned integer type of a bit string's width.
-fn unsigned_of(e: ElemType) -> Option<ElemType> {
+pub(super) fn unsigned_of(e: ElemType) -> Option<ElemType> {
     Some(match e {
         ElemType::Byte => ElemType::Usint,
         ElemType::Word => ElemType::Uint,

@@ -110,7 +110,7 @@ impl BodyBuilder<'_> {
         if self.calls_a_function(call) {
             return self.call_function(call, expect, true);
         }
-        if self.unknown_library_call(call) {
+        if self.unknown_library_call(call) || self.through_unknown_type(&call.callee) {
             return Val::error();
         }
         self.diags.error(
@@ -119,6 +119,22 @@ impl BodyBuilder<'_> {
             "a function block instance cannot be called inside an expression; call it as a statement and read its outputs",
         );
         Val::error()
+    }
+
+    /// True when `callee` goes through a variable whose type is unknown
+    /// (`fbJson.HasMember(...)` with `fbJson : FB_JsonDomParser` from a
+    /// library plcrun does not have): its declaration already has E203, a
+    /// second error here would only mislead.
+    fn through_unknown_type(&self, callee: &Expr) -> bool {
+        match &callee.kind {
+            ExprKind::Member(base, _) | ExprKind::Index(base, _) | ExprKind::Deref(base) => {
+                self.through_unknown_type(base)
+            }
+            ExprKind::Name(id) => self
+                .lookup_var(&id.key())
+                .is_some_and(|v| v.ty == TypeTable::error()),
+            _ => false,
+        }
     }
 
     pub(super) fn call_function(&mut self, call: &Call, expect: Option<TypeId>, want: bool) -> Val {

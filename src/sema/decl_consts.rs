@@ -10,7 +10,7 @@ use super::model::{ConstInit, Model, VarInfo};
 use crate::diagnostics::Diagnostics;
 use crate::elementary::ElemType;
 use crate::ir::type_table::{RefFlavor, TypeId, TypeKind, TypeTable};
-use crate::syntax::ast::{BinaryOp, Expr, ExprKind, Initializer, LiteralValue, UnaryOp};
+use crate::syntax::ast::{Arg, BinaryOp, Expr, ExprKind, Initializer, LiteralValue, UnaryOp};
 use indexmap::IndexMap;
 
 /// Folds the constant expressions of declarations.
@@ -82,8 +82,11 @@ impl DeclConsts<'_> {
                     return None;
                 }
                 let e = self.types.scalar(var.ty)?;
+                // A bit string constant counts as its unsigned value
+                // (CODESYS: `ARRAY [1..MAX_LINES]` with `MAX_LINES : BYTE`).
+                let counts = e.is_int() || e.family() == crate::elementary::Family::Bits;
                 match var.value.as_ref()? {
-                    Const::Bits(b) if e.is_int() => Some(slot_to_int(*b, e)),
+                    Const::Bits(b) if counts => Some(slot_to_int(*b, e)),
                     Const::Int(v) => Some(*v),
                     _ => None,
                 }
@@ -179,16 +182,29 @@ impl DeclConsts<'_> {
                 let count: u64 = dims.iter().map(|d| d.len()).product();
                 let mut out = Vec::new();
                 for el in elems {
-                    let n = match &el.repeat {
-                        Some(r) => match self.const_int(r, local) {
+                    // `N(x)` with a named count reads as a call: a count
+                    // that is an integer constant makes it a repetition
+                    // (`[GVL.N_MAX(stDefault)]`).
+                    let named = match (&el.repeat, &el.value) {
+                        (None, Some(Initializer::Expr(e))) => self.named_repetition(e, local),
+                        _ => None,
+                    };
+                    let n = match (&el.repeat, &named) {
+                        (_, Some((n, _))) => *n,
+                        (Some(r), None) => match self.const_int(r, local) {
                             Some(n) if n >= 0 => n as u64,
                             _ => return None,
                         },
-                        None => 1,
+                        (None, None) => 1,
                     };
-                    let v = match &el.value {
-                        Some(v) => Some(self.resolve_init(v, *elem, local)?),
-                        None => None,
+                    let v = match (&named, &el.value) {
+                        (Some((_, x)), _) => Some(self.resolve_init(
+                            &Initializer::Expr((*x).clone()),
+                            *elem,
+                            local,
+                        )?),
+                        (None, Some(v)) => Some(self.resolve_init(v, *elem, local)?),
+                        (None, None) => None,
                     };
                     for _ in 0..n.min(count + 1) {
                         out.push(
@@ -257,6 +273,26 @@ impl DeclConsts<'_> {
                 None
             }
         }
+    }
+
+    /// `N(x)` where `N` (plain or list-qualified) is a non-negative integer
+    /// constant and `x` the one argument: the count and the value.
+    fn named_repetition<'e>(
+        &self,
+        e: &'e Expr,
+        local: Option<&IndexMap<String, VarInfo>>,
+    ) -> Option<(u64, &'e Expr)> {
+        let ExprKind::Call(call) = &e.kind else {
+            return None;
+        };
+        let [Arg::Positional(value)] = call.args.as_slice() else {
+            return None;
+        };
+        if !matches!(call.callee.kind, ExprKind::Name(_) | ExprKind::Member(..)) {
+            return None;
+        }
+        let n = self.const_int_inner(&call.callee, local)?;
+        Some((u64::try_from(n).ok()?, value))
     }
 
     /// Evaluates a constant scalar expression as a value of `ty`.
@@ -420,14 +456,13 @@ impl DeclConsts<'_> {
                     other => Ok(other),
                 }
             }
-            ExprKind::Name(id) => {
-                let key = id.key();
-                let var = local
-                    .and_then(|l| l.get(&key))
-                    .or_else(|| self.model.globals.get(&key));
-                let value = var.and_then(|v| self.readable_value(&key, v));
-                match var {
-                    Some(v) if value.is_some() => match (&value, self.types.scalar(v.ty)) {
+            ExprKind::Name(_) | ExprKind::Index(..) => {
+                let Some(id) = root_name(e) else {
+                    return Err(("E205", "initial values must be constant expressions".into()));
+                };
+                let read = self.read_variable(e, local);
+                match read {
+                    Some((value, ty)) => match (&Some(value), self.types.scalar(ty)) {
                         (Some(Const::Bits(b)), Some(t)) if t == elem => Ok(Const::Bits(*b)),
                         (Some(Const::Bits(b)), Some(t)) if t.widens_to(elem) => {
                             if t.is_int() && elem.is_real() {
@@ -454,7 +489,7 @@ impl DeclConsts<'_> {
                         }
                         _ => Err(("E301", format!("constant `{}` is not a {elem}", id.name))),
                     },
-                    _ => Err((
+                    None => Err((
                         "E205",
                         format!(
                             "`{}` is not a constant; an initial value may read constants and the variables declared before it (in the same VAR block; in a FUNCTION_BLOCK or PROGRAM, also its earlier VAR_INPUT, VAR_OUTPUT and VAR blocks)",
@@ -508,6 +543,94 @@ impl DeclConsts<'_> {
             }
             _ => Err(("E205", "initial values must be constant expressions".into())),
         }
+    }
+}
+
+impl DeclConsts<'_> {
+    /// The value and type an initial value reads from variable `e` (a
+    /// name, or an element of an array at constant indexes): a constant's,
+    /// an earlier variable's of the same block ([`Self::readable_value`]),
+    /// or a global variable's initial value, CODESYS initialising the global
+    /// lists before the POUs (`MaxEv : REAL := GVL.aBounds[GVL.N];`).
+    fn read_variable(
+        &self,
+        e: &Expr,
+        local: Option<&IndexMap<String, VarInfo>>,
+    ) -> Option<(Const, TypeId)> {
+        if let Some(global) = self.list_qualified(e, local) {
+            return self.read_variable(&global, local);
+        }
+        match &e.kind {
+            ExprKind::Name(id) => {
+                let key = id.key();
+                let own = local.and_then(|l| l.get(&key));
+                let var = own.or_else(|| self.model.globals.get(&key))?;
+                let value = self.readable_value(&key, var).or_else(|| {
+                    let global = own.is_none() && var.location.is_none();
+                    global.then(|| init_const(&self.initial(var))).flatten()
+                })?;
+                Some((value, var.ty))
+            }
+            ExprKind::Index(base, index) => {
+                let ExprKind::Name(id) = &self
+                    .list_qualified(base, local)
+                    .unwrap_or(*base.clone())
+                    .kind
+                else {
+                    return None;
+                };
+                let key = id.key();
+                let own = local.and_then(|l| l.get(&key));
+                let var = own.or_else(|| self.model.globals.get(&key))?;
+                let readable = var.constant
+                    || (own.is_none() && var.location.is_none())
+                    || self.same_block.contains(&key);
+                let TypeKind::Array { dims, elem } = &self.types.get(var.ty).kind else {
+                    return None;
+                };
+                if !readable || dims.len() != index.len() {
+                    return None;
+                }
+                let mut linear: u64 = 0;
+                for (d, i) in dims.iter().zip(index) {
+                    let v = self.const_int_inner(i, local)?;
+                    if v < i128::from(d.lo) || v > i128::from(d.hi) {
+                        return None;
+                    }
+                    linear = linear * d.len() + (v - i128::from(d.lo)) as u64;
+                }
+                // An array without initial values holds its element's default.
+                let values = match self.initial(var) {
+                    ConstInit::Array(values) => values,
+                    _ => Vec::new(),
+                };
+                let value = match values.get(usize::try_from(linear).ok()?) {
+                    Some(ci) => init_const(ci)?,
+                    // Past the values given: the element type's default.
+                    None => init_const(&self.model.default_init(self.types, *elem))?,
+                };
+                Some((value, *elem))
+            }
+            _ => None,
+        }
+    }
+
+    /// A variable's initial value (its type's default without one).
+    fn initial(&self, v: &VarInfo) -> ConstInit {
+        v.init
+            .clone()
+            .unwrap_or_else(|| self.model.default_init(self.types, v.ty))
+    }
+}
+
+/// The variable an expression reads: `x`, `x[i]`, `GVL.x[i]` name `x`
+/// (the list qualifier aside).
+fn root_name(e: &Expr) -> Option<&crate::syntax::ast::Ident> {
+    match &e.kind {
+        ExprKind::Name(id) => Some(id),
+        ExprKind::Index(base, _) => root_name(base),
+        ExprKind::Member(_, id) => Some(id),
+        _ => None,
     }
 }
 

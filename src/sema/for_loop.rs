@@ -126,7 +126,21 @@ impl BodyBuilder<'_> {
             );
             return None;
         };
-        let Some(e) = self.scalar(p.ty).filter(|e| e.is_int()) else {
+        // A bit string counts as the unsigned integer of its width (CODESYS
+        // arithmetic on bit strings, W350): `FOR nByte := 1 TO 8`.
+        let counted = self.scalar(p.ty).map(|e| match super::bits_arith::unsigned_of(e) {
+            Some(u) if !self.is_enum(p.ty) => {
+                self.diags.warning(
+                    "W350",
+                    var.span,
+                    "a bit string (BYTE..LWORD) as the FOR control variable is a CODESYS extension: \
+                     it counts as the unsigned integer of the same width",
+                );
+                u
+            }
+            _ => e,
+        });
+        let Some(e) = counted.filter(|e| e.is_int()) else {
             let name = self.types.name(p.ty).to_string();
             self.diags.error(
                 "E407",

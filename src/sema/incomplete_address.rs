@@ -5,7 +5,7 @@
 
 use super::declare::Declarer;
 use crate::elementary::ElemType;
-use crate::ir::type_table::TypeId;
+use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::syntax::ast::{AddrSize, Area, DirectAddress, Pou, PouKind, VarBlock, VarKind};
 
 /// True when an address of `size` can hold a value of type `elem` (the
@@ -50,6 +50,91 @@ pub(super) fn is_incomplete(location: &str) -> bool {
     location.ends_with('*')
 }
 
+/// One elementary value of a variable declared at an incomplete address.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Leaf {
+    /// Its path below the variable: empty for the variable itself,
+    /// `[2]`, `[1,0]`, `.nTran`, `.aRaw[3]`.
+    pub(crate) path: String,
+    /// Its slot offset from the variable's.
+    pub(crate) offset: u32,
+    /// Its elementary type.
+    pub(crate) ty: TypeId,
+}
+
+/// Deepest nesting of arrays and structures followed.
+const MAX_LEAF_DEPTH: usize = 32;
+
+/// The elementary values a variable of type `ty` at an incomplete address
+/// is made of, each of which gets an address: the variable itself when
+/// elementary, the elements of an array in row-major order, the fields of
+/// a structure in declaration order (TwinCAT maps a structure onto
+/// consecutive I/O bytes), recursively. `None` when one of them cannot
+/// have an address (a reference, an FB instance).
+pub(crate) fn address_leaves(types: &TypeTable, ty: TypeId) -> Option<Vec<Leaf>> {
+    let mut out = Vec::new();
+    leaves_into(types, ty, String::new(), 0, 0, &mut out)?;
+    Some(out)
+}
+
+fn leaves_into(
+    types: &TypeTable,
+    ty: TypeId,
+    path: String,
+    offset: u32,
+    depth: usize,
+    out: &mut Vec<Leaf>,
+) -> Option<()> {
+    if depth > MAX_LEAF_DEPTH {
+        return None;
+    }
+    // A STRING is one too: placing it is E710, with the other values
+    // that fit no address.
+    if types.scalar(ty).is_some() {
+        out.push(Leaf { path, offset, ty });
+        return Some(());
+    }
+    match &types.get(ty).kind {
+        TypeKind::Array { dims, elem } => {
+            let stride = types.size(*elem);
+            let count: u64 = dims.iter().map(|d| d.len()).product();
+            for k in 0..count {
+                let at = offset.checked_add(u32::try_from(k * u64::from(stride)).ok()?)?;
+                let name = format!("{path}{}", element_suffix(dims, k));
+                leaves_into(types, *elem, name, at, depth + 1, out)?;
+            }
+            Some(())
+        }
+        TypeKind::Struct { fields } => {
+            for f in fields {
+                let at = offset.checked_add(f.offset)?;
+                leaves_into(
+                    types,
+                    f.ty,
+                    format!("{path}.{}", f.name),
+                    at,
+                    depth + 1,
+                    out,
+                )?;
+            }
+            Some(())
+        }
+        _ => None,
+    }
+}
+
+/// `[i,j]` for row-major element number `k` of an array of `dims`.
+pub(crate) fn element_suffix(dims: &[crate::ir::type_table::Dim], mut k: u64) -> String {
+    let mut index = vec![0i64; dims.len()];
+    for (i, d) in dims.iter().enumerate().rev() {
+        let n = d.len().max(1);
+        index[i] = d.lo + (k % n) as i64;
+        k /= n;
+    }
+    let text: Vec<String> = index.iter().map(|v| v.to_string()).collect();
+    format!("[{}]", text.join(","))
+}
+
 impl Declarer<'_> {
     /// Checks an incomplete address `a` declared for a variable of type
     /// `ty` in `block` of `pou`; returns the text to keep as its location,
@@ -79,16 +164,15 @@ impl Declarer<'_> {
             );
             return None;
         }
-        // An array of scalars too: VAR_CONFIG gives each element its
-        // address (`link/config_elements.rs`).
-        let elem = self
-            .types
-            .scalar(ty)
-            .or_else(|| match &self.types.get(ty).kind {
-                crate::ir::type_table::TypeKind::Array { elem, .. } => self.types.scalar(*elem),
-                _ => None,
-            });
-        if elem.is_none() || (a.explicit_size && !address_fits(a.size, elem)) {
+        // An array or a structure too: each elementary value in it gets an
+        // address of its own (`address_leaves`).
+        let fits = address_leaves(&self.types, ty).is_some_and(|leaves| {
+            !a.explicit_size
+                || leaves
+                    .iter()
+                    .all(|l| address_fits(a.size, self.types.scalar(l.ty)))
+        });
+        if !fits {
             self.diags.error(
                 "E207",
                 a.span,

@@ -29,6 +29,7 @@ mod decl_consts;
 mod declare;
 mod global_instances;
 mod implicit_int;
+mod implicit_real;
 mod incomplete_address;
 mod inheritance_depth;
 mod layout;

@@ -102,6 +102,8 @@ pub(crate) struct Model {
     pub type_ids: HashMap<String, TypeId>,
     /// Declared initial values of user types.
     pub type_inits: HashMap<TypeId, ConstInit>,
+    /// The structure each structure declared `EXTENDS` extends.
+    pub struct_bases: HashMap<TypeId, TypeId>,
     /// The structures that hold a UNION, with its members (unions.rs).
     pub unions: HashMap<TypeId, super::unions::UnionInfo>,
     /// Enumeration values by case-folded name: (enum type, value).

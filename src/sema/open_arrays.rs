@@ -105,6 +105,18 @@ impl BodyBuilder<'_> {
         let TypeKind::OpenArray { rank, elem } = self.types.get(place.ty).kind else {
             return None;
         };
+        // `THIS^.arr` names the block's own parameter as `arr` does.
+        if let ExprKind::Member(base, id) = &e.kind
+            && super::oop::calls::is_this(base)
+        {
+            let plain = Expr {
+                kind: ExprKind::Name(id.clone()),
+                span: e.span,
+            };
+            if let Some(p) = self.place(&plain) {
+                return self.open_param(&plain, &p);
+            }
+        }
         let own = match &e.kind {
             ExprKind::Name(id) => self
                 .lookup_var(&id.key())

@@ -329,7 +329,21 @@ impl BodyBuilder<'_> {
         span: Span,
     ) -> Val {
         let (n, ns) = vals.pop().unwrap_or((Val::error(), span));
-        let (v, vs) = vals.pop().unwrap_or((Val::error(), span));
+        let (mut v, vs) = vals.pop().unwrap_or((Val::error(), span));
+        // TwinCAT 3 and CODESYS shift an untyped constant in a register's
+        // width (`SHL(1, nBit)` for a 32-bit mask): a DWORD, or an LWORD
+        // for a constant beyond 32 bits.
+        if let Val::Const(Const::Int(i), Ty::AnyInt) = v
+            && self.model.codesys_files.contains(&vs.file)
+            && i >= 0
+        {
+            let e = if i > u32::MAX as i128 {
+                ElemType::Lword
+            } else {
+                ElemType::Dword
+            };
+            v = self.coerce(v, TypeTable::elem(e), vs, fname);
+        }
         let Some(t) = v.ty().id() else {
             self.diags.error(
                 "E301",

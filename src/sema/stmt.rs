@@ -395,11 +395,27 @@ impl BodyBuilder<'_> {
         span: Span,
         what: &str,
     ) {
-        if !self.assignable(src.ty, dst.ty) {
+        if !self.assignable(src.ty, dst.ty) && !self.extends_structure(src.ty, dst.ty) {
             self.mismatch(at, Ty::T(src.ty), dst.ty, what);
             return;
         }
         self.copy_aggregate(dst, src, span);
+    }
+
+    /// True when structure `derived` extends `base`, directly or not: its
+    /// value starts with a `base` (CODESYS copies that part, `stBase :=
+    /// stDerived;`, as `copy_aggregate` does with `base`'s size).
+    fn extends_structure(&self, derived: TypeId, base: TypeId) -> bool {
+        let mut at = derived;
+        // A chain of bases is as long as the structures declared.
+        for _ in 0..=self.model.struct_bases.len() {
+            match self.model.struct_bases.get(&at) {
+                Some(&b) if b == base => return true,
+                Some(&b) => at = b,
+                None => return false,
+            }
+        }
+        false
     }
 
     /// Copies an array or structure by value.

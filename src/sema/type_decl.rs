@@ -12,6 +12,11 @@ use crate::stdlib;
 use crate::syntax::ast::{Expr, ExprKind, Ident, Initializer, Item, PouKind, TypeSpec, VarDecl};
 use indexmap::IndexMap;
 
+/// What a structure declared `EXTENDS base` starts with: `base`'s fields,
+/// their initial values (by field index), the slots they take, and `base`
+/// itself (`None` after an error).
+type Inherited = (Vec<Member>, Vec<(usize, ConstInit)>, u32, Option<TypeId>);
+
 impl Declarer<'_> {
     /// Resolves a user TYPE by key, computing it on first use.
     pub(super) fn user_type(&mut self, key: &str, span: Span) -> Option<TypeId> {
@@ -44,9 +49,13 @@ impl Declarer<'_> {
                 if let Some(u) = self.model.unions.get(&base).cloned() {
                     self.model.unions.insert(id, u);
                 }
-                // Field defaults belong to the named type too.
+                // Field defaults belong to the named type too, and so
+                // does the structure it extends.
                 if let Some(ci) = self.model.type_inits.get(&base).cloned() {
                     self.model.type_inits.insert(id, ci);
+                }
+                if let Some(&b) = self.model.struct_bases.get(&base) {
+                    self.model.struct_bases.insert(id, b);
                 }
                 if let TypeKind::Enum { values, .. } = &self.types.get(id).kind {
                     let values = values.clone();
@@ -436,9 +445,9 @@ impl Declarer<'_> {
     }
 
     /// The fields (with their initial values and the size they take) a
-    /// structure declared `EXTENDS base` starts with: `base`'s own. A base
-    /// that is not a structure is E438.
-    fn inherited_fields(&mut self, base: &Ident) -> (Vec<Member>, Vec<(usize, ConstInit)>, u32) {
+    /// structure declared `EXTENDS base` starts with: `base`'s own, and
+    /// `base`'s type. A base that is not a structure is E438.
+    fn inherited_fields(&mut self, base: &Ident) -> Inherited {
         let ty = self.named_type(base);
         let TypeKind::Struct { fields } = &self.types.get(ty).kind else {
             if ty != TypeTable::error() {
@@ -451,13 +460,13 @@ impl Declarer<'_> {
                     ),
                 );
             }
-            return (Vec::new(), Vec::new(), 0);
+            return (Vec::new(), Vec::new(), 0, None);
         };
         let inits = match self.model.type_inits.get(&ty) {
             Some(ConstInit::Struct(v)) => v.clone(),
             _ => Vec::new(),
         };
-        (fields.clone(), inits, self.types.size(ty))
+        (fields.clone(), inits, self.types.size(ty), Some(ty))
     }
 
     /// `STRUCT ... END_STRUCT`: fields laid out in order, with their defaults.
@@ -467,9 +476,9 @@ impl Declarer<'_> {
         fields: &[VarDecl],
         local: Option<&IndexMap<String, VarInfo>>,
     ) -> TypeId {
-        let (mut members, mut inits, mut offset) = match extends {
+        let (mut members, mut inits, mut offset, base) = match extends {
             Some(base) => self.inherited_fields(base),
-            None => (Vec::new(), Vec::new(), 0u32),
+            None => (Vec::new(), Vec::new(), 0u32, None),
         };
         for decl in fields {
             let fty = self
@@ -507,6 +516,9 @@ impl Declarer<'_> {
         });
         if !inits.is_empty() {
             self.model.type_inits.insert(id, ConstInit::Struct(inits));
+        }
+        if let Some(base) = base {
+            self.model.struct_bases.insert(id, base);
         }
         id
     }

@@ -220,6 +220,10 @@ impl BodyBuilder<'_> {
                             (Family::Real, ElemType::Lreal) if fe == ElemType::Real => {
                                 Some(Conv::F32ToF64)
                             }
+                            // CODESYS's implicit LREAL into REAL (W491).
+                            (Family::Real, ElemType::Real) if fe == ElemType::Lreal => {
+                                Some(Conv::F64ToF32)
+                            }
                             _ => super::implicit_int::wrap(fe, te),
                         };
                         let slot = match conv {
@@ -302,7 +306,8 @@ impl BodyBuilder<'_> {
             return false;
         };
         if !super::bits_arith::codesys_widens(f, t) {
-            return self.implicit_int_conversion(f, t, span);
+            return self.implicit_int_conversion(f, t, span)
+                || self.implicit_real_conversion(f, t, span);
         }
         self.diags.warning(
             "W351",

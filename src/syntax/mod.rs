@@ -59,6 +59,9 @@ fn parse_in(
     if twincat::is_twincat(text) {
         return twincat::parse(file, text, diags);
     }
+    if twincat::type_description::is_type_description(text) {
+        return twincat::type_description::parse(file, text, diags);
+    }
     if plcopen::is_plcopen(text) {
         return plcopen::parse(file, text, diags);
     }

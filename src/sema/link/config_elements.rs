@@ -8,7 +8,7 @@
 use super::Linker;
 use super::auto_address::Unplaced;
 use crate::ir::type_table::{Dim, TypeId, TypeKind};
-use crate::sema::incomplete_address::is_incomplete;
+use crate::sema::incomplete_address::element_suffix;
 use crate::sema::model::VarInfo;
 use crate::source::Span;
 use crate::syntax::ast::Expr;
@@ -88,15 +88,12 @@ impl Linker<'_> {
 }
 
 impl Linker<'_> {
-    /// Collects the elements of array variable `var` (of POU `p`, at
-    /// absolute slot `at`, named `here`) that no VAR_CONFIG line
-    /// completed: each element of an array declared `AT %Q*`, and the
-    /// incomplete addresses inside each element of an array of FB
-    /// instances.
-    #[allow(clippy::too_many_arguments)]
+    /// Collects the incomplete addresses inside each element of the array
+    /// of FB instances `var` (of POU `p`, at absolute slot `at`, named
+    /// `here`) that no VAR_CONFIG line completed (an array declared
+    /// `AT %Q*` itself is `collect_uncompleted`'s).
     pub(super) fn collect_uncompleted_elements(
         &mut self,
-        p: usize,
         var: &VarInfo,
         at: u32,
         here: &str,
@@ -111,23 +108,6 @@ impl Linker<'_> {
             return;
         };
         let slot = |k: u64| u32::try_from(at as u64 + k * u64::from(stride)).ok();
-        if let Some(l) = var.location.as_deref().filter(|l| is_incomplete(l)) {
-            let span = self.address_span(p, &var.name);
-            for k in 0..count {
-                let Some(s) = slot(k).filter(|s| !completed.contains(s)) else {
-                    continue;
-                };
-                out.push(Unplaced {
-                    name: element_name(here, &dims, k),
-                    ty: elem,
-                    kind: var.kind,
-                    slot: s,
-                    declared: l.to_string(),
-                    span,
-                });
-            }
-            return;
-        }
         if let Some(q) = self.fb_pou(elem) {
             for k in 0..count {
                 let Some(s) = slot(k) else {
@@ -141,15 +121,8 @@ impl Linker<'_> {
 }
 
 /// `name[i,j]` for row-major element number `k` of an array of `dims`.
-fn element_name(name: &str, dims: &[Dim], mut k: u64) -> String {
-    let mut index = vec![0i64; dims.len()];
-    for (i, d) in dims.iter().enumerate().rev() {
-        let n = d.len().max(1);
-        index[i] = d.lo + (k % n) as i64;
-        k /= n;
-    }
-    let text: Vec<String> = index.iter().map(|v| v.to_string()).collect();
-    format!("{name}[{}]", text.join(","))
+fn element_name(name: &str, dims: &[Dim], k: u64) -> String {
+    format!("{name}{}", element_suffix(dims, k))
 }
 
 /// The row-major element number of `values` in `dims`, if every index is

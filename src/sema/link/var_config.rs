@@ -12,7 +12,7 @@ use super::auto_address::Unplaced;
 use crate::ir::image::{ProgramInstance, RootVar};
 use crate::ir::type_table::{TypeId, TypeKind};
 use crate::sema::declare::normalize_address;
-use crate::sema::incomplete_address::{address_fits, is_incomplete};
+use crate::sema::incomplete_address::{address_fits, address_leaves, is_incomplete};
 use crate::sema::model::{Storage, VarInfo};
 use crate::source::Span;
 use crate::syntax::ast::{
@@ -374,33 +374,31 @@ impl Linker<'_> {
                 continue;
             };
             let here = format!("{path}.{}", var.name);
-            if self.array_elements(var.ty).is_some() {
-                self.collect_uncompleted_elements(
-                    p,
-                    var,
-                    base + offset,
-                    &here,
-                    completed,
-                    depth,
-                    out,
-                );
+            if let Some(l) = var.location.as_ref().filter(|l| is_incomplete(l)) {
+                // The variable, or each element or field of it.
+                let span = self.address_span(p, &var.name);
+                let leaves = address_leaves(self.types, var.ty).unwrap_or_default();
+                for leaf in leaves {
+                    let slot = base + offset + leaf.offset;
+                    if !completed.contains(&slot) {
+                        out.push(Unplaced {
+                            name: format!("{here}{}", leaf.path),
+                            ty: leaf.ty,
+                            kind: var.kind,
+                            slot,
+                            declared: l.clone(),
+                            span,
+                        });
+                    }
+                }
                 continue;
             }
-            match (&var.location, self.fb_pou(var.ty)) {
-                (Some(l), _) if is_incomplete(l) && !completed.contains(&(base + offset)) => {
-                    out.push(Unplaced {
-                        name: here,
-                        ty: var.ty,
-                        kind: var.kind,
-                        slot: base + offset,
-                        declared: l.clone(),
-                        span: self.address_span(p, &var.name),
-                    });
-                }
-                (None, Some(q)) => {
-                    self.collect_uncompleted(q, base + offset, &here, completed, depth + 1, out)
-                }
-                _ => {}
+            if self.array_elements(var.ty).is_some() {
+                self.collect_uncompleted_elements(var, base + offset, &here, completed, depth, out);
+                continue;
+            }
+            if let (None, Some(q)) = (&var.location, self.fb_pou(var.ty)) {
+                self.collect_uncompleted(q, base + offset, &here, completed, depth + 1, out)
             }
         }
     }

@@ -16,6 +16,7 @@
 pub mod codes;
 mod object;
 mod task;
+pub mod type_description;
 
 use crate::diagnostics::Diagnostics;
 use crate::source::FileId;

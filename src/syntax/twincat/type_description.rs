@@ -1,0 +1,408 @@
+//! TwinCAT type descriptions: the `<DataTypes>` of a PLC project's `.tmc`
+//! (the module class TwinCAT writes beside the `.plcproj`) or of the
+//! solution's `.tsproj` (its type system). A PLC project uses a type of the
+//! type system by pinning it (`<PinnedGlobalDataType Include="ST_X_IO"/>`
+//! in the `.plcproj`); no source file of the project declares it, so the
+//! project loader reads it from there ([`narrowed`] keeps the pinned types
+//! of the file) and this reader writes each `<DataType>` as the `TYPE` it
+//! stands for: a structure (`<SubItem>`s, `<ExtendsType>`), an enumeration
+//! (`<EnumInfo>`s over a `<BaseType>`) or an alias (`<BaseType>`, with
+//! `<ArrayInfo>` for an array). The bit sizes and offsets are TwinCAT's
+//! layout and are not needed: plcrun lays the type out itself.
+
+use super::codes;
+use crate::diagnostics::Diagnostics;
+use crate::source::FileId;
+use crate::syntax::ast::CompilationUnit;
+use crate::syntax::construct::State;
+use crate::syntax::parser;
+use crate::syntax::plcopen::emit::{Emitter, Range, child, elements, is_identifier};
+use crate::syntax::plcopen::raw::content_range;
+use roxmltree::{Document, Node};
+use std::collections::HashSet;
+
+/// True when `text` is a type description: a `.tmc` (`<TcModuleClass>`)
+/// or a `.tsproj` (`<TcSmProject>`).
+pub fn is_type_description(text: &str) -> bool {
+    matches!(
+        super::root_name(text),
+        Some("TcModuleClass" | "TcSmProject")
+    )
+}
+
+/// The `<DataType>` elements directly under the root's `<DataTypes>`.
+fn data_types<'a, 'i>(doc: &'a Document<'i>) -> impl Iterator<Item = Node<'a, 'i>> {
+    child(doc.root_element(), "DataTypes")
+        .into_iter()
+        .flat_map(elements)
+        .filter(|n| n.has_tag_name("DataType"))
+}
+
+/// The text of a data type's `<Name>`, trimmed.
+fn type_name<'a>(node: Node<'a, '_>) -> Option<&'a str> {
+    child(node, "Name").and_then(|n| n.text()).map(str::trim)
+}
+
+/// `text` with every `<DataType>` blanked out (spaces, line breaks kept)
+/// except the current version of each type named in `names` (compared
+/// ignoring case): so the file declares exactly the pinned types, and
+/// every position in it is still the file's own. A type system keeps old
+/// versions of a type beside the new one; the one no other `<Hides>` is
+/// current. `None` when `text` is not well-formed XML.
+pub fn narrowed(text: &str, names: &[String]) -> Option<String> {
+    let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
+    let doc = crate::syntax::plcopen::read_xml(&text[base..]).ok()?;
+    let wanted: HashSet<String> = names.iter().map(|n| n.to_ascii_uppercase()).collect();
+    let hidden: HashSet<String> = data_types(&doc)
+        .filter_map(|t| child(t, "Hides"))
+        .flat_map(elements)
+        .filter_map(|h| h.attribute("GUID"))
+        .map(str::to_ascii_uppercase)
+        .collect();
+    let mut taken: HashSet<String> = HashSet::new();
+    let mut blank: Vec<std::ops::Range<usize>> = Vec::new();
+    for node in data_types(&doc) {
+        let name = type_name(node).unwrap_or("").to_ascii_uppercase();
+        let guid = child(node, "Name")
+            .and_then(|n| n.attribute("GUID"))
+            .map(str::to_ascii_uppercase);
+        let current = guid.is_none_or(|g| !hidden.contains(&g));
+        if wanted.contains(&name) && current && taken.insert(name) {
+            continue;
+        }
+        blank.push(node.range());
+    }
+    let mut out = text.as_bytes().to_vec();
+    for range in blank {
+        for b in &mut out[base + range.start..base + range.end] {
+            if !matches!(*b, b'\n' | b'\r') {
+                *b = b' ';
+            }
+        }
+    }
+    // Whole elements were blanked, so every multi-byte character either
+    // survived whole or became spaces: the bytes stay UTF-8.
+    String::from_utf8(out).ok()
+}
+
+/// Parses a type description into its types. Never panics, on any input;
+/// every problem is a diagnostic pointing into `text`.
+pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUnit {
+    let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
+    let xml = &text[base..];
+    let mut em = Emitter::new(file, xml, base);
+    let doc = match crate::syntax::plcopen::read_xml(xml) {
+        Ok(doc) => doc,
+        Err((at, e)) => {
+            em.error(
+                codes::MALFORMED_XML,
+                (at, at),
+                format!("malformed XML: {e}"),
+            );
+            diags.extend(em.diags);
+            return CompilationUnit::default();
+        }
+    };
+    for node in data_types(&doc) {
+        data_type(&mut em, node);
+    }
+    let Emitter {
+        toks, diags: found, ..
+    } = em;
+    let failed = found.has_errors();
+    diags.extend(found);
+    if failed {
+        return CompilationUnit::default();
+    }
+    parser::parse_tokens(State::new(file, text), toks, diags)
+}
+
+/// The range of an element's text.
+fn inner(node: Node) -> Option<Range> {
+    content_range(node.document().input_text(), node.range())
+}
+
+/// Emits the tokens of an element's text at its position; reports an
+/// element without text.
+fn lex_text(em: &mut Emitter, node: Node) -> bool {
+    match inner(node) {
+        Some(range) if !node.text().unwrap_or("").trim().is_empty() => em.lex_range(range, false),
+        _ => {
+            em.error(
+                codes::MISSING,
+                em.at(node),
+                format!("`<{}>` is empty", node.tag_name().name()),
+            );
+            false
+        }
+    }
+}
+
+/// Emits the identifier an element holds (a type's or field's `<Name>`).
+fn name(em: &mut Emitter, node: Node, owner: Node) -> bool {
+    let Some(n) = child(node, "Name") else {
+        em.error(
+            codes::MISSING,
+            em.at(owner),
+            format!("`<{}>` has no `<Name>`", owner.tag_name().name()),
+        );
+        return false;
+    };
+    let text = n.text().unwrap_or("").trim();
+    if !is_identifier(text) {
+        em.error(
+            codes::UNDECLARABLE_TYPE,
+            em.at(n),
+            format!("`{text}` is not an IEC 61131-3 identifier"),
+        );
+        return false;
+    }
+    lex_text(em, n)
+}
+
+/// One `<DataType>`: `TYPE name [EXTENDS base] : <structure, enumeration
+/// or alias> END_TYPE`.
+fn data_type(em: &mut Emitter, node: Node) {
+    let fields: Vec<Node> = elements(node)
+        .filter(|c| c.has_tag_name("SubItem"))
+        .collect();
+    let values: Vec<Node> = elements(node)
+        .filter(|c| c.has_tag_name("EnumInfo"))
+        .collect();
+    let base = child(node, "BaseType");
+    let extends = child(node, "ExtendsType");
+    let shape_known = !fields.is_empty() || extends.is_some() || base.is_some();
+    if !shape_known || child(node, "Method").is_some() {
+        let what = type_name(node).unwrap_or("?");
+        em.error(
+            codes::UNDECLARABLE_TYPE,
+            em.at(node),
+            format!(
+                "`{what}` is not a structure, an enumeration or an alias: plcrun cannot declare it from the type description"
+            ),
+        );
+        return;
+    }
+    em.synth("TYPE", em.at(node));
+    if !name(em, node, node) {
+        return;
+    }
+    if let Some(ext) = extends.filter(|_| values.is_empty()) {
+        em.synth("EXTENDS", em.at(ext));
+        if !lex_text(em, ext) {
+            return;
+        }
+    }
+    em.synth(":", em.at(node));
+    let ok = if !values.is_empty() {
+        enumeration(em, &values, base)
+    } else if !fields.is_empty() || extends.is_some() {
+        structure(em, node, &fields)
+    } else {
+        // An alias: `TYPE T : [ARRAY [..] OF] base; END_TYPE`.
+        base.is_some_and(|b| type_of(em, node, b))
+    };
+    if ok {
+        em.synth("; END_TYPE", em.end_of(node));
+    }
+}
+
+/// `STRUCT field : type [:= value]; ... END_STRUCT`.
+fn structure(em: &mut Emitter, node: Node, fields: &[Node]) -> bool {
+    em.synth("STRUCT", em.at(node));
+    for &field in fields {
+        if !name(em, field, field) {
+            return false;
+        }
+        em.synth(":", em.at(field));
+        let Some(ty) = child(field, "Type") else {
+            em.error(codes::MISSING, em.at(field), "`<SubItem>` has no `<Type>`");
+            return false;
+        };
+        if !type_of(em, field, ty) {
+            return false;
+        }
+        if let Some(default) = child(field, "Default")
+            && !initial_value(em, default)
+        {
+            return false;
+        }
+        em.synth(";", em.end_of(field));
+    }
+    em.synth("END_STRUCT", em.end_of(node));
+    true
+}
+
+/// `(text := value, ...) base`.
+fn enumeration(em: &mut Emitter, values: &[Node], base: Option<Node>) -> bool {
+    em.synth("(", em.at(values[0]));
+    for (i, &value) in values.iter().enumerate() {
+        if i > 0 {
+            em.synth(",", em.at(value));
+        }
+        let (Some(text), Some(number)) = (child(value, "Text"), child(value, "Enum")) else {
+            em.error(
+                codes::MISSING,
+                em.at(value),
+                "`<EnumInfo>` needs a `<Text>` and an `<Enum>`",
+            );
+            return false;
+        };
+        let word = text.text().unwrap_or("").trim();
+        if !is_identifier(word) {
+            em.error(
+                codes::UNDECLARABLE_TYPE,
+                em.at(text),
+                format!("`{word}` is not an IEC 61131-3 identifier"),
+            );
+            return false;
+        }
+        if !lex_text(em, text) {
+            return false;
+        }
+        em.synth(":=", em.at(number));
+        if !lex_text(em, number) {
+            return false;
+        }
+    }
+    em.synth(")", em.end_of(values[values.len() - 1]));
+    match base {
+        Some(b) => lex_text(em, b),
+        None => true,
+    }
+}
+
+/// The type of a field or alias: `[ARRAY [l..u, ...] OF] [POINTER TO |
+/// REFERENCE TO] name`, from `owner`'s `<ArrayInfo>`s and the `PointerTo`
+/// and `ReferenceTo` attributes of `ty`.
+fn type_of(em: &mut Emitter, owner: Node, ty: Node) -> bool {
+    let dims: Vec<Node> = elements(owner)
+        .filter(|c| c.has_tag_name("ArrayInfo"))
+        .collect();
+    if !dims.is_empty() {
+        let mut bounds = Vec::new();
+        for dim in &dims {
+            let number = |tag: &str| {
+                child(*dim, tag)
+                    .and_then(|n| n.text())
+                    .and_then(|t| t.trim().parse::<i64>().ok())
+            };
+            match (number("LBound").unwrap_or(0), number("Elements")) {
+                (low, Some(count)) if count > 0 => {
+                    bounds.push(format!("{low}..{}", low + count - 1));
+                }
+                _ => {
+                    em.error(
+                        codes::MISSING,
+                        em.at(*dim),
+                        "`<ArrayInfo>` needs an `<Elements>` count above 0 (and an integer `<LBound>`)",
+                    );
+                    return false;
+                }
+            }
+        }
+        em.synth(&format!("ARRAY [{}] OF", bounds.join(", ")), em.at(dims[0]));
+    }
+    let flag = |attr: &str| {
+        ty.attribute(attr)
+            .is_some_and(|v| matches!(v.trim(), "1" | "true"))
+    };
+    if flag("PointerTo") {
+        em.synth("POINTER TO", em.at(ty));
+    } else if flag("ReferenceTo") {
+        em.synth("REFERENCE TO", em.at(ty));
+    }
+    lex_text(em, ty)
+}
+
+/// `:= value` from a field's `<Default>`: a `<Value>` (a number or a
+/// literal as written) or a `<String>`.
+fn initial_value(em: &mut Emitter, default: Node) -> bool {
+    if let Some(value) = child(default, "Value") {
+        em.synth(":=", em.at(default));
+        return lex_text(em, value);
+    }
+    if let Some(text) = child(default, "String") {
+        let quoted = format!("'{}'", text.text().unwrap_or("").replace('\'', "$'"));
+        em.synth(":=", em.at(default));
+        em.synth(&quoted, em.at(text));
+        return true;
+    }
+    // Only the bounds (`<Min>`, `<Max>`) or an enumeration's `<EnumText>`
+    // without a value: the type's own default applies.
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::syntax::ast::Item;
+
+    const SYSTEM: &str = r#"<?xml version="1.0"?>
+<TcSmProject>
+  <DataTypes>
+    <DataType>
+      <Name GUID="{A}">ST_Io</Name>
+      <SubItem><Name>nOld</Name><Type>INT</Type></SubItem>
+    </DataType>
+    <DataType>
+      <Name GUID="{B}">ST_Io</Name>
+      <SubItem><Name>fWidth</Name><Type>REAL</Type><Default><Value>1.5</Value></Default></SubItem>
+      <SubItem><Name>sId</Name><Type>STRING(80)</Type></SubItem>
+      <SubItem><Name>aRaw</Name><Type>BYTE</Type><ArrayInfo><LBound>1</LBound><Elements>4</Elements></ArrayInfo></SubItem>
+      <Hides><Hide GUID="{A}"/></Hides>
+    </DataType>
+    <DataType>
+      <Name>E_Mode</Name>
+      <BaseType>INT</BaseType>
+      <EnumInfo><Text>Idle</Text><Enum>0</Enum></EnumInfo>
+      <EnumInfo><Text>Run</Text><Enum>5</Enum></EnumInfo>
+    </DataType>
+    <DataType><Name>ST_Unpinned</Name><SubItem><Name>x</Name><Type>INT</Type></SubItem></DataType>
+  </DataTypes>
+</TcSmProject>"#;
+
+    fn declared(text: &str) -> (Vec<String>, Diagnostics) {
+        let mut diags = Diagnostics::new();
+        let unit = parse(FileId(0), text, &mut diags);
+        let names = unit
+            .items
+            .iter()
+            .flat_map(|i| match i {
+                Item::Types(ts) => ts.iter().map(|t| t.name.name.clone()).collect(),
+                _ => Vec::new(),
+            })
+            .collect();
+        (names, diags)
+    }
+
+    #[test]
+    fn the_pinned_types_are_declared_in_their_current_version_at_their_own_positions() {
+        let narrowed = narrowed(SYSTEM, &["st_io".into(), "E_Mode".into()]).unwrap();
+        assert_eq!(narrowed.len(), SYSTEM.len());
+        assert_eq!(narrowed.lines().count(), SYSTEM.lines().count());
+        assert!(!narrowed.contains("nOld") && !narrowed.contains("ST_Unpinned"));
+        let at = narrowed.find("fWidth").unwrap();
+        assert_eq!(&SYSTEM[at..at + 6], "fWidth");
+        let (names, diags) = declared(&narrowed);
+        assert!(!diags.has_errors(), "{diags:?}");
+        assert_eq!(names, ["ST_Io", "E_Mode"]);
+    }
+
+    #[test]
+    fn a_type_that_is_no_structure_enumeration_or_alias_is_refused_by_name() {
+        let text = "<TcModuleClass><DataTypes><DataType><Name>FB_X</Name><BitSize>8</BitSize></DataType></DataTypes></TcModuleClass>";
+        let (_, diags) = declared(text);
+        let d = diags.iter().next().unwrap();
+        assert_eq!(d.code, codes::UNDECLARABLE_TYPE);
+        assert!(d.message.contains("`FB_X`"), "{}", d.message);
+    }
+
+    #[test]
+    fn every_prefix_parses_without_panicking() {
+        for end in (0..SYSTEM.len()).filter(|&e| SYSTEM.is_char_boundary(e)) {
+            declared(&SYSTEM[..end]);
+            narrowed(&SYSTEM[..end], &["ST_Io".into()]);
+        }
+    }
+}

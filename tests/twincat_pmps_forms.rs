@@ -1,0 +1,232 @@
+//! Forms of the CODESYS V3 / TwinCAT dialect met in SLAC's
+//! `lcls-twincat-pmps` library (issue #25): array repetitions counted by a
+//! named constant, shifts of an untyped constant, initial values read from
+//! global variables, LREAL stored into REAL, a structure copied into the
+//! structure it extends, bit strings counting FOR loops and sizing arrays,
+//! `THIS^.arr` for the block's own `ARRAY[*]`, structures at `%I*`, and a
+//! call through a variable of unknown type reported once. Each program's
+//! results are worked out by hand beside it.
+
+use crate::support::plc::{lit, run};
+use crate::support::twincat::{compile_ok, declaration, method, pou, refused};
+
+const ATTENUATOR: &str = "TYPE ST_Att : STRUCT nTran : REAL; xOK : UINT; END_STRUCT END_TYPE";
+
+#[test]
+fn an_array_repetition_may_be_counted_by_a_list_s_constant() {
+    let att = declaration("DUT", "ST_Att", ATTENUATOR);
+    let beam = declaration(
+        "DUT",
+        "ST_Beam",
+        "TYPE ST_Beam : STRUCT a : ARRAY[1..G.N] OF ST_Att; n : INT; END_STRUCT END_TYPE",
+    );
+    let gvl = declaration(
+        "GVL",
+        "G",
+        "{attribute 'qualified_only'}\nVAR_GLOBAL CONSTANT\n  N : UINT := 3;\n  stAtt : ST_Att := (nTran := 0.5, xOK := 1);\n  cst : ST_Beam := (a := [G.N(stAtt)], n := 7);\nEND_VAR",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR s : ST_Beam := G.cst; f : REAL; k : UINT; END_VAR",
+        "f := s.a[1].nTran + s.a[3].nTran; k := s.a[3].xOK;",
+        "",
+    );
+    let mut plc = compile_ok(&[
+        ("Att.TcDUT", &att),
+        ("Beam.TcDUT", &beam),
+        ("G.TcGVL", &gvl),
+        ("P.TcPOU", &main),
+    ]);
+    run(&mut plc, 1);
+    assert_eq!((lit(&plc, "f"), lit(&plc, "k")), ("1.0".into(), "1".into()));
+}
+
+#[test]
+fn an_untyped_constant_shifts_in_32_bits() {
+    // `SHL(1, n)` builds a 32-bit mask: bit 31 too.
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR m : DWORD; n : INT := 31; r : DWORD; END_VAR",
+        "m := m + SHL(1, n); r := ROL(16#80000001, 1);",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "m"), "16#80000000");
+    assert_eq!(lit(&plc, "r"), "16#3");
+}
+
+#[test]
+fn an_initial_value_reads_a_global_variable_and_its_elements() {
+    let gvl = declaration(
+        "GVL",
+        "G",
+        "{attribute 'qualified_only'}\nVAR_GLOBAL CONSTANT\n  c : INT := 3;\nEND_VAR\nVAR_GLOBAL\n  arr : ARRAY[0..c] OF REAL := [1.5, 2.5];\n  nLimit : INT := 40;\nEND_VAR",
+    );
+    let f = pou(
+        "F",
+        "FUNCTION F : REAL\nVAR a : REAL := G.arr[1]; b : REAL := G.arr[G.c]; n : INT := G.nLimit + 2; END_VAR",
+        "F := a + b + INT_TO_REAL(n);",
+        "",
+    );
+    let main = pou("P", "PROGRAM P\nVAR x : REAL; END_VAR", "x := F();", "");
+    let mut plc = compile_ok(&[("F.TcPOU", &f), ("G.TcGVL", &gvl), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    // 2.5 + 0.0 (an element past the values given) + 42.
+    assert_eq!(lit(&plc, "x"), "44.5");
+    // An index outside the array is no value to read.
+    let out = pou(
+        "F",
+        "FUNCTION F : REAL\nVAR a : REAL := G.arr[9]; END_VAR",
+        "F := a;",
+        "",
+    );
+    let e = refused(&[("F.TcPOU", &out), ("G.TcGVL", &gvl), ("P.TcPOU", &main)]);
+    assert!(e.contains("E205"), "{e}");
+}
+
+#[test]
+fn an_lreal_stored_into_a_real_is_rounded_with_a_warning() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR r : REAL; l : LREAL := 0.1; END_VAR",
+        "r := l;",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "r"), "0.1");
+    // IEC text keeps the rule: an explicit LREAL_TO_REAL.
+    let st = "PROGRAM P\nVAR r : REAL; l : LREAL := 0.1; END_VAR\nr := l;\nEND_PROGRAM\n";
+    let e = match plcrun::Plc::compile_files(&[("p.st", st)], &plcrun::Options::default()) {
+        Ok(_) => panic!("compiled"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("error[E301]"), "{e}");
+    // The warning, and --strict refusing it.
+    let strict = plcrun::Options {
+        program: Some("P".into()),
+        strict: true,
+        ..Default::default()
+    };
+    let e = match plcrun::Plc::compile_files(&[("P.TcPOU", &main)], &strict) {
+        Ok(_) => panic!("compiled under --strict"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        e.contains("error[W491]: implicit conversion of LREAL to REAL"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_structure_copies_into_the_structure_it_extends() {
+    let att = declaration("DUT", "ST_Att", ATTENUATOR);
+    let ext = declaration(
+        "DUT",
+        "ST_AttInternal",
+        "TYPE ST_AttInternal EXTENDS ST_Att : STRUCT nId : INT; END_STRUCT END_TYPE",
+    );
+    let deeper = declaration(
+        "DUT",
+        "ST_AttDeep",
+        "TYPE ST_AttDeep EXTENDS ST_AttInternal : STRUCT b : BOOL; END_STRUCT END_TYPE",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR a : ST_Att; d : ST_AttDeep; END_VAR",
+        "d.nTran := 0.25; d.xOK := 3; d.nId := 9; a := d;",
+        "",
+    );
+    let files = [
+        ("Att.TcDUT", att.as_str()),
+        ("Int.TcDUT", ext.as_str()),
+        ("Deep.TcDUT", deeper.as_str()),
+        ("P.TcPOU", main.as_str()),
+    ];
+    let mut plc = compile_ok(&files);
+    run(&mut plc, 1);
+    assert_eq!(
+        (lit(&plc, "a.nTran"), lit(&plc, "a.xOK")),
+        ("0.25".into(), "3".into())
+    );
+    // Not the other way: a base lacks the derived structure's fields.
+    let back = pou(
+        "P",
+        "PROGRAM P\nVAR a : ST_Att; d : ST_AttDeep; END_VAR",
+        "d := a;",
+        "",
+    );
+    let e = refused(&[files[0], files[1], files[2], ("P.TcPOU", &back)]);
+    assert!(
+        e.contains("error[E301]: assignment: expected ST_AttDeep, found ST_Att"),
+        "{e}"
+    );
+}
+
+#[test]
+fn bit_strings_count_for_loops_and_size_arrays() {
+    // MAXL is declared after the array it sizes, and is a BYTE.
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR arr : ARRAY[1..MAXL] OF BOOL; i : BYTE; d : DWORD; n : INT; END_VAR\nVAR CONSTANT MAXL : BYTE := 4; END_VAR",
+        "FOR i := 1 TO MAXL DO arr[i] := TRUE; END_FOR\nFOR d := 2 TO 6 BY 2 DO n := n + 1; END_FOR",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "arr[4]"), "TRUE");
+    assert_eq!(lit(&plc, "n"), "3");
+    assert_eq!(lit(&plc, "i"), "16#5");
+}
+
+#[test]
+fn this_names_the_block_s_own_open_array_in_its_methods() {
+    let fb = pou(
+        "FB_D",
+        "FUNCTION_BLOCK FB_D\nVAR_IN_OUT arr : ARRAY[*] OF INT; END_VAR",
+        "M();",
+        &method(
+            "METHOD M : BOOL\nVAR i : INT; END_VAR",
+            "FOR i := LOWER_BOUND(THIS^.arr, 1) TO UPPER_BOUND(arr, 1) DO THIS^.arr[i] := THIS^.arr[i] + i; END_FOR",
+        ),
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR d : FB_D; a : ARRAY[0..2] OF INT; END_VAR",
+        "d(arr := a);",
+        "",
+    );
+    let mut plc = compile_ok(&[("D.TcPOU", &fb), ("P.TcPOU", &main)]);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "a[2]"), "4");
+}
+
+#[test]
+fn a_call_through_a_variable_of_unknown_type_is_reported_once() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR fbJson : FB_JsonDomParser; b : BOOL; END_VAR",
+        "b := fbJson.HasMember(1);",
+        "",
+    );
+    let e = refused(&[("P.TcPOU", &main)]);
+    assert!(
+        e.contains("error[E203]: unknown type `FB_JsonDomParser`"),
+        "{e}"
+    );
+    assert!(!e.contains("E406"), "{e}");
+}
+
+#[test]
+fn tc2_system_s_default_ads_timeout_is_five_seconds() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR t : TIME := DEFAULT_ADS_TIMEOUT; END_VAR",
+        "",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "t"), "T#5s");
+}
