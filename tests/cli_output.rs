@@ -252,3 +252,27 @@ fn strip_escapes(s: &str) -> String {
     }
     out
 }
+
+#[test]
+fn a_reader_that_stops_reading_ends_plcrun_quietly() {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    // `plcrun prog.st --cycles 1000000 | head -1`: the pipe closes after
+    // the first line; plcrun stops with the status of SIGPIPE, no panic.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_plcrun"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(["programs/alg01.il", "--cycles", "1000000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the plcrun binary runs");
+    let mut first = String::new();
+    let mut out = BufReader::new(child.stdout.take().unwrap());
+    out.read_line(&mut first).unwrap();
+    assert!(first.starts_with("cycle,time"), "{first}");
+    drop(out);
+    let done = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&done.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(done.status.code(), Some(141), "{err}");
+}

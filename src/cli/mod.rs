@@ -6,6 +6,7 @@
 mod style;
 
 mod args;
+mod broken_pipe;
 mod compare;
 mod completions;
 mod debug;
@@ -43,6 +44,7 @@ pub const EXIT_FAULT: i32 = 3;
 
 /// Parses the command line and runs the chosen command.
 pub fn main() -> i32 {
+    broken_pipe::end_quietly_on_broken_pipe();
     let words = compare::reorder(std::env::args_os().collect());
     let color = style::choice_in(&words);
     let mut command = args::Cli::command().color(style::for_clap(color));

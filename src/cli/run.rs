@@ -604,6 +604,9 @@ pub(super) fn run_with(args: &RunArgs, prepare: &mut dyn FnMut(&mut Plc)) -> i32
             sayln!("{fault}");
             EXIT_FAULT
         }
+        Err(RunError::Trace(e)) if super::broken_pipe::is_broken_pipe(&e) => {
+            return super::broken_pipe::BROKEN_PIPE_STATUS;
+        }
         Err(e @ RunError::Trace(_)) => {
             sayln!("error: {e}");
             return EXIT_USAGE;
@@ -619,16 +622,24 @@ pub(super) fn run_with(args: &RunArgs, prepare: &mut dyn FnMut(&mut Plc)) -> i32
         sayln!("error: {e}");
         return EXIT_USAGE;
     }
+    finish_trace(writer).unwrap_or(status)
+}
+
+/// Writes the end of the trace; the exit status when that fails.
+fn finish_trace<W: Write>(writer: TraceWriter<W>) -> Option<i32> {
     match writer.finish() {
         Ok(mut w) => {
             let _ = w.flush();
+            None
+        }
+        Err(e) if super::broken_pipe::is_broken_pipe(&e) => {
+            Some(super::broken_pipe::BROKEN_PIPE_STATUS)
         }
         Err(e) => {
             sayln!("error: cannot write the trace: {e}");
-            return EXIT_USAGE;
+            Some(EXIT_USAGE)
         }
     }
-    status
 }
 
 /// Unloads the program after a run that ended at a cycle boundary: its
