@@ -170,6 +170,16 @@ impl SourceMap {
         }
     }
 
+    /// The map with file `id`'s text replaced by `text`, its name, place
+    /// and encoding kept.
+    pub fn with_text(&self, id: FileId, text: impl Into<String>) -> SourceMap {
+        let mut files = self.files.clone();
+        let old = &self.files[id.0 as usize];
+        files[id.0 as usize] =
+            SourceFile::new(old.name.clone(), text).with_encoding(old.encoding());
+        SourceMap { files }
+    }
+
     /// `name:line:column` of the start of `span`.
     pub fn location(&self, span: Span) -> String {
         let file = self.file(span.file);

@@ -211,17 +211,62 @@ END_FUNCTION_BLOCK
     // A name FB_init does not declare: the call's own error.
     assert!(!errors("a : FB_A(b := 1);").is_empty());
     assert!(errors("a : FB_A(a := 1);").is_empty());
-    // In a FUNCTION (its instances live for one call) and in VAR_TEMP.
-    let in_function =
-        format!("{fb}FUNCTION F : INT\nVAR a : FB_A(a := 1); END_VAR\nF := 1;\nEND_FUNCTION\n");
-    assert_eq!(
-        error_codes(&[("f.st", &in_function)]),
-        [("E931".into(), "13:9".into())]
-    );
+    // A PROGRAM's VAR_TEMP, and a FUNCTION's input: no instance of theirs
+    // is started (a FUNCTION's VAR is, at every call: below).
     assert_eq!(
         errors("x : INT; END_VAR VAR_TEMP t : FB_A(a := 1);"),
         [("E931".into(), "3:31".into())]
     );
+    let input = format!(
+        "{fb}FUNCTION F : INT\nVAR_INPUT a : FB_A(a := 1); END_VAR\nF := 1;\nEND_FUNCTION\n"
+    );
+    assert_eq!(
+        error_codes(&[("f.st", &input)]),
+        [("E931".into(), "13:15".into())]
+    );
+}
+
+/// The instances a METHOD or a FUNCTION declares in VAR live for one
+/// call, as in CODESYS: FB_init runs at the start of every call, with the
+/// declaration's arguments (`bInitRetains` FALSE), array elements too.
+#[test]
+fn a_method_s_or_function_s_local_instance_is_started_at_every_call() {
+    let src = "
+FUNCTION_BLOCK FB_Cnt
+VAR n : INT; inits : INT; retains : BOOL; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; s : INT; END_VAR
+n := s; inits := inits + 1; retains := bInitRetains;
+END_METHOD
+n := n + 1;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_User
+VAR_OUTPUT last : INT; inits : INT; retains : BOOL; END_VAR
+METHOD M : INT
+VAR c : FB_Cnt(s := 10); arr : ARRAY[1..2] OF FB_Cnt[(s := 1), (s := 2)]; END_VAR
+c(); c(); arr[2]();
+last := c.n + arr[2].n;
+inits := c.inits + arr[1].inits + arr[2].inits;
+retains := c.retains;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION F : INT
+VAR c : FB_Cnt(s := 100); END_VAR
+c();
+F := c.n;
+END_FUNCTION
+PROGRAM Main
+VAR u : FB_User; a : INT; b : INT; f : INT; END_VAR
+u.M(); u.M(); a := u.last; b := u.inits; f := F() + F();
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 2);
+    // Each call: c from 10 to 12, arr[2] from 2 to 3; one FB_init each.
+    assert_eq!(lit(&plc, "a"), "15");
+    assert_eq!(lit(&plc, "b"), "3");
+    assert_eq!(lit(&plc, "u.retains"), "FALSE");
+    assert_eq!(lit(&plc, "f"), "202");
 }
 
 /// A block whose FB_init names it and sets a step (`fDelta`, 9 unless given).
@@ -290,16 +335,17 @@ END_PROGRAM
     run(&mut plc, 2);
     assert_eq!(lit(&plc, "t.seen"), "4");
     assert_eq!(lit(&plc, "t.name"), "'kept'");
-    let local = format!(
+    // A method's VAR_INPUT takes none.
+    let input = format!(
         "{fb}FUNCTION_BLOCK FB_U
 METHOD M : INT
-VAR inst : FB_S(sName := 'x'); END_VAR
+VAR_INPUT inst : FB_S(sName := 'x'); END_VAR
 M := inst.d;
 END_METHOD
 END_FUNCTION_BLOCK
 "
     );
-    let codes: Vec<String> = error_codes(&[("u.st", &local)])
+    let codes: Vec<String> = error_codes(&[("u.st", &input)])
         .into_iter()
         .map(|(c, _)| c)
         .collect();

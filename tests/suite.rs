@@ -318,6 +318,8 @@ mod twincat_import;
 mod twincat_library_forms;
 #[path = "twincat_pmps_forms.rs"]
 mod twincat_pmps_forms;
+#[path = "twincat_utilities.rs"]
+mod twincat_utilities;
 #[path = "typing_compat.rs"]
 mod typing_compat;
 #[path = "unions.rs"]

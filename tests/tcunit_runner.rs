@@ -292,6 +292,68 @@ END_PROGRAM";
     );
 }
 
+/// `--keep-going` in a global variable list: the variable of a library
+/// plcrun does not have is left out, not its list; the suite using the
+/// list's other variables runs, the one using the variable left out is an
+/// error, and the report names the variable.
+#[test]
+fn keep_going_leaves_out_a_global_not_its_list() {
+    let globals = "VAR_GLOBAL\n  nLimit : INT := 7;\n  jsonDoc : SJsonValue;\n  fScale : REAL := 2.5;\nEND_VAR\n";
+    let uses_limit = "
+FUNCTION_BLOCK FB_LimitTest EXTENDS FB_TestSuite
+TEST('Limit');
+AssertEquals_INT(Expected := 7, Actual := nLimit, Message := 'limit');
+AssertEquals_REAL(Expected := 2.5, Actual := fScale, Delta := 0.0, Message := 'scale');
+TEST_FINISHED();
+END_FUNCTION_BLOCK";
+    let uses_json = "
+FUNCTION_BLOCK FB_JsonTest EXTENDS FB_TestSuite
+TEST('Json');
+jsonDoc.x := 1;
+TEST_FINISHED();
+END_FUNCTION_BLOCK";
+    let prg =
+        "PROGRAM PRG_TEST\nVAR a : FB_LimitTest; b : FB_JsonTest; END_VAR\nRUN();\nEND_PROGRAM\n";
+    let mut sources = SourceMap::new();
+    for (name, text) in [
+        ("GVL.st", globals),
+        ("FB_LimitTest.st", uses_limit),
+        ("FB_JsonTest.st", uses_json),
+        ("PRG_TEST.st", prg),
+    ] {
+        sources.add(name, text);
+    }
+    let options = TestOptions {
+        keep_going: true,
+        ..TestOptions::default()
+    };
+    let report = run_tests(&sources, &options).expect("the rest compiles");
+    let verdicts: Vec<(String, TestOutcome)> = report
+        .cases
+        .iter()
+        .map(|c| (c.full_name(), c.outcome()))
+        .collect();
+    assert_eq!(
+        verdicts,
+        [
+            ("PRG_TEST.b".to_string(), TestOutcome::Errored),
+            ("PRG_TEST.a.Limit".to_string(), TestOutcome::Passed),
+        ]
+    );
+    let left: Vec<&str> = report.left_out.iter().map(|(f, _)| f.as_str()).collect();
+    assert_eq!(
+        left,
+        ["FB_JsonTest.st", "PRG_TEST.st", "GVL.st, global `jsonDoc`"]
+    );
+    assert!(
+        report.left_out[2]
+            .1
+            .starts_with("E203: unknown type `SJsonValue`"),
+        "{:?}",
+        report.left_out
+    );
+}
+
 #[test]
 fn tc2_system_s_adslogstr_writes_into_the_test_s_log() {
     // A TwinCAT file: plcrun's Tc2_System brings the message kinds.

@@ -230,3 +230,50 @@ fn tc2_system_s_default_ads_timeout_is_five_seconds() {
     run(&mut plc, 1);
     assert_eq!(lit(&plc, "t"), "T#5s");
 }
+
+#[test]
+fn a_structure_field_default_copies_a_list_s_structure_constant() {
+    // The TYPE is read before the list, which declares the constant from
+    // another one and a plain constant.
+    let att = declaration("DUT", "ST_Att", ATTENUATOR);
+    let state = declaration(
+        "DUT",
+        "ST_State",
+        "TYPE ST_State : STRUCT stAtt : ST_Att := G.cstDefault; nId : INT; END_STRUCT END_TYPE",
+    );
+    let gvl = declaration(
+        "GVL",
+        "G",
+        "{attribute 'qualified_only'}\nVAR_GLOBAL CONSTANT\n  cstDefault : ST_Att := (nTran := G.SCALE, xOK := 2);\n  SCALE : REAL := 0.5;\nEND_VAR",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR s : ST_State; f : REAL; k : UINT; END_VAR",
+        "f := s.stAtt.nTran; k := s.stAtt.xOK;",
+        "",
+    );
+    let mut plc = compile_ok(&[
+        ("Att.TcDUT", &att),
+        ("State.TcDUT", &state),
+        ("G.TcGVL", &gvl),
+        ("P.TcPOU", &main),
+    ]);
+    run(&mut plc, 1);
+    assert_eq!((lit(&plc, "f"), lit(&plc, "k")), ("0.5".into(), "2".into()));
+    // A constant that does not exist is said to be undeclared.
+    let bad = declaration(
+        "DUT",
+        "ST_State",
+        "TYPE ST_State : STRUCT stAtt : ST_Att := G.cstNone; END_STRUCT END_TYPE",
+    );
+    let e = refused(&[
+        ("Att.TcDUT", &att),
+        ("State.TcDUT", &bad),
+        ("G.TcGVL", &gvl),
+        ("P.TcPOU", &main),
+    ]);
+    assert!(
+        e.contains("error[E201]: undeclared variable `G.cstNone`"),
+        "{e}"
+    );
+}

@@ -131,7 +131,7 @@ pub fn test(mut args: TestArgs, given: &Given) -> i32 {
     }
     if !report.left_out.is_empty() {
         sayln!(
-            "note: --keep-going left out {} file(s) that do not compile, or need one that does not:",
+            "note: --keep-going left out {} file(s) or global variable(s) that do not compile, or need one that does not:",
             report.left_out.len()
         );
         for (file, why) in &report.left_out {

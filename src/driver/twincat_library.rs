@@ -3,7 +3,9 @@
 //! `MEMCPY`, `MEMMOVE`, `MEMSET`, `MEMCMP`, `DRAND`, the distributed-clock
 //! time `T_DCTIME64` and its functions, the `*_TO_HEXSTR` conversions,
 //! `F_ToLCase`, `F_ToUCase`, `GETCPUCOUNTER`, `ST_LibVersion`, the
-//! `ADSLOG_MSGTYPE_*` constants, `DEFAULT_ADS_TIMEOUT`, the task
+//! `ADSLOG_MSGTYPE_*` constants, `DEFAULT_ADS_TIMEOUT`, `FB_FormatString`
+//! with its `T_Arg` arguments (`F_INT`, `F_LREAL`, `F_STRING`...),
+//! `FB_MemRingBuffer`, the task
 //! information `_TaskInfo` with `GETCURTASKINDEX`/`GETCURTASKINDEXEX`,
 //! `IQueryInterface`,
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
@@ -177,6 +179,30 @@ mod tests {
                 "GETCURTASKINDEXEX",
                 "DEFAULT_ADS_TIMEOUT",
                 "ADSLOG_MSGTYPE",
+                "E_ArgType",
+                "T_Arg",
+                "F_BYTE",
+                "F_WORD",
+                "F_DWORD",
+                "F_LWORD",
+                "F_REAL",
+                "F_LREAL",
+                "F_SINT",
+                "F_INT",
+                "F_DINT",
+                "F_USINT",
+                "F_UINT",
+                "F_UDINT",
+                "F_STRING",
+                "F_BOOL",
+                "F_LARGE",
+                "F_ULARGE",
+                "F_BIGTYPE",
+                "plcrun_Digits",
+                "plcrun_Fixed",
+                "plcrun_FormatArg",
+                "FB_FormatString",
+                "FB_MemRingBuffer",
             ]
         );
     }

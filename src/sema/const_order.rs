@@ -115,6 +115,45 @@ pub(super) fn plain_constants(block: &VarBlock) -> Vec<usize> {
         .collect()
 }
 
+/// The declarations of a CONSTANT block whose values are structures or
+/// arrays (`cstFullBeam : ST_Beam := (nTran := 1, ...)`) and whose initial
+/// value names no variable of `variables` (the globals that are not
+/// constants): declared early too, after the plain ones, so that a
+/// structure's field default may copy one (`stBeam : ST_Beam :=
+/// GVL.cstFullBeam;` in a TYPE, CODESYS initialising the global lists
+/// first). `blocks` (type names that are blocks) are left to the rest.
+pub(super) fn value_constants(
+    block: &VarBlock,
+    variables: &std::collections::HashSet<String>,
+    blocks: &dyn Fn(&str) -> bool,
+) -> Vec<usize> {
+    use crate::syntax::ast::TypeSpec;
+    if !block.constant {
+        return Vec::new();
+    }
+    let value = |d: &crate::syntax::ast::VarDecl| {
+        let aggregate = match &d.ty {
+            TypeSpec::Named(id) => {
+                crate::elementary::ElemType::from_name(&id.name).is_none() && !blocks(&id.key())
+            }
+            TypeSpec::Array { .. } | TypeSpec::Struct { .. } => true,
+            _ => false,
+        };
+        let Some(init) = &d.init else {
+            return false;
+        };
+        let mut names = Vec::new();
+        init_names(init, &mut names);
+        aggregate
+            && d.location.is_none()
+            && d.init_args.is_none()
+            && names.iter().all(|n| !variables.contains(n))
+    };
+    (0..block.decls.len())
+        .filter(|&d| value(&block.decls[d]))
+        .collect()
+}
+
 fn init_names(init: &Initializer, out: &mut Vec<String>) {
     let mut inits = vec![init];
     let mut exprs: Vec<&Expr> = Vec::new();

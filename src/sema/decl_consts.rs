@@ -248,10 +248,18 @@ impl DeclConsts<'_> {
                 Some(ConstInit::Struct(out))
             }
             (Initializer::Expr(e), _) => {
-                if matches!(def.kind, TypeKind::Struct { .. } | TypeKind::Array { .. })
-                    && let Some(whole) = self.whole_value(e, ty, local)
-                {
-                    return Some(whole);
+                if matches!(def.kind, TypeKind::Struct { .. } | TypeKind::Array { .. }) {
+                    if let Some(whole) = self.whole_value(e, ty, local) {
+                        return Some(whole);
+                    }
+                    if let Some(name) = self.undeclared(e, local) {
+                        self.diags.error(
+                            "E201",
+                            e.span,
+                            format!("undeclared variable `{name}`: a {} is initialised from a declared variable or constant of its type", def.name),
+                        );
+                        return None;
+                    }
                 }
                 let c = self.const_value(e, ty, local)?;
                 Some(match c {
@@ -272,6 +280,27 @@ impl DeclConsts<'_> {
                 );
                 None
             }
+        }
+    }
+
+    /// The name `e` gives when it declares nothing in scope: `x` that is
+    /// no variable, `GVL.x` whose qualifier is none and `x` no global.
+    fn undeclared(&self, e: &Expr, local: Option<&IndexMap<String, VarInfo>>) -> Option<String> {
+        let known = |key: &str| {
+            local.is_some_and(|l| l.contains_key(key))
+                || self.model.globals.contains_key(key)
+                || self.model.pou_index.contains_key(key)
+                || self.model.type_ids.contains_key(key)
+        };
+        match &e.kind {
+            ExprKind::Name(id) if !known(&id.key()) => Some(id.name.clone()),
+            ExprKind::Member(base, name) => match &base.kind {
+                ExprKind::Name(q) if !known(&q.key()) && !known(&name.key()) => {
+                    Some(format!("{}.{}", q.name, name.name))
+                }
+                _ => None,
+            },
+            _ => None,
         }
     }
 

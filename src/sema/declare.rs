@@ -264,6 +264,28 @@ impl Declarer<'_> {
                 }
             }
         }
+        // Then the structure and array constants (a TYPE's field default
+        // may copy one), which may use the plain ones.
+        let variables: std::collections::HashSet<String> = units
+            .iter()
+            .flat_map(|u| &u.items)
+            .filter_map(|item| match item {
+                Item::Globals(b) if !b.constant => Some(b),
+                _ => None,
+            })
+            .flat_map(|b| &b.decls)
+            .flat_map(|d| &d.names)
+            .map(|n| n.key())
+            .collect();
+        for ((u, i), plain) in early.iter_mut() {
+            let Item::Globals(block) = &units[*u].items[*i] else {
+                continue;
+            };
+            let is_block = |key: &str| self.model.pou_index.contains_key(key);
+            let values = super::const_order::value_constants(block, &variables, &is_block);
+            self.declare_global_decls(block, &|d| values.contains(&d), false);
+            plain.extend(values);
+        }
         self.resolve_types();
         // Globals: top-level lists, their function block instances last
         // (laying one out emits its body, which may use a global the list

@@ -3,14 +3,17 @@
 //! compiles; the tests declared in the files left out are reported as
 //! errors (with the first error of their file), the others run. A TwinCAT
 //! library that references a library plcrun does not have (Beckhoff's
-//! compiled `Tc2_MC2`, say) still runs the suites that do not need it.
+//! compiled `Tc2_MC2`, say) still runs the suites that do not need it. In
+//! a global variable list only the variables whose declarations fail are
+//! left out (`blank_globals.rs`).
 
+use super::blank_globals::blank_global_declarations;
 use super::check;
 use super::discover::Found;
 use super::tcunit::Plan;
 use super::{TestCase, TestError, TestOptions};
 use crate::diagnostics::{Diagnostics, Severity};
-use crate::source::{FileId, SourceMap};
+use crate::source::{FileId, SourceMap, Span};
 use std::collections::{HashMap, HashSet};
 use std::time::Duration;
 
@@ -23,6 +26,9 @@ pub(super) struct Kept {
     /// Each file left out, by name: its first error (`code: message at
     /// file:line:col`), or the file it needed.
     pub(super) left_out: HashMap<String, String>,
+    /// Each global variable left out of its list, as `file, global
+    /// `name``, with its first error, in the order left out.
+    pub(super) left_out_globals: Vec<(String, String)>,
 }
 
 /// Leaves out, round after round, the files of `sources` with errors,
@@ -37,14 +43,17 @@ pub(super) fn leave_out_broken(
 ) -> Result<Kept, TestError> {
     let mut kept = sources.clone();
     let mut left_out: HashMap<String, String> = HashMap::new();
+    let mut left_out_globals: Vec<(String, String)> = Vec::new();
     while checked.has_errors() {
         let files = kept.files().len();
         let mut first: HashMap<FileId, String> = HashMap::new();
+        let mut errors: HashMap<FileId, Vec<Span>> = HashMap::new();
         for d in checked.iter().filter(|d| d.severity == Severity::Error) {
             if (d.span.file.0 as usize) < files {
                 first.entry(d.span.file).or_insert_with(|| {
                     format!("{}: {} at {}", d.code, d.message, kept.location(d.span))
                 });
+                errors.entry(d.span.file).or_default().push(d.span);
             }
         }
         if first.is_empty() {
@@ -53,9 +62,25 @@ pub(super) fn leave_out_broken(
                 sources: kept,
             }));
         }
-        let drop: HashSet<FileId> = first.keys().copied().collect();
-        for (id, why) in first {
-            left_out.insert(kept.file(id).name.clone(), why);
+        let mut drop: HashSet<FileId> = HashSet::new();
+        let mut ids: Vec<FileId> = first.keys().copied().collect();
+        ids.sort_by_key(|id| id.0);
+        for id in ids {
+            let why = first.remove(&id).unwrap_or_default();
+            let name = kept.file(id).name.clone();
+            let spans = errors.remove(&id).unwrap_or_default();
+            match blank_global_declarations(id, kept.file(id), &spans) {
+                Some(blanked) => {
+                    for global in &blanked.names {
+                        left_out_globals.push((format!("{name}, global `{global}`"), why.clone()));
+                    }
+                    kept = kept.with_text(id, blanked.text);
+                }
+                None => {
+                    left_out.insert(name, why);
+                    drop.insert(id);
+                }
+            }
         }
         kept = kept.without(&drop);
         checked = check::check(&kept, options, &remaining(plan, &kept))?;
@@ -64,6 +89,7 @@ pub(super) fn leave_out_broken(
         sources: kept,
         checked,
         left_out,
+        left_out_globals,
     })
 }
 

@@ -5,6 +5,7 @@
 //! as text or JUnit XML. docs/testing.md describes the convention.
 
 mod assertions;
+mod blank_globals;
 mod check;
 mod discover;
 mod junit;
@@ -159,7 +160,8 @@ pub struct TestReport {
     pub warnings: Diagnostics,
     /// The files left out because they do not compile
     /// ([`TestOptions::keep_going`]), in the order given, each with its
-    /// first error (`code: message at file:line:col`).
+    /// first error (`code: message at file:line:col`), then the global
+    /// variables left out of their lists (`file, global `name``).
     pub left_out: Vec<(String, String)>,
 }
 
@@ -324,6 +326,7 @@ pub fn run_tests_reporting(
                     .map(|w| (f.name.clone(), w.clone()))
             })
             .collect();
+        left_out.extend(kept.left_out_globals.iter().cloned());
         checked = kept.checked.clone();
         let remaining = keep_going::remaining(&suites, &kept.sources);
         let names: Vec<&str> = kept

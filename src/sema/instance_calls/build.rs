@@ -12,7 +12,7 @@ use crate::syntax::ast::{
 use crate::syntax::oop::{Method, Modifiers};
 
 /// The name of the `k`-th loop counter (no identifier can spell it).
-fn counter(k: usize) -> String {
+pub(super) fn counter(k: usize) -> String {
     format!("FB_init@i{k}")
 }
 

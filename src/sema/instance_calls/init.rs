@@ -207,20 +207,26 @@ pub(super) fn prepend_parent_init(own: &mut Method, parent: &Method) {
 pub(super) fn refuse_arguments_elsewhere(units: &[CompilationUnit], diags: &mut Diagnostics) {
     for item in units.iter().flat_map(|u| &u.items) {
         let Item::Pou(pou) = item else { continue };
+        // A method's VAR_INST lives in the instance; its VAR and VAR_TEMP,
+        // and a FUNCTION's, are started at every call (`per_call.rs`).
         let methods = pou.oop.iter().flat_map(|o| &o.methods);
-        let in_methods = methods
-            .flat_map(|m| &m.var_blocks)
-            .filter(|b| b.kind != crate::syntax::ast::VarKind::Inst);
-        let in_pou = pou
-            .var_blocks
-            .iter()
-            .filter(|b| pou.kind == PouKind::Function || !lives_with_instance(b.kind));
+        let in_methods = methods.flat_map(|m| {
+            let started = super::per_call::starts_locals(&m.name.name);
+            m.var_blocks.iter().filter(move |b| {
+                b.kind != crate::syntax::ast::VarKind::Inst
+                    && !(started && super::per_call::per_call_section(b.kind))
+            })
+        });
+        let in_pou = pou.var_blocks.iter().filter(|b| match pou.kind {
+            PouKind::Function => !super::per_call::per_call_section(b.kind),
+            _ => !lives_with_instance(b.kind),
+        });
         for d in in_pou.chain(in_methods).flat_map(|b| &b.decls) {
             if let Some(args) = &d.init_args {
                 diags.error(
                     "E931",
                     args.span,
-                    "FB_init arguments are given to the instances of a PROGRAM, a FUNCTION_BLOCK or a global variable list only (VAR, VAR_INPUT, VAR_OUTPUT, VAR_GLOBAL, a METHOD's VAR_INST)",
+                    "FB_init arguments are given to the instances a PROGRAM, a FUNCTION_BLOCK or a global variable list declares (VAR, VAR_INPUT, VAR_OUTPUT, VAR_GLOBAL) and to those a METHOD or FUNCTION declares in VAR, VAR_TEMP or VAR_INST",
                 );
             }
         }

@@ -31,9 +31,10 @@ mod build;
 mod exit;
 mod index;
 mod init;
+mod per_call;
 
 use crate::diagnostics::Diagnostics;
-use crate::syntax::ast::{CompilationUnit, Item, PouKind, Stmt, VarDecl};
+use crate::syntax::ast::{CompilationUnit, Item, Pou, PouKind, Stmt, VarDecl};
 use crate::syntax::oop::PouOop;
 use index::{Index, lives_with_instance};
 
@@ -106,6 +107,25 @@ pub(super) fn with_instance_calls(
     Some(copy)
 }
 
+/// The start of the instances a FUNCTION or the methods of a block
+/// create at every call (`per_call.rs`).
+fn start_per_call_instances(pou: &mut Pou, index: &Index, diags: &mut Diagnostics) {
+    if pou.kind == PouKind::Function {
+        per_call::start_locals(index, &mut pou.var_blocks, &mut pou.body, diags);
+        return;
+    }
+    let Some(oop) = pou.oop.as_mut() else {
+        return;
+    };
+    for m in oop
+        .methods
+        .iter_mut()
+        .filter(|m| per_call::starts_locals(&m.name.name))
+    {
+        per_call::start_locals(index, &mut m.var_blocks, &mut m.body, diags);
+    }
+}
+
 /// The declarations of an item's variable sections.
 fn declarations_of(item: &Item) -> Box<dyn Iterator<Item = &VarDecl> + '_> {
     match item {
@@ -160,6 +180,9 @@ fn add_phase(
     for (u, unit) in copy.iter_mut().enumerate() {
         for (i, item) in unit.items.iter_mut().enumerate() {
             let Item::Pou(pou) = item else { continue };
+            if phase == INIT {
+                start_per_call_instances(pou, index, diags);
+            }
             if pou.kind == PouKind::Function {
                 continue;
             }
