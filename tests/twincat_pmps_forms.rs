@@ -277,3 +277,44 @@ fn a_structure_field_default_copies_a_list_s_structure_constant() {
         "{e}"
     );
 }
+
+#[test]
+fn a_strict_enumeration_connects_to_an_in_out_of_its_base_type() {
+    // lcls-twincat-motion's tests hand a strict enumeration to a block's
+    // `VAR_IN_OUT eEnumSet : UINT`: the same memory, written through.
+    let states = declaration(
+        "DUT",
+        "E_T",
+        "{attribute 'qualified_only'}\n{attribute 'strict'}\nTYPE E_T : (Unknown := 0, OUT := 1, IN := 2) UINT; END_TYPE",
+    );
+    let fb = pou(
+        "FB_D",
+        "FUNCTION_BLOCK FB_D\nVAR_IN_OUT eEnumSet : UINT; END_VAR",
+        "eEnumSet := eEnumSet + 1;",
+        "",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR d : FB_D; e : E_T := E_T.OUT; n : UINT; END_VAR",
+        "d(eEnumSet := e); IF e = E_T.IN THEN n := 1; END_IF",
+        "",
+    );
+    let mut plc = compile_ok(&[("E.TcDUT", &states), ("D.TcPOU", &fb), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "n"), "1");
+    // An integer variable into a strict enumeration's VAR_IN_OUT stays E301.
+    let fb = pou(
+        "FB_D",
+        "FUNCTION_BLOCK FB_D\nVAR_IN_OUT eState : E_T; END_VAR",
+        "",
+        "",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR d : FB_D; k : UINT; END_VAR",
+        "d(eState := k);",
+        "",
+    );
+    let e = refused(&[("E.TcDUT", &states), ("D.TcPOU", &fb), ("P.TcPOU", &main)]);
+    assert!(e.contains("error[E301]"), "{e}");
+}

@@ -65,11 +65,12 @@ impl BodyBuilder<'_> {
     }
 
     /// A variable of an enumeration connected to a VAR_IN_OUT of its base
-    /// type, or an integer variable of that type to a VAR_IN_OUT of the
-    /// enumeration: the same memory, which CODESYS connects (W485 / W486);
-    /// never for a strict enumeration.
+    /// type (a strict one too: TwinCAT connects `eState : E_State` with
+    /// `{attribute 'strict'}` to a `VAR_IN_OUT nState : UINT`), or an
+    /// integer variable of that type to a VAR_IN_OUT of a non-strict
+    /// enumeration: the same memory, which CODESYS connects (W485 / W486).
     pub(super) fn enum_in_out(&mut self, arg: TypeId, param: TypeId, span: Span) -> bool {
-        match (self.enum_base(arg), self.enum_base(param)) {
+        match (self.any_enum_base(arg), self.enum_base(param)) {
             (Some(base), None)
                 if !self.is_enum(param) && self.types.scalar(param) == Some(base) =>
             {
