@@ -318,3 +318,53 @@ fn a_strict_enumeration_connects_to_an_in_out_of_its_base_type() {
     let e = refused(&[("E.TcDUT", &states), ("D.TcPOU", &fb), ("P.TcPOU", &main)]);
     assert!(e.contains("error[E301]"), "{e}");
 }
+
+#[test]
+fn enumerations_of_a_bit_string_base_compute_and_give_their_bits() {
+    let module = declaration(
+        "DUT",
+        "E_Module",
+        "{attribute 'qualified_only'}\nTYPE E_Module : (CHAN1 := 1, CHAN2 := 2) WORD; END_TYPE",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR e : E_Module := E_Module.CHAN2; n : WORD; b : BOOL; f : E_Module; END_VAR",
+        "n := 16#10 + ((e - 1) * 16#800); b := e.1; f.0 := TRUE;",
+        "",
+    );
+    let mut plc = compile_ok(&[("E.TcDUT", &module), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "n"), "16#810");
+    assert_eq!(lit(&plc, "b"), "TRUE");
+    assert_eq!(lit(&plc, "f"), "CHAN1");
+}
+
+#[test]
+fn another_instance_s_output_connects_to_an_in_out() {
+    let a = pou(
+        "FB_A",
+        "FUNCTION_BLOCK FB_A\nVAR_OUTPUT bOut : BOOL; END_VAR",
+        "",
+        "",
+    );
+    let b = pou(
+        "FB_B",
+        "FUNCTION_BLOCK FB_B\nVAR_IN_OUT b : BOOL; END_VAR",
+        "b := TRUE;",
+        "",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR a : FB_A; bb : FB_B; x : BOOL; END_VAR",
+        "a(); bb(b := a.bOut); x := a.bOut;",
+        "",
+    );
+    let files = [("A.TcPOU", a.as_str()), ("B.TcPOU", b.as_str())];
+    let mut plc = compile_ok(&[files[0], files[1], ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "x"), "TRUE");
+    // In IEC text it stays E412.
+    let st = "FUNCTION_BLOCK FB_A\nVAR_OUTPUT bOut : BOOL; END_VAR\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK FB_B\nVAR_IN_OUT b : BOOL; END_VAR\nb := TRUE;\nEND_FUNCTION_BLOCK\nPROGRAM P\nVAR a : FB_A; bb : FB_B; END_VAR\nbb(b := a.bOut);\nEND_PROGRAM\n";
+    let e = refused(&[("p.st", st)]);
+    assert!(e.contains("error[E412]"), "{e}");
+}

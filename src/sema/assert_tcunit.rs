@@ -66,6 +66,14 @@ impl BodyBuilder<'_> {
             s.as_ref()
                 .is_some_and(|(d, t)| d.len() == rank && *t == Some(elem))
         };
+        // An argument whose type is unknown (an array sized by a constant
+        // of a missing library) has its error already.
+        let unknown = |s: &mut Self, x: &Expr| {
+            s.probe_in(x, true, None).id() == Some(crate::ir::type_table::TypeTable::error())
+        };
+        if unknown(self, &e) || unknown(self, &a) {
+            return Val::error();
+        }
         if !fits(&se) || !fits(&sa) {
             self.diags.error(
                 E_ARRAYS,

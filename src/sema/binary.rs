@@ -43,6 +43,9 @@ impl BodyBuilder<'_> {
             return v;
         }
         let op_name = binary_name(op);
+        // An enumeration with an integer first: one of base WORD then
+        // computes as a bit string (`(eModule - 1) * 16#800`).
+        let (va, vb) = self.enum_operands(op, va, vb, span);
         if let Some(v) = self.bit_string_arith(op, &va, &vb, span) {
             return v;
         }
@@ -50,7 +53,6 @@ impl BodyBuilder<'_> {
         if let Some(v) = self.time_arith(op, &va, &vb, span) {
             return v;
         }
-        let (va, vb) = self.enum_operands(op, va, vb, span);
         let Some(common) = self.unify(va.ty(), vb.ty()) else {
             if let Some(v) = self.bit_string_compare(op, &va, &vb, span) {
                 return v;

@@ -40,8 +40,16 @@ impl DeclConsts<'_> {
     ) -> Option<i128> {
         let r = self.const_int_inner(e, local);
         if r.is_none() {
-            self.diags
-                .error("E205", e.span, "expected a constant integer expression");
+            match self.undeclared(e, local) {
+                Some(name) => self.diags.error(
+                    "E201",
+                    e.span,
+                    format!("undeclared constant `{name}` (a constant integer expression is expected here)"),
+                ),
+                None => self
+                    .diags
+                    .error("E205", e.span, "expected a constant integer expression"),
+            }
         }
         r
     }

@@ -188,7 +188,7 @@ impl BodyBuilder<'_> {
         }
     }
 
-    fn enum_to_int_warning(&mut self, from: TypeId, to: ElemType, span: Span) {
+    pub(super) fn enum_to_int_warning(&mut self, from: TypeId, to: ElemType, span: Span) {
         let from = self.types.name(from).to_string();
         self.diags.warning(
             "W485",

@@ -333,6 +333,12 @@ impl BodyBuilder<'_> {
     fn part_base(&mut self, t: TypeId, sel: PartSel) -> Option<ElemType> {
         let el = match self.types.get(t).kind {
             TypeKind::Elem(e) => Some(e),
+            // A bit of an enumeration's base integer, as TwinCAT reads
+            // and writes it (`stStatus.eRemote.0 := bRemote;`), W485.
+            TypeKind::Enum { base, .. } if self.model.codesys_files.contains(&sel.span.file) => {
+                self.enum_to_int_warning(t, base, sel.span);
+                Some(base)
+            }
             _ => None,
         };
         let Some(el) = el.filter(|e| (e.is_bit() && *e != ElemType::Bool) || e.is_int()) else {

@@ -323,9 +323,7 @@ impl BodyBuilder<'_> {
                 ) =>
             {
                 let ro = match m.kind {
-                    MemberKind::Output => {
-                        Some("outputs of a function block are written only by the block")
-                    }
+                    MemberKind::Output => Some(super::in_out_constant::FB_OUTPUT),
                     MemberKind::Step => Some("step flags are read-only"),
                     MemberKind::Action => Some("action flags are read-only"),
                     _ => b.readonly_reason,

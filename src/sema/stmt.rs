@@ -320,6 +320,8 @@ impl BodyBuilder<'_> {
         }
         let kind = self.types.get(p.ty).kind.clone();
         match kind {
+            // A target of unknown type has its error already (E203).
+            TypeKind::Error => {}
             TypeKind::Array { .. } | TypeKind::Struct { .. } => {
                 let Some(src) = self.place(value) else {
                     return;

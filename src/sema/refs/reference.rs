@@ -112,6 +112,10 @@ impl BodyBuilder<'_> {
             return;
         };
         let Some((t, RefFlavor::Reference)) = ref_parts(self.types, p.ty) else {
+            // A target whose type is unknown has its error already (E203).
+            if p.ty == crate::ir::type_table::TypeTable::error() {
+                return;
+            }
             let name = self.types.name(p.ty).to_string();
             self.diags.error(
                 "E255",
