@@ -220,6 +220,27 @@ fn check_accepts_what_the_test_runner_accepts() {
     assert!(err.contains("E201") && err.contains("TEST"), "{err}");
 }
 
+/// The report of `plcrun test --keep-going` on `files` (which do not
+/// compile whole: without it nothing runs), and each case's verdict.
+fn kept_going(files: &[(&str, &str)]) -> (plcrun::TestReport, Vec<(String, TestOutcome)>) {
+    let mut sources = SourceMap::new();
+    for (name, text) in files {
+        sources.add(*name, *text);
+    }
+    assert!(run_tests(&sources, &TestOptions::default()).is_err());
+    let options = TestOptions {
+        keep_going: true,
+        ..TestOptions::default()
+    };
+    let report = run_tests(&sources, &options).expect("the rest compiles");
+    let verdicts = report
+        .cases
+        .iter()
+        .map(|c| (c.full_name(), c.outcome()))
+        .collect();
+    (report, verdicts)
+}
+
 /// `--keep-going` (`TestOptions::keep_going`): a file that does not
 /// compile (here a block of a library plcrun does not have) is left out,
 /// then the files that needed it; the suites of the others run, the
@@ -253,26 +274,12 @@ PROGRAM PRG_TEST
 VAR fbAxis : FB_AxisTest; fbMath : FB_MathTest; END_VAR
 TcUnit.RUN();
 END_PROGRAM";
-    let mut sources = SourceMap::new();
-    for (name, text) in [
+    let (report, verdicts) = kept_going(&[
         ("FB_Axis.st", motion),
         ("FB_AxisTest.st", motion_test),
         ("FB_MathTest.st", math_test),
         ("PRG_TEST.st", prg),
-    ] {
-        sources.add(name, text);
-    }
-    assert!(run_tests(&sources, &TestOptions::default()).is_err());
-    let options = TestOptions {
-        keep_going: true,
-        ..TestOptions::default()
-    };
-    let report = run_tests(&sources, &options).expect("the rest compiles");
-    let verdicts: Vec<(String, TestOutcome)> = report
-        .cases
-        .iter()
-        .map(|c| (c.full_name(), c.outcome()))
-        .collect();
+    ]);
     assert_eq!(
         verdicts,
         [
@@ -314,25 +321,12 @@ TEST_FINISHED();
 END_FUNCTION_BLOCK";
     let prg =
         "PROGRAM PRG_TEST\nVAR a : FB_LimitTest; b : FB_JsonTest; END_VAR\nRUN();\nEND_PROGRAM\n";
-    let mut sources = SourceMap::new();
-    for (name, text) in [
+    let (report, verdicts) = kept_going(&[
         ("GVL.st", globals),
         ("FB_LimitTest.st", uses_limit),
         ("FB_JsonTest.st", uses_json),
         ("PRG_TEST.st", prg),
-    ] {
-        sources.add(name, text);
-    }
-    let options = TestOptions {
-        keep_going: true,
-        ..TestOptions::default()
-    };
-    let report = run_tests(&sources, &options).expect("the rest compiles");
-    let verdicts: Vec<(String, TestOutcome)> = report
-        .cases
-        .iter()
-        .map(|c| (c.full_name(), c.outcome()))
-        .collect();
+    ]);
     assert_eq!(
         verdicts,
         [

@@ -248,6 +248,26 @@ impl<'x> Emitter<'x> {
     }
 }
 
+/// The XML document of `text` (after a byte-order mark) and an emitter
+/// over it; `None` for malformed XML, reported in the emitter with code
+/// `malformed` at the place the parser stopped.
+pub fn open_xml<'x>(
+    file: FileId,
+    text: &'x str,
+    malformed: &'static str,
+) -> (Emitter<'x>, Option<roxmltree::Document<'x>>) {
+    let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
+    let xml = &text[base..];
+    let mut em = Emitter::new(file, xml, base);
+    match crate::syntax::plcopen::read_xml(xml) {
+        Ok(doc) => (em, Some(doc)),
+        Err((at, e)) => {
+            em.error(malformed, (at, at), format!("malformed XML: {e}"));
+            (em, None)
+        }
+    }
+}
+
 /// Deepest element nesting the importer follows (types in types, values in
 /// values): deeper input is refused instead of exhausting the stack.
 const MAX_DEPTH: usize = 200;

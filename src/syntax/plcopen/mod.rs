@@ -39,7 +39,7 @@ use crate::source::FileId;
 use crate::syntax::ast::CompilationUnit;
 use crate::syntax::construct::State;
 use crate::syntax::{il_lines, parser};
-use emit::{Emitter, elements};
+use emit::{Emitter, elements, open_xml};
 
 /// The namespace of TC6 XML 2.01 (written by the OpenPLC Editor and Beremiz).
 pub const NAMESPACE_0201: &str = "http://www.plcopen.org/xml/tc6_0201";
@@ -69,21 +69,11 @@ pub(crate) fn read_xml(xml: &str) -> Result<roxmltree::Document<'_>, (usize, Str
 /// Parses a PLCopen project into the AST. Never panics, on any input;
 /// every problem is a diagnostic pointing into `text`.
 pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUnit {
-    let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
-    let xml = &text[base..];
-    let mut em = Emitter::new(file, xml, base);
+    let (mut em, doc) = open_xml(file, text, codes::MALFORMED_XML);
     em.nested_comments = origin::written_by_codesys(text);
-    let doc = match read_xml(xml) {
-        Ok(doc) => doc,
-        Err((at, e)) => {
-            em.error(
-                codes::MALFORMED_XML,
-                (at, at),
-                format!("malformed XML: {e}"),
-            );
-            diags.extend(em.diags);
-            return CompilationUnit::default();
-        }
+    let Some(doc) = doc else {
+        diags.extend(em.diags);
+        return CompilationUnit::default();
     };
     project(&mut em, doc.root_element());
     let Emitter {

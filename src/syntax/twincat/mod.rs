@@ -24,7 +24,7 @@ use crate::syntax::ast::{CompilationUnit, Item};
 use crate::syntax::construct::State;
 use crate::syntax::il_lines::keep_il_lines;
 use crate::syntax::parser;
-use crate::syntax::plcopen::emit::{Emitter, elements};
+use crate::syntax::plcopen::emit::{Emitter, elements, open_xml};
 
 /// True when `text` is a TwinCAT object file: after an optional byte-order
 /// mark, white space and an XML declaration, its root is `<TcPlcObject`.
@@ -61,21 +61,11 @@ fn root_name(text: &str) -> Option<&str> {
 /// Parses a TwinCAT object file into the AST. Never panics, on any input;
 /// every problem is a diagnostic pointing into `text`.
 pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUnit {
-    let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
-    let xml = &text[base..];
-    let mut em = Emitter::new(file, xml, base);
+    let (mut em, doc) = open_xml(file, text, codes::MALFORMED_XML);
     em.nested_comments = true;
-    let doc = match crate::syntax::plcopen::read_xml(xml) {
-        Ok(doc) => doc,
-        Err((at, e)) => {
-            em.error(
-                codes::MALFORMED_XML,
-                (at, at),
-                format!("malformed XML: {e}"),
-            );
-            diags.extend(em.diags);
-            return CompilationUnit::default();
-        }
+    let Some(doc) = doc else {
+        diags.extend(em.diags);
+        return CompilationUnit::default();
     };
     let root = doc.root_element();
     for node in elements(root) {

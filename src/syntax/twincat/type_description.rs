@@ -16,7 +16,7 @@ use crate::source::FileId;
 use crate::syntax::ast::CompilationUnit;
 use crate::syntax::construct::State;
 use crate::syntax::parser;
-use crate::syntax::plcopen::emit::{Emitter, Range, child, elements, is_identifier};
+use crate::syntax::plcopen::emit::{Emitter, Range, child, elements, is_identifier, open_xml};
 use crate::syntax::plcopen::raw::content_range;
 use roxmltree::{Document, Node};
 use std::collections::HashSet;
@@ -88,20 +88,10 @@ pub fn narrowed(text: &str, names: &[String]) -> Option<String> {
 /// Parses a type description into its types. Never panics, on any input;
 /// every problem is a diagnostic pointing into `text`.
 pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUnit {
-    let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
-    let xml = &text[base..];
-    let mut em = Emitter::new(file, xml, base);
-    let doc = match crate::syntax::plcopen::read_xml(xml) {
-        Ok(doc) => doc,
-        Err((at, e)) => {
-            em.error(
-                codes::MALFORMED_XML,
-                (at, at),
-                format!("malformed XML: {e}"),
-            );
-            diags.extend(em.diags);
-            return CompilationUnit::default();
-        }
+    let (mut em, doc) = open_xml(file, text, codes::MALFORMED_XML);
+    let Some(doc) = doc else {
+        diags.extend(em.diags);
+        return CompilationUnit::default();
     };
     for node in data_types(&doc) {
         data_type(&mut em, node);
