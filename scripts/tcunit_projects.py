@@ -52,7 +52,12 @@ LEFT_OUT = re.compile(r"^note: --keep-going left out (\d+) file")
 def compile_column(stdout, stderr):
     left = next((m.group(1) for line in stderr.splitlines() if (m := LEFT_OUT.match(line))), None)
     if left:
-        return f"{left} files left out"
+        # The list under the note names a global as `FILE, global `x``.
+        globals_out = sum(1 for line in stderr.splitlines() if line.startswith("  ") and ", global `" in line)
+        files = int(left) - globals_out
+        if globals_out:
+            return f"{files} files and {globals_out} globals left out"
+        return f"{files} files left out"
     if any(CASE.match(line) for line in stdout.splitlines()):
         return "ok"
     usage = next((line for line in stderr.splitlines() if line.startswith("error: ")), None)
