@@ -368,3 +368,34 @@ fn another_instance_s_output_connects_to_an_in_out() {
     let e = refused(&[("p.st", st)]);
     assert!(e.contains("error[E412]"), "{e}");
 }
+
+#[test]
+fn a_string_is_indexed_by_its_bytes() {
+    // `s[i]` is the i-th byte from 0 (a WSTRING's the i-th WORD), read and
+    // written in place; past the buffer the PLC stops.
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR s : STRING(10) := 'ABC'; b0, b2, b3 : BYTE; i : INT := 1; n : INT; w : WSTRING(4) := \"xy\"; wc : WORD; END_VAR",
+        "b0 := s[0]; b2 := s[i + 1]; b3 := s[3]; s[1] := 16#7A;\nFOR i := 0 TO LEN(s) - 1 DO IF s[i] = 16#41 THEN n := n + 1; END_IF END_FOR\nwc := w[1];",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    let got: Vec<String> = ["b0", "b2", "b3", "s", "n", "wc"]
+        .iter()
+        .map(|v| lit(&plc, v))
+        .collect();
+    assert_eq!(got, ["16#41", "16#43", "16#0", "'AzC'", "1", "16#79"]);
+    let past = pou(
+        "P",
+        "PROGRAM P\nVAR s : STRING(3) := 'ABC'; b : BYTE; i : INT := 9; END_VAR",
+        "b := s[i];",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &past)]);
+    let fault = plc.run_cycle().expect_err("outside the string");
+    assert!(fault.to_string().contains("R031"), "{fault}");
+    // IEC text has no such index.
+    let st = "PROGRAM P\nVAR s : STRING := 'A'; b : BYTE; END_VAR\nb := s[0];\nEND_PROGRAM\n";
+    assert!(refused(&[("p.st", st)]).contains("error[E302]"));
+}

@@ -396,6 +396,9 @@ impl BodyBuilder<'_> {
         if self.is_open_array(b.ty) {
             return self.open_array_element(e, base, &b, indexes);
         }
+        if let Some(byte) = self.string_byte(&b, indexes, e) {
+            return byte;
+        }
         let (dims, elem) = self.array_shape(e, b.ty, indexes.len())?;
         let elem_size = self.types.size(elem);
         let vals = self.index_values(indexes)?;

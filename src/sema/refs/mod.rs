@@ -16,6 +16,7 @@ mod convert;
 mod ops;
 mod place;
 mod reference;
+mod string_bytes;
 mod types;
 
 pub(super) use reference::RefArg;

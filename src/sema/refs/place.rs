@@ -63,7 +63,7 @@ impl BodyBuilder<'_> {
 
     /// The place of an elementary value a `POINTER TO` designates: read
     /// and written by `RefLoad`/`RefStore`, which also serve byte views.
-    fn view_place(&self, r: Slot, ty: TypeId, flavor: RefFlavor) -> Option<PlaceRef> {
+    pub(super) fn view_place(&self, r: Slot, ty: TypeId, flavor: RefFlavor) -> Option<PlaceRef> {
         if flavor != RefFlavor::Pointer {
             return None;
         }
