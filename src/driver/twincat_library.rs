@@ -11,14 +11,15 @@
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
 //! written in ST by plcrun
 //! (`twincat_library.st`) and added as a source of its own when the
-//! sources hold a TwinCAT file. An item the sources declare themselves is
-//! left out: theirs wins. Warnings inside it (its `POINTER TO` is a
+//! sources hold a TwinCAT file: the items they use and what those use. An
+//! item the sources declare themselves is left out: theirs wins. Warnings inside it (its `POINTER TO` is a
 //! CODESYS extension, for instance) are not the user's and are dropped, and
 //! so are the CODESYS-extension warnings of TwinCAT files.
 
 use crate::diagnostics::{Diagnostics, Severity};
 use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::ast::Item;
+use crate::syntax::token::{Kw, Tok};
 use std::collections::HashSet;
 
 /// The name of the library's source file.
@@ -61,8 +62,112 @@ fn declared(sources: &SourceMap) -> HashSet<String> {
     names
 }
 
+/// The identifiers of `text`, upper case: every `[A-Za-z_][A-Za-z0-9_]*`
+/// run (in comments and XML markup too, which only adds names).
+fn identifiers(text: &str, into: &mut HashSet<String>) {
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i].is_ascii_alphabetic() || bytes[i] == b'_' {
+            let start = i;
+            while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
+                i += 1;
+            }
+            into.insert(text[start..i].to_ascii_uppercase());
+        } else {
+            i += 1;
+        }
+    }
+}
+
+/// The names (upper case) an item of the library declares, read from its
+/// tokens (a parse of every item took a noticeable part of a small
+/// compile): the name after `FUNCTION`, `FUNCTION_BLOCK`, `PROGRAM` or
+/// `INTERFACE`; in a `TYPE`, each type name and enumeration value; in a
+/// `VAR_GLOBAL` block, each variable. The test `declared_names_are_found`
+/// checks this against the parser.
+fn declares(tokens: &[Tok]) -> HashSet<String> {
+    let mut names = HashSet::new();
+    let (mut in_type, mut in_globals, mut depth) = (false, false, 0usize);
+    for (k, t) in tokens.iter().enumerate() {
+        let next = tokens.get(k + 1);
+        match t {
+            Tok::Kw(Kw::Type) => in_type = true,
+            Tok::Kw(Kw::EndType) => in_type = false,
+            Tok::Kw(Kw::VarGlobal) => in_globals = true,
+            Tok::Kw(Kw::EndVar) => in_globals = false,
+            Tok::LParen => depth += 1,
+            Tok::RParen => depth = depth.saturating_sub(1),
+            Tok::Kw(Kw::Function | Kw::FunctionBlock | Kw::Program | Kw::Interface) => {
+                if let Some(Tok::Ident(n)) = next {
+                    names.insert(n.to_ascii_uppercase());
+                }
+            }
+            Tok::Ident(n) => {
+                let declared = match (in_type, in_globals, depth) {
+                    (true, _, 0) | (_, true, 0) => matches!(next, Some(Tok::Colon | Tok::Comma)),
+                    (true, _, _) => matches!(next, Some(Tok::Comma | Tok::RParen | Tok::Assign)),
+                    _ => false,
+                };
+                if declared {
+                    names.insert(n.to_ascii_uppercase());
+                }
+            }
+            _ => {}
+        }
+    }
+    names
+}
+
+/// One item of the library, read once.
+struct LibraryItem {
+    /// Its name in the `(*@ITEM name *)` marker.
+    name: &'static str,
+    /// Its text, marker included.
+    text: &'static str,
+    /// The names (upper case) it declares.
+    declares: HashSet<String>,
+    /// The identifiers (upper case) its code uses.
+    uses: HashSet<String>,
+}
+
+/// The library's items, read once.
+fn catalogue() -> &'static [LibraryItem] {
+    static CATALOGUE: std::sync::OnceLock<Vec<LibraryItem>> = std::sync::OnceLock::new();
+    CATALOGUE.get_or_init(|| {
+        items()
+            .map(|(name, text)| {
+                // Its tokens: comments left aside (they name other items
+                // in prose).
+                let mut scratch = Diagnostics::new();
+                let tokens: Vec<Tok> = crate::syntax::lexer::lex(FileId(0), text, &mut scratch)
+                    .into_iter()
+                    .map(|(_, t, _)| t)
+                    .filter(|t| *t != Tok::Eol)
+                    .collect();
+                let uses = tokens
+                    .iter()
+                    .filter_map(|t| match t {
+                        Tok::Ident(n) => Some(n.to_ascii_uppercase()),
+                        _ => None,
+                    })
+                    .collect();
+                LibraryItem {
+                    name,
+                    text,
+                    declares: declares(&tokens),
+                    uses,
+                }
+            })
+            .collect()
+    })
+}
+
 /// Adds the library to `sources` when one of them is a TwinCAT file and
-/// it is not there yet.
+/// it is not there yet: the items the sources use (a name one of them
+/// declares appears in a source), then those these items use, and so on;
+/// none the sources declare themselves. An unused item costs nothing to
+/// compile, and a program without `_TaskInfo` pays nothing for it.
 pub(crate) fn add_library(sources: &mut SourceMap) {
     let files = sources.files();
     if files.iter().any(|f| f.name == LIBRARY_SOURCE)
@@ -73,9 +178,34 @@ pub(crate) fn add_library(sources: &mut SourceMap) {
         return;
     }
     let declared = declared(sources);
-    let text: String = items()
-        .filter(|(name, _)| !declared.contains(&name.to_ascii_uppercase()))
-        .map(|(name, chunk)| format!("{ITEM}{name}{}", &chunk[name.len()..]))
+    let mut used = HashSet::new();
+    for f in files {
+        identifiers(&f.text, &mut used);
+    }
+    let catalogue = catalogue();
+    let mut chosen = vec![false; catalogue.len()];
+    loop {
+        let mut grew = false;
+        for (k, item) in catalogue.iter().enumerate() {
+            if chosen[k]
+                || declared.contains(&item.name.to_ascii_uppercase())
+                || !item.declares.iter().any(|n| used.contains(n))
+            {
+                continue;
+            }
+            chosen[k] = true;
+            used.extend(item.uses.iter().cloned());
+            grew = true;
+        }
+        if !grew {
+            break;
+        }
+    }
+    let text: String = catalogue
+        .iter()
+        .zip(&chosen)
+        .filter(|(_, c)| **c)
+        .map(|(item, _)| format!("{ITEM}{}{}", item.name, &item.text[item.name.len()..]))
         .collect();
     if !text.is_empty() {
         sources.add(LIBRARY_SOURCE, text);
@@ -125,6 +255,106 @@ pub(crate) fn drop_expected_warnings(sources: &SourceMap, diags: Diagnostics) ->
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A TwinCAT file that names `names` in its body.
+    fn naming(names: &str) -> SourceMap {
+        let mut sources = SourceMap::new();
+        sources.add(
+            "P.TcPOU",
+            format!("<?xml version=\"1.0\"?><TcPlcObject><POU Name=\"P\"><Declaration><![CDATA[PROGRAM P]]></Declaration><Implementation><ST><![CDATA[(* {names} *)]]></ST></Implementation></POU></TcPlcObject>"),
+        );
+        add_library(&mut sources);
+        sources
+    }
+
+    fn library_items(sources: &SourceMap) -> Vec<String> {
+        let Some(lib) = sources.files().iter().find(|f| f.name == LIBRARY_SOURCE) else {
+            return Vec::new();
+        };
+        lib.text
+            .split(ITEM)
+            .skip(1)
+            .filter_map(|c| c.split_once(" *)").map(|(n, _)| n.trim().to_string()))
+            .collect()
+    }
+
+    #[test]
+    fn only_the_items_a_program_uses_are_added_with_what_they_use() {
+        assert!(library_items(&naming("nothing here")).is_empty());
+        // FB_FormatString brings its helpers, T_Arg, E_ArgType, MEMCPY...
+        let items = library_items(&naming("fb : FB_FormatString"));
+        for needed in [
+            "FB_FormatString",
+            "plcrun_FormatArg",
+            "T_Arg",
+            "E_ArgType",
+            "MEMCPY",
+            "T_MaxString",
+        ] {
+            assert!(
+                items.iter().any(|i| i == needed),
+                "{needed} missing from {items:?}"
+            );
+        }
+        assert!(!items.iter().any(|i| i == "_TaskInfo"), "{items:?}");
+        // An enumeration value alone brings its type.
+        assert_eq!(library_items(&naming("ARGTYPE_INT")), ["E_ArgType"]);
+    }
+
+    /// What the parser says each item declares.
+    fn parsed_declares(text: &str) -> HashSet<String> {
+        let file = crate::source::SourceFile::new(LIBRARY_SOURCE, text);
+        let unit = crate::syntax::parse_source(FileId(0), &file, &mut Diagnostics::new());
+        let mut names = HashSet::new();
+        for item in unit.items {
+            match item {
+                Item::Pou(p) => {
+                    names.insert(p.name.key());
+                }
+                Item::Types(ts) => {
+                    for t in ts {
+                        names.insert(t.name.key());
+                        if let crate::syntax::ast::TypeSpec::Enum { values, .. } = &t.ty {
+                            names.extend(values.iter().map(|(v, _)| v.key()));
+                        }
+                    }
+                }
+                Item::Interface(i) => {
+                    names.insert(i.name.key());
+                }
+                Item::Globals(b) => {
+                    names.extend(b.decls.iter().flat_map(|d| &d.names).map(|n| n.key()))
+                }
+                Item::Configuration(_) => {}
+            }
+        }
+        names
+    }
+
+    #[test]
+    fn declared_names_are_found() {
+        for item in catalogue() {
+            let parsed = parsed_declares(item.text);
+            let missing: Vec<&String> = parsed.difference(&item.declares).collect();
+            assert!(missing.is_empty(), "{}: {missing:?} not found", item.name);
+        }
+    }
+
+    #[test]
+    fn the_whole_library_compiles_without_an_error() {
+        let every: String = catalogue()
+            .iter()
+            .flat_map(|item| item.declares.iter().map(|n| format!("{n} ")))
+            .collect();
+        let sources = naming(&every);
+        assert_eq!(library_items(&sources).len(), catalogue().len());
+        let report = crate::check(&sources, &crate::CheckOptions::default());
+        assert!(
+            !report.diagnostics.has_errors(),
+            "{}",
+            report.diagnostics.render(&sources)
+        );
+    }
 
     #[test]
     fn every_item_is_named_and_the_names_are_distinct() {
