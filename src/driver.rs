@@ -100,22 +100,42 @@ pub fn load_files_with<P: AsRef<Path>>(
                 diags,
             );
         }
-        if let Some(project::PinnedTypes {
-            description: Some(description),
-            names,
-        }) = pinned
-        {
-            let bytes = read(&description)?;
-            let text = String::from_utf8_lossy(&bytes);
-            // Only the pinned types: the `.tmc` describes every type of
-            // the project, its own DUTs and the libraries' too. A file
-            // that is not XML is kept whole, for the reader to report.
-            let narrowed = crate::syntax::twincat::type_description::narrowed(&text, &names)
-                .unwrap_or_else(|| text.into_owned());
-            sources.add(description.display().to_string(), narrowed);
+        if let Some((name, text)) = pinned.map(pinned_source).transpose()?.flatten() {
+            sources.add(name, text);
         }
     }
     Ok(sources)
+}
+
+/// The type description a TwinCAT project (a folder or a `.plcproj`)
+/// pins global data types from (docs/twincat.md), as the source
+/// [`load_files_with`] adds for it: its name and its text narrowed to the
+/// pinned types. `None` when the project pins none, or when neither its
+/// `.tmc` nor a `.tsproj` above it is there.
+pub fn pinned_type_description(path: &Path) -> Result<Option<(String, String)>, LoadError> {
+    let project = project::project_files(path).map_err(|error| LoadError {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    Ok(project.pinned.map(pinned_source).transpose()?.flatten())
+}
+
+/// The source of `pinned`'s description file, narrowed to the pinned
+/// types (the `.tmc` describes every type of the project, its own DUTs and
+/// the libraries' too); a file that is not XML is kept whole, for the
+/// reader to report.
+fn pinned_source(pinned: project::PinnedTypes) -> Result<Option<(String, String)>, LoadError> {
+    let Some(description) = pinned.description else {
+        return Ok(None);
+    };
+    let bytes = std::fs::read(&description).map_err(|error| LoadError {
+        path: description.clone(),
+        error,
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    let narrowed = crate::syntax::twincat::type_description::narrowed(&text, &pinned.names)
+        .unwrap_or_else(|| text.into_owned());
+    Ok(Some((description.display().to_string(), narrowed)))
 }
 
 /// The source files `paths` stand for, in the order [`load_files_with`]

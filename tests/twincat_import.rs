@@ -562,3 +562,26 @@ fn types_pinned_from_the_type_system_are_read_from_the_tmc_or_the_tsproj() {
     );
     assert!(err.contains("Plc.tmc:4:3"), "{err}");
 }
+
+#[test]
+fn the_language_server_reads_the_pinned_types_too() {
+    use crate::support::lsp_client::LspClient;
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    stIo : ST_Io;\n    f : REAL;\nEND_VAR\n",
+        "f := stIo.fWidth;\n",
+        "",
+    );
+    let dir = project(&[
+        ("Plc/Plc.plcproj", PINNING_PROJECT),
+        ("Plc/MAIN.TcPOU", &main),
+        ("Solution.tsproj", TYPE_SYSTEM),
+    ]);
+    let file = std::path::PathBuf::from(format!("{dir}/Plc/MAIN.TcPOU"));
+    let (mut client, _) = LspClient::start(Path::new(&dir));
+    client.open(&file, &main);
+    assert_eq!(
+        client.diagnostics(&file, 0),
+        Vec::<serde_json::Value>::new()
+    );
+}

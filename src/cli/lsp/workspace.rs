@@ -8,7 +8,7 @@ use super::super::project;
 use super::super::run::check_as_cli;
 use plcrun::{
     Analysis, CheckOptions, Diagnostics, FileId, SourceEncoding, SourceMap, add_source_bytes,
-    project_files,
+    pinned_type_description, project_files,
 };
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -17,6 +17,9 @@ use std::path::{Path, PathBuf};
 pub struct Project {
     /// The source files, in compile order.
     pub files: Vec<PathBuf>,
+    /// Sources that are not files of their own: the types a TwinCAT
+    /// project pins, as [`pinned_type_description`] reads them.
+    extra: Vec<(String, String)>,
     /// How they are checked (the project file's strictness and addressing).
     options: CheckOptions,
     /// How files read from disk are decoded.
@@ -32,7 +35,13 @@ impl Project {
     /// The analysis of the project's current texts.
     pub fn analysis(&mut self, open: &HashMap<PathBuf, String>) -> &Analysis {
         if self.analysis.is_none() {
-            self.analysis = Some(analyse(&self.files, &self.options, self.encoding, open));
+            self.analysis = Some(analyse(
+                &self.files,
+                &self.extra,
+                &self.options,
+                self.encoding,
+                open,
+            ));
         }
         self.analysis.as_ref().expect("analysed above")
     }
@@ -46,9 +55,10 @@ impl Project {
     }
 }
 
-/// Reads and analyses `files`.
+/// Reads and analyses `files`, then the `extra` sources.
 fn analyse(
     files: &[PathBuf],
+    extra: &[(String, String)],
     options: &CheckOptions,
     encoding: SourceEncoding,
     open: &HashMap<PathBuf, String>,
@@ -66,6 +76,9 @@ fn analyse(
                 add_source_bytes(&mut sources, name, &bytes, encoding, &mut diags);
             }
         }
+    }
+    for (name, text) in extra {
+        sources.add(name.clone(), text.clone());
     }
     // The TcUnit form of the check fails only where there is nothing to
     // test; the plain check then says all there is to say.
@@ -135,6 +148,7 @@ impl Workspace {
     fn discover(&self, path: &Path) -> (PathBuf, Project) {
         let lone = |problem: Option<String>| Project {
             files: vec![path.to_path_buf()],
+            extra: Vec::new(),
             options: CheckOptions::default(),
             encoding: SourceEncoding::Detect,
             analysis: None,
@@ -149,6 +163,7 @@ impl Workspace {
                         let files: Vec<PathBuf> = p.sources.iter().map(|s| absolute(s)).collect();
                         let project = Project {
                             files,
+                            extra: Vec::new(),
                             options: CheckOptions {
                                 strict: reading.strict,
                                 addressing: reading.addressing,
@@ -172,6 +187,12 @@ impl Workspace {
                 if files.iter().any(|f| f == path) {
                     let project = Project {
                         files,
+                        // The types the project pins (docs/twincat.md).
+                        extra: pinned_type_description(&plcproj)
+                            .ok()
+                            .flatten()
+                            .into_iter()
+                            .collect(),
                         options: CheckOptions::default(),
                         encoding: SourceEncoding::Detect,
                         analysis: None,
