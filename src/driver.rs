@@ -48,6 +48,14 @@ impl std::error::Error for LoadError {
     }
 }
 
+/// The [`LoadError`] of an I/O error on `path`.
+fn load_error(path: &Path) -> impl FnOnce(std::io::Error) -> LoadError + '_ {
+    move |error| LoadError {
+        path: path.to_path_buf(),
+        error,
+    }
+}
+
 /// Reads every file into a source map, named by its path as given, as
 /// UTF-8: a file that is not is kept (invalid bytes replaced by U+FFFD)
 /// and reported as an `E011` diagnostic, so that its other errors are
@@ -73,25 +81,16 @@ pub fn load_files_with<P: AsRef<Path>>(
     diags: &mut Diagnostics,
 ) -> Result<SourceMap, LoadError> {
     let mut sources = SourceMap::new();
-    let read = |path: &Path| {
-        std::fs::read(path).map_err(|error| LoadError {
-            path: path.to_path_buf(),
-            error,
-        })
-    };
     for path in paths {
         let path = path.as_ref();
         let (files, pinned) = if project::is_project(path) {
-            let project = project::project_files(path).map_err(|error| LoadError {
-                path: path.to_path_buf(),
-                error,
-            })?;
+            let project = project::project_files(path).map_err(load_error(path))?;
             (project.sources, project.pinned)
         } else {
             (vec![path.to_path_buf()], None)
         };
         for file in &files {
-            let bytes = read(file)?;
+            let bytes = std::fs::read(file).map_err(load_error(file))?;
             add_source_bytes(
                 &mut sources,
                 file.display().to_string(),
@@ -113,10 +112,7 @@ pub fn load_files_with<P: AsRef<Path>>(
 /// pinned types. `None` when the project pins none, or when neither its
 /// `.tmc` nor a `.tsproj` above it is there.
 pub fn pinned_type_description(path: &Path) -> Result<Option<(String, String)>, LoadError> {
-    let project = project::project_files(path).map_err(|error| LoadError {
-        path: path.to_path_buf(),
-        error,
-    })?;
+    let project = project::project_files(path).map_err(load_error(path))?;
     Ok(project.pinned.map(pinned_source).transpose()?.flatten())
 }
 
@@ -128,10 +124,7 @@ fn pinned_source(pinned: project::PinnedTypes) -> Result<Option<(String, String)
     let Some(description) = pinned.description else {
         return Ok(None);
     };
-    let bytes = std::fs::read(&description).map_err(|error| LoadError {
-        path: description.clone(),
-        error,
-    })?;
+    let bytes = std::fs::read(&description).map_err(load_error(&description))?;
     let text = String::from_utf8_lossy(&bytes);
     let narrowed = crate::syntax::twincat::type_description::narrowed(&text, &pinned.names)
         .unwrap_or_else(|| text.into_owned());
@@ -146,10 +139,7 @@ pub fn project_files<P: AsRef<Path>>(paths: &[P]) -> Result<Vec<PathBuf>, LoadEr
     for path in paths {
         let path = path.as_ref();
         if project::is_project(path) {
-            let items = project::source_files(path).map_err(|error| LoadError {
-                path: path.to_path_buf(),
-                error,
-            })?;
+            let items = project::source_files(path).map_err(load_error(path))?;
             files.extend(items);
         } else {
             files.push(path.to_path_buf());

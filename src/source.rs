@@ -124,6 +124,25 @@ pub struct SourceMap {
     files: Vec<SourceFile>,
 }
 
+/// `text` with each of `ranges` (whole tokens, declarations or XML
+/// elements) turned into spaces, its line breaks kept, so that the rest
+/// keeps its offsets, lines and columns; `None` when a range is out of
+/// the text or cuts a character in two.
+pub(crate) fn blank_out(
+    text: &str,
+    ranges: impl IntoIterator<Item = std::ops::Range<usize>>,
+) -> Option<String> {
+    let mut bytes = text.as_bytes().to_vec();
+    for range in ranges {
+        for b in bytes.get_mut(range)? {
+            if !matches!(*b, b'\n' | b'\r') {
+                *b = b' ';
+            }
+        }
+    }
+    String::from_utf8(bytes).ok()
+}
+
 impl SourceMap {
     /// An empty map.
     pub fn new() -> SourceMap {

@@ -30,6 +30,21 @@ impl Dim {
     }
 }
 
+/// The row-major element number of `values` in an array of `dims`, if
+/// every index is inside its bounds.
+pub fn linear_index(dims: &[Dim], values: &[i128]) -> Option<u64> {
+    let mut linear: u64 = 0;
+    for (d, &v) in dims.iter().zip(values) {
+        if v < i128::from(d.lo) || v > i128::from(d.hi) {
+            return None;
+        }
+        linear = linear
+            .checked_mul(d.len())?
+            .checked_add((v - i128::from(d.lo)) as u64)?;
+    }
+    Some(linear)
+}
+
 /// How a member of a struct or POU may be used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MemberKind {
@@ -365,5 +380,20 @@ impl TypeTable {
     /// True if the table is empty (never: elementary types are always present).
     pub fn is_empty(&self) -> bool {
         self.defs.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Dim, linear_index};
+
+    #[test]
+    fn row_major_element_numbers() {
+        let dims = [Dim { lo: 1, hi: 3 }, Dim { lo: 0, hi: 1 }];
+        assert_eq!(linear_index(&dims, &[1, 0]), Some(0));
+        assert_eq!(linear_index(&dims, &[2, 1]), Some(3));
+        assert_eq!(linear_index(&dims, &[3, 1]), Some(5));
+        assert_eq!(linear_index(&dims, &[4, 0]), None);
+        assert_eq!(linear_index(&dims, &[0, 0]), None);
     }
 }

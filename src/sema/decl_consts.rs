@@ -9,7 +9,7 @@ use super::enum_qualified::Qualified;
 use super::model::{ConstInit, Model, VarInfo};
 use crate::diagnostics::Diagnostics;
 use crate::elementary::ElemType;
-use crate::ir::type_table::{RefFlavor, TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{RefFlavor, TypeId, TypeKind, TypeTable, linear_index};
 use crate::syntax::ast::{Arg, BinaryOp, Expr, ExprKind, Initializer, LiteralValue, UnaryOp};
 use indexmap::IndexMap;
 
@@ -134,11 +134,7 @@ impl DeclConsts<'_> {
         if !self.same_block.iter().any(|k| k == key) || v.location.is_some() {
             return None;
         }
-        let init = v
-            .init
-            .clone()
-            .unwrap_or_else(|| self.model.default_init(self.types, v.ty));
-        match init {
+        match self.initial(v) {
             ConstInit::Scalar(b) => Some(Const::Bits(b)),
             ConstInit::Str(s) => Some(Const::Str(s)),
             _ => None,
@@ -164,16 +160,22 @@ impl DeclConsts<'_> {
             _ => return None,
         };
         let key = e.key();
-        let (v, global) = match local.and_then(|l| l.get(&key)) {
-            Some(v) => (v, false),
-            None => (self.model.globals.get(&key)?, true),
-        };
+        let (v, global) = self.variable(&key, local)?;
         let readable = v.constant || global || self.same_block.contains(&key);
-        (v.ty == ty && readable && v.location.is_none()).then(|| {
-            v.init
-                .clone()
-                .unwrap_or_else(|| self.model.default_init(self.types, v.ty))
-        })
+        (v.ty == ty && readable && v.location.is_none()).then(|| self.initial(v))
+    }
+
+    /// The variable `key` names: the POU's own (`local`), or else a global
+    /// (then `true`).
+    fn variable<'v>(
+        &'v self,
+        key: &str,
+        local: Option<&'v IndexMap<String, VarInfo>>,
+    ) -> Option<(&'v VarInfo, bool)> {
+        match local.and_then(|l| l.get(key)) {
+            Some(v) => Some((v, false)),
+            None => Some((self.model.globals.get(key)?, true)),
+        }
     }
 
     /// Resolves an initializer against type `ty`.
@@ -600,10 +602,9 @@ impl DeclConsts<'_> {
         match &e.kind {
             ExprKind::Name(id) => {
                 let key = id.key();
-                let own = local.and_then(|l| l.get(&key));
-                let var = own.or_else(|| self.model.globals.get(&key))?;
+                let (var, global) = self.variable(&key, local)?;
                 let value = self.readable_value(&key, var).or_else(|| {
-                    let global = own.is_none() && var.location.is_none();
+                    let global = global && var.location.is_none();
                     global.then(|| init_const(&self.initial(var))).flatten()
                 })?;
                 Some((value, var.ty))
@@ -617,10 +618,9 @@ impl DeclConsts<'_> {
                     return None;
                 };
                 let key = id.key();
-                let own = local.and_then(|l| l.get(&key));
-                let var = own.or_else(|| self.model.globals.get(&key))?;
+                let (var, global) = self.variable(&key, local)?;
                 let readable = var.constant
-                    || (own.is_none() && var.location.is_none())
+                    || (global && var.location.is_none())
                     || self.same_block.contains(&key);
                 let TypeKind::Array { dims, elem } = &self.types.get(var.ty).kind else {
                     return None;
@@ -628,14 +628,11 @@ impl DeclConsts<'_> {
                 if !readable || dims.len() != index.len() {
                     return None;
                 }
-                let mut linear: u64 = 0;
-                for (d, i) in dims.iter().zip(index) {
-                    let v = self.const_int_inner(i, local)?;
-                    if v < i128::from(d.lo) || v > i128::from(d.hi) {
-                        return None;
-                    }
-                    linear = linear * d.len() + (v - i128::from(d.lo)) as u64;
-                }
+                let values: Vec<i128> = index
+                    .iter()
+                    .map(|i| self.const_int_inner(i, local))
+                    .collect::<Option<_>>()?;
+                let linear = linear_index(dims, &values)?;
                 // An array without initial values holds its element's default.
                 let values = match self.initial(var) {
                     ConstInit::Array(values) => values,

@@ -49,11 +49,11 @@ pub(super) fn blank_global_declarations(
             chosen.push(holder);
         }
     }
-    let mut bytes = file.text.as_bytes().to_vec();
     let mut names = Vec::new();
+    let mut ranges = Vec::new();
     for d in chosen {
         let start = d.span.start as usize;
-        let mut end = (d.span.end as usize).min(bytes.len());
+        let mut end = (d.span.end as usize).min(file.text.len());
         // The `;` that ends the declaration, if the span stops before it.
         let rest = &file.text[end..];
         if let Some(semi) = rest.find(|c: char| !c.is_whitespace())
@@ -61,15 +61,10 @@ pub(super) fn blank_global_declarations(
         {
             end += semi + 1;
         }
-        for b in &mut bytes[start..end] {
-            if !matches!(*b, b'\n' | b'\r') {
-                *b = b' ';
-            }
-        }
+        ranges.push(start..end);
         names.extend(d.names.iter().map(|n| n.name.clone()));
     }
-    // Whole declarations became spaces: the text stays UTF-8.
-    let text = String::from_utf8(bytes).ok()?;
+    let text = crate::source::blank_out(&file.text, ranges)?;
     Some(Blanked { text, names })
 }
 

@@ -12,7 +12,7 @@ use crate::syntax::ast::{
 use crate::syntax::oop::{Method, Modifiers};
 
 /// The name of the `k`-th loop counter (no identifier can spell it).
-pub(super) fn counter(k: usize) -> String {
+fn counter(k: usize) -> String {
     format!("FB_init@i{k}")
 }
 
@@ -121,10 +121,16 @@ fn parameters(phase: Phase, loops: usize, span: Span) -> Vec<VarBlock> {
         vec![decl(phase.flag.to_string(), "BOOL")],
     )];
     if loops > 0 {
-        let counters = (0..loops).map(|k| decl(counter(k), "DINT")).collect();
-        out.push(block(VarKind::Local, counters));
+        out.push(block(VarKind::Local, counters(loops, span)));
     }
     out
+}
+
+/// The DINT loop counters the calls over `loops` array dimensions use.
+pub(super) fn counters(loops: usize, span: Span) -> Vec<VarDecl> {
+    (0..loops)
+        .map(|k| VarDecl::simple(&counter(k), "DINT", span))
+        .collect()
 }
 
 /// The hidden FUNCTION of the global lists for `phase`.

@@ -6,7 +6,7 @@
 //! variables they use (the flag, the loop counters over arrays) declared
 //! beside the POU's own.
 
-use super::build::counter;
+use super::build::counters;
 use super::{INIT, Index, phase_calls};
 use crate::diagnostics::Diagnostics;
 use crate::syntax::ast::{Body, VarBlock, VarDecl, VarKind};
@@ -59,7 +59,7 @@ pub(super) fn start_locals(
     if !declared(INIT.flag) {
         locals.push(VarDecl::simple(INIT.flag, "BOOL", span));
     }
-    locals.extend((0..loops).map(|k| VarDecl::simple(&counter(k), "DINT", span)));
+    locals.extend(counters(loops, span));
     if !locals.is_empty() {
         blocks.push(VarBlock {
             kind: VarKind::Local,

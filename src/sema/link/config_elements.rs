@@ -7,7 +7,7 @@
 
 use super::Linker;
 use super::auto_address::Unplaced;
-use crate::ir::type_table::{Dim, TypeId, TypeKind};
+use crate::ir::type_table::{Dim, TypeId, TypeKind, linear_index};
 use crate::sema::incomplete_address::element_suffix;
 use crate::sema::model::VarInfo;
 use crate::source::Span;
@@ -123,35 +123,4 @@ impl Linker<'_> {
 /// `name[i,j]` for row-major element number `k` of an array of `dims`.
 fn element_name(name: &str, dims: &[Dim], k: u64) -> String {
     format!("{name}{}", element_suffix(dims, k))
-}
-
-/// The row-major element number of `values` in `dims`, if every index is
-/// inside its bounds.
-fn linear_index(dims: &[Dim], values: &[i128]) -> Option<u64> {
-    let mut linear: u64 = 0;
-    for (d, &v) in dims.iter().zip(values) {
-        if v < i128::from(d.lo) || v > i128::from(d.hi) {
-            return None;
-        }
-        linear = linear
-            .checked_mul(d.len())?
-            .checked_add((v - i128::from(d.lo)) as u64)?;
-    }
-    Some(linear)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::linear_index;
-    use crate::ir::type_table::Dim;
-
-    #[test]
-    fn row_major_element_numbers() {
-        let dims = [Dim { lo: 1, hi: 3 }, Dim { lo: 0, hi: 1 }];
-        assert_eq!(linear_index(&dims, &[1, 0]), Some(0));
-        assert_eq!(linear_index(&dims, &[2, 1]), Some(3));
-        assert_eq!(linear_index(&dims, &[3, 1]), Some(5));
-        assert_eq!(linear_index(&dims, &[4, 0]), None);
-        assert_eq!(linear_index(&dims, &[0, 0]), None);
-    }
 }

@@ -12,8 +12,7 @@ use crate::ir::type_table::{TypeKind, TypeTable};
 use crate::sema::body::BodyBuilder;
 use crate::sema::consts::Const;
 use crate::sema::emit::{PlaceRef, Ty, Val};
-use crate::syntax::ast::BinaryOp;
-use crate::syntax::ast::Expr;
+use crate::syntax::ast::{BinaryOp, Expr};
 
 impl BodyBuilder<'_> {
     /// The place of `base[index]` when `base` is a STRING or WSTRING of a

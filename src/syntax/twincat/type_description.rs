@@ -72,17 +72,10 @@ pub fn narrowed(text: &str, names: &[String]) -> Option<String> {
         }
         blank.push(node.range());
     }
-    let mut out = text.as_bytes().to_vec();
-    for range in blank {
-        for b in &mut out[base + range.start..base + range.end] {
-            if !matches!(*b, b'\n' | b'\r') {
-                *b = b' ';
-            }
-        }
-    }
-    // Whole elements were blanked, so every multi-byte character either
-    // survived whole or became spaces: the bytes stay UTF-8.
-    String::from_utf8(out).ok()
+    crate::source::blank_out(
+        text,
+        blank.into_iter().map(|r| base + r.start..base + r.end),
+    )
 }
 
 /// Parses a type description into its types. Never panics, on any input;
@@ -138,6 +131,12 @@ fn name(em: &mut Emitter, node: Node, owner: Node) -> bool {
         );
         return false;
     };
+    identifier(em, n)
+}
+
+/// Emits the IEC identifier element `n` holds; E874 when it holds another
+/// text.
+fn identifier(em: &mut Emitter, n: Node) -> bool {
     let text = n.text().unwrap_or("").trim();
     if !is_identifier(text) {
         em.error(
@@ -238,16 +237,7 @@ fn enumeration(em: &mut Emitter, values: &[Node], base: Option<Node>) -> bool {
             );
             return false;
         };
-        let word = text.text().unwrap_or("").trim();
-        if !is_identifier(word) {
-            em.error(
-                codes::UNDECLARABLE_TYPE,
-                em.at(text),
-                format!("`{word}` is not an IEC 61131-3 identifier"),
-            );
-            return false;
-        }
-        if !lex_text(em, text) {
+        if !identifier(em, text) {
             return false;
         }
         em.synth(":=", em.at(number));
