@@ -15,6 +15,8 @@ pub(crate) use crate::sema::CompileOptions;
 pub(crate) use crate::sema::DEFAULT_MAX_DATA_BYTES;
 use crate::source::encoding::SourceEncoding;
 use crate::source::{FileId, SourceMap};
+use crate::syntax::twincat::type_description;
+use std::collections::HashSet;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -81,13 +83,17 @@ pub fn load_files_with<P: AsRef<Path>>(
     diags: &mut Diagnostics,
 ) -> Result<SourceMap, LoadError> {
     let mut sources = SourceMap::new();
+    let mut events = HashSet::new();
     for path in paths {
         let path = path.as_ref();
-        let (files, pinned) = if project::is_project(path) {
+        let (files, descriptions) = if project::is_project(path) {
             let project = project::project_files(path).map_err(load_error(path))?;
-            (project.sources, project.pinned)
+            (project.sources, project.descriptions)
         } else {
-            (vec![path.to_path_buf()], None)
+            (
+                vec![path.to_path_buf()],
+                project::TypeDescriptions::default(),
+            )
         };
         for file in &files {
             let bytes = std::fs::read(file).map_err(load_error(file))?;
@@ -99,36 +105,50 @@ pub fn load_files_with<P: AsRef<Path>>(
                 diags,
             );
         }
-        if let Some((name, text)) = pinned.map(pinned_source).transpose()?.flatten() {
+        for (name, text) in description_sources(&descriptions, &mut events)? {
             sources.add(name, text);
         }
     }
     Ok(sources)
 }
 
-/// The type description a TwinCAT project (a folder or a `.plcproj`)
-/// pins global data types from (docs/twincat.md), as the source
-/// [`load_files_with`] adds for it: its name and its text narrowed to the
-/// pinned types. `None` when the project pins none, or when neither its
-/// `.tmc` nor a `.tsproj` above it is there.
-pub fn pinned_type_description(path: &Path) -> Result<Option<(String, String)>, LoadError> {
+/// The sources a TwinCAT project (a folder or a `.plcproj`) adds from its
+/// type descriptions (docs/twincat.md), as [`load_files_with`] adds them:
+/// each description's name and its text narrowed to the global data types
+/// the project pins and to the event classes of `TC_EVENTS`. Empty when
+/// the project pins nothing and describes no event class.
+pub fn type_description_sources(path: &Path) -> Result<Vec<(String, String)>, LoadError> {
     let project = project::project_files(path).map_err(load_error(path))?;
-    Ok(project.pinned.map(pinned_source).transpose()?.flatten())
+    description_sources(&project.descriptions, &mut HashSet::new())
 }
 
-/// The source of `pinned`'s description file, narrowed to the pinned
-/// types (the `.tmc` describes every type of the project, its own DUTs and
-/// the libraries' too); a file that is not XML is kept whole, for the
-/// reader to report.
-fn pinned_source(pinned: project::PinnedTypes) -> Result<Option<(String, String)>, LoadError> {
-    let Some(description) = pinned.description else {
-        return Ok(None);
-    };
-    let bytes = std::fs::read(&description).map_err(load_error(&description))?;
-    let text = String::from_utf8_lossy(&bytes);
-    let narrowed = crate::syntax::twincat::type_description::narrowed(&text, &pinned.names)
-        .unwrap_or_else(|| text.into_owned());
-    Ok(Some((description.display().to_string(), narrowed)))
+/// The narrowed sources of `descriptions`: the primary one keeps the
+/// pinned types, each keeps the event classes no earlier one declared
+/// (`events`, upper case, across the projects of one load). A file that
+/// keeps nothing is left out; one that is not XML is kept whole when types
+/// are pinned from it, for the reader to report.
+fn description_sources(
+    descriptions: &project::TypeDescriptions,
+    events: &mut HashSet<String>,
+) -> Result<Vec<(String, String)>, LoadError> {
+    let primary = descriptions
+        .primary
+        .iter()
+        .map(|p| (p, &descriptions.pinned[..]));
+    let others = descriptions.others.iter().map(|p| (p, &[][..]));
+    let mut out = Vec::new();
+    for (path, pinned) in primary.chain(others) {
+        let bytes = std::fs::read(path).map_err(load_error(path))?;
+        let text = String::from_utf8_lossy(&bytes);
+        let kept = match type_description::narrowed(&text, pinned, events) {
+            Some((_, 0)) => continue,
+            Some((narrowed, _)) => narrowed,
+            None if pinned.is_empty() => continue,
+            None => text.into_owned(),
+        };
+        out.push((path.display().to_string(), kept));
+    }
+    Ok(out)
 }
 
 /// The source files `paths` stand for, in the order [`load_files_with`]

@@ -91,6 +91,77 @@ fn a_property_through_an_interface_dispatches_on_the_instance() {
     assert_eq!(lit(&plc, "P.m.rpm"), "40.0");
 }
 
+/// A message whose entry is a structure and whose arguments are another
+/// object behind an interface, as Tc3_EventLogger's `FB_TcMessage`
+/// (`msg.ipArguments.Clear()`, `itf.stEventEntry`).
+const MESSAGES: &str = "
+TYPE Entry : STRUCT id : INT; level : INT; END_STRUCT END_TYPE
+INTERFACE IArgs
+  METHOD Add : IArgs
+    VAR_INPUT n : INT; END_VAR
+  END_METHOD
+  PROPERTY Sum : INT
+    GET END_GET
+  END_PROPERTY
+END_INTERFACE
+INTERFACE IMessage
+  PROPERTY Info : Entry
+    GET END_GET
+  END_PROPERTY
+  PROPERTY Args : IArgs
+    GET END_GET
+  END_PROPERTY
+END_INTERFACE
+FUNCTION_BLOCK ArgList IMPLEMENTS IArgs
+  VAR total : INT; END_VAR
+  METHOD Add : IArgs
+    VAR_INPUT n : INT; END_VAR
+    total := total + n;
+    Add := THIS^;
+  END_METHOD
+  PROPERTY Sum : INT
+    GET Sum := total; END_GET
+  END_PROPERTY
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Message IMPLEMENTS IMessage
+  VAR e : Entry := (id := 7, level := 2); list : ArgList; END_VAR
+  PROPERTY Info : Entry
+    GET Info := e; END_GET
+  END_PROPERTY
+  PROPERTY Args : IArgs
+    GET Args := list; END_GET
+  END_PROPERTY
+END_FUNCTION_BLOCK
+FUNCTION Level : INT
+  VAR_INPUT x : Entry; END_VAR
+  Level := x.level;
+END_FUNCTION
+";
+
+#[test]
+fn a_property_of_a_structure_or_an_interface_is_used_where_a_variable_is() {
+    let src = program(
+        MESSAGES,
+        "m : Message; r : REFERENCE TO Message; i : IMessage; copy : Entry; id, lv, viaRef, sum : INT;",
+        "i := m; r REF= m;\n\
+         copy := i.Info; id := i.Info.id; lv := Level(i.Info);\n\
+         m.Args.Add(1);\n\
+         r.Args.Add(2).Add(3);\n\
+         viaRef := r.Args.Add(4).Sum;\n\
+         sum := i.Args.Sum;",
+    );
+    let plc = plc::run_once(&src);
+    assert_eq!(lit(&plc, "P.copy.level"), "2");
+    assert_eq!(lit(&plc, "P.id"), "7");
+    assert_eq!(lit(&plc, "P.lv"), "2");
+    assert_eq!(
+        lit(&plc, "P.viaRef"),
+        "10",
+        "1 + 2 + 3 + 4, chained through the interface"
+    );
+    assert_eq!(lit(&plc, "P.sum"), "10");
+}
+
 #[test]
 fn inside_its_fb_a_property_is_used_by_name_and_through_this() {
     let src = program(

@@ -312,6 +312,8 @@ mod test_runner_enums;
 #[path = "timer_pt_changes.rs"]
 mod timer_pt_changes;
 #[cfg(feature = "cli")]
+#[path = "twincat_event_logger.rs"]
+mod twincat_event_logger;
 #[path = "twincat_import.rs"]
 mod twincat_import;
 #[path = "twincat_library_forms.rs"]

@@ -436,3 +436,35 @@ fn an_enumeration_connects_to_an_in_out_of_its_base_type_and_isvalidref_takes_me
     run(&mut plc, 1);
     assert_eq!(lit(&plc, "e"), "IN");
 }
+
+#[test]
+fn an_initial_duration_adds_and_subtracts_constant_durations() {
+    // lcls-twincat-general's circuit-breaker suite:
+    // `tTrickle : TON := (PT := GVL_Logger.nTrickleTripTime + T#1s);`.
+    let list = declaration(
+        "GVL",
+        "GVL_Logger",
+        "{attribute 'qualified_only'}\nVAR_GLOBAL CONSTANT\n  nTrip : TIME := T#10S;\n  nLong : LTIME := LTIME#1H;\nEND_VAR",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  t : TON := (PT := GVL_Logger.nTrip + T#1S);\n  u : TIME := GVL_Logger.nTrip - T#250MS + T#1M;\n  l : LTIME := GVL_Logger.nLong - LTIME#1M;\n  pt : TIME;\nEND_VAR",
+        "pt := t.PT;",
+        "",
+    );
+    let mut plc = compile_ok(&[("GVL_Logger.TcGVL", &list), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(
+        [lit(&plc, "pt"), lit(&plc, "u"), lit(&plc, "l")],
+        ["T#11s", "T#1m9s750ms", "LT#59m"]
+    );
+    // A duration from anything but durations is still refused.
+    let bad = pou(
+        "P",
+        "PROGRAM P\nVAR u : TIME := GVL_Logger.nTrip * 2; END_VAR",
+        "",
+        "",
+    );
+    let err = refused(&[("GVL_Logger.TcGVL", &list), ("P.TcPOU", &bad)]);
+    assert!(err.contains("E205"), "{err}");
+}

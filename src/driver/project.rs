@@ -13,7 +13,9 @@
 //! - A project that pins global data types of the TwinCAT type system
 //!   (`<PinnedGlobalDataType Include="ST_X_IO"/>`) finds them in its `.tmc`
 //!   (beside the `.plcproj`, named like it) or else in the solution's
-//!   `.tsproj` (the folder above): [`PinnedTypes`].
+//!   `.tsproj` (the folder above); the event classes of `TC_EVENTS` are
+//!   read from those two and the `.tsproj`'s additional `.tmc` files
+//!   (`<AdditionalTmcFile>`): [`TypeDescriptions`].
 
 use std::io;
 use std::path::{Path, PathBuf};
@@ -40,23 +42,29 @@ fn has_extension(path: &Path, exts: &[&str]) -> bool {
         .is_some_and(|e| exts.iter().any(|x| e.eq_ignore_ascii_case(x)))
 }
 
-/// What a project is read from: its source files, and where its pinned
-/// types are described.
+/// What a project is read from: its source files, and where the types it
+/// takes from the TwinCAT type system are described.
 pub(crate) struct ProjectFiles {
     /// The source files, in the project's order.
     pub(crate) sources: Vec<PathBuf>,
-    /// The pinned global data types, if the project pins any.
-    pub(crate) pinned: Option<PinnedTypes>,
+    /// Its type descriptions (empty for a folder of sources).
+    pub(crate) descriptions: TypeDescriptions,
 }
 
-/// The global data types a `.plcproj` pins from the type system, and the
-/// file that describes them (`None` when neither the project's `.tmc` nor a
-/// `.tsproj` above it is there: the types are then unknown where used).
-pub(crate) struct PinnedTypes {
-    /// The `.tmc` or `.tsproj` holding their `<DataType>`s.
-    pub(crate) description: Option<PathBuf>,
-    /// Their names, as the `.plcproj` lists them.
-    pub(crate) names: Vec<String>,
+/// The type descriptions of a `.plcproj`: the global data types it pins
+/// from the type system, and the files that describe them and the event
+/// classes. A file named here may be missing: it is then left out (a
+/// pinned type is unknown where used).
+#[derive(Default)]
+pub(crate) struct TypeDescriptions {
+    /// The `.tmc` beside the project, else the `.tsproj` above it: the
+    /// pinned types are read from it.
+    pub(crate) primary: Option<PathBuf>,
+    /// The files read for event classes only: the `.tsproj` when the
+    /// `.tmc` is the primary, then the `.tsproj`'s additional `.tmc` files.
+    pub(crate) others: Vec<PathBuf>,
+    /// The pinned types' names, as the `.plcproj` lists them.
+    pub(crate) pinned: Vec<String>,
 }
 
 /// The source files `path` (a folder or a `.plcproj`) stands for.
@@ -88,7 +96,7 @@ pub(crate) fn project_files(path: &Path) -> io::Result<ProjectFiles> {
             sources.sort();
             Ok(ProjectFiles {
                 sources,
-                pinned: None,
+                descriptions: TypeDescriptions::default(),
             })
         }
         _ => {
@@ -163,24 +171,38 @@ fn project_items(project: &Path) -> io::Result<ProjectFiles> {
         .filter_map(|n| n.attribute("Include"))
         .map(|name| name.trim().to_string())
         .collect();
-    let pinned = (!names.is_empty()).then(|| PinnedTypes {
-        description: type_description(project),
-        names,
-    });
     Ok(ProjectFiles {
         sources: files,
-        pinned,
+        descriptions: type_descriptions(project, names),
     })
 }
 
-/// Where the types a `.plcproj` pins are described: its `.tmc` (TwinCAT
-/// writes it beside the project, with the project's name), else the one
-/// `.tsproj` of the folder above (the solution's type system).
-fn type_description(project: &Path) -> Option<PathBuf> {
+/// Where a `.plcproj`'s types are described: its `.tmc` (TwinCAT writes it
+/// beside the project, with the project's name), the one `.tsproj` of the
+/// folder above (the solution's type system), and the additional `.tmc`
+/// files that `.tsproj` names (event classes are often kept there).
+fn type_descriptions(project: &Path, pinned: Vec<String>) -> TypeDescriptions {
     let tmc = project.with_extension("tmc");
-    if tmc.is_file() {
-        return Some(tmc);
+    let tsproj = solution(project);
+    let mut others: Vec<PathBuf> = Vec::new();
+    let primary = if tmc.is_file() {
+        others.extend(tsproj.clone());
+        Some(tmc)
+    } else {
+        tsproj.clone()
+    };
+    if let Some(ts) = &tsproj {
+        others.extend(additional_tmc_files(ts));
     }
+    TypeDescriptions {
+        primary,
+        others,
+        pinned,
+    }
+}
+
+/// The one `.tsproj` of the folder above a `.plcproj`.
+fn solution(project: &Path) -> Option<PathBuf> {
     let above = project.parent()?.parent()?;
     let mut found = std::fs::read_dir(above)
         .ok()?
@@ -188,4 +210,22 @@ fn type_description(project: &Path) -> Option<PathBuf> {
         .filter(|p| has_extension(p, &["tsproj"]));
     let first = found.next()?;
     found.next().is_none().then_some(first)
+}
+
+/// The files a `.tsproj` names as `<AdditionalTmcFile File="X.tmc"/>`,
+/// relative to its folder, that are there.
+fn additional_tmc_files(tsproj: &Path) -> Vec<PathBuf> {
+    let Ok(text) = std::fs::read_to_string(tsproj) else {
+        return Vec::new();
+    };
+    let Ok(doc) = crate::syntax::plcopen::read_xml(text.trim_start_matches('\u{FEFF}')) else {
+        return Vec::new();
+    };
+    let folder = tsproj.parent().unwrap_or(Path::new(""));
+    doc.descendants()
+        .filter(|n| n.has_tag_name("AdditionalTmcFile"))
+        .filter_map(|n| n.attribute("File"))
+        .map(|f| folder.join(f.replace('\\', "/")))
+        .filter(|p| p.is_file())
+        .collect()
 }

@@ -559,6 +559,24 @@ impl DeclConsts<'_> {
                     .map(Const::Bits)
                     .ok_or(("E305", format!("constant overflows {elem}")))
             }
+            // A duration from durations (`PT := GVL.tBase + T#1S`).
+            ExprKind::Binary(op @ (BinaryOp::Add | BinaryOp::Sub), a, b)
+                if elem.family() == crate::elementary::Family::Duration =>
+            {
+                let x = self.const_scalar(a, elem, local)?;
+                let y = self.const_scalar(b, elem, local)?;
+                let (Const::Bits(x), Const::Bits(y)) = (x, y) else {
+                    return Err(("E205", "not a constant expression".into()));
+                };
+                let (x, y) = (slot_to_int(x, elem), slot_to_int(y, elem));
+                let r = match op {
+                    BinaryOp::Add => x.checked_add(y),
+                    _ => x.checked_sub(y),
+                };
+                r.and_then(|v| int_to_slot(v, elem))
+                    .map(Const::Bits)
+                    .ok_or(("E305", format!("constant overflows {elem}")))
+            }
             ExprKind::Binary(op, a, b) if elem.is_real() => {
                 let x = self.const_scalar(a, elem, local)?;
                 let y = self.const_scalar(b, elem, local)?;

@@ -94,7 +94,10 @@ impl BodyBuilder<'_> {
             ExprKind::Paren(x) => self.place(x),
             ExprKind::Name(id) => self.place_name(id),
             ExprKind::Direct(a) => self.place_direct(a),
-            ExprKind::Member(base, name) => self.place_member(base, name),
+            ExprKind::Member(base, name) => match self.property_get_call(e) {
+                Some(get) => self.call_place(&get),
+                None => self.place_member(base, name),
+            },
             ExprKind::Index(base, indexes) => self.place_index(e, base, indexes),
             ExprKind::Call(call) => self.call_place(call),
             ExprKind::Deref(r) => self.place_deref(r),

@@ -8,7 +8,7 @@ use super::super::project;
 use super::super::run::check_as_cli;
 use plcrun::{
     Analysis, CheckOptions, Diagnostics, FileId, SourceEncoding, SourceMap, add_source_bytes,
-    pinned_type_description, project_files,
+    project_files, type_description_sources,
 };
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -17,8 +17,9 @@ use std::path::{Path, PathBuf};
 pub struct Project {
     /// The source files, in compile order.
     pub files: Vec<PathBuf>,
-    /// Sources that are not files of their own: the types a TwinCAT
-    /// project pins, as [`pinned_type_description`] reads them.
+    /// Sources that are not files of their own: the types and event
+    /// classes a TwinCAT project takes from its type descriptions, as
+    /// [`type_description_sources`] reads them.
     extra: Vec<(String, String)>,
     /// How they are checked (the project file's strictness and addressing).
     options: CheckOptions,
@@ -187,12 +188,9 @@ impl Workspace {
                 if files.iter().any(|f| f == path) {
                     let project = Project {
                         files,
-                        // The types the project pins (docs/twincat.md).
-                        extra: pinned_type_description(&plcproj)
-                            .ok()
-                            .flatten()
-                            .into_iter()
-                            .collect(),
+                        // The types the project pins and its event
+                        // classes (docs/twincat.md).
+                        extra: type_description_sources(&plcproj).unwrap_or_default(),
                         options: CheckOptions::default(),
                         encoding: SourceEncoding::Detect,
                         analysis: None,

@@ -107,6 +107,7 @@ impl BodyBuilder<'_> {
                         .map(|m| m.ty),
                     _ => None,
                 }
+                .or_else(|| self.call_type(&self.property_get_call(e)?))
             }
             ExprKind::Index(b, _) => {
                 match &self.types.get(self.designated(self.static_type(b)?)).kind {

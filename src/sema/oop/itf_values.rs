@@ -213,7 +213,7 @@ impl BodyBuilder<'_> {
             }
             ExprKind::Member(base, m) if is_this(base) => (self.oop.as_ref()?.fb.clone(), m),
             ExprKind::Member(base, m) => {
-                let bt = self.static_type(base)?;
+                let bt = self.designated(self.static_type(base)?);
                 if let Some(itf) = self.interface_of(bt) {
                     let info = &model.oop.interfaces[&itf];
                     let im = info.methods.get(&m.key())?;

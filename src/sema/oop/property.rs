@@ -182,6 +182,24 @@ impl BodyBuilder<'_> {
         })
     }
 
+    /// The call of the GET accessor of the property `e` names, if it names
+    /// one that has a GET: so that a property read where storage is needed
+    /// (a structure's field `itf.P.a`, a structure copied `s := itf.P;`,
+    /// a method of the interface it returns `fb.ipArgs.Clear()`) goes
+    /// through the paths of a method's result.
+    pub(in crate::sema) fn property_get_call(&self, e: &Expr) -> Option<Call> {
+        if self.model.oop.is_empty() || !matches!(e.kind, ExprKind::Name(_) | ExprKind::Member(..))
+        {
+            return None;
+        }
+        let p = self.property_use(e).filter(|p| p.get)?;
+        Some(Call {
+            callee: Box::new(p.callee(true)),
+            args: Vec::new(),
+            span: e.span,
+        })
+    }
+
     /// A property read in an expression (`None`: `e` is no property).
     pub(in crate::sema) fn property_read(&mut self, e: &Expr) -> Option<Val> {
         if self.model.oop.is_empty() || !matches!(e.kind, ExprKind::Name(_) | ExprKind::Member(..))

@@ -9,6 +9,15 @@
 //! (`<EnumInfo>`s over a `<BaseType>`) or an alias (`<BaseType>`, with
 //! `<ArrayInfo>` for an array). The bit sizes and offsets are TwinCAT's
 //! layout and are not needed: plcrun lays the type out itself.
+//!
+//! A `<DataType>` with `<EventId>`s is an event class of the TwinCAT
+//! EventLogger; the PLC sees it as `TC_EVENTS.<class>.<event>`, a
+//! `TcEventEntry` (the class's GUID, the event's number and severity).
+//! The reader declares, for class `C`, a structure `TC_EVENTS_C` of one
+//! `TcEventEntry` per event, initialised from the description, and a
+//! global constant `C` of it: `TC_EVENTS.C.E` is that global named with
+//! its list, as any global may be (plcrun's TwinCAT library declares
+//! `TcEventEntry`).
 
 use super::codes;
 use crate::diagnostics::Diagnostics;
@@ -43,13 +52,35 @@ fn type_name<'a>(node: Node<'a, '_>) -> Option<&'a str> {
     child(node, "Name").and_then(|n| n.text()).map(str::trim)
 }
 
+/// True for an event class: a `<DataType>` with `<EventId>`s.
+fn is_event_class(node: Node) -> bool {
+    child(node, "EventId").is_some()
+}
+
+/// The names of plcrun's TwinCAT library a description's text needs
+/// declared without naming them: the type of an event (its event classes
+/// are structures of `TcEventEntry`).
+pub fn library_names(text: &str) -> &'static [&'static str] {
+    if text.contains("<EventId>") {
+        &["TcEventEntry"]
+    } else {
+        &[]
+    }
+}
+
 /// `text` with every `<DataType>` blanked out (spaces, line breaks kept)
 /// except the current version of each type named in `names` (compared
-/// ignoring case): so the file declares exactly the pinned types, and
-/// every position in it is still the file's own. A type system keeps old
+/// ignoring case) and of each event class not in `events` (upper case;
+/// those kept are added): so the file declares exactly those, and every
+/// position in it is still the file's own. A type system keeps old
 /// versions of a type beside the new one; the one no other `<Hides>` is
-/// current. `None` when `text` is not well-formed XML.
-pub fn narrowed(text: &str, names: &[String]) -> Option<String> {
+/// current. Returns the text and how many types it keeps; `None` when
+/// `text` is not well-formed XML.
+pub fn narrowed(
+    text: &str,
+    names: &[String],
+    events: &mut HashSet<String>,
+) -> Option<(String, usize)> {
     let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
     let doc = crate::syntax::plcopen::read_xml(&text[base..]).ok()?;
     let wanted: HashSet<String> = names.iter().map(|n| n.to_ascii_uppercase()).collect();
@@ -67,15 +98,21 @@ pub fn narrowed(text: &str, names: &[String]) -> Option<String> {
             .and_then(|n| n.attribute("GUID"))
             .map(str::to_ascii_uppercase);
         let current = guid.is_none_or(|g| !hidden.contains(&g));
-        if wanted.contains(&name) && current && taken.insert(name) {
-            continue;
+        let keep = if is_event_class(node) {
+            current && !name.is_empty() && events.insert(name)
+        } else {
+            wanted.contains(&name) && current && taken.insert(name)
+        };
+        if !keep {
+            blank.push(node.range());
         }
-        blank.push(node.range());
     }
-    crate::source::blank_out(
+    let kept = data_types(&doc).count() - blank.len();
+    let narrowed = crate::source::blank_out(
         text,
         blank.into_iter().map(|r| base + r.start..base + r.end),
-    )
+    )?;
+    Some((narrowed, kept))
 }
 
 /// Parses a type description into its types. Never panics, on any input;
@@ -87,7 +124,11 @@ pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUn
         return CompilationUnit::default();
     };
     for node in data_types(&doc) {
-        data_type(&mut em, node);
+        if is_event_class(node) {
+            event_class(&mut em, node);
+        } else {
+            data_type(&mut em, node);
+        }
     }
     let Emitter {
         toks, diags: found, ..
@@ -194,6 +235,110 @@ fn data_type(em: &mut Emitter, node: Node) {
     if ok {
         em.synth("; END_TYPE", em.end_of(node));
     }
+}
+
+/// An event class `C`: `TYPE TC_EVENTS_C : STRUCT E : TcEventEntry :=
+/// (...); ... END_STRUCT END_TYPE` and `VAR_GLOBAL CONSTANT C :
+/// TC_EVENTS_C; END_VAR`, one field per `<EventId>`: its `<Name>` with
+/// the event's number in its `Id` attribute, and its `<Severity>`
+/// (Verbose when it has none).
+fn event_class(em: &mut Emitter, node: Node) {
+    let Some(name_node) = child(node, "Name") else {
+        em.error(codes::MISSING, em.at(node), "`<DataType>` has no `<Name>`");
+        return;
+    };
+    let class = name_node.text().unwrap_or("").trim();
+    if !is_identifier(class) {
+        em.error(
+            codes::UNDECLARABLE_TYPE,
+            em.at(name_node),
+            format!("`{class}` is not an IEC 61131-3 identifier"),
+        );
+        return;
+    }
+    let Some(guid) = guid_value(name_node.attribute("GUID").unwrap_or("")) else {
+        em.error(
+            codes::UNDECLARABLE_TYPE,
+            em.at(name_node),
+            format!("event class `{class}` has no GUID of the form {{XXXXXXXX-XXXX-XXXX-XXXX-XXXXXXXXXXXX}}"),
+        );
+        return;
+    };
+    em.synth(&format!("TYPE TC_EVENTS_{class} : STRUCT"), em.at(node));
+    for event in elements(node).filter(|c| c.has_tag_name("EventId")) {
+        let Some(n) = child(event, "Name") else {
+            em.error(codes::MISSING, em.at(event), "`<EventId>` has no `<Name>`");
+            return;
+        };
+        let Some(id) = n.attribute("Id").and_then(|i| i.trim().parse::<u32>().ok()) else {
+            em.error(
+                codes::UNDECLARABLE_TYPE,
+                em.at(n),
+                "an event's `<Name>` needs its number in an `Id` attribute (`<Name Id=\"0\">`)",
+            );
+            return;
+        };
+        let severity = child(event, "Severity")
+            .and_then(|s| s.text())
+            .map(str::trim)
+            .unwrap_or("Verbose");
+        if !SEVERITIES.iter().any(|s| s.eq_ignore_ascii_case(severity)) {
+            let range = child(event, "Severity").map_or(em.at(event), |s| em.at(s));
+            em.error(
+                codes::UNDECLARABLE_TYPE,
+                range,
+                format!(
+                    "`{severity}` is not a severity (one of {})",
+                    SEVERITIES.join(", ")
+                ),
+            );
+            return;
+        }
+        if !identifier(em, n) {
+            return;
+        }
+        em.synth(
+            &format!(
+                ": TcEventEntry := (uuidEventClass := {guid}, nEventId := {id}, eSeverity := TcEventSeverity.{severity});"
+            ),
+            em.end_of(event),
+        );
+    }
+    em.synth("END_STRUCT END_TYPE", em.end_of(node));
+    em.synth(
+        &format!("VAR_GLOBAL CONSTANT {class} : TC_EVENTS_{class}; END_VAR"),
+        em.end_of(node),
+    );
+}
+
+/// Tc3_EventLogger's severities (`TcEventSeverity`).
+const SEVERITIES: [&str; 5] = ["Verbose", "Info", "Warning", "Error", "Critical"];
+
+/// A GUID written `{XXXXXXXX-XXXX-XXXX-XXXX-XXXXXXXXXXXX}` as the
+/// initial value of a `GUID` structure.
+fn guid_value(text: &str) -> Option<String> {
+    let hex = text.trim().trim_start_matches('{').trim_end_matches('}');
+    let parts: Vec<&str> = hex.split('-').collect();
+    let widths = [8, 4, 4, 4, 12];
+    if parts.len() != 5
+        || parts
+            .iter()
+            .zip(widths)
+            .any(|(p, w)| p.len() != w || !p.bytes().all(|b| b.is_ascii_hexdigit()))
+    {
+        return None;
+    }
+    let tail = format!("{}{}", parts[3], parts[4]);
+    let bytes: Vec<String> = (0..8)
+        .map(|k| format!("16#{}", &tail[2 * k..2 * k + 2]))
+        .collect();
+    Some(format!(
+        "(Data1 := 16#{}, Data2 := 16#{}, Data3 := 16#{}, Data4 := [{}])",
+        parts[0],
+        parts[1],
+        parts[2],
+        bytes.join(", ")
+    ))
 }
 
 /// `STRUCT field : type [:= value]; ... END_STRUCT`.
@@ -358,7 +503,13 @@ mod tests {
 
     #[test]
     fn the_pinned_types_are_declared_in_their_current_version_at_their_own_positions() {
-        let narrowed = narrowed(SYSTEM, &["st_io".into(), "E_Mode".into()]).unwrap();
+        let (narrowed, kept) = narrowed(
+            SYSTEM,
+            &["st_io".into(), "E_Mode".into()],
+            &mut HashSet::new(),
+        )
+        .unwrap();
+        assert_eq!(kept, 2);
         assert_eq!(narrowed.len(), SYSTEM.len());
         assert_eq!(narrowed.lines().count(), SYSTEM.lines().count());
         assert!(!narrowed.contains("nOld") && !narrowed.contains("ST_Unpinned"));
@@ -379,10 +530,30 @@ mod tests {
     }
 
     #[test]
+    fn an_event_class_is_declared_once_with_its_guid_numbers_and_severities() {
+        let text = "<TcModuleClass><DataTypes><DataType><Name GUID=\"{97CF8247-B59C-4E2C-B4B0-7350D0471457}\">Ev</Name><EventId><Name Id=\"2\">Hot</Name><Severity>Error</Severity></EventId><EventId><Name Id=\"5\">Note</Name></EventId></DataType></DataTypes></TcModuleClass>";
+        let mut events = HashSet::new();
+        let (first, kept) = narrowed(text, &[], &mut events).unwrap();
+        assert_eq!((first.as_str(), kept), (text, 1));
+        // A second description declaring it again keeps nothing.
+        assert_eq!(narrowed(text, &[], &mut events).unwrap().1, 0);
+        let (names, diags) = declared(text);
+        assert!(!diags.has_errors(), "{diags:?}");
+        assert_eq!(names, ["TC_EVENTS_Ev"]);
+        assert_eq!(
+            guid_value("{97CF8247-B59C-4E2C-B4B0-7350D0471457}").unwrap(),
+            "(Data1 := 16#97CF8247, Data2 := 16#B59C, Data3 := 16#4E2C, Data4 := [16#B4, 16#B0, 16#73, 16#50, 16#D0, 16#47, 16#14, 16#57])"
+        );
+        assert_eq!(guid_value("{97CF8247-B59C-4E2C-B4B0}"), None);
+        assert_eq!(guid_value("{97CF8247-B59C-4E2C-B4B0-7350D047145G}"), None);
+        assert_eq!(library_names(text), ["TcEventEntry"]);
+    }
+
+    #[test]
     fn every_prefix_parses_without_panicking() {
         for end in (0..SYSTEM.len()).filter(|&e| SYSTEM.is_char_boundary(e)) {
             declared(&SYSTEM[..end]);
-            narrowed(&SYSTEM[..end], &["ST_Io".into()]);
+            narrowed(&SYSTEM[..end], &["ST_Io".into()], &mut HashSet::new());
         }
     }
 }
