@@ -301,16 +301,18 @@ pub struct CheckOptions {
 }
 
 /// The files of `sources` written in the CODESYS V3 / TwinCAT 3 dialect:
-/// TwinCAT project files and PLCopen XML exported by CODESYS. CODESYS's
-/// implicit integer conversions (W490) are accepted in them only.
+/// TwinCAT project files, PLCopen XML exported by CODESYS, and plcrun's
+/// own TwinCAT library. CODESYS's implicit integer conversions (W490) are
+/// accepted in them only.
 pub(crate) fn codesys_files(sources: &SourceMap) -> Vec<FileId> {
-    let dialect = |text: &str| {
-        crate::syntax::twincat::is_twincat(text)
+    let dialect = |name: &str, text: &str| {
+        name == twincat_library::LIBRARY_SOURCE
+            || crate::syntax::twincat::is_twincat(text)
             || (crate::syntax::plcopen::is_plcopen(text)
                 && crate::syntax::plcopen::origin::written_by_codesys(text))
     };
     (0..sources.files().len())
-        .filter(|&i| dialect(&sources.files()[i].text))
+        .filter(|&i| dialect(&sources.files()[i].name, &sources.files()[i].text))
         .map(|i| FileId(i as u32))
         .collect()
 }
@@ -382,7 +384,7 @@ pub fn check_reporting(
         strict: options.strict,
         unoptimized: false,
         addressing: options.addressing.unwrap_or_else(|| addressing_of(sources)),
-        codesys_files: codesys_files(sources),
+        codesys_files: codesys_files(&extended),
     };
     // The library's own diagnostics are dropped or moved into the given
     // files by the compile (twincat_library.rs), so every one renders

@@ -399,3 +399,33 @@ fn a_string_is_indexed_by_its_bytes() {
     let st = "PROGRAM P\nVAR s : STRING := 'A'; b : BYTE; END_VAR\nb := s[0];\nEND_PROGRAM\n";
     assert!(refused(&[("p.st", st)]).contains("error[E302]"));
 }
+
+#[test]
+fn a_positional_argument_after_a_formal_one_takes_the_input_of_its_position() {
+    // PMPS: `fbJson.CopyDocument(pDoc := fbLogger.sJson, SIZEOF(fbLogger.sJson));`,
+    // which TwinCAT compiles: the second argument goes to the second input.
+    let f = pou(
+        "F",
+        "FUNCTION F : INT\nVAR_INPUT a : INT; b : INT; c : INT := 7; END_VAR",
+        "F := a * 100 + b * 10 + c;",
+        "",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR r1, r2 : INT; END_VAR",
+        "r1 := F(a := 1, 2);\nr2 := F(c := 3, 4);",
+        "",
+    );
+    let mut plc = compile_ok(&[("F.TcPOU", &f), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!([lit(&plc, "r1"), lit(&plc, "r2")], ["127", "43"]);
+    // The input of its position named as well is given twice.
+    let twice = pou(
+        "P",
+        "PROGRAM P\nVAR r : INT; END_VAR",
+        "r := F(b := 1, 2);",
+        "",
+    );
+    let err = refused(&[("F.TcPOU", &f), ("P.TcPOU", &twice)]);
+    assert!(err.contains("E404"), "{err}");
+}

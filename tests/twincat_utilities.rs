@@ -1,6 +1,7 @@
 //! Tc2_Utilities' `FB_FormatString` with its `T_Arg` arguments (`F_INT`,
-//! `F_LREAL`, `F_STRING`...) and `FB_MemRingBuffer`, as plcrun's TwinCAT
-//! library provides them (docs/twincat.md). Expected texts worked out by
+//! `F_LREAL`, `F_STRING`...), `FB_MemRingBuffer` and `FB_HashTableCtrl`,
+//! and Tc3_JsonXml's `FB_JsonSaxWriter`, as plcrun's TwinCAT library
+//! provides them (docs/twincat.md). Expected texts worked out by
 //! hand from the format rules (C's printf where Beckhoff's manual follows
 //! it); the ring buffer's sizes from its layout (a 4-byte length before
 //! each record).
@@ -128,4 +129,95 @@ rb.A_RemoveHead(pRead := ADR(rc), cbRead := SIZEOF(rc)); n2 := rb.nCount;";
         ("'xy'".into(), "7".into())
     );
     assert_eq!(lit(&plc, "n2"), "0");
+}
+
+#[test]
+fn a_hash_table_adds_finds_removes_and_walks_its_entries_in_place() {
+    // PMPS's way: the index of an entry (A_GetIndexAtPosPtr) picks its
+    // data, and stays the entry's own until it is removed.
+    let decl = "PROGRAM P\nVAR\n  entries : ARRAY[0..3] OF T_HashTableEntry; hTable : T_HHASHTABLE; fbTable : FB_HashTableCtrl;\n  data : ARRAY[0..3] OF INT := [10, 20, 30, 40];\n  bInit, okIdx, okRem, okFull, okLook, okMiss, okBad : BOOL;\n  idx : PVOID; pos : POINTER TO T_HashTableEntry; v : PVOID; pInt : POINTER TO INT;\n  nAfterAdd, nAfterAll, nFree, looked : UDINT; sum : INT; walked : DINT;\nEND_VAR";
+    let body = "okBad := F_CreateHashTableHnd(0, 64, hTable);
+bInit := F_CreateHashTableHnd(ADR(entries), SIZEOF(entries), hTable);
+fbTable.A_Add(hTable := hTable, key := 16#100, putValue := ADR(data[0]));
+fbTable.A_Add(hTable := hTable, key := 16#200, putValue := ADR(data[1]));
+fbTable.A_Add(hTable := hTable, key := 16#300, putValue := ADR(data[2]), getPosPtr => pos);
+fbTable.A_GetIndexAtPosPtr(hTable := hTable, putPosPtr := pos, getValue => idx, bOk => okIdx);
+fbTable.A_Remove(hTable := hTable, key := 16#200, bOk => okRem);
+fbTable.A_Add(hTable := hTable, key := 16#400, putValue := ADR(data[3]), getPosPtr => pos);
+fbTable.A_GetIndexAtPosPtr(hTable := hTable, putPosPtr := pos, getValue => looked);
+fbTable.A_Add(hTable := hTable, key := 16#100, putValue := ADR(data[1]));
+fbTable.A_Add(hTable := hTable, key := 16#500, putValue := ADR(data[3]));
+fbTable.A_Add(hTable := hTable, key := 16#600, putValue := ADR(data[3]), bOk => okFull);
+nAfterAdd := hTable.nCount; nFree := hTable.nFree;
+fbTable.A_Lookup(hTable := hTable, key := 16#100, getValue => v, bOk => okLook);
+pInt := v; sum := pInt^;
+fbTable.A_Lookup(hTable := hTable, key := 16#999, bOk => okMiss);
+fbTable.A_GetFirst(hTable := hTable, getPosPtr => pos, getValue => v);
+WHILE fbTable.bOk DO
+  pInt := v; walked := walked * 100 + pInt^;
+  fbTable.A_GetNext(hTable := hTable, putPosPtr := pos, getPosPtr => pos, getValue => v);
+END_WHILE
+fbTable.A_RemoveAll(hTable := hTable);
+nAfterAll := hTable.nCount;";
+    let main = pou("P", decl, body, "");
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!([lit(&plc, "okBad"), lit(&plc, "bInit")], ["FALSE", "TRUE"]);
+    assert_eq!([lit(&plc, "okIdx"), lit(&plc, "idx")], ["TRUE", "2"]);
+    // 16#400 takes the slot 16#200 left; 16#100 again replaces its value.
+    assert_eq!([lit(&plc, "okRem"), lit(&plc, "looked")], ["TRUE", "1"]);
+    assert_eq!(
+        [
+            lit(&plc, "okFull"),
+            lit(&plc, "nAfterAdd"),
+            lit(&plc, "nFree")
+        ],
+        ["FALSE", "4", "0"]
+    );
+    assert_eq!(
+        [lit(&plc, "okLook"), lit(&plc, "sum"), lit(&plc, "okMiss")],
+        ["TRUE", "20", "FALSE"]
+    );
+    // The walk goes by index: 16#100 (20), 16#400 (40), 16#300 (30),
+    // 16#500 (40).
+    assert_eq!(lit(&plc, "walked"), "20403040");
+    assert_eq!(lit(&plc, "nAfterAll"), "0");
+}
+
+#[test]
+fn a_json_writer_builds_a_compact_document_with_escaped_strings() {
+    let decl = "PROGRAM P\nVAR\n  fbJson : FB_JsonSaxWriter;\n  s : STRING(255); big : STRING(7000); small : STRING(5);\n  len, n, m : UDINT; hrAfter : HRESULT; long : STRING(255);\nEND_VAR";
+    let body = "fbJson.StartObject();
+fbJson.AddKey('typecode');
+fbJson.AddUdint(42);
+fbJson.AddKey('say \"hi\" \\ x');
+fbJson.AddString('a$Nb$T');
+fbJson.AddKey('list');
+fbJson.StartArray();
+fbJson.AddBool(TRUE); fbJson.AddLreal(1.5); fbJson.AddNull(); fbJson.AddDint(-7);
+fbJson.StartObject(); fbJson.EndObject();
+fbJson.EndArray();
+fbJson.EndObject();
+s := fbJson.GetDocument();
+len := fbJson.GetDocumentLength();
+n := fbJson.CopyDocument(pDoc := big, SIZEOF(big));
+m := fbJson.CopyDocument(small, SIZEOF(small));
+fbJson.ResetDocument();
+fbJson.StartArray();
+fbJson.AddString('0123456789012345678901234567890123456789012345678901234567890123456789012345678901234567890123456789012345678901234567890123456789');
+fbJson.AddString('0123456789012345678901234567890123456789012345678901234567890123456789012345678901234567890123456789012345678901234567890123456789');
+fbJson.EndArray();
+long := fbJson.GetDocument();";
+    let main = pou("P", decl, body, "");
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    let doc = r#"{"typecode":42,"say \"hi\" \\ x":"a\nb\t","list":[true,1.5,null,-7,{}]}"#;
+    assert_eq!(lit(&plc, "s"), format!("'{doc}'"));
+    assert_eq!(lit(&plc, "len"), doc.len().to_string());
+    // CopyDocument counts the closing NUL; a string too small is emptied.
+    assert_eq!(lit(&plc, "n"), (doc.len() + 1).to_string());
+    assert_eq!(lit(&plc, "big"), format!("'{doc}'"));
+    assert_eq!([lit(&plc, "m"), lit(&plc, "small")], ["0", "''"]);
+    // A document longer than 255 characters is not given by GetDocument.
+    assert_eq!(lit(&plc, "long"), "''");
 }

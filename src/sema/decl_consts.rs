@@ -537,7 +537,23 @@ impl DeclConsts<'_> {
                     )),
                 }
             }
-            ExprKind::Binary(op, a, b) if elem.is_int() => {
+            ExprKind::Binary(op, a, b) => self.const_arithmetic(*op, a, b, elem, local),
+            _ => Err(("E205", "initial values must be constant expressions".into())),
+        }
+    }
+
+    /// `a op b` of constants, folded in `elem`: integer and real
+    /// arithmetic, and sums and differences of durations.
+    fn const_arithmetic(
+        &self,
+        op: BinaryOp,
+        a: &Expr,
+        b: &Expr,
+        elem: ElemType,
+        local: Option<&IndexMap<String, VarInfo>>,
+    ) -> Result<Const, (&'static str, String)> {
+        match op {
+            _ if elem.is_int() => {
                 let x = self.const_scalar(a, elem, local)?;
                 let y = self.const_scalar(b, elem, local)?;
                 let (Const::Bits(x), Const::Bits(y)) = (x, y) else {
@@ -560,7 +576,7 @@ impl DeclConsts<'_> {
                     .ok_or(("E305", format!("constant overflows {elem}")))
             }
             // A duration from durations (`PT := GVL.tBase + T#1S`).
-            ExprKind::Binary(op @ (BinaryOp::Add | BinaryOp::Sub), a, b)
+            BinaryOp::Add | BinaryOp::Sub
                 if elem.family() == crate::elementary::Family::Duration =>
             {
                 let x = self.const_scalar(a, elem, local)?;
@@ -577,7 +593,7 @@ impl DeclConsts<'_> {
                     .map(Const::Bits)
                     .ok_or(("E305", format!("constant overflows {elem}")))
             }
-            ExprKind::Binary(op, a, b) if elem.is_real() => {
+            _ if elem.is_real() => {
                 let x = self.const_scalar(a, elem, local)?;
                 let y = self.const_scalar(b, elem, local)?;
                 let (Const::Bits(x), Const::Bits(y)) = (x, y) else {

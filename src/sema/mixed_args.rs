@@ -1,8 +1,9 @@
 //! Positional arguments followed by formal ones, `F(1, 2, c := 3)`, as
 //! CODESYS and TwinCAT accept them: the leading positional arguments go
 //! to the inputs (and in-outs) in declaration order, the formal ones by
-//! name. A compatibility extension (W487); a positional argument after a
-//! formal one stays E411.
+//! name. A compatibility extension (W487). A positional argument after a
+//! formal one goes to the input of its own position in a CODESYS or
+//! TwinCAT file (as TwinCAT compiles it), and is E411 elsewhere.
 
 use super::body::BodyBuilder;
 use super::calls::Param;
@@ -20,20 +21,25 @@ impl BodyBuilder<'_> {
         callee: &str,
         span: Span,
     ) -> Option<Vec<(usize, &'e Expr)>> {
-        let leading: Vec<&Expr> = args
+        // Each positional argument at its own position in the list: the
+        // leading ones in every file, one after a formal one only in a
+        // CODESYS / TwinCAT file (`CopyDocument(pDoc := s, SIZEOF(s))`,
+        // as TwinCAT compiles it).
+        let leading = args
             .iter()
-            .map_while(|a| match a {
-                Arg::Positional(e) => Some(e),
+            .take_while(|a| matches!(a, Arg::Positional(_)))
+            .count();
+        let positional: Vec<(usize, &Expr)> = args
+            .iter()
+            .enumerate()
+            .filter_map(|(k, a)| match a {
+                Arg::Positional(e) => Some((k, e)),
                 _ => None,
             })
             .collect();
-        if let Some(late) = args[leading.len()..]
-            .iter()
-            .find(|a| matches!(a, Arg::Positional(_)))
+        if let Some(&(_, e)) = positional.get(leading)
+            && !self.model.codesys_files.contains(&e.span.file)
         {
-            let Arg::Positional(e) = late else {
-                return None;
-            };
             self.diags.error(
                 "E411",
                 e.span,
@@ -47,14 +53,14 @@ impl BodyBuilder<'_> {
             .filter(|(_, p)| matches!(p.kind, MemberKind::Input | MemberKind::InOut))
             .map(|(i, _)| i)
             .collect();
-        if leading.len() > order.len() {
+        let last = positional.last().map_or(0, |&(k, _)| k + 1);
+        if last > order.len() {
             self.diags.error(
                 "E404",
                 span,
                 format!(
-                    "`{callee}` takes {} input(s), {} positional argument(s) given",
+                    "`{callee}` takes {} input(s), a positional argument is given at position {last}",
                     order.len(),
-                    leading.len()
                 ),
             );
             return None;
@@ -63,10 +69,10 @@ impl BodyBuilder<'_> {
             "W487",
             span,
             format!(
-                "positional and formal arguments mixed in a call of `{callee}` (a CODESYS extension): the {} positional one(s) go to the first input(s) in declaration order",
-                leading.len()
+                "positional and formal arguments mixed in a call of `{callee}` (a CODESYS extension): a positional one goes to the input of its position in declaration order ({} of them)",
+                positional.len()
             ),
         );
-        Some(order.into_iter().zip(leading).collect())
+        Some(positional.into_iter().map(|(k, e)| (order[k], e)).collect())
     }
 }
