@@ -358,3 +358,72 @@ fn tc2_system_s_adslogstr_writes_into_the_test_s_log() {
     assert_eq!(logs.outcome(), TestOutcome::Passed, "{:?}", logs.failures);
     assert_eq!(logs.output, ["valve V1 closed"]);
 }
+
+/// A suite whose initialisation faults (its FB_init divides by zero): the
+/// fault is reported as an error of that suite, before its first TEST;
+/// under `--keep-going` the suite is left out and the others run, as a
+/// file that does not compile is.
+#[test]
+fn a_suite_whose_initialisation_faults_is_reported_and_left_out_under_keep_going() {
+    let bad = "
+FUNCTION_BLOCK FB_BadTest EXTENDS FB_TestSuite
+VAR n : INT; d : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; END_VAR
+n := 10 / d;
+END_METHOD
+TEST('Never');
+TEST_FINISHED();
+END_FUNCTION_BLOCK";
+    let good = "
+FUNCTION_BLOCK FB_GoodTest EXTENDS FB_TestSuite
+TEST('Adds');
+AssertEquals_INT(Expected := 4, Actual := 2 + 2, Message := 'sum');
+TEST_FINISHED();
+END_FUNCTION_BLOCK";
+    let prg = "
+PROGRAM PRG_TEST
+VAR fbBad : FB_BadTest; fbGood : FB_GoodTest; END_VAR
+TcUnit.RUN();
+END_PROGRAM";
+    let mut sources = SourceMap::new();
+    for (name, text) in [("bad.st", bad), ("good.st", good), ("prg.st", prg)] {
+        sources.add(name, text);
+    }
+    let verdicts = |options: &TestOptions| -> Vec<(String, TestOutcome, Option<&'static str>)> {
+        run_tests(&sources, options)
+            .expect("the suites compile")
+            .cases
+            .iter()
+            .map(|c| {
+                (
+                    c.full_name(),
+                    c.outcome(),
+                    c.fault.as_ref().map(|f| f.code()),
+                )
+            })
+            .collect()
+    };
+    let fault = (
+        "PRG_TEST.fbBad.(before its first TEST)".to_string(),
+        TestOutcome::Errored,
+        // R001: division by zero.
+        Some("R001"),
+    );
+    assert_eq!(verdicts(&TestOptions::default()), std::slice::from_ref(&fault));
+    let options = TestOptions {
+        keep_going: true,
+        ..TestOptions::default()
+    };
+    assert_eq!(
+        verdicts(&options),
+        [
+            fault,
+            (
+                "PRG_TEST.fbGood.Adds".to_string(),
+                TestOutcome::Passed,
+                None
+            )
+        ]
+    );
+}

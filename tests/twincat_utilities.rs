@@ -221,3 +221,75 @@ long := fbJson.GetDocument();";
     // A document longer than 255 characters is not given by GetDocument.
     assert_eq!(lit(&plc, "long"), "''");
 }
+
+#[test]
+fn system_times_convert_between_their_forms_and_time_zones() {
+    // Central European time: UTC + 1 h, + 2 h from the last Sunday of
+    // March 02:00 to the last Sunday of October 03:00 (local times).
+    let decl = "PROGRAM P\nVAR\n  fbTime : FB_LocalSystemTime := (bEnable := TRUE, dwCycle := 1);\n  fbTz, fbRemote : FB_GetTimeZoneInformation;\n  toUtc : FB_TzSpecificLocalTimeToSystemTime;\n  cet : ST_TimeZoneInformation := (bias := -60, standardDate := (wMonth := 10, wDayOfWeek := 0, wDay := 5, wHour := 3), daylightDate := (wMonth := 3, wDayOfWeek := 0, wDay := 5, wHour := 2), daylightBias := -60);\n  summer : TIMESTRUCT := (wYear := 2024, wMonth := 7, wDay := 15, wHour := 14, wMinute := 30);\n  winter : TIMESTRUCT := (wYear := 2024, wMonth := 1, wDay := 15, wHour := 14, wMinute := 30);\n  beforeSwitch : TIMESTRUCT := (wYear := 2024, wMonth := 3, wDay := 31, wHour := 1, wMinute := 59);\n  uS, uW, uB : TIMESTRUCT; zS, zW : E_TimeZoneID;\n  now : DT; ft : T_FILETIME; back, leap : TIMESTRUCT;\nEND_VAR";
+    let body = "fbTime();
+fbTz(sNetID := '', bExecute := TRUE);
+fbRemote(sNetID := '5.1.2.3.1.1', bExecute := TRUE);
+now := SYSTEMTIME_TO_DT(fbTime.systemTime);
+toUtc(in := summer, tzInfo := cet); uS := toUtc.out; zS := toUtc.eTzID;
+toUtc(in := winter, tzInfo := cet); uW := toUtc.out; zW := toUtc.eTzID;
+toUtc(in := beforeSwitch, tzInfo := cet); uB := toUtc.out;
+ft := Tc2_Utilities.SYSTEMTIME_TO_FILETIME(summer);
+back := FILETIME_TO_SYSTEMTIME(ft);
+leap := DT_TO_SYSTEMTIME(DT#2024-02-29-23:59:58);";
+    let main = pou("P", decl, body, "");
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    // plcrun's system time starts at 2000-01-01 00:00 UTC, a Saturday.
+    assert_eq!(lit(&plc, "fbTime.bValid"), "TRUE");
+    assert_eq!(lit(&plc, "now"), "DT#2000-01-01-00:00:00");
+    assert_eq!(lit(&plc, "fbTime.systemTime.wDayOfWeek"), "16#6");
+    assert_eq!(
+        [
+            lit(&plc, "fbTz.bError"),
+            lit(&plc, "fbTz.tzInfo.bias"),
+            lit(&plc, "fbTz.tzID")
+        ],
+        ["FALSE", "0", "eTimeZoneID_Unknown"]
+    );
+    assert_eq!(
+        [lit(&plc, "fbRemote.bError"), lit(&plc, "fbRemote.nErrId")],
+        ["TRUE", "7"]
+    );
+    // 14:30 local is 12:30 UTC in summer, 13:30 in winter; 01:59 on the
+    // day of the switch is still winter time.
+    assert_eq!(
+        [lit(&plc, "uS.wHour"), lit(&plc, "uS.wMinute")],
+        ["16#C", "16#1E"]
+    );
+    assert_eq!(lit(&plc, "zS"), "eTimeZoneID_Daylight");
+    assert_eq!(
+        [lit(&plc, "uW.wHour"), lit(&plc, "zW")],
+        ["16#D", "eTimeZoneID_Standard"]
+    );
+    assert_eq!(
+        [lit(&plc, "uB.wHour"), lit(&plc, "uB.wMinute")],
+        ["16#0", "16#3B"]
+    );
+    // 2024-07-15 14:30 as 100 ns since 1601: 133 655 274 000 000 000,
+    // 16#1DAD6C3_xxxxxxxx; back again it is a Monday.
+    assert_eq!(lit(&plc, "ft.dwHighDateTime"), "16#1DAD6C3");
+    assert_eq!(
+        [
+            lit(&plc, "back.wYear"),
+            lit(&plc, "back.wDay"),
+            lit(&plc, "back.wDayOfWeek")
+        ],
+        ["16#7E8", "16#F", "16#1"]
+    );
+    // A leap day, a Thursday.
+    assert_eq!(
+        [
+            lit(&plc, "leap.wMonth"),
+            lit(&plc, "leap.wDay"),
+            lit(&plc, "leap.wSecond"),
+            lit(&plc, "leap.wDayOfWeek")
+        ],
+        ["16#2", "16#1D", "16#3A", "16#4"]
+    );
+}

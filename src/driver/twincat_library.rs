@@ -11,7 +11,9 @@
 //! device states with the blocks that ask for them (failing as without a
 //! device), Tc3_EventLogger's `FB_TcMessage` with its arguments, source
 //! and the event types (`TcEventEntry`, `TcEventSeverity`, `HRESULT`),
-//! Tc2_Utilities' `FB_HashTableCtrl`, Tc3_JsonXml's `FB_JsonSaxWriter`,
+//! Tc2_Utilities' `FB_HashTableCtrl` and system times (`TIMESTRUCT`,
+//! `T_FILETIME`, `FB_LocalSystemTime`, time zones), Tc3_JsonXml's
+//! `FB_JsonSaxWriter`,
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
 //! written in ST by plcrun
 //! (`twincat_library.st`) and added as a source of its own when the

@@ -17,6 +17,10 @@ use crate::syntax::ast::Call;
 impl BodyBuilder<'_> {
     /// The place call `call` denotes (`None` after an error).
     pub(super) fn call_place(&mut self, call: &Call) -> Option<PlaceRef> {
+        // `Tc2_Utilities.SYSTEMTIME_TO_FILETIME(t)`: the function itself.
+        if let Some(plain) = self.without_namespace(call) {
+            return self.call_place(&plain);
+        }
         let method = self.oop_call(call, true);
         if method.is_none() && !self.calls_a_function(call) {
             let inst = self.place(&call.callee)?;

@@ -216,6 +216,60 @@ pub(crate) fn run(
     plan: &Plan,
     options: &TestOptions,
 ) -> Result<Vec<TestCase>, TestError> {
+    // Under --keep-going a suite whose initialisation faults (its FB_init,
+    // before any suite runs) is reported with the fault and left out, and
+    // the others run again without it: one suite's fault does not take
+    // the others with it, as a file that does not compile does not.
+    let mut plan = plan.clone();
+    let mut faulted = Vec::new();
+    loop {
+        let mut cases = run_plan(sources, &plan, options)?;
+        let Some(k) = init_fault_suite(&cases, &plan) else {
+            faulted.extend(cases);
+            return Ok(faulted);
+        };
+        // The fault is the suite's, whose instance raised it.
+        let at = cases.iter().position(|c| c.fault.is_some()).unwrap_or(0);
+        let mut case = cases.swap_remove(at);
+        case.suite = Some(plan.suites[k].path.clone());
+        case.file = plan.suites[k].file.clone();
+        faulted.push(case);
+        if !options.keep_going || plan.suites.len() < 2 {
+            return Ok(faulted);
+        }
+        plan.suites.remove(k);
+    }
+}
+
+/// The suite (index in `plan`) whose initialisation faulted, when `cases`
+/// report a fault outside every test of the first cycle raised under a
+/// suite's instance (`PLCRUN_TCUNIT_MAIN.suite3...`).
+fn init_fault_suite(cases: &[TestCase], plan: &Plan) -> Option<usize> {
+    let case = cases.iter().find(|c| c.fault.is_some())?;
+    let fault = case.fault.as_ref()?;
+    if fault.cycle != 0 || case.assertions > 0 {
+        return None;
+    }
+    let prefix = format!("{DRIVER}.SUITE").to_ascii_uppercase();
+    let instances = std::iter::once(fault.instance())
+        .chain(fault.callers().iter().map(|c| c.instance.as_str()));
+    instances.into_iter().find_map(|i| {
+        let upper = i.to_ascii_uppercase();
+        let rest = upper.strip_prefix(&prefix)?;
+        let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
+        digits
+            .parse::<usize>()
+            .ok()
+            .filter(|&k| k < plan.suites.len())
+    })
+}
+
+/// Runs the suites of `plan` together, as TcUnit does.
+fn run_plan(
+    sources: &SourceMap,
+    plan: &Plan,
+    options: &TestOptions,
+) -> Result<Vec<TestCase>, TestError> {
     let start = Instant::now();
     let state = Arc::new(Mutex::new(State::new(plan.suites.len(), plan.in_sequence)));
     let mut hosts = HostBlocks::new();
@@ -248,7 +302,7 @@ pub(crate) fn run(
             }
         }
         if let Err(f) = result {
-            fault = Some((f, s.current()));
+            fault = Some((f, s.current(), s.current_suite()));
             break;
         }
         if s.all_finished() {
@@ -291,7 +345,7 @@ pub(crate) fn run(
                     cycle: 0,
                 });
             }
-            if let Some((f, Some(at))) = &fault
+            if let Some((f, Some(at), _)) = &fault
                 && *at == (k, t)
             {
                 case.fault = Some(f.clone());
@@ -300,14 +354,51 @@ pub(crate) fn run(
             cases.push(case);
         }
     }
-    if let Some((f, None)) = fault {
+    if let Some((f, None, suite)) = fault {
         // A fault outside any test (in a suite's own body): the first
-        // unfinished test of the suite carries it.
-        let at = cases.iter().position(|c| c.unfinished).unwrap_or(0);
-        if let Some(case) = cases.get_mut(at) {
-            case.fault = Some(f);
-            case.unfinished = false;
+        // unfinished test carries it; before any test was declared, a case
+        // of the suite's own (or of the run, outside every suite) does, so
+        // that the fault is never lost.
+        match cases.iter().position(|c| c.unfinished) {
+            Some(at) => {
+                cases[at].fault = Some(f);
+                cases[at].unfinished = false;
+            }
+            None => cases.push(body_fault_case(
+                plan,
+                suite,
+                Some(f),
+                cycles,
+                start.elapsed(),
+            )),
         }
     }
     Ok(cases)
+}
+
+/// The case that reports fault `f` of the run when no test of it was
+/// declared yet: named after the suite that was running (`suite`), or
+/// after the runner when none was.
+fn body_fault_case(
+    plan: &Plan,
+    suite: Option<usize>,
+    f: Option<crate::runtime::engine::RuntimeFault>,
+    cycles: u64,
+    elapsed: Duration,
+) -> TestCase {
+    let instance = suite.and_then(|k| plan.suites.get(k));
+    TestCase {
+        name: "(before its first TEST)".into(),
+        suite: Some(instance.map_or_else(|| DRIVER.to_string(), |i| i.path.clone())),
+        file: instance.map(|i| i.file.clone()).unwrap_or_default(),
+        cycles,
+        elapsed,
+        failures: Vec::new(),
+        more_failures: 0,
+        fault: f,
+        unfinished: false,
+        assertions: 0,
+        output: Vec::new(),
+        left_out: None,
+    }
 }

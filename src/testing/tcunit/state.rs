@@ -89,6 +89,11 @@ impl State {
         turn
     }
 
+    /// The suite being run, if one is.
+    pub(crate) fn current_suite(&self) -> Option<usize> {
+        self.current_suite
+    }
+
     /// The suite and test being run, if a test is.
     pub(crate) fn current(&self) -> Option<(usize, usize)> {
         Some((self.current_suite?, self.current_test?))
