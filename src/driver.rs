@@ -21,9 +21,11 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 mod address_map;
+mod library_projects;
 mod project;
 mod source_bytes;
 pub(crate) mod twincat_library;
+pub use library_projects::with_library_projects;
 pub use source_bytes::add_source_bytes;
 
 /// Diagnostic code of "several PROGRAMs and none chosen".

@@ -69,7 +69,7 @@ pub use draw::{
 };
 pub use driver::{
     CheckOptions, CheckReport, LoadError, add_source_bytes, check, check_reporting, load_files,
-    load_files_with, project_files, type_description_sources,
+    load_files_with, project_files, type_description_sources, with_library_projects,
 };
 pub use elementary::ElemType;
 pub use ide::{

@@ -105,11 +105,13 @@ fn endless(watchdog: Option<Duration>) -> Plc {
 fn abort_from_another_thread_ends_an_endless_cycle() {
     let mut plc = endless(None);
     let handle = plc.stop_handle();
+    // Timed from before the aborter starts its 50 ms: timed after, the
+    // abort could land a little under 50 ms into the cycle.
+    let start = Instant::now();
     let aborter = std::thread::spawn(move || {
         std::thread::sleep(Duration::from_millis(50));
         handle.abort();
     });
-    let start = Instant::now();
     let fault = plc.run_cycle().expect_err("aborted");
     let took = start.elapsed();
     aborter.join().unwrap();

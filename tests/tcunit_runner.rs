@@ -410,7 +410,10 @@ END_PROGRAM";
         // R001: division by zero.
         Some("R001"),
     );
-    assert_eq!(verdicts(&TestOptions::default()), std::slice::from_ref(&fault));
+    assert_eq!(
+        verdicts(&TestOptions::default()),
+        std::slice::from_ref(&fault)
+    );
     let options = TestOptions {
         keep_going: true,
         ..TestOptions::default()

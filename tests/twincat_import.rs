@@ -585,3 +585,67 @@ fn the_language_server_reads_the_pinned_types_too() {
         Vec::<serde_json::Value>::new()
     );
 }
+
+/// A `.plcproj` compiling MAIN and referencing the library `Motor Lib` by
+/// placeholder, as PMPS references `LCLS General`.
+const REFERENCING_PROJECT: &str = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Project xmlns=\"http://schemas.microsoft.com/developer/msbuild/2003\">\n  <ItemGroup>\n    <Compile Include=\"MAIN.TcPOU\" />\n  </ItemGroup>\n  <ItemGroup>\n    <PlaceholderReference Include=\"Motor Lib\">\n      <DefaultResolution>Motor Lib, * (ACME)</DefaultResolution>\n      <Namespace>Motor_Lib</Namespace>\n    </PlaceholderReference>\n    <PlaceholderReference Include=\"Tc2_Standard\">\n      <DefaultResolution>Tc2_Standard, * (Beckhoff Automation GmbH)</DefaultResolution>\n    </PlaceholderReference>\n  </ItemGroup>\n</Project>\n";
+
+/// The library project `Motor Lib` (its title), which references
+/// `Units Lib` in turn.
+const LIBRARY_PROJECT: &str = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Project>\n  <PropertyGroup>\n    <Name>MotorLib</Name>\n    <Title>Motor Lib</Title>\n  </PropertyGroup>\n  <ItemGroup>\n    <Compile Include=\"FB_Motor.TcPOU\" />\n    <LibraryReference Include=\"Units Lib, 1.2.0 (ACME)\" />\n  </ItemGroup>\n</Project>\n";
+
+const UNITS_PROJECT: &str = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Project>\n  <PropertyGroup>\n    <Name>Units Lib</Name>\n  </PropertyGroup>\n  <ItemGroup>\n    <Compile Include=\"F_Rpm.TcPOU\" />\n  </ItemGroup>\n</Project>\n";
+
+#[test]
+fn library_projects_referenced_by_a_project_are_found_on_the_library_path() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR m : FB_Motor; n : INT; END_VAR\n",
+        "m(nSteps := 3);\nn := m.nRpm;\n",
+        "",
+    );
+    let motor = pou(
+        "FB_Motor",
+        "FUNCTION_BLOCK FB_Motor\nVAR_INPUT nSteps : INT; END_VAR\nVAR_OUTPUT nRpm : INT; END_VAR\n",
+        "nRpm := F_Rpm(nSteps);\n",
+        "",
+    );
+    let rpm = pou(
+        "F_Rpm",
+        "FUNCTION F_Rpm : INT\nVAR_INPUT n : INT; END_VAR\n",
+        "F_Rpm := n * 20;\n",
+        "",
+    );
+    let dir = project(&[
+        ("App/App.plcproj", REFERENCING_PROJECT),
+        ("App/MAIN.TcPOU", &main),
+        ("libs/motor/Motor.plcproj", LIBRARY_PROJECT),
+        ("libs/motor/FB_Motor.TcPOU", &motor),
+        ("libs/units/Units.plcproj", UNITS_PROJECT),
+        ("libs/units/F_Rpm.TcPOU", &rpm),
+    ]);
+    let app = format!("{dir}/App/App.plcproj");
+    // Without the library path, the library's block is unknown.
+    let (code, _, err) = plcrun(&["check", &app]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("unknown type `FB_Motor`"), "{err}");
+    // With it, the library and the one it references are loaded: their
+    // sources are checked with the project's.
+    let libs = format!("{dir}/libs");
+    let (code, _, err) = plcrun(&["check", "--library-path", &libs, &app]);
+    assert_eq!((code, err.as_str()), (0, "ok: 3 files checked\n"));
+    let out = plcrun_ok(&[
+        &app,
+        "--library-path",
+        &libs,
+        "--cycles",
+        "1",
+        "--trace",
+        "MAIN.n",
+    ]);
+    assert_eq!(out, "cycle,time,MAIN.n\n0,T#0s,60\n");
+    // A library path that is no folder is a usage error naming it.
+    let (code, _, err) = plcrun(&["check", "--library-path", &app, &app]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("not a folder"), "{err}");
+}

@@ -297,6 +297,19 @@ pub struct ReadingArgs {
     /// for PLCopen XML from the OpenPLC Editor or Beremiz, iec otherwise.
     #[arg(long, value_name = "CONVENTION")]
     pub addressing: Option<plcrun::Addressing>,
+    /// A folder searched for the libraries a TwinCAT project references
+    /// that are TwinCAT projects themselves (a `.plcproj` whose title is
+    /// the library's name); they are loaded with it. Repeatable.
+    #[arg(long = "library-path", value_name = "DIR")]
+    pub library_path: Vec<PathBuf>,
+}
+
+impl ReadingArgs {
+    /// `files` and the library projects `--library-path` resolves for
+    /// them (docs/twincat.md, "Library projects").
+    pub fn with_libraries(&self, files: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
+        plcrun::with_library_projects(files, &self.library_path).map_err(|e| e.to_string())
+    }
 }
 
 /// `plcrun check FILES...`: parse and check only.

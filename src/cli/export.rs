@@ -10,7 +10,14 @@ use plcrun::{
 /// `plcrun export --plcopen FILES... [-o OUT.xml]`.
 pub fn export(args: &ExportArgs) -> i32 {
     let mut diags = Diagnostics::new();
-    let sources = match load_files_with(&args.files, args.reading.encoding, &mut diags) {
+    let files = match args.reading.with_libraries(&args.files) {
+        Ok(files) => files,
+        Err(e) => {
+            sayln!("error: {e}");
+            return EXIT_USAGE;
+        }
+    };
+    let sources = match load_files_with(&files, args.reading.encoding, &mut diags) {
         Ok(s) => s,
         Err(e) => {
             sayln!("error: {e}");

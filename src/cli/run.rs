@@ -154,8 +154,11 @@ fn options(args: &RunArgs) -> Result<Options, String> {
 /// Compiles the files; on failure, the exit status after printing why.
 fn compile(args: &RunArgs, options: &Options) -> Result<Plc, i32> {
     let mut diags = Diagnostics::new();
-    let sources =
-        load_files_with(&args.files, options.encoding, &mut diags).map_err(usage_error)?;
+    let files = args
+        .reading
+        .with_libraries(&args.files)
+        .map_err(usage_error)?;
+    let sources = load_files_with(&files, options.encoding, &mut diags).map_err(usage_error)?;
     if diags.has_errors() {
         say!("{}", diags.render(&sources));
         return Err(EXIT_COMPILE);
@@ -191,8 +194,11 @@ fn compile(args: &RunArgs, options: &Options) -> Result<Plc, i32> {
 pub(super) fn compile_quietly(args: &RunArgs) -> Result<Plc, i32> {
     let options = options(args).map_err(usage_error)?;
     let mut diags = Diagnostics::new();
-    let sources =
-        load_files_with(&args.files, options.encoding, &mut diags).map_err(usage_error)?;
+    let files = args
+        .reading
+        .with_libraries(&args.files)
+        .map_err(usage_error)?;
+    let sources = load_files_with(&files, options.encoding, &mut diags).map_err(usage_error)?;
     if diags.has_errors() {
         return Err(EXIT_COMPILE);
     }

@@ -36,7 +36,7 @@ pub(crate) fn is_project(path: &Path) -> bool {
     path.is_dir() || has_extension(path, &["plcproj"])
 }
 
-fn has_extension(path: &Path, exts: &[&str]) -> bool {
+pub(crate) fn has_extension(path: &Path, exts: &[&str]) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| exts.iter().any(|x| e.eq_ignore_ascii_case(x)))
@@ -113,7 +113,7 @@ pub(crate) fn project_files(path: &Path) -> io::Result<ProjectFiles> {
 
 /// Calls `found` for every file under `dir`, in name order, skipping
 /// hidden folders and TwinCAT's build folders.
-fn walk(dir: &Path, depth: usize, found: &mut dyn FnMut(&Path)) -> io::Result<()> {
+pub(crate) fn walk(dir: &Path, depth: usize, found: &mut dyn FnMut(&Path)) -> io::Result<()> {
     if depth > MAX_DEPTH {
         return Ok(());
     }

@@ -19,9 +19,10 @@ pub fn sources_or_project(
         strict: r.strict,
         encoding: r.encoding,
         addressing: r.addressing,
+        library_path: reading.library_path.clone(),
     };
     if !files.is_empty() {
-        return Ok((files.to_vec(), copy(reading)));
+        return Ok((reading.with_libraries(files)?, copy(reading)));
     }
     let found = super::find(project)?;
     let mut merged = copy(&found.run.reading);
@@ -34,5 +35,5 @@ pub fn sources_or_project(
     if given.has("addressing") {
         merged.addressing = reading.addressing;
     }
-    Ok((found.sources, merged))
+    Ok((reading.with_libraries(&found.sources)?, merged))
 }

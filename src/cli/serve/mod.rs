@@ -74,6 +74,7 @@ fn check(run: &RunArgs, path: &Path, assignments: &[Assignment]) -> i32 {
             strict: run.reading.strict,
             encoding: run.reading.encoding,
             addressing: run.reading.addressing,
+            library_path: run.reading.library_path.clone(),
         },
     };
     let status = super::run::check(&args, &Given::default());
