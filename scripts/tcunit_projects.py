@@ -2,7 +2,8 @@
 """Runs `plcrun test` on TwinCAT projects with TcUnit suites and prints
 the table of docs/compatibility.md ("TwinCAT projects and TcUnit").
 
-    python3 scripts/tcunit_projects.py [--plcrun BIN] [--keep-going] PROJECT...
+    python3 scripts/tcunit_projects.py [--plcrun BIN] [--keep-going]
+        [--library-path DIR]... PROJECT...
 
 Each PROJECT is a folder holding one .plcproj, or a .plcproj file
 (docs/twincat.md). The projects are public repositories fetched outside
@@ -21,6 +22,11 @@ files it left out (their suites count as errored tests). "tests" counts the TcUn
 tests) reported; "assertions" the assertion calls they ran, each counted
 once per test (the figure `plcrun test` prints per test). When the sources
 do not compile, the test columns are empty.
+
+With --library-path DIR (repeatable), both commands get it: the libraries
+a project references that are TwinCAT projects under DIR are loaded with
+it (docs/twincat.md, "Library projects"); a row counts the tests of the
+project's own files only, not those of the libraries loaded with it.
 
 BIN defaults to target/release/plcrun (build it with
 `cargo build --release`).
@@ -71,14 +77,17 @@ def compile_column(stdout, stderr):
     return f"{total} errors ({top})" if top else f"{total} errors"
 
 
-def measure(plcrun, project, keep_going):
-    _, check_s = run([plcrun, "check", project])
-    test, test_s = run([plcrun, "test", project] + (["--keep-going"] if keep_going else []))
+def measure(plcrun, project, keep_going, libraries):
+    paths = [arg for lib in libraries for arg in ("--library-path", lib)]
+    _, check_s = run([plcrun, "check", project] + paths)
+    test, test_s = run([plcrun, "test", project] + paths + (["--keep-going"] if keep_going else []))
+    own = os.path.dirname(project) if project.endswith(".plcproj") else project
+    own = os.path.normpath(own)
     verdicts = collections.Counter()
     assertions = 0
     for line in test.stdout.splitlines():
         m = CASE.match(line)
-        if m:
+        if m and (not libraries or os.path.normpath(m.group(3)).startswith(own)):
             verdicts[m.group(1).strip()] += 1
             assertions += int(m.group(5) or 0)
     tests = sum(verdicts.values())
@@ -99,6 +108,10 @@ def main(argv):
     keep_going = bool(argv) and argv[0] == "--keep-going"
     if keep_going:
         argv = argv[1:]
+    libraries = []
+    while len(argv) >= 2 and argv[0] == "--library-path":
+        libraries.append(argv[1])
+        argv = argv[2:]
     if not argv:
         print(__doc__.strip(), file=sys.stderr)
         return 2
@@ -108,7 +121,7 @@ def main(argv):
     print("| project | compiles | tests | passed | failed | errored | assertions | check s | test s |")
     print("|---|---|---|---|---|---|---|---|---|")
     for project in argv:
-        print("| " + " | ".join(measure(plcrun, project, keep_going)) + " |")
+        print("| " + " | ".join(measure(plcrun, project, keep_going, libraries)) + " |")
     return 0
 
 

@@ -5,23 +5,9 @@
 //! as it does when its device is not there. Expected values worked out by
 //! hand from the descriptions and the library's documented rules.
 
-use crate::support::cli::{plcrun, plcrun_ok, temp_file};
+use crate::support::cli::{plcrun, plcrun_ok, temp_project};
 use crate::support::plc::{lit, run};
 use crate::support::twincat::{compile_ok, pou};
-use std::path::Path;
-
-/// Writes `files` (path inside the project, contents) into a fresh folder
-/// and returns the folder.
-fn project(files: &[(&str, &str)]) -> String {
-    let marker = temp_file(".project", "");
-    let dir = Path::new(&marker).parent().unwrap().to_path_buf();
-    for (name, text) in files {
-        let path = dir.join(name);
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(&path, text).unwrap();
-    }
-    dir.to_string_lossy().into_owned()
-}
 
 /// A `.plcproj` compiling MAIN and pinning nothing.
 const PLC_PROJECT: &str = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Project xmlns=\"http://schemas.microsoft.com/developer/msbuild/2003\">\n  <ItemGroup>\n    <Compile Include=\"MAIN.TcPOU\" />\n  </ItemGroup>\n</Project>\n";
@@ -50,7 +36,7 @@ fn the_event_classes_of_the_type_system_are_tc_events_entries() {
     let main = main_pou();
     // The project's own .tmc holds the class too (TwinCAT copies the
     // classes a project uses there): it is declared once.
-    let dir = project(&[
+    let dir = temp_project(&[
         ("Plc/Plc.plcproj", PLC_PROJECT),
         ("Plc/MAIN.TcPOU", &main),
         ("Plc/Plc.tmc", EVENTS),
@@ -77,7 +63,7 @@ fn the_event_classes_of_the_type_system_are_tc_events_entries() {
 fn an_event_the_reader_cannot_declare_is_named_in_the_description() {
     let main = main_pou();
     let broken = EVENTS.replace("<Severity>Warning</Severity>", "<Severity>Loud</Severity>");
-    let dir = project(&[
+    let dir = temp_project(&[
         ("Plc/Plc.plcproj", PLC_PROJECT),
         ("Plc/MAIN.TcPOU", &main),
         ("Plc/Plc.tmc", &broken),

@@ -6,7 +6,7 @@
 
 use crate::support::cli;
 
-use cli::{plcrun, plcrun_ok, temp_file};
+use cli::{plcrun, plcrun_ok, temp_project};
 use std::path::Path;
 
 /// The trace of the example project `tests/twincat/conveyor`, derived by
@@ -37,19 +37,6 @@ fn a_project_folder_and_its_plcproj_run_the_same_program_on_the_task_cycle() {
     assert_eq!((code, err.as_str()), (0, "ok: 6 files checked\n"));
 }
 
-/// Writes `files` (path inside the project, contents) into a fresh folder
-/// and returns the folder.
-fn project(files: &[(&str, &str)]) -> String {
-    let marker = temp_file(".project", "");
-    let dir = Path::new(&marker).parent().unwrap().to_path_buf();
-    for (name, text) in files {
-        let path = dir.join(name);
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(&path, text).unwrap();
-    }
-    dir.to_string_lossy().into_owned()
-}
-
 /// A `.TcPOU` file with `declaration`, then `inner` (methods, actions...),
 /// and an ST body.
 fn pou(name: &str, declaration: &str, body: &str, inner: &str) -> String {
@@ -71,7 +58,7 @@ fn task(name: &str, cycle: &str, programs: &[&str]) -> String {
 #[test]
 fn errors_in_a_method_body_point_at_its_line_and_column_in_the_xml_file() {
     let method = "    <Method Name=\"Bump\" Id=\"{00000000-0000-0000-0000-000000000003}\">\n      <Declaration><![CDATA[METHOD Bump : BOOL\n]]></Declaration>\n      <Implementation>\n        <ST><![CDATA[n := n + 1;\nn := missing * 2;\n]]></ST>\n      </Implementation>\n    </Method>\n";
-    let dir = project(&[(
+    let dir = temp_project(&[(
         "FB_Bump.TcPOU",
         &pou(
             "FB_Bump",
@@ -91,7 +78,7 @@ fn errors_in_a_method_body_point_at_its_line_and_column_in_the_xml_file() {
 fn graphical_bodies_transitions_and_other_objects_are_refused_by_name() {
     let sfc = "<?xml version=\"1.0\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <POU Name=\"P\" Id=\"{0}\">\n    <Declaration><![CDATA[PROGRAM P\n]]></Declaration>\n    <Implementation>\n      <SFC>\n      </SFC>\n    </Implementation>\n    <Transition Name=\"t\" Id=\"{1}\"/>\n  </POU>\n</TcPlcObject>\n";
     let visu = "<?xml version=\"1.0\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <Visu Name=\"V\" Id=\"{2}\"/>\n</TcPlcObject>\n";
-    let dir = project(&[("P.TcPOU", sfc), ("V.TcPOU", visu)]);
+    let dir = temp_project(&[("P.TcPOU", sfc), ("V.TcPOU", visu)]);
     let (code, _, err) = plcrun(&["check", &dir]);
     assert_eq!(code, 1, "{err}");
     assert!(
@@ -111,7 +98,7 @@ fn graphical_bodies_transitions_and_other_objects_are_refused_by_name() {
 
 #[test]
 fn malformed_files_and_bad_task_settings_are_errors_at_their_place() {
-    let dir = project(&[
+    let dir = temp_project(&[
         (
             "Broken.TcPOU",
             "<?xml version=\"1.0\"?>\n<TcPlcObject>\n  <POU Name=\"x\">\n</TcPlcObject>\n",
@@ -155,7 +142,7 @@ fn the_tasks_of_several_task_files_form_one_configuration() {
             "",
         )
     };
-    let dir = project(&[
+    let dir = temp_project(&[
         ("Fast.TcPOU", &counter("Fast")),
         ("Slow.TcPOU", &counter("Slow")),
         ("FastTask.TcTTO", &task("FastTask", "1000", &["Fast"])),
@@ -170,7 +157,7 @@ fn the_tasks_of_several_task_files_form_one_configuration() {
 
 #[test]
 fn a_folder_without_a_project_file_loads_its_objects_and_sources() {
-    let dir = project(&[
+    let dir = temp_project(&[
         (
             "POUs/MAIN.TcPOU",
             &pou(
@@ -193,7 +180,7 @@ fn a_folder_without_a_project_file_loads_its_objects_and_sources() {
 #[test]
 fn a_folder_with_two_projects_or_none_is_a_usage_error() {
     let proj = "<?xml version=\"1.0\"?>\n<Project xmlns=\"http://schemas.microsoft.com/developer/msbuild/2003\">\n  <ItemGroup>\n    <Compile Include=\"MAIN.TcPOU\"/>\n  </ItemGroup>\n</Project>\n";
-    let dir = project(&[("a/A.plcproj", proj), ("b/B.plcproj", proj)]);
+    let dir = temp_project(&[("a/A.plcproj", proj), ("b/B.plcproj", proj)]);
     let (code, _, err) = plcrun(&["check", &dir]);
     assert_eq!(code, 2, "{err}");
     assert!(
@@ -204,11 +191,11 @@ fn a_folder_with_two_projects_or_none_is_a_usage_error() {
     let (code, _, err) = plcrun(&["check", &format!("{dir}/a/A.plcproj")]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("MAIN.TcPOU"), "{err}");
-    let empty = project(&[("readme.md", "nothing here")]);
+    let empty = temp_project(&[("readme.md", "nothing here")]);
     let (code, _, err) = plcrun(&["check", &empty]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("holds no .plcproj"), "{err}");
-    let not_msbuild = project(&[("X.plcproj", "<?xml version=\"1.0\"?>\n<project/>\n")]);
+    let not_msbuild = temp_project(&[("X.plcproj", "<?xml version=\"1.0\"?>\n<project/>\n")]);
     let (code, _, err) = plcrun(&["check", &format!("{not_msbuild}/X.plcproj")]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("not a TwinCAT project"), "{err}");
@@ -222,7 +209,7 @@ fn the_tc2_library_items_run_and_a_project_s_own_declaration_wins() {
         "l := F_LTrim('  ab c ');\nr := F_RTrim('  ab c ');\nnCopied := MEMCPY(ADR(b), ADR(a), SIZEOF(a));\nnSame := MEMCMP(ADR(a), ADR(b), SIZEOF(a));\nMEMSET(ADR(b), 0, 2);\nnAfterSet := MEMCMP(ADR(a), ADR(b), SIZEOF(a));\nMEMMOVE(ADR(a), ADR(b), 4);\nrand(Seed := 3);\nx := rand.Num;\np := ADR(a);\n",
         "",
     );
-    let dir = project(&[("MAIN.TcPOU", &main)]);
+    let dir = temp_project(&[("MAIN.TcPOU", &main)]);
     let vars = "l,r,nCopied,nSame,nAfterSet,b[0],a[0],a[1],a[3]";
     let out = plcrun_ok(&[&dir, "--cycles", "1", "--trace", vars]);
     assert_eq!(
@@ -232,7 +219,7 @@ fn the_tc2_library_items_run_and_a_project_s_own_declaration_wins() {
     // DRAND: in [0, 1), the same sequence for the same seed.
     let draws = |seed: &str| {
         let src = main.replace("Seed := 3", &format!("Seed := {seed}"));
-        let dir = project(&[("MAIN.TcPOU", &src)]);
+        let dir = temp_project(&[("MAIN.TcPOU", &src)]);
         plcrun_ok(&[&dir, "--cycles", "50", "--trace", "x"])
     };
     let first = draws("3");
@@ -260,7 +247,7 @@ fn the_tc2_library_items_run_and_a_project_s_own_declaration_wins() {
         "F_LTrim := 'mine';\n",
         "",
     );
-    let dir = project(&[("MAIN.TcPOU", &main), ("F_LTrim.TcPOU", &own)]);
+    let dir = temp_project(&[("MAIN.TcPOU", &main), ("F_LTrim.TcPOU", &own)]);
     assert!(plcrun_ok(&[&dir, "--cycles", "1", "--trace", "l"]).ends_with("0,T#0s,'mine'\n"));
 }
 
@@ -283,7 +270,7 @@ fn distributed_clock_times_start_at_the_epoch_and_print_as_dates() {
          f := DCTIME64_TO_STRING(in := 6311433600000000000);\n",
         "",
     );
-    let dir = project(&[("MAIN.TcPOU", &main)]);
+    let dir = temp_project(&[("MAIN.TcPOU", &main)]);
     let out = plcrun_ok(&[&dir, "--cycles", "3", "--trace", "t,now,a,b,c,d,e,f"]);
     let last = out.lines().last().unwrap();
     assert_eq!(
@@ -303,7 +290,7 @@ fn twincat_io_declared_at_i_star_gets_addresses_that_check_map_lists() {
         "bPump := bStart AND bSensor AND nLevel > 10;\n",
         "",
     );
-    let dir = project(&[("MAIN.TcPOU", &main)]);
+    let dir = temp_project(&[("MAIN.TcPOU", &main)]);
     let (code, out, err) = plcrun(&["check", "--map", &dir]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(
@@ -321,7 +308,7 @@ fn a_global_named_with_its_list_reads_and_sizes_like_the_global() {
         "a[GVL_Constants.MAX_N] := 5;\nn := a[3] + GVL_Constants.MAX_N;\n",
         "",
     );
-    let dir = project(&[("GVL_Constants.TcGVL", gvl), ("MAIN.TcPOU", &main)]);
+    let dir = temp_project(&[("GVL_Constants.TcGVL", gvl), ("MAIN.TcPOU", &main)]);
     let out = plcrun_ok(&[&dir, "--cycles", "1", "--trace", "n,r"]);
     assert_eq!(out, "cycle,time,n,r\n0,T#0s,8,7.0\n");
     // A qualifier that is a variable keeps its meaning: `a.x` is no global.
@@ -331,7 +318,7 @@ fn a_global_named_with_its_list_reads_and_sizes_like_the_global() {
         "a := a.MAX_N;\n",
         "",
     );
-    let dir = project(&[("GVL_Constants.TcGVL", gvl), ("P.TcPOU", &bad)]);
+    let dir = temp_project(&[("GVL_Constants.TcGVL", gvl), ("P.TcPOU", &bad)]);
     let (code, _, err) = plcrun(&["check", &dir]);
     assert_eq!(code, 1);
     assert!(
@@ -345,7 +332,7 @@ fn a_global_named_with_its_list_reads_and_sizes_like_the_global() {
         "n := GVL_Constants.MAX_M;\n",
         "",
     );
-    let dir = project(&[("GVL_Constants.TcGVL", gvl), ("Q.TcPOU", &missing)]);
+    let dir = temp_project(&[("GVL_Constants.TcGVL", gvl), ("Q.TcPOU", &missing)]);
     let (code, _, err) = plcrun(&["check", &dir]);
     assert_eq!(code, 1);
     assert!(
@@ -369,7 +356,7 @@ fn a_structure_is_sized_by_a_parameter_list_constant_declared_after_it() {
         "r.Items[GVL_Param.MaxN] := 7;\nr.Count := GVL_Param.MaxN;\nn := r.Items[4] + r.Count;\n",
         "",
     );
-    let dir = project(&[
+    let dir = temp_project(&[
         ("DUTs/ST_Results.TcDUT", dut),
         ("GVLs/GVL_Param.TcGVL", gvl),
         ("ITFs/I_Count.TcIO", itf),
@@ -403,7 +390,7 @@ fn a_call_into_a_library_that_is_not_there_is_one_named_error() {
         "r := SysFile.SysFileClose(hFile := 0);\n",
         "",
     );
-    let dir = project(&[("POUs/MAIN.TcPOU", &main)]);
+    let dir = temp_project(&[("POUs/MAIN.TcPOU", &main)]);
     let (code, _, err) = plcrun(&["check", &dir]);
     assert_eq!(code, 1, "{err}");
     assert!(
@@ -426,7 +413,7 @@ fn the_hex_string_case_and_wstring_length_functions_of_the_tc2_libraries() {
         "s1 := DWORD_TO_HEXSTR(43981, 1, FALSE);\ns2 := WORD_TO_HEXSTR(43981, 1, TRUE);\ns3 := BYTE_TO_HEXSTR(15, 4, FALSE);\ns4 := DWORD_TO_HEXSTR(0, 0, FALSE);\ns5 := LWORD_TO_HEXSTR(16#1234567890ABCDEF, 2, FALSE);\ns6 := BYTE_TO_HEXSTR(0, 1, FALSE);\nlc := F_ToLCase('TcUnit 1.3-XYZ');\nuc := F_ToUCase('TcUnit 1.3-xyz');\nn := WLEN(\"Grüße\");\ncpu();\nlo := cpu.cpuCntLoDW;\n",
         "",
     );
-    let dir = project(&[("MAIN.TcPOU", &main)]);
+    let dir = temp_project(&[("MAIN.TcPOU", &main)]);
     let out = plcrun_ok(&[
         &dir,
         "--cycles",
@@ -458,7 +445,7 @@ fn write_protected_functions_write_through_the_address() {
         "ok := WRITE_PROTECTED_INT(ADR(fb.iSeverity), 3);\nWRITE_PROTECTED_LREAL(ADR(fb.fValue), 2.5);\nWRITE_PROTECTED_TIME(ADR(fb.tDelay), T#1s);\nnone := WRITE_PROTECTED_INT(0, 7);\ns := fb.iSeverity;\nv := fb.fValue;\nt := fb.tDelay;\n",
         "",
     );
-    let dir = project(&[("FB_Mon.TcPOU", &block), ("MAIN.TcPOU", &main)]);
+    let dir = temp_project(&[("FB_Mon.TcPOU", &block), ("MAIN.TcPOU", &main)]);
     let out = plcrun_ok(&[&dir, "--cycles", "1", "--trace", "ok,none,s,v,t"]);
     assert_eq!(
         out,
@@ -488,7 +475,7 @@ fn a_block_registers_itself_with_this_and_tcunit_s_other_forms_load() {
         "a();\nb();\nnDone := 0;\nFOR i := 1 TO GVL.count DO\n    IF GVL.suites[i]^.Done() THEN nDone := nDone + 1; END_IF\nEND_FOR\nnMinor := GVL.stLibVersion_Mine.iMinor;\nnDot := FIND(STR1 := GVL.stLibVersion_Mine.sVersion, '.');\nGVL.GetCpuCounter();\nnLo := GVL.GetCpuCounter.cpuCntLoDW;\n",
         "",
     );
-    let dir = project(&[
+    let dir = temp_project(&[
         ("FB_Suite.TcPOU", &suite),
         ("GVL.TcGVL", gvl),
         ("MAIN.TcPOU", &main),
@@ -525,7 +512,7 @@ fn types_pinned_from_the_type_system_are_read_from_the_tmc_or_the_tsproj() {
     );
     // The solution's .tsproj, the folder above the PLC project: its
     // current version of ST_Io (the other is hidden), and only that type.
-    let dir = project(&[
+    let dir = temp_project(&[
         ("Plc/Plc.plcproj", PINNING_PROJECT),
         ("Plc/MAIN.TcPOU", &main),
         ("Solution.tsproj", TYPE_SYSTEM),
@@ -572,7 +559,7 @@ fn the_language_server_reads_the_pinned_types_too() {
         "f := stIo.fWidth;\n",
         "",
     );
-    let dir = project(&[
+    let dir = temp_project(&[
         ("Plc/Plc.plcproj", PINNING_PROJECT),
         ("Plc/MAIN.TcPOU", &main),
         ("Solution.tsproj", TYPE_SYSTEM),
@@ -616,7 +603,7 @@ fn library_projects_referenced_by_a_project_are_found_on_the_library_path() {
         "F_Rpm := n * 20;\n",
         "",
     );
-    let dir = project(&[
+    let dir = temp_project(&[
         ("App/App.plcproj", REFERENCING_PROJECT),
         ("App/MAIN.TcPOU", &main),
         ("libs/motor/Motor.plcproj", LIBRARY_PROJECT),

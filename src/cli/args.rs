@@ -310,6 +310,18 @@ impl ReadingArgs {
     pub fn with_libraries(&self, files: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
         plcrun::with_library_projects(files, &self.library_path).map_err(|e| e.to_string())
     }
+
+    /// Loads `files` and their library projects in this encoding; what
+    /// loading reports goes into `diags`, a file that cannot be read is
+    /// the error.
+    pub fn load(
+        &self,
+        files: &[PathBuf],
+        diags: &mut plcrun::Diagnostics,
+    ) -> Result<plcrun::SourceMap, String> {
+        let files = self.with_libraries(files)?;
+        plcrun::load_files_with(&files, self.encoding, diags).map_err(|e| e.to_string())
+    }
 }
 
 /// `plcrun check FILES...`: parse and check only.

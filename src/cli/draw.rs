@@ -5,7 +5,7 @@ use super::args::{DrawArgs, RunArgs};
 use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};
 use plcrun::{
     ChartPicture, CheckOptions, Diagnostics, Session, TimingDiagram, check as check_sources,
-    draw_sources, load_files_with,
+    draw_sources,
 };
 use std::path::Path;
 use std::sync::{Arc, Mutex, PoisonError};
@@ -19,14 +19,7 @@ fn write_file(path: &Path, text: &str) -> Result<(), String> {
 /// chart).
 pub fn draw(args: &DrawArgs) -> i32 {
     let mut diags = Diagnostics::new();
-    let files = match args.reading.with_libraries(&args.files) {
-        Ok(files) => files,
-        Err(e) => {
-            sayln!("error: {e}");
-            return EXIT_USAGE;
-        }
-    };
-    let sources = match load_files_with(&files, args.reading.encoding, &mut diags) {
+    let sources = match args.reading.load(&args.files, &mut diags) {
         Ok(s) => s,
         Err(e) => {
             sayln!("error: {e}");

@@ -3,21 +3,12 @@
 
 use super::args::ExportArgs;
 use super::{EXIT_COMPILE, EXIT_OK, EXIT_USAGE};
-use plcrun::{
-    CheckOptions, Diagnostics, ExportError, check as check_sources, export_plcopen, load_files_with,
-};
+use plcrun::{CheckOptions, Diagnostics, ExportError, check as check_sources, export_plcopen};
 
 /// `plcrun export --plcopen FILES... [-o OUT.xml]`.
 pub fn export(args: &ExportArgs) -> i32 {
     let mut diags = Diagnostics::new();
-    let files = match args.reading.with_libraries(&args.files) {
-        Ok(files) => files,
-        Err(e) => {
-            sayln!("error: {e}");
-            return EXIT_USAGE;
-        }
-    };
-    let sources = match load_files_with(&files, args.reading.encoding, &mut diags) {
+    let sources = match args.reading.load(&args.files, &mut diags) {
         Ok(s) => s,
         Err(e) => {
             sayln!("error: {e}");

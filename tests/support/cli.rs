@@ -48,6 +48,22 @@ pub fn temp_file(name: &str, contents: impl AsRef<[u8]>) -> String {
     path.to_string_lossy().into_owned()
 }
 
+/// Writes `files` (path inside the folder, contents) into a fresh folder
+/// and returns the folder: a project laid out on disk.
+pub fn temp_project(files: &[(&str, &str)]) -> String {
+    let marker = temp_file(".project", "");
+    let dir = std::path::Path::new(&marker)
+        .parent()
+        .unwrap()
+        .to_path_buf();
+    for (name, text) in files {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(&path, text).unwrap();
+    }
+    dir.to_string_lossy().into_owned()
+}
+
 /// The address a `plcrun --modbus ADDR:0` child listens on, read from the
 /// first line of its standard error (piped); the rest of standard error is
 /// drained on a thread so that the child never blocks writing it.
