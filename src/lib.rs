@@ -68,8 +68,9 @@ pub use draw::{
     TimingDiagram, TransitionNode, draw_chart, draw_sources,
 };
 pub use driver::{
-    CheckOptions, CheckReport, LoadError, add_source_bytes, check, check_reporting, load_files,
-    load_files_with, project_files, type_description_sources, with_library_projects,
+    CheckOptions, CheckReport, IoLink, LoadError, add_source_bytes, check, check_reporting,
+    load_files, load_files_with, project_files, project_io_links, type_description_sources,
+    with_library_projects,
 };
 pub use elementary::ElemType;
 pub use ide::{

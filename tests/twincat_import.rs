@@ -636,3 +636,48 @@ fn library_projects_referenced_by_a_project_are_found_on_the_library_path() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("not a folder"), "{err}");
 }
+
+/// A solution whose I/O configuration links a test suite's output to the
+/// input of the block it tests, as SLAC's vacuum library feeds its gauges.
+const LOOPBACK_SOLUTION: &str = "<?xml version=\"1.0\"?>\n<TcSmProject>\n  <Mappings>\n    <OwnerA Name=\"TIPC^Plc^Plc Instance\">\n      <OwnerB Name=\"TIPC^Plc^Plc Instance\">\n        <Link VarA=\"PlcTask Inputs^PRG_TEST.fbPumpTest.fbPump.i_iRaw\" VarB=\"PlcTask Outputs^PRG_TEST.fbPumpTest.q_iRaw\"/>\n        <Link VarA=\"PlcTask Outputs^PRG_TEST.fbPumpTest.q_iRaw\" VarB=\"PlcTask Inputs^PRG_TEST.fbPumpTest.i_diWide\"/>\n      </OwnerB>\n      <OwnerB Name=\"TIID^Device 1 (EtherCAT)^Term 2 (EL3064)\">\n        <Link VarA=\"PlcTask Inputs^PRG_TEST.fbPumpTest.i_iOther\" VarB=\"AI Standard Channel 1^Value\"/>\n      </OwnerB>\n    </OwnerA>\n  </Mappings>\n</TcSmProject>\n";
+
+const LOOPBACK_PROJECT: &str = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Project>\n  <ItemGroup>\n    <Compile Include=\"FB_Pump.TcPOU\" />\n    <Compile Include=\"FB_PumpTest.TcPOU\" />\n    <Compile Include=\"PRG_TEST.TcPOU\" />\n  </ItemGroup>\n</Project>\n";
+
+#[test]
+fn the_io_configuration_feeds_a_suite_s_outputs_back_to_the_inputs_it_links() {
+    let pump = pou(
+        "FB_Pump",
+        "FUNCTION_BLOCK FB_Pump\nVAR\n  i_iRaw AT %I* : INT;\nEND_VAR\nVAR_OUTPUT rVolts : REAL; END_VAR\n",
+        "rVolts := INT_TO_REAL(i_iRaw) / 100.0;\n",
+        "",
+    );
+    // The suite writes 250 in cycle 0; the pump reads it from cycle 1 (an
+    // input takes its output's value between two cycles), as does the
+    // suite's own wider input; the input linked to a terminal stays 0.
+    let suite = pou(
+        "FB_PumpTest",
+        "FUNCTION_BLOCK FB_PumpTest EXTENDS TcUnit.FB_TestSuite\nVAR\n  fbPump : FB_Pump;\n  q_iRaw AT %Q* : INT;\n  i_diWide AT %I* : DINT;\n  i_iOther AT %I* : INT;\n  n : INT;\nEND_VAR\n",
+        "TEST('Loopback');\nq_iRaw := 250;\nfbPump();\nIF n = 0 THEN\n  AssertEquals_REAL(Expected := 0.0, Actual := fbPump.rVolts, Delta := 0.001, Message := 'not yet');\nELSE\n  AssertEquals_REAL(Expected := 2.5, Actual := fbPump.rVolts, Delta := 0.001, Message := 'fed back');\n  AssertEquals_DINT(Expected := 250, Actual := i_diWide, Message := 'wider input');\n  AssertEquals_INT(Expected := 0, Actual := i_iOther, Message := 'terminal');\n  TEST_FINISHED();\nEND_IF\nn := n + 1;\n",
+        "",
+    );
+    let prg = pou(
+        "PRG_TEST",
+        "PROGRAM PRG_TEST\nVAR fbPumpTest : FB_PumpTest; END_VAR\n",
+        "TcUnit.RUN();\n",
+        "",
+    );
+    let dir = temp_project(&[
+        ("Solution.tsproj", LOOPBACK_SOLUTION),
+        ("Plc/Plc.plcproj", LOOPBACK_PROJECT),
+        ("Plc/FB_Pump.TcPOU", &pump),
+        ("Plc/FB_PumpTest.TcPOU", &suite),
+        ("Plc/PRG_TEST.TcPOU", &prg),
+    ]);
+    let (code, out, err) = plcrun(&["test", &format!("{dir}/Plc/Plc.plcproj")]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.starts_with("PASS  PRG_TEST.fbPumpTest.Loopback ("),
+        "{out}"
+    );
+    assert!(out.contains("2 cycles, 4 assertions"), "{out}");
+}

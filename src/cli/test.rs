@@ -78,6 +78,8 @@ fn options(args: &TestArgs) -> Result<TestOptions, String> {
         strict: args.reading.strict,
         addressing: args.reading.addressing,
         keep_going: args.keep_going,
+        // The loopback links of the TwinCAT solutions (docs/testing.md).
+        io_links: plcrun::project_io_links(&args.files),
     })
 }
 

@@ -202,7 +202,7 @@ fn type_descriptions(project: &Path, pinned: Vec<String>) -> TypeDescriptions {
 }
 
 /// The one `.tsproj` of the folder above a `.plcproj`.
-fn solution(project: &Path) -> Option<PathBuf> {
+pub(crate) fn solution(project: &Path) -> Option<PathBuf> {
     let above = project.parent()?.parent()?;
     let mut found = std::fs::read_dir(above)
         .ok()?

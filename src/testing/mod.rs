@@ -45,6 +45,11 @@ pub struct TestOptions {
     /// are reported as errors (`--keep-going`, default false: any error
     /// stops the run before a test runs).
     pub keep_going: bool,
+    /// Links of the I/O configuration from the PLC's outputs to its inputs
+    /// ([`crate::project_io_links`]): before each cycle of the TcUnit
+    /// suites, each input of a suite takes its output's value (default
+    /// none).
+    pub io_links: Vec<crate::IoLink>,
 }
 
 impl Default for TestOptions {
@@ -56,6 +61,7 @@ impl Default for TestOptions {
             strict: false,
             addressing: None,
             keep_going: false,
+            io_links: Vec::new(),
         }
     }
 }

@@ -10,6 +10,8 @@ mod state;
 
 pub(crate) use state::State;
 
+mod io_links;
+
 use super::assertions::{self, Log, Recorded};
 use super::{AssertionFailure, TestCase, TestError, TestOptions};
 use crate::diagnostics::Diagnostics;
@@ -286,11 +288,13 @@ fn run_plan(
     let mut plc =
         Plc::compile(sources_for(sources, plan, true), &plc_options).map_err(TestError::Compile)?;
     let lock = || state.lock().unwrap_or_else(|p| p.into_inner());
+    let links = io_links::resolve(&plc, plan, &options.io_links);
     let mut fault = None;
     let mut cycles = 0;
     let mut finished_at: HashMap<(usize, usize), Duration> = HashMap::new();
     for cycle in 0..CYCLE_LIMIT {
         lock().cycle = cycle;
+        io_links::copy(&mut plc, &links);
         let result = plc.run_cycle();
         cycles = cycle + 1;
         let s = lock();
