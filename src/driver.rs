@@ -26,7 +26,7 @@ mod library_projects;
 mod project;
 mod source_bytes;
 pub(crate) mod twincat_library;
-pub use io_links::{IoLink, project_io_links};
+pub use io_links::project_io_links;
 pub use library_projects::with_library_projects;
 pub use source_bytes::add_source_bytes;
 

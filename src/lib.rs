@@ -55,7 +55,8 @@ mod value;
 pub(crate) mod vm;
 
 pub use address::{
-    AddressError, Addressing, Area, ImageSpot, ImageTable, IoAddress, UnknownAddressing, Width,
+    AddressError, Addressing, Area, ImageSpot, ImageTable, IoAddress, IoLink, UnknownAddressing,
+    Width,
 };
 pub use compare::{
     CompareError, CompareOptions, CompareReport, Difference, InputChange, InputKind, InputPlan,
@@ -68,8 +69,8 @@ pub use draw::{
     TimingDiagram, TransitionNode, draw_chart, draw_sources,
 };
 pub use driver::{
-    CheckOptions, CheckReport, IoLink, LoadError, add_source_bytes, check, check_reporting,
-    load_files, load_files_with, project_files, project_io_links, type_description_sources,
+    CheckOptions, CheckReport, LoadError, add_source_bytes, check, check_reporting, load_files,
+    load_files_with, project_files, project_io_links, type_description_sources,
     with_library_projects,
 };
 pub use elementary::ElemType;

@@ -24,9 +24,11 @@
 //! located variables ([`overlap`]), the runtime to lay out the image.
 
 pub mod convention;
+mod io_link;
 pub mod overlap;
 
 pub use convention::{Addressing, ImageSpot, ImageTable, UnknownAddressing};
+pub use io_link::IoLink;
 
 use std::fmt;
 

@@ -9,17 +9,8 @@
 //! are left out.
 
 use super::project::{has_extension, solution};
+use crate::address::IoLink;
 use std::path::{Path, PathBuf};
-
-/// One link from a PLC output to a PLC input, by the variables' paths as
-/// the PLC names them (`PRG_Test.fbTest.fbPump.i_iTemp`).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct IoLink {
-    /// The `AT %I*` variable that takes the value.
-    pub input: String,
-    /// The `AT %Q*` variable whose value it takes.
-    pub output: String,
-}
 
 /// The loopback links of the solutions of the TwinCAT projects among
 /// `paths` (each `.plcproj`'s `.tsproj`, the folder above), in their

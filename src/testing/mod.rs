@@ -49,7 +49,7 @@ pub struct TestOptions {
     /// ([`crate::project_io_links`]): before each cycle of the TcUnit
     /// suites, each input of a suite takes its output's value (default
     /// none).
-    pub io_links: Vec<crate::IoLink>,
+    pub io_links: Vec<crate::address::IoLink>,
 }
 
 impl Default for TestOptions {

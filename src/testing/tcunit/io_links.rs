@@ -1,5 +1,5 @@
 //! The I/O configuration's loopback links under the TcUnit runner
-//! ([`crate::IoLink`]): a link names its variables by their paths in the
+//! ([`crate::address::IoLink`]): a link names its variables by their paths in the
 //! project's PROGRAM (`PRG_Test.fb_PTM_Test.fbPump.i_iTemp`), where the
 //! runner runs the suite instance `PRG_Test.fb_PTM_Test` as its own
 //! `suiteK`; the paths are moved there. Before each cycle every input
@@ -8,12 +8,13 @@
 //! PROGRAM's own variable, which the runner does not run) is left out.
 
 use super::{DRIVER, Plan};
-use crate::VarRef;
+use crate::address::IoLink;
 use crate::runtime::engine::Plc;
+use crate::runtime::names::VarRef;
 
 /// The links of `links` whose two ends are variables of the suites of
 /// `plan` in `plc`.
-pub(super) fn resolve(plc: &Plc, plan: &Plan, links: &[crate::IoLink]) -> Vec<(VarRef, VarRef)> {
+pub(super) fn resolve(plc: &Plc, plan: &Plan, links: &[IoLink]) -> Vec<(VarRef, VarRef)> {
     let moved = |path: &str| -> Option<String> {
         let upper = path.to_ascii_uppercase();
         plan.suites.iter().enumerate().find_map(|(k, s)| {
