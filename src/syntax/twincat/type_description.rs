@@ -270,11 +270,11 @@ fn event_class(em: &mut Emitter, node: Node) {
             em.error(codes::MISSING, em.at(event), "`<EventId>` has no `<Name>`");
             return;
         };
-        let Some(id) = n.attribute("Id").and_then(|i| i.trim().parse::<u32>().ok()) else {
+        let Some(id) = n.attribute("Id").and_then(event_number) else {
             em.error(
                 codes::UNDECLARABLE_TYPE,
                 em.at(n),
-                "an event's `<Name>` needs its number in an `Id` attribute (`<Name Id=\"0\">`)",
+                "an event's `<Name>` needs its number in an `Id` attribute (`<Name Id=\"3\">` or `<Name Id=\"#x0003\">`)",
             );
             return;
         };
@@ -309,6 +309,16 @@ fn event_class(em: &mut Emitter, node: Node) {
         &format!("VAR_GLOBAL CONSTANT {class} : TC_EVENTS_{class}; END_VAR"),
         em.end_of(node),
     );
+}
+
+/// An event's number as a type description writes it: decimal (`3`) or,
+/// as TwinCAT's type editor writes it, hexadecimal after `#x` (`#x0001`).
+fn event_number(text: &str) -> Option<u32> {
+    let text = text.trim();
+    match text.strip_prefix("#x").or_else(|| text.strip_prefix("#X")) {
+        Some(hex) => u32::from_str_radix(hex, 16).ok(),
+        None => text.parse().ok(),
+    }
 }
 
 /// Tc3_EventLogger's severities (`TcEventSeverity`).
@@ -547,6 +557,15 @@ mod tests {
         assert_eq!(guid_value("{97CF8247-B59C-4E2C-B4B0}"), None);
         assert_eq!(guid_value("{97CF8247-B59C-4E2C-B4B0-7350D047145G}"), None);
         assert_eq!(library_names(text), ["TcEventEntry"]);
+        assert_eq!(
+            [
+                event_number("3"),
+                event_number("#x0011"),
+                event_number("#X2"),
+                event_number("x")
+            ],
+            [Some(3), Some(17), Some(2), None]
+        );
     }
 
     #[test]
