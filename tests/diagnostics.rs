@@ -233,6 +233,11 @@ fn each_error_code_at_its_place(#[case] code: &str, #[case] src: String, #[case]
 
 #[rstest]
 #[case("W001", prog("x : INT;", "{ a pragma } x := 1;"), "5:1")]
+#[case(
+    "W155",
+    prog("x : INT;", "{attribute 'pytmc' := 'pv: X'} x := 1;"),
+    "5:1"
+)]
 #[case("W202", prog("x AT %IX0.0 : BOOL;", "x := TRUE;"), "5:1")]
 #[case("W204", prog("c AT %QX0.0 : BOOL; r AT %QW0 : INT;", ""), "3:26")]
 #[case(

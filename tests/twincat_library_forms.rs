@@ -468,3 +468,26 @@ fn an_initial_duration_adds_and_subtracts_constant_durations() {
     let err = refused(&[("GVL_Logger.TcGVL", &list), ("P.TcPOU", &bad)]);
     assert!(err.contains("E205"), "{err}");
 }
+
+#[test]
+fn attributes_only_tools_read_are_not_shown_for_twincat_code() {
+    // SLAC's EPICS generator reads `pytmc` on most declarations; CODESYS's
+    // `instance-path` does change the variable, and stays named (W151).
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  {attribute 'pytmc' := 'pv: TST:X\n    io: i'}\n  x : INT := 2;\n  {attribute 'instance-path'}\n  sPath : STRING;\nEND_VAR",
+        "{flow}\nx := x + 1;\n{noflow}",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "x"), "3");
+    let codes: Vec<&str> = plc.warnings().iter().map(|d| d.code).collect();
+    assert_eq!(codes, ["W151"]);
+    // In an IEC file the same attribute is shown, as W155.
+    let st =
+        "PROGRAM P\nVAR {attribute 'pytmc' := 'pv: X'} x : INT; END_VAR\nx := 1;\nEND_PROGRAM\n";
+    let plc = crate::support::plc::compile(st);
+    let codes: Vec<&str> = plc.warnings().iter().map(|d| d.code).collect();
+    assert_eq!(codes, ["W155"]);
+}

@@ -28,6 +28,9 @@ use crate::syntax::ast::Item;
 use crate::syntax::token::{Kw, Tok};
 use std::collections::HashSet;
 
+/// The warning for an attribute only tools read (`{attribute 'pytmc'}`):
+/// not shown for TwinCAT files, where such attributes are everywhere.
+const TOOL_ATTRIBUTE: &str = "W155";
 /// The name of the library's source file.
 pub(crate) const LIBRARY_SOURCE: &str = "<TwinCAT libraries>";
 const LIBRARY: &str = include_str!("twincat_library.st");
@@ -253,7 +256,9 @@ pub(crate) fn drop_expected_warnings(sources: &SourceMap, diags: Diagnostics) ->
             d.message = format!("in plcrun's TwinCAT library: {}", d.message);
             d.span = Span::new(FileId(0), 0, 0);
         } else if (in_library && warning)
-            || (warning && twincat.get(file) == Some(&true) && is_extension_warning(d.code))
+            || (warning
+                && twincat.get(file) == Some(&true)
+                && (is_extension_warning(d.code) || d.code == TOOL_ATTRIBUTE))
         {
             continue;
         }

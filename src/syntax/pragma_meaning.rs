@@ -1,7 +1,9 @@
 //! Pragmas that change a program's meaning in other tools, named in their
 //! warning (W150-W154) instead of the generic "pragma ignored" (W001): a
 //! CODESYS attribute or conditional compilation ignored by plcrun may make
-//! the program behave differently here than there.
+//! the program behave differently here than there. Attributes only tools
+//! around the program read are W155, which TwinCAT and CODESYS files do
+//! not show (they are everywhere there, and change nothing).
 
 /// The warning for pragma `text` (`{...}` as written), when it is one that
 /// changes meaning elsewhere: `(code, message)`.
@@ -26,6 +28,14 @@ pub fn named(text: &str) -> Option<(&'static str, String)> {
             format!(
                 "conditional compilation `{{{}}}` ignored: plcrun compiles every branch, \
                  CODESYS only the selected one",
+                short(inner)
+            ),
+        )),
+        "flow" | "noflow" => Some((
+            "W155",
+            format!(
+                "pragma `{{{}}}` ignored: it switches CODESYS's flow control display; the \
+                 program runs the same",
                 short(inner)
             ),
         )),
@@ -75,15 +85,47 @@ fn attribute(name: &str) -> Option<(&'static str, String)> {
                  configuration, plcrun from its declaration"
             ),
         ),
+        "instance-path" => (
+            "W151",
+            format!(
+                "attribute '{name}' ignored: TwinCAT and CODESYS fill this STRING with the \
+                 instance's path, plcrun leaves its declared initial value"
+            ),
+        ),
         other if LAYOUT_ATTRIBUTES.contains(&other) => (
             "W153",
             format!(
                 "attribute '{name}' ignored: it changes layout, initialisation or access in CODESYS"
             ),
         ),
+        other if TOOL_ATTRIBUTES.contains(&other) => (
+            "W155",
+            format!(
+                "attribute '{name}' ignored: it tells tools about the program (symbols, \
+                 monitoring, static analysis, generators); the program runs the same"
+            ),
+        ),
         _ => return None,
     })
 }
+
+/// Attributes read by tools around the program, not by the code it runs:
+/// ADS symbols, online monitoring, the linker, static analysis, library
+/// display, and generators such as SLAC's `pytmc` (EPICS records).
+const TOOL_ATTRIBUTES: [&str; 12] = [
+    "pytmc",
+    "analysis",
+    "symbol",
+    "monitoring",
+    "linkalways",
+    "obsolete",
+    "conditionalshow",
+    "conditionalshow_all_locals",
+    "displaymode",
+    "naming",
+    "reflection",
+    "estimated-stack-usage",
+];
 
 /// Attributes that change layout, initialisation or access in CODESYS.
 const LAYOUT_ATTRIBUTES: [&str; 8] = [
@@ -119,6 +161,9 @@ mod tests {
         assert_eq!(code("{END_IF}"), Some("W152"));
         assert_eq!(code("{attribute 'pack_mode' := '1'}"), Some("W153"));
         assert_eq!(code("{error 'not for this PLC'}"), Some("W154"));
+        assert_eq!(code("{attribute 'pytmc' := 'pv: X'}"), Some("W155"));
+        assert_eq!(code("{attribute 'instance-path'}"), Some("W151"));
+        assert_eq!(code("{flow}"), Some("W155"));
         assert_eq!(code("{ a pragma }"), None);
         assert_eq!(
             code("{attribute 'x'}"),
