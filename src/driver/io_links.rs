@@ -8,9 +8,9 @@
 //! other devices (EtherCAT terminals) have no counterpart in plcrun and
 //! are left out.
 
-use super::project::{has_extension, solution};
+use super::project::{plcproj_of, solution};
 use crate::address::IoLink;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The loopback links of the solutions of the TwinCAT projects among
 /// `paths` (each `.plcproj`'s `.tsproj`, the folder above), in their
@@ -19,12 +19,7 @@ pub fn project_io_links(paths: &[PathBuf]) -> Vec<IoLink> {
     let mut seen: Vec<PathBuf> = Vec::new();
     let mut links = Vec::new();
     for path in paths {
-        let plcproj = if has_extension(path, &["plcproj"]) {
-            Some(path.clone())
-        } else {
-            single_project(path)
-        };
-        let Some(tsproj) = plcproj.as_deref().and_then(solution) else {
+        let Some(tsproj) = plcproj_of(path).as_deref().and_then(solution) else {
             continue;
         };
         if seen.contains(&tsproj) {
@@ -36,21 +31,6 @@ pub fn project_io_links(paths: &[PathBuf]) -> Vec<IoLink> {
         seen.push(tsproj);
     }
     links
-}
-
-/// The one `.plcproj` of a folder.
-fn single_project(dir: &Path) -> Option<PathBuf> {
-    if !dir.is_dir() {
-        return None;
-    }
-    let mut found = Vec::new();
-    super::project::walk(dir, 0, &mut |f| {
-        if has_extension(f, &["plcproj"]) {
-            found.push(f.to_path_buf());
-        }
-    })
-    .ok()?;
-    (found.len() == 1).then(|| found.remove(0))
 }
 
 /// The links of a `.tsproj`'s `<Mappings>` between an `OwnerA` and an

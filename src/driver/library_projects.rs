@@ -7,7 +7,7 @@
 //! references in turn. A reference found nowhere is left to plcrun's own
 //! TwinCAT library or reported where a symbol of it is used.
 
-use super::project::{has_extension, walk};
+use super::project::{has_extension, plcproj_of, walk};
 use std::collections::HashMap;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -73,25 +73,6 @@ fn library_catalogue(search: &[PathBuf]) -> io::Result<HashMap<String, PathBuf>>
         }
     }
     Ok(catalogue)
-}
-
-/// The `.plcproj` a path stands for: itself, or the one project of a
-/// folder (`None` for a source file or a folder of plain sources).
-fn plcproj_of(path: &Path) -> Option<PathBuf> {
-    if has_extension(path, &["plcproj"]) {
-        return Some(path.to_path_buf());
-    }
-    if !path.is_dir() {
-        return None;
-    }
-    let mut found = Vec::new();
-    walk(path, 0, &mut |file| {
-        if has_extension(file, &["plcproj"]) {
-            found.push(file.to_path_buf());
-        }
-    })
-    .ok()?;
-    (found.len() == 1).then(|| found.remove(0))
 }
 
 /// The names of the libraries a `.plcproj` references:

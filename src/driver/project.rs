@@ -111,6 +111,25 @@ pub(crate) fn project_files(path: &Path) -> io::Result<ProjectFiles> {
     }
 }
 
+/// The `.plcproj` a path stands for: itself, or the one project of a
+/// folder (`None` for a source file or a folder of plain sources).
+pub(crate) fn plcproj_of(path: &Path) -> Option<PathBuf> {
+    if has_extension(path, &["plcproj"]) {
+        return Some(path.to_path_buf());
+    }
+    if !path.is_dir() {
+        return None;
+    }
+    let mut found = Vec::new();
+    walk(path, 0, &mut |file| {
+        if has_extension(file, &["plcproj"]) {
+            found.push(file.to_path_buf());
+        }
+    })
+    .ok()?;
+    (found.len() == 1).then(|| found.remove(0))
+}
+
 /// Calls `found` for every file under `dir`, in name order, skipping
 /// hidden folders and TwinCAT's build folders.
 pub(crate) fn walk(dir: &Path, depth: usize, found: &mut dyn FnMut(&Path)) -> io::Result<()> {

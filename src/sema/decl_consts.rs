@@ -552,70 +552,54 @@ impl DeclConsts<'_> {
         elem: ElemType,
         local: Option<&IndexMap<String, VarInfo>>,
     ) -> Result<Const, (&'static str, String)> {
-        match op {
-            _ if elem.is_int() => {
-                let x = self.const_scalar(a, elem, local)?;
-                let y = self.const_scalar(b, elem, local)?;
-                let (Const::Bits(x), Const::Bits(y)) = (x, y) else {
-                    return Err(("E205", "not a constant integer expression".into()));
-                };
-                let (x, y) = (slot_to_int(x, elem), slot_to_int(y, elem));
-                let r = match op {
-                    BinaryOp::Add => x.checked_add(y),
-                    BinaryOp::Sub => x.checked_sub(y),
-                    BinaryOp::Mul => x.checked_mul(y),
-                    BinaryOp::Div if y != 0 => x.checked_div(y),
-                    BinaryOp::Mod if y != 0 => x.checked_rem(y),
-                    BinaryOp::Div | BinaryOp::Mod => {
-                        return Err(("E305", "division by zero in a constant".into()));
-                    }
-                    _ => return Err(("E205", "not a constant integer expression".into())),
-                };
-                r.and_then(|v| int_to_slot(v, elem))
-                    .map(Const::Bits)
-                    .ok_or(("E305", format!("constant overflows {elem}")))
-            }
-            // A duration from durations (`PT := GVL.tBase + T#1S`).
-            BinaryOp::Add | BinaryOp::Sub
-                if elem.family() == crate::elementary::Family::Duration =>
-            {
-                let x = self.const_scalar(a, elem, local)?;
-                let y = self.const_scalar(b, elem, local)?;
-                let (Const::Bits(x), Const::Bits(y)) = (x, y) else {
-                    return Err(("E205", "not a constant expression".into()));
-                };
-                let (x, y) = (slot_to_int(x, elem), slot_to_int(y, elem));
-                let r = match op {
-                    BinaryOp::Add => x.checked_add(y),
-                    _ => x.checked_sub(y),
-                };
-                r.and_then(|v| int_to_slot(v, elem))
-                    .map(Const::Bits)
-                    .ok_or(("E305", format!("constant overflows {elem}")))
-            }
-            _ if elem.is_real() => {
-                let x = self.const_scalar(a, elem, local)?;
-                let y = self.const_scalar(b, elem, local)?;
-                let (Const::Bits(x), Const::Bits(y)) = (x, y) else {
-                    return Err(("E205", "not a constant expression".into()));
-                };
-                let (x, y) = (
-                    super::consts::slot_to_real(x, elem),
-                    super::consts::slot_to_real(y, elem),
-                );
-                let r = match op {
-                    BinaryOp::Add => x + y,
-                    BinaryOp::Sub => x - y,
-                    BinaryOp::Mul => x * y,
-                    BinaryOp::Div => x / y,
-                    _ => return Err(("E205", "not a constant expression".into())),
-                };
-                real_to_slot(r, elem)
-                    .map(Const::Bits)
-                    .ok_or(("E305", format!("constant overflows {elem}")))
-            }
-            _ => Err(("E205", "initial values must be constant expressions".into())),
+        // A duration from durations (`PT := GVL.tBase + T#1S`): summed as
+        // the integers of its slots.
+        let duration = elem.family() == crate::elementary::Family::Duration
+            && matches!(op, BinaryOp::Add | BinaryOp::Sub);
+        if !(elem.is_int() || elem.is_real() || duration) {
+            return Err(("E205", "initial values must be constant expressions".into()));
         }
+        let x = self.const_scalar(a, elem, local)?;
+        let y = self.const_scalar(b, elem, local)?;
+        let (Const::Bits(x), Const::Bits(y)) = (x, y) else {
+            let what = if elem.is_int() {
+                "not a constant integer expression"
+            } else {
+                "not a constant expression"
+            };
+            return Err(("E205", what.into()));
+        };
+        if elem.is_real() {
+            let (x, y) = (
+                super::consts::slot_to_real(x, elem),
+                super::consts::slot_to_real(y, elem),
+            );
+            let r = match op {
+                BinaryOp::Add => x + y,
+                BinaryOp::Sub => x - y,
+                BinaryOp::Mul => x * y,
+                BinaryOp::Div => x / y,
+                _ => return Err(("E205", "not a constant expression".into())),
+            };
+            return real_to_slot(r, elem)
+                .map(Const::Bits)
+                .ok_or(("E305", format!("constant overflows {elem}")));
+        }
+        let (x, y) = (slot_to_int(x, elem), slot_to_int(y, elem));
+        let r = match op {
+            BinaryOp::Add => x.checked_add(y),
+            BinaryOp::Sub => x.checked_sub(y),
+            BinaryOp::Mul => x.checked_mul(y),
+            BinaryOp::Div if y != 0 => x.checked_div(y),
+            BinaryOp::Mod if y != 0 => x.checked_rem(y),
+            BinaryOp::Div | BinaryOp::Mod => {
+                return Err(("E305", "division by zero in a constant".into()));
+            }
+            _ => return Err(("E205", "not a constant integer expression".into())),
+        };
+        r.and_then(|v| int_to_slot(v, elem))
+            .map(Const::Bits)
+            .ok_or(("E305", format!("constant overflows {elem}")))
     }
 }
 

@@ -178,6 +178,12 @@ fn name(em: &mut Emitter, node: Node, owner: Node) -> bool {
 /// Emits the IEC identifier element `n` holds; E874 when it holds another
 /// text.
 fn identifier(em: &mut Emitter, n: Node) -> bool {
+    checked_identifier(em, n).is_some() && lex_text(em, n)
+}
+
+/// The IEC identifier element `n` holds; E874 (and `None`) when it holds
+/// another text.
+fn checked_identifier<'a>(em: &mut Emitter, n: Node<'a, '_>) -> Option<&'a str> {
     let text = n.text().unwrap_or("").trim();
     if !is_identifier(text) {
         em.error(
@@ -185,9 +191,9 @@ fn identifier(em: &mut Emitter, n: Node) -> bool {
             em.at(n),
             format!("`{text}` is not an IEC 61131-3 identifier"),
         );
-        return false;
+        return None;
     }
-    lex_text(em, n)
+    Some(text)
 }
 
 /// One `<DataType>`: `TYPE name [EXTENDS base] : <structure, enumeration
@@ -247,15 +253,9 @@ fn event_class(em: &mut Emitter, node: Node) {
         em.error(codes::MISSING, em.at(node), "`<DataType>` has no `<Name>`");
         return;
     };
-    let class = name_node.text().unwrap_or("").trim();
-    if !is_identifier(class) {
-        em.error(
-            codes::UNDECLARABLE_TYPE,
-            em.at(name_node),
-            format!("`{class}` is not an IEC 61131-3 identifier"),
-        );
+    let Some(class) = checked_identifier(em, name_node) else {
         return;
-    }
+    };
     let Some(guid) = guid_value(name_node.attribute("GUID").unwrap_or("")) else {
         em.error(
             codes::UNDECLARABLE_TYPE,

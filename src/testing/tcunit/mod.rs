@@ -226,12 +226,11 @@ pub(crate) fn run(
     let mut faulted = Vec::new();
     loop {
         let mut cases = run_plan(sources, &plan, options)?;
-        let Some(k) = init_fault_suite(&cases, &plan) else {
+        let Some((at, k)) = init_fault_suite(&cases, &plan) else {
             faulted.extend(cases);
             return Ok(faulted);
         };
         // The fault is the suite's, whose instance raised it.
-        let at = cases.iter().position(|c| c.fault.is_some()).unwrap_or(0);
         let mut case = cases.swap_remove(at);
         case.suite = Some(plan.suites[k].path.clone());
         case.file = plan.suites[k].file.clone();
@@ -243,11 +242,12 @@ pub(crate) fn run(
     }
 }
 
-/// The suite (index in `plan`) whose initialisation faulted, when `cases`
-/// report a fault outside every test of the first cycle raised under a
-/// suite's instance (`PLCRUN_TCUNIT_MAIN.suite3...`).
-fn init_fault_suite(cases: &[TestCase], plan: &Plan) -> Option<usize> {
-    let case = cases.iter().find(|c| c.fault.is_some())?;
+/// The case reporting a fault outside every test of the first cycle and
+/// the suite (index in `plan`) whose initialisation raised it, under its
+/// instance (`PLCRUN_TCUNIT_MAIN.suite3...`): (case index, suite index).
+fn init_fault_suite(cases: &[TestCase], plan: &Plan) -> Option<(usize, usize)> {
+    let at = cases.iter().position(|c| c.fault.is_some())?;
+    let case = &cases[at];
     let fault = case.fault.as_ref()?;
     if fault.cycle != 0 || case.assertions > 0 {
         return None;
@@ -255,15 +255,18 @@ fn init_fault_suite(cases: &[TestCase], plan: &Plan) -> Option<usize> {
     let prefix = format!("{DRIVER}.SUITE").to_ascii_uppercase();
     let instances = std::iter::once(fault.instance())
         .chain(fault.callers().iter().map(|c| c.instance.as_str()));
-    instances.into_iter().find_map(|i| {
-        let upper = i.to_ascii_uppercase();
-        let rest = upper.strip_prefix(&prefix)?;
-        let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
-        digits
-            .parse::<usize>()
-            .ok()
-            .filter(|&k| k < plan.suites.len())
-    })
+    instances
+        .into_iter()
+        .find_map(|i| {
+            let upper = i.to_ascii_uppercase();
+            let rest = upper.strip_prefix(&prefix)?;
+            let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
+            digits
+                .parse::<usize>()
+                .ok()
+                .filter(|&k| k < plan.suites.len())
+        })
+        .map(|k| (at, k))
 }
 
 /// Runs the suites of `plan` together, as TcUnit does.
@@ -368,13 +371,7 @@ fn run_plan(
                 cases[at].fault = Some(f);
                 cases[at].unfinished = false;
             }
-            None => cases.push(body_fault_case(
-                plan,
-                suite,
-                Some(f),
-                cycles,
-                start.elapsed(),
-            )),
+            None => cases.push(body_fault_case(plan, suite, f, cycles, start.elapsed())),
         }
     }
     Ok(cases)
@@ -386,7 +383,7 @@ fn run_plan(
 fn body_fault_case(
     plan: &Plan,
     suite: Option<usize>,
-    f: Option<crate::runtime::engine::RuntimeFault>,
+    f: crate::runtime::engine::RuntimeFault,
     cycles: u64,
     elapsed: Duration,
 ) -> TestCase {
@@ -399,7 +396,7 @@ fn body_fault_case(
         elapsed,
         failures: Vec::new(),
         more_failures: 0,
-        fault: f,
+        fault: Some(f),
         unfinished: false,
         assertions: 0,
         output: Vec::new(),
