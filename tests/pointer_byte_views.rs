@@ -325,9 +325,10 @@ fn what_a_byte_view_cannot_do_faults() {
     );
     assert_eq!(first_fault(&src).fault.kind.code(), "R036");
     // A structure kept in an integer and read back as bytes: no byte
-    // layout (R037); read back as the structure: a byte view is read as
-    // elementary values only (R034).
-    let prelude = "TYPE T : STRUCT a : INT; b : REAL; END_STRUCT; END_TYPE";
+    // layout (R037); read back as another structure: a byte view is read
+    // as elementary values only (R034). Read back as its own type, it is
+    // the structure again (`a_structure_kept_in_an_integer_is_read_back`).
+    let prelude = "TYPE T : STRUCT a : INT; b : REAL; END_STRUCT; END_TYPE\nTYPE U : STRUCT a : INT; b : REAL; END_STRUCT; END_TYPE";
     let src = program(
         prelude,
         "t : T; pt : POINTER TO T; d : DWORD; pb : POINTER TO BYTE; b : BYTE;",
@@ -336,10 +337,22 @@ fn what_a_byte_view_cannot_do_faults() {
     assert_eq!(first_fault(&src).fault.kind, FaultKind::NoByteLayout);
     let src = program(
         prelude,
-        "t : T; pt : POINTER TO T; d : DWORD; i : INT;",
-        "pt := ADR(t); d := pt; pt := d; i := pt^.a;",
+        "t : T; pt : POINTER TO T; pu : POINTER TO U; d : DWORD; i : INT;",
+        "pt := ADR(t); d := pt; pu := d; i := pu^.a;",
     );
     assert_eq!(first_fault(&src).fault.kind.code(), "R034");
+}
+
+#[test]
+fn a_structure_kept_in_an_integer_is_read_back() {
+    let src = program(
+        "TYPE T : STRUCT a : INT; s : STRING; END_STRUCT; END_TYPE",
+        "t : ARRAY[0..2] OF T; pt : POINTER TO T; d : LWORD; i : INT; s : STRING;",
+        "t[1].a := 12; t[1].s := 'one'; pt := ADR(t[1]); d := pt; pt := 0; pt := d; i := pt^.a; s := pt^.s;",
+    );
+    let plc = run_once(&src);
+    assert_eq!(lit(&plc, "P.i"), "12");
+    assert_eq!(lit(&plc, "P.s"), "'one'");
 }
 
 #[test]

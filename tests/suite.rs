@@ -318,6 +318,8 @@ mod twincat_event_logger;
 mod twincat_import;
 #[path = "twincat_library_forms.rs"]
 mod twincat_library_forms;
+#[path = "twincat_memory.rs"]
+mod twincat_memory;
 #[path = "twincat_pmps_forms.rs"]
 mod twincat_pmps_forms;
 #[path = "twincat_utilities.rs"]

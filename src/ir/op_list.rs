@@ -335,8 +335,11 @@ macro_rules! for_each_op {
             /// a typed pointer's offset counts `unit` bytes per slot.
             PtrToInt { d: Slot => InOut, unit: u16 => Data };
             /// `d := the pointer whose integer image is `d`` (`pt := dw`): a byte
-            /// view of the object the image names (0 is `NULL`).
-            IntToPtr { d: Slot => InOut };
+            /// view of the object the image names (0 is `NULL`); when `ty` is
+            /// a type (not [`crate::ir::refs::NO_TYPE`]) and the memory there
+            /// holds a value of it, a typed pointer to that value instead
+            /// (`vm::type_at`).
+            IntToPtr { d: Slot => InOut, ty: u32 => Data };
         }
     };
 }

@@ -72,6 +72,9 @@ pub fn object_number(r: u64) -> u32 {
     object(r) & !VIEW
 }
 
+/// `Op::IntToPtr`'s type when the pointer stays a byte view.
+pub const NO_TYPE: u32 = u32::MAX;
+
 /// The integer image of a pointer (`dw := pt`) holds its object's number
 /// above this many bits and its byte offset below: objects of up to 1 MiB,
 /// 4095 objects, in a DWORD (an object starts at a multiple of 2^20, so

@@ -93,7 +93,15 @@ impl BodyBuilder<'_> {
 
     /// Copies `count` elements of `elem` (`stride` slots apart) from
     /// offset `off` in a loop over two moving addresses.
-    fn copy_loop(&mut self, d: Slot, s: Slot, elem: TypeId, off: u32, count: u64, stride: u32) {
+    pub(super) fn copy_loop(
+        &mut self,
+        d: Slot,
+        s: Slot,
+        elem: TypeId,
+        off: u32,
+        count: u64,
+        stride: u32,
+    ) {
         let (dp, sp, left) = (self.block.temp(), self.block.temp(), self.block.temp());
         self.block.emit(Op::AddrAdd { d: dp, p: d, off });
         self.block.emit(Op::AddrAdd { d: sp, p: s, off });
@@ -113,14 +121,6 @@ impl BodyBuilder<'_> {
             p: sp,
             off: stride,
         });
-        self.block.emit(Op::AddSI {
-            d: left,
-            a: left,
-            imm: -1,
-            shift: 0,
-        });
-        self.block.last_def = None;
-        self.block.emit(Op::Jnz { c: left, t: top });
-        self.block.here();
+        self.count_down(left, top);
     }
 }

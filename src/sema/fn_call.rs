@@ -66,6 +66,10 @@ impl BodyBuilder<'_> {
             );
             return Val::error();
         }
+        if let Some(v) = self.memory_idiom(p, call, want) {
+            return v;
+        }
+        let callee = &self.model.pous[p];
         let params = function_params(callee);
         let Some(b) = self.bind(&params, &call.args, &callee.name, call.span) else {
             return Val::error();

@@ -40,6 +40,7 @@ mod type_decl;
 
 // Phase 2: one body builder per POU.
 mod aggregate_copy;
+mod aggregate_zero;
 mod any_args;
 pub(crate) mod assert_calls;
 mod assert_enums;
@@ -78,6 +79,7 @@ mod input_write;
 pub(crate) mod instance_calls;
 mod int_bit_ops;
 mod literal_widening;
+mod memory_idioms;
 mod mixed_args;
 mod namespace_calls;
 mod open_arrays;

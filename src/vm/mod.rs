@@ -22,6 +22,7 @@ pub(crate) mod native;
 mod refs;
 mod string_ops;
 mod strings;
+mod type_at;
 
 pub(crate) use debug::{ChartEvent, DebugFrame, DebugHook};
 #[cfg(feature = "native")]

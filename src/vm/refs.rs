@@ -12,6 +12,7 @@ use crate::elementary::ElemType;
 use crate::ir::image::{ArrayDesc, Image};
 use crate::ir::op::Op;
 use crate::ir::refs;
+use crate::ir::type_table::TypeKind;
 use std::collections::HashMap;
 
 /// Runs one reference instruction on the frame at `fp` of `m`'s memory.
@@ -73,7 +74,7 @@ pub(super) unsafe fn run(
         }
         Op::RefView { d, unit } => (d, to_view(r(d), unit)),
         Op::PtrToInt { d, unit } => (d, table.image(r(d), unit, memory, strings)?),
-        Op::IntToPtr { d } => (d, from_image(r(d))),
+        Op::IntToPtr { d, ty } => (d, typed_from_image(from_image(r(d)), ty, img, table)),
         _ => return Ok(()),
     };
     // SAFETY: as for `r`.
@@ -286,6 +287,34 @@ pub fn from_image(v: u64) -> u64 {
     }
     let n = (v >> refs::IMAGE_OFFSET_BITS).min((refs::VIEW - 1) as u64) as u32;
     refs::view(n, (v & ((1 << refs::IMAGE_OFFSET_BITS) - 1)) as u32)
+}
+
+/// View `v` (from an integer) as a typed pointer to a `ty` when `ty` is a
+/// type and the memory it designates holds one there (`vm::type_at`); an
+/// aggregate's image counts slots (`PtrToInt`'s unit is 1 for them).
+fn typed_from_image(v: u64, ty: u32, img: &Image, table: &RefTable) -> u64 {
+    if ty == refs::NO_TYPE || !refs::is_view(v) {
+        return v;
+    }
+    let n = refs::object_number(v);
+    let Some(obj) = table.object(n) else {
+        return v;
+    };
+    let off = refs::offset(v);
+    let ty = crate::ir::type_table::TypeId(ty);
+    let typed = match refs::code_elem(obj.layout) {
+        // A string object: the image of its first byte is the string.
+        Some(e @ (ElemType::String | ElemType::WString)) => {
+            let wide = e == ElemType::WString;
+            off == 0 && matches!(img.types.get(ty).kind, TypeKind::Str { wide: w, .. } if w == wide)
+        }
+        Some(_) => false,
+        None => {
+            off as u64 + img.types.size(ty) as u64 <= obj.len as u64
+                && super::type_at::holds(img, obj.start + off, ty)
+        }
+    };
+    if typed { refs::pack(n, off) } else { v }
 }
 
 #[cfg(test)]

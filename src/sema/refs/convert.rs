@@ -51,7 +51,7 @@ impl BodyBuilder<'_> {
                 let s = self.pointer_image(v, ft);
                 Some(Val::Slot(s, to))
             }
-            (None, Some((_, RefFlavor::Pointer))) => {
+            (None, Some((target, RefFlavor::Pointer))) => {
                 let int = match v.ty() {
                     Ty::AnyInt => true,
                     Ty::T(t) => {
@@ -78,7 +78,14 @@ impl BodyBuilder<'_> {
                 let s = self.materialize(v);
                 let d = self.block.temp();
                 self.block.emit(Op::Mov { d, s });
-                self.block.emit(Op::IntToPtr { d });
+                // Elementary values are read through the byte view; a
+                // structure or a STRING only as a value of its type found
+                // at the address (vm::type_at).
+                let ty = match viewable(self.types, innermost(self.types, target)) {
+                    Some(_) => crate::ir::refs::NO_TYPE,
+                    None => target.0,
+                };
+                self.block.emit(Op::IntToPtr { d, ty });
                 self.block.last_def = None;
                 Some(Val::Slot(d, to))
             }
