@@ -194,6 +194,8 @@ mod online_change_cli;
 mod oop;
 #[path = "oop_properties.rs"]
 mod oop_properties;
+#[path = "oop_reentry.rs"]
+mod oop_reentry;
 #[path = "oop_values.rs"]
 mod oop_values;
 #[cfg(all(feature = "cli", feature = "opcua"))]

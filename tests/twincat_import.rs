@@ -453,6 +453,27 @@ fn write_protected_functions_write_through_the_address() {
     );
 }
 
+/// A write wider than its variable, as PMPS's arbiter test sets a UDINT
+/// with `WRITE_PROTECTED_ULINT`: the bytes past the variable are zeros
+/// (TwinCAT writes them over what follows) and are left out; a byte there
+/// that is not zero would land in another variable: R031.
+#[test]
+fn a_write_protected_write_wider_than_its_variable() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    n : UDINT := 16#FFFFFFFF;\n    w : LINT := -1;\n    big : BOOL;\nEND_VAR\n",
+        "WRITE_PROTECTED_ULINT(ADR(n), 7);\nWRITE_PROTECTED_INT(ADR(w), 5);\nIF big THEN\n    WRITE_PROTECTED_ULINT(ADR(n), 16#1_0000_0000);\nEND_IF\n",
+        "",
+    );
+    let dir = temp_project(&[("MAIN.TcPOU", &main)]);
+    // A narrower write leaves the variable's other bytes (TwinCAT's too).
+    let out = plcrun_ok(&[&dir, "--cycles", "1", "--trace", "n,w"]);
+    assert_eq!(out, "cycle,time,n,w\n0,T#0s,7,-65531\n");
+    let (code, _, err) = plcrun(&[&dir, "--cycles", "1", "--set", "MAIN.big=TRUE"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("error[R031]"), "{err}");
+}
+
 /// TcUnit's own forms: a suite registers itself with `THIS` (a pointer to
 /// its instance) in a global array and is called through it
 /// (`addresses[i]^.Method()` in an expression); a global instance named

@@ -320,6 +320,9 @@ macro_rules! for_each_op {
             /// A call through an interface variable that holds no instance
             /// (no implementing type matched its type id): fault R080.
             FaultNullItf;
+            /// A method entered on an instance where it is already running (a
+            /// cycle of calls through interfaces came back to it): fault R081.
+            FaultReentry;
             /// `d := the value of type `elem` (`ir::refs::elem_code`) pointer `r`
             /// designates`: a slot of its object, or the object's bytes for a
             /// byte view (`ir::refs::VIEW`); faults as `RefAddr` does.

@@ -102,7 +102,7 @@ impl BodyBuilder<'_> {
             self.store_argument(p, &params[i], r);
         }
         let callee = &self.model.pous[p];
-        let caller = self.model.pous[self.block.pou].code;
+        let caller = self.current_code();
         self.out.calls.push((caller, callee.code, call.span));
         self.block.emit(Op::CallFn { code: callee.code });
         let result = self.function_result(p, call.span);
@@ -275,7 +275,7 @@ impl BodyBuilder<'_> {
             self.store_argument(p, &params[i], r);
         }
         let callee = &self.model.pous[p];
-        let caller = self.model.pous[self.block.pou].code;
+        let caller = self.current_code();
         self.out.calls.push((caller, callee.code, span));
         self.block.emit(Op::CallFn { code: callee.code });
         let result = self.function_result(p, span);

@@ -170,22 +170,44 @@ pub fn compile(
     options: &CompileOptions,
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
+    // The passes see what came before (parse errors stop the linking).
+    let mut first = diags.clone();
+    let none = std::collections::HashSet::new();
+    let (image, guards) = compile_pass(units, options, &none, &mut first);
+    if guards.is_empty() {
+        *diags = first;
+        return image;
+    }
+    // Methods in a cycle of calls through interfaces: compiled again with
+    // their re-entry guards (oop::reentry).
+    compile_pass(units, options, &guards, diags).0
+}
+
+/// One compilation, with re-entry guards in the `guarded` methods; also
+/// returns the methods a cycle reaches that have none.
+fn compile_pass(
+    units: &[CompilationUnit],
+    options: &CompileOptions,
+    guarded: &std::collections::HashSet<String>,
+    diags: &mut Diagnostics,
+) -> (Option<VerifiedImage>, std::collections::HashSet<String>) {
+    let none = std::collections::HashSet::new();
     if let Some(too_deep) = inheritance_depth::check(units) {
         // Lowering would copy the inherited members n² times: refuse first.
         diags.push(too_deep);
-        return None;
+        return (None, none);
     }
     en_params::check(units, diags);
     // Instances whose blocks declare FB_init or FB_exit: hidden methods
     // call them.
     let with_init = instance_calls::with_instance_calls(units, diags);
     let units = with_init.as_deref().unwrap_or(units);
-    let lowered = oop::lower::lower(units, diags);
+    let lowered = oop::lower::lower(units, guarded, diags);
     let units = lowered.as_ref().map_or(units, |(u, _)| u.as_slice());
     if let Some(too_deep) = nesting::check(units) {
         // The declaration phase would recurse that deep: refuse first.
         diags.push(too_deep);
-        return None;
+        return (None, none);
     }
     // POUs whose body uses ENO declare it (a copy only when one does).
     let with_eno = eno_body::with_implicit_eno(units, diags);
@@ -201,8 +223,9 @@ pub fn compile(
     declarer.set_unoptimized(options.unoptimized);
     declarer.declare_all();
     let declared = declarer.finish();
-    let image = link::link(units, declared, options, diags);
-    if diags.has_errors() { None } else { image }
+    let (image, request) = link::link(units, declared, options, guarded, diags);
+    let image = if diags.has_errors() { None } else { image };
+    (image, request)
 }
 
 /// Upper bound of the whole PLC memory, in 8-byte slots (2 GiB).

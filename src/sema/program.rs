@@ -42,6 +42,9 @@ pub(crate) struct Program {
     pub scalar_types: IndexSet<ElemType>,
     /// Call graph edges between code blocks (for recursion detection).
     pub calls: Vec<(CodeIdx, CodeIdx, Span)>,
+    /// The calls among them of a method on the caller's own instance
+    /// (`M()`, `THIS^.M()`): a cycle of those is recursion for certain.
+    pub own_instance_calls: std::collections::HashSet<(CodeIdx, CodeIdx)>,
     /// Function-frame relocations: (code block, instruction, callee POU).
     pub fixups: Vec<(CodeIdx, usize, usize)>,
     /// Step tables of chart bodies.

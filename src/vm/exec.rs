@@ -874,6 +874,7 @@ fn run<const DEBUG: bool, const NATIVE: bool>(
             | Op::PtrAdd { .. }
             | Op::RefValid { .. }
             | Op::FaultNullItf
+            | Op::FaultReentry
             | Op::RefLoad { .. }
             | Op::RefStore { .. }
             | Op::RefView { .. }

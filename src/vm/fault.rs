@@ -72,6 +72,9 @@ pub enum FaultKind {
     /// A method was called through an interface variable that holds no
     /// instance (never assigned, or assigned 0).
     NullInterface,
+    /// A method was called on an instance where it is still running: a
+    /// cycle of calls through interfaces came back to it (R081).
+    MethodReentered,
     /// A byte view (a pointer of another element type than its object's)
     /// read or wrote outside the object's bytes (R031, as for slots).
     OutsideBytes {
@@ -162,6 +165,7 @@ impl FaultKind {
             FaultKind::TooManyReferencedObjects => "R033",
             FaultKind::BadAddress => "R999",
             FaultKind::NullInterface => "R080",
+            FaultKind::MethodReentered => "R081",
             FaultKind::OutsideBytes { .. } => "R031",
             FaultKind::ByteViewAggregate => "R034",
             FaultKind::NotFromPointer => "R035",
@@ -212,6 +216,11 @@ impl fmt::Display for FaultKind {
             FaultKind::NullInterface => write!(
                 f,
                 "method called through an interface variable that holds no instance (assign an instance first, or test `itf <> 0`)"
+            ),
+            FaultKind::MethodReentered => write!(
+                f,
+                "method called again on an instance where it is still running (a cycle of calls \
+                 through interfaces came back to it): plcrun keeps a method's variables in its instance"
             ),
             FaultKind::OutsideBytes { offset, width, len } => write!(
                 f,

@@ -57,6 +57,7 @@ pub(super) unsafe fn run(
         // oop's call through an interface that holds no instance (R080)
         // shares this out-of-line arm: one arm less in the dispatch loop.
         Op::FaultNullItf => return Err(FaultKind::NullInterface),
+        Op::FaultReentry => return Err(FaultKind::MethodReentered),
         Op::RefLoad { d, r: s, elem } => match table.address(r(s), 1) {
             Ok(a) => (d, memory.load(a)?),
             Err(_) if refs::is_view(r(s)) => (d, table.view_load(r(s), elem, memory, strings)?),

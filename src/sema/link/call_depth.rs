@@ -2,10 +2,12 @@
 //! calling itself (one native stack frame per level: about 400 bytes in
 //! a release build, about 28 KB in a debug build), so a chain of FB and
 //! function calls thousands deep would overflow the host thread's stack
-//! and take the host process down. Recursion is refused (E409), so the
-//! call graph is acyclic and its longest path is the deepest nesting the
-//! program can reach; a path longer than [`MAX_CALL_DEPTH`] is refused
-//! with one E181 that names the chain.
+//! and take the host process down. Recursion is refused (E409) but for
+//! cycles of guarded methods (`cycle_depth`), so with those edges left out
+//! the call graph is acyclic and its longest path, plus what the cycles
+//! may add, is the deepest nesting the program can reach; beyond
+//! [`MAX_CALL_DEPTH`] the program is refused with one E181 that names the
+//! chain or the cycle.
 
 use super::Linker;
 
@@ -45,7 +47,8 @@ impl Linker<'_> {
                 if let Some(&to) = adj[node].get(*i) {
                     *i += 1;
                     // depth 0 and on the stack would be a cycle: E409
-                    // already reported it, so the edge is skipped.
+                    // reported it, or it is one of guarded methods
+                    // (`cycle_nesting` counts it): the edge is skipped.
                     if depth[to] == 0 && !on_stack[to] {
                         on_stack[to] = true;
                         stack.push((to, 0));
@@ -63,6 +66,17 @@ impl Linker<'_> {
             return;
         };
         let levels = depth[top] - 1;
+        if let Some(cycle) = self.cycle_nesting()
+            && (levels as u64).saturating_add(cycle.levels) > MAX_CALL_DEPTH as u64
+        {
+            let message = format!(
+                "calls may nest {} deep: {}; plcrun runs at most {MAX_CALL_DEPTH} nested calls",
+                (levels as u64).saturating_add(cycle.levels),
+                cycle.what
+            );
+            self.diags.error("E181", cycle.span, message);
+            return;
+        }
         if levels <= MAX_CALL_DEPTH {
             return;
         }

@@ -6,6 +6,7 @@
 mod auto_address;
 mod call_depth;
 mod config_elements;
+mod cycle_depth;
 mod init;
 mod instance_calls;
 mod located_overlap;
@@ -28,15 +29,21 @@ use crate::ir::type_table::{MemberKind, TypeId, TypeTable};
 use crate::ir::verify::VerifiedImage;
 use crate::source::Span;
 use crate::syntax::ast::{CompilationUnit, PouKind};
+use std::collections::HashSet;
 
 /// Links the declared and emitted program (or, after errors, only reports
 /// call cycles and configuration problems).
+///
+/// Also returns the methods a cycle of calls reaches that were compiled
+/// without a re-entry guard (`guarded` names those that have one): the
+/// program must be compiled again with them guarded (`link::recursion`).
 pub(super) fn link(
     units: &[CompilationUnit],
     declared: Declared,
     options: &CompileOptions,
+    guarded: &HashSet<String>,
     diags: &mut Diagnostics,
-) -> Option<VerifiedImage> {
+) -> (Option<VerifiedImage>, HashSet<String>) {
     let frame_abs = vec![0; declared.model.pous.len()];
     let mut linker = Linker {
         units,
@@ -45,8 +52,11 @@ pub(super) fn link(
         types: &declared.types,
         out: declared.out,
         frame_abs,
+        guarded,
+        guard_request: HashSet::new(),
     };
-    linker.link(options)
+    let image = linker.link(options);
+    (image, linker.guard_request)
 }
 
 /// State of the link stage.
@@ -63,6 +73,10 @@ pub(super) struct Linker<'a> {
     pub(super) out: Program,
     /// Absolute address of each function's static frame.
     pub(super) frame_abs: Vec<u32>,
+    /// Methods (`ORIGIN.METHOD`) compiled with a re-entry guard.
+    pub(super) guarded: &'a HashSet<String>,
+    /// Methods in a cycle of calls that need one (`recursion`).
+    pub(super) guard_request: HashSet<String>,
 }
 
 /// A program instance chosen to run: (instance name, POU, task, connections).

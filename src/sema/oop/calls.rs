@@ -367,6 +367,9 @@ impl BodyBuilder<'_> {
         };
         let caller = self.current_code();
         self.out.calls.push((caller, code, call.span));
+        if matches!(at, Inst::Frame(o) if o.index() == 0) {
+            self.out.own_instance_calls.insert((caller, code));
+        }
         self.block.last_def = None;
         for &(i, negated, target) in &b.outputs {
             let src = place_ref(at.member(params[i].offset), params[i].ty);

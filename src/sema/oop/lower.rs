@@ -20,6 +20,7 @@ use std::collections::{HashMap, HashSet};
 /// object orientation (then the sources are compiled as they are).
 pub(crate) fn lower(
     units: &[CompilationUnit],
+    guarded: &HashSet<String>,
     diags: &mut Diagnostics,
 ) -> Option<(Vec<CompilationUnit>, OopInfo)> {
     let uses_oop = units.iter().flat_map(|u| &u.items).any(|i| match i {
@@ -37,6 +38,7 @@ pub(crate) fn lower(
         fb_at: HashMap::new(),
         itf_closure: HashMap::new(),
         flat: HashMap::new(),
+        guarded,
     };
     l.index_fbs();
     l.lower_interfaces();
@@ -61,6 +63,8 @@ struct Lowering<'d> {
     itf_closure: HashMap<String, Vec<String>>,
     /// Flattened variable blocks of each lowered FB.
     flat: HashMap<String, Vec<VarBlock>>,
+    /// Methods (`ORIGIN.METHOD`) that get a re-entry guard.
+    guarded: &'d HashSet<String>,
 }
 
 /// The hidden name of variable `var` of method `method` declared in `origin`.
@@ -396,6 +400,7 @@ impl Lowering<'_> {
                     body: pp.body.clone(),
                     span: pp.span,
                     sig: (Vec::new(), String::new()),
+                    guard: None,
                 });
             }
         }
@@ -679,6 +684,7 @@ impl Lowering<'_> {
                 span: m.name.span,
             });
         }
+        let guard = self.reentry_guard(origin, m, &mut blocks);
         let sig: Signature = (sig, ret_text);
         let v = Version {
             origin: origin.to_ascii_uppercase(),
@@ -691,8 +697,34 @@ impl Lowering<'_> {
             body: m.body.clone(),
             span: m.span,
             sig,
+            guard,
         };
         (v, blocks)
+    }
+
+    /// For a method a cycle of calls may reach again (`guarded`, from a
+    /// first pass: `sema::reentry`), the hidden BOOL that marks it running
+    /// on its instance, added to `blocks`; its key.
+    fn reentry_guard(
+        &self,
+        origin: &str,
+        m: &Method,
+        blocks: &mut Vec<VarBlock>,
+    ) -> Option<String> {
+        let key = format!("{}.{}", origin.to_ascii_uppercase(), m.name.key());
+        if !self.guarded.contains(&key) {
+            return None;
+        }
+        // No identifier is empty: no variable of the method has this name.
+        let hidden = hidden_name(origin, &m.name.name, "");
+        blocks.push(VarBlock {
+            kind: VarKind::Local,
+            constant: false,
+            retain: None,
+            decls: vec![field(&hidden, "BOOL", m.name.span)],
+            span: m.name.span,
+        });
+        Some(hidden.to_ascii_uppercase())
     }
 
     /// E901: a variable whose type is an ABSTRACT FB (an instance of it).

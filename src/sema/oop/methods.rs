@@ -104,6 +104,7 @@ impl BodyBuilder<'_> {
                 code,
                 diags_before: scope.diags_before,
             });
+            let guard = v.guard.as_deref().and_then(|k| self.enter_guard(k));
             match &v.body {
                 Body::St(stmts) => self.stmts(stmts),
                 Body::Il(lines) => {
@@ -115,11 +116,14 @@ impl BodyBuilder<'_> {
                     "a METHOD body must be Structured Text or Instruction List",
                 ),
             }
-            let mut sub = std::mem::replace(&mut self.block, outer);
-            let end = sub.here();
-            for j in std::mem::take(&mut sub.returns) {
-                sub.patch(j, end);
+            let end = self.block.here();
+            for j in std::mem::take(&mut self.block.returns) {
+                self.block.patch(j, end);
             }
+            if let Some(flag) = guard {
+                self.leave_guard(flag);
+            }
+            let mut sub = std::mem::replace(&mut self.block, outer);
             sub.span = v.span;
             sub.emit(Op::Ret);
             top = top.max(sub.temp_max);

@@ -33,6 +33,7 @@ mod method_vars;
 pub(super) mod methods;
 pub(super) mod model;
 pub(super) mod property;
+mod reentry;
 mod this_call;
 pub(super) mod this_pointer;
 pub(super) mod var_access;

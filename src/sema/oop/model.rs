@@ -109,6 +109,10 @@ pub(crate) struct Version {
     pub span: Span,
     /// For checks.
     pub sig: Signature,
+    /// Key of the hidden BOOL that is TRUE while the method runs on the
+    /// instance, when a cycle of calls through interfaces may reach it
+    /// again (`reentry.rs`).
+    pub guard: Option<String>,
 }
 
 /// An interface.

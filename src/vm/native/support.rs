@@ -179,6 +179,7 @@ fn lowering(op: &Op) -> Lowering {
         | Op::PtrAdd { .. }
         | Op::RefValid { .. }
         | Op::FaultNullItf
+        | Op::FaultReentry
         | Op::RefLoad { .. }
         | Op::RefStore { .. }
         | Op::RefView { .. }
