@@ -1062,3 +1062,49 @@ fn consecutive_underscores_in_an_integer_literal_are_w349() {
         .collect();
     assert_eq!(codes.first().map(String::as_str), Some("E005"), "{codes:?}");
 }
+
+/// `__ISVALIDREF` of a VAR_IN_OUT in a METHOD of its block, as LCLS
+/// General's FB_EPS guards its accesses: FALSE until a call of the block
+/// connects it; used unguarded before that, it faults instead of writing
+/// into whatever variable lies at some address.
+#[test]
+fn isvalidref_of_an_in_out_tells_whether_a_call_connected_it() {
+    let prelude = "TYPE DUT_EPS : STRUCT nFlags : UDINT; END_STRUCT END_TYPE\n\
+        FUNCTION_BLOCK FB_EPS\nVAR_IN_OUT eps : DUT_EPS; END_VAR\n\
+        METHOD setBit : BOOL\nVAR_INPUT n : BYTE; END_VAR\n\
+        IF NOT __ISVALIDREF(eps) THEN RETURN; END_IF\n\
+        eps.nFlags := eps.nFlags OR SHL(UDINT#1, n);\nsetBit := TRUE;\nEND_METHOD\n\
+        METHOD unguarded\neps.nFlags := 1;\nEND_METHOD\nEND_FUNCTION_BLOCK";
+    // `e` first: the variable at the program's first address.
+    let src = program(
+        prelude,
+        "e : DUT_EPS; fb : FB_EPS; before, after : BOOL;",
+        "before := fb.setBit(2);\nfb(eps := e);\nafter := fb.setBit(3);",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.before"), "FALSE");
+    assert_eq!(lit(&plc, "P.after"), "TRUE");
+    assert_eq!(lit(&plc, "P.e.nFlags"), "8");
+    let src = program(prelude, "e : DUT_EPS; fb : FB_EPS;", "fb.unguarded();");
+    let fault = plc::first_fault(&src);
+    assert_eq!(fault.code(), "R999", "{fault}");
+    assert!(fault.to_string().contains("VAR_IN_OUT"), "{fault}");
+}
+
+/// A `POINTER TO STRING` over a longer STRING, as LCLS General's logger
+/// passes `ADR(sJsonDoc)` of a `STRING(10000)`: the string itself, read
+/// whole and written within its own length.
+#[test]
+fn a_pointer_to_string_takes_a_string_of_any_length() {
+    let src = program(
+        "",
+        "big : STRING(1000); ps : POINTER TO STRING; s : STRING(5); n : INT;",
+        "big := 'hello world';\nps := ADR(big);\ns := ps^;\nps^ := 'written';\nn := LEN(big);",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.s"), "'hello'");
+    assert_eq!(lit(&plc, "P.big"), "'written'");
+    assert_eq!(lit(&plc, "P.n"), "7");
+}

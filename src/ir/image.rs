@@ -83,6 +83,11 @@ pub struct RootVar {
     pub constant: bool,
 }
 
+/// The address a VAR_IN_OUT holds until a call connects it: outside any
+/// memory, so an access through it faults (R999) instead of reaching a
+/// variable, and `__ISVALIDREF` of it is FALSE.
+pub const NOT_CONNECTED: u64 = u32::MAX as u64;
+
 /// A program instance the scheduler runs.
 #[derive(Debug, Clone)]
 pub struct ProgramInstance {

@@ -545,6 +545,9 @@ impl BodyBuilder<'_> {
                 let Some(src) = self.place(e) else { return };
                 self.copy_if_assignable(dst, &src, e.span, e.span, &what);
             }
+            // An FB instance passed by value (a METHOD's `VAR_INPUT v :
+            // FB_Vec3`, CODESYS): copied as by assignment.
+            TypeKind::Pou { program: false, .. } => self.copy_fb(dst, e, e.span),
             _ => {
                 let v = self.expr(e, Some(dst.ty));
                 let v = self.coerce(v, dst.ty, e.span, &what);

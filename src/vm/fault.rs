@@ -199,7 +199,11 @@ impl fmt::Display for FaultKind {
             FaultKind::NegativeExponent => write!(f, "negative exponent in integer `**`"),
             FaultKind::Watchdog => write!(f, "watchdog: cycle exceeded its time limit"),
             FaultKind::Aborted => write!(f, "aborted: the cycle was interrupted by a stop handle"),
-            FaultKind::BadAddress => write!(f, "internal error: computed address outside memory"),
+            FaultKind::BadAddress => write!(
+                f,
+                "address outside memory: a VAR_IN_OUT used before a call of its block connected it \
+                 (in a METHOD or an action), or an internal error"
+            ),
             FaultKind::NullReference => write!(f, "dereference of a NULL reference"),
             FaultKind::OutsideObject { offset, width, len } => write!(
                 f,

@@ -100,8 +100,17 @@ impl Linker<'_> {
                     return;
                 };
                 for var in self.model.pous[p].vars.values() {
-                    if let Storage::Frame(o) = var.storage {
-                        self.write_init(buf, at + o as usize, var.ty, var.init.as_ref(), strs);
+                    match var.storage {
+                        Storage::Frame(o) => {
+                            self.write_init(buf, at + o as usize, var.ty, var.init.as_ref(), strs)
+                        }
+                        // A VAR_IN_OUT no call has connected yet.
+                        Storage::Ref(o) => {
+                            if let Some(slot) = buf.get_mut(at + o as usize) {
+                                *slot = crate::ir::image::NOT_CONNECTED;
+                            }
+                        }
+                        _ => {}
                     }
                 }
                 for &(slot, value) in &self.model.pous[p].consts {

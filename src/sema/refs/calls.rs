@@ -3,11 +3,13 @@
 
 use super::{intern_ref, ref_parts, size_bytes};
 use crate::elementary::ElemType;
-use crate::ir::op::Op;
+use crate::ir::image::NOT_CONNECTED;
+use crate::ir::op::{Cmp, Op, Slot};
 use crate::ir::type_table::{MemberKind, RefFlavor, TypeId, TypeKind, TypeTable};
 use crate::sema::body::BodyBuilder;
 use crate::sema::consts::Const;
 use crate::sema::emit::{Place, Ty, Val};
+use crate::sema::model::Storage;
 use crate::syntax::ast::{Arg, Call, Expr, ExprKind, PouKind};
 
 /// The built-in a call names, if it is one of ours.
@@ -185,6 +187,21 @@ impl BodyBuilder<'_> {
 
     /// `__ISVALIDREF(r)`: TRUE if `r^` would not fault.
     fn is_valid_ref(&mut self, r: &Expr) -> Val {
+        // A VAR_IN_OUT (CODESYS: checked before a METHOD uses it): TRUE
+        // once a call connected it, its slot holding the variable's address
+        // instead of NOT_CONNECTED.
+        if let ExprKind::Name(id) = &r.kind
+            && let Some(Storage::Ref(o)) = self.lookup_var(&id.key()).map(|v| v.storage)
+        {
+            let (d, none) = (self.block.temp(), self.block.const_slot(NOT_CONNECTED));
+            self.block.emit(Op::CmpU {
+                d,
+                a: Slot::new(o),
+                b: none,
+                cmp: Cmp::Ne,
+            });
+            return Val::Slot(d, TypeTable::elem(ElemType::Bool));
+        }
         // A REFERENCE TO variable is asked about itself, not its target
         // (also a member: `THIS^.stFilter`, `fb.refIn`).
         let v = if let ExprKind::Name(_) | ExprKind::Member(..) = &r.kind {
