@@ -88,9 +88,11 @@ pub fn load_files_with<P: AsRef<Path>>(
 ) -> Result<SourceMap, LoadError> {
     let mut sources = SourceMap::new();
     let mut events = HashSet::new();
+    let mut shadowing = LibraryShadowing::default();
     for path in paths {
         let path = path.as_ref();
-        let (files, descriptions) = if project::is_project(path) {
+        let is_project = project::is_project(path);
+        let (files, descriptions) = if is_project {
             let project = project::project_files(path).map_err(load_error(path))?;
             (project.sources, project.descriptions)
         } else {
@@ -99,8 +101,13 @@ pub fn load_files_with<P: AsRef<Path>>(
                 project::TypeDescriptions::default(),
             )
         };
+        let library = is_project && shadowing.seen_project;
+        shadowing.seen_project |= is_project;
         for file in &files {
             let bytes = std::fs::read(file).map_err(load_error(file))?;
+            if !shadowing.keeps(&bytes, library) {
+                continue;
+            }
             add_source_bytes(
                 &mut sources,
                 file.display().to_string(),
@@ -114,6 +121,35 @@ pub fn load_files_with<P: AsRef<Path>>(
         }
     }
     Ok(sources)
+}
+
+/// How the TwinCAT projects after the first one — the libraries
+/// `--library-path` resolves (`with_library_projects`) — are loaded: a
+/// library's objects live in its namespace in TwinCAT, where the project's
+/// own names come first, and it has no tasks. So a library's task files
+/// are left out, and so is an object (POU, type, list, interface) of a
+/// name the files before it declare (its test program `PRG_TEST`, the
+/// implicit checks `CheckBounds`...): the project's own wins.
+#[derive(Default)]
+struct LibraryShadowing {
+    /// A TwinCAT project was loaded: the next ones are its libraries.
+    seen_project: bool,
+    /// The objects declared so far (upper case).
+    declared: HashSet<String>,
+}
+
+impl LibraryShadowing {
+    /// Whether the file of `bytes` is loaded (`library`: of a library).
+    fn keeps(&mut self, bytes: &[u8], library: bool) -> bool {
+        let text = String::from_utf8_lossy(bytes);
+        if library && crate::syntax::twincat::is_task_file(&text) {
+            return false;
+        }
+        match crate::syntax::twincat::object_name(&text) {
+            Some(name) => self.declared.insert(name.to_ascii_uppercase()) || !library,
+            None => true,
+        }
+    }
 }
 
 /// The sources a TwinCAT project (a folder or a `.plcproj`) adds from its

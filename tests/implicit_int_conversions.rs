@@ -87,3 +87,61 @@ fn strict_mode_plain_iec_files_and_other_types_refuse_them() {
         .expect("no conversion");
     assert_eq!(error_codes(&err), ["E301", "E301"]);
 }
+
+/// Explicit conversions in a TwinCAT file keep the low bits too, as there
+/// (`TIME_TO_INT(T#60S)` is -5536: SLAC's vacuum gauges store their
+/// recovery time so); in a plain IEC file a value that does not fit stops
+/// the PLC (R004).
+#[test]
+fn explicit_conversions_keep_the_low_bits_in_twincat_files() {
+    let decls = "t : INT; b : BYTE; s : SINT; big : LINT := 16#1_2345_6789; d : TIME := T#60S;";
+    let body = "t := TIME_TO_INT(d);\nb := INT_TO_BYTE(-1);\ns := LINT_TO_SINT(big);\n";
+    let mut plc = compile("P.TcPOU", &tcpou(decls, body), &Default::default()).unwrap();
+    run(&mut plc, 1);
+    let got: Vec<String> = ["t", "b", "s"]
+        .iter()
+        .map(|v| lit(&plc, &format!("P.{v}")))
+        .collect();
+    assert_eq!(got, ["-5536", "16#FF", "-119"]);
+    let iec = format!("PROGRAM P\nVAR\n{decls}\nEND_VAR\nt := TIME_TO_INT(d);\nEND_PROGRAM\n");
+    let mut plc = compile("p.st", &iec, &Default::default()).unwrap();
+    let fault = plc.run_cycle().expect_err("R004 in an IEC file");
+    assert_eq!(fault.code(), "R004", "{fault}");
+}
+
+/// A signed and an unsigned integer combined in a TwinCAT file compute in
+/// the smallest signed type holding both (INT and UINT in DINT); two
+/// enumerations that are not strict meet through their integers (W485,
+/// W486). In a plain IEC file both are E306.
+#[test]
+fn mixed_signs_and_two_enumerations_combine_in_twincat_files() {
+    let types = "TYPE E_A : (A0, A1, A2); END_TYPE\nTYPE E_B : (B0, B1, B2); END_TYPE\n";
+    let decls = "i : INT := -1; u : UINT := 40000; lt : BOOL; sum : DINT; ea : E_A := A2; eb : E_B := B2; eq : BOOL;";
+    let body = "lt := i < u;\nsum := i + u;\neq := ea = eb;\nea := eb;\n";
+    let dut = format!(
+        "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <DUT Name=\"E_A\" Id=\"{{00000000-0000-0000-0000-000000000002}}\">\n    <Declaration><![CDATA[{types}]]></Declaration>\n  </DUT>\n</TcPlcObject>\n"
+    );
+    let options = plcrun::Options {
+        program: Some("P".into()),
+        ..Default::default()
+    };
+    let pou = tcpou(decls, body);
+    let mut plc =
+        plcrun::Plc::compile_files(&[("E.TcDUT", dut.as_str()), ("P.TcPOU", &pou)], &options)
+            .unwrap();
+    run(&mut plc, 1);
+    let got: Vec<String> = ["lt", "sum", "eq", "ea"]
+        .iter()
+        .map(|v| lit(&plc, &format!("P.{v}")))
+        .collect();
+    assert_eq!(got, ["TRUE", "39999", "TRUE", "A2"]);
+    let iec = format!("{types}PROGRAM P\nVAR\n{decls}\nEND_VAR\n{body}END_PROGRAM\n");
+    let Err(err) = compile("p.st", &iec, &Default::default()) else {
+        panic!("mixed operands accepted in an IEC file");
+    };
+    assert!(
+        error_codes(&err).contains(&"E306"),
+        "{:?}",
+        error_codes(&err)
+    );
+}

@@ -53,7 +53,10 @@ impl BodyBuilder<'_> {
         if let Some(v) = self.time_arith(op, &va, &vb, span) {
             return v;
         }
-        let Some(common) = self.unify(va.ty(), vb.ty()) else {
+        let Some(common) = self
+            .unify(va.ty(), vb.ty())
+            .or_else(|| self.mixed_sign_common(&va, &vb, span))
+        else {
             if let Some(v) = self.bit_string_compare(op, &va, &vb, span) {
                 return v;
             }

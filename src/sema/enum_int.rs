@@ -38,8 +38,14 @@ impl BodyBuilder<'_> {
     /// base type widens to, or that widens to the base type); warns then.
     pub(super) fn enum_int_conversion(&mut self, from: TypeId, to: TypeId, span: Span) -> bool {
         match (self.any_enum_base(from), self.enum_base(to)) {
-            // Two enumerations never mix.
-            (Some(_), None) if self.is_enum(to) => false,
+            // Two enumerations mix only in CODESYS files, neither strict,
+            // through their integers.
+            (Some(_), Some(base)) if from != to && self.mixes_enums(from, span) => {
+                self.enum_to_int_warning(from, base, span);
+                self.int_to_enum_warning(base.name(), to, span);
+                true
+            }
+            (Some(_), _) if self.is_enum(to) => false,
             (Some(base), None) => {
                 let Some(t) = self.types.scalar(to).filter(|t| t.is_int() || t.is_bit()) else {
                     return false;
@@ -142,8 +148,21 @@ impl BodyBuilder<'_> {
         match (ea, eb) {
             (Some(t), None) if self.is_integer(&vb) => (self.as_base(va, t, span), vb),
             (None, Some(t)) if self.is_integer(&va) => (va, self.as_base(vb, t, span)),
+            (Some(ta), Some(tb))
+                if ta != tb && self.mixes_enums(ta, span) && self.mixes_enums(tb, span) =>
+            {
+                (self.as_base(va, ta, span), self.as_base(vb, tb, span))
+            }
             _ => (va, vb),
         }
+    }
+
+    /// Whether enumeration `t`'s values may meet another enumeration's at
+    /// `span`: in a CODESYS-dialect file, where an enumeration that is not
+    /// strict is an integer (FB_VCN compares `E_ValvePositionState` with
+    /// `E_VCN`).
+    fn mixes_enums(&self, t: TypeId, span: Span) -> bool {
+        self.enum_base(t).is_some() && self.model.codesys_files.contains(&span.file)
     }
 
     /// The enumeration type of `v`, if it has one (and is not strict,

@@ -10,6 +10,7 @@
 use super::body::BodyBuilder;
 use crate::elementary::{ElemType, Family};
 use crate::ir::op::Conv;
+use crate::sema::emit::{Ty, Val};
 use crate::source::Span;
 
 /// Whether `from` and `to` are both integers or bit strings (not BOOL)
@@ -71,6 +72,50 @@ impl BodyBuilder<'_> {
             ),
         );
         true
+    }
+}
+
+impl BodyBuilder<'_> {
+    /// In a CODESYS-dialect file, the type a signed and an unsigned
+    /// integer combine in (`nState > GeneralConstants.MAX_STATES`, INT
+    /// and UINT): the smallest signed integer holding both, as CODESYS
+    /// converts them (LINT for a ULINT, W490 as a ULINT may not fit). A
+    /// slot holds an integer's value sign- or zero-extended, so the
+    /// operands need no conversion.
+    pub(super) fn mixed_sign_common(&mut self, va: &Val, vb: &Val, span: Span) -> Option<Ty> {
+        if !self.model.codesys_files.contains(&span.file) {
+            return None;
+        }
+        let int = |me: &Self, v: &Val| {
+            v.ty()
+                .id()
+                .filter(|t| !me.is_enum(*t))
+                .and_then(|t| me.types.scalar(t))
+                .filter(|e| e.is_int())
+        };
+        let (a, b) = (int(self, va)?, int(self, vb)?);
+        if a.is_signed_int() == b.is_signed_int() {
+            return None;
+        }
+        let bits = a.bits().max(b.bits());
+        let unsigned_bits = if a.is_signed_int() {
+            b.bits()
+        } else {
+            a.bits()
+        };
+        let wide = bits.max(unsigned_bits * 2).min(64);
+        let common = match wide {
+            16 => ElemType::Int,
+            32 => ElemType::Dint,
+            64 => ElemType::Lint,
+            _ => ElemType::Sint,
+        };
+        for e in [a, b] {
+            if e != common {
+                self.implicit_int_conversion(e, common, span);
+            }
+        }
+        Some(Ty::T(crate::ir::type_table::TypeTable::elem(common)))
     }
 }
 

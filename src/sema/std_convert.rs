@@ -178,7 +178,7 @@ impl BodyBuilder<'_> {
                     }
                 } else if to.is_signed_int() {
                     // Between integers the value must fit (semantics §3).
-                    if from == E::Ulint {
+                    if from == E::Ulint && !self.cut_like_codesys(span) {
                         // CheckS reads the slot as signed: a ULINT of 2^63
                         // or more must fail before it looks negative.
                         let v = self.apply_conv(v, Conv::CheckU(1), E::Lint, span);
@@ -259,7 +259,30 @@ impl BodyBuilder<'_> {
                 Val::Slot(s, _) => Val::Slot(s, rt),
                 other => other,
             },
+            Some(c) if self.cut_like_codesys(span) => match c {
+                Conv::CheckS(sh) => self.apply_conv(v, Conv::WrapS(sh), to, span),
+                Conv::CheckU(sh) | Conv::CheckSToU(sh) => {
+                    self.apply_conv(v, Conv::WrapU(sh), to, span)
+                }
+                Conv::NsToMsS(sh) | Conv::NsToMsU(sh) if sh != 0 => {
+                    let ms = self.apply_conv(v, Conv::NsToMsS(0), E::Lint, span);
+                    let wrap = match c {
+                        Conv::NsToMsS(_) => Conv::WrapS(sh),
+                        _ => Conv::WrapU(sh),
+                    };
+                    self.apply_conv(ms, wrap, to, span)
+                }
+                _ => self.apply_conv(v, c, to, span),
+            },
             Some(c) => self.apply_conv(v, c, to, span),
         }
+    }
+
+    /// Whether an integer conversion written at `span` keeps the low bits
+    /// of a value that does not fit, as CODESYS and TwinCAT do
+    /// (`TIME_TO_INT(T#60S)` is -5536 there), instead of faulting (R004):
+    /// in the files of that dialect (semantics.md §3).
+    fn cut_like_codesys(&self, span: Span) -> bool {
+        self.model.codesys_files.contains(&span.file)
     }
 }

@@ -38,6 +38,22 @@ pub fn is_task_file(text: &str) -> bool {
     is_twincat(text) && text.contains("<Task")
 }
 
+/// The name of the object a TwinCAT object file declares (`<POU
+/// Name="FB_X"`, `<DUT ...>`, `<GVL ...>`, `<Itf ...>`), read without
+/// parsing the file; `None` for a task or an unreadable file.
+pub fn object_name(text: &str) -> Option<&str> {
+    if !is_twincat(text) {
+        return None;
+    }
+    let at = ["<POU ", "<DUT ", "<GVL ", "<Itf "]
+        .iter()
+        .filter_map(|tag| text.find(tag))
+        .min()?;
+    let rest = &text[at..];
+    let rest = &rest[rest.find("Name=\"")? + 6..];
+    Some(&rest[..rest.find('"')?])
+}
+
 /// The name of the first element of an XML text (skipping the
 /// declaration, comments and white space), read without parsing it all.
 fn root_name(text: &str) -> Option<&str> {
