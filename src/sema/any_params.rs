@@ -298,6 +298,10 @@ impl Declarer<'_> {
         }
         let t = type_class_enum(&mut self.types);
         self.model.type_ids.insert(key.to_string(), t);
+        // Strict, as TwinCAT has it: another enumeration (the Base
+        // Interfaces' TypeClass) does not meet it without a conversion
+        // (TcUnit writes `UDINT_TO_INT(x.TypeClass)`).
+        self.model.strict_enums.insert(t);
     }
 
     /// The type of declaration `decl` of `block` in `pou` when it names a

@@ -8,7 +8,8 @@
 //! variable*, the one the last call bound. plcrun gives it the same
 //! meaning: the instance's slot holds the bound variable's address, and
 //! the read goes through it. Before the first call nothing is bound: the
-//! hidden pointer is NULL, and the read is the runtime fault R030 (a
+//! hidden pointer holds no address (`NOT_CONNECTED`, outside memory), and
+//! the read is the runtime fault R030 (a
 //! dereference of NULL), as CODESYS, whose runtime stops on the access
 //! violation, never an arbitrary value. Each read warns W325 (`--strict`
 //! makes it an error); writing through it from outside is refused (E422):
@@ -17,7 +18,8 @@
 use super::body::BodyBuilder;
 use super::emit::{Place, PlaceRef, Val};
 use crate::elementary::ElemType;
-use crate::ir::op::{Op, Target};
+use crate::ir::image::NOT_CONNECTED;
+use crate::ir::op::{Cmp, Op, Target};
 use crate::ir::type_table::{Member, MemberKind, TypeDef, TypeTable};
 use crate::syntax::ast::Ident;
 
@@ -60,10 +62,17 @@ impl BodyBuilder<'_> {
         let Val::Slot(addr, _) = self.read_place(&holder) else {
             return None;
         };
-        // Not bound yet (0): fault R030 by dereferencing NULL, the
-        // reference value 0.
+        // Not bound yet (NOT_CONNECTED, whose object number is 0): fault
+        // R030 by dereferencing it as a reference, NULL.
+        let (connected, none) = (self.block.temp(), self.block.const_slot(NOT_CONNECTED));
+        self.block.emit(Op::CmpU {
+            d: connected,
+            a: addr,
+            b: none,
+            cmp: Cmp::Ne,
+        });
         let bound = self.block.emit(Op::Jnz {
-            c: addr,
+            c: connected,
             t: Target::UNPATCHED,
         });
         let scratch = self.block.temp();

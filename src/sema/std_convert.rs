@@ -259,22 +259,26 @@ impl BodyBuilder<'_> {
                 Val::Slot(s, _) => Val::Slot(s, rt),
                 other => other,
             },
-            Some(c) if self.cut_like_codesys(span) => match c {
-                Conv::CheckS(sh) => self.apply_conv(v, Conv::WrapS(sh), to, span),
-                Conv::CheckU(sh) | Conv::CheckSToU(sh) => {
-                    self.apply_conv(v, Conv::WrapU(sh), to, span)
-                }
-                Conv::NsToMsS(sh) | Conv::NsToMsU(sh) if sh != 0 => {
-                    let ms = self.apply_conv(v, Conv::NsToMsS(0), E::Lint, span);
-                    let wrap = match c {
-                        Conv::NsToMsS(_) => Conv::WrapS(sh),
-                        _ => Conv::WrapU(sh),
-                    };
-                    self.apply_conv(ms, wrap, to, span)
-                }
-                _ => self.apply_conv(v, c, to, span),
-            },
+            Some(c) if self.cut_like_codesys(span) => self.cut_conversion(v, c, to, span),
             Some(c) => self.apply_conv(v, c, to, span),
+        }
+    }
+
+    /// Conversion `c` of `v` to `to` as CODESYS makes it: an integer that
+    /// does not fit keeps its low bits (`cut_like_codesys`).
+    fn cut_conversion(&mut self, v: Val, c: Conv, to: ElemType, span: Span) -> Val {
+        match c {
+            Conv::CheckS(sh) => self.apply_conv(v, Conv::WrapS(sh), to, span),
+            Conv::CheckU(sh) | Conv::CheckSToU(sh) => self.apply_conv(v, Conv::WrapU(sh), to, span),
+            Conv::NsToMsS(sh) | Conv::NsToMsU(sh) if sh != 0 => {
+                let ms = self.apply_conv(v, Conv::NsToMsS(0), ElemType::Lint, span);
+                let wrap = match c {
+                    Conv::NsToMsS(_) => Conv::WrapS(sh),
+                    _ => Conv::WrapU(sh),
+                };
+                self.apply_conv(ms, wrap, to, span)
+            }
+            _ => self.apply_conv(v, c, to, span),
         }
     }
 
