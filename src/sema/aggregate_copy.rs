@@ -6,10 +6,18 @@
 
 use super::body::BodyBuilder;
 use crate::ir::op::{Op, Slot};
-use crate::ir::type_table::{TypeId, TypeKind};
+use crate::ir::type_table::{Member, TypeId, TypeKind};
 
 /// Elements of a string-holding array copied one by one without a loop.
 const UNROLL_ELEMS: u64 = 4;
+
+/// Part of a structure's slots ([`BodyBuilder::field_parts`]).
+pub(super) enum FieldPart {
+    /// `n` string-free slots at offset `at`.
+    Plain { at: u32, n: u32 },
+    /// A field holding strings, of type `ty`, at offset `at`.
+    Strings { at: u32, ty: TypeId },
+}
 
 impl BodyBuilder<'_> {
     /// Copies a value of type `ty` from the address in slot `s` to the
@@ -38,27 +46,11 @@ impl BodyBuilder<'_> {
             }
             TypeKind::Struct { fields } => {
                 // Runs of string-free fields are copied in one MemCopy.
-                let mut run: Option<(u32, u32)> = None;
-                for f in &fields {
-                    let size = self.types.size(f.ty);
-                    if self.contains_strings(f.ty) {
-                        if let Some((at, n)) = run.take() {
-                            self.copy_plain(d, s, off + at, n);
-                        }
-                        self.copy_at(d, s, f.ty, off + f.offset);
-                    } else {
-                        run = match run {
-                            Some((at, n)) if at + n == f.offset => Some((at, n + size)),
-                            Some((at, n)) => {
-                                self.copy_plain(d, s, off + at, n);
-                                Some((f.offset, size))
-                            }
-                            None => Some((f.offset, size)),
-                        };
+                for part in self.field_parts(&fields) {
+                    match part {
+                        FieldPart::Plain { at, n } => self.copy_plain(d, s, off + at, n),
+                        FieldPart::Strings { at, ty } => self.copy_at(d, s, ty, off + at),
                     }
-                }
-                if let Some((at, n)) = run {
-                    self.copy_plain(d, s, off + at, n);
                 }
             }
             TypeKind::Array { dims, elem } => {
@@ -78,6 +70,38 @@ impl BodyBuilder<'_> {
                 self.copy_plain(d, s, off, n);
             }
         }
+    }
+
+    /// A structure's fields as runs of adjacent string-free slots and
+    /// the string-holding fields between them, in order.
+    pub(super) fn field_parts(&self, fields: &[Member]) -> Vec<FieldPart> {
+        let mut parts = Vec::new();
+        let mut run: Option<(u32, u32)> = None;
+        for f in fields {
+            let size = self.types.size(f.ty);
+            if self.contains_strings(f.ty) {
+                if let Some((at, n)) = run.take() {
+                    parts.push(FieldPart::Plain { at, n });
+                }
+                parts.push(FieldPart::Strings {
+                    at: f.offset,
+                    ty: f.ty,
+                });
+                continue;
+            }
+            run = match run {
+                Some((at, n)) if at + n == f.offset => Some((at, n + size)),
+                Some((at, n)) => {
+                    parts.push(FieldPart::Plain { at, n });
+                    Some((f.offset, size))
+                }
+                None => Some((f.offset, size)),
+            };
+        }
+        if let Some((at, n)) = run {
+            parts.push(FieldPart::Plain { at, n });
+        }
+        parts
     }
 
     /// `MemCopy` of `n` string-free slots at offset `off`.

@@ -4,6 +4,7 @@
 //! STRING empty. A STRING slot holds the id of its own buffer, so a
 //! string is emptied by text and its slot keeps its id.
 
+use super::aggregate_copy::FieldPart;
 use super::body::BodyBuilder;
 use crate::ir::op::{Op, Slot, Target};
 use crate::ir::type_table::{TypeId, TypeKind};
@@ -62,27 +63,11 @@ impl BodyBuilder<'_> {
             }
             TypeKind::Struct { fields } => {
                 // Runs of string-free fields are cleared together.
-                let mut run: Option<(u32, u32)> = None;
-                for f in &fields {
-                    let size = self.types.size(f.ty);
-                    if self.contains_strings(f.ty) {
-                        if let Some((at, n)) = run.take() {
-                            self.zero_plain(d, off + at, n);
-                        }
-                        self.zero_at(d, f.ty, off + f.offset);
-                    } else {
-                        run = match run {
-                            Some((at, n)) if at + n == f.offset => Some((at, n + size)),
-                            Some((at, n)) => {
-                                self.zero_plain(d, off + at, n);
-                                Some((f.offset, size))
-                            }
-                            None => Some((f.offset, size)),
-                        };
+                for part in self.field_parts(&fields) {
+                    match part {
+                        FieldPart::Plain { at, n } => self.zero_plain(d, off + at, n),
+                        FieldPart::Strings { at, ty } => self.zero_at(d, ty, off + at),
                     }
-                }
-                if let Some((at, n)) = run {
-                    self.zero_plain(d, off + at, n);
                 }
             }
             TypeKind::Array { dims, elem } => {
