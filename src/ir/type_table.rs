@@ -330,6 +330,16 @@ impl TypeTable {
         &self.defs[id.0 as usize]
     }
 
+    /// Whether `a` and `b` are both STRINGs or both WSTRINGs, of any
+    /// lengths: one string's slot may be read as the other (a string's
+    /// buffer keeps its own length).
+    pub fn same_width_strings(&self, a: TypeId, b: TypeId) -> bool {
+        matches!(
+            (&self.get(a).kind, &self.get(b).kind),
+            (TypeKind::Str { wide: x, .. }, TypeKind::Str { wide: y, .. }) if x == y
+        )
+    }
+
     /// Size in slots.
     pub fn size(&self, id: TypeId) -> u32 {
         self.get(id).size

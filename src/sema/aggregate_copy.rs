@@ -55,20 +55,30 @@ impl BodyBuilder<'_> {
             }
             TypeKind::Array { dims, elem } => {
                 let count: u64 = dims.iter().map(|d| d.len()).product();
-                let stride = self.types.size(elem);
-                if count <= UNROLL_ELEMS {
-                    for i in 0..count as u32 {
-                        self.copy_at(d, s, elem, off + i * stride);
-                    }
-                } else {
-                    self.copy_loop(d, s, elem, off, count, stride);
-                }
+                self.copy_elems(d, s, elem, off, count);
             }
             TypeKind::Pou { .. } => self.copy_fb_at(d, s, ty, off),
             _ => {
                 let n = self.types.size(ty);
                 self.copy_plain(d, s, off, n);
             }
+        }
+    }
+
+    /// Copies `count` consecutive values of `elem` at offset `off` from
+    /// the addresses in `d` and `s`.
+    pub(super) fn copy_elems(&mut self, d: Slot, s: Slot, elem: TypeId, off: u32, count: u64) {
+        let stride = self.types.size(elem);
+        if !self.contains_strings(elem) {
+            // Arrays are at most MAX_FRAME_SLOTS long: the product fits.
+            let n = u32::try_from(count.saturating_mul(stride as u64)).unwrap_or(u32::MAX);
+            self.copy_plain(d, s, off, n);
+        } else if count <= UNROLL_ELEMS {
+            for i in 0..count as u32 {
+                self.copy_at(d, s, elem, off + i * stride);
+            }
+        } else {
+            self.copy_loop(d, s, elem, off, count, stride);
         }
     }
 
@@ -117,15 +127,7 @@ impl BodyBuilder<'_> {
 
     /// Copies `count` elements of `elem` (`stride` slots apart) from
     /// offset `off` in a loop over two moving addresses.
-    pub(super) fn copy_loop(
-        &mut self,
-        d: Slot,
-        s: Slot,
-        elem: TypeId,
-        off: u32,
-        count: u64,
-        stride: u32,
-    ) {
+    fn copy_loop(&mut self, d: Slot, s: Slot, elem: TypeId, off: u32, count: u64, stride: u32) {
         let (dp, sp, left) = (self.block.temp(), self.block.temp(), self.block.temp());
         self.block.emit(Op::AddrAdd { d: dp, p: d, off });
         self.block.emit(Op::AddrAdd { d: sp, p: s, off });

@@ -31,20 +31,20 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// Clears `count` consecutive values of type `elem` from the address
-    /// in slot `d` (`can_zero(elem)` holds).
-    pub(super) fn zero_values(&mut self, d: Slot, elem: TypeId, count: u64) {
+    /// Clears `count` consecutive values of `elem` at offset `off` from
+    /// the address in slot `d` (`can_zero(elem)` holds).
+    pub(super) fn zero_elems(&mut self, d: Slot, elem: TypeId, off: u32, count: u64) {
         let stride = self.types.size(elem);
         if !self.contains_strings(elem) {
             // Arrays are at most MAX_FRAME_SLOTS long: the product fits.
             let n = u32::try_from(count.saturating_mul(stride as u64)).unwrap_or(u32::MAX);
-            self.zero_plain(d, 0, n);
+            self.zero_plain(d, off, n);
         } else if count <= UNROLL_ELEMS {
             for i in 0..count as u32 {
-                self.zero_at(d, elem, i * stride);
+                self.zero_at(d, elem, off + i * stride);
             }
         } else {
-            self.zero_loop(d, elem, 0, count, stride);
+            self.zero_loop(d, elem, off, count, stride);
         }
     }
 
@@ -72,14 +72,7 @@ impl BodyBuilder<'_> {
             }
             TypeKind::Array { dims, elem } => {
                 let count: u64 = dims.iter().map(|d| d.len()).product();
-                let stride = self.types.size(elem);
-                if count <= UNROLL_ELEMS {
-                    for i in 0..count as u32 {
-                        self.zero_at(d, elem, off + i * stride);
-                    }
-                } else {
-                    self.zero_loop(d, elem, off, count, stride);
-                }
+                self.zero_elems(d, elem, off, count);
             }
             _ => {
                 let n = self.types.size(ty);

@@ -19,7 +19,7 @@ use super::body::BodyBuilder;
 use super::emit::{Place, PlaceRef, Val};
 use crate::elementary::ElemType;
 use crate::ir::image::NOT_CONNECTED;
-use crate::ir::op::{Cmp, Op, Target};
+use crate::ir::op::{Cmp, Op, Slot, Target};
 use crate::ir::type_table::{Member, MemberKind, TypeDef, TypeTable};
 use crate::syntax::ast::Ident;
 
@@ -64,13 +64,7 @@ impl BodyBuilder<'_> {
         };
         // Not bound yet (NOT_CONNECTED, whose object number is 0): fault
         // R030 by dereferencing it as a reference, NULL.
-        let (connected, none) = (self.block.temp(), self.block.const_slot(NOT_CONNECTED));
-        self.block.emit(Op::CmpU {
-            d: connected,
-            a: addr,
-            b: none,
-            cmp: Cmp::Ne,
-        });
+        let connected = self.in_out_connected(addr);
         let bound = self.block.emit(Op::Jnz {
             c: connected,
             t: Target::UNPATCHED,
@@ -90,5 +84,19 @@ impl BodyBuilder<'_> {
             readonly_reason: Some(IN_OUT_OUTSIDE),
             input_image: false,
         })
+    }
+
+    /// A BOOL slot: TRUE when the VAR_IN_OUT whose address slot is `addr`
+    /// has been connected by a call (it holds an address, not
+    /// `NOT_CONNECTED`).
+    pub(super) fn in_out_connected(&mut self, addr: Slot) -> Slot {
+        let (d, none) = (self.block.temp(), self.block.const_slot(NOT_CONNECTED));
+        self.block.emit(Op::CmpU {
+            d,
+            a: addr,
+            b: none,
+            cmp: Cmp::Ne,
+        });
+        d
     }
 }

@@ -7,7 +7,8 @@
 //! whole number of them, inside both objects — it is lowered to what it
 //! means on typed memory: a clear to zero (numbers 0, strings empty,
 //! pointers NULL) or a copy by value, field by field. A structure
-//! declared `EXTENDS` another may be copied to or from its base part.
+//! declared `EXTENDS` another (directly or not) may be copied to or from
+//! its base part.
 //! Anything else keeps the byte-by-byte library call (and its fault).
 
 use super::body::BodyBuilder;
@@ -15,7 +16,6 @@ use super::consts::Const;
 use super::emit::{Ty, Val};
 use super::refs::size_bytes;
 use crate::elementary::ElemType;
-use crate::ir::op::Slot;
 use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::syntax::ast::{Arg, BinaryOp, Call, Expr, ExprKind};
 
@@ -114,37 +114,36 @@ impl BodyBuilder<'_> {
         let [dest, second, count] = arguments(f, call)?;
         let x = address_operand(dest)?;
         let dest_ty = self.static_type(x)?;
+        // The source of a copy, with its type.
         let src = match f {
             MemoryFn::Set => None,
-            MemoryFn::Copy => Some(address_operand(second)?),
+            MemoryFn::Copy => {
+                let y = address_operand(second)?;
+                Some((y, self.static_type(y)?))
+            }
         };
-        let src_ty = match src {
-            Some(y) => Some(self.static_type(y)?),
-            None => None,
-        };
-        if byte_layout(self.types, dest_ty) && src_ty.is_none_or(|t| byte_layout(self.types, t)) {
+        if byte_layout(self.types, dest_ty) && src.is_none_or(|(_, t)| byte_layout(self.types, t)) {
             return None;
         }
         let n = self.constant_count(count)?;
-        let plan = match src_ty {
+        match src {
             None => {
                 if self.constant_count(second)? != 0 {
                     return None;
                 }
-                self.zero_plan(dest_ty, n)?
+                let (elem, count) = self.zero_plan(dest_ty, n)?;
+                let d = self.place(x)?;
+                let d = self.address_of(&d);
+                self.zero_elems(d, elem, 0, count);
             }
-            Some(t) => self.copy_plan(dest_ty, t, n)?,
-        };
-        let d = self.place(x)?;
-        let d = self.address_of(&d);
-        match (plan, src) {
-            (Plan::Zero { elem, count }, _) => self.zero_values(d, elem, count),
-            (Plan::Copy { elem, count }, Some(y)) => {
+            Some((y, src_ty)) => {
+                let (elem, count) = self.copy_plan(dest_ty, src_ty, n)?;
+                let d = self.place(x)?;
+                let d = self.address_of(&d);
                 let s = self.place(y)?;
                 let s = self.address_of(&s);
-                self.copy_values(d, s, elem, count);
+                self.copy_elems(d, s, elem, 0, count);
             }
-            (Plan::Copy { .. }, None) => return None,
         }
         Some(if want {
             Val::Const(
@@ -195,57 +194,33 @@ impl BodyBuilder<'_> {
         }
     }
 
-    /// Clearing `n` bytes from the start of a `ty`.
-    fn zero_plan(&self, ty: TypeId, n: u64) -> Option<Plan> {
+    /// Clearing `n` bytes from the start of a `ty`: how many values of
+    /// which type.
+    fn zero_plan(&self, ty: TypeId, n: u64) -> Option<(TypeId, u64)> {
         let (elem, len) = units(self.types, ty);
         let count = whole_units(self.types, elem, n)?;
-        (count <= len && self.can_zero(elem)).then_some(Plan::Zero { elem, count })
+        (count <= len && self.can_zero(elem)).then_some((elem, count))
     }
 
-    /// Copying `n` bytes from the start of a `src` to that of a `dest`.
-    fn copy_plan(&self, dest: TypeId, src: TypeId, n: u64) -> Option<Plan> {
+    /// Copying `n` bytes from the start of a `src` to that of a `dest`:
+    /// how many values of which type.
+    fn copy_plan(&self, dest: TypeId, src: TypeId, n: u64) -> Option<(TypeId, u64)> {
         let (de, dl) = units(self.types, dest);
         let (se, sl) = units(self.types, src);
         if de == se {
             let count = whole_units(self.types, de, n)?;
-            return (count <= dl.min(sl)).then_some(Plan::Copy { elem: de, count });
+            return (count <= dl.min(sl)).then_some((de, count));
         }
         // A structure and its base (`EXTENDS`): the base's part.
-        let base = if starts_with(self.types, dest, src) {
+        let base = if self.extends_structure(dest, src) {
             src
-        } else if starts_with(self.types, src, dest) {
+        } else if self.extends_structure(src, dest) {
             dest
         } else {
             return None;
         };
-        (size_bytes(self.types, base)? == n).then_some(Plan::Copy {
-            elem: base,
-            count: 1,
-        })
+        (size_bytes(self.types, base)? == n).then_some((base, 1))
     }
-
-    /// Copies `count` consecutive values of `elem` from the address in
-    /// `s` to the address in `d`.
-    fn copy_values(&mut self, d: Slot, s: Slot, elem: TypeId, count: u64) {
-        let stride = self.types.size(elem);
-        if count == 1 {
-            self.copy_at(d, s, elem, 0);
-        } else if !self.contains_strings(elem) {
-            let n = u32::try_from(count.saturating_mul(stride as u64)).unwrap_or(u32::MAX);
-            self.copy_plain(d, s, 0, n);
-        } else {
-            self.copy_loop(d, s, elem, 0, count, stride);
-        }
-    }
-}
-
-/// What a memory call over typed values does.
-#[derive(Clone, Copy)]
-enum Plan {
-    /// Clear `count` values of `elem`.
-    Zero { elem: TypeId, count: u64 },
-    /// Copy `count` values of `elem`.
-    Copy { elem: TypeId, count: u64 },
 }
 
 /// Whether a byte view of a `ty` works (docs/semantics.md, byte views):
@@ -279,18 +254,4 @@ fn units(types: &TypeTable, ty: TypeId) -> (TypeId, u64) {
 fn whole_units(types: &TypeTable, elem: TypeId, n: u64) -> Option<u64> {
     let b = size_bytes(types, elem)?;
     (b > 0 && n.is_multiple_of(b)).then_some(n / b)
-}
-
-/// Whether structure `ty` starts with the fields of structure `base`, at
-/// the same places (`TYPE ty EXTENDS base`).
-fn starts_with(types: &TypeTable, ty: TypeId, base: TypeId) -> bool {
-    let (TypeKind::Struct { fields }, TypeKind::Struct { fields: own }) =
-        (&types.get(ty).kind, &types.get(base).kind)
-    else {
-        return false;
-    };
-    own.len() < fields.len()
-        && own.iter().zip(fields).all(|(a, b)| {
-            a.name.eq_ignore_ascii_case(&b.name) && a.ty == b.ty && a.offset == b.offset
-        })
 }

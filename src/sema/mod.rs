@@ -171,15 +171,15 @@ pub fn compile(
     diags: &mut Diagnostics,
 ) -> Option<VerifiedImage> {
     // The passes see what came before (parse errors stop the linking).
-    let mut first = diags.clone();
+    let before = diags.len();
     let none = std::collections::HashSet::new();
-    let (image, guards) = compile_pass(units, options, &none, &mut first);
+    let (image, guards) = compile_pass(units, options, &none, diags);
     if guards.is_empty() {
-        *diags = first;
         return image;
     }
     // Methods in a cycle of calls through interfaces: compiled again with
-    // their re-entry guards (oop::reentry).
+    // their re-entry guards (oop::reentry), in place of the first pass.
+    diags.truncate(before);
     compile_pass(units, options, &guards, diags).0
 }
 

@@ -407,7 +407,7 @@ impl BodyBuilder<'_> {
     /// True when structure `derived` extends `base`, directly or not: its
     /// value starts with a `base` (CODESYS copies that part, `stBase :=
     /// stDerived;`, as `copy_aggregate` does with `base`'s size).
-    fn extends_structure(&self, derived: TypeId, base: TypeId) -> bool {
+    pub(super) fn extends_structure(&self, derived: TypeId, base: TypeId) -> bool {
         let mut at = derived;
         // A chain of bases is as long as the structures declared.
         for _ in 0..=self.model.struct_bases.len() {

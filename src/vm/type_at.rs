@@ -60,13 +60,7 @@ fn within(types: &TypeTable, mut ty: TypeId, mut off: u32, want: TypeId) -> bool
 }
 
 /// Whether a value of type `a` may be read as a `b`: the same type, or
-/// two strings of the same width (a string's buffer keeps its own length).
+/// two strings of the same width.
 fn same(types: &TypeTable, a: TypeId, b: TypeId) -> bool {
-    if a == b {
-        return true;
-    }
-    match (&types.get(a).kind, &types.get(b).kind) {
-        (TypeKind::Str { wide: x, .. }, TypeKind::Str { wide: y, .. }) => x == y,
-        _ => false,
-    }
+    a == b || types.same_width_strings(a, b)
 }

@@ -22,15 +22,15 @@ const SHOWN: usize = 4;
 
 impl Linker<'_> {
     /// Reports a chain of nested calls deeper than [`MAX_CALL_DEPTH`]
-    /// (run after the recursion check: the call graph is acyclic).
+    /// (run after the recursion check: the call graph is acyclic but for
+    /// the cycles of guarded methods, whose back edges are skipped).
     pub(super) fn check_call_depth(&mut self) {
         let n = self.out.codes.len();
-        let mut adj: Vec<Vec<usize>> = vec![Vec::new(); n];
-        for &(a, b, _) in &self.out.calls {
-            if a.index() < n && b.index() < n {
-                adj[a.index()].push(b.index());
-            }
-        }
+        let adj: Vec<Vec<usize>> = self
+            .call_graph()
+            .into_iter()
+            .map(|edges| edges.into_iter().map(|(b, _)| b).collect())
+            .collect();
         // depth[c]: blocks on the longest chain starting at c (itself
         // included); next[c]: the callee on that chain. Post-order walk
         // with an explicit stack (the chain may be thousands deep).

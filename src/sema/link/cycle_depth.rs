@@ -9,7 +9,7 @@ use super::Linker;
 use super::recursion::strong_components;
 use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
 use crate::source::Span;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// The deepest nesting of the guarded cycles: the levels they may add,
 /// a description of the cycle that adds most, and where it is called.
@@ -23,16 +23,10 @@ impl Linker<'_> {
     /// The nesting the cycles of guarded methods may add to the acyclic
     /// chains (`None` without such a cycle).
     pub(super) fn cycle_nesting(&self) -> Option<CycleNesting> {
-        let n = self.out.codes.len();
-        let mut adj: Vec<Vec<(usize, Span)>> = vec![Vec::new(); n];
-        for &(a, b, s) in &self.out.calls {
-            if a.index() < n && b.index() < n {
-                adj[a.index()].push((b.index(), s));
-            }
-        }
-        let component = strong_components(&adj);
-        // Guarded method code -> the block it runs on.
-        let mut owner: HashMap<usize, &str> = HashMap::new();
+        let component = strong_components(&self.call_graph());
+        // Guarded method code -> the block it runs on (ordered, so that
+        // the message is the same from run to run).
+        let mut owner: BTreeMap<usize, &str> = BTreeMap::new();
         for (key, fb) in &self.model.oop.fbs {
             for (v, code) in fb.versions.iter().zip(&fb.codes) {
                 if v.guard.is_some() {
@@ -41,7 +35,7 @@ impl Linker<'_> {
             }
         }
         let mut counts = InstanceCounts::new(self);
-        let mut total: HashMap<usize, (u64, Vec<usize>)> = HashMap::new();
+        let mut total: BTreeMap<usize, (u64, Vec<usize>)> = BTreeMap::new();
         for (&code, fb) in &owner {
             let instances = counts.of(fb);
             let e = total.entry(component[code]).or_default();

@@ -10,31 +10,25 @@
 use super::Linker;
 use crate::ir::op::CodeIdx;
 use crate::source::Span;
-use std::collections::{HashMap, HashSet};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 impl Linker<'_> {
     /// Reports calls that form a cycle (IEC forbids recursion), except
     /// cycles of methods, whose guards it asks for or finds.
     pub(super) fn check_recursion(&mut self) {
-        let n = self.out.codes.len();
-        let mut adj: Vec<Vec<(usize, Span)>> = vec![Vec::new(); n];
-        for &(a, b, s) in &self.out.calls {
-            if a.index() < n && b.index() < n {
-                adj[a.index()].push((b.index(), s));
-            }
-        }
+        let mut adj = self.call_graph();
         let methods = self.method_keys();
         let component = strong_components(&adj);
+        let cyclic = in_cycle(&adj, &component);
         let certain = self.own_instance_cycles(&adj);
         // The components that are cycles of methods only.
-        let mut members: HashMap<usize, Vec<usize>> = HashMap::new();
+        let mut members: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
         for (c, &k) in component.iter().enumerate() {
             members.entry(k).or_default().push(c);
         }
         let mut of_methods: HashSet<usize> = HashSet::new();
         for (&k, codes) in &members {
-            let cyclic = codes.len() > 1 || adj[codes[0]].iter().any(|&(t, _)| t == codes[0]);
-            if !cyclic
+            if !cyclic[codes[0]]
                 || !codes
                     .iter()
                     .all(|c| methods.contains_key(c) && !certain[*c])
@@ -60,6 +54,18 @@ impl Linker<'_> {
         self.report_first_cycle(&adj);
     }
 
+    /// The call graph: for each code block, the blocks it calls and where.
+    pub(super) fn call_graph(&self) -> Vec<Vec<(usize, Span)>> {
+        let n = self.out.codes.len();
+        let mut adj: Vec<Vec<(usize, Span)>> = vec![Vec::new(); n];
+        for &(a, b, s) in &self.out.calls {
+            if a.index() < n && b.index() < n {
+                adj[a.index()].push((b.index(), s));
+            }
+        }
+        adj
+    }
+
     /// Whether each code block is in a cycle of calls on the caller's own
     /// instance: recursion for certain, whatever the instances are.
     fn own_instance_cycles(&self, adj: &[Vec<(usize, Span)>]) -> Vec<bool> {
@@ -77,14 +83,7 @@ impl Linker<'_> {
                     .collect()
             })
             .collect();
-        let component = strong_components(&own);
-        let mut size: HashMap<usize, usize> = HashMap::new();
-        for &k in &component {
-            *size.entry(k).or_default() += 1;
-        }
-        (0..own.len())
-            .map(|c| size[&component[c]] > 1 || own[c].iter().any(|&(t, _)| t == c))
-            .collect()
+        in_cycle(&own, &strong_components(&own))
     }
 
     /// Code block -> (`ORIGIN.METHOD`, compiled with a re-entry guard)
@@ -147,6 +146,19 @@ impl Linker<'_> {
             }
         }
     }
+}
+
+/// Whether each node of `adj` is on a cycle: its strongly connected
+/// component (`component`, from [`strong_components`]) has other nodes,
+/// or it calls itself.
+fn in_cycle(adj: &[Vec<(usize, Span)>], component: &[usize]) -> Vec<bool> {
+    let mut size: HashMap<usize, usize> = HashMap::new();
+    for &k in component {
+        *size.entry(k).or_default() += 1;
+    }
+    (0..adj.len())
+        .map(|c| size[&component[c]] > 1 || adj[c].iter().any(|&(t, _)| t == c))
+        .collect()
 }
 
 /// The strongly connected component of each node (Tarjan's algorithm,

@@ -3,8 +3,7 @@
 
 use super::{intern_ref, ref_parts, size_bytes};
 use crate::elementary::ElemType;
-use crate::ir::image::NOT_CONNECTED;
-use crate::ir::op::{Cmp, Op, Slot};
+use crate::ir::op::{Op, Slot};
 use crate::ir::type_table::{MemberKind, RefFlavor, TypeId, TypeKind, TypeTable};
 use crate::sema::body::BodyBuilder;
 use crate::sema::consts::Const;
@@ -193,13 +192,7 @@ impl BodyBuilder<'_> {
         if let ExprKind::Name(id) = &r.kind
             && let Some(Storage::Ref(o)) = self.lookup_var(&id.key()).map(|v| v.storage)
         {
-            let (d, none) = (self.block.temp(), self.block.const_slot(NOT_CONNECTED));
-            self.block.emit(Op::CmpU {
-                d,
-                a: Slot::new(o),
-                b: none,
-                cmp: Cmp::Ne,
-            });
+            let d = self.in_out_connected(Slot::new(o));
             return Val::Slot(d, TypeTable::elem(ElemType::Bool));
         }
         // A REFERENCE TO variable is asked about itself, not its target

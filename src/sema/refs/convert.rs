@@ -8,7 +8,7 @@
 use super::{innermost, layout_code, ref_parts, view_unit, viewable};
 use crate::elementary::ElemType;
 use crate::ir::op::{Cmp, Op};
-use crate::ir::type_table::{RefFlavor, TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{RefFlavor, TypeId, TypeTable};
 use crate::sema::body::BodyBuilder;
 use crate::sema::consts::Const;
 use crate::sema::emit::{Ty, Val};
@@ -33,7 +33,7 @@ impl BodyBuilder<'_> {
                 if from.is_some_and(|f| self.ref_assignable(f, to)) {
                     return None;
                 }
-                if same_width_strings(self.types, ft, tt) {
+                if self.types.same_width_strings(ft, tt) {
                     // `POINTER TO STRING` over a `STRING(10000)` (CODESYS):
                     // the same string, whose buffer keeps its own length.
                     return Some(Val::Slot(self.materialize(v), to));
@@ -251,12 +251,4 @@ impl BodyBuilder<'_> {
         });
         Some(Val::Slot(d, TypeTable::elem(ElemType::Bool)))
     }
-}
-
-/// Whether `a` and `b` are both STRINGs or both WSTRINGs (of any lengths).
-fn same_width_strings(types: &TypeTable, a: TypeId, b: TypeId) -> bool {
-    matches!(
-        (&types.get(a).kind, &types.get(b).kind),
-        (TypeKind::Str { wide: x, .. }, TypeKind::Str { wide: y, .. }) if x == y
-    )
 }
