@@ -322,6 +322,8 @@ mod twincat_import;
 mod twincat_library_forms;
 #[path = "twincat_memory.rs"]
 mod twincat_memory;
+#[path = "twincat_motion.rs"]
+mod twincat_motion;
 #[path = "twincat_pmps_forms.rs"]
 mod twincat_pmps_forms;
 #[path = "twincat_utilities.rs"]

@@ -34,15 +34,21 @@ const TOOL_ATTRIBUTE: &str = "W155";
 /// The name of the library's source file.
 pub(crate) const LIBRARY_SOURCE: &str = "<TwinCAT libraries>";
 const LIBRARY: &str = include_str!("twincat_library.st");
+/// Tc2_MC2's motion blocks over simulated NC axes, in a file of its own
+/// (`twincat_motion.st`; docs/twincat.md, "Motion control").
+const MOTION: &str = include_str!("twincat_motion.st");
 /// The marker that starts each item of the library text.
 const ITEM: &str = "(*@ITEM ";
 
 /// The library's items: (name, text).
 fn items() -> impl Iterator<Item = (&'static str, &'static str)> {
-    LIBRARY.split(ITEM).skip(1).filter_map(|chunk| {
-        let (name, _) = chunk.split_once(" *)")?;
-        Some((name.trim(), chunk))
-    })
+    let chunks = LIBRARY.split(ITEM).skip(1);
+    chunks
+        .chain(MOTION.split(ITEM).skip(1))
+        .filter_map(|chunk| {
+            let (name, _) = chunk.split_once(" *)")?;
+            Some((name.trim(), chunk))
+        })
 }
 
 /// The names (upper case) of the POUs, types and interfaces `sources`
