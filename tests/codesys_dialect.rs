@@ -1108,3 +1108,102 @@ fn a_pointer_to_string_takes_a_string_of_any_length() {
     assert_eq!(lit(&plc, "P.big"), "'written'");
     assert_eq!(lit(&plc, "P.n"), "7");
 }
+
+#[test]
+fn an_initial_value_may_read_a_constant_declared_further_down() {
+    // FB_MotionHoming of lcls-twincat-motion: the state variable starts
+    // at a constant of the POU's later VAR CONSTANT block.
+    let prelude = "FUNCTION_BLOCK FB_Homing
+VAR
+  nState : INT := IDLE;
+  nNext : INT := IDLE + STEP;
+END_VAR
+VAR CONSTANT
+  IDLE : INT := 7;
+  STEP : INT := 3;
+END_VAR
+END_FUNCTION_BLOCK";
+    check(
+        prelude,
+        "fb : FB_Homing; a : INT; b : INT;",
+        "a := fb.nState; b := fb.nNext;",
+        &[("P.a", "7"), ("P.b", "10")],
+    );
+}
+
+#[test]
+fn min_and_max_take_an_enumeration_as_its_integer_beside_an_integer() {
+    use crate::support::twincat::{compile_ok, declaration, pou};
+    // FB_NCErrorFFO: `MIN(nErrorTypeCode, E_MotionFFType.HIGH_RESERVED_NC)`.
+    let kind = declaration(
+        "DUT",
+        "E_Kind",
+        "TYPE E_Kind : (LOW := 2, HIGH := 40) UINT; END_TYPE",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR n : UINT := 100; m : UINT := 1; a : UINT; b : UINT; c : UINT; END_VAR",
+        "a := MIN(n, E_Kind.HIGH); b := MAX(m, E_Kind.LOW); c := LIMIT(E_Kind.LOW, n, E_Kind.HIGH);",
+        "",
+    );
+    let mut plc = compile_ok(&[("E_Kind.TcDUT", &kind), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.a"), "40");
+    assert_eq!(lit(&plc, "P.b"), "2");
+    assert_eq!(lit(&plc, "P.c"), "40");
+    // In an IEC file the types do not mix.
+    let iec = program(
+        "TYPE E_Kind : (LOW := 2, HIGH := 40) UINT; END_TYPE",
+        "n : UINT; a : UINT;",
+        "a := MIN(n, E_Kind.HIGH);",
+    );
+    let codes = error_codes(&[("iec.st", &iec)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E306"),
+        "{codes:?}"
+    );
+}
+
+#[test]
+fn a_global_named_with_its_library_namespace_and_list() {
+    use crate::support::twincat::{compile_ok, declaration, pou};
+    // lcls-twincat-motion: `lcls_twincat_math.GVL_Constants.PI`.
+    let gvl = declaration(
+        "GVL",
+        "GVL_Constants",
+        "VAR_GLOBAL CONSTANT\n  PI : LREAL := 3.5;\nEND_VAR",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR x : LREAL; y : LREAL; END_VAR",
+        "x := lcls_twincat_math.GVL_Constants.PI * 2.0;\ny := GVL_Constants.PI;",
+        "",
+    );
+    let mut plc = compile_ok(&[("GVL_Constants.TcGVL", &gvl), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.x"), "7.0");
+    assert_eq!(lit(&plc, "P.y"), "3.5");
+}
+
+#[test]
+fn pouname_is_the_name_of_the_running_pou() {
+    use crate::support::twincat::{compile_ok, method, pou};
+    let fb = pou(
+        "FB_Log",
+        "FUNCTION_BLOCK FB_Log\nVAR_OUTPUT sBody : STRING; sMethod : STRING; END_VAR",
+        "sBody := __POUNAME();",
+        &method("METHOD M\n", "sMethod := __POUNAME();"),
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR fb : FB_Log; s : STRING; END_VAR",
+        "fb(); fb.M(); s := __POUNAME();",
+        "",
+    );
+    let mut plc = compile_ok(&[("FB_Log.TcPOU", &fb), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.s"), "'P'");
+    assert_eq!(lit(&plc, "P.fb.sBody"), "'FB_Log'");
+    assert_eq!(lit(&plc, "P.fb.sMethod"), "'FB_Log.M'");
+}

@@ -293,3 +293,63 @@ leap := DT_TO_SYSTEMTIME(DT#2024-02-29-23:59:58);";
         ["16#2", "16#1D", "16#3A", "16#4"]
     );
 }
+
+#[test]
+fn lreal_to_fmtstr_rounds_or_cuts_at_the_precision() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  a : T_MaxString; b : T_MaxString; c : T_MaxString; d : T_MaxString; e : T_MaxString;\nEND_VAR",
+        "a := LREAL_TO_FMTSTR(2.345678, 3, TRUE);\n\
+         b := LREAL_TO_FMTSTR(2.345678, 3, FALSE);\n\
+         c := LREAL_TO_FMTSTR(-0.05, 2, TRUE);\n\
+         d := LREAL_TO_FMTSTR(-0.004, 2, TRUE);\n\
+         e := LREAL_TO_FMTSTR(12.5, 0, TRUE);",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.a"), "'2.346'");
+    assert_eq!(lit(&plc, "P.b"), "'2.345'");
+    assert_eq!(lit(&plc, "P.c"), "'-0.05'");
+    assert_eq!(lit(&plc, "P.d"), "'0.00'");
+    assert_eq!(lit(&plc, "P.e"), "'13'");
+}
+
+#[test]
+fn ams_addresses_and_hex_digits() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  ids : T_AmsNetIdArr := [192, 168, 0, 7, 1, 1];\n  s : T_AmsNetId;\n  d : BYTE; f : BYTE; x : BYTE;\nEND_VAR",
+        "s := F_CreateAmsNetId(ids);\n\
+         d := HEXASCNIBBLE_TO_BYTE(16#37);\n\
+         f := HEXASCNIBBLE_TO_BYTE(16#66);\n\
+         x := HEXASCNIBBLE_TO_BYTE(16#67);",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.s"), "'192.168.0.7.1.1'");
+    assert_eq!(lit(&plc, "P.d"), "16#7");
+    assert_eq!(lit(&plc, "P.f"), "16#F");
+    assert_eq!(lit(&plc, "P.x"), "16#FF");
+}
+
+#[test]
+fn ads_requests_and_coe_access_fail_as_without_a_device() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  rd : ADSREAD; wr : ADSWRITE; sdo : FB_EcCoeSdoWrite; n : UDINT;\nEND_VAR",
+        "rd(NETID := '', PORT := 501, IDXGRP := 16#4000, LEN := 4, DESTADDR := ADR(n), READ := TRUE);\n\
+         wr(NETID := '5.1.2.3.1.1', PORT := 501, LEN := 4, SRCADDR := ADR(n), WRITE := TRUE);\n\
+         sdo(sNetId := '', nSlaveAddr := 1001, nIndex := 16#8010, pSrcBuf := ADR(n), cbBufLen := 4, bExecute := TRUE);",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.rd.ERR"), "TRUE");
+    assert_eq!(lit(&plc, "P.rd.ERRID"), "6");
+    assert_eq!(lit(&plc, "P.rd.BUSY"), "FALSE");
+    assert_eq!(lit(&plc, "P.wr.ERRID"), "7");
+    assert_eq!(lit(&plc, "P.sdo.bError"), "TRUE");
+    assert_eq!(lit(&plc, "P.sdo.nErrId"), "6");
+}

@@ -98,7 +98,11 @@ impl BodyBuilder<'_> {
 
     /// A call used in an expression: must be a function.
     pub(super) fn call_expr(&mut self, call: &Call, expect: Option<TypeId>) -> Val {
-        if let Some(v) = self.ref_call(call).or_else(|| self.bound_call(call)) {
+        if let Some(v) = self
+            .ref_call(call)
+            .or_else(|| self.pou_name_call(call))
+            .or_else(|| self.bound_call(call))
+        {
             return v;
         }
         if let Some(v) = self.oop_call(call, true) {

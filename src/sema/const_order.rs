@@ -154,6 +154,15 @@ pub(super) fn value_constants(
         .collect()
 }
 
+/// The names (case-folded) the initial values of `block` read.
+pub(super) fn names_read(block: &VarBlock) -> Vec<String> {
+    let mut out = Vec::new();
+    for init in block.decls.iter().filter_map(|d| d.init.as_ref()) {
+        init_names(init, &mut out);
+    }
+    out
+}
+
 fn init_names(init: &Initializer, out: &mut Vec<String>) {
     let mut inits = vec![init];
     let mut exprs: Vec<&Expr> = Vec::new();

@@ -157,6 +157,22 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// The arguments of MIN, MAX or LIMIT where enumerations meet
+    /// integers in a CODESYS-dialect file (`MIN(nCode,
+    /// E_Type.HIGH_RESERVED)`): each enumeration that is not strict taken
+    /// as its base type (W485), so the call is over integers.
+    pub(super) fn enum_args_as_ints(&mut self, vals: Vec<(Val, Span)>) -> Vec<(Val, Span)> {
+        if !vals.iter().any(|(v, _)| self.is_integer(v)) {
+            return vals;
+        }
+        vals.into_iter()
+            .map(|(v, s)| match self.val_enum(&v, false) {
+                Some(t) if self.mixes_enums(t, s) => (self.as_base(v, t, s), s),
+                _ => (v, s),
+            })
+            .collect()
+    }
+
     /// Whether enumeration `t`'s values may meet another enumeration's at
     /// `span`: in a CODESYS-dialect file, where an enumeration that is not
     /// strict is an integer (FB_VCN compares `E_ValvePositionState` with

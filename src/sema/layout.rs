@@ -579,8 +579,9 @@ impl Declarer<'_> {
 
 /// The POU's variable blocks in the order they are laid out: as written,
 /// except that when an array or string is declared before a local
-/// `VAR CONSTANT` block, the constant blocks come first so that their
-/// names can size it (CODESYS accepts a bound declared further down).
+/// `VAR CONSTANT` block, or an initial value reads a constant of a later
+/// block, the constant blocks come first so that their names can size it
+/// or give the value (CODESYS accepts a constant declared further down).
 fn blocks_in_layout_order(blocks: &[VarBlock]) -> Vec<&VarBlock> {
     let local_constant = |b: &VarBlock| b.constant && b.kind == VarKind::Local;
     let sized = |b: &VarBlock| {
@@ -592,10 +593,26 @@ fn blocks_in_layout_order(blocks: &[VarBlock]) -> Vec<&VarBlock> {
             )
         })
     };
-    let hoist = blocks
+    let sized_first = blocks
         .iter()
         .position(|b| !local_constant(b) && sized(b))
         .is_some_and(|first| blocks[first..].iter().any(local_constant));
+    // An initial value reading a constant declared in a later block
+    // (`nState : INT := IDLE;` before `VAR CONSTANT IDLE : INT := 0;`),
+    // which CODESYS accepts: the constants are laid out first there too.
+    let read_early = blocks.iter().enumerate().any(|(i, b)| {
+        let later: Vec<String> = blocks[i + 1..]
+            .iter()
+            .filter(|c| local_constant(c))
+            .flat_map(|c| c.decls.iter().flat_map(|d| d.names.iter().map(|n| n.key())))
+            .collect();
+        !local_constant(b)
+            && !later.is_empty()
+            && super::const_order::names_read(b)
+                .iter()
+                .any(|n| later.contains(n))
+    });
+    let hoist = sized_first || read_early;
     if !hoist {
         return blocks.iter().collect();
     }

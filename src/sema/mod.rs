@@ -86,6 +86,7 @@ mod open_arrays;
 mod partial_access;
 mod place;
 mod pointer_index;
+mod pou_name;
 mod ref_inits;
 mod refs;
 mod sfc_emit;

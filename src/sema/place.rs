@@ -37,7 +37,16 @@ impl BodyBuilder<'_> {
     /// `GVL_Constants.PI`). plcrun has one namespace for globals, so the
     /// qualifier itself is not checked.
     pub(super) fn is_list_qualifier(&self, base: &Expr, name: &Ident) -> bool {
-        self.unbound_name(base).is_some() && self.model.globals.contains_key(&name.key())
+        let qualifier = match &base.kind {
+            // `Library.GVL.x`: the library's namespace before the list
+            // (`lcls_twincat_math.GVL_Constants.PI`), two names that name
+            // nothing here.
+            ExprKind::Member(library, list) => {
+                self.unbound_name(library).is_some() && self.unbound_key(&list.key())
+            }
+            _ => self.unbound_name(base).is_some(),
+        };
+        qualifier && self.model.globals.contains_key(&name.key())
     }
 
     /// True when `base` is a bare name that is no variable, POU, type or
@@ -54,10 +63,14 @@ impl BodyBuilder<'_> {
             return None;
         };
         let qk = q.key();
-        (self.lookup_var(&qk).is_none()
-            && !self.model.pou_index.contains_key(&qk)
-            && !self.model.type_ids.contains_key(&qk))
-        .then_some(qk)
+        self.unbound_key(&qk).then_some(qk)
+    }
+
+    /// True when `key` names no variable, POU or type in scope.
+    fn unbound_key(&self, key: &str) -> bool {
+        self.lookup_var(key).is_none()
+            && !self.model.pou_index.contains_key(key)
+            && !self.model.type_ids.contains_key(key)
     }
 
     /// Reads the place `e` denotes as a scalar value.

@@ -219,6 +219,7 @@ impl BodyBuilder<'_> {
         span: Span,
         expect: Option<crate::ir::type_table::TypeId>,
     ) -> Val {
+        let vals = self.enum_args_as_ints(vals);
         let tys: Vec<Ty> = vals.iter().map(|(v, _)| v.ty()).collect();
         let Some(t) = self.unify_all(&tys, span, fname, expect) else {
             return Val::error();
@@ -243,6 +244,7 @@ impl BodyBuilder<'_> {
         span: Span,
         expect: Option<crate::ir::type_table::TypeId>,
     ) -> Val {
+        let vals = self.enum_args_as_ints(vals);
         let tys: Vec<Ty> = vals.iter().map(|(v, _)| v.ty()).collect();
         let Some(t) = self.unify_all(&tys, span, fname, expect) else {
             return Val::error();
