@@ -1207,3 +1207,32 @@ fn pouname_is_the_name_of_the_running_pou() {
     assert_eq!(lit(&plc, "P.fb.sBody"), "'FB_Log'");
     assert_eq!(lit(&plc, "P.fb.sMethod"), "'FB_Log.M'");
 }
+
+#[test]
+fn an_input_given_twice_takes_the_last_value_in_codesys_files_only() {
+    use crate::support::twincat::{compile, compile_ok, pou};
+    // FB_HaltNC of lcls-twincat-motion names `Execute` twice.
+    let fb = "FUNCTION_BLOCK FB_Take\nVAR_INPUT x : INT; END_VAR\nVAR_OUTPUT y : INT; END_VAR\ny := x;\nEND_FUNCTION_BLOCK";
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR fb : FB_Take; END_VAR",
+        "fb(x := 1, x := 2);",
+        "",
+    );
+    let lib = fb.to_string();
+    let mut plc = compile_ok(&[("take.st", &lib), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.fb.y"), "2");
+    let warned = match compile(&[("take.st", &lib), ("P.TcPOU", &main)]) {
+        Ok(plc) => plc.warnings().iter().any(|d| d.code == "W493"),
+        Err(e) => panic!("{e}"),
+    };
+    assert!(warned);
+    let iec = program(fb, "fb : FB_Take;", "fb(x := 1, x := 2);");
+    let codes = error_codes(&[("iec.st", &iec)]);
+    assert_eq!(
+        codes.first().map(|c| c.0.as_str()),
+        Some("E404"),
+        "{codes:?}"
+    );
+}

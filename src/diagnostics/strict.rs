@@ -2,7 +2,7 @@
 //!
 //! A construct beyond IEC 61131-3 edition 3 that plcrun accepts for code
 //! written for CODESYS, matiec or TwinCAT is reported with a warning code
-//! `W300`-`W399` (for the CODESYS / TwinCAT dialect also `W485`-`W492`),
+//! `W300`-`W399` (for the CODESYS / TwinCAT dialect also `W485`-`W493`),
 //! whichever stage finds it. `--strict` asks for pure IEC:
 //! the rule below upgrades each of them to an error with the same code, so
 //! the program is refused and the message stays the one documented.
@@ -10,7 +10,7 @@
 use super::{Diagnostics, Severity};
 
 /// True for the codes of compatibility-extension warnings, `W300`-`W399`,
-/// and the CODESYS / TwinCAT dialect's `W485`-`W492`.
+/// and the CODESYS / TwinCAT dialect's `W485`-`W493`.
 ///
 /// ```
 /// use plcrun::is_compatibility_code;
@@ -25,7 +25,7 @@ pub fn is_compatibility_code(code: &str) -> bool {
         .strip_prefix('W')
         .filter(|n| n.len() == 3 && n.bytes().all(|b| b.is_ascii_digit()))
         .and_then(|n| n.parse::<u16>().ok());
-    matches!(number, Some(300..=399 | 485..=492))
+    matches!(number, Some(300..=399 | 485..=493))
 }
 
 /// The note added to a warning that strict mode made an error.

@@ -275,12 +275,25 @@ impl BodyBuilder<'_> {
                             if matches!(params[i].kind, MemberKind::Input | MemberKind::InOut) =>
                         {
                             if b.inputs.iter().any(|(j, _)| *j == i) {
-                                self.diags.error(
-                                    "E404",
-                                    name.span,
-                                    format!("`{}` is given twice", name.name),
-                                );
-                                ok = false;
+                                if self.model.codesys_files.contains(&name.span.file) {
+                                    // CODESYS takes the last value (W493).
+                                    self.diags.warning(
+                                        "W493",
+                                        name.span,
+                                        format!(
+                                            "`{}` is given twice: the last value is used (a CODESYS extension)",
+                                            name.name
+                                        ),
+                                    );
+                                    b.inputs.retain(|(j, _)| *j != i);
+                                } else {
+                                    self.diags.error(
+                                        "E404",
+                                        name.span,
+                                        format!("`{}` is given twice", name.name),
+                                    );
+                                    ok = false;
+                                }
                             }
                             b.inputs.push((i, value));
                         }
