@@ -23,11 +23,13 @@ use std::path::{Path, PathBuf};
 mod address_map;
 mod io_links;
 mod library_projects;
+mod nc_axes;
 mod project;
 mod source_bytes;
 pub(crate) mod twincat_library;
 pub use io_links::project_io_links;
 pub use library_projects::with_library_projects;
+pub use nc_axes::project_nc_axes;
 pub use source_bytes::add_source_bytes;
 
 /// Diagnostic code of "several PROGRAMs and none chosen".

@@ -70,7 +70,7 @@ pub use draw::{
 };
 pub use driver::{
     CheckOptions, CheckReport, LoadError, add_source_bytes, check, check_reporting, load_files,
-    load_files_with, project_files, project_io_links, type_description_sources,
+    load_files_with, project_files, project_io_links, project_nc_axes, type_description_sources,
     with_library_projects,
 };
 pub use elementary::ElemType;

@@ -702,3 +702,46 @@ fn the_io_configuration_feeds_a_suite_s_outputs_back_to_the_inputs_it_links() {
     );
     assert!(out.contains("2 cycles, 4 assertions"), "{out}");
 }
+
+/// An NC configuration with one axis (`Axis_Slow`) that limits the
+/// velocity to 5 and enables the positive soft limit at 8, linked to the
+/// suite's AXIS_REF by the PLC's `.xti`.
+const NC_LIST: &str = "<?xml version=\"1.0\"?>\n<TcSmItem>\n  <Nc>\n    <Axis File=\"Axis_Slow.xti\" Id=\"7\"/>\n    <Axis File=\"Axis_Missing.xti\" Id=\"8\"/>\n  </Nc>\n</TcSmItem>\n";
+const NC_AXIS: &str = "<?xml version=\"1.0\"?>\n<TcSmItem ClassName=\"CNcAxisDef\">\n  <Axis Id=\"7\" AxisType=\"1\">\n    <Name>__FILENAME__</Name>\n    <AxisPara>\n      <Velo Maximum=\"5\"/>\n    </AxisPara>\n    <Encoder Name=\"Enc\">\n      <EncPara Offset=\"2\">\n        <SoftEndMaxControl Enable=\"true\" Range=\"8\"/>\n      </EncPara>\n    </Encoder>\n  </Axis>\n</TcSmItem>\n";
+const NC_LINKS: &str = "<?xml version=\"1.0\"?>\n<TcSmItem>\n  <Mappings>\n    <OwnerA Name=\"Plc Instance\">\n      <OwnerB Name=\"TINC^NC-Task 1 SAF^Axes^Axis_Slow\">\n        <Link VarA=\"PlcTask Inputs^PRG_TEST.fbAxisTest.ax.NcToPlc\" VarB=\"Outputs^ToPlc\"/>\n        <Link VarA=\"PlcTask Outputs^PRG_TEST.fbAxisTest.ax.PlcToNc\" VarB=\"Inputs^FromPlc\"/>\n      </OwnerB>\n    </OwnerA>\n  </Mappings>\n</TcSmItem>\n";
+
+#[test]
+fn a_suite_s_axis_takes_the_id_and_parameters_of_the_nc_axis_it_is_linked_to() {
+    // The linked axis starts at its encoder offset (2), is refused a
+    // velocity above its maximum (16#4221 = 16929) and a target beyond
+    // its soft limit (16#4358 = 17240); the unlinked one keeps the
+    // defaults and the next free id.
+    let suite = pou(
+        "FB_AxisTest",
+        "FUNCTION_BLOCK FB_AxisTest EXTENDS TcUnit.FB_TestSuite\nVAR\n  ax : AXIS_REF;\n  free : AXIS_REF;\n  power : MC_Power;\n  fast : MC_MoveAbsolute;\n  far : MC_MoveAbsolute;\n  n : INT;\nEND_VAR\n",
+        "TEST('Configured');\npower(Axis := ax, Enable := TRUE, Enable_Positive := TRUE, Enable_Negative := TRUE);\nfree.ReadStatus();\nIF n = 0 THEN\n  AssertEquals_UDINT(Expected := 7, Actual := ax.NcToPlc.AxisId, Message := 'id');\n  AssertEquals_LREAL(Expected := 2.0, Actual := ax.NcToPlc.ActPos, Delta := 0.0, Message := 'offset');\n  AssertEquals_UDINT(Expected := 2, Actual := free.NcToPlc.AxisId, Message := 'free id');\nELSIF n = 2 THEN\n  fast(Axis := ax, Execute := TRUE, Position := 4.0, Velocity := 6.0);\n  AssertEquals_UDINT(Expected := 16929, Actual := fast.ErrorID, Message := 'too fast');\nELSIF n = 3 THEN\n  ax.PlcrunReset();\nELSIF n = 4 THEN\n  far(Axis := ax, Execute := TRUE, Position := 9.0, Velocity := 5.0);\n  AssertEquals_UDINT(Expected := 17240, Actual := far.ErrorID, Message := 'beyond the limit');\n  TEST_FINISHED();\nEND_IF\nn := n + 1;\n",
+        "",
+    );
+    let prg = pou(
+        "PRG_TEST",
+        "PROGRAM PRG_TEST\nVAR fbAxisTest : FB_AxisTest; END_VAR\n",
+        "TcUnit.RUN();\n",
+        "",
+    );
+    let project = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Project>\n  <ItemGroup>\n    <Compile Include=\"FB_AxisTest.TcPOU\" />\n    <Compile Include=\"PRG_TEST.TcPOU\" />\n  </ItemGroup>\n</Project>\n";
+    let dir = temp_project(&[
+        (
+            "Solution.tsproj",
+            "<?xml version=\"1.0\"?>\n<TcSmProject/>\n",
+        ),
+        ("_Config/NC/NC.xti", NC_LIST),
+        ("_Config/NC/Axes/Axis_Slow.xti", NC_AXIS),
+        ("_Config/PLC/Plc.xti", NC_LINKS),
+        ("Plc/Plc.plcproj", project),
+        ("Plc/FB_AxisTest.TcPOU", &suite),
+        ("Plc/PRG_TEST.TcPOU", &prg),
+    ]);
+    let (code, out, err) = plcrun(&["test", &format!("{dir}/Plc/Plc.plcproj")]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("5 cycles, 5 assertions"), "{out}");
+}

@@ -25,10 +25,12 @@
 
 pub mod convention;
 mod io_link;
+mod nc_axis;
 pub mod overlap;
 
 pub use convention::{Addressing, ImageSpot, ImageTable, UnknownAddressing};
 pub use io_link::IoLink;
+pub use nc_axis::NcAxis;
 
 use std::fmt;
 

@@ -80,6 +80,7 @@ fn options(args: &TestArgs) -> Result<TestOptions, String> {
         keep_going: args.keep_going,
         // The loopback links of the TwinCAT solutions (docs/testing.md).
         io_links: plcrun::project_io_links(&args.files),
+        nc_axes: plcrun::project_nc_axes(&args.files),
     })
 }
 

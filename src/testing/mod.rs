@@ -50,6 +50,11 @@ pub struct TestOptions {
     /// suites, each input of a suite takes its output's value (default
     /// none).
     pub io_links: Vec<crate::address::IoLink>,
+    /// The NC axes of the configuration and the `AXIS_REF`s they are
+    /// linked to ([`crate::project_nc_axes`]): before the first cycle,
+    /// each linked axis of a suite takes the axis' id, name and
+    /// parameters (default none).
+    pub nc_axes: Vec<crate::address::NcAxis>,
 }
 
 impl Default for TestOptions {
@@ -62,6 +67,7 @@ impl Default for TestOptions {
             addressing: None,
             keep_going: false,
             io_links: Vec::new(),
+            nc_axes: Vec::new(),
         }
     }
 }

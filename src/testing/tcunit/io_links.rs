@@ -15,15 +15,7 @@ use crate::runtime::names::VarRef;
 /// The links of `links` whose two ends are variables of the suites of
 /// `plan` in `plc`.
 pub(super) fn resolve(plc: &Plc, plan: &Plan, links: &[IoLink]) -> Vec<(VarRef, VarRef)> {
-    let moved = |path: &str| -> Option<String> {
-        let upper = path.to_ascii_uppercase();
-        plan.suites.iter().enumerate().find_map(|(k, s)| {
-            let prefix = format!("{}.", s.path.to_ascii_uppercase());
-            upper
-                .starts_with(&prefix)
-                .then(|| format!("{DRIVER}.suite{k}.{}", &path[prefix.len()..]))
-        })
-    };
+    let moved = |path: &str| in_suite(plan, path);
     links
         .iter()
         .filter_map(|l| {
@@ -32,6 +24,19 @@ pub(super) fn resolve(plc: &Plc, plan: &Plan, links: &[IoLink]) -> Vec<(VarRef, 
             Some((input, output))
         })
         .collect()
+}
+
+/// `path`, a variable of a suite instance as the project names it
+/// (`PRG_Test.fb_PTM_Test.fbPump.i_iTemp`), where the runner has it
+/// (`suiteK.fbPump.i_iTemp`); `None` outside the suites.
+pub(super) fn in_suite(plan: &Plan, path: &str) -> Option<String> {
+    let upper = path.to_ascii_uppercase();
+    plan.suites.iter().enumerate().find_map(|(k, s)| {
+        let prefix = format!("{}.", s.path.to_ascii_uppercase());
+        upper
+            .starts_with(&prefix)
+            .then(|| format!("{DRIVER}.suite{k}.{}", &path[prefix.len()..]))
+    })
 }
 
 /// Gives each linked input its output's value (converted when the two

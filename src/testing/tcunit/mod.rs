@@ -11,6 +11,7 @@ mod state;
 pub(crate) use state::State;
 
 mod io_links;
+mod nc_axes;
 
 use super::assertions::{self, Log, Recorded};
 use super::{AssertionFailure, TestCase, TestError, TestOptions};
@@ -292,6 +293,7 @@ fn run_plan(
         Plc::compile(sources_for(sources, plan, true), &plc_options).map_err(TestError::Compile)?;
     let lock = || state.lock().unwrap_or_else(|p| p.into_inner());
     let links = io_links::resolve(&plc, plan, &options.io_links);
+    nc_axes::configure(&mut plc, plan, &options.nc_axes);
     let mut fault = None;
     let mut cycles = 0;
     let mut finished_at: HashMap<(usize, usize), Duration> = HashMap::new();
