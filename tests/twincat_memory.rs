@@ -155,3 +155,45 @@ fn a_pvoid_made_into_a_pointer_to_another_structure_stays_a_byte_view() {
     let fault = plc.run_cycle().expect_err("a byte view of a structure");
     assert_eq!(fault.code(), "R034", "{fault}");
 }
+
+#[test]
+fn a_pointer_kept_in_a_pvoid_finds_its_structure_after_a_method_s_in_out() {
+    // lcls-twincat-motion's FB_MotionBPTM_Test: a METHOD's VAR_IN_OUT of an
+    // FB type (one slot, an address) comes before the VAR_INST instance
+    // holding the structure; the walk to the address must not descend
+    // into the in-out as if it held the block.
+    let holder = pou(
+        "FB_Holder",
+        "FUNCTION_BLOCK FB_Holder\nVAR_INPUT\n  items : ARRAY[0..3] OF ST_Item;\nEND_VAR",
+        "",
+        "",
+    );
+    let suite = pou(
+        "FB_Suite",
+        "FUNCTION_BLOCK FB_Suite\nVAR_OUTPUT n : INT; s : STRING(20); END_VAR",
+        "",
+        &format!(
+            "{}{}",
+            crate::support::twincat::method(
+                "METHOD Peek\nVAR_IN_OUT other : FB_Holder; END_VAR",
+                "n := other.items[0].n;"
+            ),
+            "<Method Name=\"Keep\" Id=\"{00000000-0000-0000-0000-000000000029}\"><Declaration><![CDATA[METHOD Keep\nVAR_INST\n  holder : FB_Holder;\nEND_VAR\nVAR\n  p : POINTER TO ST_Item;\n  pv : PVOID;\n  copy : ST_Item;\nEND_VAR]]></Declaration><Implementation><ST><![CDATA[holder.items[2].n := 42;\nholder.items[2].s := 'kept';\npv := ADR(holder.items[2]);\np := pv;\ncopy := p^;\nn := copy.n;\ns := copy.s;]]></ST></Implementation></Method>\n"
+        ),
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  suite : FB_Suite;\n  n : INT;\n  s : STRING(20);\nEND_VAR",
+        "suite.Keep();\nn := suite.n;\ns := suite.s;",
+        "",
+    );
+    let owned = types();
+    let mut files: Vec<(&str, &str)> = owned.iter().map(|(n, t)| (*n, t.as_str())).collect();
+    files.push(("FB_Holder.TcPOU", &holder));
+    files.push(("FB_Suite.TcPOU", &suite));
+    files.push(("P.TcPOU", &main));
+    let mut plc = compile(&files).unwrap_or_else(|e| panic!("{e}"));
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.n"), "42");
+    assert_eq!(lit(&plc, "P.s"), "'kept'");
+}

@@ -12,7 +12,7 @@
 //! the types of the program's variables down to that address.
 
 use crate::ir::image::Image;
-use crate::ir::type_table::{TypeId, TypeKind, TypeTable};
+use crate::ir::type_table::{MemberKind, TypeId, TypeKind, TypeTable};
 
 /// Whether the `ty` at absolute slot address `addr` is a whole value of
 /// that type inside a global variable or a program instance.
@@ -37,10 +37,13 @@ fn within(types: &TypeTable, mut ty: TypeId, mut off: u32, want: TypeId) -> bool
         }
         let (inner, at) = match &types.get(ty).kind {
             TypeKind::Struct { fields: members } | TypeKind::Pou { members, .. } => {
-                let Some(m) = members
-                    .iter()
-                    .find(|m| off >= m.offset && off - m.offset < types.size(m.ty))
-                else {
+                // A VAR_IN_OUT (a METHOD's too) or VAR_EXTERNAL member
+                // is one slot holding an address, not a value of its type.
+                let Some(m) = members.iter().find(|m| {
+                    !matches!(m.kind, MemberKind::InOut | MemberKind::External)
+                        && off >= m.offset
+                        && off - m.offset < types.size(m.ty)
+                }) else {
                     return false;
                 };
                 (m.ty, off - m.offset)
