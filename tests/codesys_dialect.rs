@@ -1236,3 +1236,32 @@ fn an_input_given_twice_takes_the_last_value_in_codesys_files_only() {
         "{codes:?}"
     );
 }
+
+#[test]
+fn a_project_s_check_bounds_function_clamps_computed_indexes() {
+    use crate::support::twincat::{compile_ok, pou};
+    // TwinCAT's implicit check, as SLAC's libraries carry it;
+    // lcls-twincat-motion's FB_PositionStateRead_Test runs a FOR loop one
+    // element past its ARRAY[1..3].
+    let check = pou(
+        "CheckBounds",
+        "FUNCTION CheckBounds : DINT\nVAR_INPUT\n  index, lower, upper : DINT;\nEND_VAR",
+        "IF index < lower THEN\n  CheckBounds := lower;\nELSIF index > upper THEN\n  CheckBounds := upper;\nELSE\n  CheckBounds := index;\nEND_IF",
+        "",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  a : ARRAY[1..3] OF INT;\n  i : DINT;\n  low : INT;\n  last : INT;\nEND_VAR",
+        "FOR i := 0 TO 4 DO\n  a[i] := DINT_TO_INT(i * 10);\nEND_FOR\nlow := a[1];\nlast := a[3];",
+        "",
+    );
+    let mut plc = compile_ok(&[("CheckBounds.TcPOU", &check), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    // a[0] went to a[1] and a[4] to a[3]: each kept the last value written.
+    assert_eq!(lit(&plc, "P.low"), "10");
+    assert_eq!(lit(&plc, "P.last"), "40");
+    // Without the function (or in an IEC file) the access is a fault.
+    let mut plain = compile_ok(&[("P.TcPOU", &main)]);
+    let fault = plain.run_cycle().expect_err("out of bounds");
+    assert!(fault.to_string().contains("R002"), "{fault}");
+}

@@ -73,6 +73,7 @@ mod grafcet_forcing;
 mod il;
 mod il_aggregate_results;
 mod il_recovery;
+mod implicit_bounds;
 mod in_out_constant;
 mod in_out_read;
 mod input_write;

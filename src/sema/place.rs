@@ -417,7 +417,8 @@ impl BodyBuilder<'_> {
         }
         let (dims, elem) = self.array_shape(e, b.ty, indexes.len())?;
         let elem_size = self.types.size(elem);
-        let vals = self.index_values(indexes)?;
+        let checked = self.bounds_checked(indexes, &dims);
+        let vals = self.index_values(checked.as_deref().unwrap_or(indexes))?;
         // All indexes constant: a static offset, checked now.
         if vals.iter().all(|(v, _)| matches!(v, Val::Const(..))) {
             let linear = self.constant_index(&vals, &dims)?;
