@@ -1265,3 +1265,28 @@ fn a_project_s_check_bounds_function_clamps_computed_indexes() {
     let fault = plain.run_cycle().expect_err("out of bounds");
     assert!(fault.to_string().contains("R002"), "{fault}");
 }
+
+#[test]
+fn this_names_the_instance_s_variable_where_a_method_declares_the_same_name() {
+    use crate::support::twincat::{compile_ok, pou};
+    // `THIS^.AxisRef REF= AxisRef;` in an FB_init whose input is
+    // `AxisRef` (lcls-twincat-motion's FB_MoveAbsoluteNC), and the setter
+    // idiom `THIS^.nSpeed := nSpeed;`.
+    let methods = "<Method Name=\"FB_Init\" Id=\"{00000000-0000-0000-0000-000000000019}\"><Declaration><![CDATA[METHOD FB_Init : BOOL\nVAR_INPUT\n  bInitRetains : BOOL;\n  bInCopyCode : BOOL;\n  AxisRef : REFERENCE TO INT;\nEND_VAR]]></Declaration><Implementation><ST><![CDATA[THIS^.AxisRef REF= AxisRef;]]></ST></Implementation></Method>\n<Method Name=\"SetSpeed\" Id=\"{00000000-0000-0000-0000-000000000029}\"><Declaration><![CDATA[METHOD SetSpeed\nVAR_INPUT\n  nSpeed : INT;\nEND_VAR]]></Declaration><Implementation><ST><![CDATA[THIS^.nSpeed := nSpeed;]]></ST></Implementation></Method>\n";
+    let fb = pou(
+        "FB_Axis",
+        "FUNCTION_BLOCK FB_Axis\nVAR\n  AxisRef : REFERENCE TO INT;\nEND_VAR\nVAR_OUTPUT\n  nSpeed : INT;\n  nSeen : INT;\nEND_VAR",
+        "IF __ISVALIDREF(AxisRef) THEN\n  nSeen := AxisRef;\nEND_IF",
+        methods,
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  n : INT := 42;\n  fb : FB_Axis(AxisRef := n);\nEND_VAR",
+        "fb.SetSpeed(7);\nfb();",
+        "",
+    );
+    let mut plc = compile_ok(&[("FB_Axis.TcPOU", &fb), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.fb.nSeen"), "42");
+    assert_eq!(lit(&plc, "P.fb.nSpeed"), "7");
+}

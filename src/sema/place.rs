@@ -6,7 +6,7 @@ use super::body::BodyBuilder;
 use super::consts::{Const, slot_to_int};
 use super::declare::{address_type, normalize_address};
 use super::emit::{Place, PlaceRef, Ty, Val};
-use super::model::Storage;
+use super::model::{Storage, VarInfo};
 use crate::elementary::ElemType;
 use crate::ir::image::ArrayDesc;
 use crate::ir::op::NativeFb;
@@ -134,6 +134,26 @@ impl BodyBuilder<'_> {
             }
             return None;
         };
+        self.place_of(id, var)
+    }
+
+    /// `THIS^.name`: the instance's own variable, also in a METHOD that
+    /// declares one of the same name (`THIS^.AxisRef REF= AxisRef;` in an
+    /// `FB_init` whose input is `AxisRef`), where `name` alone is the
+    /// method's.
+    fn place_this_member(&mut self, id: &Ident) -> Option<PlaceRef> {
+        let key = id.key();
+        if self.oop_local(&key).is_some() {
+            let member = self.model.pous.get(self.block.pou);
+            if let Some(var) = member.and_then(|p| p.vars.get(&key)).cloned() {
+                return self.place_of(id, var);
+            }
+        }
+        self.place_name(id)
+    }
+
+    /// The place of variable `var`, named `id`.
+    fn place_of(&mut self, id: &Ident, var: VarInfo) -> Option<PlaceRef> {
         self.check_inherited_private(id);
         let place = match var.storage {
             Storage::Frame(o) => Place::Frame(Slot::new(o)),
@@ -197,7 +217,7 @@ impl BodyBuilder<'_> {
         if super::oop::calls::is_this(base) {
             return self
                 .this_allowed(base.span)
-                .then(|| self.place_name(name))?;
+                .then(|| self.place_this_member(name))?;
         }
         if super::oop::calls::is_super(base) {
             return self
