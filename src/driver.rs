@@ -359,6 +359,15 @@ pub(crate) fn codesys_files(sources: &SourceMap) -> Vec<FileId> {
         .collect()
 }
 
+/// The files whose array accesses go through a project's implicit
+/// `CheckBounds`: the CODESYS-dialect files but plcrun's TwinCAT library.
+pub(crate) fn checked_files(sources: &SourceMap) -> Vec<FileId> {
+    codesys_files(sources)
+        .into_iter()
+        .filter(|f| sources.files()[f.0 as usize].name != twincat_library::LIBRARY_SOURCE)
+        .collect()
+}
+
 /// The addressing convention for `sources` when none is given
 /// (`docs/runtime.md`, "Addressing"): `byte` when a file is S7-200 STL,
 /// `openplc` when a PLCopen project comes from the OpenPLC Editor or
@@ -427,6 +436,7 @@ pub fn check_reporting(
         unoptimized: false,
         addressing: options.addressing.unwrap_or_else(|| addressing_of(sources)),
         codesys_files: codesys_files(&extended),
+        checked_files: checked_files(&extended),
     };
     // The library's own diagnostics are dropped or moved into the given
     // files by the compile (twincat_library.rs), so every one renders

@@ -109,6 +109,28 @@ fn explicit_conversions_keep_the_low_bits_in_twincat_files() {
     assert_eq!(fault.code(), "R004", "{fault}");
 }
 
+/// A REAL converted to an integer in a TwinCAT file is rounded, then cut
+/// to the target's width as TwinCAT's x64 targets do
+/// (`LREAL_TO_UDINT(-1.0)` is 4294967295: lcls-twincat-motion's raw count
+/// converter takes a position below the encoder's offset so); in a plain
+/// IEC file it stops the PLC (R004).
+#[test]
+fn real_to_integer_conversions_keep_the_low_bits_in_twincat_files() {
+    let decls = "u : UDINT; i : INT; w : USINT; x : LREAL := -1.0; y : LREAL := 40000.4; z : REAL := 300.0;";
+    let body = "u := LREAL_TO_UDINT(x);\ni := LREAL_TO_INT(y);\nw := REAL_TO_USINT(z);\n";
+    let mut plc = compile("P.TcPOU", &tcpou(decls, body), &Default::default()).unwrap();
+    run(&mut plc, 1);
+    let got: Vec<String> = ["u", "i", "w"]
+        .iter()
+        .map(|v| lit(&plc, &format!("P.{v}")))
+        .collect();
+    assert_eq!(got, ["4294967295", "-25536", "44"]);
+    let iec = format!("PROGRAM P\nVAR\n{decls}\nEND_VAR\nu := LREAL_TO_UDINT(x);\nEND_PROGRAM\n");
+    let mut plc = compile("p.st", &iec, &Default::default()).unwrap();
+    let fault = plc.run_cycle().expect_err("R004 in an IEC file");
+    assert_eq!(fault.code(), "R004", "{fault}");
+}
+
 /// A signed and an unsigned integer combined in a TwinCAT file compute in
 /// the smallest signed type holding both (INT and UINT in DINT); two
 /// enumerations that are not strict meet through their integers (W485,

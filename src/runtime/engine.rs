@@ -135,6 +135,7 @@ impl Options {
                 .addressing
                 .unwrap_or_else(|| driver::addressing_of(sources)),
             codesys_files: driver::codesys_files(sources),
+            checked_files: driver::checked_files(sources),
         }
     }
 }

@@ -139,6 +139,11 @@ impl<'a> Declarer<'a> {
         self.model.codesys_files = files.iter().copied().collect();
     }
 
+    /// The files whose array accesses a project's `CheckBounds` takes.
+    pub(super) fn set_checked_files(&mut self, files: &[crate::source::FileId]) {
+        self.model.checked_files = files.iter().copied().collect();
+    }
+
     /// Turns the fusions and the bounds proofs off (or on again).
     pub(super) fn set_unoptimized(&mut self, unoptimized: bool) {
         self.model.unoptimized = unoptimized;

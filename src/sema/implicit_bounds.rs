@@ -1,7 +1,8 @@
 //! CODESYS's implicit bounds check: when a project declares the FUNCTION
 //! `CheckBounds(index, lower, upper : DINT) : DINT` (TwinCAT projects
 //! carry one in `ImplicitChecks`), every array access with a computed
-//! index in a file of the CODESYS V3 / TwinCAT 3 dialect goes through it,
+//! index in a file of the CODESYS V3 / TwinCAT 3 dialect (plcrun's own
+//! TwinCAT library aside, as CODESYS leaves libraries out) goes through it,
 //! and the element it returns is the one accessed — the usual one clamps
 //! the index to the bounds, so `a[4]` of an `ARRAY[1..3]` is `a[3]`. The
 //! runtime's own check (R002) still guards what the function returns.
@@ -20,9 +21,13 @@ impl BodyBuilder<'_> {
     pub(super) fn bounds_checked(&self, indexes: &[Expr], dims: &[Dim]) -> Option<Vec<Expr>> {
         let &check = self.model.pou_index.get(CHECK_BOUNDS)?;
         let first = indexes.first()?;
+        // A body emitted while the types are resolved comes before the
+        // function is laid out: its accesses keep plcrun's own check.
+        let laid_out = self.model.pous[check].code != crate::ir::op::CodeIdx::new(u32::MAX);
         if self.model.pous[check].kind != PouKind::Function
+            || !laid_out
             || check == self.block.pou
-            || !self.model.codesys_files.contains(&first.span.file)
+            || !self.model.checked_files.contains(&first.span.file)
         {
             return None;
         }

@@ -147,6 +147,10 @@ pub struct CompileOptions {
     /// project files, CODESYS PLCopen XML exports): the implicit integer
     /// conversions CODESYS makes (W490) are accepted in them only.
     pub codesys_files: Vec<crate::source::FileId>,
+    /// The files whose array accesses go through a project's
+    /// `CheckBounds` (implicit_bounds.rs): those of `codesys_files` but
+    /// plcrun's own TwinCAT library.
+    pub checked_files: Vec<crate::source::FileId>,
 }
 
 /// Default limit of a program's data: 512 MiB (one instance or structure
@@ -218,6 +222,7 @@ fn compile_pass(
     declarer.set_host_pous(&options.host_pous);
     declarer.set_grafcet(options.grafcet);
     declarer.set_codesys_files(&options.codesys_files);
+    declarer.set_checked_files(&options.checked_files);
     declarer.set_data_limit(options.max_data_slots());
     if let Some((_, info)) = lowered.as_ref() {
         oop::methods::allocate(&mut declarer, info.clone());

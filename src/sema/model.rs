@@ -137,6 +137,9 @@ pub(crate) struct Model {
     /// The files in the CODESYS V3 / TwinCAT dialect, where CODESYS's
     /// implicit integer conversions are accepted (implicit_int.rs).
     pub codesys_files: std::collections::HashSet<crate::source::FileId>,
+    /// The files whose array accesses a project's `CheckBounds` takes
+    /// (implicit_bounds.rs).
+    pub checked_files: std::collections::HashSet<crate::source::FileId>,
     /// Methods, inheritance and interfaces (empty without OOP).
     pub oop: super::oop::OopInfo,
     /// The structure types of generic inputs (`x : ANY_NUM`), with their

@@ -265,11 +265,29 @@ impl BodyBuilder<'_> {
     }
 
     /// Conversion `c` of `v` to `to` as CODESYS makes it: an integer that
-    /// does not fit keeps its low bits (`cut_like_codesys`).
+    /// does not fit keeps its low bits, so does a rounded REAL within
+    /// LINT's range (`cut_like_codesys`).
     fn cut_conversion(&mut self, v: Val, c: Conv, to: ElemType, span: Span) -> Val {
         match c {
             Conv::CheckS(sh) => self.apply_conv(v, Conv::WrapS(sh), to, span),
             Conv::CheckU(sh) | Conv::CheckSToU(sh) => self.apply_conv(v, Conv::WrapU(sh), to, span),
+            // A REAL rounded to a LINT first (beyond it still R004),
+            // then cut to the target's width (`LREAL_TO_UDINT(-1.0)` is
+            // 4294967295 on TwinCAT's x64 targets).
+            Conv::F32ToS(sh) | Conv::F32ToU(sh) | Conv::F64ToS(sh) | Conv::F64ToU(sh)
+                if sh != 0 =>
+            {
+                let wide = match c {
+                    Conv::F32ToS(_) | Conv::F32ToU(_) => Conv::F32ToS(0),
+                    _ => Conv::F64ToS(0),
+                };
+                let lint = self.apply_conv(v, wide, ElemType::Lint, span);
+                let wrap = match c {
+                    Conv::F32ToS(_) | Conv::F64ToS(_) => Conv::WrapS(sh),
+                    _ => Conv::WrapU(sh),
+                };
+                self.apply_conv(lint, wrap, to, span)
+            }
             Conv::NsToMsS(sh) | Conv::NsToMsU(sh) if sh != 0 => {
                 let ms = self.apply_conv(v, Conv::NsToMsS(0), ElemType::Lint, span);
                 let wrap = match c {
