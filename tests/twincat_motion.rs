@@ -174,3 +174,21 @@ fn floor_of_tc2_math_rounds_down() {
     assert_eq!(lit(&plc, "P.b"), "-3.0");
     assert_eq!(lit(&plc, "P.c"), "3.0");
 }
+
+#[test]
+fn a_reset_during_a_move_stops_the_axis_and_aborts_the_move() {
+    let mut plc = axis_program(
+        "  move : MC_MoveAbsolute;\n  reset : MC_Reset;",
+        "power(Axis := ax, Enable := TRUE, Enable_Positive := TRUE, Enable_Negative := TRUE);\n\
+         move(Axis := ax, Execute := n >= 2, Position := 100.0, Velocity := 100.0);\n\
+         reset(Axis := ax, Execute := n >= 6);",
+    );
+    run(&mut plc, 8);
+    assert_eq!(lit(&plc, "P.reset.Done"), "TRUE");
+    assert_eq!(lit(&plc, "P.move.CommandAborted"), "TRUE");
+    assert_eq!(lit(&plc, "P.move.Busy"), "FALSE");
+    assert_eq!(lit(&plc, "P.ax.NcToPlc.ActVelo"), "0.0");
+    let stopped = lit(&plc, "P.ax.NcToPlc.ActPos");
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "P.ax.NcToPlc.ActPos"), stopped);
+}
