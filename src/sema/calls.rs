@@ -259,6 +259,8 @@ impl BodyBuilder<'_> {
             }
             return Some(b);
         }
+        // The inputs given by name so far (W493 when one is named again).
+        let mut by_name: Vec<usize> = Vec::new();
         for a in args {
             match a {
                 Arg::Input { name, value } => {
@@ -275,7 +277,10 @@ impl BodyBuilder<'_> {
                             if matches!(params[i].kind, MemberKind::Input | MemberKind::InOut) =>
                         {
                             if b.inputs.iter().any(|(j, _)| *j == i) {
-                                if self.model.codesys_files.contains(&name.span.file) {
+                                // Named twice (not named and by position).
+                                if by_name.contains(&i)
+                                    && self.model.codesys_files.contains(&name.span.file)
+                                {
                                     // CODESYS takes the last value (W493).
                                     self.diags.warning(
                                         "W493",
@@ -296,6 +301,7 @@ impl BodyBuilder<'_> {
                                 }
                             }
                             b.inputs.push((i, value));
+                            by_name.push(i);
                         }
                         Some(_) => {
                             self.diags.error(
