@@ -1290,3 +1290,32 @@ fn this_names_the_instance_s_variable_where_a_method_declares_the_same_name() {
     assert_eq!(lit(&plc, "P.fb.nSeen"), "42");
     assert_eq!(lit(&plc, "P.fb.nSpeed"), "7");
 }
+
+#[test]
+fn an_fb_instance_output_is_copied_whole() {
+    // lcls-twincat-motion's FB_MotionVirtualFrame: a METHOD's
+    // `VAR_OUTPUT fbNewFramePositionVec3 : FB_Vec3` read with `=>`; only
+    // its first variable came out.
+    let prelude = "FUNCTION_BLOCK FB_V
+VAR_INPUT fx : LREAL; fy : LREAL; fz : LREAL; END_VAR
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_R
+VAR_OUTPUT o : FB_V; END_VAR
+METHOD Rot
+VAR_INPUT g : LREAL; END_VAR
+VAR_OUTPUT m : FB_V; END_VAR
+m.fx := g;
+m.fy := g * 2.0;
+m.fz := g * 3.0;
+END_METHOD
+o.fx := 1.0;
+o.fy := 2.0;
+o.fz := 3.0;
+END_FUNCTION_BLOCK";
+    check(
+        prelude,
+        "fb : FB_R; a : FB_V; b : FB_V; y : LREAL; z : LREAL; y2 : LREAL;",
+        "fb.Rot(g := 5.0, m => a);\nfb(o => b);\ny := a.fy; z := a.fz; y2 := b.fy;",
+        &[("P.y", "10.0"), ("P.z", "15.0"), ("P.y2", "2.0")],
+    );
+}

@@ -615,6 +615,17 @@ impl BodyBuilder<'_> {
             self.copy_if_assignable(&t, src, target.span, target.span, &what);
             return;
         }
+        // An FB instance output (a METHOD's `o : FB_Vec3`) is copied
+        // whole, as an instance assignment (W489 at the declaration).
+        if !negated && matches!(self.types.get(src.ty).kind, TypeKind::Pou { .. }) {
+            if t.ty != src.ty {
+                let what = format!("output `{name}`");
+                self.mismatch(target.span, Ty::T(src.ty), t.ty, &what);
+                return;
+            }
+            self.copy_aggregate(&t, src, target.span);
+            return;
+        }
         let v = self.read_place(src);
         let v = if negated {
             if src.ty != TypeTable::elem(ElemType::Bool) {
