@@ -1319,3 +1319,31 @@ END_FUNCTION_BLOCK";
         &[("P.y", "10.0"), ("P.z", "15.0"), ("P.y2", "2.0")],
     );
 }
+
+#[test]
+fn a_strict_enumeration_takes_a_literal_that_is_one_of_its_values() {
+    use crate::support::twincat::{compile_ok, declaration, pou, refused};
+    // lcls-twincat-motion's FB_PositionStatePMPSND_Test: `eSetPos := 2;`
+    // with `TARGET1 := 2` in a strict enumeration.
+    let states = declaration(
+        "DUT",
+        "E_States",
+        "{attribute 'qualified_only'}\n{attribute 'strict'}\nTYPE E_States :\n(\n  Unknown := 0,\n  OUT := 1,\n  TARGET1 := 2\n) UINT;\nEND_TYPE",
+    );
+    let main = |body: &str| {
+        pou(
+            "P",
+            "PROGRAM P\nVAR e : E_States; ok : BOOL; END_VAR",
+            body,
+            "",
+        )
+    };
+    let good = main("e := 2;\nok := e = E_States.TARGET1;");
+    let mut plc = compile_ok(&[("E_States.TcDUT", &states), ("P.TcPOU", &good)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.ok"), "TRUE");
+    // A literal that is no value of the type stays refused.
+    let bad = main("e := 5;");
+    let err = refused(&[("E_States.TcDUT", &states), ("P.TcPOU", &bad)]);
+    assert!(err.contains("E301"), "{err}");
+}

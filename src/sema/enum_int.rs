@@ -116,14 +116,29 @@ impl BodyBuilder<'_> {
         true
     }
 
-    /// An untyped integer literal stored in an enumeration: W486, or
-    /// refused (false) for a strict one.
-    pub(super) fn literal_to_enum(&mut self, from: Ty, to: TypeId, span: Span) -> bool {
+    /// An untyped integer literal (`value`) stored in an enumeration: W486,
+    /// or refused (false) for a strict one — unless, in a CODESYS-dialect
+    /// file, it is one of the strict enumeration's values, which TwinCAT
+    /// accepts (`{attribute 'strict'}` refuses constants that are no value
+    /// of the type: `eSetPos := 2` with `TARGET1 := 2`).
+    pub(super) fn literal_to_enum(
+        &mut self,
+        from: Ty,
+        value: Option<i128>,
+        to: TypeId,
+        span: Span,
+    ) -> bool {
         if from != Ty::AnyInt || !self.is_enum(to) {
             return true;
         }
         if self.enum_base(to).is_none() {
-            return false;
+            let TypeKind::Enum { values, .. } = &self.types.get(to).kind else {
+                return false;
+            };
+            let named = value.is_some_and(|n| values.iter().any(|&(_, v)| i128::from(v) == n));
+            if !(named && self.model.codesys_files.contains(&span.file)) {
+                return false;
+            }
         }
         self.int_to_enum_warning("an integer literal", to, span);
         true

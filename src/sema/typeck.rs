@@ -189,7 +189,11 @@ impl BodyBuilder<'_> {
                     self.mismatch(span, *from, to, what);
                     return Val::error();
                 }
-                if !self.literal_to_enum(*from, to, span) {
+                let literal = match c {
+                    crate::sema::consts::Const::Int(n) => Some(*n),
+                    _ => None,
+                };
+                if !self.literal_to_enum(*from, literal, to, span) {
                     self.mismatch(span, *from, to, what);
                     return Val::error();
                 }
