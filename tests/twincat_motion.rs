@@ -192,3 +192,29 @@ fn a_reset_during_a_move_stops_the_axis_and_aborts_the_move() {
     run(&mut plc, 3);
     assert_eq!(lit(&plc, "P.ax.NcToPlc.ActPos"), stopped);
 }
+
+#[test]
+fn an_error_written_to_the_nc_through_ads_stops_the_axis() {
+    // lcls-twincat-motion's FB_CauseNCError: ADSWRITE to port 501, index
+    // group 16#4200 + the drive id, offset 16#19.
+    let mut plc = axis_program(
+        "  drive : MC_ReadDriveAddress;\n  write : ADSWRITE;\n  code : UDINT := 16#4550;\n  reset : MC_Reset;",
+        "power(Axis := ax, Enable := TRUE, Enable_Positive := TRUE, Enable_Negative := TRUE);\n\
+         drive(Axis := ax, Execute := TRUE);\n\
+         write(PORT := 501, IDXGRP := 16#4200 + drive.DriveAddress.NcDriveId, IDXOFFS := 16#19,\n\
+         \x20 LEN := SIZEOF(code), SRCADDR := ADR(code), WRITE := drive.Done);\n\
+         reset(Axis := ax, Execute := n >= 6);",
+    );
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.ax.Status.Error"), "FALSE");
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "P.write.ERR"), "FALSE");
+    assert_eq!(lit(&plc, "P.ax.Status.Error"), "TRUE");
+    assert_eq!(lit(&plc, "P.ax.Status.ErrorId"), "17744");
+    assert_eq!(
+        lit(&plc, "P.ax.Status.MotionState"),
+        "MC_AXISSTATE_ERRORSTOP"
+    );
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "P.ax.Status.Error"), "FALSE");
+}
