@@ -1118,3 +1118,28 @@ fn a_variable_named_like_a_standard_function_does_not_hide_it() {
     assert_eq!(lit(&plc, "max"), "9");
     assert_eq!(lit(&plc, "limit"), "5.0");
 }
+
+#[test]
+fn a_block_held_by_a_structure_reads_a_global_variable() {
+    // The block's body is built while the structure's type is resolved,
+    // which came before the globals were declared (E201 on `g`).
+    let prelude = "VAR_GLOBAL
+  g : INT;
+  s : STRING := 'x';
+END_VAR
+FUNCTION_BLOCK FB_Count
+VAR_OUTPUT n : INT; END_VAR
+g := g + 1;
+n := g;
+s := CONCAT(s, 'y');
+END_FUNCTION_BLOCK
+TYPE ST_Holder : STRUCT f : FB_Count; END_STRUCT END_TYPE";
+    let mut plc = compile(&program(
+        prelude,
+        "h : ST_Holder; n : INT; t : STRING;",
+        "h.f();\nn := h.f.n;\nt := s;",
+    ));
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "P.n"), "3");
+    assert_eq!(lit(&plc, "P.t"), "'xyyy'");
+}

@@ -16,7 +16,7 @@ use crate::source::Span;
 use crate::stdlib;
 use crate::syntax::ast::{
     AddrSize, Area, CompilationUnit, DirectAddress, Item, Pou, PouKind, TypeDecl, TypeSpec,
-    VarBlock,
+    VarBlock, VarDecl,
 };
 use indexmap::IndexMap;
 use std::collections::HashMap;
@@ -291,6 +291,22 @@ impl Declarer<'_> {
             self.declare_global_decls(block, &|d| values.contains(&d), false);
             plain.extend(values);
         }
+        // Resolving a TYPE that holds a function block instance emits the
+        // block's body, which may read a global: when one does, the
+        // globals of elementary types (and strings) come first too. Other
+        // programs keep their globals' order.
+        if self.a_type_holds_a_block() {
+            for ((u, i), plain) in early.iter_mut() {
+                let Item::Globals(block) = &units[*u].items[*i] else {
+                    continue;
+                };
+                let simple: Vec<usize> = (0..block.decls.len())
+                    .filter(|&d| !plain.contains(&d) && is_elementary(&block.decls[d]))
+                    .collect();
+                self.declare_global_decls(block, &|d| simple.contains(&d), false);
+                plain.extend(simple);
+            }
+        }
         self.resolve_types();
         // Globals: top-level lists, their function block instances last
         // (laying one out emits its body, which may use a global the list
@@ -518,6 +534,29 @@ impl Declarer<'_> {
         );
     }
 
+    /// Whether a field of a STRUCT type is an instance of a user
+    /// FUNCTION_BLOCK (`Axis : AXIS_REF;` in `ST_MotionStage`).
+    fn a_type_holds_a_block(&self) -> bool {
+        let is_block = |ty: &TypeSpec| match ty {
+            TypeSpec::Named(id) => self
+                .model
+                .pou_index
+                .get(&id.key())
+                .is_some_and(|&p| self.model.pous[p].kind == PouKind::FunctionBlock),
+            _ => false,
+        };
+        self.units
+            .iter()
+            .flat_map(|u| &u.items)
+            .any(|item| match item {
+                Item::Types(decls) => decls.iter().any(|t| match &t.ty {
+                    TypeSpec::Struct { fields, .. } => fields.iter().any(|f| is_block(&f.ty)),
+                    _ => false,
+                }),
+                _ => false,
+            })
+    }
+
     /// Declares the globals of one VAR_GLOBAL block: storage, initial value,
     /// constants after the constants they are computed from.
     fn declare_globals(&mut self, block: &VarBlock) {
@@ -632,6 +671,17 @@ impl TypeKind {
             TypeKind::NativeFb(_) | TypeKind::Pou { .. } | TypeKind::Step
         )
     }
+}
+
+/// Whether a global's declaration has an elementary or string type and
+/// no location (a located variable is placed with the process image).
+fn is_elementary(decl: &VarDecl) -> bool {
+    decl.location.is_none()
+        && match &decl.ty {
+            TypeSpec::Named(id) => ElemType::from_name(&id.name).is_some(),
+            TypeSpec::String { .. } => true,
+            _ => false,
+        }
 }
 
 #[cfg(test)]
