@@ -1122,7 +1122,8 @@ fn a_variable_named_like_a_standard_function_does_not_hide_it() {
 #[test]
 fn a_block_held_by_a_structure_reads_a_global_variable() {
     // The block's body is built while the structure's type is resolved,
-    // which came before the globals were declared (E201 on `g`).
+    // which came before the globals were declared (E201 on `g`), for a
+    // structure holding an instance or an array of them.
     let prelude = "VAR_GLOBAL
   g : INT;
   s : STRING := 'x';
@@ -1133,13 +1134,15 @@ g := g + 1;
 n := g;
 s := CONCAT(s, 'y');
 END_FUNCTION_BLOCK
-TYPE ST_Holder : STRUCT f : FB_Count; END_STRUCT END_TYPE";
+TYPE ST_Holder : STRUCT f : FB_Count; END_STRUCT END_TYPE
+TYPE ST_Many : STRUCT a : ARRAY[1..2] OF FB_Count; END_STRUCT END_TYPE";
     let mut plc = compile(&program(
         prelude,
-        "h : ST_Holder; n : INT; t : STRING;",
-        "h.f();\nn := h.f.n;\nt := s;",
+        "h : ST_Holder; m : ST_Many; n : INT; k : INT; t : STRING;",
+        "h.f();\nn := h.f.n;\nm.a[2]();\nk := m.a[2].n;\nt := s;",
     ));
     run(&mut plc, 3);
-    assert_eq!(lit(&plc, "P.n"), "3");
-    assert_eq!(lit(&plc, "P.t"), "'xyyy'");
+    assert_eq!(lit(&plc, "P.n"), "5");
+    assert_eq!(lit(&plc, "P.k"), "6");
+    assert_eq!(lit(&plc, "P.t"), "'xyyyyyy'");
 }

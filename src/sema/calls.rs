@@ -616,7 +616,7 @@ impl BodyBuilder<'_> {
             return;
         }
         // An FB instance output (a METHOD's `o : FB_Vec3`) is copied
-        // whole, as an instance assignment (W489 at the declaration).
+        // whole, as an instance assignment is (without its W489).
         if !negated && matches!(self.types.get(src.ty).kind, TypeKind::Pou { .. }) {
             if t.ty != src.ty {
                 let what = format!("output `{name}`");

@@ -534,27 +534,35 @@ impl Declarer<'_> {
         );
     }
 
-    /// Whether a field of a STRUCT type is an instance of a user
-    /// FUNCTION_BLOCK (`Axis : AXIS_REF;` in `ST_MotionStage`).
+    /// Whether a field of a STRUCT type holds instances of a user
+    /// FUNCTION_BLOCK, alone or in an array (`Axis : AXIS_REF;` in
+    /// `ST_MotionStage`).
     fn a_type_holds_a_block(&self) -> bool {
-        let is_block = |ty: &TypeSpec| match ty {
-            TypeSpec::Named(id) => self
-                .model
-                .pou_index
-                .get(&id.key())
-                .is_some_and(|&p| self.model.pous[p].kind == PouKind::FunctionBlock),
-            _ => false,
-        };
         self.units
             .iter()
             .flat_map(|u| &u.items)
             .any(|item| match item {
                 Item::Types(decls) => decls.iter().any(|t| match &t.ty {
-                    TypeSpec::Struct { fields, .. } => fields.iter().any(|f| is_block(&f.ty)),
+                    TypeSpec::Struct { fields, .. } => {
+                        fields.iter().any(|f| self.holds_block(&f.ty))
+                    }
                     _ => false,
                 }),
                 _ => false,
             })
+    }
+
+    /// Whether `ty` names a user FUNCTION_BLOCK or is an array of them.
+    fn holds_block(&self, ty: &TypeSpec) -> bool {
+        match ty {
+            TypeSpec::Named(id) => self
+                .model
+                .pou_index
+                .get(&id.key())
+                .is_some_and(|&p| self.model.pous[p].kind == PouKind::FunctionBlock),
+            TypeSpec::Array { elem, .. } => self.holds_block(elem),
+            _ => false,
+        }
     }
 
     /// Declares the globals of one VAR_GLOBAL block: storage, initial value,

@@ -601,16 +601,15 @@ fn blocks_in_layout_order(blocks: &[VarBlock]) -> Vec<&VarBlock> {
     // (`nState : INT := IDLE;` before `VAR CONSTANT IDLE : INT := 0;`),
     // which CODESYS accepts: the constants are laid out first there too.
     let read_early = blocks.iter().enumerate().any(|(i, b)| {
-        let later: Vec<String> = blocks[i + 1..]
+        if local_constant(b) {
+            return false;
+        }
+        let reads = super::const_order::names_read(b);
+        blocks[i + 1..]
             .iter()
             .filter(|c| local_constant(c))
-            .flat_map(|c| c.decls.iter().flat_map(|d| d.names.iter().map(|n| n.key())))
-            .collect();
-        !local_constant(b)
-            && !later.is_empty()
-            && super::const_order::names_read(b)
-                .iter()
-                .any(|n| later.contains(n))
+            .flat_map(|c| c.decls.iter().flat_map(|d| &d.names))
+            .any(|n| reads.contains(&n.key()))
     });
     let hoist = sized_first || read_early;
     if !hoist {

@@ -3,7 +3,7 @@
 //! compiles; the tests declared in the files left out are reported as
 //! errors (with the first error of their file), the others run. A TwinCAT
 //! library that references a library plcrun does not have (Beckhoff's
-//! compiled `Tc2_MC2`, say) still runs the suites that do not need it. In
+//! compiled `Tc2_SerialCom`, say) still runs the suites that do not need it. In
 //! a global variable list only the variables whose declarations fail are
 //! left out (`blank_globals.rs`).
 
