@@ -3,7 +3,7 @@
 
 use crate::elementary::ElemType;
 use crate::ir::op::{CodeIdx, Op, Slot, StrConstIdx};
-use crate::ir::type_table::{TypeId, TypeTable};
+use crate::ir::type_table::{Member, TypeId, TypeTable};
 use crate::source::Span;
 
 /// What a code block belongs to.
@@ -193,6 +193,21 @@ pub struct Image {
     /// Per user FB with `FB_exit` or `FB_reinit`, what an online change
     /// calls on its copied instances.
     pub copy_calls: Vec<CopyCalls>,
+    /// Look-up of members and globals by name from outside the program.
+    pub names: crate::ir::name_index::NameIndex,
+}
+
+impl Image {
+    /// Member `name` (any case) of type `ty` that is a place of the
+    /// instance (not a VAR_IN_OUT).
+    pub fn member_named(&self, ty: TypeId, name: &str) -> Option<&Member> {
+        self.names.member(&self.types, &self.globals, ty, name)
+    }
+
+    /// The global or located variable named `name` (any case).
+    pub fn global_named(&self, name: &str) -> Option<&RootVar> {
+        self.names.global(&self.types, &self.globals, name)
+    }
 }
 
 impl Image {

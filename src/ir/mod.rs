@@ -4,6 +4,7 @@ pub mod chart;
 pub mod fuse;
 pub mod image;
 pub mod index;
+pub mod name_index;
 pub mod op;
 mod op_list;
 pub mod operands;

@@ -247,23 +247,14 @@ fn list_qualified(image: &Image, root: &str, segs: &[Seg]) -> Option<String> {
     if root.starts_with('%') || find_root(image, root).is_ok() {
         return None;
     }
-    image
-        .globals
-        .iter()
-        .any(|r| r.name.eq_ignore_ascii_case(global))
-        .then(|| global.clone())
+    image.global_named(global).map(|_| global.clone())
 }
 
 fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId, Option<ReadOnlyReason>), VarError> {
     // A variable of the (single) program, then globals, then instance names.
     if image.programs.len() == 1 {
         let inst = &image.programs[0];
-        if let Some(m) = image
-            .types
-            .members(inst.ty)
-            .iter()
-            .find(|m| m.name.eq_ignore_ascii_case(name) && m.kind != MemberKind::InOut)
-        {
+        if let Some(m) = image.member_named(inst.ty, name) {
             return Ok((
                 inst.base + m.offset,
                 m.ty,
@@ -271,11 +262,7 @@ fn find_root(image: &Image, name: &str) -> Result<(u32, TypeId, Option<ReadOnlyR
             ));
         }
     }
-    if let Some(r) = image
-        .globals
-        .iter()
-        .find(|r| r.name.eq_ignore_ascii_case(name))
-    {
+    if let Some(r) = image.global_named(name) {
         return Ok((r.addr, r.ty, r.constant.then_some(ReadOnlyReason::Constant)));
     }
     if let Some(inst) = image
@@ -350,10 +337,7 @@ fn member(image: &Image, ty: TypeId, name: &str) -> Option<(u32, TypeId, Option<
     use crate::ir::type_table::TypeTable;
     match &image.types.get(ty).kind {
         TypeKind::Struct { .. } | TypeKind::Pou { .. } => image
-            .types
-            .members(ty)
-            .iter()
-            .find(|m| m.name.eq_ignore_ascii_case(name) && m.kind != MemberKind::InOut)
+            .member_named(ty, name)
             .map(|m| (m.offset, m.ty, member_read_only(m.kind, m.constant))),
         TypeKind::NativeFb(fb) => crate::stdlib::interface(*fb)
             .iter()

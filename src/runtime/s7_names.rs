@@ -109,15 +109,10 @@ pub(crate) fn resolve(image: &Image, text: &str, owner: u64) -> Option<Result<Va
     let [inst] = image.programs.as_slice() else {
         return None;
     };
-    let members = image.types.members(inst.ty);
-    if !members.iter().any(|m| m.name.eq_ignore_ascii_case(MARKER)) {
-        return None;
-    }
+    image.member_named(inst.ty, MARKER)?;
     let trimmed = text.trim();
     let place = parse(&trimmed.to_ascii_uppercase())?;
-    let m = members
-        .iter()
-        .find(|m| m.name.eq_ignore_ascii_case(place.member))?;
+    let m = image.member_named(inst.ty, place.member)?;
     let TypeKind::Array { dims, elem } = &image.types.get(m.ty).kind else {
         return None;
     };

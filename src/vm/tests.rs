@@ -81,6 +81,7 @@ fn program(ops: Vec<Op>) -> VerifiedImage {
         start: Vec::new(),
         exit: Vec::new(),
         copy_calls: Vec::new(),
+        names: Default::default(),
     };
     verify(image).expect("a valid image")
 }

@@ -66,11 +66,19 @@ pub async fn connect(
         .connect_to_matching_endpoint(endpoint, identity)
         .await
         .map_err(|e| e.to_string())?;
-    let event_loop = event_loop.spawn();
-    let connected = tokio::time::timeout(Duration::from_secs(20), session.wait_for_connection())
-        .await
-        .map_err(|_| "no connection in 20 s".to_string())?;
-    if !connected {
+    let mut event_loop = event_loop.spawn();
+    // A refused session ends the event loop (no retries) while
+    // `wait_for_connection` would go on waiting: the first of the two
+    // decides, so that a refusal is seen at once, not after the timeout.
+    let outcome = tokio::time::timeout(Duration::from_secs(20), async {
+        tokio::select! {
+            connected = session.wait_for_connection() => connected,
+            _ = &mut event_loop => false,
+        }
+    })
+    .await
+    .map_err(|_| "no connection in 20 s".to_string())?;
+    if !outcome {
         return Err("the session was refused".into());
     }
     Ok(Client {

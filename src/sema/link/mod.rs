@@ -173,6 +173,7 @@ impl Linker<'_> {
             start,
             exit,
             copy_calls,
+            names: Default::default(),
         };
         if self.diags.has_errors() {
             return None;
