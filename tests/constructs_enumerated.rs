@@ -158,6 +158,12 @@ const ROWS: &[Row] = &[
         expect: &[("s", "8"), ("w", "5"), ("r", "6")],
     },
     Row {
+        covers: &["__TRY", "__CATCH", "__FINALLY", "__ENDTRY", "Stmt::Try"],
+        source: "PROGRAM P\nVAR\n  e : __SYSTEM.ExceptionCode; d : INT; q : INT; f : INT;\nEND_VAR\n\
+            __TRY q := 1 / d; q := 5; __CATCH(e) q := q + 7; __FINALLY f := f + 1; __ENDTRY\nEND_PROGRAM\n",
+        expect: &[("q", "21"), ("f", "3"), ("e", "RTSEXCPT_DIVIDEBYZERO")],
+    },
+    Row {
         covers: &[
             "CONFIGURATION",
             "END_CONFIGURATION",

@@ -313,6 +313,8 @@ mod test_runner_cli;
 mod test_runner_enums;
 #[path = "timer_pt_changes.rs"]
 mod timer_pt_changes;
+#[path = "try_catch.rs"]
+mod try_catch;
 #[cfg(feature = "cli")]
 #[path = "twincat_event_logger.rs"]
 mod twincat_event_logger;

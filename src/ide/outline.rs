@@ -231,6 +231,14 @@ fn stmt_folds(stmts: &[Stmt], out: &mut Vec<Span>) {
             StmtKind::For { body, .. }
             | StmtKind::While { body, .. }
             | StmtKind::Repeat { body, .. } => vec![body.as_slice()],
+            StmtKind::Try {
+                body,
+                catch,
+                finally,
+            } => std::iter::once(body.as_slice())
+                .chain(catch.iter().map(|(_, c)| c.as_slice()))
+                .chain(finally.as_deref())
+                .collect(),
             _ => continue,
         };
         out.push(stmt.span);

@@ -354,6 +354,19 @@ impl Resolver<'_> {
                 self.stmts(body);
                 self.expr(until);
             }
+            StmtKind::Try {
+                body,
+                catch,
+                finally,
+            } => {
+                self.stmts(body);
+                if let Some((_, c)) = catch {
+                    self.stmts(c);
+                }
+                if let Some(f) = finally {
+                    self.stmts(f);
+                }
+            }
             StmtKind::Exit | StmtKind::Continue | StmtKind::Return | StmtKind::Empty => {}
         }
     }

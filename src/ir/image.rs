@@ -38,6 +38,9 @@ pub struct CodeBlock {
     pub frame: u32,
     /// Size of one frame/instance in slots.
     pub frame_size: u32,
+    /// The `__TRY` regions of the block, in the order they were emitted
+    /// (empty for almost every block).
+    pub handlers: Vec<crate::ir::handler::Handler>,
 }
 
 /// Bounds of one array dimension used by checked indexing.
@@ -235,6 +238,16 @@ impl Image {
             );
             for (pc, op) in c.ops.iter().enumerate() {
                 let _ = writeln!(out, "  {pc:4}  {op:?}");
+            }
+            for h in &c.handlers {
+                let _ = writeln!(
+                    out,
+                    "  __TRY {}..{}: __CATCH at {}, code into {}",
+                    h.start,
+                    h.end,
+                    h.catch,
+                    h.exception.get()
+                );
             }
         }
         out

@@ -2,6 +2,7 @@
 
 pub mod chart;
 pub mod fuse;
+pub mod handler;
 pub mod image;
 pub mod index;
 pub mod name_index;

@@ -130,6 +130,9 @@ pub enum Problem {
     /// A retained variable's slot is outside memory, or its string is not
     /// the one its slot holds.
     RetainedOutsideMemory,
+    /// A `__TRY` region is outside the block, resumes at instruction 0 or
+    /// onto an operand word, or its `__CATCH` variable is outside the frame.
+    BadHandler,
 }
 
 impl fmt::Display for Problem {
@@ -165,6 +168,7 @@ impl fmt::Display for Problem {
             Problem::TriggerOutsideMemory => "task trigger outside memory",
             Problem::InstanceCall => "instance call outside the code or memory",
             Problem::RetainedOutsideMemory => "retained variable outside memory or strings",
+            Problem::BadHandler => "exception handler outside the block or its frame",
         })
     }
 }
@@ -235,6 +239,18 @@ fn check_block(image: &Image, c: &CodeBlock) -> Result<(), Located> {
     }
     for pc in 0..c.ops.len() {
         check_op(image, c, pc).map_err(|p| (pc, p))?;
+    }
+    for h in &c.handlers {
+        let resumes = c
+            .ops
+            .get(h.catch as usize)
+            .is_some_and(|o| !matches!(shape(o), Shape::OperandWord));
+        let ok = h.start < h.end
+            && h.end as usize <= c.ops.len()
+            && h.catch > 0
+            && resumes
+            && fits(h.exception.get(), 1, size);
+        ensure(ok, Problem::BadHandler).map_err(|p| (h.catch as usize, p))?;
     }
     Ok(())
 }

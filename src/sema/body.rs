@@ -125,6 +125,7 @@ impl<'a> BodyBuilder<'a> {
         let block = &mut self.out.codes[code.index()];
         block.ops = f.ops;
         block.spans = f.spans;
+        block.handlers = f.handlers;
         block.frame_size = frame_size;
         BuiltBody { frame_size, consts }
     }

@@ -103,6 +103,15 @@ impl Walk<'_> {
             StmtKind::While { cond, body } | StmtKind::Repeat { body, until: cond } => {
                 self.expr(cond) || self.stmts(body)
             }
+            StmtKind::Try {
+                body,
+                catch,
+                finally,
+            } => {
+                self.stmts(body)
+                    || catch.as_ref().is_some_and(|(_, c)| self.stmts(c))
+                    || finally.as_ref().is_some_and(|f| self.stmts(f))
+            }
             StmtKind::Exit | StmtKind::Continue | StmtKind::Return | StmtKind::Empty => false,
         }
     }

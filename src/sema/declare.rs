@@ -257,6 +257,7 @@ impl Declarer<'_> {
         }
         self.report_type_pou_clashes();
         self.register_type_class();
+        self.register_exception_code();
         // Constants of plain values first: a TYPE may size an array with
         // one (TwinCAT's parameter lists, `ARRAY[1..GVL.MaxN]`).
         let mut early: Vec<((usize, usize), Vec<usize>)> = Vec::new();

@@ -162,6 +162,8 @@ pub struct Fcx {
     /// The IL current result while it is visible as a hidden variable
     /// (to call arguments built from it).
     pub il_cr: Option<VarInfo>,
+    /// The `__TRY` regions emitted so far.
+    pub handlers: Vec<crate::ir::handler::Handler>,
 }
 
 /// A cached element address: the element of the frame array described by
@@ -204,6 +206,7 @@ impl Fcx {
             vars_size: temp_base,
             for_vars: Vec::new(),
             il_cr: None,
+            handlers: Vec::new(),
         }
     }
 

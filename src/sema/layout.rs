@@ -555,6 +555,7 @@ impl Declarer<'_> {
             entry_strings: Vec::new(),
             frame: 0,
             frame_size: frame.offset,
+            handlers: Vec::new(),
         });
         let ty = self.place_pou_type(
             p,

@@ -629,6 +629,7 @@ impl BodyBuilder<'_> {
             entry_strings: Vec::new(),
             frame: 0,
             frame_size: sub.temp_max,
+            handlers: sub.handlers,
         });
         (code, sub.temp_max)
     }

@@ -149,6 +149,11 @@ impl BodyBuilder<'_> {
                 self.cond_branch_to(until, false, top);
                 self.block.end_loop(cont, Vec::new());
             }
+            StmtKind::Try {
+                body,
+                catch,
+                finally,
+            } => self.try_stmt(body, catch.as_ref(), finally.as_deref()),
             StmtKind::Exit => self.loop_jump(true, s.span),
             StmtKind::Continue => self.loop_jump(false, s.span),
             StmtKind::Return => {

@@ -651,6 +651,17 @@ pub enum StmtKind {
     Return,
     /// `;` alone.
     Empty,
+    /// `__TRY ... __CATCH(exc) ... __FINALLY ... __ENDTRY` (CODESYS V3,
+    /// TwinCAT 3): a runtime fault in `body` runs `catch` with the fault's
+    /// exception code in `exc`, instead of stopping the PLC.
+    Try {
+        /// The guarded statements.
+        body: Vec<Stmt>,
+        /// The exception variable and the statements run after a fault.
+        catch: Option<(Ident, Vec<Stmt>)>,
+        /// The statements run after `body` or `catch`, whichever ran.
+        finally: Option<Vec<Stmt>>,
+    },
     /// `target REF= value;` (CODESYS): binds a `REFERENCE TO` variable.
     RefAssign {
         /// The reference bound.

@@ -505,6 +505,7 @@ fn is_compound(s: &Stmt) -> bool {
             | StmtKind::For { .. }
             | StmtKind::While { .. }
             | StmtKind::Repeat { .. }
+            | StmtKind::Try { .. }
     )
 }
 

@@ -154,6 +154,16 @@ pub fn stmt_depth(s: &Stmt) -> usize {
         StmtKind::For { body, .. }
         | StmtKind::While { body, .. }
         | StmtKind::Repeat { body, .. } => list_depth(body),
+        StmtKind::Try {
+            body,
+            catch,
+            finally,
+        } => std::iter::once(body)
+            .chain(catch.iter().map(|(_, c)| c))
+            .chain(finally)
+            .map(|b| list_depth(b))
+            .max()
+            .unwrap_or(0),
         _ => 0,
     };
     1 + inner

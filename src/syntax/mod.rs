@@ -35,6 +35,7 @@ pub mod s7;
 mod set_reset_assign;
 mod soft_keywords;
 pub mod token;
+pub mod try_stmt;
 pub mod twincat;
 
 use crate::diagnostics::{Diagnostics, Severity};

@@ -283,6 +283,7 @@ fn opening_of(tokens: &[Spanned], p: usize, end: &Tok) -> Option<usize> {
         Kw::EndWhile => k == Kw::While,
         Kw::EndCase => k == Kw::Case,
         Kw::EndRepeat => k == Kw::Repeat,
+        Kw::EndTry => k == Kw::Try,
         Kw::EndStep => matches!(k, Kw::Step | Kw::InitialStep),
         Kw::EndTransition => k == Kw::Transition,
         Kw::EndAction => k == Kw::Action,

@@ -428,6 +428,14 @@ pub enum Kw {
     Repeat,
     Until,
     EndRepeat,
+    /// `__TRY` (CODESYS, TwinCAT 3: exception handling).
+    Try,
+    /// `__CATCH`.
+    Catch,
+    /// `__FINALLY`.
+    Finally,
+    /// `__ENDTRY`.
+    EndTry,
     Exit,
     Continue,
     Return,
@@ -478,7 +486,7 @@ pub enum Kw {
 }
 
 /// Every keyword with its spelling.
-pub const KEYWORDS: [(&str, Kw); 94] = [
+pub const KEYWORDS: [(&str, Kw); 98] = [
     ("PROGRAM", Kw::Program),
     ("END_PROGRAM", Kw::EndProgram),
     ("FUNCTION", Kw::Function),
@@ -534,6 +542,10 @@ pub const KEYWORDS: [(&str, Kw); 94] = [
     ("REPEAT", Kw::Repeat),
     ("UNTIL", Kw::Until),
     ("END_REPEAT", Kw::EndRepeat),
+    ("__TRY", Kw::Try),
+    ("__CATCH", Kw::Catch),
+    ("__FINALLY", Kw::Finally),
+    ("__ENDTRY", Kw::EndTry),
     ("EXIT", Kw::Exit),
     ("CONTINUE", Kw::Continue),
     ("RETURN", Kw::Return),

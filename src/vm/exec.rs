@@ -168,13 +168,71 @@ pub(super) fn call<const DEBUG: bool, const NATIVE: bool>(
     {
         return done;
     }
+    if !img.codes[code.index()].handlers.is_empty() {
+        return guarded::<DEBUG, NATIVE>(m, img, code, base);
+    }
     if DEBUG {
         m.debug_enter(code, base);
-        let done = run::<true, NATIVE>(m, img, code, base);
+        let done = run::<true, NATIVE>(m, img, code, base, 0);
         m.debug_leave();
         return done;
     }
-    run::<false, NATIVE>(m, img, code, base)
+    run::<false, NATIVE>(m, img, code, base, 0)
+}
+
+/// [`call`] of a block with `__TRY` regions (`ir::handler`): a fault in a
+/// region, at one of the block's own instructions or in a call made
+/// there, that user code may catch ([`FaultKind::exception_code`]) writes
+/// its code into the region's `__CATCH` variable and runs the block on
+/// from the `__CATCH` statements, in the same frame. Out of line: the
+/// blocks without a region (nearly all) pay one test per call for it.
+#[cold]
+#[inline(never)]
+fn guarded<const DEBUG: bool, const NATIVE: bool>(
+    m: &mut Machine,
+    img: &Image,
+    code: CodeIdx,
+    base: usize,
+) -> Result<(), Fault> {
+    let handlers = &img.codes[code.index()].handlers;
+    // The calls a fault unwinds through are noted from here on; those of
+    // a caught fault are forgotten.
+    let noted = m.callers().len();
+    if DEBUG {
+        m.debug_enter(code, base);
+    }
+    let mut resume = 0;
+    let done = loop {
+        let Err(fault) = run::<DEBUG, NATIVE>(m, img, code, base, resume) else {
+            break Ok(());
+        };
+        // Where the fault left this block: the call it unwound through
+        // (noted last), or its own instruction.
+        let at = match m.callers().get(noted..).and_then(<[_]>::last) {
+            Some(site) => site.pc,
+            None => fault.pc,
+        };
+        let caught = fault
+            .kind
+            .exception_code()
+            .zip(crate::ir::handler::guarding(handlers, at));
+        let Some((value, handler)) = caught else {
+            break Err(fault);
+        };
+        // The verifier proved the slot inside the frame; a frame outside
+        // memory (the fault `run` gives before running anything) is no
+        // place to write it.
+        let Some(slot) = m.mem.get_mut(base + handler.exception.index()) else {
+            break Err(fault);
+        };
+        *slot = u64::from(value);
+        m.forget_callers(noted);
+        resume = handler.catch as usize;
+    };
+    if DEBUG {
+        m.debug_leave();
+    }
+    done
 }
 
 /// The dispatch loop of [`call`] (inlined into it: the plain variant is
@@ -185,6 +243,7 @@ fn run<const DEBUG: bool, const NATIVE: bool>(
     img: &Image,
     code: CodeIdx,
     base: usize,
+    resume: usize,
 ) -> Result<(), Fault> {
     let block = &img.codes[code.index()];
     let len = m.mem.len();
@@ -241,12 +300,16 @@ fn run<const DEBUG: bool, const NATIVE: bool>(
             unsafe { *fp.add($i as usize) = v }
         }};
     }
-    for &(slot, value) in &block.entry_init {
-        w!(slot, value);
-    }
-    for &(slot, k) in &block.entry_strings {
-        let id = r!(slot) as usize;
-        m.strings[id].set(&img.str_consts[k.index()]);
+    // A block resumed at a `__CATCH` (never instruction 0) keeps its
+    // temporaries: it is the same call going on.
+    if resume == 0 {
+        for &(slot, value) in &block.entry_init {
+            w!(slot, value);
+        }
+        for &(slot, k) in &block.entry_strings {
+            let id = r!(slot) as usize;
+            m.strings[id].set(&img.str_consts[k.index()]);
+        }
     }
     let ops = &block.ops[..];
     // The instruction pointer: it points at the running instruction until
@@ -255,7 +318,9 @@ fn run<const DEBUG: bool, const NATIVE: bool>(
     // then keeps a register free for the memory pointer (see
     // docs/performance.md, "The dispatch loop's registers").
     let start: *const Op = ops.as_ptr();
-    let mut ip: *const Op = start;
+    // SAFETY: a resumption point is a handler's `catch`, which the
+    // verifier proved inside the block.
+    let mut ip: *const Op = unsafe { start.add(resume) };
     macro_rules! pc {
         () => {
             // SAFETY: ip always points into `ops`.

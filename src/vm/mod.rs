@@ -13,6 +13,7 @@
 mod byte_view;
 mod chart;
 mod debug;
+mod exception;
 mod exec;
 mod fault;
 mod grafcet;
@@ -209,6 +210,12 @@ impl Machine {
     /// gives them, without taking them).
     pub(crate) fn callers(&self) -> &[CallSite] {
         &self.unwind
+    }
+
+    /// Forgets the calls noted after the first `keep` (a fault caught by
+    /// a `__TRY`: they belong to no fault any more).
+    pub(crate) fn forget_callers(&mut self, keep: usize) {
+        self.unwind.truncate(keep);
     }
 
     /// Notes, while a fault unwinds, the call at `pc` of `code` running at

@@ -31,6 +31,7 @@ fn block(kind: CodeKind, ops: Vec<Op>, frame_size: u32) -> CodeBlock {
         entry_strings: Vec::new(),
         frame: 0,
         frame_size,
+        handlers: Vec::new(),
     }
 }
 

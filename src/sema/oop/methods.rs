@@ -49,6 +49,7 @@ pub(crate) fn allocate(declarer: &mut Declarer, mut info: OopInfo) {
                 entry_strings: Vec::new(),
                 frame: 0,
                 frame_size: 0,
+                handlers: Vec::new(),
             });
             fb.codes.push(code);
         }
@@ -136,6 +137,7 @@ impl BodyBuilder<'_> {
             let block = &mut self.out.codes[code.index()];
             block.ops = sub.ops;
             block.spans = sub.spans;
+            block.handlers = sub.handlers;
         }
         self.block.temp_max = top;
         self.drop_inherited_copies(scope.diags_before);

@@ -10,6 +10,11 @@ use crate::ir::op::Op;
 /// Why `block` cannot be compiled (the first instruction the tier does
 /// not handle), or `None` when it can.
 pub(super) fn unsupported(img: &Image, block: &CodeBlock) -> Option<String> {
+    // A fault in a `__TRY` region resumes the block at its `__CATCH`,
+    // which only the interpreter does (`vm::exec::guarded`).
+    if !block.handlers.is_empty() {
+        return Some("a `__TRY` region (exception handlers)".into());
+    }
     block.ops.iter().enumerate().find_map(|(pc, op)| {
         refused(img, op).map(|why| format!("instruction {pc} ({}): {why}", op.name()))
     })

@@ -1,0 +1,193 @@
+//! `__TRY ... __CATCH(exc) ... __FINALLY ... __ENDTRY` (CODESYS V3,
+//! TwinCAT 3): a runtime fault in the guarded statements, or in a call
+//! made there, runs the `__CATCH` statements with the exception code in
+//! the variable, then the `__FINALLY` ones, and the cycle goes on; the
+//! watchdog is never caught; the native tier leaves such blocks to the
+//! interpreter and gives the same results.
+
+use crate::support::plc::{compile, error_codes, first_fault, lit, program, run};
+use plcrun::{Engine, Options, Plc};
+
+const DECLS: &str = "
+    exc : __SYSTEM.ExceptionCode;
+    d, q : INT;
+    tries, catches, finals, after : INT;
+    a : ARRAY[1..3] OF INT;
+    i : INT := 5;";
+
+/// A program whose guarded division faults when `d` is 0.
+fn dividing() -> String {
+    program(
+        "",
+        DECLS,
+        "__TRY
+            tries := tries + 1;
+            q := 100 / d;
+            tries := tries + 10;
+        __CATCH(exc)
+            catches := catches + 1;
+        __FINALLY
+            finals := finals + 1;
+        __ENDTRY
+        after := after + 1;",
+    )
+}
+
+#[test]
+fn a_fault_in_the_guarded_statements_runs_catch_then_finally_and_the_cycle_goes_on() {
+    let mut plc = compile(&dividing());
+    run(&mut plc, 2);
+    // The statements after the faulting one are skipped, every time.
+    assert_eq!(lit(&plc, "tries"), "2");
+    assert_eq!(lit(&plc, "catches"), "2");
+    assert_eq!(lit(&plc, "finals"), "2");
+    assert_eq!(lit(&plc, "after"), "2");
+    assert_eq!(lit(&plc, "exc"), "RTSEXCPT_DIVIDEBYZERO");
+    // Without a fault: no CATCH, FINALLY still.
+    plc.write("d", "4").unwrap();
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "q"), "25");
+    assert_eq!(lit(&plc, "tries"), "13");
+    assert_eq!(lit(&plc, "catches"), "2");
+    assert_eq!(lit(&plc, "finals"), "3");
+}
+
+#[test]
+fn a_fault_in_a_called_block_unwinds_to_the_try_and_the_code_is_compared_by_name() {
+    let src = program(
+        "FUNCTION Pick : INT
+        VAR_INPUT k : INT; END_VAR
+        VAR t : ARRAY[1..3] OF INT := [10, 20, 30]; END_VAR
+        Pick := t[k];
+        END_FUNCTION
+        FUNCTION_BLOCK Reader
+        VAR_INPUT k : INT; END_VAR
+        VAR_OUTPUT v : INT; END_VAR
+        v := Pick(k);
+        END_FUNCTION_BLOCK",
+        "exc : __SYSTEM.ExceptionCode; r : Reader; bounds, v : INT; k : INT := 2;",
+        "__TRY
+            r(k := k);
+            v := r.v;
+        __CATCH(exc)
+            IF exc = __SYSTEM.ExceptionCode.RTSEXCPT_ARRAYBOUNDS THEN
+                bounds := bounds + 1;
+            END_IF
+        __ENDTRY
+        k := k + 1;",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 3);
+    // k = 2, 3 read; k = 4 faults two calls down.
+    assert_eq!(lit(&plc, "v"), "30");
+    assert_eq!(lit(&plc, "bounds"), "1");
+}
+
+#[test]
+fn regions_nest_and_a_fault_in_a_catch_goes_to_the_enclosing_try() {
+    let src = program(
+        "",
+        "inner, outer : __SYSTEM.ExceptionCode; d : INT; a : ARRAY[0..1] OF INT; i : INT := 7;
+         seen_inner, seen_outer : INT;",
+        "__TRY
+            __TRY
+                a[0] := 1 / d;
+            __CATCH(inner)
+                seen_inner := seen_inner + 1;
+                a[i] := 1;
+            __ENDTRY
+        __CATCH(outer)
+            seen_outer := seen_outer + 1;
+        __ENDTRY",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "seen_inner"), "1");
+    assert_eq!(lit(&plc, "inner"), "RTSEXCPT_DIVIDEBYZERO");
+    assert_eq!(lit(&plc, "seen_outer"), "1");
+    assert_eq!(lit(&plc, "outer"), "RTSEXCPT_ARRAYBOUNDS");
+}
+
+#[test]
+fn a_fault_outside_any_try_still_stops_the_plc_at_its_line() {
+    let src = program(
+        "",
+        "exc : UDINT; d : INT; q : INT;",
+        "__TRY
+            q := 1;
+        __CATCH(exc)
+            q := 2;
+        __ENDTRY
+        q := 10 / d;",
+    );
+    let fault = first_fault(&src);
+    assert_eq!(fault.code(), "R001");
+    assert!(fault.to_string().contains(":11:"), "{fault}");
+}
+
+#[test]
+fn the_watchdog_is_not_caught() {
+    let src = program(
+        "",
+        "exc : __SYSTEM.ExceptionCode; n : DINT; caught : BOOL;",
+        "__TRY
+            WHILE TRUE DO n := n + 1; END_WHILE
+        __CATCH(exc)
+            caught := TRUE;
+        __ENDTRY",
+    );
+    let options = Options {
+        watchdog: Some(std::time::Duration::from_millis(50)),
+        ..Options::default()
+    };
+    let mut plc = Plc::compile_files(&[("t.st", src.as_str())], &options).unwrap();
+    let fault = plc.run_cycle().expect_err("the loop never ends");
+    assert_eq!(fault.code(), "R008", "{fault}");
+    assert_eq!(lit(&plc, "caught"), "FALSE");
+}
+
+#[test]
+fn both_engines_give_the_same_values_and_the_guarded_block_stays_interpreted() {
+    let src = dividing();
+    let mut values = Vec::new();
+    for engine in [Engine::Interp, Engine::Native] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let mut plc = Plc::compile_files(&[("t.st", src.as_str())], &options).unwrap();
+        run(&mut plc, 3);
+        values.push(
+            ["tries", "catches", "finals", "after", "exc"]
+                .map(|n| lit(&plc, n))
+                .join(","),
+        );
+        if engine == Engine::Native
+            && let Some(report) = plc.native_report()
+        {
+            assert!(
+                report
+                    .fell_back
+                    .iter()
+                    .any(|f| f.block == "P" && f.reason.contains("__TRY")),
+                "{:?}",
+                report.fell_back
+            );
+        }
+    }
+    assert_eq!(values[0], values[1]);
+}
+
+#[test]
+fn the_catch_variable_must_hold_an_exception_code_and_catch_is_required() {
+    let bad_type = program(
+        "",
+        "exc : INT; q : INT;",
+        "__TRY q := 1; __CATCH(exc) q := 2; __ENDTRY",
+    );
+    assert_eq!(error_codes(&[("t.st", &bad_type)])[0].0, "E413");
+    let no_catch = program("", "q : INT;", "__TRY q := 1; __FINALLY q := 2; __ENDTRY");
+    assert_eq!(error_codes(&[("t.st", &no_catch)])[0].0, "E112");
+    let undeclared = program("", "q : INT;", "__TRY q := 1; __CATCH(e) q := 2; __ENDTRY");
+    assert_eq!(error_codes(&[("t.st", &undeclared)])[0].0, "E201");
+}
