@@ -360,7 +360,13 @@ impl Resolver<'_> {
                 finally,
             } => {
                 self.stmts(body);
-                if let Some((_, c)) = catch {
+                if let Some((name, c)) = catch {
+                    // The variable, so that hover and go-to-definition
+                    // reach it as any other use.
+                    self.expr(&Expr {
+                        kind: ExprKind::Name(name.clone()),
+                        span: name.span,
+                    });
                     self.stmts(c);
                 }
                 if let Some(f) = finally {

@@ -196,7 +196,8 @@ pub struct Image {
     /// Per user FB with `FB_exit` or `FB_reinit`, what an online change
     /// calls on its copied instances.
     pub copy_calls: Vec<CopyCalls>,
-    /// Look-up of members and globals by name from outside the program.
+    /// Look-up of members and globals by name from outside the program
+    /// (built by [`crate::ir::verify::verify`]).
     pub names: crate::ir::name_index::NameIndex,
 }
 
@@ -204,12 +205,12 @@ impl Image {
     /// Member `name` (any case) of type `ty` that is a place of the
     /// instance (not a VAR_IN_OUT).
     pub fn member_named(&self, ty: TypeId, name: &str) -> Option<&Member> {
-        self.names.member(&self.types, &self.globals, ty, name)
+        self.names.member(&self.types, ty, name)
     }
 
     /// The global or located variable named `name` (any case).
     pub fn global_named(&self, name: &str) -> Option<&RootVar> {
-        self.names.global(&self.types, &self.globals, name)
+        self.names.global(&self.globals, name)
     }
 }
 

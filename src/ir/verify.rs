@@ -193,7 +193,7 @@ impl std::error::Error for VerifyError {}
 
 /// Checks the invariants the executor relies on and seals the image; the
 /// error names the first violation.
-pub fn verify(image: Image) -> Result<VerifiedImage, VerifyError> {
+pub fn verify(mut image: Image) -> Result<VerifiedImage, VerifyError> {
     for (ci, c) in image.codes.iter().enumerate() {
         check_block(&image, c).map_err(|(pc, problem)| VerifyError {
             place: format!("code {ci} `{}` op {pc}", c.name),
@@ -202,6 +202,7 @@ pub fn verify(image: Image) -> Result<VerifiedImage, VerifyError> {
     }
     check_programs(&image)?;
     check_retained(&image)?;
+    image.names = crate::ir::name_index::NameIndex::build(&image.types, &image.globals);
     Ok(VerifiedImage { image })
 }
 

@@ -109,7 +109,9 @@ impl Walk<'_> {
                 finally,
             } => {
                 self.stmts(body)
-                    || catch.as_ref().is_some_and(|(_, c)| self.stmts(c))
+                    || catch
+                        .as_ref()
+                        .is_some_and(|(name, c)| (self.found)(&name.name) || self.stmts(c))
                     || finally.as_ref().is_some_and(|f| self.stmts(f))
             }
             StmtKind::Exit | StmtKind::Continue | StmtKind::Return | StmtKind::Empty => false,
