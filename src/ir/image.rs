@@ -212,9 +212,7 @@ impl Image {
     pub fn global_named(&self, name: &str) -> Option<&RootVar> {
         self.names.global(&self.globals, name)
     }
-}
 
-impl Image {
     /// How many instructions named `name` (an `Op` variant name, e.g.
     /// `"StoreStep"`) the code blocks hold; `None` when no instruction has
     /// that name. For tests outside the crate that check what the compiler

@@ -1,6 +1,7 @@
 //! The typed intermediate representation all three languages lower into.
 
 pub mod chart;
+pub mod exception_codes;
 pub mod fuse;
 pub mod handler;
 pub mod image;

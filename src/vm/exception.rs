@@ -2,14 +2,9 @@
 //! variable gets (the numbers of `__SYSTEM.ExceptionCode`).
 
 use super::fault::FaultKind;
-
-const ACCESS_VIOLATION: u32 = 0x51;
-const STACK_OVERFLOW: u32 = 0x54;
-const OUT_OF_MEMORY: u32 = 0x1C;
-const ARRAYBOUNDS: u32 = 0x101;
-const DIVIDEBYZERO: u32 = 0x102;
-const OVERFLOW: u32 = 0x103;
-const UNKNOWN: u32 = 0xFFFF_FFFF;
+use crate::ir::exception_codes::{
+    ACCESS_VIOLATION, ARRAYBOUNDS, DIVIDEBYZERO, OUT_OF_MEMORY, OVERFLOW, STACK_OVERFLOW, UNKNOWN,
+};
 
 impl FaultKind {
     /// The exception code a `__CATCH` receives for this fault, or `None`
