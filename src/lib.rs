@@ -80,6 +80,7 @@ pub use ide::{
     TokenKind, TokenMark, VarSection, std_function, std_functions,
 };
 pub use progress::Progress;
+pub use runtime::ads_log::{AdsLog, AdsLogNews, AdsMessage};
 pub use runtime::change_report::{ChangeReport, OnlineChangeError, Retyped, SessionChangeError};
 pub use runtime::clock::Clock;
 pub use runtime::debug_lines::LineTable;

@@ -158,6 +158,13 @@ const ROWS: &[Row] = &[
         expect: &[("s", "8"), ("w", "5"), ("r", "6")],
     },
     Row {
+        covers: &["Expr::Assign"],
+        // Each cycle steps i in the condition; at 3 it starts again.
+        source: "PROGRAM P\nVAR\n  i : INT; wraps : INT;\nEND_VAR\n\
+            IF (i := i + 1) = 3 THEN i := 0; wraps := wraps + 1; END_IF\nEND_PROGRAM\n",
+        expect: &[("i", "0"), ("wraps", "1")],
+    },
+    Row {
         covers: &["__TRY", "__CATCH", "__FINALLY", "__ENDTRY", "Stmt::Try"],
         source: "PROGRAM P\nVAR\n  e : __SYSTEM.ExceptionCode; d : INT; q : INT; f : INT;\nEND_VAR\n\
             __TRY q := 1 / d; q := 5; __CATCH(e) q := q + 7; __FINALLY f := f + 1; __ENDTRY\nEND_PROGRAM\n",

@@ -59,6 +59,8 @@ mod arith_conformance;
 mod assert_nested;
 #[path = "assertion_shadowing.rs"]
 mod assertion_shadowing;
+#[path = "assignment_expressions.rs"]
+mod assignment_expressions;
 #[path = "bench_checksums.rs"]
 mod bench_checksums;
 #[path = "bounds_proofs.rs"]
@@ -315,6 +317,8 @@ mod test_runner_enums;
 mod timer_pt_changes;
 #[path = "try_catch.rs"]
 mod try_catch;
+#[path = "twincat_ads_log.rs"]
+mod twincat_ads_log;
 #[cfg(feature = "cli")]
 #[path = "twincat_event_logger.rs"]
 mod twincat_event_logger;

@@ -359,6 +359,16 @@ fn tc2_system_s_adslogstr_writes_into_the_test_s_log() {
     assert_eq!(logs.output, ["valve V1 closed"]);
 }
 
+#[test]
+fn adslogdint_and_adslogreal_also_write_into_the_test_s_log() {
+    let suite = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n<POU Name=\"FB_Log\" Id=\"{00000000-0000-0000-0000-000000000001}\" SpecialFunc=\"None\">\n<Declaration><![CDATA[FUNCTION_BLOCK FB_Log EXTENDS FB_TestSuite\nVAR nResult : DINT := -1; END_VAR]]></Declaration>\n<Implementation><ST><![CDATA[TEST('Logs');\nnResult := ADSLOGDINT(ADSLOG_MSGTYPE_WARN, 'count %d', 42) + ADSLOGLREAL(ADSLOG_MSGTYPE_HINT, 'level %f', 0.5);\nAssertEquals_DINT(Expected := 0, Actual := nResult, Message := 'both return 0');\nTEST_FINISHED();]]></ST></Implementation>\n</POU>\n</TcPlcObject>\n";
+    let program = "PROGRAM PRG_TEST\nVAR s : FB_Log; END_VAR\nRUN();\nEND_PROGRAM\n";
+    let cases = run(&[("FB_Log.TcPOU", suite), ("p.st", program)]);
+    let logs = case(&cases, "PRG_TEST.s.Logs");
+    assert_eq!(logs.outcome(), TestOutcome::Passed, "{:?}", logs.failures);
+    assert_eq!(logs.output, ["count 42", "level 0.500000"]);
+}
+
 /// A suite whose initialisation faults (its FB_init divides by zero): the
 /// fault is reported as an error of that suite, before its first TEST;
 /// under `--keep-going` the suite is left out and the others run, as a

@@ -92,7 +92,7 @@ pub fn prepare(args: &RunArgs, session: &mut Session) -> Result<Option<Pictures>
     let (hook_timing, hook_active) = (timing.clone(), active.clone());
     let hook_chart = chart.clone();
     let at = args.svg_chart_cycle;
-    session.set_cycle_hook(move |plc| {
+    session.add_cycle_hook(move |plc| {
         if let Some(t) = &hook_timing {
             t.lock().unwrap_or_else(PoisonError::into_inner).record(plc);
         }

@@ -265,7 +265,31 @@ fn session(args: &RunArgs, mut plc: Plc) -> Result<Session, String> {
     session
         .set_trace(&names)
         .map_err(|e| format!("--trace: {e}"))?;
+    print_ads_log(&mut session);
     Ok(session)
+}
+
+/// Prints on standard error, after each cycle, the messages a TwinCAT
+/// program gave the ADS logger (`ADSLOGSTR`...) during it.
+fn print_ads_log(session: &mut Session) {
+    if !plcrun::AdsLog::present(session.plc()) {
+        return;
+    }
+    let mut log = plcrun::AdsLog::new();
+    session.add_cycle_hook(move |plc| {
+        let news = log.read_new(plc);
+        // The hook runs after the cycle: its number is the one just run.
+        let cycle = plc.cycle().saturating_sub(1);
+        if news.lost > 0 {
+            sayln!(
+                "ADS log, cycle {cycle}: {} earlier message(s) of this cycle lost (16 are kept between cycles)",
+                news.lost
+            );
+        }
+        for m in news.messages {
+            sayln!("ADS log, cycle {cycle}, {}: {}", m.kind(), m.text);
+        }
+    });
 }
 
 /// The text of a stimulus file; `-` is standard input, read to its end.

@@ -3,7 +3,8 @@
 //! `MEMCPY`, `MEMMOVE`, `MEMSET`, `MEMCMP`, `DRAND`, the distributed-clock
 //! time `T_DCTIME64` and its functions, the `*_TO_HEXSTR` conversions,
 //! `F_ToLCase`, `F_ToUCase`, `GETCPUCOUNTER`, `ST_LibVersion`, the
-//! `ADSLOG_MSGTYPE_*` constants, `DEFAULT_ADS_TIMEOUT`, `FB_FormatString`
+//! ADS logger (`ADSLOGSTR`, `ADSLOGDINT`, `ADSLOGLREAL`, the
+//! `ADSLOG_MSGTYPE_*` constants), `DEFAULT_ADS_TIMEOUT`, `FB_FormatString`
 //! with its `T_Arg` arguments (`F_INT`, `F_LREAL`, `F_STRING`...),
 //! `FB_MemRingBuffer`, the task
 //! information `_TaskInfo` with `GETCURTASKINDEX`/`GETCURTASKINDEXEX`,

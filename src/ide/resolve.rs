@@ -462,7 +462,7 @@ impl Resolver<'_> {
                 self.expr(e);
                 Meaning::default()
             }
-            ExprKind::Binary(_, a, b) => {
+            ExprKind::Binary(_, a, b) | ExprKind::Assign(a, b) => {
                 self.expr(a);
                 self.expr(b);
                 Meaning::default()

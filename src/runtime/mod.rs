@@ -14,6 +14,7 @@
 //! - [`live_stimulus`]: stimulus rows read while the program runs;
 //! - [`default_trace`]: what is traced when the user names nothing;
 //! - [`host_blocks`]: FUNCTIONs and FUNCTION_BLOCKs implemented by the host;
+//! - [`ads_log`]: the messages of TwinCAT's ADS logger functions;
 //! - [`names`]: variable paths from outside (`inst.Q`, `arr[2]`, `%IX0.1`);
 //! - [`var_error`]: why such a path cannot be resolved, read or written;
 //! - [`online_change`]: a new program version taking over a running PLC,
@@ -40,6 +41,7 @@
 
 pub mod access;
 mod addressing;
+pub mod ads_log;
 mod byte_view;
 pub mod change_report;
 pub mod clock;

@@ -343,6 +343,18 @@ impl Session {
         self.cycle_hook = Some(Box::new(hook));
     }
 
+    /// Adds a hook run after every cycle, after those set or added before
+    /// (as [`Self::set_cycle_hook`], which replaces them all).
+    pub fn add_cycle_hook(&mut self, mut hook: impl FnMut(&mut Plc) + Send + 'static) {
+        self.cycle_hook = Some(match self.cycle_hook.take() {
+            None => Box::new(hook),
+            Some(mut before) => Box::new(move |plc: &mut Plc| {
+                before(plc);
+                hook(plc);
+            }),
+        });
+    }
+
     /// Sets the hook run when a run ends cleanly — its cycles done, or a
     /// stop asked through the PLC's [`crate::StopHandle::stop`] (Ctrl-C,
     /// SIGTERM in the command line) — after the last trace row is written:

@@ -164,7 +164,7 @@ impl Walk<'_> {
             ExprKind::BitAccess(base, _) => self.expr(base),
             ExprKind::Index(base, idx) => self.expr(base) || idx.iter().any(|i| self.expr(i)),
             ExprKind::Unary(_, x) | ExprKind::Paren(x) | ExprKind::Deref(x) => self.expr(x),
-            ExprKind::Binary(_, a, b) => self.expr(a) || self.expr(b),
+            ExprKind::Binary(_, a, b) | ExprKind::Assign(a, b) => self.expr(a) || self.expr(b),
             ExprKind::Call(c) => self.expr(&c.callee) || self.args(&c.args),
         }
     }

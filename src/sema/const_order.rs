@@ -188,7 +188,7 @@ fn init_names(init: &Initializer, out: &mut Vec<String>) {
                 exprs.push(b);
                 exprs.extend(idx.iter());
             }
-            ExprKind::Binary(_, a, b) => {
+            ExprKind::Binary(_, a, b) | ExprKind::Assign(a, b) => {
                 exprs.push(a);
                 exprs.push(b);
             }

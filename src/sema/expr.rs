@@ -72,6 +72,7 @@ impl BodyBuilder<'_> {
             ExprKind::Unary(op, x) => self.unary(*op, x, e.span, expect),
             ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e.span, expect),
             ExprKind::Call(call) => self.call_expr(call, expect),
+            ExprKind::Assign(target, value) => self.assign_expr(target, value, e.span),
         }
     }
 

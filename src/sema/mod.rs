@@ -47,6 +47,7 @@ mod assert_enums;
 mod assert_nested;
 mod assert_shadow;
 mod assert_tcunit;
+mod assign_expr;
 mod bcd_width;
 mod binary;
 mod bits_arith;

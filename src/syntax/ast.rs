@@ -422,6 +422,9 @@ pub enum ExprKind {
     Paren(Box<Expr>),
     /// `r^`: the variable a reference or pointer designates.
     Deref(Box<Expr>),
+    /// `(target := value)` inside an expression (CODESYS / TwinCAT): the
+    /// value is stored, and the expression has the value stored.
+    Assign(Box<Expr>, Box<Expr>),
 }
 
 /// Unary operators.

@@ -275,7 +275,7 @@ fn dismantle(e: Expr) {
             span,
         };
         match &mut node.kind {
-            ExprKind::Binary(_, a, b) => {
+            ExprKind::Binary(_, a, b) | ExprKind::Assign(a, b) => {
                 work.push(std::mem::replace(a.as_mut(), leaf()));
                 work.push(std::mem::replace(b.as_mut(), leaf()));
             }
@@ -301,7 +301,8 @@ fn first_child(e: Expr) -> Expr {
         | ExprKind::Paren(b)
         | ExprKind::Deref(b)
         | ExprKind::Index(b, _)
-        | ExprKind::Binary(_, b, _) => *b,
+        | ExprKind::Binary(_, b, _)
+        | ExprKind::Assign(_, b) => *b,
         ExprKind::Call(c) => *c.callee,
         _ => e,
     }
@@ -380,6 +381,48 @@ pub fn paren(st: &State, e: Expr, l: usize, r: usize) -> Expr {
         span: st.span(l, r),
     };
     guard(st, node, first_child)
+}
+
+/// `(t := v)` inside an expression.
+pub fn assign_expr(st: &State, t: Expr, v: Expr, l: usize, r: usize) -> Expr {
+    let node = Expr {
+        kind: ExprKind::Assign(Box::new(t), Box::new(v)),
+        span: st.span(l, r),
+    };
+    guard(st, node, first_child)
+}
+
+/// A field name of a structure initialiser, read as an lvalue: anything
+/// but a plain name is E113.
+pub fn field_name(st: &State, e: Expr) -> Ident {
+    match e.kind {
+        ExprKind::Name(id) => id,
+        _ => {
+            st.error(
+                "E113",
+                e.span,
+                "a structure initialiser names a field here: a plain name is expected",
+            );
+            Ident {
+                name: String::new(),
+                span: e.span,
+            }
+        }
+    }
+}
+
+/// An initialiser written as an expression. `(f := v)` is an assignment
+/// expression to the parser; in an initialiser it is the structure
+/// initialiser of the one field `f` (nested ones too: `(a := (b := 1))`).
+pub fn init_from_expr(st: &State, e: Expr) -> Initializer {
+    match e.kind {
+        ExprKind::Assign(target, value) => {
+            let field = field_name(st, *target);
+            let value = init_from_expr(st, *value);
+            struct_init_span(st, vec![(field, value)], e.span)
+        }
+        _ => Initializer::Expr(e),
+    }
 }
 
 /// `b.m`.
@@ -757,7 +800,10 @@ pub fn struct_init(
     l: usize,
     r: usize,
 ) -> Initializer {
-    let span = st.span(l, r);
+    struct_init_span(st, fields, st.span(l, r))
+}
+
+fn struct_init_span(st: &State, fields: Vec<(Ident, Initializer)>, span: Span) -> Initializer {
     guard_init(st, Initializer::Struct(fields, span), span)
 }
 

@@ -63,7 +63,7 @@ pub fn expr_height(e: &Expr) -> usize {
                 stack.push((b, h + 1));
                 stack.extend(idx.iter().map(|i| (i, h + 1)));
             }
-            ExprKind::Binary(_, a, b) => {
+            ExprKind::Binary(_, a, b) | ExprKind::Assign(a, b) => {
                 stack.push((a, h + 1));
                 stack.push((b, h + 1));
             }
@@ -95,7 +95,7 @@ fn small_height(e: &Expr, budget: usize) -> Option<usize> {
             }
             h
         }
-        ExprKind::Binary(_, a, b) => below(a)?.max(below(b)?),
+        ExprKind::Binary(_, a, b) | ExprKind::Assign(a, b) => below(a)?.max(below(b)?),
         ExprKind::Call(c) => {
             let mut h = below(&c.callee)?;
             for a in &c.args {
@@ -117,7 +117,7 @@ fn nested_depth(e: &Expr) -> usize {
         | ExprKind::Paren(b)
         | ExprKind::Deref(b) => expr_depth(b),
         ExprKind::Index(b, idx) => idx.iter().map(expr_depth).fold(expr_depth(b), usize::max),
-        ExprKind::Binary(_, a, b) => expr_depth(a).max(expr_depth(b)),
+        ExprKind::Binary(_, a, b) | ExprKind::Assign(a, b) => expr_depth(a).max(expr_depth(b)),
         ExprKind::Call(c) => c
             .args
             .iter()

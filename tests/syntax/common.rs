@@ -180,5 +180,6 @@ pub fn sx(e: &Expr) -> String {
         ExprKind::Call(c) => format!("{}({})", sx(&c.callee), args(&c.args)),
         ExprKind::Paren(x) => format!("(paren {})", sx(x)),
         ExprKind::Deref(x) => format!("(deref {})", sx(x)),
+        ExprKind::Assign(t, v) => format!("(:= {} {})", sx(t), sx(v)),
     }
 }

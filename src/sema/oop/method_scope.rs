@@ -93,7 +93,7 @@ fn expr(e: &mut Expr, locals: &HashMap<String, String>) {
             }
         }
         ExprKind::Unary(_, x) | ExprKind::Paren(x) | ExprKind::Deref(x) => expr(x, locals),
-        ExprKind::Binary(_, a, b) => {
+        ExprKind::Binary(_, a, b) | ExprKind::Assign(a, b) => {
             expr(a, locals);
             expr(b, locals);
         }
