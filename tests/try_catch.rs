@@ -191,3 +191,73 @@ fn the_catch_variable_must_hold_an_exception_code_and_catch_is_required() {
     let undeclared = program("", "q : INT;", "__TRY q := 1; __CATCH(e) q := 2; __ENDTRY");
     assert_eq!(error_codes(&[("t.st", &undeclared)])[0].0, "E201");
 }
+
+/// A function that raises the exception it is given when `go` is TRUE.
+const RAISER: &str = "FUNCTION Raiser : BOOL
+VAR_INPUT go : BOOL; code : UDINT; END_VAR
+IF go THEN F_RaiseException(code); END_IF
+Raiser := TRUE;
+END_FUNCTION";
+
+#[test]
+fn f_raiseexception_is_caught_with_its_code_even_two_calls_down() {
+    // Cycle 2 raises ARRAYBOUNDS in place, cycle 3 16#1234 inside Raiser:
+    // each skips the statements after it and reaches the __CATCH.
+    let src = program(
+        RAISER,
+        "exc : __SYSTEM.ExceptionCode; code : UDINT; n, done, caught : INT;",
+        "n := n + 1;
+        __TRY
+            IF n = 2 THEN F_RaiseException(__SYSTEM.ExceptionCode.RTSEXCPT_ARRAYBOUNDS); END_IF
+            Raiser(go := n = 3, code := 16#1234);
+            done := done + 1;
+        __CATCH(exc)
+            caught := caught + 1;
+            code := exc;
+        __ENDTRY",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "exc"), "RTSEXCPT_ARRAYBOUNDS");
+    assert_eq!(lit(&plc, "code"), "257");
+    run(&mut plc, 2);
+    assert_eq!(lit(&plc, "code"), "4660");
+    assert_eq!(lit(&plc, "caught"), "2");
+    assert_eq!(lit(&plc, "done"), "2");
+}
+
+#[test]
+fn an_uncaught_f_raiseexception_stops_the_plc_at_the_call_on_both_engines() {
+    let src = program(
+        "",
+        "n : INT;",
+        "n := n + 1;
+        IF n = 3 THEN
+            F_RaiseException(ExceptionCode := __SYSTEM.ExceptionCode.RTSEXCPT_DIVIDEBYZERO);
+        END_IF",
+    );
+    for engine in [Engine::Interp, Engine::Native] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let mut plc = Plc::compile_files(&[("t.st", src.as_str())], &options).unwrap();
+        run(&mut plc, 2);
+        let fault = plc.run_cycle().expect_err("cycle 3 raises");
+        assert_eq!(fault.code(), "R082", "{fault}");
+        let text = fault.to_string();
+        assert!(text.contains("t.st:8:13"), "{text}");
+        assert!(text.contains("RTSEXCPT_DIVIDEBYZERO (16#102)"), "{text}");
+        assert_eq!(lit(&plc, "n"), "3");
+    }
+}
+
+#[test]
+fn f_raiseexception_takes_one_code_and_returns_nothing() {
+    let two = program("", "q : INT;", "F_RaiseException(1, 2);");
+    assert_eq!(error_codes(&[("t.st", &two)])[0].0, "E251");
+    let text = program("", "q : INT;", "F_RaiseException('x');");
+    assert_eq!(error_codes(&[("t.st", &text)])[0].0, "E301");
+    let value = program("", "b : BOOL;", "b := F_RaiseException(1);");
+    assert_eq!(error_codes(&[("t.st", &value)])[0].0, "E415");
+}

@@ -69,3 +69,11 @@ pub const TABLE: [(&str, i64); 49] = [
     ("RTSEXCPT_BREAKPOINT", 0x0200),
     ("RTSEXCPT_LICENSE_INVALID", 0x100D_0001),
 ];
+
+/// The name of exception code `code` in [`TABLE`], if it has one.
+pub fn name_of(code: u32) -> Option<&'static str> {
+    TABLE
+        .iter()
+        .find(|&&(_, v)| v == code as i64)
+        .map(|&(name, _)| name)
+}

@@ -323,6 +323,9 @@ macro_rules! for_each_op {
             /// A method entered on an instance where it is already running (a
             /// cycle of calls through interfaces came back to it): fault R081.
             FaultReentry;
+            /// `F_RaiseException(c)` (Tc2_System): an exception with the code
+            /// in `c` (a `__SYSTEM.ExceptionCode` number), fault R082.
+            FaultRaise { c: Slot => In };
             /// `d := the value of type `elem` (`ir::refs::elem_code`) pointer `r`
             /// designates`: a slot of its object, or the object's bytes for a
             /// byte view (`ir::refs::VIEW`); faults as `RefAddr` does.

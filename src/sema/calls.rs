@@ -80,6 +80,9 @@ impl BodyBuilder<'_> {
 
     /// A call used as a statement.
     pub(super) fn call_stmt(&mut self, call: &Call) {
+        if self.raise_exception_call(call) {
+            return;
+        }
         if self.oop_call(call, false).is_some() || self.this_body_call(call) {
             return;
         }
@@ -101,6 +104,7 @@ impl BodyBuilder<'_> {
         if let Some(v) = self
             .ref_call(call)
             .or_else(|| self.pou_name_call(call))
+            .or_else(|| self.raise_exception_value(call))
             .or_else(|| self.bound_call(call))
         {
             return v;

@@ -90,6 +90,7 @@ mod partial_access;
 mod place;
 mod pointer_index;
 mod pou_name;
+mod raise_exception;
 mod ref_inits;
 mod refs;
 mod sfc_emit;

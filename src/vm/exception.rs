@@ -34,6 +34,7 @@ impl FaultKind {
             FaultKind::MethodReentered => STACK_OVERFLOW,
             FaultKind::TooManyReferencedObjects => OUT_OF_MEMORY,
             FaultKind::InvalidBcd => UNKNOWN,
+            FaultKind::Raised(code) => *code,
         })
     }
 }

@@ -940,6 +940,7 @@ fn run<const DEBUG: bool, const NATIVE: bool>(
             | Op::RefValid { .. }
             | Op::FaultNullItf
             | Op::FaultReentry
+            | Op::FaultRaise { .. }
             | Op::RefLoad { .. }
             | Op::RefStore { .. }
             | Op::RefView { .. }

@@ -75,6 +75,9 @@ pub enum FaultKind {
     /// A method was called on an instance where it is still running: a
     /// cycle of calls through interfaces came back to it (R081).
     MethodReentered,
+    /// `F_RaiseException` (Tc2_System) raised the exception with this code
+    /// (R082): a `__CATCH` receives it; uncaught, it stops the PLC.
+    Raised(u32),
     /// A byte view (a pointer of another element type than its object's)
     /// read or wrote outside the object's bytes (R031, as for slots).
     OutsideBytes {
@@ -166,6 +169,7 @@ impl FaultKind {
             FaultKind::BadAddress => "R999",
             FaultKind::NullInterface => "R080",
             FaultKind::MethodReentered => "R081",
+            FaultKind::Raised(_) => "R082",
             FaultKind::OutsideBytes { .. } => "R031",
             FaultKind::ByteViewAggregate => "R034",
             FaultKind::NotFromPointer => "R035",
@@ -226,6 +230,13 @@ impl fmt::Display for FaultKind {
                 "method called again on an instance where it is still running (a cycle of calls \
                  through interfaces came back to it): plcrun keeps a method's variables in its instance"
             ),
+            FaultKind::Raised(code) => match crate::ir::exception_codes::name_of(*code) {
+                Some(name) => write!(
+                    f,
+                    "exception {name} (16#{code:X}) raised by F_RaiseException"
+                ),
+                None => write!(f, "exception 16#{code:X} raised by F_RaiseException"),
+            },
             FaultKind::OutsideBytes { offset, width, len } => write!(
                 f,
                 "dereference outside the object the pointer was taken from \

@@ -58,6 +58,7 @@ pub(super) unsafe fn run(
         // shares this out-of-line arm: one arm less in the dispatch loop.
         Op::FaultNullItf => return Err(FaultKind::NullInterface),
         Op::FaultReentry => return Err(FaultKind::MethodReentered),
+        Op::FaultRaise { c } => return Err(FaultKind::Raised(r(c) as u32)),
         Op::RefLoad { d, r: s, elem } => match table.address(r(s), 1) {
             Ok(a) => (d, memory.load(a)?),
             Err(_) if refs::is_view(r(s)) => (d, table.view_load(r(s), elem, memory, strings)?),

@@ -185,6 +185,7 @@ fn lowering(op: &Op) -> Lowering {
         | Op::RefValid { .. }
         | Op::FaultNullItf
         | Op::FaultReentry
+        | Op::FaultRaise { .. }
         | Op::RefLoad { .. }
         | Op::RefStore { .. }
         | Op::RefView { .. }
