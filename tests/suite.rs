@@ -301,6 +301,12 @@ mod strict;
 mod suite_membership;
 #[path = "syntax/main.rs"]
 mod syntax;
+#[path = "tcunit_any_types.rs"]
+mod tcunit_any_types;
+#[path = "tcunit_counts.rs"]
+mod tcunit_counts;
+#[path = "tcunit_disabled.rs"]
+mod tcunit_disabled;
 #[cfg(feature = "cli")]
 #[path = "tcunit_runner.rs"]
 mod tcunit_runner;

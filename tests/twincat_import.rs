@@ -299,6 +299,61 @@ fn twincat_io_declared_at_i_star_gets_addresses_that_check_map_lists() {
     );
 }
 
+/// A STRING or WSTRING at `%I*` (TcUnit-Verifier's protected variables)
+/// compiles in TwinCAT, linked to no I/O: plcrun warns (W710) and keeps
+/// it an ordinary variable, written by the program alone; the warning
+/// points at the address in the XML. In a plain ST file it stays E710.
+#[test]
+fn a_string_at_i_star_stays_an_ordinary_variable_with_a_warning() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    nLevel AT %I* : INT;\n    sName AT %I* : STRING;\n    sOut : STRING;\nEND_VAR\n",
+        "WRITE_PROTECTED_STRING(ADR(sName), 'pump 1');\nsOut := sName;\n",
+        "",
+    );
+    let dir = temp_project(&[("MAIN.TcPOU", &main)]);
+    let (code, out, err) = plcrun(&[&dir, "--cycles", "1", "--trace", "MAIN.sOut"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out, "cycle,time,MAIN.sOut\n0,T#0s,'pump 1'\n");
+    assert!(err.contains("warning[W710]"), "{err}");
+    // `sName AT %I*`: line 7 of the object file, the address.
+    assert!(err.contains("MAIN.TcPOU:7:14"), "{err}");
+    let (_, map, _) = plcrun(&["check", "--map", &dir]);
+    assert_eq!(map, "%IW0  MAIN.nLevel : INT\n");
+    let st = cli::temp_file(
+        "p.st",
+        "PROGRAM P\nVAR s AT %I* : STRING; END_VAR\nEND_PROGRAM\n",
+    );
+    let (code, _, err) = plcrun(&["check", &st]);
+    assert_ne!(code, 0);
+    assert!(err.contains("error[E710]"), "{err}");
+}
+
+/// A STRING declared without a length holds 80 characters in a TwinCAT
+/// file, as TwinCAT allocates it (254 in an IEC file); the other dates
+/// and strings have their WRITE_PROTECTED functions too.
+#[test]
+fn a_string_without_a_length_holds_80_characters_in_a_twincat_file() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    s : STRING;\n    n, size : INT;\n    d : DATE;\n    tod : TIME_OF_DAY;\n    w : WSTRING;\nEND_VAR\n",
+        "s := CONCAT('0123456789012345678901234567890123456789', '01234567890123456789012345678901234567890123456789');\nn := LEN(s);\nsize := SIZEOF(s);\nWRITE_PROTECTED_DATE(ADR(d), D#2000-01-01);\nWRITE_PROTECTED_TIME_OF_DAY(ADR(tod), TOD#06:21:11.492);\nWRITE_PROTECTED_WSTRING(ADR(w), \"wide\");\n",
+        "",
+    );
+    let dir = temp_project(&[("MAIN.TcPOU", &main)]);
+    let out = plcrun_ok(&[
+        &dir,
+        "--cycles",
+        "1",
+        "--trace",
+        "MAIN.n,MAIN.size,MAIN.d,MAIN.tod,MAIN.w",
+    ]);
+    assert_eq!(
+        out,
+        "cycle,time,MAIN.n,MAIN.size,MAIN.d,MAIN.tod,MAIN.w\n0,T#0s,80,81,D#2000-01-01,TOD#06:21:11.492,\"\"\"wide\"\"\"\n"
+    );
+}
+
 #[test]
 fn a_global_named_with_its_list_reads_and_sizes_like_the_global() {
     let gvl = "<?xml version=\"1.0\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <GVL Name=\"GVL_Constants\" Id=\"{0}\">\n    <Declaration><![CDATA[{attribute 'qualified_only'}\nVAR_GLOBAL CONSTANT\n    MAX_N : INT := 3;\n    PI : LREAL := 3.5;\nEND_VAR\n]]></Declaration>\n  </GVL>\n</TcPlcObject>\n";

@@ -69,7 +69,7 @@ class StTest:
 
     name: str
     file: str
-    outcome: Literal["passed", "failed", "errored"]
+    outcome: Literal["passed", "failed", "errored", "skipped"]
     cycles: int
     assertions: int
     seconds: float

@@ -51,6 +51,7 @@ impl PyStTest {
             TestOutcome::Passed => "passed",
             TestOutcome::Failed => "failed",
             TestOutcome::Errored => "errored",
+            TestOutcome::Skipped => "skipped",
         };
         let mut failures: Vec<String> = case
             .failures

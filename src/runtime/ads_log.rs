@@ -4,7 +4,7 @@
 //! reads the new ones between cycles: `plcrun run` prints them, an
 //! embedder shows or records them as it likes.
 
-use crate::Plc;
+use super::engine::Plc;
 
 /// The global ring the TwinCAT library writes (twincat_library.st).
 const RING: &str = "PLCRUN_ADS_LOG";

@@ -21,11 +21,16 @@ pub(crate) const ASSERT_EQ_PREFIX: &str = "PLCRUN_ASSERT_EQ_";
 pub(crate) const ASSERT_EQ_ENUM_HOST: &str = "PLCRUN_ASSERT_EQ_ENUM";
 /// Prefix of the REAL/LREAL with-delta host functions.
 pub(crate) const ASSERT_NEAR_PREFIX: &str = "PLCRUN_ASSERT_NEAR_";
+/// Called by a TcUnit array assertion before its element comparisons,
+/// when the runner declares it (TcUnit's count of array assertions).
+pub(crate) const TCUNIT_ARRAY_ASSERT: &str = "PLCRUN_TCUNIT_ARRAY_ASSERT";
 /// Largest array `AssertArrayEquals` compares (it unrolls per element).
 pub(super) const MAX_ARRAY_ELEMENTS: i64 = 4096;
 
 /// Diagnostic: the two values of an assertion differ in type, or are not elementary.
 pub(super) const E_TYPES: &str = "E480";
+/// `AssertEquals` of two elementary types: it fails when it runs.
+const W_TYPES: &str = "W480";
 /// Diagnostic: missing, unknown or repeated assertion argument.
 const E_ARGS: &str = "E481";
 /// Diagnostic: arrays that `AssertArrayEquals` cannot compare.
@@ -191,6 +196,12 @@ impl BodyBuilder<'_> {
                 if let Some(v) = self.enum_equals(&e, &a, &message, &loc, span, want) {
                     return Some(v);
                 }
+                // TcUnit's AssertEquals(ANY, ANY) takes two types (plcrun's
+                // own tests keep E480): its runner's hosts are declared.
+                let tcunit = self.model.pou_index.contains_key(TCUNIT_ARRAY_ASSERT);
+                if let Some((x, y)) = self.differing_elementary(&e, &a).filter(|_| tcunit) {
+                    return Some(self.differing_types((x, y), message, loc, span, want));
+                }
                 let t = self.common_elementary(&e, &a, span)?;
                 let name = format!("{ASSERT_EQ_PREFIX}{}", t.name());
                 let args = self.eq_args(e, a, message, loc, None);
@@ -325,7 +336,7 @@ impl BodyBuilder<'_> {
     }
 
     /// The elementary type both values share (an untyped literal takes the
-    /// other's type); reports E480 otherwise.
+    /// other's type); reports E480 otherwise (a structure, an array...).
     fn common_elementary(&mut self, e: &Expr, a: &Expr, span: Span) -> Option<ElemType> {
         let (te, ta) = (self.probe(e, false), self.probe(a, false));
         let of = |s: &Self, t: Ty| t.id().map(|id| (id, s.elementary(id)));
@@ -368,6 +379,41 @@ impl BodyBuilder<'_> {
                 None
             }
         }
+    }
+
+    /// The two elementary types of `e` and `a` when they differ (both
+    /// typed): TcUnit's `AssertEquals(ANY, ANY)` takes them, in a TcUnit
+    /// suite.
+    fn differing_elementary(&mut self, e: &Expr, a: &Expr) -> Option<(ElemType, ElemType)> {
+        let (te, ta) = (self.probe(e, false), self.probe(a, false));
+        let x = self.elementary(te.id()?)?;
+        let y = self.elementary(ta.id()?)?;
+        (x != y).then_some((x, y))
+    }
+
+    /// `AssertEquals` of values of two elementary types: never equal, so a
+    /// failing assertion, as TcUnit's fails when it runs, naming the
+    /// types' classes as it does (W480 says so when compiling).
+    fn differing_types(
+        &mut self,
+        (x, y): (ElemType, ElemType),
+        message: Expr,
+        loc: Expr,
+        span: Span,
+        want: bool,
+    ) -> Val {
+        self.diags.warning(
+            W_TYPES,
+            span,
+            format!(
+                "AssertEquals of a {} and a {}: values of two types are never equal, so it fails when it runs (as in TcUnit)",
+                x.name(),
+                y.name()
+            ),
+        );
+        let class = |t: ElemType| string_literal(&format!("(Type class = {})", t.name()), span);
+        let args = self.eq_args(class(x), class(y), message, loc, None);
+        self.host_assert(&format!("{ASSERT_EQ_PREFIX}STRING"), args, span, want)
     }
 
     fn is_error(&self, id: TypeId) -> bool {

@@ -7,8 +7,8 @@
 //! failure when the assertion runs, as in TcUnit, not a compile error.
 
 use super::assert_calls::{
-    ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX, E_ARRAYS, MAX_ARRAY_ELEMENTS, formal, literal,
-    string_literal,
+    ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX, E_ARRAYS, MAX_ARRAY_ELEMENTS, TCUNIT_ARRAY_ASSERT,
+    formal, literal, string_literal,
 };
 use super::body::BodyBuilder;
 use super::emit::Val;
@@ -42,6 +42,30 @@ pub(super) fn has_delta(t: ElemType) -> bool {
 type Shape = (Vec<Dim>, Option<ElemType>);
 
 impl BodyBuilder<'_> {
+    /// Under a TcUnit run, tells the runner an array assertion of `elem`
+    /// arrays sized `ne`, `na` starts (TcUnit counts array assertions by
+    /// the arrays' sizes and type, message and test).
+    fn announce_array_assertion(
+        &mut self,
+        elem: ElemType,
+        (ne, na): (&[i64], &[i64]),
+        message: &Expr,
+        loc: &Expr,
+        span: Span,
+    ) {
+        if !self.model.pou_index.contains_key(TCUNIT_ARRAY_ASSERT) {
+            return;
+        }
+        let shape = |n: &[i64]| format!("{} x{}", elem.name(), n.iter().product::<i64>());
+        let args = vec![
+            formal("Loc", loc.clone()),
+            formal("Expecteds", string_literal(&shape(ne), span)),
+            formal("Actuals", string_literal(&shape(na), span)),
+            formal("Message", message.clone()),
+        ];
+        self.host_assert(TCUNIT_ARRAY_ASSERT, args, span, false);
+    }
+
     /// `AssertArray[2d|3d]Equals_<T>(Expecteds, Actuals, [Delta,] Message)`.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn tcunit_array_equals(
@@ -99,6 +123,7 @@ impl BodyBuilder<'_> {
         );
         let sizes = |d: &[Dim]| d.iter().map(|x| x.hi - x.lo + 1).collect::<Vec<_>>();
         let (ne, na) = (sizes(&de), sizes(&da));
+        self.announce_array_assertion(elem, (&ne, &na), &message, &loc, span);
         if ne != na {
             // A size mismatch fails when the assertion runs, naming both sizes.
             let show = |n: &[i64]| n.iter().map(i64::to_string).collect::<Vec<_>>().join("x");

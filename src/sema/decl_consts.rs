@@ -103,22 +103,31 @@ impl DeclConsts<'_> {
         }
     }
 
-    /// `GVL.x` (a global named with its list or library, CODESYS and
-    /// TwinCAT; see `place.rs`, `is_list_qualifier`) as the name `x`, when
-    /// `GVL` names no variable, POU or type and `x` is a global.
+    /// `GVL.x` or `Library.GVL.x` (a global named with its list or
+    /// library, CODESYS and TwinCAT; see `place.rs`, `is_list_qualifier`)
+    /// as the name `x`, when the qualifiers name no variable, POU or type
+    /// and `x` is a global.
     fn list_qualified(&self, e: &Expr, local: Option<&IndexMap<String, VarInfo>>) -> Option<Expr> {
         let ExprKind::Member(base, name) = &e.kind else {
             return None;
         };
-        let ExprKind::Name(q) = &base.kind else {
-            return None;
+        let visible = |qk: &str| {
+            local.is_some_and(|l| l.contains_key(qk))
+                || self.model.globals.contains_key(qk)
+                || self.model.pou_index.contains_key(qk)
+                || self.model.type_ids.contains_key(qk)
         };
-        let qk = q.key();
-        let visible = local.is_some_and(|l| l.contains_key(&qk))
-            || self.model.globals.contains_key(&qk)
-            || self.model.pou_index.contains_key(&qk)
-            || self.model.type_ids.contains_key(&qk);
-        (!visible && self.model.globals.contains_key(&name.key())).then(|| Expr {
+        let qualified = match &base.kind {
+            ExprKind::Name(q) => !visible(&q.key()),
+            // `Library.GVL.x` (`TcUnit.GVL_Param_TcUnit.MaxNumberOf...`):
+            // the library's namespace before the list, both naming nothing.
+            ExprKind::Member(library, list) => {
+                matches!(&library.kind, ExprKind::Name(l) if !visible(&l.key()))
+                    && !visible(&list.key())
+            }
+            _ => false,
+        };
+        (qualified && self.model.globals.contains_key(&name.key())).then(|| Expr {
             kind: ExprKind::Name(name.clone()),
             span: e.span,
         })

@@ -12,6 +12,10 @@ use crate::stdlib;
 use crate::syntax::ast::{Expr, ExprKind, Ident, Initializer, Item, PouKind, TypeSpec, VarDecl};
 use indexmap::IndexMap;
 
+/// The length of a STRING declared without one in CODESYS V3 and
+/// TwinCAT 3 files.
+const CODESYS_STRING_LENGTH: u32 = 80;
+
 /// What a structure declared `EXTENDS base` starts with: `base`'s fields,
 /// their initial values (by field index), the slots they take, and `base`
 /// itself (`None` after an error).
@@ -186,7 +190,8 @@ impl Declarer<'_> {
         TypeTable::error()
     }
 
-    /// `STRING[n]` / `WSTRING[n]` (254 without a length).
+    /// `STRING[n]` / `WSTRING[n]`; without a length 254 characters, 80 in
+    /// a CODESYS V3 / TwinCAT 3 file (as those tools allocate).
     fn string_type(
         &mut self,
         wide: bool,
@@ -204,6 +209,7 @@ impl Declarer<'_> {
                 }
                 None => 254,
             },
+            None if self.model.checked_files.contains(&span.file) => CODESYS_STRING_LENGTH,
             None => 254,
         };
         let kw = if wide { "WSTRING" } else { "STRING" };

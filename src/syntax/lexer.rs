@@ -103,7 +103,13 @@ fn lex_with(
             Raw::Word => word(slice),
             Raw::ThisDeref => Tok::Kw(Kw::ThisDeref),
             Raw::SuperDeref => Tok::Kw(Kw::SuperDeref),
-            Raw::Typed => typed(file, slice, r.start, diags),
+            Raw::Typed => typed(
+                file,
+                slice,
+                r.start,
+                nesting == CommentNesting::Nested,
+                diags,
+            ),
             Raw::Int | Raw::Based => {
                 let value = match parse_int_text(slice) {
                     Ok(v) => {
@@ -352,6 +358,15 @@ fn as_file_bytes(value: String, wide: bool, encoding: TextEncoding) -> String {
         .collect()
 }
 
+/// A TwinCAT LTIME literal beyond the signed range.
+const UNSIGNED_LTIME: &str = "W022";
+
+/// The 64 bits of an LTIME literal in 2^63 .. 2^64 - 1 ns, when `allowed`.
+fn unsigned_ltime(body: &str, allowed: bool) -> Option<i64> {
+    let wide = crate::value::literal::parse_duration_wide(body).ok()?;
+    (allowed && (0..=u64::MAX as i128).contains(&wide)).then_some(wide as u64 as i64)
+}
+
 /// True when the final quote of `slice` is not escaped by `$` (counting
 /// consecutive `$` signs).
 fn closes(slice: &str) -> bool {
@@ -361,7 +376,10 @@ fn closes(slice: &str) -> bool {
 }
 
 /// Decodes `PREFIX#body`.
-fn typed(file: FileId, slice: &str, start: usize, diags: &mut Diagnostics) -> Tok {
+///
+/// `twincat`: the text is a TwinCAT object's (lexed with nested comments,
+/// [`lex_codesys`]), where an LTIME reaches 2^64 - 1 ns.
+fn typed(file: FileId, slice: &str, start: usize, twincat: bool, diags: &mut Diagnostics) -> Tok {
     let hash = slice.find('#').unwrap_or(slice.len());
     let prefix = &slice[..hash];
     let body = slice.get(hash + 1..).unwrap_or("");
@@ -376,7 +394,17 @@ fn typed(file: FileId, slice: &str, start: usize, diags: &mut Diagnostics) -> To
     let result = match prefix_kind(prefix) {
         PrefixKind::Duration { long } => match parse_duration_body(body) {
             Ok(nanos) => Ok(LiteralValue::Duration { nanos, long }),
-            Err(m) => Err(("E006", m)),
+            Err(m) => match unsigned_ltime(body, long && twincat) {
+                Some(nanos) => {
+                    diags.warning(
+                        UNSIGNED_LTIME,
+                        whole,
+                        "an LTIME beyond 2^63 - 1 ns (TwinCAT's LTIME is unsigned): plcrun's LTIME is signed, it holds these 64 bits, and compares and prints them as a negative duration",
+                    );
+                    Ok(LiteralValue::Duration { nanos, long })
+                }
+                None => Err(("E006", m)),
+            },
         },
         PrefixKind::Date { long } => match parse_date_body(body) {
             Ok(nanos) => Ok(LiteralValue::Date { nanos, long }),

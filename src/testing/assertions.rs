@@ -4,7 +4,9 @@
 
 use super::tcunit::State;
 use crate::elementary::ElemType;
-use crate::runtime::host_blocks::{HostBlocks, HostDeclError, HostIo, HostResult, HostSignature};
+use crate::runtime::host_blocks::{
+    HostBlocks, HostDeclError, HostIo, HostIoError, HostResult, HostSignature,
+};
 use crate::sema::assert_calls::{
     ASSERT_EQ_ENUM_HOST, ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX, ASSERT_TRUE_HOST,
 };
@@ -52,23 +54,29 @@ impl Log {
         }
     }
 
-    /// An assertion at `loc` held.
-    fn held(&self, loc: i64) {
+    /// An assertion of host `host` held (its pins in `io`).
+    fn held(&self, io: &HostIo<'_>, host: &str) -> Result<(), HostIoError> {
         if let Some(state) = &self.suites {
-            state
-                .lock()
-                .unwrap_or_else(|p| p.into_inner())
-                .assertion(loc, None);
+            let loc = io.get_i64("Loc")?;
+            let values = (
+                format!("{host}:{}", io.get("Expected")?.to_literal()),
+                io.get("Actual")?.to_literal(),
+            );
+            let message = io.get_str("Message")?;
+            let mut state = state.lock().unwrap_or_else(|p| p.into_inner());
+            state.count_value(loc, values, &message);
+            state.assertion(loc, None);
         }
+        Ok(())
     }
 
-    fn push(&self, r: Recorded) {
+    fn push(&self, r: Recorded, host: &str) {
         if let Some(state) = &self.suites {
             let loc = r.loc;
-            state
-                .lock()
-                .unwrap_or_else(|p| p.into_inner())
-                .assertion(loc, Some(r));
+            let values = (format!("{host}:{}", r.expected), r.actual.clone());
+            let mut state = state.lock().unwrap_or_else(|p| p.into_inner());
+            state.count_value(loc, values, &r.message);
+            state.assertion(loc, Some(r));
             return;
         }
         let mut list = self.failures.lock().unwrap_or_else(|p| p.into_inner());
@@ -116,14 +124,17 @@ fn fail_with(
     } else {
         None
     };
-    log.push(Recorded {
-        loc: io.get_i64("Loc")?,
-        expected,
-        actual,
-        index,
-        element: path,
-        message: io.get_str("Message")?,
-    });
+    log.push(
+        Recorded {
+            loc: io.get_i64("Loc")?,
+            expected,
+            actual,
+            index,
+            element: path,
+            message: io.get_str("Message")?,
+        },
+        result,
+    );
     io.set_bool(result, false)?;
     Ok(())
 }
@@ -153,7 +164,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
                 io.get("Expected")? == io.get("Actual")?
             };
             if same {
-                log.held(io.get_i64("Loc")?);
+                log.held(io, &result)?;
                 io.set_bool(&result, true)?;
                 Ok(())
             } else {
@@ -182,7 +193,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
             );
             // NaN anywhere fails: `<=` is false for it.
             if (e - a).abs() <= d.abs() {
-                log.held(io.get_i64("Loc")?);
+                log.held(io, &result)?;
                 io.set_bool(&result, true)?;
                 Ok(())
             } else {
@@ -199,7 +210,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
     let log = log.clone();
     hosts.function(sig, move |io| {
         if io.get_bool("Expected")? == io.get_bool("Actual")? {
-            log.held(io.get_i64("Loc")?);
+            log.held(io, ASSERT_TRUE_HOST)?;
             io.set_bool(ASSERT_TRUE_HOST, true)?;
             Ok(())
         } else {
@@ -223,7 +234,7 @@ fn register_enum(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError>
     hosts.function(sig, move |io| {
         let (e, a) = (io.get_i64("Expected")?, io.get_i64("Actual")?);
         if e == a {
-            log.held(io.get_i64("Loc")?);
+            log.held(io, ASSERT_EQ_ENUM_HOST)?;
             io.set_bool(ASSERT_EQ_ENUM_HOST, true)?;
             return Ok(());
         }

@@ -28,13 +28,17 @@ pub(super) fn render(report: &TestReport, suite: &str) -> String {
     let total = report.cases.len();
     let failures = report.count(TestOutcome::Failed);
     let errors = report.count(TestOutcome::Errored);
+    let skipped = report.count(TestOutcome::Skipped);
     let time = report.elapsed.as_secs_f64();
     let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let counts =
         format!("tests=\"{total}\" failures=\"{failures}\" errors=\"{errors}\" time=\"{time:.3}\"");
     let suite = escape(suite);
     let _ = writeln!(out, "<testsuites name=\"{suite}\" {counts}>");
-    let _ = writeln!(out, "  <testsuite name=\"{suite}\" {counts} skipped=\"0\">");
+    let _ = writeln!(
+        out,
+        "  <testsuite name=\"{suite}\" {counts} skipped=\"{skipped}\">"
+    );
     for case in &report.cases {
         let _ = write!(
             out,
@@ -46,6 +50,7 @@ pub(super) fn render(report: &TestReport, suite: &str) -> String {
         let body = escape(&details(case).join("\n"));
         match case.outcome() {
             TestOutcome::Passed => out.push_str("/>\n"),
+            TestOutcome::Skipped => out.push_str(">\n      <skipped/>\n    </testcase>\n"),
             TestOutcome::Failed => {
                 let (message, kind) = match case.failures.first() {
                     Some(f) => (failure_line(f), "AssertionFailure"),

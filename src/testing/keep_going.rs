@@ -128,6 +128,7 @@ pub(super) fn left_out_cases(
             assertions: 0,
             output: Vec::new(),
             left_out: Some(format!("not run: its file does not compile ({why})")),
+            skipped: false,
         })
     };
     let from_tests = tests.iter().filter_map(|t| case(&t.name, &t.file));

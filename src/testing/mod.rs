@@ -101,6 +101,9 @@ pub enum TestOutcome {
     Failed,
     /// The test stopped on a runtime fault (JUnit `<error>`).
     Errored,
+    /// A TcUnit test disabled by its name (`TEST('DISABLED_x')`): not
+    /// run, as TcUnit skips it (JUnit `<skipped>`).
+    Skipped,
 }
 
 /// What happened in one test.
@@ -134,6 +137,9 @@ pub struct TestCase {
     /// Why it did not run: its file was left out because it does not
     /// compile (`TestOptions::keep_going`).
     pub left_out: Option<String>,
+    /// A TcUnit test disabled by its name, `DISABLED_` before it (the
+    /// name here is without it): its assertions are ignored.
+    pub skipped: bool,
 }
 
 impl TestCase {
@@ -152,6 +158,8 @@ impl TestCase {
     pub fn outcome(&self) -> TestOutcome {
         if self.fault.is_some() || self.left_out.is_some() {
             TestOutcome::Errored
+        } else if self.skipped {
+            TestOutcome::Skipped
         } else if !self.failures.is_empty() || self.unfinished {
             TestOutcome::Failed
         } else {
@@ -183,9 +191,12 @@ impl TestReport {
         self.cases.iter().filter(|c| c.outcome() == o).count()
     }
 
-    /// True when there was at least one test and every test passed.
+    /// True when there was at least one test and every test passed (or
+    /// was disabled).
     pub fn all_passed(&self) -> bool {
-        !self.cases.is_empty() && self.count(TestOutcome::Passed) == self.cases.len()
+        !self.cases.is_empty()
+            && self.count(TestOutcome::Passed) + self.count(TestOutcome::Skipped)
+                == self.cases.len()
     }
 
     /// The human-readable report: one line per test, the details of each

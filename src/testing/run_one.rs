@@ -99,6 +99,7 @@ pub(super) fn run(
         assertions: 0,
         output: Vec::new(),
         left_out: None,
+        skipped: false,
     };
     for cycle in 0..test.cycle_limit() {
         let result = plc.run_cycle();

@@ -62,6 +62,7 @@ pub(super) fn render(report: &TestReport) -> String {
             TestOutcome::Passed => "PASS ",
             TestOutcome::Failed => "FAIL ",
             TestOutcome::Errored => "ERROR",
+            TestOutcome::Skipped => "SKIP ",
         };
         let assertions = match case.suite {
             Some(_) => format!(", {}", plural(case.assertions as u64, "assertion")),
@@ -78,9 +79,13 @@ pub(super) fn render(report: &TestReport) -> String {
             let _ = writeln!(out, "      {line}");
         }
     }
+    let skipped = match report.count(TestOutcome::Skipped) {
+        0 => String::new(),
+        n => format!(", {n} skipped"),
+    };
     let _ = writeln!(
         out,
-        "{}: {} passed, {} failed, {} errored in {:.3} s",
+        "{}: {} passed, {} failed, {} errored{skipped} in {:.3} s",
         plural(report.cases.len() as u64, "test"),
         report.count(TestOutcome::Passed),
         report.count(TestOutcome::Failed),

@@ -20,6 +20,13 @@ pub const DURATION_UNITS: [(&str, i128); 7] = [
 /// nanoseconds. Units are case-insensitive; `_` separators are allowed; only
 /// the last part may have a fraction.
 pub fn parse_duration_body(body: &str) -> Result<i64, String> {
+    let total = parse_duration_wide(body)?;
+    i64::try_from(total).map_err(|_| format!("duration `{body}` is out of range"))
+}
+
+/// [`parse_duration_body`] without the range of an `i64`: the nanoseconds
+/// as written (TwinCAT's LTIME reaches 2^64 - 1).
+pub fn parse_duration_wide(body: &str) -> Result<i128, String> {
     let text: String = body
         .chars()
         .filter(|c| *c != '_')
@@ -101,7 +108,7 @@ pub fn parse_duration_body(body: &str) -> Result<i64, String> {
     if negative {
         total = -total;
     }
-    i64::try_from(total).map_err(|_| format!("duration `{body}` is out of range"))
+    Ok(total)
 }
 
 /// Formats nanoseconds as an IEC duration literal: largest unit first, zero

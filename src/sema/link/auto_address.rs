@@ -17,6 +17,8 @@ use std::collections::HashMap;
 
 /// An incomplete address that can get no address of its own.
 const NOT_PLACEABLE: &str = "E710";
+/// The same in a CODESYS V3 / TwinCAT 3 file: the variable stays memory.
+const UNLINKED: &str = "W710";
 
 /// A variable declared with an incomplete address and not completed.
 #[derive(Debug, Clone)]
@@ -105,6 +107,21 @@ impl Linker<'_> {
             let width = match (elem.and_then(width_of), declared) {
                 (Some(w), None) => w,
                 (Some(w), Some(d)) if w == d => w,
+                // TwinCAT and CODESYS compile such a variable: linked to
+                // no I/O, it is memory the program alone writes.
+                _ if self.model.checked_files.contains(&u.span.file) => {
+                    self.diags.warning(
+                        UNLINKED,
+                        u.span,
+                        format!(
+                            "`{}` (AT {}): a {} gets no address in the process image; it stays an ordinary variable, which no I/O writes",
+                            u.name,
+                            u.declared,
+                            self.types.name(u.ty)
+                        ),
+                    );
+                    continue;
+                }
                 _ => {
                     self.diags.error(
                         NOT_PLACEABLE,

@@ -162,12 +162,17 @@ impl<'x> Emitter<'x> {
             d.span = self.span((s, e));
             self.diags.push(d);
         }
-        for (l, tok, r) in tokens {
+        for (l, mut tok, r) in tokens {
             if tok == Tok::Eol && !keep_eol {
                 continue;
             }
             let (s, e) = decoded.file_range(l, r);
             let span = self.span((s, e));
+            // A direct address carries its own span (a located variable's
+            // diagnostics point with it): in the file, as the token's.
+            if let Tok::Direct(d) = &mut tok {
+                d.span = span;
+            }
             self.toks
                 .push((span.start as usize, tok, span.end as usize));
         }

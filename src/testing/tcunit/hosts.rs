@@ -1,6 +1,6 @@
 //! TcUnit's functions as host functions recording into the run's
 //! [`State`]: `TEST`, `TEST_ORDERED`, `TEST_FINISHED`,
-//! `TEST_FINISHED_NAMED`, `TCUNIT_ADSLOGSTR` (and Tc2_System's
+//! `TEST_FINISHED_NAMED`, `IS_TEST_FINISHED`, `TCUNIT_ADSLOGSTR` (and Tc2_System's
 //! `ADSLOGSTR`), and `RUN` /
 //! `RUN_IN_SEQUENCE` (which do nothing here: the runner calls the suites
 //! itself), plus the runner's own `PLCRUN_TCUNIT_ENTER`.
@@ -12,6 +12,12 @@ use std::sync::{Arc, Mutex, MutexGuard};
 
 /// The host function the generated program calls before each suite.
 pub(crate) const ENTER: &str = "PLCRUN_TCUNIT_ENTER";
+/// The host function an array assertion calls first (see
+/// `sema::assert_tcunit`), for TcUnit's count of array assertions.
+pub(crate) const ARRAY_ASSERT: &str = crate::sema::assert_calls::TCUNIT_ARRAY_ASSERT;
+/// The host function behind `AssertResults.TotalAsserts` and
+/// `AssertArrayResults.TotalArrayAsserts` (plcrun's `FB_TestSuite`).
+pub(crate) const TOTAL_ASSERTS: &str = "PLCRUN_TCUNIT_TOTAL_ASSERTS";
 
 fn lock(state: &Arc<Mutex<State>>) -> MutexGuard<'_, State> {
     state.lock().unwrap_or_else(|p| p.into_inner())
@@ -66,6 +72,43 @@ pub(crate) fn register(
             let test = io.get_str("TestName")?;
             let found = lock(&s).finish_named(&test);
             io.set_bool("TEST_FINISHED_NAMED", found)?;
+            Ok(())
+        },
+    )?;
+    let s = state.clone();
+    hosts.function(
+        HostSignature::function("IS_TEST_FINISHED", ElemType::Bool)
+            .input("TestName", ElemType::String),
+        move |io| {
+            let test = io.get_str("TestName")?;
+            let done = lock(&s).is_finished(&test);
+            io.set_bool("IS_TEST_FINISHED", done)?;
+            Ok(())
+        },
+    )?;
+    // TcUnit's assertion counts: an array assertion announces itself
+    // (before its element comparisons), and a suite reads its totals.
+    let s = state.clone();
+    hosts.function(
+        HostSignature::function(ARRAY_ASSERT, ElemType::Bool)
+            .input("Loc", ElemType::Lint)
+            .input("Expecteds", ElemType::String)
+            .input("Actuals", ElemType::String)
+            .input("Message", ElemType::String),
+        move |io| {
+            let shape = (io.get_str("Expecteds")?, io.get_str("Actuals")?);
+            let message = io.get_str("Message")?;
+            lock(&s).count_array(io.get_i64("Loc")?, shape, &message);
+            io.set_bool(ARRAY_ASSERT, true)?;
+            Ok(())
+        },
+    )?;
+    let s = state.clone();
+    hosts.function(
+        HostSignature::function(TOTAL_ASSERTS, ElemType::Uint).input("Arrays", ElemType::Bool),
+        move |io| {
+            let total = lock(&s).total_asserts(io.get_bool("Arrays")?);
+            io.set_i64(TOTAL_ASSERTS, total as i64)?;
             Ok(())
         },
     )?;

@@ -5,6 +5,7 @@
 //! `RUN_IN_SEQUENCE`), as TcUnit's `RUN` does, until every test called
 //! `TEST_FINISHED`; docs/testing.md, "TcUnit suites".
 
+mod assert_counts;
 mod hosts;
 mod state;
 
@@ -54,6 +55,59 @@ pub(crate) struct Plan {
     /// The sources declare no `FB_TestSuite`: plcrun's is added.
     pub(crate) add_base: bool,
 }
+
+/// How many files [`sources_for`] adds when the sources declare no
+/// `FB_TestSuite` (before the generated driver program).
+pub(crate) const ADDED_SOURCES: usize = 2;
+
+/// plcrun's `FB_TestSuite`: what suites read of TcUnit's own, the counts
+/// of their assertions (`AssertResults.TotalAsserts`,
+/// `AssertArrayResults.TotalArrayAsserts`; tcunit::assert_counts).
+fn base_block() -> String {
+    let total = hosts::TOTAL_ASSERTS;
+    format!(
+        "FUNCTION_BLOCK {BASE}
+VAR
+  AssertResults : FB_AssertResultStatic;
+  AssertArrayResults : FB_AssertArrayResultStatic;
+END_VAR
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_AssertResultStatic
+PROPERTY TotalAsserts : UINT
+GET
+TotalAsserts := {total}(FALSE);
+END_GET
+END_PROPERTY
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_AssertArrayResultStatic
+PROPERTY TotalArrayAsserts : UINT
+GET
+TotalArrayAsserts := {total}(TRUE);
+END_GET
+END_PROPERTY
+END_FUNCTION_BLOCK
+"
+    )
+}
+
+/// TcUnit's parameter list, `GVL_Param_TcUnit`, with TcUnit's defaults:
+/// suites read its limits (`TcUnit.GVL_Param_TcUnit.
+/// MaxNumberOfAssertsForEachTestSuite`). plcrun's runner has no such
+/// limits; the values are there to be read. Plain ST (a TwinCAT file would
+/// bring plcrun's TwinCAT library into every run): a global is named with
+/// any list as its qualifier (`sema::place`, `is_list_qualifier`).
+const PARAMETERS: &str = "VAR_GLOBAL CONSTANT
+    MaxNumberOfTestSuites : UINT := 1000;
+    MaxNumberOfTestsForEachTestSuite : UINT := 100;
+    MaxNumberOfAssertsForEachTestSuite : UINT := 1000;
+    LogExtendedResults : BOOL := TRUE;
+    xUnitEnablePublish : BOOL := FALSE;
+    xUnitBufferSize : UDINT := 65535;
+    xUnitFilePath : STRING(255) := '%TC_BOOTPRJPATH%tcunit_xunit_testresults.xml';
+    AdsLogMessageFifoRingBufferSize : UINT := 2000;
+    TimeBetweenTestSuitesExecution : TIME := T#0MS;
+END_VAR
+";
 
 /// True when `text` writes the name of TcUnit's base block (any case):
 /// a source without it declares no suite.
@@ -171,10 +225,9 @@ pub(crate) fn plan(sources: &SourceMap, diags: &mut Diagnostics) -> Plan {
 pub(crate) fn sources_for(sources: &SourceMap, plan: &Plan, driver: bool) -> SourceMap {
     let mut sources = sources.clone();
     if plan.add_base {
-        sources.add(
-            "<TcUnit>",
-            format!("FUNCTION_BLOCK {BASE}\nEND_FUNCTION_BLOCK\n"),
-        );
+        // ADDED_SOURCES files.
+        sources.add("<TcUnit>", base_block());
+        sources.add("<TcUnit parameters>", PARAMETERS);
     }
     if driver {
         let mut text = format!("PROGRAM {DRIVER}\nVAR\n");
@@ -335,10 +388,11 @@ fn run_plan(
                     .collect(),
                 more_failures: 0,
                 fault: None,
-                unfinished: test.finished.is_none(),
+                unfinished: test.finished.is_none() && !test.skipped,
                 assertions: test.assertions.len(),
                 output: std::mem::take(&mut test.output),
                 left_out: None,
+                skipped: test.skipped,
             };
             if test.duplicate {
                 case.failures.push(AssertionFailure {
@@ -403,5 +457,6 @@ fn body_fault_case(
         assertions: 0,
         output: Vec::new(),
         left_out: None,
+        skipped: false,
     }
 }

@@ -3,8 +3,12 @@
 //! assertions each ran and the failures each met, and the log lines of
 //! `TCUNIT_ADSLOGSTR`.
 
+use super::assert_counts::{AssertCounts, Key};
 use crate::testing::assertions::Recorded;
 use std::collections::BTreeSet;
+
+/// The prefix that disables a TcUnit test.
+const DISABLED: &str = "DISABLED_";
 
 /// One test of a suite.
 #[derive(Debug, Default)]
@@ -25,6 +29,8 @@ pub(crate) struct Test {
     declared_in: Option<u64>,
     /// Declared twice in one cycle.
     pub(crate) duplicate: bool,
+    /// Disabled by its name (`DISABLED_`): never run, as TcUnit skips it.
+    pub(crate) skipped: bool,
     /// Lines logged while it was the current test.
     pub(crate) output: Vec<String>,
 }
@@ -36,12 +42,16 @@ pub(crate) struct Suite {
     pub(crate) tests: Vec<Test>,
     /// It has been called at least once.
     pub(crate) ran: bool,
+    /// TcUnit's count of its value assertions (`AssertResults`).
+    asserts: AssertCounts,
+    /// TcUnit's count of its array assertions (`AssertArrayResults`).
+    array_asserts: AssertCounts,
 }
 
 impl Suite {
-    /// Every test it declared is finished (after it ran once).
+    /// Every test it declared is finished or disabled (after it ran once).
     pub(crate) fn finished(&self) -> bool {
-        self.ran && self.tests.iter().all(|t| t.finished.is_some())
+        self.ran && self.tests.iter().all(|t| t.finished.is_some() || t.skipped)
     }
 }
 
@@ -61,6 +71,9 @@ pub(crate) struct State {
     current_test: Option<usize>,
     /// Lines logged outside any test.
     pub(crate) output: Vec<String>,
+    /// The position of the array assertion whose element comparisons are
+    /// running: they are parts of it, not value assertions of their own.
+    array_call: Option<i64>,
 }
 
 impl State {
@@ -106,10 +119,18 @@ impl State {
 
     /// `TEST(name)` or `TEST_ORDERED(name)`: declares the test (once) and
     /// makes it the current one; returns whether its assertions count now.
+    /// As TcUnit, the name is taken without its surrounding blanks, and a
+    /// name starting with `DISABLED_` (any case) declares that test
+    /// without the prefix, skipped: its assertions never count.
     pub(crate) fn declare(&mut self, name: &str, ordered: bool) -> bool {
         let cycle = self.cycle;
         let Some(suite) = self.current_suite.map(|k| &mut self.suites[k]) else {
             return false;
+        };
+        let name = name.trim();
+        let (name, disabled) = match name.get(..DISABLED.len()) {
+            Some(p) if p.eq_ignore_ascii_case(DISABLED) => (&name[DISABLED.len()..], true),
+            _ => (name, false),
         };
         let at = match suite.tests.iter().position(|t| t.name == name) {
             Some(i) => i,
@@ -117,11 +138,16 @@ impl State {
                 suite.tests.push(Test {
                     name: name.to_string(),
                     ordered,
+                    skipped: disabled,
                     ..Test::default()
                 });
                 suite.tests.len() - 1
             }
         };
+        if suite.tests[at].skipped {
+            self.current_test = None;
+            return false;
+        }
         let earlier_done = suite.tests[..at]
             .iter()
             .filter(|t| t.ordered)
@@ -165,6 +191,17 @@ impl State {
         true
     }
 
+    /// `IS_TEST_FINISHED(name)`: whether the test `name` of the running
+    /// suite has finished (FALSE for a test it never declared).
+    pub(crate) fn is_finished(&self, name: &str) -> bool {
+        self.current_suite.is_some_and(|k| {
+            self.suites[k]
+                .tests
+                .iter()
+                .any(|t| t.name == name && t.finished.is_some())
+        })
+    }
+
     /// An assertion ran (`failure` when it did not hold): counted for the
     /// current test, its failure kept once per assertion call; ignored
     /// outside a running test (after `TEST_FINISHED`, before an ordered
@@ -181,6 +218,58 @@ impl State {
         {
             test.failures.push((r, cycle));
         }
+    }
+
+    /// TcUnit's count of the running test's assertions: a value
+    /// assertion at `loc` of values `expected`, `actual` (named with the
+    /// assertion's type) and `message`; the element comparisons of the
+    /// array assertion at `loc` are not counted here.
+    pub(crate) fn count_value(&mut self, loc: i64, values: (String, String), message: &str) {
+        if self.array_call == Some(loc) {
+            return;
+        }
+        self.array_call = None;
+        self.count(false, (values.0, values.1, message.to_string()));
+    }
+
+    /// TcUnit's count of the running test's array assertions: the one at
+    /// `loc` over arrays described by `shape` (their sizes and types).
+    pub(crate) fn count_array(&mut self, loc: i64, shape: (String, String), message: &str) {
+        self.array_call = Some(loc);
+        self.count(true, (shape.0, shape.1, message.to_string()));
+    }
+
+    fn count(&mut self, arrays: bool, (e, a, m): (String, String, String)) {
+        let cycle = self.cycle;
+        let (Some(k), Some(t)) = (self.current_suite, self.current_test) else {
+            return;
+        };
+        let key: Key = (e, a, m, self.suites[k].tests[t].name.clone());
+        let suite = &mut self.suites[k];
+        let counts = if arrays {
+            &mut suite.array_asserts
+        } else {
+            &mut suite.asserts
+        };
+        if counts.report(key, cycle) {
+            suite.tests[t].output.push(
+                "Max number of assertions exceeded. Check parameter MaxNumberOfAssertsForEachTestSuite."
+                    .to_string(),
+            );
+        }
+    }
+
+    /// `AssertResults.TotalAsserts` (or, with `arrays`,
+    /// `AssertArrayResults.TotalArrayAsserts`) of the running suite.
+    pub(crate) fn total_asserts(&self, arrays: bool) -> usize {
+        self.current_suite.map_or(0, |k| {
+            let s = &self.suites[k];
+            if arrays {
+                s.array_asserts.total()
+            } else {
+                s.asserts.total()
+            }
+        })
     }
 
     /// `TCUNIT_ADSLOGSTR`: a line for the current test, or for the run.
