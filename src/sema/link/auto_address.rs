@@ -107,32 +107,8 @@ impl Linker<'_> {
             let width = match (elem.and_then(width_of), declared) {
                 (Some(w), None) => w,
                 (Some(w), Some(d)) if w == d => w,
-                // TwinCAT and CODESYS compile such a variable: linked to
-                // no I/O, it is memory the program alone writes.
-                _ if self.model.checked_files.contains(&u.span.file) => {
-                    self.diags.warning(
-                        UNLINKED,
-                        u.span,
-                        format!(
-                            "`{}` (AT {}): a {} gets no address in the process image; it stays an ordinary variable, which no I/O writes",
-                            u.name,
-                            u.declared,
-                            self.types.name(u.ty)
-                        ),
-                    );
-                    continue;
-                }
                 _ => {
-                    self.diags.error(
-                        NOT_PLACEABLE,
-                        u.span,
-                        format!(
-                            "`{}` (AT {}): no VAR_CONFIG gives it an address, and a {} cannot get one automatically",
-                            u.name,
-                            u.declared,
-                            self.types.name(u.ty)
-                        ),
-                    );
+                    self.unplaceable(&u);
                     continue;
                 }
             };
@@ -149,6 +125,29 @@ impl Linker<'_> {
             });
         }
         placed
+    }
+}
+
+impl Linker<'_> {
+    /// `u` can get no address (a STRING, or a type that does not fit the
+    /// size written): E710; in a TwinCAT / CODESYS V3 file, which compile
+    /// it as memory the program alone writes when no I/O is linked, W710.
+    fn unplaceable(&mut self, u: &Unplaced) {
+        let ty = self.types.name(u.ty).to_string();
+        let head = format!("`{}` (AT {})", u.name, u.declared);
+        if self.model.checked_files.contains(&u.span.file) {
+            self.diags.warning(
+                UNLINKED,
+                u.span,
+                format!("{head}: a {ty} gets no address in the process image; it stays an ordinary variable, which no I/O writes"),
+            );
+        } else {
+            self.diags.error(
+                NOT_PLACEABLE,
+                u.span,
+                format!("{head}: no VAR_CONFIG gives it an address, and a {ty} cannot get one automatically"),
+            );
+        }
     }
 }
 
