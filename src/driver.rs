@@ -105,7 +105,6 @@ pub fn load_files_with<P: AsRef<Path>>(
         };
         let library = is_project && shadowing.seen_project;
         shadowing.seen_project |= is_project;
-        let first = sources.files().len();
         for file in &files {
             let bytes = std::fs::read(file).map_err(load_error(file))?;
             if !shadowing.keeps(&bytes, library) {
@@ -119,11 +118,7 @@ pub fn load_files_with<P: AsRef<Path>>(
                 diags,
             );
         }
-        let unpinned = match descriptions.primary {
-            Some(_) => UnpinnedUse::of(&sources, first, &shadowing.declared),
-            None => UnpinnedUse::default(),
-        };
-        for (name, text) in description_sources(&descriptions, &unpinned, &mut events)? {
+        for (name, text) in description_sources(&descriptions, &mut events)? {
             sources.add(name, text);
         }
     }
@@ -166,49 +161,7 @@ impl LibraryShadowing {
 /// the project pins nothing and describes no event class.
 pub fn type_description_sources(path: &Path) -> Result<Vec<(String, String)>, LoadError> {
     let project = project::project_files(path).map_err(load_error(path))?;
-    description_sources(
-        &project.descriptions,
-        &UnpinnedUse::default(),
-        &mut HashSet::new(),
-    )
-}
-
-/// What a project's sources name that none of them declares: the types of
-/// the type system it uses without pinning them are taken too
-/// (`type_description::used_types`), unless plcrun's TwinCAT library has
-/// them (its own versions are the ones the rest of it works with).
-#[derive(Default)]
-struct UnpinnedUse {
-    /// Identifiers of the project's sources (upper case).
-    used: HashSet<String>,
-    /// The objects (POUs, types, lists) the sources loaded so far declare
-    /// (upper case).
-    declared: HashSet<String>,
-}
-
-impl UnpinnedUse {
-    /// The names used by the sources of `sources` from file `first` on,
-    /// with the objects `declared` so far.
-    fn of(sources: &SourceMap, first: usize, declared: &HashSet<String>) -> UnpinnedUse {
-        let mut used = HashSet::new();
-        for f in &sources.files()[first..] {
-            twincat_library::identifiers(&f.text, &mut used);
-        }
-        UnpinnedUse {
-            used,
-            declared: declared.clone(),
-        }
-    }
-
-    /// The types of description `text` to take besides the pinned ones.
-    fn types(&self, text: &str) -> Vec<String> {
-        if self.used.is_empty() {
-            return Vec::new();
-        }
-        type_description::used_types(text, &self.used, |name| {
-            self.declared.contains(name) || twincat_library::provides(name)
-        })
-    }
+    description_sources(&project.descriptions, &mut HashSet::new())
 }
 
 /// The narrowed sources of `descriptions`: the primary one keeps the
@@ -218,21 +171,18 @@ impl UnpinnedUse {
 /// are pinned from it, for the reader to report.
 fn description_sources(
     descriptions: &project::TypeDescriptions,
-    unpinned: &UnpinnedUse,
     events: &mut HashSet<String>,
 ) -> Result<Vec<(String, String)>, LoadError> {
-    let primary = descriptions.primary.iter().map(|p| (p, true));
-    let others = descriptions.others.iter().map(|p| (p, false));
+    let primary = descriptions
+        .primary
+        .iter()
+        .map(|p| (p, &descriptions.pinned[..]));
+    let others = descriptions.others.iter().map(|p| (p, &[][..]));
     let mut out = Vec::new();
-    for (path, is_primary) in primary.chain(others) {
+    for (path, pinned) in primary.chain(others) {
         let bytes = std::fs::read(path).map_err(load_error(path))?;
         let text = String::from_utf8_lossy(&bytes);
-        let mut pinned: Vec<String> = Vec::new();
-        if is_primary {
-            pinned.extend(descriptions.pinned.iter().cloned());
-            pinned.extend(unpinned.types(&text));
-        }
-        let kept = match type_description::narrowed(&text, &pinned, events) {
+        let kept = match type_description::narrowed(&text, pinned, events) {
             Some((_, 0)) => continue,
             Some((narrowed, _)) => narrowed,
             None if pinned.is_empty() => continue,

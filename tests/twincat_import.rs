@@ -578,30 +578,6 @@ const PINNING_PROJECT: &str = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Proj
 /// one), an enumeration, and a type the project does not pin.
 const TYPE_SYSTEM: &str = "<?xml version=\"1.0\"?>\n<TcSmProject>\n\t<DataTypes>\n\t\t<DataType>\n\t\t\t<Name GUID=\"{B}\">ST_Io</Name>\n\t\t\t<SubItem><Name>fWidth</Name><Type>REAL</Type><Default><Value>2.5</Value></Default></SubItem>\n\t\t\t<SubItem><Name>aRaw</Name><Type>BYTE</Type><ArrayInfo><LBound>1</LBound><Elements>2</Elements></ArrayInfo></SubItem>\n\t\t\t<Hides><Hide GUID=\"{A}\"/></Hides>\n\t\t</DataType>\n\t\t<DataType>\n\t\t\t<Name GUID=\"{A}\">ST_Io</Name>\n\t\t\t<SubItem><Name>nOld</Name><Type>INT</Type></SubItem>\n\t\t</DataType>\n\t\t<DataType><Name>ST_Other</Name><SubItem><Name>x</Name><Type>NOPE</Type></SubItem></DataType>\n\t</DataTypes>\n</TcSmProject>\n";
 
-/// A type of the type system the project uses without pinning it, as
-/// lcls-twincat-general's logger uses `ST_LoggingEventInfo`: taken, with
-/// the types it names itself (`E_Kind`); an unused one (`ST_Other`, whose
-/// field type exists nowhere) is not.
-#[test]
-fn a_type_system_type_used_without_pinning_is_taken_with_what_it_names() {
-    let project = PINNING_PROJECT.replace("    <PinnedGlobalDataType Include=\"ST_Io\" />\n", "");
-    let system = "<?xml version=\"1.0\"?>\n<TcSmProject>\n<DataTypes>\n<DataType><Name>E_Kind</Name><BaseType>INT</BaseType><EnumInfo><Text>Alarm</Text><Enum>0</Enum></EnumInfo><EnumInfo><Text>Message</Text><Enum>3</Enum></EnumInfo></DataType>\n<DataType><Name>ST_Log</Name><SubItem><Name>kind</Name><Type>E_Kind</Type></SubItem><SubItem><Name>id</Name><Type>UDINT</Type></SubItem></DataType>\n<DataType><Name>ST_Other</Name><SubItem><Name>x</Name><Type>NOPE</Type></SubItem></DataType>\n</DataTypes>\n</TcSmProject>\n";
-    let main = pou(
-        "MAIN",
-        "PROGRAM MAIN\nVAR\n    log : ST_Log;\n    n : INT;\nEND_VAR\n",
-        "log.kind := E_Kind.Message;\nn := log.kind;\n",
-        "",
-    );
-    let dir = temp_project(&[
-        ("Plc/Plc.plcproj", &project),
-        ("Plc/MAIN.TcPOU", &main),
-        ("Solution.tsproj", system),
-    ]);
-    let plc = format!("{dir}/Plc/Plc.plcproj");
-    let out = plcrun_ok(&[&plc, "--cycles", "1", "--trace", "MAIN.n"]);
-    assert_eq!(out, "cycle,time,MAIN.n\n0,T#0s,3\n");
-}
-
 #[test]
 fn types_pinned_from_the_type_system_are_read_from_the_tmc_or_the_tsproj() {
     let main = pou(

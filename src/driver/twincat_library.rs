@@ -80,7 +80,7 @@ fn declared(sources: &SourceMap) -> HashSet<String> {
 
 /// The identifiers of `text`, upper case: every `[A-Za-z_][A-Za-z0-9_]*`
 /// run (in comments and XML markup too, which only adds names).
-pub(crate) fn identifiers(text: &str, into: &mut HashSet<String>) {
+fn identifiers(text: &str, into: &mut HashSet<String>) {
     let bytes = text.as_bytes();
     let mut i = 0;
     while i < bytes.len() {
@@ -177,11 +177,6 @@ fn catalogue() -> &'static [LibraryItem] {
             })
             .collect()
     })
-}
-
-/// True when an item of the library declares `name` (upper case).
-pub(crate) fn provides(name: &str) -> bool {
-    catalogue().iter().any(|i| i.declares.contains(name))
 }
 
 /// Adds the library to `sources` when one of them is a TwinCAT file and

@@ -68,50 +68,6 @@ pub fn library_names(text: &str) -> &'static [&'static str] {
     }
 }
 
-/// The types of the type system in `text` that a project uses without
-/// pinning them: those named in `used` (upper case) that `skip` does not
-/// refuse, and the types these name in their own description (a field's
-/// type, a base type), and so on. TwinCAT resolves such a name from the
-/// solution's type system (lcls-twincat-general's logger names
-/// `ST_LoggingEventInfo`, which its project does not pin). Event classes
-/// are not counted here (every event class is kept). Empty when `text` is
-/// not well-formed XML.
-pub fn used_types(text: &str, used: &HashSet<String>, skip: impl Fn(&str) -> bool) -> Vec<String> {
-    let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
-    let Ok(doc) = crate::syntax::plcopen::read_xml(&text[base..]) else {
-        return Vec::new();
-    };
-    // Each type's name (upper case) and the names its description mentions.
-    let types: Vec<(String, HashSet<String>)> = data_types(&doc)
-        .filter(|n| !is_event_class(*n))
-        .filter_map(|n| {
-            let name = type_name(n)?.to_ascii_uppercase();
-            let mentions = n
-                .descendants()
-                .filter(|d| matches!(d.tag_name().name(), "Type" | "BaseType" | "ExtendsType"))
-                .filter_map(|d| d.text())
-                .map(|t| t.trim().to_ascii_uppercase())
-                .collect();
-            Some((name, mentions))
-        })
-        .collect();
-    let mut chosen: Vec<String> = Vec::new();
-    let mut wanted: HashSet<String> = used.clone();
-    loop {
-        let mut grew = false;
-        for (name, mentions) in &types {
-            if wanted.contains(name) && !chosen.contains(name) && !skip(name) {
-                chosen.push(name.clone());
-                wanted.extend(mentions.iter().cloned());
-                grew = true;
-            }
-        }
-        if !grew {
-            return chosen;
-        }
-    }
-}
-
 /// `text` with every `<DataType>` blanked out (spaces, line breaks kept)
 /// except the current version of each type named in `names` (compared
 /// ignoring case) and of each event class not in `events` (upper case;
