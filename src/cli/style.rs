@@ -205,7 +205,8 @@ fn paint_messages(text: &str, on: bool) -> Cow<'_, str> {
 }
 
 /// Paints a report for standard output: a test's `PASS` green, `FAIL` and
-/// `ERROR` red; a comparison's verdict `EQUIVALENT` green, `DIFFERENT` red.
+/// `ERROR` red, `SKIP` yellow; a comparison's verdict `EQUIVALENT` green,
+/// `DIFFERENT` red.
 pub fn report(text: &str) -> Cow<'_, str> {
     paint_report(text, STDOUT_COLOR.load(Ordering::Relaxed))
 }
@@ -214,10 +215,11 @@ fn paint_report(text: &str, on: bool) -> Cow<'_, str> {
     if !on {
         return Cow::Borrowed(text);
     }
-    const WORDS: [(&str, &str); 5] = [
+    const WORDS: [(&str, &str); 6] = [
         ("PASS", BOLD_GREEN),
         ("FAIL", BOLD_RED),
         ("ERROR", BOLD_RED),
+        ("SKIP", BOLD_YELLOW),
         ("EQUIVALENT", BOLD_GREEN),
         ("DIFFERENT", BOLD_RED),
     ];
