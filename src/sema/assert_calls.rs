@@ -197,8 +197,8 @@ impl BodyBuilder<'_> {
                     return Some(v);
                 }
                 // TcUnit's AssertEquals(ANY, ANY) takes two types (plcrun's
-                // own tests keep E480): its runner's hosts are declared.
-                let tcunit = self.model.pou_index.contains_key(TCUNIT_ARRAY_ASSERT);
+                // own tests keep E480).
+                let tcunit = self.in_tcunit_run();
                 if let Some((x, y)) = self.differing_elementary(&e, &a).filter(|_| tcunit) {
                     return Some(self.differing_types((x, y), message, loc, span, want));
                 }
@@ -379,6 +379,12 @@ impl BodyBuilder<'_> {
                 None
             }
         }
+    }
+
+    /// True under a TcUnit run: its runner declares the hosts TcUnit's
+    /// assertions report to.
+    pub(super) fn in_tcunit_run(&self) -> bool {
+        self.model.pou_index.contains_key(TCUNIT_ARRAY_ASSERT)
     }
 
     /// The two elementary types of `e` and `a` when they differ (both

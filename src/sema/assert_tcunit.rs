@@ -53,7 +53,7 @@ impl BodyBuilder<'_> {
         loc: &Expr,
         span: Span,
     ) {
-        if !self.model.pou_index.contains_key(TCUNIT_ARRAY_ASSERT) {
+        if !self.in_tcunit_run() {
             return;
         }
         let shape = |n: &[i64]| format!("{} x{}", elem.name(), n.iter().product::<i64>());

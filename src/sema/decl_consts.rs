@@ -117,16 +117,7 @@ impl DeclConsts<'_> {
                 || self.model.pou_index.contains_key(qk)
                 || self.model.type_ids.contains_key(qk)
         };
-        let qualified = match &base.kind {
-            ExprKind::Name(q) => !visible(&q.key()),
-            // `Library.GVL.x` (`TcUnit.GVL_Param_TcUnit.MaxNumberOf...`):
-            // the library's namespace before the list, both naming nothing.
-            ExprKind::Member(library, list) => {
-                matches!(&library.kind, ExprKind::Name(l) if !visible(&l.key()))
-                    && !visible(&list.key())
-            }
-            _ => false,
-        };
+        let qualified = super::place::names_a_list(base, |key| !visible(key));
         (qualified && self.model.globals.contains_key(&name.key())).then(|| Expr {
             kind: ExprKind::Name(name.clone()),
             span: e.span,

@@ -30,6 +30,20 @@ struct ElemShape {
     one_dim: bool,
 }
 
+/// True when `base` is the qualifier of a global named with its list,
+/// `GVL` in `GVL.x`, or with its library and list, `Library.GVL` in
+/// `Library.GVL.x` (`lcls_twincat_math.GVL_Constants.PI`): names for which
+/// `unbound` is true (they name nothing in scope).
+pub(super) fn names_a_list(base: &Expr, unbound: impl Fn(&str) -> bool) -> bool {
+    match &base.kind {
+        ExprKind::Name(q) => unbound(&q.key()),
+        ExprKind::Member(library, list) => {
+            matches!(&library.kind, ExprKind::Name(l) if unbound(&l.key())) && unbound(&list.key())
+        }
+        _ => false,
+    }
+}
+
 impl BodyBuilder<'_> {
     /// True for `Q.x` where `Q` names nothing visible (no variable, POU or
     /// type) and `x` is a global variable: CODESYS and TwinCAT name a
@@ -37,16 +51,8 @@ impl BodyBuilder<'_> {
     /// `GVL_Constants.PI`). plcrun has one namespace for globals, so the
     /// qualifier itself is not checked.
     pub(super) fn is_list_qualifier(&self, base: &Expr, name: &Ident) -> bool {
-        let qualifier = match &base.kind {
-            // `Library.GVL.x`: the library's namespace before the list
-            // (`lcls_twincat_math.GVL_Constants.PI`), two names that name
-            // nothing here.
-            ExprKind::Member(library, list) => {
-                self.unbound_name(library).is_some() && self.unbound_key(&list.key())
-            }
-            _ => self.unbound_name(base).is_some(),
-        };
-        qualifier && self.model.globals.contains_key(&name.key())
+        names_a_list(base, |key| self.unbound_key(key))
+            && self.model.globals.contains_key(&name.key())
     }
 
     /// True when `base` is a bare name that is no variable, POU, type or

@@ -63,9 +63,10 @@ impl Log {
                 io.get("Actual")?.to_literal(),
             );
             let message = io.get_str("Message")?;
-            let mut state = state.lock().unwrap_or_else(|p| p.into_inner());
-            state.count_value(loc, values, &message);
-            state.assertion(loc, None);
+            state
+                .lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .assertion_call(loc, values, &message, None);
         }
         Ok(())
     }
@@ -74,9 +75,11 @@ impl Log {
         if let Some(state) = &self.suites {
             let loc = r.loc;
             let values = (format!("{host}:{}", r.expected), r.actual.clone());
-            let mut state = state.lock().unwrap_or_else(|p| p.into_inner());
-            state.count_value(loc, values, &r.message);
-            state.assertion(loc, Some(r));
+            let message = r.message.clone();
+            state
+                .lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .assertion_call(loc, values, &message, Some(r));
             return;
         }
         let mut list = self.failures.lock().unwrap_or_else(|p| p.into_inner());

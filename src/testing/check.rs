@@ -23,6 +23,8 @@ pub(super) fn check(
     } else {
         tcunit::register(&mut hosts, &Default::default())?;
     }
+    // The user's files come first; what plcrun adds follows them.
+    let given = sources.files().len();
     let with_base;
     let sources = if suites.add_base {
         with_base = tcunit::sources_for(sources, suites, false);
@@ -36,7 +38,6 @@ pub(super) fn check(
         hosts,
         ..Options::default()
     };
-    let given = sources_given(sources, suites);
     let mut diags = Diagnostics::new();
     // The warnings of what plcrun adds (its TcUnit stand-in) are not the
     // user's, and point into files the user's source map does not hold.
@@ -46,17 +47,6 @@ pub(super) fn check(
         }
     }
     Ok(diags)
-}
-
-/// How many of `sources`' files are the user's (those before the ones
-/// the TcUnit plan adds).
-fn sources_given(sources: &SourceMap, suites: &Plan) -> usize {
-    let added = if suites.add_base {
-        tcunit::ADDED_SOURCES
-    } else {
-        0
-    };
-    sources.files().len() - added
 }
 
 /// The warnings of `diags` that point into `sources` (not into the

@@ -41,7 +41,7 @@ pub(crate) struct AssertCounts {
     /// The cycle of the last call.
     cycle: Option<u64>,
     /// The count reached its limit (reported once).
-    pub(crate) overflowed: bool,
+    overflowed: bool,
 }
 
 impl AssertCounts {
@@ -60,9 +60,10 @@ impl AssertCounts {
             }
             self.cycle = Some(cycle);
         }
-        // TcUnit looks among its first `total` slots.
-        let searched = self.total.min(self.instances.len());
-        let found = self.instances[..searched]
+        // TcUnit looks among its first `total` slots, which hold every
+        // instance: each is made after `total` grew, or once it is full.
+        let found = self
+            .instances
             .iter_mut()
             .find(|i| i.key.as_ref() == Some(&key));
         match found {

@@ -56,10 +56,6 @@ pub(crate) struct Plan {
     pub(crate) add_base: bool,
 }
 
-/// How many files [`sources_for`] adds when the sources declare no
-/// `FB_TestSuite` (before the generated driver program).
-pub(crate) const ADDED_SOURCES: usize = 2;
-
 /// plcrun's `FB_TestSuite`: what suites read of TcUnit's own, the counts
 /// of their assertions (`AssertResults.TotalAsserts`,
 /// `AssertArrayResults.TotalArrayAsserts`; tcunit::assert_counts).
@@ -225,7 +221,6 @@ pub(crate) fn plan(sources: &SourceMap, diags: &mut Diagnostics) -> Plan {
 pub(crate) fn sources_for(sources: &SourceMap, plan: &Plan, driver: bool) -> SourceMap {
     let mut sources = sources.clone();
     if plan.add_base {
-        // ADDED_SOURCES files.
         sources.add("<TcUnit>", base_block());
         sources.add("<TcUnit parameters>", PARAMETERS);
     }

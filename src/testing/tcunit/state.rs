@@ -220,11 +220,25 @@ impl State {
         }
     }
 
+    /// An assertion call at `loc` of the running test, of `values`
+    /// (expected, named with the assertion's type, and actual) and
+    /// `message`: TcUnit's count of it, then [`Self::assertion`].
+    pub(crate) fn assertion_call(
+        &mut self,
+        loc: i64,
+        values: (String, String),
+        message: &str,
+        failure: Option<Recorded>,
+    ) {
+        self.count_value(loc, values, message);
+        self.assertion(loc, failure);
+    }
+
     /// TcUnit's count of the running test's assertions: a value
     /// assertion at `loc` of values `expected`, `actual` (named with the
     /// assertion's type) and `message`; the element comparisons of the
     /// array assertion at `loc` are not counted here.
-    pub(crate) fn count_value(&mut self, loc: i64, values: (String, String), message: &str) {
+    fn count_value(&mut self, loc: i64, values: (String, String), message: &str) {
         if self.array_call == Some(loc) {
             return;
         }
