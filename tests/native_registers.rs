@@ -151,3 +151,35 @@ fn loops_hold_their_variables_and_poll_where_the_interpreter_polls() {
          END_PROGRAM";
     assert_eq!(agree(source, 25), None);
 }
+
+#[test]
+fn proved_element_accesses_take_the_checked_path_around_held_slots() {
+    // Loops whose index the compiler proves in range: the fast check
+    // passes for arrays from 0 or 1, and for an array from 10 or -3 the
+    // element-0 position lies on other (held) variables, so some
+    // accesses go through the full checks on the cold path. Held
+    // scalars change in the same loops.
+    let source = "PROGRAM P
+         VAR
+           a, b, c : DINT;
+           lo10 : ARRAY[10..19] OF DINT;
+           one : ARRAY[1..8] OF REAL;
+           neg : ARRAY[-3..3] OF DINT;
+           zero : ARRAY[0..4] OF LREAL;
+           i : DINT; s : DINT; r : REAL; l : LREAL;
+         END_VAR
+           FOR i := 10 TO 19 DO
+             lo10[i] := lo10[i] + i + a; a := a + 1; b := b + lo10[i];
+           END_FOR;
+           FOR i := 1 TO 8 DO
+             one[i] := one[i] * 0.5 + r; r := r + 0.25; c := c + 1;
+           END_FOR;
+           FOR i := -3 TO 3 DO
+             neg[i] := neg[i] - i * s + 1; s := s + neg[i] MOD 7;
+           END_FOR;
+           FOR i := 0 TO 4 DO
+             zero[i] := zero[i] + l; l := l + zero[i] * 0.125 + 1.0;
+           END_FOR;
+         END_PROGRAM";
+    assert_eq!(agree(source, 30), None);
+}

@@ -3,6 +3,7 @@
 //! and an address computed at run time against memory, as the
 //! interpreter checks them, with the same faults.
 
+use super::proved::Access;
 use super::{I64, Lower};
 use crate::ir::op::{ArrayIdx, Op, Slot, wrap_s};
 use crate::vm::native::helpers::{WHY_BAD_ADDRESS, WHY_OPERANDS};
@@ -116,32 +117,8 @@ impl Lower<'_, '_> {
                 let v = self.b.ins().iadd(v, i);
                 self.set(acc, v);
             }
-            Op::LoadElemU { d, idx, bias } | Op::StoreElemU { idx, s: d, bias } => {
-                // Proved in range by the compiler; staying inside the frame
-                // is still checked, as the interpreter checks it.
-                let x = self.get(idx);
-                let at = self.b.ins().iadd_imm_s(x, bias as i64);
-                let frame = self.img.codes[self.code.index()].frame_size as i64;
-                let out = self
-                    .b
-                    .ins()
-                    .icmp_imm_s(IntCC::UnsignedGreaterThanOrEqual, at, frame);
-                self.fault_if(out, WHY_BAD_ADDRESS);
-                let bytes = self.b.ins().ishl_imm_s(at, 3);
-                let fp = self.fp();
-                let addr = self.b.ins().iadd(fp, bytes);
-                if matches!(op, Op::LoadElemU { .. }) {
-                    let v =
-                        self.guarded(at, 1, false, |l| Some(l.b.ins().load(I64, flags, addr, 0)));
-                    self.set(d, v.expect("a loaded value"));
-                } else {
-                    let v = self.get(d);
-                    self.guarded(at, 1, true, |l| {
-                        l.b.ins().store(flags, v, addr, 0);
-                        None
-                    });
-                }
-            }
+            Op::LoadElemU { d, idx, bias } => self.proved_element(idx, bias, Access::Load(d)),
+            Op::StoreElemU { idx, s, bias } => self.proved_element(idx, bias, Access::Store(s)),
             Op::FillElems {
                 i,
                 v,

@@ -18,6 +18,7 @@ mod float;
 mod flow;
 mod int;
 mod memory;
+mod proved;
 
 use super::ctx::{Ctx, EntryFn};
 use super::helpers::{self, WHY_BAD_ADDRESS};
