@@ -261,3 +261,107 @@ fn f_raiseexception_takes_one_code_and_returns_nothing() {
     let value = program("", "b : BOOL;", "b := F_RaiseException(1);");
     assert_eq!(error_codes(&[("t.st", &value)])[0].0, "E415");
 }
+
+#[test]
+fn return_exit_and_continue_leaving_a_try_run_its_finally_first() {
+    // RETURN from the guarded statements and from the catch; EXIT and
+    // CONTINUE of a loop around the try; EXIT of a loop inside the try
+    // (which leaves no try: no finally there).
+    let src = program(
+        "FUNCTION_BLOCK Early
+        VAR_INPUT fail : BOOL; END_VAR
+        VAR_OUTPUT finals, tail : INT; END_VAR
+        VAR exc : __SYSTEM.ExceptionCode; z : INT; k : INT; END_VAR
+        __TRY
+            IF fail THEN k := 1 / z; END_IF;
+            FOR k := 1 TO 3 DO
+                IF k = 2 THEN EXIT; END_IF;
+            END_FOR;
+            RETURN;
+        __CATCH(exc)
+            RETURN;
+        __FINALLY
+            finals := finals + 1;
+        __ENDTRY
+        tail := tail + 1;
+        END_FUNCTION_BLOCK",
+        "e : Early; n, loop_finals, body_runs : INT; exc : __SYSTEM.ExceptionCode;",
+        "e(fail := FALSE);
+        e(fail := TRUE);
+        FOR n := 1 TO 4 DO
+            __TRY
+                body_runs := body_runs + 1;
+                IF n = 2 THEN CONTINUE; END_IF;
+                IF n = 3 THEN EXIT; END_IF;
+            __CATCH(exc)
+                ;
+            __FINALLY
+                loop_finals := loop_finals + 1;
+            __ENDTRY
+        END_FOR;",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "e.finals"), "2");
+    assert_eq!(lit(&plc, "e.tail"), "0");
+    // n = 1 ends normally, 2 continues, 3 exits: three finally runs.
+    assert_eq!(lit(&plc, "body_runs"), "3");
+    assert_eq!(lit(&plc, "loop_finals"), "3");
+}
+
+#[test]
+fn nested_finally_parts_run_innermost_first_and_a_fault_in_one_goes_outward() {
+    let src = program(
+        "",
+        "inner, outer : __SYSTEM.ExceptionCode; order : DINT; d : INT; x : INT;
+         caught_outer : INT;",
+        "__TRY
+            __TRY
+                IF order = 0 THEN
+                    order := 1;
+                    RETURN;
+                END_IF;
+            __CATCH(inner)
+                order := -1;
+            __FINALLY
+                order := order * 10 + 2;
+                x := 1 / d;
+            __ENDTRY
+        __CATCH(outer)
+            caught_outer := caught_outer + 1;
+        __FINALLY
+            order := order * 10 + 3;
+        __ENDTRY",
+    );
+    let mut plc = compile(&src);
+    let inner_before = lit(&plc, "inner");
+    run(&mut plc, 1);
+    // The inner finally ran (1 -> 12), faulted in its division: not the
+    // inner try's to catch, the outer one's; then the outer finally
+    // (12 -> 123), and the RETURN's jump was never reached.
+    assert_eq!(lit(&plc, "caught_outer"), "1");
+    assert_eq!(lit(&plc, "outer"), "RTSEXCPT_DIVIDEBYZERO");
+    assert_eq!(lit(&plc, "inner"), inner_before);
+    assert_eq!(lit(&plc, "order"), "123");
+}
+
+#[test]
+fn an_error_in_a_finally_part_is_reported_once_however_often_it_is_copied() {
+    let src = program(
+        "",
+        "exc : __SYSTEM.ExceptionCode; n : INT;",
+        "FOR n := 1 TO 3 DO
+            __TRY
+                IF n = 1 THEN CONTINUE; END_IF;
+                IF n = 2 THEN EXIT; END_IF;
+                RETURN;
+            __CATCH(exc)
+                RETURN;
+            __FINALLY
+                n := undeclared_thing;
+            __ENDTRY
+        END_FOR;",
+    );
+    let codes = error_codes(&[("p.st", &src)]);
+    assert_eq!(codes.len(), 1, "{codes:?}");
+}

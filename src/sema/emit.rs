@@ -121,6 +121,21 @@ pub struct LoopCtx {
     pub continues: Vec<usize>,
 }
 
+/// A `__FINALLY` part the statements being emitted are inside (in the
+/// guarded or the `__CATCH` statements of its `__TRY`): RETURN, and EXIT
+/// or CONTINUE of a loop around the `__TRY`, run a copy of it first.
+#[derive(Debug, Clone)]
+pub struct PendingFinally {
+    /// The `__FINALLY` statements.
+    pub stmts: Vec<crate::syntax::ast::Stmt>,
+    /// How many loops enclosed the `__TRY`.
+    pub loops: usize,
+    /// Instructions of copies of `__FINALLY` parts (this one's or an
+    /// enclosing one's) emitted inside the guarded statements: a fault
+    /// there is not this `__TRY`'s to catch.
+    pub holes: Vec<(u32, u32)>,
+}
+
 /// Emission state of one code block (a POU body or one of its SFC blocks),
 /// owned by the body builder while the block is emitted.
 #[derive(Debug, Clone)]
@@ -143,6 +158,9 @@ pub struct Fcx {
     pub loops: Vec<LoopCtx>,
     /// Jumps to the end of the body (RETURN).
     pub returns: Vec<usize>,
+    /// The `__FINALLY` parts around the statements being emitted,
+    /// outermost first.
+    pub finally: Vec<PendingFinally>,
     /// Index of the last instruction whose destination may be retargeted.
     pub last_def: Option<(usize, Slot)>,
     /// Instructions whose address operand is relative to a called
@@ -198,6 +216,7 @@ impl Fcx {
             temp_max: temp_base,
             loops: Vec::new(),
             returns: Vec::new(),
+            finally: Vec::new(),
             last_def: None,
             fixups: Vec::new(),
             consts: IndexSet::new(),

@@ -157,6 +157,9 @@ impl BodyBuilder<'_> {
             StmtKind::Exit => self.loop_jump(true, s.span),
             StmtKind::Continue => self.loop_jump(false, s.span),
             StmtKind::Return => {
+                if !self.block.finally.is_empty() {
+                    self.run_finally_parts(None);
+                }
                 let j = self.block.emit(Op::Jmp {
                     t: Target::UNPATCHED,
                 });
@@ -177,6 +180,9 @@ impl BodyBuilder<'_> {
                 format!("{word} outside of a FOR, WHILE or REPEAT loop"),
             );
             return;
+        }
+        if !self.block.finally.is_empty() {
+            self.run_finally_parts(Some(self.block.loops.len()));
         }
         let j = self.block.emit(Op::Jmp {
             t: Target::UNPATCHED,

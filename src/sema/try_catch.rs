@@ -13,7 +13,7 @@
 //! fault happens, so guarded code is as fast as any other.
 
 use super::body::BodyBuilder;
-use super::emit::Place;
+use super::emit::{PendingFinally, Place};
 use crate::elementary::ElemType;
 use crate::ir::handler::Handler;
 use crate::ir::op::{Op, Target};
@@ -30,7 +30,9 @@ impl BodyBuilder<'_> {
         finally: Option<&[Stmt]>,
     ) {
         let start = self.block.here();
+        self.enter_finally(finally);
         self.stmts(body);
+        let holes = self.leave_finally(finally);
         let end = self.block.here();
         let to_finally = self.block.emit(Op::Jmp {
             t: Target::UNPATCHED,
@@ -38,17 +40,19 @@ impl BodyBuilder<'_> {
         let catch_at = self.block.here();
         if let Some((name, statements)) = catch {
             let exception = self.exception_slot(name);
+            self.enter_finally(finally);
             self.stmts(statements);
-            // An empty guarded part cannot fault: no entry for it.
-            if let Some(exception) = exception
-                && start.index() < end.index()
-            {
-                self.block.handlers.push(Handler {
-                    start: start.index() as u32,
-                    end: end.index() as u32,
-                    catch: catch_at.index() as u32,
-                    exception,
-                });
+            self.leave_finally(finally);
+            if let Some(exception) = exception {
+                let guarded = (start.index() as u32, end.index() as u32);
+                for (start, end) in without(guarded, holes) {
+                    self.block.handlers.push(Handler {
+                        start,
+                        end,
+                        catch: catch_at.index() as u32,
+                        exception,
+                    });
+                }
             }
         }
         let finally_at = self.block.here();
@@ -58,6 +62,60 @@ impl BodyBuilder<'_> {
         }
     }
 
+    /// From here on, leaving the statements early runs `finally` first.
+    fn enter_finally(&mut self, finally: Option<&[Stmt]>) {
+        if let Some(stmts) = finally {
+            self.block.finally.push(PendingFinally {
+                stmts: stmts.to_vec(),
+                loops: self.block.loops.len(),
+                holes: Vec::new(),
+            });
+        }
+    }
+
+    /// The end of what `enter_finally` began: the copies of `__FINALLY`
+    /// parts emitted meanwhile.
+    fn leave_finally(&mut self, finally: Option<&[Stmt]>) -> Vec<(u32, u32)> {
+        match finally {
+            Some(_) => self
+                .block
+                .finally
+                .pop()
+                .map(|p| p.holes)
+                .unwrap_or_default(),
+            None => Vec::new(),
+        }
+    }
+
+    /// Before a RETURN (`loop_exit` None) or an EXIT or CONTINUE of the
+    /// innermost loop (`Some(loops)`, the number of loops open): a copy of
+    /// each `__FINALLY` part being left, innermost first. A fault in a
+    /// copy goes to the `__TRY`s around that part's own `__TRY`, as one in
+    /// the part itself; a diagnostic in it was already reported once.
+    pub(super) fn run_finally_parts(&mut self, loop_exit: Option<usize>) {
+        let pending = std::mem::take(&mut self.block.finally);
+        let mut pending_after = pending.clone();
+        for i in (0..pending.len()).rev() {
+            if loop_exit.is_some_and(|loops| pending[i].loops < loops) {
+                break;
+            }
+            self.block.finally = pending[..i].to_vec();
+            let diags = self.diags.len();
+            let from = self.block.here().index() as u32;
+            self.stmts(&pending[i].stmts);
+            let to = self.block.here().index() as u32;
+            self.diags.truncate(diags);
+            for p in &mut pending_after[i..] {
+                p.holes.push((from, to));
+            }
+            for (k, p) in self.block.finally.iter().enumerate() {
+                pending_after[k]
+                    .holes
+                    .extend(p.holes.iter().skip(pending[k].holes.len()));
+            }
+        }
+        self.block.finally = pending_after;
+    }
     /// The frame slot of the `__CATCH` variable, or E413 when it is not a
     /// variable of the POU's own of a type that holds an exception code.
     fn exception_slot(&mut self, name: &Ident) -> Option<crate::ir::op::Slot> {
@@ -92,6 +150,24 @@ impl BodyBuilder<'_> {
             ),
         );
     }
+}
+
+/// The ranges of `range` outside every one of `holes` (which lie inside
+/// it), in order.
+fn without((start, end): (u32, u32), mut holes: Vec<(u32, u32)>) -> Vec<(u32, u32)> {
+    holes.sort_unstable();
+    let mut out = Vec::new();
+    let mut at = start;
+    for (from, to) in holes {
+        if from > at {
+            out.push((at, from.min(end)));
+        }
+        at = at.max(to);
+    }
+    if at < end {
+        out.push((at, end));
+    }
+    out
 }
 
 /// Whether a variable of this type takes an exception code as it is
