@@ -1267,6 +1267,47 @@ fn a_project_s_check_bounds_function_clamps_computed_indexes() {
 }
 
 #[test]
+fn a_pou_declared_no_check_calls_no_check_bounds() {
+    use crate::support::twincat::{compile_ok, pou};
+    // `{attribute 'no_check'}` before the POU: its accesses keep plcrun's
+    // own check (R002) where the project's CheckBounds would clamp, and
+    // the pragma is honoured, not reported as ignored.
+    let check = pou(
+        "CheckBounds",
+        "FUNCTION CheckBounds : DINT\nVAR_INPUT\n  index, lower, upper : DINT;\nEND_VAR",
+        "IF index < lower THEN\n  CheckBounds := lower;\nELSIF index > upper THEN\n  CheckBounds := upper;\nELSE\n  CheckBounds := index;\nEND_IF",
+        "",
+    );
+    let raw = pou(
+        "Raw",
+        "{attribute 'no_check'}\nFUNCTION_BLOCK Raw\nVAR_INPUT\n  i : DINT;\nEND_VAR\nVAR\n  a : ARRAY[1..3] OF INT;\nEND_VAR",
+        "a[i] := 1;",
+        "",
+    );
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  r : Raw;\n  k : DINT := 2;\nEND_VAR",
+        "r(i := k);\nk := k + 2;",
+        "",
+    );
+    let mut plc = compile_ok(&[
+        ("CheckBounds.TcPOU", &check),
+        ("Raw.TcPOU", &raw),
+        ("P.TcPOU", &main),
+    ]);
+    let ignored: Vec<String> = plc
+        .warnings()
+        .iter()
+        .filter(|d| d.code == "W001")
+        .map(|d| d.message.clone())
+        .collect();
+    assert!(ignored.is_empty(), "{ignored:?}");
+    run(&mut plc, 1);
+    let fault = plc.run_cycle().expect_err("a[4] out of bounds");
+    assert!(fault.to_string().contains("R002"), "{fault}");
+}
+
+#[test]
 fn this_names_the_instance_s_variable_where_a_method_declares_the_same_name() {
     use crate::support::twincat::{compile_ok, pou};
     // `THIS^.AxisRef REF= AxisRef;` in an FB_init whose input is

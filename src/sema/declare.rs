@@ -439,6 +439,7 @@ impl Declarer<'_> {
             vars_size: 0,
             consts: Vec::new(),
             span: p.name.span,
+            no_check: p.no_check,
         });
         self.pou_state.push(LayoutState::Pending);
         self.emit_state.push(LayoutState::Pending);

@@ -27,6 +27,7 @@ impl BodyBuilder<'_> {
         if self.model.pous[check].kind != PouKind::Function
             || !laid_out
             || check == self.block.pou
+            || self.model.pous[self.block.pou].no_check
             || !self.model.checked_files.contains(&first.span.file)
         {
             return None;

@@ -77,6 +77,8 @@ pub struct PouInfo {
     pub consts: Vec<(crate::ir::op::Slot, u64)>,
     /// Declaration span.
     pub span: Span,
+    /// Declared after `{attribute 'no_check'}`: no implicit check calls.
+    pub no_check: bool,
 }
 
 /// Layout state of a POU while declarations are resolved.

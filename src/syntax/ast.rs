@@ -72,6 +72,9 @@ pub struct Pou {
     pub span: Span,
     /// Methods, EXTENDS, IMPLEMENTS and modifiers of an edition-3 FB.
     pub oop: Option<Box<crate::syntax::oop::PouOop>>,
+    /// Declared after `{attribute 'no_check'}` (CODESYS): its code (its
+    /// methods' too) calls no implicit check function.
+    pub no_check: bool,
 }
 
 /// The body of a POU, action or transition.

@@ -827,6 +827,11 @@ pub fn pou(
         body,
         span: st.span(l, r),
         oop: None,
+        no_check: crate::syntax::qualified_only::before_type(
+            st.text(),
+            l,
+            crate::syntax::qualified_only::is_no_check,
+        ),
     }
 }
 

@@ -199,16 +199,20 @@ fn lex_with(
 /// Reports a `{...}` pragma: named when other tools give it a meaning,
 /// W001 otherwise, E010 when unterminated; nothing for one plcrun honours
 /// (`qualified_only` or `strict` before a `TYPE`, `call_after_init` before
-/// a METHOD or FUNCTION_BLOCK, followed by `rest`). True when it
+/// a METHOD or FUNCTION_BLOCK, `no_check` before a FUNCTION,
+/// FUNCTION_BLOCK or PROGRAM, followed by `rest`). True when it
 /// spans lines (it then ends an IL line, as a comment does).
 fn pragma(at: Span, slice: &str, rest: &str, diags: &mut Diagnostics) -> bool {
     use super::qualified_only::{
-        is_call_after_init, is_qualified_only, is_strict, method_or_block_follows, type_follows,
+        is_call_after_init, is_no_check, is_qualified_only, is_strict, method_or_block_follows,
+        pou_follows, type_follows,
     };
     if (is_qualified_only(slice) || is_strict(slice)) && type_follows(rest) {
         // Honoured: the grammar finds it before the TYPE keyword.
     } else if is_call_after_init(slice) && method_or_block_follows(rest) {
         // Honoured: the method's constructor finds it before METHOD.
+    } else if is_no_check(slice) && pou_follows(rest) {
+        // Honoured: the POU's constructor finds it before its keyword.
     } else if slice.ends_with('}')
         && let Some((code, message)) = super::pragma_meaning::named(slice)
     {

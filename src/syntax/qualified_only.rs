@@ -16,6 +16,36 @@ pub fn is_strict(pragma: &str) -> bool {
     is_attribute(pragma, "strict")
 }
 
+/// Whether pragma text `{...}` is `{attribute 'no_check'}`.
+pub fn is_no_check(pragma: &str) -> bool {
+    is_attribute(pragma, "no_check")
+}
+
+/// Whether `FUNCTION`, `FUNCTION_BLOCK` or `PROGRAM` (with its
+/// modifiers) follows `rest`, with only blanks and pragmas before it:
+/// where `no_check` is honoured.
+pub fn pou_follows(rest: &str) -> bool {
+    matches!(
+        first_word(rest).as_str(),
+        "FUNCTION" | "FUNCTION_BLOCK" | "FUNCTIONBLOCK" | "PROGRAM"
+    )
+}
+
+/// The first word of `rest` after blanks and pragmas, upper-cased.
+fn first_word(rest: &str) -> String {
+    let mut rest = rest.trim_start();
+    while rest.starts_with('{') {
+        match rest.find('}') {
+            Some(close) => rest = rest[close + 1..].trim_start(),
+            None => return String::new(),
+        }
+    }
+    rest.chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect::<String>()
+        .to_ascii_uppercase()
+}
+
 /// Whether pragma text `{...}` is `{attribute 'call_after_init'}`.
 pub fn is_call_after_init(pragma: &str) -> bool {
     is_attribute(pragma, "call_after_init")
@@ -25,19 +55,8 @@ pub fn is_call_after_init(pragma: &str) -> bool {
 /// `rest`, with only blanks and pragmas before it: where
 /// `call_after_init` is honoured.
 pub fn method_or_block_follows(rest: &str) -> bool {
-    let mut rest = rest.trim_start();
-    while rest.starts_with('{') {
-        match rest.find('}') {
-            Some(close) => rest = rest[close + 1..].trim_start(),
-            None => return false,
-        }
-    }
-    let word: String = rest
-        .chars()
-        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-        .collect();
     matches!(
-        word.to_ascii_uppercase().as_str(),
+        first_word(rest).as_str(),
         "METHOD" | "FUNCTION_BLOCK" | "FUNCTIONBLOCK"
     )
 }

@@ -147,6 +147,7 @@ pub(super) fn globals_function(phase: Phase, stmts: Vec<Stmt>, loops: usize) -> 
         body: Body::St(stmts),
         span,
         oop: None,
+        no_check: false,
     }
 }
 

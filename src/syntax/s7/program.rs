@@ -163,6 +163,7 @@ pub(super) fn build(
         body: Body::St(body),
         span: whole,
         oop: None,
+        no_check: false,
     })];
     if uses_support {
         let support = crate::syntax::parse(file, SUPPORT_ST, diags);
