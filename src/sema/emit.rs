@@ -395,7 +395,23 @@ impl Fcx {
             self.last_def = Some((at, d));
             return;
         }
+        // A constant that fits an immediate is written as one: no frame
+        // slot to read (`x := 5`, an FB's `PV := 50`).
+        if let Some(imm) = self.small_const(s) {
+            self.emit(Op::LoadI { d, imm });
+            return;
+        }
         self.emit(Op::Mov { d, s });
+    }
+
+    /// The value of provisional constant slot `s` when it is a 32-bit
+    /// signed integer's (as `LoadI` sign-extends it).
+    fn small_const(&self, s: Slot) -> Option<i32> {
+        if s.get() & CONST_TAG == 0 {
+            return None;
+        }
+        let bits = *self.consts.get_index((s.get() & !CONST_TAG) as usize)?;
+        i32::try_from(bits as i64).ok()
     }
 }
 
