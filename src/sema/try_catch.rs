@@ -91,7 +91,8 @@ impl BodyBuilder<'_> {
     /// innermost loop (`Some(loops)`, the number of loops open): a copy of
     /// each `__FINALLY` part being left, innermost first. A fault in a
     /// copy goes to the `__TRY`s around that part's own `__TRY`, as one in
-    /// the part itself; a diagnostic in it was already reported once.
+    /// the part itself; the copies' diagnostics are dropped (the part's own
+    /// emission reports them once).
     pub(super) fn run_finally_parts(&mut self, loop_exit: Option<usize>) {
         let pending = std::mem::take(&mut self.block.finally);
         let mut pending_after = pending.clone();

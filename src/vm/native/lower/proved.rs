@@ -69,7 +69,7 @@ impl Lower<'_, '_> {
     }
 
     /// One comparison, then the access straight to memory; the checked
-    /// access on a cold path when the slot falls outside `run`.
+    /// access on a cold path when the slot falls outside `lo..hi`.
     fn fast_or_checked(
         &mut self,
         x: Value,
