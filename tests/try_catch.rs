@@ -365,3 +365,38 @@ fn an_error_in_a_finally_part_is_reported_once_however_often_it_is_copied() {
     let codes = error_codes(&[("p.st", &src)]);
     assert_eq!(codes.len(), 1, "{codes:?}");
 }
+
+#[test]
+fn a_fault_in_a_finally_copy_skips_a_try_without_finally_between() {
+    // RETURN inside C, a __TRY without __FINALLY, inside B, whose
+    // __FINALLY faults: the copy of B's part run before the RETURN is not
+    // C's to catch (nor B's), but A's, around B.
+    let src = program(
+        "",
+        "a_exc, b_exc, c_exc : __SYSTEM.ExceptionCode; d, x : INT;
+         caught_a, caught_b, caught_c, finals : INT;",
+        "__TRY
+            __TRY
+                __TRY
+                    RETURN;
+                __CATCH(c_exc)
+                    caught_c := caught_c + 1;
+                __ENDTRY
+            __CATCH(b_exc)
+                caught_b := caught_b + 1;
+            __FINALLY
+                finals := finals + 1;
+                x := 1 / d;
+            __ENDTRY
+        __CATCH(a_exc)
+            caught_a := caught_a + 1;
+        __ENDTRY",
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "finals"), "1");
+    assert_eq!(lit(&plc, "caught_c"), "0");
+    assert_eq!(lit(&plc, "caught_b"), "0");
+    assert_eq!(lit(&plc, "caught_a"), "1");
+    assert_eq!(lit(&plc, "a_exc"), "RTSEXCPT_DIVIDEBYZERO");
+}

@@ -130,10 +130,20 @@ pub struct PendingFinally {
     pub stmts: Vec<crate::syntax::ast::Stmt>,
     /// How many loops enclosed the `__TRY`.
     pub loops: usize,
-    /// Instructions of copies of `__FINALLY` parts (this one's or an
-    /// enclosing one's) emitted inside the guarded statements: a fault
-    /// there is not this `__TRY`'s to catch.
-    pub holes: Vec<(u32, u32)>,
+}
+
+/// A copy of a `__FINALLY` part emitted before a jump out of its `__TRY`:
+/// the instructions `from..to`, of the part at `level` of
+/// [`Fcx::finally`]. A fault there is not for the `__TRY`s at that level
+/// and inside it to catch, as one in the part itself would not be.
+#[derive(Debug, Clone, Copy)]
+pub struct FinallyCopy {
+    /// First instruction of the copy.
+    pub from: u32,
+    /// One past its last.
+    pub to: u32,
+    /// The index in [`Fcx::finally`] of the part copied.
+    pub level: usize,
 }
 
 /// Emission state of one code block (a POU body or one of its SFC blocks),
@@ -161,6 +171,8 @@ pub struct Fcx {
     /// The `__FINALLY` parts around the statements being emitted,
     /// outermost first.
     pub finally: Vec<PendingFinally>,
+    /// The copies of `__FINALLY` parts emitted so far.
+    pub finally_copies: Vec<FinallyCopy>,
     /// Index of the last instruction whose destination may be retargeted.
     pub last_def: Option<(usize, Slot)>,
     /// Instructions whose address operand is relative to a called
@@ -217,6 +229,7 @@ impl Fcx {
             loops: Vec::new(),
             returns: Vec::new(),
             finally: Vec::new(),
+            finally_copies: Vec::new(),
             last_def: None,
             fixups: Vec::new(),
             consts: IndexSet::new(),

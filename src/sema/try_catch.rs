@@ -13,7 +13,7 @@
 //! fault happens, so guarded code is as fast as any other.
 
 use super::body::BodyBuilder;
-use super::emit::{PendingFinally, Place};
+use super::emit::{FinallyCopy, PendingFinally, Place};
 use crate::elementary::ElemType;
 use crate::ir::handler::Handler;
 use crate::ir::op::{Op, Target};
@@ -31,8 +31,11 @@ impl BodyBuilder<'_> {
     ) {
         let start = self.block.here();
         self.enter_finally(finally);
+        // Copies of the parts at this level and outside it are not this
+        // `__TRY`'s to catch; those of inner parts are.
+        let depth = self.block.finally.len();
         self.stmts(body);
-        let holes = self.leave_finally(finally);
+        self.leave_finally(finally);
         let end = self.block.here();
         let to_finally = self.block.emit(Op::Jmp {
             t: Target::UNPATCHED,
@@ -45,6 +48,13 @@ impl BodyBuilder<'_> {
             self.leave_finally(finally);
             if let Some(exception) = exception {
                 let guarded = (start.index() as u32, end.index() as u32);
+                let holes = self
+                    .block
+                    .finally_copies
+                    .iter()
+                    .filter(|c| c.level < depth && guarded.0 <= c.from && c.to <= guarded.1)
+                    .map(|c| (c.from, c.to))
+                    .collect();
                 for (start, end) in without(guarded, holes) {
                     self.block.handlers.push(Handler {
                         start,
@@ -68,55 +78,43 @@ impl BodyBuilder<'_> {
             self.block.finally.push(PendingFinally {
                 stmts: stmts.to_vec(),
                 loops: self.block.loops.len(),
-                holes: Vec::new(),
             });
         }
     }
 
-    /// The end of what `enter_finally` began: the copies of `__FINALLY`
-    /// parts emitted meanwhile.
-    fn leave_finally(&mut self, finally: Option<&[Stmt]>) -> Vec<(u32, u32)> {
-        match finally {
-            Some(_) => self
-                .block
-                .finally
-                .pop()
-                .map(|p| p.holes)
-                .unwrap_or_default(),
-            None => Vec::new(),
+    /// The end of what `enter_finally` began.
+    fn leave_finally(&mut self, finally: Option<&[Stmt]>) {
+        if finally.is_some() {
+            self.block.finally.pop();
         }
     }
 
     /// Before a RETURN (`loop_exit` None) or an EXIT or CONTINUE of the
     /// innermost loop (`Some(loops)`, the number of loops open): a copy of
-    /// each `__FINALLY` part being left, innermost first. A fault in a
-    /// copy goes to the `__TRY`s around that part's own `__TRY`, as one in
-    /// the part itself; the copies' diagnostics are dropped (the part's own
+    /// each `__FINALLY` part being left, innermost first, each emitted
+    /// with only the parts outside it pending. A fault in a copy goes to
+    /// the `__TRY`s around that part's own `__TRY`, as one in the part
+    /// itself; the copies' diagnostics are dropped (the part's own
     /// emission reports them once).
     pub(super) fn run_finally_parts(&mut self, loop_exit: Option<usize>) {
         let pending = std::mem::take(&mut self.block.finally);
-        let mut pending_after = pending.clone();
-        for i in (0..pending.len()).rev() {
-            if loop_exit.is_some_and(|loops| pending[i].loops < loops) {
+        for (level, part) in pending.iter().enumerate().rev() {
+            if loop_exit.is_some_and(|loops| part.loops < loops) {
                 break;
             }
-            self.block.finally = pending[..i].to_vec();
+            self.block.finally = pending[..level].to_vec();
             let diags = self.diags.len();
             let from = self.block.here().index() as u32;
-            self.stmts(&pending[i].stmts);
+            self.stmts(&part.stmts);
             let to = self.block.here().index() as u32;
             self.diags.truncate(diags);
-            for p in &mut pending_after[i..] {
-                p.holes.push((from, to));
-            }
-            for (k, p) in self.block.finally.iter().enumerate() {
-                pending_after[k]
-                    .holes
-                    .extend(p.holes.iter().skip(pending[k].holes.len()));
-            }
+            self.block
+                .finally_copies
+                .push(FinallyCopy { from, to, level });
         }
-        self.block.finally = pending_after;
+        self.block.finally = pending;
     }
+
     /// The frame slot of the `__CATCH` variable, or E413 when it is not a
     /// variable of the POU's own of a type that holds an exception code.
     fn exception_slot(&mut self, name: &Ident) -> Option<crate::ir::op::Slot> {
