@@ -110,13 +110,16 @@ pub fn load_files_with<P: AsRef<Path>>(
             if !shadowing.keeps(&bytes, library) {
                 continue;
             }
-            add_source_bytes(
+            let id = add_source_bytes(
                 &mut sources,
                 file.display().to_string(),
                 &bytes,
                 encoding,
                 diags,
             );
+            if library {
+                sources.mark_library(id);
+            }
         }
         for (name, text) in description_sources(&descriptions, &mut events)? {
             sources.add(name, text);
@@ -359,12 +362,17 @@ pub(crate) fn codesys_files(sources: &SourceMap) -> Vec<FileId> {
         .collect()
 }
 
-/// The files whose array accesses go through a project's implicit
-/// `CheckBounds`: the CODESYS-dialect files but plcrun's TwinCAT library.
+/// The files whose code calls a project's implicit checks (`CheckBounds`,
+/// `CheckDivDInt`...): the CODESYS-dialect files but those of libraries,
+/// as TwinCAT runs none in a library's code — plcrun's TwinCAT library
+/// and the library projects loaded with the application.
 pub(crate) fn checked_files(sources: &SourceMap) -> Vec<FileId> {
     codesys_files(sources)
         .into_iter()
-        .filter(|f| sources.files()[f.0 as usize].name != twincat_library::LIBRARY_SOURCE)
+        .filter(|f| {
+            let file = &sources.files()[f.0 as usize];
+            file.name != twincat_library::LIBRARY_SOURCE && !file.is_library()
+        })
         .collect()
 }
 

@@ -53,6 +53,7 @@ pub struct SourceFile {
     pub text: String,
     line_starts: Vec<usize>,
     encoding: TextEncoding,
+    library: bool,
 }
 
 impl SourceFile {
@@ -66,6 +67,7 @@ impl SourceFile {
             text,
             line_starts,
             encoding: TextEncoding::Utf8,
+            library: false,
         }
     }
 
@@ -75,6 +77,12 @@ impl SourceFile {
     pub fn with_encoding(mut self, encoding: TextEncoding) -> SourceFile {
         self.encoding = encoding;
         self
+    }
+
+    /// Whether the file belongs to a library project loaded with an
+    /// application (TwinCAT runs no implicit check in a library's code).
+    pub fn is_library(&self) -> bool {
+        self.library
     }
 
     /// The encoding the file's bytes were read in (UTF-8 for text given
@@ -153,6 +161,14 @@ impl SourceMap {
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<String>) -> FileId {
         self.files.push(SourceFile::new(name, text));
         FileId((self.files.len() - 1) as u32)
+    }
+
+    /// Marks file `id` as one of a library project's (see
+    /// [`SourceFile::is_library`]).
+    pub fn mark_library(&mut self, id: FileId) {
+        if let Some(file) = self.files.get_mut(id.0 as usize) {
+            file.library = true;
+        }
     }
 
     /// Adds a file whose text was read in `encoding`, and returns its id.

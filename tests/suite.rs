@@ -154,6 +154,8 @@ mod host_blocks;
 mod il_literal_join;
 #[path = "il_operators.rs"]
 mod il_operators;
+#[path = "implicit_checks.rs"]
+mod implicit_checks;
 #[path = "implicit_int_conversions.rs"]
 mod implicit_int_conversions;
 #[path = "input_qualifiers.rs"]

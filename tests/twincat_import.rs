@@ -713,6 +713,67 @@ fn library_projects_referenced_by_a_project_are_found_on_the_library_path() {
     assert!(err.contains("not a folder"), "{err}");
 }
 
+#[test]
+fn a_project_s_implicit_checks_do_not_reach_into_its_library_projects() {
+    // TwinCAT runs no implicit check in a library's code: the project's
+    // CheckDivDInt turns its own division by zero into one by 1, while
+    // the same division in the library `Units Lib` still faults.
+    let project = REFERENCING_PROJECT.replace(
+        "<Compile Include=\"MAIN.TcPOU\" />",
+        "<Compile Include=\"MAIN.TcPOU\" />\n    <Compile Include=\"CheckDivDInt.TcPOU\" />",
+    );
+    let check = pou(
+        "CheckDivDInt",
+        "FUNCTION CheckDivDInt : DINT\nVAR_INPUT divisor : DINT; END_VAR\n",
+        "IF divisor = 0 THEN CheckDivDInt := 1; ELSE CheckDivDInt := divisor; END_IF\n",
+        "",
+    );
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR m : FB_Motor; zero : INT; own : INT; n : INT; END_VAR\n",
+        "own := 7 / zero;\nm(nSteps := zero);\nn := m.nRpm;\n",
+        "",
+    );
+    let motor = pou(
+        "FB_Motor",
+        "FUNCTION_BLOCK FB_Motor\nVAR_INPUT nSteps : INT; END_VAR\nVAR_OUTPUT nRpm : INT; END_VAR\n",
+        "nRpm := F_Rpm(nSteps);\n",
+        "",
+    );
+    let rpm = pou(
+        "F_Rpm",
+        "FUNCTION F_Rpm : INT\nVAR_INPUT n : INT; END_VAR\n",
+        "F_Rpm := 600 / n;\n",
+        "",
+    );
+    let dir = temp_project(&[
+        ("App/App.plcproj", &project),
+        ("App/MAIN.TcPOU", &main),
+        ("App/CheckDivDInt.TcPOU", &check),
+        ("libs/motor/Motor.plcproj", LIBRARY_PROJECT),
+        ("libs/motor/FB_Motor.TcPOU", &motor),
+        ("libs/units/Units.plcproj", UNITS_PROJECT),
+        ("libs/units/F_Rpm.TcPOU", &rpm),
+    ]);
+    let app = format!("{dir}/App/App.plcproj");
+    let libs = format!("{dir}/libs");
+    let args = [
+        "--library-path",
+        &libs,
+        "--cycles",
+        "1",
+        "--trace",
+        "MAIN.own",
+    ];
+    let mut all = vec![app.as_str()];
+    all.extend(args);
+    let (code, out, err) = plcrun(&all);
+    // A runtime fault: exit status 3.
+    assert_eq!(code, 3, "{out}{err}");
+    assert!(err.contains("division by zero"), "{err}");
+    assert!(err.contains("F_Rpm.TcPOU"), "{err}");
+}
+
 /// A solution whose I/O configuration links a test suite's output to the
 /// input of the block it tests, as SLAC's vacuum library feeds its gauges.
 const LOOPBACK_SOLUTION: &str = "<?xml version=\"1.0\"?>\n<TcSmProject>\n  <Mappings>\n    <OwnerA Name=\"TIPC^Plc^Plc Instance\">\n      <OwnerB Name=\"TIPC^Plc^Plc Instance\">\n        <Link VarA=\"PlcTask Inputs^PRG_TEST.fbPumpTest.fbPump.i_iRaw\" VarB=\"PlcTask Outputs^PRG_TEST.fbPumpTest.q_iRaw\"/>\n        <Link VarA=\"PlcTask Outputs^PRG_TEST.fbPumpTest.q_iRaw\" VarB=\"PlcTask Inputs^PRG_TEST.fbPumpTest.i_diWide\"/>\n      </OwnerB>\n      <OwnerB Name=\"TIID^Device 1 (EtherCAT)^Term 2 (EL3064)\">\n        <Link VarA=\"PlcTask Inputs^PRG_TEST.fbPumpTest.i_iOther\" VarB=\"AI Standard Channel 1^Value\"/>\n      </OwnerB>\n    </OwnerA>\n  </Mappings>\n</TcSmProject>\n";

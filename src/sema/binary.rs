@@ -106,8 +106,12 @@ impl BodyBuilder<'_> {
         {
             return v;
         }
+        let computed_divisor = op == BinaryOp::Div && !matches!(vb, Val::Const(..));
         let xb = self.coerce(vb, ct, span, "operand");
-        let b = self.materialize(&xb);
+        let mut b = self.materialize(&xb);
+        if computed_divisor {
+            b = self.checked_divisor(b, e, span);
+        }
         if !self.model.unoptimized {
             if let Some(v) = fuse_not_operand(&mut self.block, op, a, b, ct, e) {
                 return v;

@@ -139,7 +139,7 @@ impl<'a> Declarer<'a> {
         self.model.codesys_files = files.iter().copied().collect();
     }
 
-    /// The files whose array accesses a project's `CheckBounds` takes.
+    /// The files whose code calls a project's implicit checks.
     pub(super) fn set_checked_files(&mut self, files: &[crate::source::FileId]) {
         self.model.checked_files = files.iter().copied().collect();
     }
@@ -159,6 +159,7 @@ impl<'a> Declarer<'a> {
         for p in 0..self.model.pous.len() {
             self.ensure_emitted(p);
         }
+        super::implicit_checks::warn_other_signatures(&self.model, self.diags);
         self.model.emitted = self
             .emit_state
             .iter()
@@ -218,6 +219,9 @@ impl Declarer<'_> {
                 }
             }
         }
+        // The project's implicit checks: the body may call them though it
+        // does not name them.
+        names.extend(super::implicit_checks::names().map(str::to_string));
         for name in names {
             if let Some(&q) = self.model.pou_index.get(&name)
                 && self.model.pous[q].kind == PouKind::Function

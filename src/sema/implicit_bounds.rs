@@ -9,29 +9,15 @@
 
 use super::body::BodyBuilder;
 use crate::ir::type_table::Dim;
-use crate::syntax::ast::{Arg, Call, Expr, ExprKind, Ident, LiteralValue, PouKind};
-
-/// The implicit check's name, case-folded.
-const CHECK_BOUNDS: &str = "CHECKBOUNDS";
+use crate::syntax::ast::{Arg, Call, Expr, ExprKind, Ident, LiteralValue};
 
 impl BodyBuilder<'_> {
     /// `indexes` of an array with `dims`, each index that is not a literal
     /// wrapped in a call of the project's `CheckBounds` when one applies
     /// here; `None` when none does.
     pub(super) fn bounds_checked(&self, indexes: &[Expr], dims: &[Dim]) -> Option<Vec<Expr>> {
-        let &check = self.model.pou_index.get(CHECK_BOUNDS)?;
         let first = indexes.first()?;
-        // A body emitted while the types are resolved comes before the
-        // function is laid out: its accesses keep plcrun's own check.
-        let laid_out = self.model.pous[check].code != crate::ir::op::CodeIdx::new(u32::MAX);
-        if self.model.pous[check].kind != PouKind::Function
-            || !laid_out
-            || check == self.block.pou
-            || self.model.pous[self.block.pou].no_check
-            || !self.model.checked_files.contains(&first.span.file)
-        {
-            return None;
-        }
+        let check = self.implicit_check(super::implicit_checks::CHECK_BOUNDS, first.span)?;
         let name = self.model.pous[check].name.clone();
         let wrapped = indexes
             .iter()

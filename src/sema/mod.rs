@@ -76,6 +76,9 @@ mod il;
 mod il_aggregate_results;
 mod il_recovery;
 mod implicit_bounds;
+mod implicit_checks;
+mod implicit_div;
+mod implicit_range;
 mod in_out_constant;
 mod in_out_read;
 mod input_write;
@@ -151,9 +154,10 @@ pub struct CompileOptions {
     /// project files, CODESYS PLCopen XML exports): the implicit integer
     /// conversions CODESYS makes (W490) are accepted in them only.
     pub codesys_files: Vec<crate::source::FileId>,
-    /// The files whose array accesses go through a project's
-    /// `CheckBounds` (implicit_bounds.rs): those of `codesys_files` but
-    /// plcrun's own TwinCAT library.
+    /// The files whose code calls a project's implicit checks
+    /// (`CheckBounds`, `CheckDivDInt`...: implicit_checks.rs): those of
+    /// `codesys_files` but the libraries' (plcrun's own TwinCAT library
+    /// and library projects).
     pub checked_files: Vec<crate::source::FileId>,
 }
 

@@ -139,8 +139,8 @@ pub(crate) struct Model {
     /// The files in the CODESYS V3 / TwinCAT dialect, where CODESYS's
     /// implicit integer conversions are accepted (implicit_int.rs).
     pub codesys_files: std::collections::HashSet<crate::source::FileId>,
-    /// The files whose array accesses a project's `CheckBounds` takes
-    /// (implicit_bounds.rs).
+    /// The files whose code calls a project's implicit checks
+    /// (implicit_checks.rs).
     pub checked_files: std::collections::HashSet<crate::source::FileId>,
     /// Methods, inheritance and interfaces (empty without OOP).
     pub oop: super::oop::OopInfo,

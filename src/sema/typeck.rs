@@ -239,6 +239,7 @@ impl BodyBuilder<'_> {
                             None => *s,
                         };
                         if let TypeKind::Subrange { .. } = self.types.get(to).kind {
+                            let slot = self.range_checked(slot, to, span);
                             return Val::Slot(self.check_subrange(slot, to), to);
                         }
                         Val::Slot(slot, to)

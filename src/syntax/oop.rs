@@ -83,6 +83,9 @@ pub struct Method {
     /// Declared after `{attribute 'call_after_init'}`: called on every
     /// instance right after its `FB_init` (`src/sema/instance_calls/`).
     pub call_after_init: bool,
+    /// Declared after `{attribute 'no_check'}`: its code calls no implicit
+    /// check (`src/sema/implicit_checks.rs`).
+    pub no_check: bool,
 }
 
 /// What a FUNCTION_BLOCK declares beyond edition 2.
@@ -184,6 +187,11 @@ pub fn method(
             st.text(),
             l,
             crate::syntax::qualified_only::is_call_after_init,
+        ),
+        no_check: crate::syntax::qualified_only::before_type(
+            st.text(),
+            l,
+            crate::syntax::qualified_only::is_no_check,
         ),
     }
 }

@@ -130,6 +130,7 @@ pub fn property(
         span,
         property: Some(methods),
         call_after_init: false,
+        no_check: false,
     }
 }
 
@@ -157,6 +158,7 @@ fn accessor_method(name: &Ident, ty: &TypeSpec, prop: Modifiers, a: Accessor) ->
         span: a.span,
         property: None,
         call_after_init: false,
+        no_check: false,
     }
 }
 

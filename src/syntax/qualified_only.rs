@@ -21,13 +21,13 @@ pub fn is_no_check(pragma: &str) -> bool {
     is_attribute(pragma, "no_check")
 }
 
-/// Whether `FUNCTION`, `FUNCTION_BLOCK` or `PROGRAM` (with its
-/// modifiers) follows `rest`, with only blanks and pragmas before it:
+/// Whether `FUNCTION`, `FUNCTION_BLOCK`, `PROGRAM` or `METHOD` (with
+/// its modifiers) follows `rest`, with only blanks and pragmas before it:
 /// where `no_check` is honoured.
 pub fn pou_follows(rest: &str) -> bool {
     matches!(
         first_word(rest).as_str(),
-        "FUNCTION" | "FUNCTION_BLOCK" | "FUNCTIONBLOCK" | "PROGRAM"
+        "FUNCTION" | "FUNCTION_BLOCK" | "FUNCTIONBLOCK" | "PROGRAM" | "METHOD"
     )
 }
 

@@ -103,6 +103,7 @@ pub(super) fn members_method(phase: Phase, stmts: Vec<Stmt>, loops: usize, span:
         span,
         property: None,
         call_after_init: false,
+        no_check: false,
     }
 }
 

@@ -401,6 +401,7 @@ impl Lowering<'_> {
                     span: pp.span,
                     sig: (Vec::new(), String::new()),
                     guard: None,
+                    no_check: pp.no_check,
                 });
             }
         }
@@ -652,38 +653,13 @@ impl Lowering<'_> {
                 span: b.span,
             });
         }
-        let mut ret = None;
-        let mut ret_text = String::new();
-        if let Some(t) = &m.return_type {
-            let hidden = hidden_name(origin, &m.name.name, &m.name.name);
-            let hk = hidden.to_ascii_uppercase();
-            locals.insert(m.name.key(), hk.clone());
-            // A property's GET writes its result through the property's name.
-            if let Some((p, true)) = crate::syntax::oop_property::property_of(&m.name.name) {
-                locals.insert(p.to_ascii_uppercase(), hk.clone());
+        let (ret, ret_text) = match method_result(origin, m, &mut locals, &mut resets) {
+            Some((key, text, block)) => {
+                blocks.push(block);
+                (Some(key), text)
             }
-            resets.push(hk.clone());
-            ret = Some(hk);
-            ret_text = spec_text(t);
-            blocks.push(VarBlock {
-                kind: VarKind::Local,
-                constant: false,
-                retain: None,
-                decls: vec![VarDecl {
-                    names: vec![Ident {
-                        name: hidden,
-                        span: m.name.span,
-                    }],
-                    location: None,
-                    ty: t.clone(),
-                    init: None,
-                    span: m.name.span,
-                    edge: None,
-                    init_args: None,
-                }],
-                span: m.name.span,
-            });
-        }
+            None => (None, String::new()),
+        };
         let guard = self.reentry_guard(origin, m, &mut blocks);
         let sig: Signature = (sig, ret_text);
         let v = Version {
@@ -698,6 +674,7 @@ impl Lowering<'_> {
             span: m.span,
             sig,
             guard,
+            no_check: m.no_check,
         };
         (v, blocks)
     }
@@ -770,6 +747,45 @@ impl Lowering<'_> {
 }
 
 /// True for a body without statements.
+/// The hidden variable holding method `m`'s result, when it has one: its
+/// key (entered in `locals`, under the property's name too for a GET, and
+/// in `resets`), the result type as text, and its declaration.
+fn method_result(
+    origin: &str,
+    m: &Method,
+    locals: &mut HashMap<String, String>,
+    resets: &mut Vec<String>,
+) -> Option<(String, String, VarBlock)> {
+    let t = m.return_type.as_ref()?;
+    let hidden = hidden_name(origin, &m.name.name, &m.name.name);
+    let hk = hidden.to_ascii_uppercase();
+    locals.insert(m.name.key(), hk.clone());
+    // A property's GET writes its result through the property's name.
+    if let Some((p, true)) = crate::syntax::oop_property::property_of(&m.name.name) {
+        locals.insert(p.to_ascii_uppercase(), hk.clone());
+    }
+    resets.push(hk.clone());
+    let block = VarBlock {
+        kind: VarKind::Local,
+        constant: false,
+        retain: None,
+        decls: vec![VarDecl {
+            names: vec![Ident {
+                name: hidden,
+                span: m.name.span,
+            }],
+            location: None,
+            ty: t.clone(),
+            init: None,
+            span: m.name.span,
+            edge: None,
+            init_args: None,
+        }],
+        span: m.name.span,
+    };
+    Some((hk, spec_text(t), block))
+}
+
 fn body_is_empty(b: &Body) -> bool {
     match b {
         // A `;` after the header (TwinCAT) is an empty statement.

@@ -113,6 +113,9 @@ pub(crate) struct Version {
     /// instance, when a cycle of calls through interfaces may reach it
     /// again (`reentry.rs`).
     pub guard: Option<String>,
+    /// Declared after `{attribute 'no_check'}` (a METHOD), or the body of
+    /// a block so declared: calls no implicit check.
+    pub no_check: bool,
 }
 
 /// An interface.
