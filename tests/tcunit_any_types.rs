@@ -58,3 +58,48 @@ fn the_largest_twincat_ltime_is_out_of_range_in_an_iec_file() {
         "{codes:?}"
     );
 }
+
+#[test]
+fn two_strings_of_other_lengths_are_reported_by_their_lengths_as_tcunit_does() {
+    // TcUnit's AssertEquals(ANY, ANY) compares sizes first (a string's is
+    // its length): other lengths print `(Data size (LEN) = n)`, one length
+    // the two texts; AssertEquals_STRING always the texts.
+    let suite = twincat::pou(
+        "FB_Str",
+        "FUNCTION_BLOCK FB_Str EXTENDS FB_TestSuite\nVAR a : STRING := 'This is a string'; \
+         b : STRING := 'This is another string'; c : STRING := 'This is b string'; \
+         w : WSTRING := \"ab\"; x : WSTRING := \"abc\"; END_VAR",
+        "TEST('Lengths');\nAssertEquals(Expected := a, Actual := b, Message := 'Values differ');\nTEST_FINISHED();\n\
+         TEST('Texts');\nAssertEquals(Expected := a, Actual := c, Message := 'Values differ');\nTEST_FINISHED();\n\
+         TEST('Wide');\nAssertEquals(Expected := w, Actual := x, Message := 'Values differ');\nTEST_FINISHED();\n\
+         TEST('Typed');\nAssertEquals_STRING(Expected := a, Actual := b, Message := 'Values differ');\nTEST_FINISHED();\n\
+         TEST('Same');\nAssertEquals(Expected := a, Actual := a, Message := 'Values differ');\nTEST_FINISHED();",
+        "",
+    );
+    let mut sources = SourceMap::new();
+    sources.add("FB_Str.TcPOU", suite);
+    sources.add(
+        "main.st",
+        "PROGRAM PRG_TEST\nVAR s : FB_Str; END_VAR\ns();\nEND_PROGRAM\n",
+    );
+    let report = run_tests(&sources, &TestOptions::default()).expect("compiles");
+    let shown = |i: usize| {
+        let f = &report.cases[i].failures[0];
+        (f.expected.clone(), f.actual.clone())
+    };
+    let pair = |e: &str, a: &str| (e.to_string(), a.to_string());
+    assert_eq!(
+        shown(0),
+        pair("'(Data size (LEN) = 16)'", "'(Data size (LEN) = 22)'")
+    );
+    assert_eq!(shown(1), pair("'This is a string'", "'This is b string'"));
+    assert_eq!(
+        shown(2),
+        pair("'(Data size (WLEN) = 2)'", "'(Data size (WLEN) = 3)'")
+    );
+    assert_eq!(
+        shown(3),
+        pair("'This is a string'", "'This is another string'")
+    );
+    assert_eq!(report.cases[4].outcome(), TestOutcome::Passed);
+}

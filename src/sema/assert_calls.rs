@@ -19,6 +19,10 @@ pub(crate) const ASSERT_TRUE_HOST: &str = "PLCRUN_ASSERT_TRUE";
 pub(crate) const ASSERT_EQ_PREFIX: &str = "PLCRUN_ASSERT_EQ_";
 /// The equality host function for two values of one enumeration.
 pub(crate) const ASSERT_EQ_ENUM_HOST: &str = "PLCRUN_ASSERT_EQ_ENUM";
+/// Prefix of TcUnit's `AssertEquals(ANY, ANY)` of two strings (`..._STRING`,
+/// `..._WSTRING`): strings of other lengths are reported by their lengths,
+/// as TcUnit compares the sizes of ANY values first.
+pub(crate) const ASSERT_EQ_ANY_PREFIX: &str = "PLCRUN_ASSERT_EQ_ANY_";
 /// Prefix of the REAL/LREAL with-delta host functions.
 pub(crate) const ASSERT_NEAR_PREFIX: &str = "PLCRUN_ASSERT_NEAR_";
 /// Called by a TcUnit array assertion before its element comparisons,
@@ -203,7 +207,12 @@ impl BodyBuilder<'_> {
                     return Some(self.differing_types((x, y), message, loc, span, want));
                 }
                 let t = self.common_elementary(&e, &a, span)?;
-                let name = format!("{ASSERT_EQ_PREFIX}{}", t.name());
+                let any_string = tcunit && matches!(t, ElemType::String | ElemType::WString);
+                let prefix = match any_string {
+                    true => ASSERT_EQ_ANY_PREFIX,
+                    false => ASSERT_EQ_PREFIX,
+                };
+                let name = format!("{prefix}{}", t.name());
                 let args = self.eq_args(e, a, message, loc, None);
                 self.host_assert(&name, args, span, want)
             }

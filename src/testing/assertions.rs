@@ -8,7 +8,8 @@ use crate::runtime::host_blocks::{
     HostBlocks, HostDeclError, HostIo, HostIoError, HostResult, HostSignature,
 };
 use crate::sema::assert_calls::{
-    ASSERT_EQ_ENUM_HOST, ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX, ASSERT_TRUE_HOST,
+    ASSERT_EQ_ANY_PREFIX, ASSERT_EQ_ENUM_HOST, ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX,
+    ASSERT_TRUE_HOST,
 };
 use std::sync::{Arc, Mutex};
 
@@ -204,6 +205,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
             }
         })?;
     }
+    register_any_strings(hosts, log)?;
     register_enum(hosts, log)?;
     let sig = HostSignature::function(ASSERT_TRUE_HOST, ElemType::Bool)
         .input("Expected", ElemType::Bool)
@@ -220,6 +222,41 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
             fail(io, &log, ASSERT_TRUE_HOST, false)
         }
     })?;
+    Ok(())
+}
+
+/// TcUnit's `AssertEquals(ANY, ANY)` of two STRINGs (WSTRINGs): TcUnit
+/// compares the values' sizes first, a string's being its length, and
+/// reports two strings of other lengths by their lengths, `(Data size
+/// (LEN) = 16)`; two of one length by their texts.
+fn register_any_strings(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError> {
+    for (t, len) in [(ElemType::String, "LEN"), (ElemType::WString, "WLEN")] {
+        let name = format!("{ASSERT_EQ_ANY_PREFIX}{}", t.name());
+        let sig = HostSignature::function(&name, ElemType::Bool)
+            .input("Expected", t)
+            .input("Actual", t)
+            .input("Message", ElemType::String)
+            .input("Loc", ElemType::Lint)
+            .input("IsElement", ElemType::Bool)
+            .input("Index", ElemType::Lint)
+            .input("Element", ElemType::String);
+        let log = log.clone();
+        hosts.function(sig, move |io| {
+            let (e, a) = (io.get_str("Expected")?, io.get_str("Actual")?);
+            let (ne, na) = (e.chars().count(), a.chars().count());
+            if e == a {
+                log.held(io, &name)?;
+                io.set_bool(&name, true)?;
+                Ok(())
+            } else if ne != na {
+                // Quoted, as the type classes of two types are.
+                let size = |n: usize| format!("'(Data size ({len}) = {n})'");
+                fail_with(io, &log, &name, true, (size(ne), size(na)))
+            } else {
+                fail(io, &log, &name, true)
+            }
+        })?;
+    }
     Ok(())
 }
 
