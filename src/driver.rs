@@ -362,17 +362,22 @@ pub(crate) fn codesys_files(sources: &SourceMap) -> Vec<FileId> {
         .collect()
 }
 
-/// The files whose code calls a project's implicit checks (`CheckBounds`,
-/// `CheckDivDInt`...): the CODESYS-dialect files but those of libraries,
-/// as TwinCAT runs none in a library's code — plcrun's TwinCAT library
-/// and the library projects loaded with the application.
+/// The CODESYS-dialect files but plcrun's TwinCAT library: the user's
+/// TwinCAT code (its STRING is 80 characters long by default, a project's
+/// implicit checks apply to it...).
 pub(crate) fn checked_files(sources: &SourceMap) -> Vec<FileId> {
     codesys_files(sources)
         .into_iter()
-        .filter(|f| {
-            let file = &sources.files()[f.0 as usize];
-            file.name != twincat_library::LIBRARY_SOURCE && !file.is_library()
-        })
+        .filter(|f| sources.files()[f.0 as usize].name != twincat_library::LIBRARY_SOURCE)
+        .collect()
+}
+
+/// The files of the library projects loaded with an application
+/// (`SourceFile::is_library`): TwinCAT runs no implicit check in them.
+pub(crate) fn library_files(sources: &SourceMap) -> Vec<FileId> {
+    (0..sources.files().len())
+        .filter(|&i| sources.files()[i].is_library())
+        .map(|i| FileId(i as u32))
         .collect()
 }
 
@@ -445,6 +450,7 @@ pub fn check_reporting(
         addressing: options.addressing.unwrap_or_else(|| addressing_of(sources)),
         codesys_files: codesys_files(&extended),
         checked_files: checked_files(&extended),
+        library_files: library_files(&extended),
     };
     // The library's own diagnostics are dropped or moved into the given
     // files by the compile (twincat_library.rs), so every one renders

@@ -797,6 +797,47 @@ END_FUNCTION_BLOCK";
 }
 
 #[test]
+fn var_in_out_constant_takes_a_value_and_a_string_of_any_length() {
+    // As TwinCAT's libraries are called (`fbJson.AddObjectMember(v,
+    // 'name')`): a literal, an expression, a function's result, a longer
+    // literal than the parameter's STRING and a STRING(255) variable are
+    // passed whole; a method and an FB take them as a function does.
+    let prelude = "FUNCTION G : INT
+VAR_IN_OUT CONSTANT s : STRING(4); n : INT; END_VAR
+G := LEN(s) * 100 + n;
+END_FUNCTION
+FUNCTION_BLOCK FB_R
+VAR_IN_OUT CONSTANT v : INT; t : STRING; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+q := v * 2 + LEN(t);
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_M
+METHOD M : STRING(255)
+VAR_IN_OUT CONSTANT a : STRING; END_VAR
+M := CONCAT(a, '!');
+END_METHOD
+END_FUNCTION_BLOCK";
+    let src = format!(
+        "{prelude}\nPROGRAM P\nVAR r1, r2, r3, r4 : INT; fb : FB_R; m : FB_M; k : INT := 4;\n\
+         long : STRING(255) := 'abcdefghij'; said : STRING(255); END_VAR\n\
+         r1 := G('abc', 7);\nr2 := G('abcdefgh', k * 2);\nr3 := G(long, LEN(long));\n\
+         fb(v := k + 1, t := CONCAT('x', 'yz'));\nr4 := fb.q;\nsaid := m.M('hello');\nEND_PROGRAM\n"
+    );
+    let mut plc = compile(&src);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "r1"), "307");
+    assert_eq!(lit(&plc, "r2"), "808");
+    assert_eq!(lit(&plc, "r3"), "1010");
+    assert_eq!(lit(&plc, "r4"), "13");
+    assert_eq!(lit(&plc, "said"), "'hello!'");
+    // A BOOL given to an INT: still a type error.
+    let bad = src.replace("LEN(long))", "k = 4)");
+    let codes = error_codes(&[("test.st", &bad)]);
+    assert_eq!(codes.len(), 1, "{codes:?}");
+    assert_eq!(codes[0].0, "E301");
+}
+
+#[test]
 fn writing_a_var_in_out_constant_is_e401_and_a_plain_in_out_still_needs_a_writable_variable() {
     let src = "FUNCTION G : INT\nVAR_IN_OUT CONSTANT n : INT; END_VAR\nn := 1;\nG := n;\nEND_FUNCTION\n\
                PROGRAM P\nVAR r : INT; END_VAR\nr := G(r);\nEND_PROGRAM\n";

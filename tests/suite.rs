@@ -332,6 +332,8 @@ mod twincat_ads_log;
 mod twincat_event_logger;
 #[path = "twincat_import.rs"]
 mod twincat_import;
+#[path = "twincat_json_dom.rs"]
+mod twincat_json_dom;
 #[path = "twincat_library_forms.rs"]
 mod twincat_library_forms;
 #[path = "twincat_memory.rs"]

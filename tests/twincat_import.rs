@@ -664,13 +664,14 @@ fn library_projects_referenced_by_a_project_are_found_on_the_library_path() {
     let main = pou(
         "MAIN",
         "PROGRAM MAIN\nVAR m : FB_Motor; n : INT; END_VAR\n",
-        "m(nSteps := 3);\nn := m.nRpm;\n",
+        "m(nSteps := 3);\nn := m.nRpm + UDINT_TO_INT(m.nSize) * 100;\n",
         "",
     );
+    // A library's STRING is TwinCAT's too: 80 characters (81 bytes).
     let motor = pou(
         "FB_Motor",
-        "FUNCTION_BLOCK FB_Motor\nVAR_INPUT nSteps : INT; END_VAR\nVAR_OUTPUT nRpm : INT; END_VAR\n",
-        "nRpm := F_Rpm(nSteps);\n",
+        "FUNCTION_BLOCK FB_Motor\nVAR_INPUT nSteps : INT; END_VAR\nVAR_OUTPUT nRpm : INT; nSize : UDINT; END_VAR\nVAR s : STRING; END_VAR\n",
+        "nRpm := F_Rpm(nSteps);\nnSize := SIZEOF(s);\n",
         "",
     );
     let rpm = pou(
@@ -706,7 +707,7 @@ fn library_projects_referenced_by_a_project_are_found_on_the_library_path() {
         "--trace",
         "MAIN.n",
     ]);
-    assert_eq!(out, "cycle,time,MAIN.n\n0,T#0s,60\n");
+    assert_eq!(out, "cycle,time,MAIN.n\n0,T#0s,8160\n");
     // A library path that is no folder is a usage error naming it.
     let (code, _, err) = plcrun(&["check", "--library-path", &app, &app]);
     assert_eq!(code, 2, "{err}");

@@ -206,13 +206,13 @@ fn this_names_the_block_s_own_open_array_in_its_methods() {
 fn a_call_through_a_variable_of_unknown_type_is_reported_once() {
     let main = pou(
         "P",
-        "PROGRAM P\nVAR fbJson : FB_JsonDomParser; b : BOOL; END_VAR",
-        "b := fbJson.HasMember(1);",
+        "PROGRAM P\nVAR fbXml : FB_XmlDomParser; b : BOOL; END_VAR",
+        "b := fbXml.HasMember(1);",
         "",
     );
     let e = refused(&[("P.TcPOU", &main)]);
     assert!(
-        e.contains("error[E203]: unknown type `FB_JsonDomParser`"),
+        e.contains("error[E203]: unknown type `FB_XmlDomParser`"),
         "{e}"
     );
     assert!(!e.contains("E406"), "{e}");

@@ -136,6 +136,7 @@ impl Options {
                 .unwrap_or_else(|| driver::addressing_of(sources)),
             codesys_files: driver::codesys_files(sources),
             checked_files: driver::checked_files(sources),
+            library_files: driver::library_files(sources),
         }
     }
 }

@@ -501,7 +501,7 @@ impl BodyBuilder<'_> {
         if self.is_open_array(p.ty) {
             return self.connect_open_array(p, slot_place, e);
         }
-        let Some(arg) = self.place(e) else {
+        let Some(arg) = self.in_out_place(p, e) else {
             return;
         };
         if arg.ty != p.ty && arg.ty != TypeTable::error() && !self.enum_in_out(arg.ty, p.ty, e.span)

@@ -139,9 +139,14 @@ impl<'a> Declarer<'a> {
         self.model.codesys_files = files.iter().copied().collect();
     }
 
-    /// The files whose code calls a project's implicit checks.
+    /// The user's TwinCAT files (`CompileOptions::checked_files`).
     pub(super) fn set_checked_files(&mut self, files: &[crate::source::FileId]) {
         self.model.checked_files = files.iter().copied().collect();
+    }
+
+    /// The files of library projects, where no implicit check is called.
+    pub(super) fn set_library_files(&mut self, files: &[crate::source::FileId]) {
+        self.model.library_files = files.iter().copied().collect();
     }
 
     /// Turns the fusions and the bounds proofs off (or on again).

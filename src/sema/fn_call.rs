@@ -135,7 +135,7 @@ impl BodyBuilder<'_> {
                 self.open_array_argument(prm, e).map(Ready::Slots)
             }
             (MemberKind::InOut, Some(e)) => {
-                let arg = self.place(e)?;
+                let arg = self.in_out_place(prm, e)?;
                 if arg.ty != prm.ty {
                     self.mismatch(e.span, Ty::T(arg.ty), prm.ty, &what);
                     return None;

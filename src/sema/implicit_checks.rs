@@ -73,6 +73,7 @@ pub(super) fn warn_other_signatures(model: &Model, diags: &mut Diagnostics) {
         };
         let pou = &model.pous[p];
         if !model.checked_files.contains(&pou.span.file)
+            || model.library_files.contains(&pou.span.file)
             || declared_as_codesys(model, p, input, count)
         {
             continue;
@@ -97,7 +98,8 @@ impl BodyBuilder<'_> {
     /// it applies to code at `at`: declared as CODESYS declares it and
     /// laid out, not the POU being built (a check does not check itself)
     /// nor a POU declared `{attribute 'no_check'}`, and `at` in a file of
-    /// the CODESYS dialect other than plcrun's TwinCAT library.
+    /// the CODESYS dialect other than a library's (plcrun's TwinCAT
+    /// library, a library project loaded with the application).
     pub(super) fn implicit_check(&self, name: &str, at: Span) -> Option<usize> {
         let &p = self.model.pou_index.get(name)?;
         let &(_, input, count) = SIGNATURES.iter().find(|(n, _, _)| *n == name)?;
@@ -109,6 +111,7 @@ impl BodyBuilder<'_> {
             && !self.model.pous[self.block.pou].no_check
             && !self.in_no_check_method()
             && self.model.checked_files.contains(&at.file)
+            && !self.model.library_files.contains(&at.file)
             && declared_as_codesys(self.model, p, input, count);
         applies.then_some(p)
     }

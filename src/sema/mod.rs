@@ -154,11 +154,13 @@ pub struct CompileOptions {
     /// project files, CODESYS PLCopen XML exports): the implicit integer
     /// conversions CODESYS makes (W490) are accepted in them only.
     pub codesys_files: Vec<crate::source::FileId>,
-    /// The files whose code calls a project's implicit checks
-    /// (`CheckBounds`, `CheckDivDInt`...: implicit_checks.rs): those of
-    /// `codesys_files` but the libraries' (plcrun's own TwinCAT library
-    /// and library projects).
+    /// Those of `codesys_files` but plcrun's own TwinCAT library: the
+    /// user's TwinCAT code (STRING of 80 characters by default, W710, the
+    /// project's implicit checks: implicit_checks.rs).
     pub checked_files: Vec<crate::source::FileId>,
+    /// The files of library projects loaded with the application: no
+    /// implicit check is called in them, as in TwinCAT.
+    pub library_files: Vec<crate::source::FileId>,
 }
 
 /// Default limit of a program's data: 512 MiB (one instance or structure
@@ -231,6 +233,7 @@ fn compile_pass(
     declarer.set_grafcet(options.grafcet);
     declarer.set_codesys_files(&options.codesys_files);
     declarer.set_checked_files(&options.checked_files);
+    declarer.set_library_files(&options.library_files);
     declarer.set_data_limit(options.max_data_slots());
     if let Some((_, info)) = lowered.as_ref() {
         oop::methods::allocate(&mut declarer, info.clone());

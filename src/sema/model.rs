@@ -139,9 +139,10 @@ pub(crate) struct Model {
     /// The files in the CODESYS V3 / TwinCAT dialect, where CODESYS's
     /// implicit integer conversions are accepted (implicit_int.rs).
     pub codesys_files: std::collections::HashSet<crate::source::FileId>,
-    /// The files whose code calls a project's implicit checks
-    /// (implicit_checks.rs).
+    /// The user's TwinCAT files (`CompileOptions::checked_files`).
     pub checked_files: std::collections::HashSet<crate::source::FileId>,
+    /// The files of library projects (`CompileOptions::library_files`).
+    pub library_files: std::collections::HashSet<crate::source::FileId>,
     /// Methods, inheritance and interfaces (empty without OOP).
     pub oop: super::oop::OopInfo,
     /// The structure types of generic inputs (`x : ANY_NUM`), with their

@@ -52,7 +52,7 @@ impl BodyBuilder<'_> {
             );
             return None;
         }
-        let arg = self.place(e)?;
+        let arg = self.in_out_place(p, e)?;
         if arg.ty != p.ty && arg.ty != TypeTable::error() {
             self.mismatch(
                 e.span,
