@@ -143,6 +143,21 @@ fn fail_with(
     Ok(())
 }
 
+/// The pins of an equality assertion on values of type `t` (with a
+/// `Delta` of that type when `delta`): the values, the message and source
+/// location, and where an array assertion's element stands.
+fn equality_signature(name: &str, t: ElemType, delta: bool) -> HostSignature {
+    let sig = HostSignature::function(name, ElemType::Bool)
+        .input("Expected", t)
+        .input("Actual", t);
+    let sig = if delta { sig.input("Delta", t) } else { sig };
+    sig.input("Message", ElemType::String)
+        .input("Loc", ElemType::Lint)
+        .input("IsElement", ElemType::Bool)
+        .input("Index", ElemType::Lint)
+        .input("Element", ElemType::String)
+}
+
 fn is_real(t: ElemType) -> bool {
     matches!(t, ElemType::Real | ElemType::Lreal)
 }
@@ -151,14 +166,7 @@ fn is_real(t: ElemType) -> bool {
 pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError> {
     for t in ElemType::ALL {
         let name = format!("{ASSERT_EQ_PREFIX}{}", t.name());
-        let sig = HostSignature::function(&name, ElemType::Bool)
-            .input("Expected", t)
-            .input("Actual", t)
-            .input("Message", ElemType::String)
-            .input("Loc", ElemType::Lint)
-            .input("IsElement", ElemType::Bool)
-            .input("Index", ElemType::Lint)
-            .input("Element", ElemType::String);
+        let sig = equality_signature(&name, t, false);
         let log = log.clone();
         let result = name.clone();
         hosts.function(sig, move |io| {
@@ -178,15 +186,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
     }
     for t in [ElemType::Real, ElemType::Lreal] {
         let name = format!("{ASSERT_NEAR_PREFIX}{}", t.name());
-        let sig = HostSignature::function(&name, ElemType::Bool)
-            .input("Expected", t)
-            .input("Actual", t)
-            .input("Delta", t)
-            .input("Message", ElemType::String)
-            .input("Loc", ElemType::Lint)
-            .input("IsElement", ElemType::Bool)
-            .input("Index", ElemType::Lint)
-            .input("Element", ElemType::String);
+        let sig = equality_signature(&name, t, true);
         let log = log.clone();
         let result = name.clone();
         hosts.function(sig, move |io| {
@@ -232,14 +232,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
 fn register_any_strings(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError> {
     for (t, len) in [(ElemType::String, "LEN"), (ElemType::WString, "WLEN")] {
         let name = format!("{ASSERT_EQ_ANY_PREFIX}{}", t.name());
-        let sig = HostSignature::function(&name, ElemType::Bool)
-            .input("Expected", t)
-            .input("Actual", t)
-            .input("Message", ElemType::String)
-            .input("Loc", ElemType::Lint)
-            .input("IsElement", ElemType::Bool)
-            .input("Index", ElemType::Lint)
-            .input("Element", ElemType::String);
+        let sig = equality_signature(&name, t, false);
         let log = log.clone();
         hosts.function(sig, move |io| {
             let (e, a) = (io.get_str("Expected")?, io.get_str("Actual")?);
