@@ -103,3 +103,35 @@ fn two_strings_of_other_lengths_are_reported_by_their_lengths_as_tcunit_does() {
     );
     assert_eq!(report.cases[4].outcome(), TestOutcome::Passed);
 }
+
+#[test]
+fn tcunit_shows_a_failing_ltime_as_twincat_s_unsigned_duration() {
+    // TwinCAT's LTIME is unsigned: its largest value is no `LT#-1ns` in a
+    // TcUnit message, whichever assertion compares it.
+    let suite = twincat::pou(
+        "FB_Lt",
+        "FUNCTION_BLOCK FB_Lt EXTENDS FB_TestSuite\nVAR big : LTIME := LTIME#213503D23H34M33S709MS551US615NS; \
+         small : LTIME := LTIME#1000D; a : ARRAY[1..2] OF LTIME := [LTIME#1S, LTIME#213503D23H34M33S709MS551US615NS]; \
+         b : ARRAY[1..2] OF LTIME := [LTIME#1S, LTIME#2S]; END_VAR",
+        "TEST('Typed');\nAssertEquals_LTIME(Expected := big, Actual := small, Message := 'differ');\nTEST_FINISHED();\n\
+         TEST('Any');\nAssertEquals(Expected := small, Actual := big, Message := 'differ');\nTEST_FINISHED();\n\
+         TEST('Array');\nAssertArrayEquals_LTIME(Expecteds := a, Actuals := b, Message := 'differ');\nTEST_FINISHED();",
+        "",
+    );
+    let mut sources = SourceMap::new();
+    sources.add("FB_Lt.TcPOU", suite);
+    sources.add(
+        "main.st",
+        "PROGRAM PRG_TEST\nVAR s : FB_Lt; END_VAR\ns();\nEND_PROGRAM\n",
+    );
+    let report = run_tests(&sources, &TestOptions::default()).expect("compiles");
+    let shown = |i: usize| {
+        let f = &report.cases[i].failures[0];
+        (f.expected.clone(), f.actual.clone())
+    };
+    let max = "LT#213503d23h34m33s709ms551us615ns".to_string();
+    let small = "LT#1000d".to_string();
+    assert_eq!(shown(0), (max.clone(), small.clone()));
+    assert_eq!(shown(1), (small, max.clone()));
+    assert_eq!(shown(2), (max, "LT#2s".to_string()));
+}

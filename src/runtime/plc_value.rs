@@ -24,6 +24,20 @@ impl Value {
         }
     }
 
+    /// As [`Self::to_literal`], but an LTIME read as TwinCAT's, unsigned:
+    /// its largest value is `LT#213503d23h34m33s709ms551us615ns`, not
+    /// `LT#-1ns`.
+    pub(crate) fn to_unsigned_literal(&self) -> String {
+        match self {
+            Value::Scalar(ElemType::Ltime, raw) => {
+                let mut s = String::new();
+                crate::value::literal::write_unsigned_duration(&mut s, *raw, "LT#");
+                s
+            }
+            other => other.to_literal(),
+        }
+    }
+
     /// The value as a signed integer, if it is an integer-like scalar.
     pub fn as_i64(&self) -> Option<i64> {
         match self {

@@ -23,6 +23,9 @@ pub(crate) const ASSERT_EQ_ENUM_HOST: &str = "PLCRUN_ASSERT_EQ_ENUM";
 /// `..._WSTRING`): strings of other lengths are reported by their lengths,
 /// as TcUnit compares the sizes of ANY values first.
 pub(crate) const ASSERT_EQ_ANY_PREFIX: &str = "PLCRUN_ASSERT_EQ_ANY_";
+/// TcUnit's LTIME equality: TwinCAT's LTIME is unsigned, so a failure
+/// shows the values as unsigned durations.
+pub(crate) const TCUNIT_LTIME_HOST: &str = "PLCRUN_ASSERT_EQ_TCUNIT_LTIME";
 /// Prefix of the REAL/LREAL with-delta host functions.
 pub(crate) const ASSERT_NEAR_PREFIX: &str = "PLCRUN_ASSERT_NEAR_";
 /// Called by a TcUnit array assertion before its element comparisons,
@@ -184,7 +187,7 @@ impl BodyBuilder<'_> {
                 self.host_assert(&name, args, span, want)
             }
             (Family::Typed(t), Some(a)) => {
-                let name = format!("{ASSERT_EQ_PREFIX}{}", t.name());
+                let name = self.equality_host(t);
                 let args = self.eq_args(e, a, message, loc, None);
                 self.host_assert(&name, args, span, want)
             }
@@ -207,12 +210,10 @@ impl BodyBuilder<'_> {
                     return Some(self.differing_types((x, y), message, loc, span, want));
                 }
                 let t = self.common_elementary(&e, &a, span)?;
-                let any_string = tcunit && matches!(t, ElemType::String | ElemType::WString);
-                let prefix = match any_string {
-                    true => ASSERT_EQ_ANY_PREFIX,
-                    false => ASSERT_EQ_PREFIX,
+                let name = match tcunit && matches!(t, ElemType::String | ElemType::WString) {
+                    true => format!("{ASSERT_EQ_ANY_PREFIX}{}", t.name()),
+                    false => self.equality_host(t),
                 };
-                let name = format!("{prefix}{}", t.name());
                 let args = self.eq_args(e, a, message, loc, None);
                 self.host_assert(&name, args, span, want)
             }
@@ -388,6 +389,15 @@ impl BodyBuilder<'_> {
                 None
             }
         }
+    }
+
+    /// The host function comparing two values of type `t`: TcUnit's for an
+    /// LTIME in a TcUnit run, plcrun's otherwise.
+    pub(super) fn equality_host(&self, t: ElemType) -> String {
+        if t == ElemType::Ltime && self.in_tcunit_run() {
+            return TCUNIT_LTIME_HOST.to_string();
+        }
+        format!("{ASSERT_EQ_PREFIX}{}", t.name())
     }
 
     /// True under a TcUnit run: its runner declares the hosts TcUnit's

@@ -149,7 +149,7 @@ impl BodyBuilder<'_> {
         }
         let host = match (&delta, has_delta(elem)) {
             (Some(_), true) => format!("{ASSERT_NEAR_PREFIX}{}", elem.name()),
-            _ => format!("{ASSERT_EQ_PREFIX}{}", elem.name()),
+            _ => self.equality_host(elem),
         };
         for k in 0..count {
             // Position k in storage order (last index fastest).

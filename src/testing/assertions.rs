@@ -9,7 +9,7 @@ use crate::runtime::host_blocks::{
 };
 use crate::sema::assert_calls::{
     ASSERT_EQ_ANY_PREFIX, ASSERT_EQ_ENUM_HOST, ASSERT_EQ_PREFIX, ASSERT_NEAR_PREFIX,
-    ASSERT_TRUE_HOST,
+    ASSERT_TRUE_HOST, TCUNIT_LTIME_HOST,
 };
 use std::sync::{Arc, Mutex};
 
@@ -206,6 +206,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
         })?;
     }
     register_any_strings(hosts, log)?;
+    register_tcunit_ltime(hosts, log)?;
     register_enum(hosts, log)?;
     let sig = HostSignature::function(ASSERT_TRUE_HOST, ElemType::Bool)
         .input("Expected", ElemType::Bool)
@@ -250,6 +251,25 @@ fn register_any_strings(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDec
             }
         })?;
     }
+    Ok(())
+}
+
+/// TcUnit's LTIME equality: as plcrun's, but a failure shows the values
+/// as TwinCAT's unsigned LTIME (`LT#213503d23h34m33s709ms551us615ns`, not
+/// `LT#-1ns`).
+fn register_tcunit_ltime(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError> {
+    let sig = equality_signature(TCUNIT_LTIME_HOST, ElemType::Ltime, false);
+    let log = log.clone();
+    hosts.function(sig, move |io| {
+        let (e, a) = (io.get("Expected")?, io.get("Actual")?);
+        if e == a {
+            log.held(io, TCUNIT_LTIME_HOST)?;
+            io.set_bool(TCUNIT_LTIME_HOST, true)?;
+            return Ok(());
+        }
+        let shown = (e.to_unsigned_literal(), a.to_unsigned_literal());
+        fail_with(io, &log, TCUNIT_LTIME_HOST, true, shown)
+    })?;
     Ok(())
 }
 

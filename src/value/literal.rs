@@ -123,7 +123,6 @@ pub fn format_duration(nanos: i64, prefix: &str) -> String {
 /// Appends [`format_duration`]'s text to `out`, without allocating beyond
 /// `out`'s growth: the trace writes one per row.
 pub fn write_duration(out: &mut String, nanos: i64, prefix: &str) {
-    use std::fmt::Write as _;
     out.push_str(prefix);
     if nanos == 0 {
         out.push_str("0s");
@@ -133,7 +132,23 @@ pub fn write_duration(out: &mut String, nanos: i64, prefix: &str) {
         out.push('-');
     }
     // |i64::MIN| fits in u64, and every unit's scale does too.
-    let mut rest = nanos.unsigned_abs();
+    write_magnitude(out, nanos.unsigned_abs());
+}
+
+/// A duration of `nanos` nanoseconds read as unsigned, as TwinCAT's LTIME
+/// is (up to `LT#213503d23h34m33s709ms551us615ns`), after `prefix`.
+pub fn write_unsigned_duration(out: &mut String, nanos: u64, prefix: &str) {
+    out.push_str(prefix);
+    if nanos == 0 {
+        out.push_str("0s");
+        return;
+    }
+    write_magnitude(out, nanos);
+}
+
+/// `rest` nanoseconds in days, hours ... nanoseconds, the zero units left out.
+fn write_magnitude(out: &mut String, mut rest: u64) {
+    use std::fmt::Write as _;
     for (unit, scale) in DURATION_UNITS {
         let scale = scale as u64;
         let n = rest / scale;
@@ -453,6 +468,15 @@ mod tests {
         write_duration(&mut out, 10_000_000, "T#");
         write_duration(&mut out, 0, ",T#");
         assert_eq!(out, "x=T#10ms,T#0s");
+    }
+
+    #[test]
+    fn an_unsigned_duration_reaches_twincat_s_largest_ltime() {
+        let mut out = String::new();
+        write_unsigned_duration(&mut out, u64::MAX, "LT#");
+        write_unsigned_duration(&mut out, 0, ",LT#");
+        write_unsigned_duration(&mut out, 1_500_000_000, ",LT#");
+        assert_eq!(out, "LT#213503d23h34m33s709ms551us615ns,LT#0s,LT#1s500ms");
     }
 
     #[test]
