@@ -14,7 +14,7 @@
 //! and the event types (`TcEventEntry`, `TcEventSeverity`, `HRESULT`),
 //! Tc2_Utilities' `FB_HashTableCtrl` and system times (`TIMESTRUCT`,
 //! `T_FILETIME`, `FB_LocalSystemTime`, time zones), Tc3_JsonXml's
-//! `FB_JsonSaxWriter`,
+//! `FB_JsonSaxWriter` and `FB_JsonDomParser` (with `SJsonValue`),
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
 //! written in ST by plcrun
 //! (`twincat_library.st`) and added as a source of its own when the
