@@ -102,6 +102,14 @@ impl Log {
     }
 }
 
+/// Records a held assertion (TcUnit counts them) and sets the result to
+/// TRUE.
+fn pass(io: &mut HostIo<'_>, log: &Log, result: &str) -> HostResult {
+    log.held(io, result)?;
+    io.set_bool(result, true)?;
+    Ok(())
+}
+
 /// Records a failure from the pins `Expected`, `Actual`, `Message`, `Loc`
 /// (and `IsElement`/`Index` when present); sets the result to FALSE.
 fn fail(io: &mut HostIo<'_>, log: &Log, result: &str, element: bool) -> HostResult {
@@ -176,9 +184,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
                 io.get("Expected")? == io.get("Actual")?
             };
             if same {
-                log.held(io, &result)?;
-                io.set_bool(&result, true)?;
-                Ok(())
+                pass(io, &log, &result)
             } else {
                 fail(io, &log, &result, true)
             }
@@ -197,9 +203,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
             );
             // NaN anywhere fails: `<=` is false for it.
             if (e - a).abs() <= d.abs() {
-                log.held(io, &result)?;
-                io.set_bool(&result, true)?;
-                Ok(())
+                pass(io, &log, &result)
             } else {
                 fail(io, &log, &result, true)
             }
@@ -216,9 +220,7 @@ pub(crate) fn register(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDecl
     let log = log.clone();
     hosts.function(sig, move |io| {
         if io.get_bool("Expected")? == io.get_bool("Actual")? {
-            log.held(io, ASSERT_TRUE_HOST)?;
-            io.set_bool(ASSERT_TRUE_HOST, true)?;
-            Ok(())
+            pass(io, &log, ASSERT_TRUE_HOST)
         } else {
             fail(io, &log, ASSERT_TRUE_HOST, false)
         }
@@ -239,9 +241,7 @@ fn register_any_strings(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDec
             let (e, a) = (io.get_str("Expected")?, io.get_str("Actual")?);
             let (ne, na) = (e.chars().count(), a.chars().count());
             if e == a {
-                log.held(io, &name)?;
-                io.set_bool(&name, true)?;
-                Ok(())
+                pass(io, &log, &name)
             } else if ne != na {
                 // Quoted, as the type classes of two types are.
                 let size = |n: usize| format!("'(Data size ({len}) = {n})'");
@@ -263,9 +263,7 @@ fn register_tcunit_ltime(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDe
     hosts.function(sig, move |io| {
         let (e, a) = (io.get("Expected")?, io.get("Actual")?);
         if e == a {
-            log.held(io, TCUNIT_LTIME_HOST)?;
-            io.set_bool(TCUNIT_LTIME_HOST, true)?;
-            return Ok(());
+            return pass(io, &log, TCUNIT_LTIME_HOST);
         }
         let shown = (e.to_unsigned_literal(), a.to_unsigned_literal());
         fail_with(io, &log, TCUNIT_LTIME_HOST, true, shown)
@@ -287,9 +285,7 @@ fn register_enum(hosts: &mut HostBlocks, log: &Log) -> Result<(), HostDeclError>
     hosts.function(sig, move |io| {
         let (e, a) = (io.get_i64("Expected")?, io.get_i64("Actual")?);
         if e == a {
-            log.held(io, ASSERT_EQ_ENUM_HOST)?;
-            io.set_bool(ASSERT_EQ_ENUM_HOST, true)?;
-            return Ok(());
+            return pass(io, &log, ASSERT_EQ_ENUM_HOST);
         }
         let names = io.get_str("Names")?;
         let values = (enum_literal(&names, e), enum_literal(&names, a));
