@@ -7,9 +7,12 @@
 //! implicit_div.rs and implicit_range.rs.
 
 use super::body::BodyBuilder;
+use super::emit::Val;
+use super::implicit_int::wrap;
 use super::model::Model;
 use crate::diagnostics::Diagnostics;
 use crate::elementary::ElemType;
+use crate::ir::op::Slot;
 use crate::ir::type_table::{MemberKind, TypeId, TypeTable};
 use crate::source::Span;
 use crate::syntax::ast::PouKind;
@@ -128,14 +131,38 @@ impl BodyBuilder<'_> {
         version.is_some_and(|v| v.no_check)
     }
 
-    /// Calls check `p` with `values` (already of its input type, in the
-    /// order of its inputs): its result.
-    pub(super) fn call_implicit_check(
+    /// The value `s` of type `from` passed through check `p` (its first
+    /// input, of type `input`, `more` the others): converted to `input`
+    /// and what the check returns back to `from`.
+    pub(super) fn through_check(
         &mut self,
         p: usize,
-        values: Vec<super::emit::Val>,
+        (s, from, input): (Slot, ElemType, ElemType),
+        more: Vec<Val>,
         span: Span,
-    ) -> super::emit::Val {
+    ) -> Slot {
+        let first = self.quietly_as(Val::Slot(s, TypeTable::elem(from)), from, input, span);
+        let mut values = vec![first];
+        values.extend(more);
+        let result = self.call_implicit_check(p, values, span);
+        let back = self.quietly_as(result, input, from, span);
+        self.materialize(&back)
+    }
+
+    /// `v` of type `from` as a `to`: the same slot when every value fits,
+    /// else its low bits (the implicit conversion CODESYS makes, without
+    /// its warning: the compiler wrote it, not the user).
+    fn quietly_as(&mut self, v: Val, from: ElemType, to: ElemType, span: Span) -> Val {
+        match (v, wrap(from, to)) {
+            (v, Some(conv)) => self.apply_conv(v, conv, to, span),
+            (Val::Slot(s, _), None) => Val::Slot(s, TypeTable::elem(to)),
+            (other, None) => other,
+        }
+    }
+
+    /// Calls check `p` with `values` (already of its input type, in the
+    /// order of its inputs): its result.
+    fn call_implicit_check(&mut self, p: usize, values: Vec<Val>, span: Span) -> Val {
         let pou = &self.model.pous[p];
         let names: Vec<String> = pou
             .params

@@ -9,12 +9,9 @@
 //! implicit_checks.rs.
 
 use super::body::BodyBuilder;
-use super::emit::Val;
 use super::implicit_checks::{CHECK_DIV_DINT, CHECK_DIV_LINT, CHECK_DIV_LREAL, CHECK_DIV_REAL};
-use super::implicit_int::wrap;
 use crate::elementary::ElemType;
 use crate::ir::op::Slot;
-use crate::ir::type_table::TypeTable;
 use crate::source::Span;
 
 impl BodyBuilder<'_> {
@@ -31,20 +28,6 @@ impl BodyBuilder<'_> {
         let Some(check) = self.implicit_check(name, span) else {
             return b;
         };
-        let arg = self.quietly_as(Val::Slot(b, TypeTable::elem(e)), e, input, span);
-        let result = self.call_implicit_check(check, vec![arg], span);
-        let back = self.quietly_as(result, input, e, span);
-        self.materialize(&back)
-    }
-
-    /// `v` of type `from` as a `to`: the same slot when every value fits,
-    /// else its low bits (the implicit conversion CODESYS makes, without
-    /// its warning: the compiler wrote it, not the user).
-    pub(super) fn quietly_as(&mut self, v: Val, from: ElemType, to: ElemType, span: Span) -> Val {
-        match (v, wrap(from, to)) {
-            (v, Some(conv)) => self.apply_conv(v, conv, to, span),
-            (Val::Slot(s, _), None) => Val::Slot(s, TypeTable::elem(to)),
-            (other, None) => other,
-        }
+        self.through_check(check, (b, e, input), Vec::new(), span)
     }
 }

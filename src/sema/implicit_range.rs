@@ -38,13 +38,9 @@ impl BodyBuilder<'_> {
         let Some(check) = self.implicit_check(name, span) else {
             return s;
         };
-        let value = self.quietly_as(Val::Slot(s, TypeTable::elem(base)), base, input, span);
         // The bounds are the subrange's, so they fit the check's type.
         let bound = |b: i64| Val::Const(super::consts::Const::Bits(b as u64), input_ty(input));
-        let args = vec![value, bound(lo), bound(hi)];
-        let result = self.call_implicit_check(check, args, span);
-        let back = self.quietly_as(result, input, base, span);
-        self.materialize(&back)
+        self.through_check(check, (s, base, input), vec![bound(lo), bound(hi)], span)
     }
 }
 
