@@ -1,5 +1,6 @@
 //! The dispatch loop.
 
+use super::loop_kernels::{FrameArray, LoopExit, scan_flags, store_stride};
 use super::{Fault, FaultKind, Interrupt, Machine, string_ops};
 use crate::ir::image::Image;
 use crate::ir::op::{Cmp, CodeIdx, Op, ShiftKind, Slot, wrap_s, wrap_u};
@@ -102,7 +103,7 @@ fn operand_word(ip: *const Op) -> Slot {
 /// goes on. The comparison uses the exact sum, so a sum past the type's
 /// range ends the loop instead of wrapping around.
 #[inline(always)]
-fn for_next(i: u64, step: i16, lim: i64, shift: u8) -> (u64, bool) {
+pub(super) fn for_next(i: u64, step: i16, lim: i64, shift: u8) -> (u64, bool) {
     let sum = (i as i64).checked_add(step as i64);
     let v = wrap_s(i.wrapping_add(step as i64 as u64), shift);
     let go = match sum {
@@ -792,25 +793,47 @@ fn run<const DEBUG: bool, const NATIVE: bool>(
                     // Excluded by the verifier.
                     _ => fault!(FaultKind::BadAddress),
                 };
-                let mut j = r!(idx);
-                loop {
-                    let i = (j as i64).wrapping_sub(ad.lo) as u64;
-                    if i >= ad.len {
-                        fault!(index_fault(j, ad));
+                let at = FrameArray { fp, desc: ad };
+                if at.covers(idx.index()) || at.covers(s.index()) || at.covers(b.index()) {
+                    // An operand is an element: every turn reads it again.
+                    let mut j = r!(idx);
+                    loop {
+                        let i = (j as i64).wrapping_sub(ad.lo) as u64;
+                        if i >= ad.len {
+                            fault!(index_fault(j, ad));
+                        }
+                        let at = ad.offset as u64 + i * ad.stride as u64;
+                        w_at!(at, r!(s));
+                        if at == idx.get() as u64 {
+                            // The element stored is the loop variable itself.
+                            j = r!(idx);
+                        }
+                        j = wrap_s(j.wrapping_add(r!(b)), shift);
+                        w!(idx, j);
+                        if !cmp.test((j as i64).cmp(&(imm as i64))) {
+                            break;
+                        }
+                        // The AddBr's jump back: a watchdog fault names it.
+                        tick!(pc!() + 1);
                     }
-                    let at = ad.offset as u64 + i * ad.stride as u64;
-                    w_at!(at, r!(s));
-                    if at == idx.get() as u64 {
-                        // The element stored is the loop variable itself.
-                        j = r!(idx);
+                } else {
+                    let (v, step) = (r!(s), r!(b));
+                    // SAFETY: the descriptor's elements and the operand
+                    // slots lie in the frame (verified); `irq`: see above.
+                    match unsafe {
+                        store_stride(&at, idx.index(), (v, step), (cmp, imm as i64, shift), &*irq)
+                    } {
+                        LoopExit::BadIndex(j) => fault!(index_fault(j, ad)),
+                        // The AddBr's jump back: a watchdog fault names it.
+                        LoopExit::Interrupted(kind) => {
+                            return Err(Fault {
+                                kind,
+                                code,
+                                pc: pc!() as u32 + 1,
+                            });
+                        }
+                        LoopExit::Done | LoopExit::Found => {}
                     }
-                    j = wrap_s(j.wrapping_add(r!(b)), shift);
-                    w!(idx, j);
-                    if !cmp.test((j as i64).cmp(&(imm as i64))) {
-                        break;
-                    }
-                    // The AddBr's jump back: a watchdog fault names it.
-                    tick!(pc!() + 1);
                 }
                 // SAFETY: the AddBr is not the block's last instruction (Ret
                 // is); the arm's end moves past it.
@@ -827,29 +850,26 @@ fn run<const DEBUG: bool, const NATIVE: bool>(
             } => {
                 // SAFETY: descriptor indexes are verified at link time.
                 let ad = unsafe { img.arrays.get_unchecked(desc.index()) };
-                let mut v = r!(i);
+                let at = FrameArray { fp, desc: ad };
                 // Where the scan goes on: after this instruction, or at the
                 // element test `t` (a bad index) or just past it (found).
-                let mut resume = None;
-                loop {
-                    let go;
-                    (v, go) = for_next(v, step as i16, lim as i64, shift);
-                    w!(i, v);
-                    if !go {
-                        break;
-                    }
-                    tick!();
-                    let k = (v as i64).wrapping_sub(ad.lo) as u64;
-                    if k >= ad.len {
-                        // The element test at `t` reports the bad index.
-                        resume = Some(t.index());
-                        break;
-                    }
-                    if (r_at!(ad.offset as u64 + k * ad.stride as u64) != 0) == when {
-                        resume = Some(t.index() + 1);
-                        break;
-                    }
-                }
+                // SAFETY: the descriptor's elements and `i` lie in the frame
+                // (verified); `irq`: see above.
+                let resume = match unsafe {
+                    scan_flags(
+                        &at,
+                        i.index(),
+                        (step as i16, lim as i64, shift),
+                        when,
+                        &*irq,
+                    )
+                } {
+                    LoopExit::Done => None,
+                    // The element test at `t` reports the bad index.
+                    LoopExit::BadIndex(_) => Some(t.index()),
+                    LoopExit::Found => Some(t.index() + 1),
+                    LoopExit::Interrupted(kind) => fault!(kind),
+                };
                 if let Some(at) = resume {
                     // SAFETY: t + 1 < block length (verified with the partner test).
                     ip = unsafe { start.add(at) };
