@@ -105,11 +105,13 @@ pub fn load_files_with<P: AsRef<Path>>(
         };
         let library = is_project && shadowing.seen_project;
         shadowing.seen_project |= is_project;
+        let mut names = SourceNames::default();
         for file in &files {
             let bytes = std::fs::read(file).map_err(load_error(file))?;
             if !shadowing.keeps(&bytes, library) {
                 continue;
             }
+            names.add(&bytes);
             let id = add_source_bytes(
                 &mut sources,
                 file.display().to_string(),
@@ -121,11 +123,42 @@ pub fn load_files_with<P: AsRef<Path>>(
                 sources.mark_library(id);
             }
         }
-        for (name, text) in description_sources(&descriptions, &mut events)? {
+        for (name, text) in description_sources(&descriptions, &names, &mut events)? {
             sources.add(name, text);
         }
     }
     Ok(sources)
+}
+
+/// What a project's sources name and declare (upper case): the global data
+/// types of its type system that it uses are taken from there
+/// ([`type_description::persistent_types_used`]).
+#[derive(Default)]
+struct SourceNames {
+    /// Every identifier of the sources.
+    used: HashSet<String>,
+    /// The objects (POUs, types, lists, interfaces) the sources are.
+    declared: HashSet<String>,
+}
+
+impl SourceNames {
+    /// Adds a source file's names.
+    fn add(&mut self, bytes: &[u8]) {
+        let text = String::from_utf8_lossy(bytes);
+        crate::syntax::twincat::identifiers(&text, &mut self.used);
+        if let Some(name) = crate::syntax::twincat::object_name(&text) {
+            self.declared.insert(name.to_ascii_uppercase());
+        }
+    }
+
+    /// The names of the files of a project.
+    fn of(files: &[PathBuf]) -> Result<SourceNames, LoadError> {
+        let mut names = SourceNames::default();
+        for file in files {
+            names.add(&std::fs::read(file).map_err(load_error(file))?);
+        }
+        Ok(names)
+    }
 }
 
 /// How the TwinCAT projects after the first one — the libraries
@@ -164,7 +197,8 @@ impl LibraryShadowing {
 /// the project pins nothing and describes no event class.
 pub fn type_description_sources(path: &Path) -> Result<Vec<(String, String)>, LoadError> {
     let project = project::project_files(path).map_err(load_error(path))?;
-    description_sources(&project.descriptions, &mut HashSet::new())
+    let names = SourceNames::of(&project.sources)?;
+    description_sources(&project.descriptions, &names, &mut HashSet::new())
 }
 
 /// The narrowed sources of `descriptions`: the primary one keeps the
@@ -174,6 +208,7 @@ pub fn type_description_sources(path: &Path) -> Result<Vec<(String, String)>, Lo
 /// are pinned from it, for the reader to report.
 fn description_sources(
     descriptions: &project::TypeDescriptions,
+    names: &SourceNames,
     events: &mut HashSet<String>,
 ) -> Result<Vec<(String, String)>, LoadError> {
     let primary = descriptions
@@ -181,14 +216,21 @@ fn description_sources(
         .iter()
         .map(|p| (p, &descriptions.pinned[..]));
     let others = descriptions.others.iter().map(|p| (p, &[][..]));
+    // A type the project declares or pins, or one an earlier description
+    // gave, is not taken again.
+    let mut shadowed = names.declared.clone();
+    shadowed.extend(descriptions.pinned.iter().map(|n| n.to_ascii_uppercase()));
     let mut out = Vec::new();
     for (path, pinned) in primary.chain(others) {
         let bytes = std::fs::read(path).map_err(load_error(path))?;
         let text = String::from_utf8_lossy(&bytes);
-        let kept = match type_description::narrowed(&text, pinned, events) {
+        let used = type_description::persistent_types_used(&text, &names.used, &shadowed);
+        shadowed.extend(used.iter().cloned());
+        let wanted: Vec<String> = pinned.iter().cloned().chain(used).collect();
+        let kept = match type_description::narrowed(&text, &wanted, events) {
             Some((_, 0)) => continue,
             Some((narrowed, _)) => narrowed,
-            None if pinned.is_empty() => continue,
+            None if wanted.is_empty() => continue,
             None => text.into_owned(),
         };
         out.push((path.display().to_string(), kept));

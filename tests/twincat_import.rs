@@ -626,6 +626,49 @@ fn types_pinned_from_the_type_system_are_read_from_the_tmc_or_the_tsproj() {
     assert!(err.contains("Plc.tmc:4:3"), "{err}");
 }
 
+/// A type system whose global data types (`PersistentType="true"`) a
+/// project uses without pinning them: `ST_Log` names `E_Kind` in turn;
+/// `ST_Mine` the project declares itself; `ST_Unused` nobody names; and
+/// `ST_Plain`, used but not a global type. The last three could not be
+/// read: taking any of them is an error.
+const PERSISTENT_TYPES: &str = "<?xml version=\"1.0\"?>\n<TcSmProject>\n\t<DataTypes>\n\t\t<DataType>\n\t\t\t<Name GUID=\"{C}\" PersistentType=\"true\">E_Kind</Name>\n\t\t\t<BaseType>INT</BaseType>\n\t\t\t<EnumInfo><Text>Cleared</Text><Enum>0</Enum></EnumInfo>\n\t\t\t<EnumInfo><Text>Raised</Text><Enum>2</Enum></EnumInfo>\n\t\t</DataType>\n\t\t<DataType>\n\t\t\t<Name GUID=\"{D}\" PersistentType=\"true\">ST_Log</Name>\n\t\t\t<SubItem><Name>kind</Name><Type GUID=\"{C}\">E_Kind</Type></SubItem>\n\t\t\t<SubItem><Name>id</Name><Type>UDINT</Type><Default><Value>7</Value></Default></SubItem>\n\t\t</DataType>\n\t\t<DataType><Name PersistentType=\"true\">ST_Mine</Name><SubItem><Name>x</Name><Type>NOPE</Type></SubItem></DataType>\n\t\t<DataType><Name PersistentType=\"true\">ST_Unused</Name><SubItem><Name>x</Name><Type>NOPE</Type></SubItem></DataType>\n\t\t<DataType><Name>ST_Plain</Name><SubItem><Name>x</Name><Type>NOPE</Type></SubItem></DataType>\n\t</DataTypes>\n</TcSmProject>\n";
+
+#[test]
+fn global_types_of_the_type_system_a_project_uses_are_taken_unpinned() {
+    let project = PINNING_PROJECT
+        .replace("    <PinnedGlobalDataType Include=\"ST_Io\" />\n", "")
+        .replace(
+            "<Compile Include=\"MAIN.TcPOU\" />",
+            "<Compile Include=\"MAIN.TcPOU\" />\n    <Compile Include=\"ST_Mine.TcDUT\" />",
+        );
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    log : ST_Log;\n    mine : ST_Mine;\n    n : UDINT;\nEND_VAR\n",
+        "log.kind := E_Kind.Raised;\nn := log.id + INT_TO_UDINT(log.kind) + mine.y;\n",
+        "",
+    );
+    let mine = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<TcPlcObject Version=\"1.1.0.1\">\n  <DUT Name=\"ST_Mine\" Id=\"{00000000-0000-0000-0000-000000000009}\">\n    <Declaration><![CDATA[TYPE ST_Mine :\nSTRUCT\n    y : UDINT := 100;\nEND_STRUCT\nEND_TYPE\n]]></Declaration>\n  </DUT>\n</TcPlcObject>\n";
+    let dir = temp_project(&[
+        ("Plc/Plc.plcproj", &project),
+        ("Plc/MAIN.TcPOU", &main),
+        ("Plc/ST_Mine.TcDUT", mine),
+        ("Solution.tsproj", PERSISTENT_TYPES),
+    ]);
+    let plc = format!("{dir}/Plc/Plc.plcproj");
+    let out = plcrun_ok(&[&plc, "--cycles", "1", "--trace", "MAIN.n"]);
+    assert_eq!(out, "cycle,time,MAIN.n\n0,T#0s,109\n");
+    // A type that is only in the solution's type system, not a global one,
+    // stays unknown.
+    let plain = main.replace("mine : ST_Mine;", "mine : ST_Mine; p : ST_Plain;");
+    std::fs::write(format!("{dir}/Plc/MAIN.TcPOU"), plain).unwrap();
+    let (code, _, err) = plcrun(&["check", &plc]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("error[E203]: unknown type `ST_Plain`"),
+        "{err}"
+    );
+}
+
 #[test]
 fn the_language_server_reads_the_pinned_types_too() {
     use crate::support::lsp_client::LspClient;

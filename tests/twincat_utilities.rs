@@ -353,3 +353,41 @@ fn ads_requests_and_coe_access_fail_as_without_a_device() {
     assert_eq!(lit(&plc, "P.sdo.bError"), "TRUE");
     assert_eq!(lit(&plc, "P.sdo.nErrId"), "6");
 }
+
+#[test]
+fn system_times_and_guids_as_text_and_strings_copied_through_pointers() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  t : TIMESTRUCT := (wYear := 2024, wMonth := 2, wDay := 9, wHour := 7, wMinute := 5, wSecond := 3, wMilliseconds := 42);\n  g : GUID := (Data1 := 16#0A1B2C3D, Data2 := 16#00EF, Data3 := 16#1234, Data4 := [16#FE, 16#01, 16#2, 16#3, 16#4, 16#5, 16#60, 16#7F]);\n  zero : GUID;\n  ts, gs, gz : T_MaxString;\n  src : STRING(40) := 'a text of twenty-four ch';\n  small : STRING(10); wide : STRING(80); same : STRING(80);\n  okSmall, okWide, okNull : BOOL; cut : UDINT; whole : UDINT; n : UDINT; nNull : UDINT;\nEND_VAR",
+        "ts := SYSTEMTIME_TO_STRING(t);\n\
+         gs := GUID_TO_STRING(g);\n\
+         gz := GUID_TO_STRING(zero);\n\
+         okSmall := STRNCPY(ADR(small), ADR(src), 8, nDstLen => cut, nSrcLen => whole);\n\
+         okWide := STRNCPY(ADR(wide), ADR(src), SIZEOF(wide));\n\
+         okNull := STRNCPY(0, ADR(src), SIZEOF(wide));\n\
+         n := LEN2(ADR(src));\n\
+         nNull := LEN2(0);",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(lit(&plc, "P.ts"), "'2024-02-09-07:05:03.042'");
+    assert_eq!(lit(&plc, "P.gs"), "'0A1B2C3D-00EF-1234-FE01-02030405607F'");
+    assert_eq!(lit(&plc, "P.gz"), "'00000000-0000-0000-0000-000000000000'");
+    // Eight bytes hold seven characters and the terminating zero.
+    assert_eq!(
+        [
+            lit(&plc, "P.okSmall"),
+            lit(&plc, "P.small"),
+            lit(&plc, "P.cut"),
+            lit(&plc, "P.whole")
+        ],
+        ["FALSE", "'a text '", "7", "24"]
+    );
+    assert_eq!(
+        [lit(&plc, "P.okWide"), lit(&plc, "P.wide")],
+        ["TRUE", "'a text of twenty-four ch'"]
+    );
+    assert_eq!(lit(&plc, "P.okNull"), "FALSE");
+    assert_eq!([lit(&plc, "P.n"), lit(&plc, "P.nNull")], ["24", "0"]);
+}

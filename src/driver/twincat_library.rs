@@ -13,7 +13,8 @@
 //! device), Tc3_EventLogger's `FB_TcMessage` with its arguments, source
 //! and the event types (`TcEventEntry`, `TcEventSeverity`, `HRESULT`),
 //! Tc2_Utilities' `FB_HashTableCtrl` and system times (`TIMESTRUCT`,
-//! `T_FILETIME`, `FB_LocalSystemTime`, time zones), Tc3_JsonXml's
+//! `T_FILETIME`, `FB_LocalSystemTime`, time zones, `SYSTEMTIME_TO_STRING`,
+//! `GUID_TO_STRING`, `LEN2`, `STRNCPY`), Tc3_JsonXml's
 //! `FB_JsonSaxWriter` and `FB_JsonDomParser` (with `SJsonValue`),
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
 //! written in ST by plcrun
@@ -76,24 +77,6 @@ fn declared(sources: &SourceMap) -> HashSet<String> {
         }
     }
     names
-}
-
-/// The identifiers of `text`, upper case: every `[A-Za-z_][A-Za-z0-9_]*`
-/// run (in comments and XML markup too, which only adds names).
-fn identifiers(text: &str, into: &mut HashSet<String>) {
-    let bytes = text.as_bytes();
-    let mut i = 0;
-    while i < bytes.len() {
-        if bytes[i].is_ascii_alphabetic() || bytes[i] == b'_' {
-            let start = i;
-            while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
-                i += 1;
-            }
-            into.insert(text[start..i].to_ascii_uppercase());
-        } else {
-            i += 1;
-        }
-    }
 }
 
 /// The names (upper case) an item of the library declares, read from its
@@ -196,7 +179,7 @@ pub(crate) fn add_library(sources: &mut SourceMap) {
     let declared = declared(sources);
     let mut used = HashSet::new();
     for f in files {
-        identifiers(&f.text, &mut used);
+        crate::syntax::twincat::identifiers(&f.text, &mut used);
         // A type description's event classes name `TcEventEntry` in the
         // declarations the reader writes, not in the file's text.
         let needed = crate::syntax::twincat::type_description::library_names(&f.text);

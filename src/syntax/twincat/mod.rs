@@ -25,6 +25,7 @@ use crate::syntax::construct::State;
 use crate::syntax::il_lines::keep_il_lines;
 use crate::syntax::parser;
 use crate::syntax::plcopen::emit::{Emitter, elements, open_xml};
+use std::collections::HashSet;
 
 /// True when `text` is a TwinCAT object file: after an optional byte-order
 /// mark, white space and an XML declaration, its root is `<TcPlcObject`.
@@ -52,6 +53,24 @@ pub fn object_name(text: &str) -> Option<&str> {
     let rest = &text[at..];
     let rest = &rest[rest.find("Name=\"")? + 6..];
     Some(&rest[..rest.find('"')?])
+}
+
+/// The identifiers of `text`, upper case: every `[A-Za-z_][A-Za-z0-9_]*`
+/// run (in comments and XML markup too, which only adds names).
+pub fn identifiers(text: &str, into: &mut HashSet<String>) {
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i].is_ascii_alphabetic() || bytes[i] == b'_' {
+            let start = i;
+            while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
+                i += 1;
+            }
+            into.insert(text[start..i].to_ascii_uppercase());
+        } else {
+            i += 1;
+        }
+    }
 }
 
 /// The name of the first element of an XML text (skipping the

@@ -84,12 +84,7 @@ pub fn narrowed(
     let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
     let doc = crate::syntax::plcopen::read_xml(&text[base..]).ok()?;
     let wanted: HashSet<String> = names.iter().map(|n| n.to_ascii_uppercase()).collect();
-    let hidden: HashSet<String> = data_types(&doc)
-        .filter_map(|t| child(t, "Hides"))
-        .flat_map(elements)
-        .filter_map(|h| h.attribute("GUID"))
-        .map(str::to_ascii_uppercase)
-        .collect();
+    let hidden = hidden_versions(&doc);
     let mut taken: HashSet<String> = HashSet::new();
     let mut blank: Vec<std::ops::Range<usize>> = Vec::new();
     for node in data_types(&doc) {
@@ -113,6 +108,63 @@ pub fn narrowed(
         blank.into_iter().map(|r| base + r.start..base + r.end),
     )?;
     Some((narrowed, kept))
+}
+
+/// The global data types of a type system (`<Name PersistentType="true">`
+/// in the `.tsproj`) that a project uses without pinning them: those named
+/// in `used` (upper-case identifiers of its sources), and the persistent
+/// types those name in turn, except the names in `shadowed` (upper case:
+/// what the project declares or pins itself). TwinCAT gives a project
+/// these types (LCLS General's logger declares `ST_LoggingEventInfo`
+/// nowhere: its solution's type system holds it). Only a type's current
+/// version counts. Empty when `text` is not well-formed XML.
+pub fn persistent_types_used(
+    text: &str,
+    used: &HashSet<String>,
+    shadowed: &HashSet<String>,
+) -> Vec<String> {
+    let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
+    let Ok(doc) = crate::syntax::plcopen::read_xml(&text[base..]) else {
+        return Vec::new();
+    };
+    let hidden = hidden_versions(&doc);
+    let persistent: Vec<(String, Node)> = data_types(&doc)
+        .filter(|t| !is_event_class(*t))
+        .filter(|t| {
+            let name = child(*t, "Name");
+            let flag = name.and_then(|n| n.attribute("PersistentType"));
+            let guid = name.and_then(|n| n.attribute("GUID"));
+            flag.is_some_and(|f| f.eq_ignore_ascii_case("true"))
+                && guid.is_none_or(|g| !hidden.contains(&g.to_ascii_uppercase()))
+        })
+        .filter_map(|t| Some((type_name(t)?.to_ascii_uppercase(), t)))
+        .filter(|(name, _)| !shadowed.contains(name))
+        .collect();
+    let mut named = used.clone();
+    let mut taken: Vec<String> = Vec::new();
+    // Each round takes the types named so far; a type taken names more.
+    loop {
+        let before = taken.len();
+        for (name, node) in &persistent {
+            if named.contains(name) && !taken.contains(name) {
+                taken.push(name.clone());
+                super::identifiers(&doc.input_text()[node.range()], &mut named);
+            }
+        }
+        if taken.len() == before {
+            return taken;
+        }
+    }
+}
+
+/// The GUIDs (upper case) of the type versions a newer one `<Hides>`.
+fn hidden_versions(doc: &Document) -> HashSet<String> {
+    data_types(doc)
+        .filter_map(|t| child(t, "Hides"))
+        .flat_map(elements)
+        .filter_map(|h| h.attribute("GUID"))
+        .map(str::to_ascii_uppercase)
+        .collect()
 }
 
 /// Parses a type description into its types. Never panics, on any input;
