@@ -391,3 +391,50 @@ fn system_times_and_guids_as_text_and_strings_copied_through_pointers() {
     assert_eq!(lit(&plc, "P.okNull"), "FALSE");
     assert_eq!([lit(&plc, "P.n"), lit(&plc, "P.nNull")], ["24", "0"]);
 }
+
+/// Tc2_TcpIp's UDP socket and Tc2_Utilities' host queries need TwinCAT's
+/// Connection Server and ADS router, which plcrun does not have: they fail
+/// as requests to a missing server do, and the program's error path runs.
+#[test]
+fn udp_sockets_and_host_queries_fail_as_without_the_servers() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  sock : FB_ConnectionlessSocket := (nMode := CONNECT_MODE_ENABLEDBG);\n  send : FB_SocketUdpSendTo;\n  host : FB_GetHostName;\n  nics : FB_GetAdaptersInfo := (sNetID := '5.1.2.3.1.1');\n  msg : STRING := 'hello';\n  n : INT;\n  created : BOOL; sockErr, sendErr, hostErr, nicErr : UDINT; slots : UDINT;\nEND_VAR",
+        "n := n + 1;\n\
+         sock(bEnable := n < 3);\n\
+         IF n = 1 THEN sockErr := sock.nErrID; END_IF\n\
+         created := sock.eState = E_SocketConnectionlessState.eSOCKET_CREATED;\n\
+         send(hSocket := sock.hSocket, sRemoteHost := '10.0.0.1', nRemotePort := 5000, pSrc := ADR(msg), cbLen := LEN2(ADR(msg)), bExecute := TRUE);\n\
+         sendErr := send.nErrId;\n\
+         host(bExecute := TRUE); hostErr := host.nErrID;\n\
+         nics(bExecute := TRUE); nicErr := nics.nErrID;\n\
+         slots := UPPER_BOUND(nics.arrAdapters, 1) + 1;",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 3);
+    assert_eq!(
+        [
+            lit(&plc, "P.sockErr"),
+            lit(&plc, "P.created"),
+            lit(&plc, "P.sendErr"),
+            lit(&plc, "P.send.bError")
+        ],
+        ["6", "FALSE", "6", "TRUE"]
+    );
+    // bEnable fell in the third cycle: the error is gone.
+    assert_eq!(
+        [lit(&plc, "P.sock.bError"), lit(&plc, "P.sock.nErrID")],
+        ["FALSE", "0"]
+    );
+    assert_eq!(
+        [
+            lit(&plc, "P.hostErr"),
+            lit(&plc, "P.host.sHostName"),
+            lit(&plc, "P.nicErr"),
+            lit(&plc, "P.nics.nCount"),
+            lit(&plc, "P.slots")
+        ],
+        ["6", "''", "7", "0", "6"]
+    );
+}

@@ -14,7 +14,8 @@
 //! and the event types (`TcEventEntry`, `TcEventSeverity`, `HRESULT`),
 //! Tc2_Utilities' `FB_HashTableCtrl` and system times (`TIMESTRUCT`,
 //! `T_FILETIME`, `FB_LocalSystemTime`, time zones, `SYSTEMTIME_TO_STRING`,
-//! `GUID_TO_STRING`, `LEN2`, `STRNCPY`), Tc3_JsonXml's
+//! `GUID_TO_STRING`, `LEN2`, `STRNCPY`, `FB_GetHostName`,
+//! `FB_GetAdaptersInfo`), Tc2_TcpIp's UDP socket blocks, Tc3_JsonXml's
 //! `FB_JsonSaxWriter` and `FB_JsonDomParser` (with `SJsonValue`),
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
 //! written in ST by plcrun
