@@ -166,3 +166,114 @@ fn an_ads_block_fails_as_with_its_device_missing() {
         ["16#2", "16#8"]
     );
 }
+
+/// A listener built on `FB_ListenerBase`, as SLAC's logger and Beckhoff's
+/// example build theirs: it counts what `OnMessageSent` receives and keeps
+/// the last event's number, source, argument count and JSON attribute.
+fn listener_pou() -> String {
+    pou(
+        "FB_Counter",
+        "FUNCTION_BLOCK FB_Counter EXTENDS FB_ListenerBase\nVAR\n  nReceived : UDINT;\n  nLastId : UDINT;\n  sLastSource : STRING;\n  nLastArgs : UDINT;\n  sLastJson : STRING(80);\n  hrJson : HRESULT;\n  sTiny : STRING(3);\n  hrTiny : HRESULT;\nEND_VAR\n",
+        "",
+        "    <Method Name=\"OnMessageSent\" Id=\"{00000000-0000-0000-0000-000000000011}\">\n      <Declaration><![CDATA[METHOD OnMessageSent\nVAR_INPUT\n  fbEvent : REFERENCE TO FB_TcEvent;\nEND_VAR\n]]></Declaration>\n      <Implementation>\n        <ST><![CDATA[nReceived := nReceived + 1;\nnLastId := fbEvent.nEventId;\nsLastSource := fbEvent.ipSourceInfo.sName;\nnLastArgs := fbEvent.ipArguments.nCount;\nhrJson := fbEvent.GetJsonAttribute(sLastJson, SIZEOF(sLastJson));\nhrTiny := fbEvent.GetJsonAttribute(sTiny, SIZEOF(sTiny));]]></ST>\n      </Implementation>\n    </Method>\n",
+    )
+}
+
+/// Messages sent through `FB_TcMessage` reach the listeners subscribed
+/// before them: through a filter of event classes and least severities,
+/// or all of them without one.
+#[test]
+fn listeners_receive_the_messages_sent_after_they_subscribe() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  filtered, all, late : FB_Counter;\n  ipFilter : ITcEventFilterConfig;\n  plant : GUID := (Data1 := 16#97CF8247);\n  other : GUID := (Data1 := 16#1);\n  warn : TcEventEntry := (uuidEventClass := (Data1 := 16#97CF8247), nEventId := 3, eSeverity := TcEventSeverity.Warning);\n  info : TcEventEntry := (uuidEventClass := (Data1 := 16#97CF8247), nEventId := 4, eSeverity := TcEventSeverity.Info);\n  elsewhere : TcEventEntry := (uuidEventClass := (Data1 := 16#1), nEventId := 5, eSeverity := TcEventSeverity.Error);\n  mWarn, mInfo, mElse, mEarly : FB_TcMessage;\n  src : FB_TcSourceInfo;\n  hrSub, hrAgain, hrAdd : HRESULT;\n  bGotFilter : BOOL;\n  n : INT;\nEND_VAR",
+        "n := n + 1;\n\
+         IF n = 1 THEN\n\
+           mEarly.CreateEx(warn, 0); mEarly.Send(0);\n\
+           hrSub := filtered.Subscribe(ADR(ipFilter), 0);\n\
+           hrAgain := filtered.Subscribe(ADR(ipFilter), 0);\n\
+           bGotFilter := ipFilter <> 0;\n\
+           hrAdd := ipFilter.AddEventClass(plant, TcEventSeverity.Warning);\n\
+           all.Subscribe(0, 0);\n\
+           src.sName := 'P.boiler';\n\
+           mWarn.CreateEx(warn, src); mWarn.ipArguments.Clear().AddString('boiler').AddDInt(97);\n\
+           mWarn.SetJsonAttribute('{\"zone\":2}');\n\
+           mInfo.CreateEx(info, src); mElse.CreateEx(elsewhere, 0);\n\
+           mWarn.Send(0); mInfo.Send(0); mElse.Send(0);\n\
+         END_IF\n\
+         IF n = 2 THEN late.Subscribe(0, 0); mElse.Send(0); END_IF\n\
+         filtered.Execute(); all.Execute(); late.Execute();",
+        "",
+    );
+    let mut plc = compile_ok(&[("FB_Counter.TcPOU", &listener_pou()), ("P.TcPOU", &main)]);
+    run(&mut plc, 3);
+    // Subscribed once; the second call fails with E_FAIL.
+    assert_eq!(
+        [
+            lit(&plc, "P.hrSub"),
+            lit(&plc, "P.hrAgain"),
+            lit(&plc, "P.bGotFilter"),
+            lit(&plc, "P.hrAdd")
+        ],
+        ["0", "-2147467259", "TRUE", "0"]
+    );
+    // Through the filter only the plant's warning; the message sent
+    // before the subscription reaches nobody.
+    assert_eq!(
+        [
+            lit(&plc, "P.filtered.nReceived"),
+            lit(&plc, "P.filtered.nLastId"),
+            lit(&plc, "P.filtered.sLastSource"),
+            lit(&plc, "P.filtered.nLastArgs"),
+            lit(&plc, "P.filtered.sLastJson"),
+            lit(&plc, "P.filtered.hrJson"),
+            lit(&plc, "P.filtered.hrTiny")
+        ],
+        [
+            "1",
+            "3",
+            "'P.boiler'",
+            "2",
+            "'{\"zone\":2}'",
+            "0",
+            "-2147467259"
+        ]
+    );
+    // Without a filter: the three of cycle 0 and the one of cycle 1; the
+    // late listener only that one.
+    assert_eq!(
+        [
+            lit(&plc, "P.all.nReceived"),
+            lit(&plc, "P.all.nLastId"),
+            lit(&plc, "P.late.nReceived"),
+            lit(&plc, "P.late.sLastSource")
+        ],
+        ["4", "5", "1", "''"]
+    );
+}
+
+/// plcrun keeps no event texts: a request for one fails at once, and the
+/// program's fallback runs (SLAC's logger writes "(Unable to retrieve
+/// message)").
+#[test]
+fn an_event_text_request_fails_without_texts() {
+    let main = pou(
+        "P",
+        "PROGRAM P\nVAR\n  req : FB_RequestEventText;\n  args : FB_TcArguments;\n  cls : GUID := (Data1 := 16#97CF8247);\n  hr, hrGet : HRESULT;\n  s : STRING(40) := 'old';\nEND_VAR",
+        "hr := req.Request(eventClass := cls, nEventId := 1, nLangId := 1033, ipArgs := args);\n\
+         hrGet := req.GetString(s, SIZEOF(s));",
+        "",
+    );
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    assert_eq!(
+        [
+            lit(&plc, "P.hr"),
+            lit(&plc, "P.req.bBusy"),
+            lit(&plc, "P.req.bError"),
+            lit(&plc, "P.hrGet"),
+            lit(&plc, "P.s")
+        ],
+        ["-2147467259", "FALSE", "TRUE", "-2147467259", "''"]
+    );
+}

@@ -11,7 +11,9 @@
 //! `IQueryInterface`, `F_GetTaskTime`, the AMS addresses and Tc2_EtherCAT's
 //! device states with the blocks that ask for them (failing as without a
 //! device), Tc3_EventLogger's `FB_TcMessage` with its arguments, source
-//! and the event types (`TcEventEntry`, `TcEventSeverity`, `HRESULT`),
+//! and the event types (`TcEventEntry`, `TcEventSeverity`, `HRESULT`), its
+//! listeners (`FB_ListenerBase`, `FB_TcEvent`, `ITcEventFilterConfig`) and
+//! `FB_RequestEventText`,
 //! Tc2_Utilities' `FB_HashTableCtrl` and system times (`TIMESTRUCT`,
 //! `T_FILETIME`, `FB_LocalSystemTime`, time zones, `SYSTEMTIME_TO_STRING`,
 //! `GUID_TO_STRING`, `LEN2`, `STRNCPY`, `FB_GetHostName`,
