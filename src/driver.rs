@@ -21,6 +21,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 mod address_map;
+mod event_classes;
 mod io_links;
 mod library_projects;
 mod nc_axes;
@@ -90,6 +91,7 @@ pub fn load_files_with<P: AsRef<Path>>(
 ) -> Result<SourceMap, LoadError> {
     let mut sources = SourceMap::new();
     let mut events = HashSet::new();
+    let mut classes = Vec::new();
     let mut shadowing = LibraryShadowing::default();
     for path in paths {
         let path = path.as_ref();
@@ -124,8 +126,12 @@ pub fn load_files_with<P: AsRef<Path>>(
             }
         }
         for (name, text) in description_sources(&descriptions, &names, &mut events)? {
+            classes.extend(type_description::event_class_guids(&text));
             sources.add(name, text);
         }
+    }
+    if let Some(text) = event_classes::event_classes_source(&classes) {
+        sources.add(event_classes::EVENT_CLASSES_SOURCE, text);
     }
     Ok(sources)
 }
@@ -198,7 +204,15 @@ impl LibraryShadowing {
 pub fn type_description_sources(path: &Path) -> Result<Vec<(String, String)>, LoadError> {
     let project = project::project_files(path).map_err(load_error(path))?;
     let names = SourceNames::of(&project.sources)?;
-    description_sources(&project.descriptions, &names, &mut HashSet::new())
+    let mut sources = description_sources(&project.descriptions, &names, &mut HashSet::new())?;
+    let classes: Vec<(String, String)> = sources
+        .iter()
+        .flat_map(|(_, text)| type_description::event_class_guids(text))
+        .collect();
+    if let Some(text) = event_classes::event_classes_source(&classes) {
+        sources.push((event_classes::EVENT_CLASSES_SOURCE.to_string(), text));
+    }
+    Ok(sources)
 }
 
 /// The narrowed sources of `descriptions`: the primary one keeps the

@@ -20,13 +20,14 @@ const SOLUTION: &str = "<?xml version=\"1.0\"?>\n<TcSmProject>\n  <Project>\n   
 /// other numbers) with three events, one without a severity.
 const EVENTS: &str = "<?xml version='1.0' encoding='UTF-8'?>\n<TcModuleClass>\n  <DataTypes>\n    <DataType>\n      <Name GUID=\"{97CF8247-B59C-4E2C-B4B0-7350D0471457}\">PlantEvents</Name>\n      <EventId>\n        <Name Id=\"0\">Critical</Name>\n        <Severity>Critical</Severity>\n      </EventId>\n      <EventId>\n        <Name Id=\"3\">Overheat</Name>\n        <Severity>Warning</Severity>\n      </EventId>\n      <EventId>\n        <Name Id=\"4\">Trace</Name>\n      </EventId>\n      <Hides><Hide GUID=\"{11111111-2222-3333-4444-555555555555}\"/></Hides>\n    </DataType>\n    <DataType>\n      <Name GUID=\"{11111111-2222-3333-4444-555555555555}\">PlantEvents</Name>\n      <EventId>\n        <Name Id=\"9\">Overheat</Name>\n        <Severity>Error</Severity>\n      </EventId>\n    </DataType>\n  </DataTypes>\n</TcModuleClass>\n";
 
-/// MAIN reads the entries of `TC_EVENTS.PlantEvents` and sends a message
-/// of one, the way SLAC's `FB_LogMessage` does.
+/// MAIN reads the entries of `TC_EVENTS.PlantEvents` and the class's GUID
+/// `TC_EVENT_CLASSES.PlantEvents`, and sends a message of one, the way
+/// SLAC's `FB_LogMessage` does.
 fn main_pou() -> String {
     pou(
         "MAIN",
-        "PROGRAM MAIN\nVAR\n  nId : UDINT;\n  bWarning : BOOL;\n  bTraceVerbose : BOOL;\n  nData1 : DWORD;\n  nLast : BYTE;\n  msgs : ARRAY[0..4] OF FB_TcMessage;\n  msg : REFERENCE TO FB_TcMessage;\n  hr : HRESULT;\n  nSent : UDINT;\nEND_VAR\n",
-        "nId := TC_EVENTS.PlantEvents.Overheat.nEventId;\nbWarning := TC_EVENTS.PlantEvents.Overheat.eSeverity = TcEventSeverity.Warning;\nbTraceVerbose := TC_EVENTS.PlantEvents.Trace.eSeverity = TcEventSeverity.Verbose;\nnData1 := TC_EVENTS.PlantEvents.Overheat.uuidEventClass.Data1;\nnLast := TC_EVENTS.PlantEvents.Critical.uuidEventClass.Data4[7];\nmsg REF= msgs[TC_EVENTS.PlantEvents.Overheat.nEventId];\nhr := msg.CreateEx(TC_EVENTS.PlantEvents.Overheat, 0);\nmsg.ipArguments.Clear().AddString('boiler').AddLReal(97.5);\nIF NOT FAILED(hr) AND msg.eSeverity >= TcEventSeverity.Info THEN\n  hr := msg.Send(0);\nEND_IF\nnSent := msgs[3].nSent;\n",
+        "PROGRAM MAIN\nVAR\n  nId : UDINT;\n  bWarning : BOOL;\n  bTraceVerbose : BOOL;\n  nData1 : DWORD;\n  nLast : BYTE;\n  bSameClass : BOOL;\n  msgs : ARRAY[0..4] OF FB_TcMessage;\n  msg : REFERENCE TO FB_TcMessage;\n  hr : HRESULT;\n  nSent : UDINT;\nEND_VAR\n",
+        "nId := TC_EVENTS.PlantEvents.Overheat.nEventId;\nbWarning := TC_EVENTS.PlantEvents.Overheat.eSeverity = TcEventSeverity.Warning;\nbTraceVerbose := TC_EVENTS.PlantEvents.Trace.eSeverity = TcEventSeverity.Verbose;\nnData1 := TC_EVENTS.PlantEvents.Overheat.uuidEventClass.Data1;\nnLast := TC_EVENTS.PlantEvents.Critical.uuidEventClass.Data4[7];\nbSameClass := TC_EVENT_CLASSES.PlantEvents.Data1 = nData1 AND TC_EVENT_CLASSES.PlantEvents.Data4[7] = nLast;\nmsg REF= msgs[TC_EVENTS.PlantEvents.Overheat.nEventId];\nhr := msg.CreateEx(TC_EVENTS.PlantEvents.Overheat, 0);\nmsg.ipArguments.Clear().AddString('boiler').AddLReal(97.5);\nIF NOT FAILED(hr) AND msg.eSeverity >= TcEventSeverity.Info THEN\n  hr := msg.Send(0);\nEND_IF\nnSent := msgs[3].nSent;\n",
         "",
     )
 }
@@ -44,13 +45,12 @@ fn the_event_classes_of_the_type_system_are_tc_events_entries() {
         ("GlobalEvents.tmc", EVENTS),
     ]);
     let plc = format!("{dir}/Plc/Plc.plcproj");
-    let vars =
-        "MAIN.nId,MAIN.bWarning,MAIN.bTraceVerbose,MAIN.nData1,MAIN.nLast,MAIN.hr,MAIN.nSent";
+    let vars = "MAIN.nId,MAIN.bWarning,MAIN.bTraceVerbose,MAIN.nData1,MAIN.nLast,MAIN.bSameClass,MAIN.hr,MAIN.nSent";
     let out = plcrun_ok(&[&plc, "--cycles", "2", "--trace", vars]);
     assert_eq!(
         out,
         format!(
-            "cycle,time,{vars}\n0,T#0s,3,TRUE,TRUE,16#97CF8247,16#57,0,1\n1,T#10ms,3,TRUE,TRUE,16#97CF8247,16#57,0,2\n"
+            "cycle,time,{vars}\n0,T#0s,3,TRUE,TRUE,16#97CF8247,16#57,TRUE,0,1\n1,T#10ms,3,TRUE,TRUE,16#97CF8247,16#57,TRUE,0,2\n"
         )
     );
     // Read from the additional description alone.

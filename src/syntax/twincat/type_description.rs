@@ -167,6 +167,34 @@ fn hidden_versions(doc: &Document) -> HashSet<String> {
         .collect()
 }
 
+/// The event classes `text` declares in their current version, each as
+/// its name and its GUID written as a `GUID` value: what the PLC sees as
+/// `TC_EVENT_CLASSES.<class>`. A class without a well-formed GUID is left
+/// out (its `TC_EVENTS` declaration reports it). Empty when `text` is not
+/// well-formed XML.
+pub fn event_class_guids(text: &str) -> Vec<(String, String)> {
+    let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
+    let Ok(doc) = crate::syntax::plcopen::read_xml(&text[base..]) else {
+        return Vec::new();
+    };
+    let hidden = hidden_versions(&doc);
+    data_types(&doc)
+        .filter(|t| is_event_class(*t))
+        .filter_map(|t| {
+            let name = child(t, "Name")?;
+            let guid = name.attribute("GUID")?;
+            if hidden.contains(&guid.to_ascii_uppercase()) {
+                return None;
+            }
+            let class = name.text()?.trim();
+            if !is_identifier(class) {
+                return None;
+            }
+            Some((class.to_string(), guid_value(guid)?))
+        })
+        .collect()
+}
+
 /// Parses a type description into its types. Never panics, on any input;
 /// every problem is a diagnostic pointing into `text`.
 pub fn parse(file: FileId, text: &str, diags: &mut Diagnostics) -> CompilationUnit {
