@@ -126,7 +126,7 @@ pub fn load_files_with<P: AsRef<Path>>(
             }
         }
         for (name, text) in description_sources(&descriptions, &names, &mut events)? {
-            classes.extend(type_description::event_class_guids(&text));
+            classes.extend(type_description::event_classes(&text));
             sources.add(name, text);
         }
     }
@@ -205,9 +205,9 @@ pub fn type_description_sources(path: &Path) -> Result<Vec<(String, String)>, Lo
     let project = project::project_files(path).map_err(load_error(path))?;
     let names = SourceNames::of(&project.sources)?;
     let mut sources = description_sources(&project.descriptions, &names, &mut HashSet::new())?;
-    let classes: Vec<(String, String)> = sources
+    let classes: Vec<_> = sources
         .iter()
-        .flat_map(|(_, text)| type_description::event_class_guids(text))
+        .flat_map(|(_, text)| type_description::event_classes(text))
         .collect();
     if let Some(text) = event_classes::event_classes_source(&classes) {
         sources.push((event_classes::EVENT_CLASSES_SOURCE.to_string(), text));

@@ -252,11 +252,11 @@ fn listeners_receive_the_messages_sent_after_they_subscribe() {
     );
 }
 
-/// plcrun keeps no event texts: a request for one fails at once, and the
-/// program's fallback runs (SLAC's logger writes "(Unable to retrieve
-/// message)").
+/// Without type descriptions there is no event text: a request for one
+/// fails at once, and the program's fallback runs (SLAC's logger writes
+/// "(Unable to retrieve message)").
 #[test]
-fn an_event_text_request_fails_without_texts() {
+fn an_event_text_request_fails_without_a_text() {
     let main = pou(
         "P",
         "PROGRAM P\nVAR\n  req : FB_RequestEventText;\n  args : FB_TcArguments;\n  cls : GUID := (Data1 := 16#97CF8247);\n  hr, hrGet : HRESULT;\n  s : STRING(40) := 'old';\nEND_VAR",
@@ -275,5 +275,37 @@ fn an_event_text_request_fails_without_texts() {
             lit(&plc, "P.s")
         ],
         ["-2147467259", "FALSE", "TRUE", "-2147467259", "''"]
+    );
+}
+
+/// An event class whose events have display texts, with placeholders for
+/// the arguments and characters that need escaping in ST.
+const TEXTS: &str = "<?xml version='1.0' encoding='UTF-8'?>\n<TcModuleClass>\n  <DataTypes>\n    <DataType>\n      <Name GUID=\"{97CF8247-B59C-4E2C-B4B0-7350D0471457}\">PlantEvents</Name>\n      <EventId>\n        <Name Id=\"3\">Overheat</Name>\n        <DisplayName TxtId=\"\">Overheat of {0}: {1} 'degrees' ({2}) for $ {x}</DisplayName>\n        <Severity>Warning</Severity>\n      </EventId>\n      <EventId>\n        <Name Id=\"4\">Trace</Name>\n      </EventId>\n    </DataType>\n  </DataTypes>\n</TcModuleClass>\n";
+
+/// The display texts of the project's event classes answer
+/// `FB_RequestEventText`, the arguments put in for their placeholders.
+#[test]
+fn an_event_text_is_the_display_text_with_its_arguments() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n  req, none : FB_RequestEventText;\n  args : FB_TcArguments;\n  hr, hrNone, hrGet, hrSmall : HRESULT;\n  s : STRING(80);\n  small : STRING(10);\n  n : UDINT;\nEND_VAR\n",
+        "args.Clear().AddString('boiler').AddDInt(97);\nhr := req.Request(eventClass := TC_EVENT_CLASSES.PlantEvents, nEventId := TC_EVENTS.PlantEvents.Overheat.nEventId, nLangId := 1033, ipArgs := args);\nn := req.nStringSize;\nhrGet := req.GetString(s, SIZEOF(s));\nhrSmall := req.GetString(small, SIZEOF(small));\nhrNone := none.Request(eventClass := TC_EVENT_CLASSES.PlantEvents, nEventId := 4, nLangId := 1033, ipArgs := args);\n",
+        "",
+    );
+    let dir = temp_project(&[
+        ("Plc/Plc.plcproj", PLC_PROJECT),
+        ("Plc/MAIN.TcPOU", &main),
+        ("Plc/Plc.tmc", TEXTS),
+    ]);
+    let plc = format!("{dir}/Plc/Plc.plcproj");
+    let vars =
+        "MAIN.hr,MAIN.s,MAIN.n,MAIN.hrGet,MAIN.hrSmall,MAIN.small,MAIN.hrNone,MAIN.none.bError";
+    let out = plcrun_ok(&[&plc, "--cycles", "1", "--trace", vars]);
+    // {2} has no argument and {x} is no placeholder: both stay.
+    assert_eq!(
+        out,
+        format!(
+            "cycle,time,{vars}\n0,T#0s,0,'Overheat of boiler: 97 $'degrees$' ({{2}}) for $$ {{x}}',49,0,-2147467259,'',-2147467259,TRUE\n"
+        )
     );
 }

@@ -167,12 +167,24 @@ fn hidden_versions(doc: &Document) -> HashSet<String> {
         .collect()
 }
 
-/// The event classes `text` declares in their current version, each as
-/// its name and its GUID written as a `GUID` value: what the PLC sees as
-/// `TC_EVENT_CLASSES.<class>`. A class without a well-formed GUID is left
-/// out (its `TC_EVENTS` declaration reports it). Empty when `text` is not
+/// An event class as the PLC sees it beyond `TC_EVENTS`: its name, its
+/// GUID written as a `GUID` value (`TC_EVENT_CLASSES.<class>`), and the
+/// display text of each event (`<DisplayName>`) by event number.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EventClassInfo {
+    /// The class's name.
+    pub name: String,
+    /// Its GUID as the initial value of a `GUID` structure.
+    pub guid: String,
+    /// (event number, display text) of each event that has a text.
+    pub texts: Vec<(u32, String)>,
+}
+
+/// The event classes `text` declares in their current version. A class
+/// without a well-formed GUID, or an event without a number, is left out
+/// (its `TC_EVENTS` declaration reports it). Empty when `text` is not
 /// well-formed XML.
-pub fn event_class_guids(text: &str) -> Vec<(String, String)> {
+pub fn event_classes(text: &str) -> Vec<EventClassInfo> {
     let base = text.len() - text.trim_start_matches('\u{FEFF}').len();
     let Ok(doc) = crate::syntax::plcopen::read_xml(&text[base..]) else {
         return Vec::new();
@@ -190,7 +202,19 @@ pub fn event_class_guids(text: &str) -> Vec<(String, String)> {
             if !is_identifier(class) {
                 return None;
             }
-            Some((class.to_string(), guid_value(guid)?))
+            let texts = elements(t)
+                .filter(|c| c.has_tag_name("EventId"))
+                .filter_map(|e| {
+                    let id = child(e, "Name")?.attribute("Id").and_then(event_number)?;
+                    let shown = child(e, "DisplayName")?.text()?.trim();
+                    Some((id, shown.to_string()))
+                })
+                .collect();
+            Some(EventClassInfo {
+                name: class.to_string(),
+                guid: guid_value(guid)?,
+                texts,
+            })
         })
         .collect()
 }
