@@ -7,7 +7,6 @@ use crate::ir::op::{Cmp, CodeIdx, Op, ShiftKind, Slot, wrap_s, wrap_u};
 use crate::stdlib;
 use crate::value::convert;
 use std::sync::Arc;
-use std::sync::atomic::Ordering;
 
 #[inline(always)]
 fn f32_of(x: u64) -> f32 {
@@ -262,11 +261,8 @@ fn run<const DEBUG: bool, const NATIVE: bool>(
     // Every call enters here: a check per call bounds call chains that
     // take time without looping (each function calling two others...).
     // SAFETY: see `irq`.
-    if unsafe { (*irq).word().load(Ordering::Relaxed) } != 0 {
-        // SAFETY: see `irq`.
-        if let Some(kind) = unsafe { (*irq).pending() } {
-            return Err(Fault { kind, code, pc: 0 });
-        }
+    if let Some(kind) = unsafe { (*irq).stop_request() } {
+        return Err(Fault { kind, code, pc: 0 });
     }
     let mut mem: *mut u64 = m.mem.as_mut_ptr();
     // SAFETY: base + frame_size <= len was checked just above.
@@ -371,15 +367,12 @@ fn run<const DEBUG: bool, const NATIVE: bool>(
         };
         ($pc:expr) => {{
             // SAFETY: see `irq`.
-            if unsafe { (*irq).word().load(Ordering::Relaxed) } != 0 {
-                // SAFETY: see `irq`.
-                if let Some(kind) = unsafe { (*irq).pending() } {
-                    return Err(Fault {
-                        kind,
-                        code,
-                        pc: $pc as u32,
-                    });
-                }
+            if let Some(kind) = unsafe { (*irq).stop_request() } {
+                return Err(Fault {
+                    kind,
+                    code,
+                    pc: $pc as u32,
+                });
             }
         }};
     }

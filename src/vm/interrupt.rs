@@ -65,6 +65,18 @@ impl Interrupt {
         self.word.fetch_or(WATCHDOG, Ordering::Release);
     }
 
+    /// The look a backward jump or a call takes: the fault to stop with,
+    /// if the word is set and what it says applies ([`Self::pending`]).
+    /// One relaxed load on the way that goes on.
+    #[inline(always)]
+    pub(crate) fn stop_request(&self) -> Option<FaultKind> {
+        if self.word.load(Ordering::Relaxed) != 0 {
+            self.pending()
+        } else {
+            None
+        }
+    }
+
     /// What a non-zero word means for the code running now: an abort, a
     /// watchdog expiry of this task run, or nothing (a watchdog bit left
     /// over from a run that has ended, which is cleared here).

@@ -19,7 +19,6 @@ use super::exec::for_next;
 use super::{FaultKind, Interrupt};
 use crate::ir::image::ArrayDesc;
 use crate::ir::op::{Cmp, wrap_s};
-use std::sync::atomic::Ordering;
 
 /// Why a kernel handed control back.
 #[derive(Debug, PartialEq)]
@@ -113,7 +112,7 @@ unsafe fn store_stride_while(
         if !goes_on(j as i64) {
             return LoopExit::Done;
         }
-        if let Some(kind) = interrupted(irq) {
+        if let Some(kind) = irq.stop_request() {
             return LoopExit::Interrupted(kind);
         }
     }
@@ -146,7 +145,7 @@ pub(crate) unsafe fn scan_flags(
         if !go {
             return LoopExit::Done;
         }
-        if let Some(kind) = interrupted(irq) {
+        if let Some(kind) = irq.stop_request() {
             return LoopExit::Interrupted(kind);
         }
         let k = (v as i64).wrapping_sub(lo) as u64;
@@ -157,15 +156,5 @@ pub(crate) unsafe fn scan_flags(
         if (unsafe { *fp.add((first + k * stride) as usize) } != 0) == when {
             return LoopExit::Found;
         }
-    }
-}
-
-/// The look at the interrupt word a backward jump makes.
-#[inline(always)]
-fn interrupted(irq: &Interrupt) -> Option<FaultKind> {
-    if irq.word().load(Ordering::Relaxed) != 0 {
-        irq.pending()
-    } else {
-        None
     }
 }
