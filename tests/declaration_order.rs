@@ -122,3 +122,37 @@ END_PROGRAM";
     // counter 2 + clock 2 * 100 + watcher 2 * 1000
     assert_eq!(lit(&plc, "seen"), "2202");
 }
+
+/// A pointer to a block declared before an instance that block's code
+/// names (TcUnit's `CurrentTestSuiteBeingCalled : POINTER TO
+/// FB_TestSuite` comes before `AdsMessageQueue`, which the suite's
+/// assertion formatter writes to): the named instance is declared first.
+#[test]
+fn a_pointer_to_a_block_comes_after_the_instances_its_code_names() {
+    let src = "
+VAR_GLOBAL
+  current : POINTER TO FB_Suite;
+  queue : FB_Queue;
+END_VAR
+FUNCTION_BLOCK FB_Queue
+  VAR_OUTPUT n : DINT; END_VAR
+  METHOD Push
+    n := n + 1;
+  END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Formatter
+  GVL_Main.queue.Push();
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Suite
+  VAR fmt : FB_Formatter; END_VAR
+  fmt();
+END_FUNCTION_BLOCK
+PROGRAM main
+  VAR s : FB_Suite; END_VAR
+  current := ADR(s);
+  current^();
+END_PROGRAM";
+    let mut plc = compile(src);
+    run(&mut plc, 3);
+    assert_eq!(lit(&plc, "queue.n"), "3");
+}

@@ -318,10 +318,11 @@ impl Declarer<'_> {
             }
         }
         self.resolve_types();
-        // Globals: top-level lists, their function block instances last
-        // (laying one out emits its body, which may use a global the list
-        // declares after it: TwinCAT's `TcUnitRunner : FB_TcUnitRunner;`
-        // first in its list), then configurations and resources.
+        // Globals: top-level lists, their function block instances and
+        // references to blocks last (laying one out emits the block's body,
+        // which may use a global the list declares after it: TwinCAT's
+        // `TcUnitRunner : FB_TcUnitRunner;` first in its list), then
+        // configurations and resources.
         let mut instances: Vec<(&VarBlock, Vec<usize>)> = Vec::new();
         for unit in units.iter() {
             for item in &unit.items {
@@ -331,34 +332,21 @@ impl Declarer<'_> {
                 }
             }
         }
-        // The references to blocks (`POINTER TO FB_TestSuite`) after the
-        // other globals of every list, for the same reason.
-        for refs_to_blocks in [false, true] {
-            for (u, unit) in units.iter().enumerate() {
-                for (i, item) in unit.items.iter().enumerate() {
-                    if let Item::Globals(block) = item {
-                        let plain = early
-                            .iter()
-                            .find(|(at, _)| *at == (u, i))
-                            .map(|(_, p)| p.as_slice())
-                            .unwrap_or_default();
-                        let held = instances
-                            .iter()
-                            .find(|(b, _)| std::ptr::eq(*b, block))
-                            .map(|(_, h)| h.as_slice())
-                            .unwrap_or_default();
-                        let to_blocks: Vec<bool> = block
-                            .decls
-                            .iter()
-                            .map(|d| self.names_block(&d.ty))
-                            .collect();
-                        let pick = |d: usize| {
-                            !plain.contains(&d)
-                                && !held.contains(&d)
-                                && to_blocks[d] == refs_to_blocks
-                        };
-                        self.declare_global_decls(block, &pick, !refs_to_blocks);
-                    }
+        for (u, unit) in units.iter().enumerate() {
+            for (i, item) in unit.items.iter().enumerate() {
+                if let Item::Globals(block) = item {
+                    let plain = early
+                        .iter()
+                        .find(|(at, _)| *at == (u, i))
+                        .map(|(_, p)| p.as_slice())
+                        .unwrap_or_default();
+                    let held = instances
+                        .iter()
+                        .find(|(b, _)| std::ptr::eq(*b, block))
+                        .map(|(_, h)| h.as_slice())
+                        .unwrap_or_default();
+                    let pick = |d: usize| !plain.contains(&d) && !held.contains(&d);
+                    self.declare_global_decls(block, &pick, true);
                 }
             }
         }

@@ -1,23 +1,26 @@
 //! Which declarations of a global variable list hold function block
-//! instances, and in which order to declare them. They are declared after
-//! the lists' other globals: laying out an instance emits its FB's body,
-//! and that body may use any global (TcUnit's `GVL_TcUnit` starts with
-//! `TcUnitRunner : FB_TcUnitRunner;`, whose body reads the list's later
-//! variables). Among themselves, an instance whose block's code names
-//! another list instance (`GVL_TcUnit.GetCpuCounter`) comes after it; the
-//! written order is kept wherever it works. Their memory comes after the
-//! other globals'; nothing else depends on the order.
+//! instances or references to blocks, and in which order to declare them.
+//! They are declared after the lists' other globals: laying out a block
+//! emits its body, and that body may use any global (TcUnit's
+//! `GVL_TcUnit` starts with `TcUnitRunner : FB_TcUnitRunner;`, whose body
+//! reads the list's later variables, and declares a `POINTER TO
+//! FB_TestSuite` before the message queue the suite's code writes to).
+//! Among themselves, a declaration whose block's code names another list
+//! instance (`GVL_TcUnit.GetCpuCounter`) comes after it; the written order
+//! is kept wherever it works. Their memory comes after the other globals';
+//! nothing else depends on the order.
 
 use super::declare::Declarer;
 use crate::syntax::ast::{PouKind, TypeSpec, VarBlock};
 use std::collections::{HashMap, HashSet};
 
 impl Declarer<'_> {
-    /// The indexes of `block`'s declarations whose type is a user
-    /// FUNCTION_BLOCK or an array of one.
+    /// The indexes of `block`'s declarations whose type names a user
+    /// FUNCTION_BLOCK, directly or through arrays and references
+    /// (`POINTER TO FB_TestSuite`): resolving one lays the block out.
     pub(super) fn instance_decls(&self, block: &VarBlock) -> Vec<usize> {
         (0..block.decls.len())
-            .filter(|&d| self.fb_named(&block.decls[d].ty).is_some())
+            .filter(|&d| self.block_behind(&block.decls[d].ty).is_some())
             .collect()
     }
 
@@ -43,7 +46,7 @@ impl Declarer<'_> {
             .iter()
             .enumerate()
             .map(|(n, &(l, d))| {
-                let Some(p) = self.fb_named(&lists[l].0.decls[d].ty) else {
+                let Some(p) = self.block_behind(&lists[l].0.decls[d].ty) else {
                     return Vec::new();
                 };
                 let named = named_by_fb
@@ -108,20 +111,20 @@ impl Declarer<'_> {
         named
     }
 
-    /// The user FUNCTION_BLOCK `spec` names, directly or as the element
-    /// type of an array.
-    /// Whether `spec` names a user FUNCTION_BLOCK, directly or through
-    /// arrays and references (`POINTER TO FB_TestSuite`): resolving it
-    /// lays the block out, which emits its body, so the globals that body
-    /// may read must be declared before (docs of `declare_all`).
-    pub(super) fn names_block(&self, spec: &TypeSpec) -> bool {
+    /// The user FUNCTION_BLOCK `spec` names, directly or through arrays
+    /// and references (`POINTER TO FB_TestSuite`): resolving it lays the
+    /// block out, which emits its body, so the globals that body may read
+    /// must be declared before.
+    fn block_behind(&self, spec: &TypeSpec) -> Option<usize> {
         match spec {
-            TypeSpec::Ref { target, .. } => self.names_block(target),
-            TypeSpec::Array { elem, .. } => self.names_block(elem),
-            spec => self.fb_named(spec).is_some(),
+            TypeSpec::Ref { target, .. } => self.block_behind(target),
+            TypeSpec::Array { elem, .. } => self.block_behind(elem),
+            spec => self.fb_named(spec),
         }
     }
 
+    /// The user FUNCTION_BLOCK `spec` names, directly or as the element
+    /// type of an array.
     fn fb_named(&self, spec: &TypeSpec) -> Option<usize> {
         match spec {
             TypeSpec::Named(id) => {
