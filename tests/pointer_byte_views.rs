@@ -324,15 +324,16 @@ fn what_a_byte_view_cannot_do_faults() {
         "px := ADR(a) + 5; d := px;",
     );
     assert_eq!(first_fault(&src).fault.kind.code(), "R036");
-    // A structure kept in an integer and read back as bytes: no byte
-    // layout (R037); read back as another structure: a byte view is read
-    // as elementary values only (R034). Read back as its own type, it is
-    // the structure again (`a_structure_kept_in_an_integer_is_read_back`).
-    let prelude = "TYPE T : STRUCT a : INT; b : REAL; END_STRUCT; END_TYPE\nTYPE U : STRUCT a : INT; b : REAL; END_STRUCT; END_TYPE";
+    // A function block instance kept in an integer and read back as
+    // bytes: no byte layout (R037); a structure read back as another
+    // structure: a byte view is read as elementary values only (R034).
+    // Read back as its own type, it is the structure again
+    // (`a_structure_kept_in_an_integer_is_read_back`).
+    let prelude = "TYPE T : STRUCT a : INT; b : REAL; END_STRUCT; END_TYPE\nTYPE U : STRUCT a : INT; b : REAL; END_STRUCT; END_TYPE\nFUNCTION_BLOCK FB_X\nVAR a : INT; END_VAR\nEND_FUNCTION_BLOCK";
     let src = program(
         prelude,
-        "t : T; pt : POINTER TO T; d : DWORD; pb : POINTER TO BYTE; b : BYTE;",
-        "pt := ADR(t); d := pt; pb := d; b := pb^;",
+        "fb : FB_X; pf : POINTER TO FB_X; d : DWORD; pb : POINTER TO BYTE; b : BYTE;",
+        "pf := ADR(fb); d := pf; pb := d; b := pb^;",
     );
     assert_eq!(first_fault(&src).fault.kind, FaultKind::NoByteLayout);
     let src = program(
@@ -341,6 +342,13 @@ fn what_a_byte_view_cannot_do_faults() {
         "pt := ADR(t); d := pt; pu := d; i := pu^.a;",
     );
     assert_eq!(first_fault(&src).fault.kind.code(), "R034");
+    // A structure's bytes end where SIZEOF says (R031 past them).
+    let src = program(
+        prelude,
+        "t : T; pb : POINTER TO BYTE; b : BYTE;",
+        "pb := ADR(t) + SIZEOF(t); b := pb^;",
+    );
+    assert_eq!(first_fault(&src).fault.kind.code(), "R031");
 }
 
 #[test]
@@ -358,13 +366,17 @@ fn a_structure_kept_in_an_integer_is_read_back() {
 #[test]
 fn byte_views_are_refused_where_they_cannot_work() {
     let cases: &[(&str, &str, &str)] = &[
-        ("t : T; px : POINTER TO BYTE;", "px := ADR(t);", "E256"),
+        ("fb : FB_X; px : POINTER TO BYTE;", "px := ADR(fb);", "E256"),
+        ("h : H; px : POINTER TO BYTE;", "px := ADR(h);", "E256"),
         ("b : BYTE; px : POINTER TO STRING;", "px := ADR(b);", "E256"),
         ("b : BYTE; px : POINTER TO T;", "px := ADR(b);", "E256"),
         ("px : POINTER TO BYTE; i : INT;", "i := px;", "E301"),
     ];
     for (decls, body, code) in cases {
-        let src = program("TYPE T : STRUCT a : INT; END_STRUCT; END_TYPE", decls, body);
+        // A function block instance, and a structure holding one, have no
+        // bytes of their own.
+        let prelude = "TYPE T : STRUCT a : INT; END_STRUCT; END_TYPE\nFUNCTION_BLOCK FB_X\nVAR a : INT; END_VAR\nEND_FUNCTION_BLOCK\nTYPE H : STRUCT a : INT; fb : FB_X; END_STRUCT; END_TYPE";
+        let src = program(prelude, decls, body);
         let errs = error_codes(&[("test.st", &src)]);
         assert_eq!(
             errs.first().map(|(c, _)| c.as_str()),
@@ -372,6 +384,78 @@ fn byte_views_are_refused_where_they_cannot_work() {
             "{body}: {errs:?}"
         );
     }
+}
+
+#[test]
+fn structure_bytes_are_its_fields_one_after_another() {
+    // ST: INT a (bytes 0-1), STRING(5) s (2-7), REAL r (8-11), a pointer
+    // (12-19): SIZEOF 20, no padding, as plcrun's SIZEOF counts.
+    let prelude = "TYPE ST : STRUCT a : INT; s : STRING(5); r : REAL; p : POINTER TO INT; END_STRUCT; END_TYPE";
+    let src = program(
+        prelude,
+        "x : ST := (a := 258, s := 'hi', r := 1.0); y : ST; n : INT; i : INT;
+         ps, pd : POINTER TO BYTE; b0, b1, b2, b4, b11 : BYTE; w : POINTER TO WORD; w01 : WORD;",
+        "x.p := ADR(n);
+         ps := ADR(x); b0 := ps^; ps := ps + 1; b1 := ps^; ps := ps + 1; b2 := ps^;
+         ps := ps + 2; b4 := ps^; ps := ps + 7; b11 := ps^;
+         w := ADR(x); w01 := w^;
+         n := SIZEOF(x);
+         ps := ADR(x); pd := ADR(y);
+         FOR i := 1 TO SIZEOF(x) DO pd^ := ps^; ps := ps + 1; pd := pd + 1; END_FOR;
+         y.p^ := 5;",
+    );
+    let plc = run_once(&src);
+    // 258 = 16#0102, little-endian; 'h' = 16#68; the NUL after 'hi';
+    // REAL 1.0 = 16#3F800000, its high byte 16#3F at byte 11.
+    let got: Vec<String> = ["b0", "b1", "b2", "b4", "b11", "w01", "n"]
+        .iter()
+        .map(|v| lit(&plc, &format!("P.{v}")))
+        .collect();
+    assert_eq!(
+        got,
+        ["16#2", "16#1", "16#68", "16#0", "16#3F", "16#102", "5"]
+    );
+    // The copy by bytes is the structure, its pointer included (`y.p^`
+    // wrote `n`, whose SIZEOF was 20 before).
+    assert_eq!(lit(&plc, "P.y.a"), "258");
+    assert_eq!(lit(&plc, "P.y.s"), "'hi'");
+    assert_eq!(lit(&plc, "P.y.r"), "1.0");
+    assert!(warnings(&src).iter().any(|c| c == "W306"));
+}
+
+#[test]
+fn bytes_written_into_a_structure_change_its_fields() {
+    // Byte 0 of a DINT field, a character of a STRING field, and the
+    // elements of an array of structures at SIZEOF(ST) steps.
+    let prelude = "TYPE ST : STRUCT d : DINT; s : STRING(3); END_STRUCT; END_TYPE";
+    let src = program(
+        prelude,
+        "x : ST := (d := -1, s := 'abc'); arr : ARRAY[0..2] OF ST; pb : POINTER TO BYTE; k : INT;",
+        "pb := ADR(x); pb^ := 0; pb := pb + 5; pb^ := 16#5A;
+         pb := ADR(arr);
+         FOR k := 0 TO 2 DO pb^ := INT_TO_BYTE(k + 1); pb := pb + SIZEOF(ST); END_FOR;",
+    );
+    let plc = run_once(&src);
+    // -1 is 16#FFFFFFFF; its low byte cleared: 16#FFFFFF00 = -256.
+    assert_eq!(lit(&plc, "P.x.d"), "-256");
+    assert_eq!(lit(&plc, "P.x.s"), "'aZc'");
+    assert_eq!(lit(&plc, "P.arr[0].d"), "1");
+    assert_eq!(lit(&plc, "P.arr[2].d"), "3");
+}
+
+#[test]
+fn a_pointer_to_an_element_of_structures_kept_in_an_integer_moves_by_bytes() {
+    // `d + SIZEOF(ST)` is the next element, read back as a typed pointer.
+    let prelude = "TYPE ST : STRUCT a : INT; s : STRING(7); END_STRUCT; END_TYPE";
+    let src = program(
+        prelude,
+        "arr : ARRAY[0..2] OF ST; d : LWORD; pst : POINTER TO ST; a : INT; s : STRING;",
+        "arr[2].a := 42; arr[2].s := 'two';
+         d := ADR(arr); d := d + 2 * SIZEOF(ST); pst := d; a := pst^.a; s := pst^.s;",
+    );
+    let plc = run_once(&src);
+    assert_eq!(lit(&plc, "P.a"), "42");
+    assert_eq!(lit(&plc, "P.s"), "'two'");
 }
 
 #[test]

@@ -107,20 +107,32 @@ fn memcpy_copies_structures_arrays_of_them_and_a_base_part() {
 }
 
 #[test]
-fn a_memory_call_over_part_of_a_structure_still_faults() {
-    for body in [
-        // Part of a structure.
-        "MEMSET(ADR(x), 0, 2);",
-        // A fill byte other than 0.
-        "MEMSET(ADR(x), 16#FF, SIZEOF(x));",
-        // More than the destination holds.
-        "MEMCPY(ADR(x), ADR(arr), 2 * SIZEOF(x));",
-    ] {
-        let decls = "  x : ST_Item;\n  arr : ARRAY[0..3] OF ST_Item;";
-        let mut plc = compile_main(decls, body).unwrap_or_else(|e| panic!("{body}: {e}"));
-        let fault = plc.run_cycle().expect_err(body);
-        assert_eq!(fault.code(), "R037", "{body}: {fault}");
-    }
+fn a_memory_call_over_part_of_a_structure_works_on_its_bytes() {
+    // ST_Item: n INT (bytes 0-1), r REAL (2-5), s STRING(20) (6-26),
+    // pInt (27-34), a ARRAY[0..2] OF BOOL (35-37).
+    let plc = run_main(
+        "  x : ST_Item;\n  y : ST_Item;\n  n : UDINT;",
+        "x.s := 'abc';\n\
+         MEMSET(ADR(x), 0, 2);\n\
+         MEMSET(ADR(x) + 35, 1, 3);\n\
+         n := 6 + 2;\n\
+         MEMCPY(ADR(y), ADR(x), n);\n",
+    );
+    let got: Vec<String> = ["x.n", "x.r", "x.a[2]", "y.n", "y.s"]
+        .iter()
+        .map(|v| lit(&plc, &format!("P.{v}")))
+        .collect();
+    // y.s gets 'ab' over its 'init' (bytes 6 and 7): 'abit'.
+    assert_eq!(got, ["0", "1.5", "TRUE", "0", "'abit'"]);
+}
+
+#[test]
+fn a_memory_call_past_a_structure_faults() {
+    let decls = "  x : ST_Item;\n  arr : ARRAY[0..3] OF ST_Item;";
+    let body = "MEMCPY(ADR(x), ADR(arr), 2 * SIZEOF(x));";
+    let mut plc = compile_main(decls, body).unwrap_or_else(|e| panic!("{e}"));
+    let fault = plc.run_cycle().expect_err(body);
+    assert_eq!(fault.code(), "R031", "{fault}");
 }
 
 #[test]

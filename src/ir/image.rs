@@ -174,6 +174,9 @@ pub struct Image {
     pub types: TypeTable,
     /// Elementary type list used by `ToStr`/`FromStr` (index = `ty` operand).
     pub scalar_types: Vec<ElemType>,
+    /// The byte layouts of the aggregates `RefMake` takes (its layout
+    /// codes from `ir::refs::FIRST_AGGREGATE_LAYOUT` up index this).
+    pub byte_layouts: Vec<crate::ir::byte_layout::ByteLayout>,
     /// Globals and located variables.
     pub globals: Vec<RootVar>,
     /// Program instances in execution order.

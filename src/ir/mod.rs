@@ -1,5 +1,6 @@
 //! The typed intermediate representation all three languages lower into.
 
+pub mod byte_layout;
 pub mod chart;
 pub mod exception_codes;
 pub mod fuse;

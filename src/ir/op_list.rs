@@ -299,8 +299,10 @@ macro_rules! for_each_op {
             /// `d := a reference to the object of `len` slots at the absolute
             /// address in `p`` (`REF(x)`, `ADR(x)`): the machine numbers the object.
             /// `layout` is the code (`ir::refs::elem_code`) of the object's
-            /// elementary type (0: none), which gives its bytes to byte views.
-            RefMake { d: Slot => Out, p: Slot => In, len: u32 => Data, layout: u8 => Data };
+            /// elementary type, or of its aggregate's byte layout
+            /// (`ir::refs::FIRST_AGGREGATE_LAYOUT`), which gives its bytes to
+            /// byte views (0: none).
+            RefMake { d: Slot => Out, p: Slot => In, len: u32 => Data, layout: u16 => Data };
             /// `d := the absolute address of the `width` slots reference `r`
             /// designates`; faults on NULL (R030), outside its object (R031) or
             /// an object of an earlier memory layout (R032).

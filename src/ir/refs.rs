@@ -92,9 +92,20 @@ pub fn elem_code(e: ElemType) -> u8 {
         .map_or(0, |i| i as u8 + 1)
 }
 
-/// The elementary type of a code from [`elem_code`] (`None` for 0).
-pub fn code_elem(code: u8) -> Option<ElemType> {
+/// The elementary type of a code from [`elem_code`] (`None` for 0 and
+/// for an aggregate's code).
+pub fn code_elem(code: u16) -> Option<ElemType> {
     ElemType::ALL.get((code as usize).checked_sub(1)?).copied()
+}
+
+/// `RefMake`'s layout codes from this one up name an aggregate's byte
+/// layout: entry `code - FIRST_AGGREGATE_LAYOUT` of `Image::byte_layouts`
+/// (`ir::byte_layout`). The codes below are [`elem_code`]'s.
+pub const FIRST_AGGREGATE_LAYOUT: u16 = 256;
+
+/// The index in `Image::byte_layouts` an aggregate's layout code names.
+pub fn aggregate_layout(code: u16) -> Option<usize> {
+    code.checked_sub(FIRST_AGGREGATE_LAYOUT).map(usize::from)
 }
 
 /// Bytes of one value of `e` in CODESYS's memory as plcrun models it
@@ -119,9 +130,12 @@ mod tests {
         assert!(is_view(v) && !is_view(pack(3, 7)));
         assert_eq!((object_number(v), offset(v)), (3, 7));
         for e in ElemType::ALL {
-            assert_eq!(code_elem(elem_code(e)), Some(e));
+            assert_eq!(code_elem(elem_code(e).into()), Some(e));
         }
         assert_eq!(code_elem(0), None);
+        assert_eq!(code_elem(FIRST_AGGREGATE_LAYOUT), None);
+        assert_eq!(aggregate_layout(FIRST_AGGREGATE_LAYOUT + 2), Some(2));
+        assert_eq!(aggregate_layout(elem_code(ElemType::Int).into()), None);
         assert_eq!(elem_bytes(ElemType::Real), 4);
         assert_eq!(elem_bytes(ElemType::Time), 8);
     }

@@ -40,6 +40,9 @@ pub(crate) struct Program {
     pub arrays: Vec<ArrayDesc>,
     /// Elementary types of `ToStr`/`FromStr`.
     pub scalar_types: IndexSet<ElemType>,
+    /// The byte layouts of the aggregates references are taken of, by
+    /// type (`RefMake`'s codes from `ir::refs::FIRST_AGGREGATE_LAYOUT`).
+    pub byte_layouts: IndexMap<TypeId, crate::ir::byte_layout::ByteLayout>,
     /// Call graph edges between code blocks (for recursion detection).
     pub calls: Vec<(CodeIdx, CodeIdx, Span)>,
     /// The calls among them of a method on the caller's own instance

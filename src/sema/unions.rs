@@ -195,7 +195,7 @@ impl BodyBuilder<'_> {
             d: r,
             p: addr,
             len: slots,
-            layout: crate::ir::refs::elem_code(ElemType::Lword),
+            layout: crate::ir::refs::elem_code(ElemType::Lword).into(),
         });
         self.block.emit(Op::RefView { d: r, unit: 8 });
         self.block.last_def = None;

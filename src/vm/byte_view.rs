@@ -11,7 +11,9 @@
 //! - an object of an elementary type (or an array of one) has
 //!   `elem_bytes` bytes per slot: the low bytes of the slot's encoding
 //!   (`elementary`), so a REAL gives its IEEE bit pattern;
-//! - a STRING[n] has n+1 bytes, a WSTRING[n] 2(n+1) (`PlcString::byte_at`).
+//! - a STRING[n] has n+1 bytes, a WSTRING[n] 2(n+1) (`PlcString::byte_at`);
+//! - a structure, or an array of structures or strings, has the bytes
+//!   of its values one after another, as its `ir::byte_layout` places them.
 //!
 //! Every access is checked against the object's bytes (R031), and writes
 //! leave each slot in its type's canonical encoding (a signed value
@@ -21,10 +23,11 @@
 use super::refs::{Memory, RefTable};
 use super::{FaultKind, PlcString};
 use crate::elementary::ElemType;
+use crate::ir::byte_layout::ByteLayout;
 use crate::ir::refs;
 
 /// Where a view's bytes are.
-pub(super) enum Bytes {
+pub(super) enum Bytes<'l> {
     /// Slots of an elementary type, `width` bytes each, from `start`.
     Slots {
         start: usize,
@@ -33,20 +36,34 @@ pub(super) enum Bytes {
     },
     /// The string with this id.
     Str(usize),
+    /// The slots of an aggregate from `start`, as `layout` places them.
+    Aggregate {
+        start: usize,
+        layout: &'l ByteLayout,
+    },
 }
 
 impl RefTable {
     /// The bytes of object `n` and their count.
-    fn object_bytes(
+    fn object_bytes<'l>(
         &self,
         n: u32,
         mem: Memory,
         strings: &[PlcString],
-    ) -> Result<(Bytes, u32), FaultKind> {
+        layouts: &'l [ByteLayout],
+    ) -> Result<(Bytes<'l>, u32), FaultKind> {
         if n == 0 {
             return Err(FaultKind::NullReference);
         }
         let obj = self.object(n).ok_or(FaultKind::NotFromPointer)?;
+        if let Some(layout) = self.aggregate(n, layouts) {
+            let slots = layout.period_slots as u64 * layout.repeat as u64;
+            if slots > obj.len as u64 {
+                return Err(FaultKind::NoByteLayout);
+            }
+            let start = obj.start as usize;
+            return Ok((Bytes::Aggregate { start, layout }, layout.bytes()));
+        }
         let elem = refs::code_elem(obj.layout).ok_or(FaultKind::NoByteLayout)?;
         Ok(match elem {
             ElemType::String | ElemType::WString => {
@@ -71,14 +88,15 @@ impl RefTable {
 
     /// The bytes of the object view `r` designates and their count; checks
     /// that the `width` bytes at the view's offset lie inside them.
-    pub(super) fn view_range(
+    pub(super) fn view_range<'l>(
         &self,
         r: u64,
         width: u32,
         mem: Memory,
         strings: &[PlcString],
-    ) -> Result<(Bytes, u32), FaultKind> {
-        let (bytes, len) = self.object_bytes(refs::object_number(r), mem, strings)?;
+        layouts: &'l [ByteLayout],
+    ) -> Result<(Bytes<'l>, u32), FaultKind> {
+        let (bytes, len) = self.object_bytes(refs::object_number(r), mem, strings, layouts)?;
         let off = refs::offset(r);
         if off as u64 + width as u64 > len as u64 {
             return Err(FaultKind::OutsideBytes {
@@ -97,10 +115,11 @@ impl RefTable {
         elem: u8,
         mem: Memory,
         strings: &[PlcString],
+        layouts: &[ByteLayout],
     ) -> Result<u64, FaultKind> {
-        let e = refs::code_elem(elem).ok_or(FaultKind::ByteViewAggregate)?;
+        let e = refs::code_elem(elem.into()).ok_or(FaultKind::ByteViewAggregate)?;
         let w = refs::elem_bytes(e);
-        let (bytes, _) = self.view_range(r, w, mem, strings)?;
+        let (bytes, _) = self.view_range(r, w, mem, strings, layouts)?;
         let off = refs::offset(r);
         let mut v = 0u64;
         for i in (0..w).rev() {
@@ -117,10 +136,11 @@ impl RefTable {
         value: u64,
         mem: Memory,
         strings: &mut [PlcString],
+        layouts: &[ByteLayout],
     ) -> Result<(), FaultKind> {
-        let e = refs::code_elem(elem).ok_or(FaultKind::ByteViewAggregate)?;
+        let e = refs::code_elem(elem.into()).ok_or(FaultKind::ByteViewAggregate)?;
         let w = refs::elem_bytes(e);
-        let (bytes, _) = self.view_range(r, w, mem, strings)?;
+        let (bytes, _) = self.view_range(r, w, mem, strings, layouts)?;
         let off = refs::offset(r);
         for i in 0..w {
             self.write_byte(&bytes, off + i, (value >> (8 * i)) as u8, mem, strings)?;
@@ -130,7 +150,8 @@ impl RefTable {
 
     /// The integer image of pointer `r` (`dw := pt`): its object's number
     /// above `IMAGE_OFFSET_BITS` bits, its byte offset below (a typed
-    /// pointer's slots count `unit` bytes each). Only a pointer inside its
+    /// pointer's slots count `unit` bytes each, or, into an aggregate with
+    /// a byte layout, the bytes before them). Only a pointer inside its
     /// object (or just past its end) has one.
     pub(super) fn image(
         &self,
@@ -138,15 +159,19 @@ impl RefTable {
         unit: u16,
         mem: Memory,
         strings: &[PlcString],
+        layouts: &[ByteLayout],
     ) -> Result<u64, FaultKind> {
         if r == refs::NULL {
             return Ok(0);
         }
         let n = refs::object_number(r);
-        let view = super::refs::to_view(r, unit);
+        let view = self.view_of(r, unit, layouts);
         let len = match self.object(n) {
-            Some(obj) if refs::code_elem(obj.layout).is_some() => {
-                self.object_bytes(n, mem, strings)?.1
+            Some(obj)
+                if refs::code_elem(obj.layout).is_some()
+                    || self.aggregate(n, layouts).is_some() =>
+            {
+                self.object_bytes(n, mem, strings, layouts)?.1
             }
             Some(obj) => obj.len.saturating_mul(unit.max(1) as u32),
             // A pointer made from an integer that named no object: its
@@ -182,11 +207,44 @@ impl RefTable {
                 let slot = mem.load(start + (k / width) as usize)?;
                 (slot >> (8 * (k % width))) as u8
             }
-            Bytes::Str(id) => {
-                let s = &strings[id];
-                s.byte_at(k, self.tail(id, &s.text))
+            Bytes::Str(id) => self.string_byte(id, k, strings)?,
+            Bytes::Aggregate { start, layout } => {
+                let at = layout.place(k).ok_or(FaultKind::BadAddress)?;
+                let slot = mem.load(start + at.slot as usize)?;
+                match at.elem {
+                    ElemType::String | ElemType::WString => {
+                        self.string_byte(slot as usize, at.at, strings)?
+                    }
+                    _ => (slot >> (8 * at.at)) as u8,
+                }
             }
         })
+    }
+
+    /// Byte `k` of the buffer of string `id`.
+    fn string_byte(&self, id: usize, k: u32, strings: &[PlcString]) -> Result<u8, FaultKind> {
+        let s = strings.get(id).ok_or(FaultKind::BadAddress)?;
+        Ok(s.byte_at(k, self.tail(id, &s.text)))
+    }
+
+    /// Writes byte `k` of the buffer of string `id`, keeping what lies
+    /// past its NUL (`PlcString::set_byte`).
+    fn set_string_byte(
+        &mut self,
+        id: usize,
+        k: u32,
+        byte: u8,
+        strings: &mut [PlcString],
+    ) -> Result<(), FaultKind> {
+        let s = strings.get_mut(id).ok_or(FaultKind::BadAddress)?;
+        let mut tail = self.tail(id, &s.text).to_vec();
+        s.set_byte(k, byte, &mut tail);
+        if tail.is_empty() {
+            self.tails.remove(&id);
+        } else {
+            self.tails.insert(id, (s.text.clone(), tail));
+        }
+        Ok(())
     }
 
     fn write_byte(
@@ -205,15 +263,21 @@ impl RefTable {
                 let new = (old & !(0xFF << shift)) | ((byte as u64) << shift);
                 mem.store(a, canonical(new, width, elem))
             }
-            Bytes::Str(id) => {
-                let mut tail = self.tail(id, &strings[id].text).to_vec();
-                strings[id].set_byte(k, byte, &mut tail);
-                if tail.is_empty() {
-                    self.tails.remove(&id);
-                } else {
-                    self.tails.insert(id, (strings[id].text.clone(), tail));
+            Bytes::Str(id) => self.set_string_byte(id, k, byte, strings),
+            Bytes::Aggregate { start, layout } => {
+                let at = layout.place(k).ok_or(FaultKind::BadAddress)?;
+                let a = start + at.slot as usize;
+                let old = mem.load(a)?;
+                match at.elem {
+                    ElemType::String | ElemType::WString => {
+                        self.set_string_byte(old as usize, at.at, byte, strings)
+                    }
+                    elem => {
+                        let shift = 8 * at.at;
+                        let new = (old & !(0xFF << shift)) | ((byte as u64) << shift);
+                        mem.store(a, canonical(new, at.width, elem))
+                    }
                 }
-                Ok(())
             }
         }
     }

@@ -96,8 +96,8 @@ pub enum FaultKind {
     /// A pointer outside its object, or into an object too large or too
     /// many, turned into an integer (R036).
     NoIntegerImage,
-    /// A byte view of an object without a byte layout: a structure, an FB
-    /// instance, an array of strings (R037).
+    /// A byte view of an object without a byte layout: an FB instance, or
+    /// a structure holding one (R037).
     NoByteLayout,
 }
 
@@ -258,7 +258,7 @@ impl fmt::Display for FaultKind {
             ),
             FaultKind::NoByteLayout => write!(
                 f,
-                "byte view of an object without a byte layout (a structure, FB instance or array of strings)"
+                "byte view of an object without a byte layout (an FB instance, or a structure holding one)"
             ),
             FaultKind::HostFunction(h) => {
                 write!(f, "host function `{}` failed: {}", h.name, h.message)

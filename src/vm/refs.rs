@@ -9,6 +9,7 @@
 
 use super::{FaultKind, Machine};
 use crate::elementary::ElemType;
+use crate::ir::byte_layout::ByteLayout;
 use crate::ir::image::{ArrayDesc, Image};
 use crate::ir::op::Op;
 use crate::ir::refs;
@@ -35,6 +36,7 @@ pub(super) unsafe fn run(
     // SAFETY: the pointer is to `len` slots, valid while this runs.
     let memory = unsafe { Memory::new(m.mem.as_mut_ptr(), len) };
     let (table, strings) = (&mut m.refs, &mut m.strings);
+    let layouts = &img.byte_layouts[..];
     let (d, v) = match *op {
         Op::RefMake { d, p, len, layout } => (d, table.make(r(p), len, layout, memory.len)?),
         Op::RefAddr { d, r: s, width } => (d, table.address(r(s), width)? as u64),
@@ -44,11 +46,11 @@ pub(super) unsafe fn run(
         }
         Op::PtrAdd { d, b, unit, slots } => {
             let moved = add_bytes(r(d), r(b), unit, slots);
-            (d, table.string_view_of(r(d), moved, r(b), unit))
+            (d, table.byte_view_of(r(d), moved, r(b), unit, layouts))
         }
         Op::RefValid { d, r: s, width } => {
             let ok = if refs::is_view(r(s)) {
-                table.view_range(r(s), 1, memory, strings).is_ok()
+                table.view_range(r(s), 1, memory, strings, layouts).is_ok()
             } else {
                 table.address(r(s), width).is_ok()
             };
@@ -61,21 +63,23 @@ pub(super) unsafe fn run(
         Op::FaultRaise { c } => return Err(FaultKind::Raised(r(c) as u32)),
         Op::RefLoad { d, r: s, elem } => match table.address(r(s), 1) {
             Ok(a) => (d, memory.load(a)?),
-            Err(_) if refs::is_view(r(s)) => (d, table.view_load(r(s), elem, memory, strings)?),
+            Err(_) if refs::is_view(r(s)) => {
+                (d, table.view_load(r(s), elem, memory, strings, layouts)?)
+            }
             Err(e) => return Err(e),
         },
         Op::RefStore { r: s, s: v, elem } => {
             match table.address(r(s), 1) {
                 Ok(a) => memory.store(a, r(v))?,
                 Err(_) if refs::is_view(r(s)) => {
-                    table.view_store(r(s), elem, r(v), memory, strings)?
+                    table.view_store(r(s), elem, r(v), memory, strings, layouts)?
                 }
                 Err(e) => return Err(e),
             }
             return Ok(());
         }
-        Op::RefView { d, unit } => (d, to_view(r(d), unit)),
-        Op::PtrToInt { d, unit } => (d, table.image(r(d), unit, memory, strings)?),
+        Op::RefView { d, unit } => (d, table.view_of(r(d), unit, layouts)),
+        Op::PtrToInt { d, unit } => (d, table.image(r(d), unit, memory, strings, layouts)?),
         Op::IntToPtr { d, ty } => (d, typed_from_image(from_image(r(d)), ty, img, table)),
         _ => return Ok(()),
     };
@@ -125,9 +129,10 @@ pub struct RefObject {
     pub start: u32,
     /// Its size in slots.
     pub len: u32,
-    /// The code of its elementary type (`ir::refs::elem_code`; 0: none),
-    /// which gives its bytes to byte views.
-    pub layout: u8,
+    /// The code of its elementary type (`ir::refs::elem_code`) or of its
+    /// aggregate's byte layout (0: none), which gives its bytes to byte
+    /// views.
+    pub layout: u16,
 }
 
 /// The objects of one memory layout, numbered from 1 in the order they
@@ -149,7 +154,7 @@ impl RefTable {
         &mut self,
         start: u64,
         len: u32,
-        layout: u8,
+        layout: u16,
         mem_len: usize,
     ) -> Result<u64, FaultKind> {
         if start > mem_len as u64 || len as u64 > mem_len as u64 - start {
@@ -199,25 +204,67 @@ impl RefTable {
 
     /// `moved`, the typed pointer `p` moved by `bytes`, as a byte view when
     /// it moved into a STRING's characters (`ADR(str) + 8`, as OSCAT
-    /// writes a string from its end): a string's bytes are its text.
-    fn string_view_of(&self, p: u64, moved: u64, bytes: u64, unit: u16) -> u64 {
+    /// writes a string from its end) or into a structure's fields
+    /// (`ADR(st) + 4`): their bytes are those of their values.
+    fn byte_view_of(
+        &self,
+        p: u64,
+        moved: u64,
+        bytes: u64,
+        unit: u16,
+        layouts: &[ByteLayout],
+    ) -> u64 {
         if refs::offset(moved) != refs::MISALIGNED || refs::is_view(p) {
             return moved;
         }
-        let string = self
-            .object(refs::object_number(p))
-            .and_then(|o| refs::code_elem(o.layout))
-            .is_some_and(|e| matches!(e, ElemType::String | ElemType::WString));
-        if !string {
-            return moved;
-        }
-        let start = refs::offset(p).wrapping_mul(unit as u32);
+        let n = refs::object_number(p);
+        let start = if let Some(l) = self.aggregate(n, layouts) {
+            match l.byte_of_slot(refs::offset(p)) {
+                Some(b) => b,
+                None => return moved,
+            }
+        } else {
+            let string = self
+                .object(n)
+                .and_then(|o| refs::code_elem(o.layout))
+                .is_some_and(|e| matches!(e, ElemType::String | ElemType::WString));
+            if !string {
+                return moved;
+            }
+            refs::offset(p).wrapping_mul(unit as u32)
+        };
         refs::view(refs::object(p), start.wrapping_add(bytes as u32))
     }
 
     /// The object numbered `n` (view flag removed).
     pub(super) fn object(&self, n: u32) -> Option<&RefObject> {
         self.objects.get((n as usize).checked_sub(1)?)
+    }
+
+    /// The byte layout of object `n`, when it is an aggregate that has one.
+    pub(super) fn aggregate<'l>(
+        &self,
+        n: u32,
+        layouts: &'l [ByteLayout],
+    ) -> Option<&'l ByteLayout> {
+        let code = self.object(n)?.layout;
+        layouts.get(refs::aggregate_layout(code)?)
+    }
+
+    /// Typed pointer `p` as a byte view (`to_view`); into an aggregate, the
+    /// byte at which its slot starts (a slot inside a value poisons the
+    /// offset: the dereference faults).
+    pub(super) fn view_of(&self, p: u64, unit: u16, layouts: &[ByteLayout]) -> u64 {
+        if p == refs::NULL || refs::is_view(p) {
+            return p;
+        }
+        match self.aggregate(refs::object(p), layouts) {
+            Some(l) => refs::view(
+                refs::object(p),
+                l.byte_of_slot(refs::offset(p)).unwrap_or(refs::MISALIGNED),
+            ),
+            None => to_view(p, unit),
+        }
     }
 }
 
@@ -304,6 +351,22 @@ fn typed_from_image(v: u64, ty: u32, img: &Image, table: &RefTable) -> u64 {
     };
     let off = refs::offset(v);
     let ty = crate::ir::type_table::TypeId(ty);
+    // An aggregate's image counts bytes; its values start at slots.
+    let layout = table.aggregate(n, &img.byte_layouts);
+    let off = match layout {
+        Some(l) => match l.slot_of_byte(off) {
+            Some(s) => s,
+            None => return v,
+        },
+        None => off,
+    };
+    // The object itself, or one of its elements, is of its layout's types.
+    if let Some(l) = layout
+        && ((off == 0 && l.whole == ty)
+            || (off % l.period_slots.max(1) == 0 && off < obj.len && l.period == ty))
+    {
+        return refs::pack(n, off);
+    }
     let typed = match refs::code_elem(obj.layout) {
         // A string object: the image of its first byte is the string.
         Some(e @ (ElemType::String | ElemType::WString)) => {

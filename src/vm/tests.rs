@@ -59,6 +59,7 @@ fn program(ops: Vec<Op>) -> VerifiedImage {
         strings: Vec::new(),
         types: TypeTable::new(),
         scalar_types: Vec::new(),
+        byte_layouts: Vec::new(),
         globals: Vec::new(),
         programs: vec![ProgramInstance {
             name: "p".into(),

@@ -164,6 +164,9 @@ impl Linker<'_> {
             scalar_types: std::mem::take(&mut self.out.scalar_types)
                 .into_iter()
                 .collect(),
+            byte_layouts: std::mem::take(&mut self.out.byte_layouts)
+                .into_values()
+                .collect(),
             globals: roots,
             programs: instances,
             tasks,

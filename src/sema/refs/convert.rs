@@ -5,7 +5,7 @@
 //! a byte view reads the object's bytes only (`vm::byte_view`), and an
 //! integer turns back into a pointer only to the object a pointer gave it.
 
-use super::{innermost, layout_code, ref_parts, view_unit, viewable};
+use super::{innermost, ref_parts, view_unit, viewable};
 use crate::elementary::ElemType;
 use crate::ir::op::{Cmp, Op};
 use crate::ir::type_table::{RefFlavor, TypeId, TypeTable};
@@ -102,13 +102,13 @@ impl BodyBuilder<'_> {
     /// E256 when either side has no byte layout.
     fn byte_view(&mut self, v: &Val, ft: TypeId, tt: TypeId, to: TypeId, span: Span) -> Val {
         let target = innermost(self.types, tt);
-        if layout_code(self.types, ft) == 0 || viewable(self.types, target).is_none() {
+        if self.object_layout(ft) == 0 || viewable(self.types, target).is_none() {
             let (a, b) = (self.ty_name(v.ty()), self.types.name(to).to_string());
             self.diags.error(
                 "E256",
                 span,
                 format!(
-                    "{a} cannot be viewed as {b}: a byte view needs an object of elementary values or a STRING, read as elementary values"
+                    "{a} cannot be viewed as {b}: a byte view needs an object of elementary values, strings or structures of them, read as elementary values"
                 ),
             );
             return Val::error();

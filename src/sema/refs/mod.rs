@@ -13,6 +13,7 @@
 
 mod calls;
 mod convert;
+mod object_layout;
 mod ops;
 mod place;
 mod reference;

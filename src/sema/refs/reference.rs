@@ -5,7 +5,7 @@
 //! `F(r := x)` binds `r` to the variable `x` (of type `T`, an FB instance
 //! as well as an elementary variable), as `r REF= x` would.
 
-use super::{layout_code, ref_parts};
+use super::ref_parts;
 use crate::ir::op::{Op, Slot};
 use crate::ir::type_table::{RefFlavor, TypeId};
 use crate::sema::body::BodyBuilder;
@@ -73,7 +73,7 @@ impl BodyBuilder<'_> {
     /// A new reference value designating the variable at `q`.
     pub(in crate::sema) fn reference_value(&mut self, q: &PlaceRef) -> Slot {
         let len = self.types.size(q.ty).max(1);
-        let layout = layout_code(self.types, q.ty);
+        let layout = self.object_layout(q.ty);
         let addr = self.address_of(q);
         let d = self.block.temp();
         self.block.emit(Op::RefMake {
