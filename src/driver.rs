@@ -21,6 +21,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 mod address_map;
+mod app_info;
 mod event_classes;
 mod io_links;
 mod library_projects;
@@ -93,11 +94,13 @@ pub fn load_files_with<P: AsRef<Path>>(
     let mut events = HashSet::new();
     let mut classes = Vec::new();
     let mut shadowing = LibraryShadowing::default();
+    let mut app = AppInfoUse::default();
     for path in paths {
         let path = path.as_ref();
         let is_project = project::is_project(path);
         let (files, descriptions) = if is_project {
             let project = project::project_files(path).map_err(load_error(path))?;
+            app.project.get_or_insert(project.name);
             (project.sources, project.descriptions)
         } else {
             (
@@ -129,11 +132,36 @@ pub fn load_files_with<P: AsRef<Path>>(
             classes.extend(type_description::event_classes(&text));
             sources.add(name, text);
         }
+        app.named |= is_project && names.used.contains(APP_INFO);
     }
     if let Some(text) = event_classes::event_classes_source(&classes) {
         sources.add(event_classes::EVENT_CLASSES_SOURCE, text);
     }
+    if let Some(text) = app.source() {
+        sources.add(app_info::APP_INFO_SOURCE, text);
+    }
     Ok(sources)
+}
+
+/// TwinCAT's application information, as the sources name it.
+const APP_INFO: &str = "_APPINFO";
+
+/// Whether the TwinCAT projects loaded name `_AppInfo`, and the first
+/// one's name.
+#[derive(Default)]
+struct AppInfoUse {
+    /// The first project's name.
+    project: Option<String>,
+    /// A project's sources name `_AppInfo`.
+    named: bool,
+}
+
+impl AppInfoUse {
+    /// The source declaring `_AppInfo`, when a project names it.
+    fn source(&self) -> Option<String> {
+        let name = self.project.as_deref().filter(|_| self.named)?;
+        Some(app_info::app_info_source(name))
+    }
 }
 
 /// What a project's sources name and declare (upper case): the global data
@@ -211,6 +239,13 @@ pub fn type_description_sources(path: &Path) -> Result<Vec<(String, String)>, Lo
         .collect();
     if let Some(text) = event_classes::event_classes_source(&classes) {
         sources.push((event_classes::EVENT_CLASSES_SOURCE.to_string(), text));
+    }
+    let app = AppInfoUse {
+        project: Some(project.name),
+        named: names.used.contains(APP_INFO),
+    };
+    if let Some(text) = app.source() {
+        sources.push((app_info::APP_INFO_SOURCE.to_string(), text));
     }
     Ok(sources)
 }

@@ -905,3 +905,40 @@ fn a_suite_s_axis_takes_the_id_and_parameters_of_the_nc_axis_it_is_linked_to() {
     assert_eq!(code, 0, "{out}{err}");
     assert!(out.contains("5 cycles, 5 assertions"), "{out}");
 }
+
+/// TwinCAT's `_AppInfo`: the project's name from its `.plcproj`, the port
+/// and name of TwinCAT's first PLC, and TcUnit's way of reading it
+/// (qualified by `TwinCAT_SystemInfoVarList`); a folder without a
+/// `.plcproj` gives the folder's name.
+#[test]
+fn the_application_information_names_the_project() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n    sName : STRING;\n    nPort : UINT;\n    sApp : STRING;\nEND_VAR\n",
+        "sName := TwinCAT_SystemInfoVarList._AppInfo.ProjectName;\nnPort := _AppInfo.AdsPort;\nsApp := _AppInfo.AppName;\n",
+        "",
+    );
+    let project = PINNING_PROJECT
+        .replace("    <PinnedGlobalDataType Include=\"ST_Io\" />\n", "")
+        .replace(
+            "  <ItemGroup>",
+            "  <PropertyGroup>\n    <Name>Conveyor It's</Name>\n  </PropertyGroup>\n  <ItemGroup>",
+        );
+    let dir = temp_project(&[("Plc/Plc.plcproj", &project), ("Plc/MAIN.TcPOU", &main)]);
+    let trace = [
+        "--cycles",
+        "1",
+        "--trace",
+        "MAIN.sName,MAIN.nPort,MAIN.sApp",
+    ];
+    let plc = format!("{dir}/Plc/Plc.plcproj");
+    let out = plcrun_ok(&[&[plc.as_str()], &trace[..]].concat());
+    assert_eq!(
+        out,
+        "cycle,time,MAIN.sName,MAIN.nPort,MAIN.sApp\n0,T#0s,'Conveyor It$'s',851,'Port_851'\n"
+    );
+    let folder = temp_project(&[("Line7/MAIN.TcPOU", &main)]);
+    let line = format!("{folder}/Line7");
+    let out = plcrun_ok(&[&[line.as_str()], &trace[..]].concat());
+    assert!(out.ends_with("0,T#0s,'Line7',851,'Port_851'\n"), "{out}");
+}

@@ -131,6 +131,44 @@ rb.A_RemoveHead(pRead := ADR(rc), cbRead := SIZEOF(rc)); n2 := rb.nCount;";
     assert_eq!(lit(&plc, "n2"), "0");
 }
 
+/// TcUnit's message queue: records of a structure of strings written into
+/// the ring buffer's bytes and read back whole, in order.
+#[test]
+fn a_ring_buffer_queues_structures_of_strings() {
+    let dut = crate::support::twincat::declaration(
+        "DUT",
+        "ST_Msg",
+        "TYPE ST_Msg :\nSTRUCT\n  mask : DWORD;\n  fmt : T_MaxString;\n  arg : STRING(20);\nEND_STRUCT\nEND_TYPE",
+    );
+    let decl = "PROGRAM P\nVAR\n  rb : FB_MemRingBuffer; buf : ARRAY[0..(3 * (SIZEOF(ST_Msg) + 4) - 1)] OF BYTE;\n  m, r1, r2 : ST_Msg; k : INT; n : UDINT;\nEND_VAR";
+    let body = "rb.A_Reset();
+FOR k := 1 TO 2 DO
+  m.mask := 16#10 * INT_TO_DWORD(k); m.fmt := CONCAT('failed: %s #', INT_TO_STRING(k)); m.arg := 'expected 1';
+  rb.A_AddTail(pWrite := ADR(m), cbWrite := SIZEOF(m), pBuffer := ADR(buf), cbBuffer := SIZEOF(buf));
+END_FOR
+n := rb.nCount;
+rb.A_RemoveHead(pRead := ADR(r1), cbRead := SIZEOF(r1));
+rb.A_RemoveHead(pRead := ADR(r2), cbRead := SIZEOF(r2));";
+    let main = pou("P", decl, body, "");
+    let mut plc = compile_ok(&[("ST_Msg.TcDUT", &dut), ("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    let got: Vec<String> = ["n", "r1.mask", "r1.fmt", "r1.arg", "r2.mask", "r2.fmt"]
+        .iter()
+        .map(|v| lit(&plc, v))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            "2",
+            "16#10",
+            "'failed: %s #1'",
+            "'expected 1'",
+            "16#20",
+            "'failed: %s #2'"
+        ]
+    );
+}
+
 #[test]
 fn a_hash_table_adds_finds_removes_and_walks_its_entries_in_place() {
     // PMPS's way: the index of an entry (A_GetIndexAtPosPtr) picks its

@@ -69,7 +69,7 @@ fn text_function(texts: &[(&str, u32, &str)]) -> String {
 /// `text` as an ST string literal: `$` and `'` escaped, line breaks and
 /// tabs as `$N` and `$T`, other control characters dropped, at most
 /// 1 023 characters.
-fn st_string(text: &str) -> String {
+pub(crate) fn st_string(text: &str) -> String {
     let mut out = String::from("'");
     for c in text.chars().take(1023) {
         match c {

@@ -45,6 +45,9 @@ pub(crate) fn has_extension(path: &Path, exts: &[&str]) -> bool {
 /// What a project is read from: its source files, and where the types it
 /// takes from the TwinCAT type system are described.
 pub(crate) struct ProjectFiles {
+    /// The project's name: the `.plcproj`'s `<Name>`, else its file name
+    /// without extension (a folder of plain sources: the folder's name).
+    pub(crate) name: String,
     /// The source files, in the project's order.
     pub(crate) sources: Vec<PathBuf>,
     /// Its type descriptions (empty for a folder of sources).
@@ -95,6 +98,7 @@ pub(crate) fn project_files(path: &Path) -> io::Result<ProjectFiles> {
         0 => {
             sources.sort();
             Ok(ProjectFiles {
+                name: file_stem(path),
                 sources,
                 descriptions: TypeDescriptions::default(),
             })
@@ -190,10 +194,27 @@ fn project_items(project: &Path) -> io::Result<ProjectFiles> {
         .filter_map(|n| n.attribute("Include"))
         .map(|name| name.trim().to_string())
         .collect();
+    let name = doc
+        .descendants()
+        .find(|n| {
+            n.has_tag_name("Name") && n.parent().is_some_and(|p| p.has_tag_name("PropertyGroup"))
+        })
+        .and_then(|n| n.text())
+        .map(str::trim)
+        .filter(|n| !n.is_empty())
+        .map_or_else(|| file_stem(project), str::to_string);
     Ok(ProjectFiles {
+        name,
         sources: files,
         descriptions: type_descriptions(project, names),
     })
+}
+
+/// A path's last component without its extension.
+fn file_stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }
 
 /// Where a `.plcproj`'s types are described: its `.tmc` (TwinCAT writes it
