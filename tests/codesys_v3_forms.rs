@@ -202,41 +202,107 @@ END_PROGRAM
     assert_eq!(lit(&plc, "fb.logger.eSub"), "Optics");
 }
 
-/// What an initial value may not read: a FUNCTION's input (its value comes
-/// from the caller at each call), a variable of another block read by a
-/// VAR_TEMP (a temporary cannot see the block's state as it is at the
-/// call), a variable declared after it.
+/// A FUNCTION's variables, a METHOD's and a VAR_TEMP start afresh at each
+/// call, so their initial values may read the call's inputs, call
+/// functions and read the block's state as it is then (lcls-twincat-vacuum's valve
+/// interlock: `rMaxRatioAllowed : LREAL := EXPT(10, i_iOrdersMagnitude)`),
+/// in declaration order; the body computes them before its first
+/// statement.
 #[test]
-fn an_initial_value_from_an_input_another_block_or_a_later_variable_is_refused() {
-    for (pou, decls, why) in [
+fn a_per_call_initial_value_reads_the_inputs_and_state_of_that_call() {
+    let src = "
+FUNCTION F_Ratio : LREAL
+VAR_INPUT n : INT; END_VAR
+VAR
+  rMax : LREAL := EXPT(10, n);
+  rMin : LREAL := 1.0 / rMax;
+  k : INT := 3;
+END_VAR
+F_Ratio := rMax + rMin + k;
+END_FUNCTION
+FUNCTION_BLOCK FB
+VAR s : INT := 1; END_VAR
+VAR_OUTPUT seen, got : INT; END_VAR
+VAR_TEMP x : INT := s * 10; END_VAR
+METHOD M : INT
+VAR_INPUT n : INT; END_VAR
+VAR a : INT := n; b : INT := a + s; END_VAR
+M := b;
+END_METHOD
+seen := x;
+s := s + 1;
+got := M(n := 5);
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR r2, r0 : LREAL; fb : FB; END_VAR
+r2 := F_Ratio(2);
+r0 := F_Ratio(0);
+fb();
+END_PROGRAM
+";
+    let mut plc = compile(src);
+    run(&mut plc, 2);
+    // 100 + 0.01 + 3, and 1 + 1 + 3
+    assert_eq!(lit(&plc, "r2"), "103.01");
+    assert_eq!(lit(&plc, "r0"), "5.0");
+    // The second cycle's call reads s = 2; its method call the argument
+    // 5 and s = 3, not their declared initial values.
+    assert_eq!(lit(&plc, "fb.seen"), "20");
+    assert_eq!(lit(&plc, "fb.got"), "8");
+}
+
+/// What a static variable's initial value may not read: a variable
+/// declared after it, or anything that is no constant (an FB's `VAR` is
+/// set once, when the instance starts).
+#[test]
+fn a_static_initial_value_from_a_later_variable_or_a_call_is_refused() {
+    for (decls, why) in [
         (
-            "FUNCTION F : INT",
-            "VAR_INPUT i : INT; END_VAR VAR x : INT := i; END_VAR",
-            "a function's input",
-        ),
-        (
-            "FUNCTION_BLOCK FB",
-            "VAR s : INT := 1; END_VAR VAR_TEMP x : INT := s; END_VAR",
-            "another block",
-        ),
-        (
-            "FUNCTION_BLOCK FB",
             "VAR x : INT := later; later : INT := 1; END_VAR",
             "declared later",
         ),
+        ("VAR x : LREAL := EXPT(10, 2); END_VAR", "a call"),
     ] {
-        let end = if pou.starts_with("FUNCTION ") {
-            "END_FUNCTION"
-        } else {
-            "END_FUNCTION_BLOCK"
-        };
-        let src = format!("{pou} {decls} x := x + 1; {end}");
+        let src = format!("FUNCTION_BLOCK FB {decls} x := x + 1; END_FUNCTION_BLOCK");
         let codes: Vec<String> = error_codes(&[("t.st", &src)])
             .into_iter()
             .map(|(code, _)| code)
             .collect();
         assert_eq!(codes, ["E205"], "{why}: {src}");
     }
+}
+
+/// An enumeration's value initialises an integer, as CODESYS converts it
+/// (W485): a structured initial value of an FB instance
+/// (lcls-twincat-motion's `fbFF : FB_FastFault := (i_TypeCode :=
+/// E_MotionFFType.PNEUMATIC_MOVE)`) and a plain variable.
+#[test]
+fn an_enumeration_value_initialises_an_integer() {
+    let src = "
+{attribute 'qualified_only'}
+TYPE E_Kind : (Stop := 16#1000, Move := 16#1010) UINT; END_TYPE
+TYPE E_Color : (Red, Green); END_TYPE
+FUNCTION_BLOCK FB_Fault
+VAR_INPUT code : UINT; name : STRING; END_VAR
+END_FUNCTION_BLOCK
+PROGRAM P
+VAR
+  ff : FB_Fault := (name := 'move', code := E_Kind.Move);
+  w : WORD := E_Kind.Stop;
+  g : INT := Green;
+END_VAR
+END_PROGRAM
+";
+    let plc = compile(src);
+    assert_eq!(lit(&plc, "ff.code"), "4112");
+    assert_eq!(lit(&plc, "w"), "16#1000");
+    assert_eq!(lit(&plc, "g"), "1");
+    let warned: Vec<String> = plc.warnings().iter().map(|d| d.code.to_string()).collect();
+    assert_eq!(
+        warned.iter().filter(|c| *c == "W485").count(),
+        3,
+        "{warned:?}"
+    );
 }
 
 /// `TYPE ST_B EXTENDS ST_A : STRUCT` has ST_A's fields (and their initial

@@ -85,6 +85,7 @@ impl<'a> BodyBuilder<'a> {
             self.emit_edge_inputs(pou);
             self.emit_eno_start(pou);
             self.emit_reference_inits(pou);
+            self.emit_computed_inits(pou);
             match &pou.body {
                 Body::St(stmts) => self.stmts(stmts),
                 Body::Il(lines) => {
@@ -93,7 +94,7 @@ impl<'a> BodyBuilder<'a> {
                 Body::Sfc(elems) => self.emit_chart(pou, elems),
             }
         }
-        self.emit_oop_methods();
+        self.emit_oop_methods(pou);
         let mut f = std::mem::replace(&mut self.block, Fcx::new(p, 0));
         let end = f.here();
         for j in std::mem::take(&mut f.returns) {

@@ -414,6 +414,9 @@ impl DeclConsts<'_> {
         {
             return Some(Const::Bits(0));
         }
+        if let Some(c) = self.enum_value_as_integer(e, ty, local) {
+            return Some(c);
+        }
         let Some(elem) = self.types.scalar(ty) else {
             self.diags.error(
                 "E301",
@@ -443,6 +446,56 @@ impl DeclConsts<'_> {
                 None
             }
         }
+    }
+
+    /// A value of an enumeration (`E_Kind.Move`, or a value name that is
+    /// no variable and means one integer, not `qualified_only`) where an integer or bit
+    /// string of type `ty` is expected: its integer, with W485 as in an
+    /// assignment (CODESYS converts it implicitly). `None` for anything
+    /// else, or a value `ty` does not hold.
+    fn enum_value_as_integer(
+        &mut self,
+        e: &Expr,
+        ty: TypeId,
+        local: Option<&IndexMap<String, VarInfo>>,
+    ) -> Option<Const> {
+        if !matches!(self.types.get(ty).kind, TypeKind::Elem(_)) {
+            return None;
+        }
+        let elem = self.types.scalar(ty).filter(|t| t.is_int() || t.is_bit())?;
+        let (from, v) = match &e.kind {
+            ExprKind::Member(..) => {
+                match super::enum_qualified::qualified(self.types, self.model, self.diags, e)? {
+                    Qualified::Value(t, v) => (t, v),
+                    Qualified::Unknown => return None,
+                }
+            }
+            ExprKind::Name(id)
+                if self.variable(&id.key(), local).is_none()
+                    && !self.model.qualified_enum_values.contains_key(&id.key()) =>
+            {
+                // A named enumeration's values are registered for it and
+                // for the anonymous type it is declared as: one value.
+                let owners = self.model.enum_values.get(&id.key())?;
+                let &(t, v) = owners.last()?;
+                if owners.iter().any(|(_, w)| *w != v) {
+                    return None;
+                }
+                (t, v)
+            }
+            _ => return None,
+        };
+        let bits = int_to_slot(v as i128, elem)?;
+        let name = self.types.name(from).to_string();
+        self.diags.warning(
+            "W485",
+            e.span,
+            format!(
+                "enumeration {name} used as an integer of type {} (a CODESYS extension)",
+                elem.name()
+            ),
+        );
+        Some(Const::Bits(bits))
     }
 
     fn const_scalar(

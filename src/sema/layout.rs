@@ -221,9 +221,11 @@ impl Declarer<'_> {
                 VarKind::Input | VarKind::Output | VarKind::Local
             );
         for decl in order.iter().map(|&d| &block.decls[d]) {
-            self.layout_decl(pou, block, decl, frame, &earlier);
+            let computed = self.layout_decl(pou, block, decl, frame, &earlier);
             let names = decl.names.iter().map(|n| n.key());
-            if reads_earlier {
+            // A value computed at each call is no value a later initial
+            // value could fold.
+            if reads_earlier && !computed {
                 earlier.extend(names.clone());
             }
             if starts_set {
@@ -233,7 +235,8 @@ impl Declarer<'_> {
     }
 
     /// One declaration (`a, b : T := init`): its type checked against the
-    /// POU kind, then each name laid out.
+    /// POU kind, then each name laid out. True when its initial value is
+    /// computed by the body at each call (computed_inits.rs).
     fn layout_decl(
         &mut self,
         pou: &Pou,
@@ -241,13 +244,16 @@ impl Declarer<'_> {
         decl: &VarDecl,
         frame: &mut Frame,
         earlier: &[String],
-    ) {
+    ) -> bool {
         let ty = self.decl_type(pou, block, decl, frame);
         if ty == TypeTable::void() {
-            return;
+            return false;
         }
         // `REF(x)` / `ADR(x)`: evaluated by the body (ref_inits.rs).
-        let by_body = self.defer_reference_init(pou, block, decl, ty, &mut frame.offset);
+        let by_reference = self.defer_reference_init(pou, block, decl, ty, &mut frame.offset);
+        let computed =
+            !by_reference && self.defer_computed_init(pou, block, decl, ty, &frame.vars, earlier);
+        let by_body = by_reference || computed;
         let init = decl.init.as_ref().filter(|_| !by_body).and_then(|i| {
             let mut consts = self.consts();
             consts.same_block = earlier;
@@ -302,6 +308,7 @@ impl Declarer<'_> {
             }
             frame.vars.insert(key, var);
         }
+        computed
     }
 
     /// The type of declaration `decl`: a VAR_IN_OUT of the block being

@@ -57,6 +57,7 @@ mod body_names;
 mod bounds;
 mod calls;
 mod compat_typing;
+mod computed_inits;
 mod edge_inputs;
 mod emit;
 mod en_params;

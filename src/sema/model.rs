@@ -122,6 +122,9 @@ pub(crate) struct Model {
     /// per initialisation: the frame slot that says it was done, and its
     /// type (`ref_inits.rs`).
     pub ref_init_guards: HashMap<String, (u32, TypeId)>,
+    /// The declarations (by span) of variables fresh at each call whose
+    /// initial value the body computes (`computed_inits.rs`).
+    pub computed_inits: std::collections::HashSet<crate::source::Span>,
     /// The retention of each global declared RETAIN, NON_RETAIN or
     /// PERSISTENT, by case-folded name.
     pub global_retention: HashMap<String, crate::ir::type_table::Retention>,

@@ -51,7 +51,7 @@ fn null_init(decl: &VarDecl) -> bool {
 
 /// Whether the initial value of a declaration in `block` of `pou` is
 /// evaluated at every call (no once-only guard).
-fn every_call(pou: &Pou, block: &VarBlock) -> bool {
+pub(super) fn every_call(pou: &Pou, block: &VarBlock) -> bool {
     pou.kind == PouKind::Function || block.kind == VarKind::Temp
 }
 

@@ -83,7 +83,7 @@ impl BodyBuilder<'_> {
     }
 
     /// Emits every method version of the FB being built into its block.
-    pub(in crate::sema) fn emit_oop_methods(&mut self) {
+    pub(in crate::sema) fn emit_oop_methods(&mut self, pou: &crate::syntax::ast::Pou) {
         let Some(scope) = self.oop.clone() else {
             return;
         };
@@ -106,6 +106,7 @@ impl BodyBuilder<'_> {
                 diags_before: scope.diags_before,
             });
             let guard = v.guard.as_deref().and_then(|k| self.enter_guard(k));
+            self.emit_method_computed_inits(pou, &v.resets);
             match &v.body {
                 Body::St(stmts) => self.stmts(stmts),
                 Body::Il(lines) => {
