@@ -476,3 +476,23 @@ fn udp_sockets_and_host_queries_fail_as_without_the_servers() {
         ["6", "''", "7", "0", "6"]
     );
 }
+
+/// Tc2_Utilities' character codes, Tc2_System's `MAX_STRING_LENGTH`, and
+/// `FB_GetLocalAmsNetId` failing as a local ADS request does without a
+/// router (error 6 at the rising edge).
+#[test]
+fn character_codes_the_string_length_and_the_local_ams_address() {
+    let decl = "PROGRAM P\nVAR\n  a, z : BYTE; s, e : STRING; n : UDINT; buf : STRING(MAX_STRING_LENGTH);\n  fb : FB_GetLocalAmsNetId; err : UDINT; failed : BOOL; addr : T_AmsNetId;\nEND_VAR";
+    let body = "a := F_ToASC('Hello');\nz := F_ToASC('');\ns := F_ToCHR(65);\ne := F_ToCHR(0);\nn := MAX_STRING_LENGTH;\nfb(bExecute := TRUE);\nerr := fb.nErrId; failed := fb.bError; addr := fb.AddrString;";
+    let main = pou("P", decl, body, "");
+    let mut plc = compile_ok(&[("P.TcPOU", &main)]);
+    run(&mut plc, 1);
+    let got: Vec<String> = ["a", "z", "s", "e", "n", "err", "failed", "addr"]
+        .iter()
+        .map(|v| lit(&plc, v))
+        .collect();
+    assert_eq!(
+        got,
+        ["16#48", "16#0", "'A'", "''", "255", "6", "TRUE", "''"]
+    );
+}
