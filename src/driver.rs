@@ -95,6 +95,7 @@ pub fn load_files_with<P: AsRef<Path>>(
     let mut classes = Vec::new();
     let mut shadowing = LibraryShadowing::default();
     let mut app = AppInfoUse::default();
+    let mut system_classes: Vec<&str> = Vec::new();
     for path in paths {
         let path = path.as_ref();
         let is_project = project::is_project(path);
@@ -133,8 +134,13 @@ pub fn load_files_with<P: AsRef<Path>>(
             sources.add(name, text);
         }
         app.named |= is_project && names.used.contains(APP_INFO);
+        for class in event_classes::system_classes_named(&names.used) {
+            if !system_classes.contains(&class) {
+                system_classes.push(class);
+            }
+        }
     }
-    if let Some(text) = event_classes::event_classes_source(&classes) {
+    if let Some(text) = event_classes::event_classes_source(&classes, &system_classes) {
         sources.add(event_classes::EVENT_CLASSES_SOURCE, text);
     }
     if let Some(text) = app.source() {
@@ -237,7 +243,8 @@ pub fn type_description_sources(path: &Path) -> Result<Vec<(String, String)>, Lo
         .iter()
         .flat_map(|(_, text)| type_description::event_classes(text))
         .collect();
-    if let Some(text) = event_classes::event_classes_source(&classes) {
+    let system = event_classes::system_classes_named(&names.used);
+    if let Some(text) = event_classes::event_classes_source(&classes, &system) {
         sources.push((event_classes::EVENT_CLASSES_SOURCE.to_string(), text));
     }
     let app = AppInfoUse {

@@ -309,3 +309,30 @@ fn an_event_text_is_the_display_text_with_its_arguments() {
         )
     );
 }
+
+/// TwinCAT's own event classes, named without a description that declares
+/// them (lcls-twincat-general's log handler subscribes to all five): the
+/// GUIDs TwinCAT's descriptions give them, the null GUID for the one
+/// plcrun does not know; a project description's own version wins.
+#[test]
+fn twincat_system_event_classes_are_known_by_name() {
+    let main = pou(
+        "MAIN",
+        "PROGRAM MAIN\nVAR\n  nAds, nRouter, nRTime, nSystem, nWin32 : DWORD;\n  nPlant : DWORD;\nEND_VAR\n",
+        "nAds := TC_EVENT_CLASSES.TcGeneralAdsEventClass.Data1;\nnRouter := TC_EVENT_CLASSES.TcRouterEventClass.Data1;\nnRTime := TC_EVENT_CLASSES.TcRTimeEventClass.Data1;\nnSystem := TC_EVENT_CLASSES.TcSystemEventClass.Data1;\nnWin32 := TC_EVENT_CLASSES.Win32EventClass.Data1;\n",
+        "",
+    );
+    let dir = temp_project(&[("Plc/Plc.plcproj", PLC_PROJECT), ("Plc/MAIN.TcPOU", &main)]);
+    let plc = format!("{dir}/Plc/Plc.plcproj");
+    let vars = "MAIN.nAds,MAIN.nRouter,MAIN.nRTime,MAIN.nSystem,MAIN.nWin32";
+    let out = plcrun_ok(&[&plc, "--cycles", "1", "--trace", vars]);
+    assert_eq!(
+        out,
+        format!("cycle,time,{vars}\n0,T#0s,16#7D760066,16#E759605A,16#0,16#BB2A9999,16#4ABEFBBF\n")
+    );
+    // A description declaring one of them gives its GUID.
+    let described = EVENTS.replace("PlantEvents", "TcRTimeEventClass");
+    std::fs::write(format!("{dir}/Plc/Plc.tmc"), described).unwrap();
+    let out = plcrun_ok(&[&plc, "--cycles", "1", "--trace", "MAIN.nRTime"]);
+    assert_eq!(out, "cycle,time,MAIN.nRTime\n0,T#0s,16#97CF8247\n");
+}

@@ -496,3 +496,52 @@ fn character_codes_the_string_length_and_the_local_ams_address() {
         ["16#48", "16#0", "'A'", "''", "255", "6", "TRUE", "''"]
     );
 }
+
+/// Tc3_JsonXml's `FB_JsonReadWriteDataType`: a structure written as JSON
+/// from its type's name and address (SLAC's logger sends its events so),
+/// through a reference too, as the writer's next value or into a string;
+/// a type nobody declares fails.
+#[test]
+fn a_structure_is_written_as_json_from_its_type_name() {
+    let en = crate::support::twincat::declaration(
+        "DUT",
+        "E_Sev",
+        "TYPE E_Sev : (Info := 1, Warn := 2); END_TYPE",
+    );
+    let dut = crate::support::twincat::declaration(
+        "DUT",
+        "ST_Info",
+        "TYPE ST_Info :\nSTRUCT\n  msg : STRING(80);\n  id : UDINT;\n  sev : E_Sev;\n  ok : BOOL;\n  r : LREAL;\n  a : ARRAY[1..3] OF INT;\n  t : TIME;\nEND_STRUCT\nEND_TYPE",
+    );
+    let decl = "PROGRAM P\nVAR\n  st : ST_Info := (msg := 'say \"hi\"', id := 7, sev := E_Sev.Warn, ok := TRUE, r := 1.5, a := [1, -2, 3], t := T#1S500MS);\n  rs : REFERENCE TO ST_Info;\n  fbJson : FB_JsonSaxWriter; fbType : FB_JsonReadWriteDataType;\n  sDoc, sOut : STRING(1000); n : UDINT := 1000; small : UDINT := 10;\n  ok1, ok2, tooSmall, unknown : BOOL; hr : HRESULT;\nEND_VAR";
+    let body = "rs REF= st;
+fbJson.ResetDocument();
+fbJson.StartObject();
+fbJson.AddKey('info');
+ok1 := fbType.AddJsonValueFromSymbol(fbJson, 'ST_Info', SIZEOF(rs), ADR(rs));
+fbJson.EndObject();
+fbJson.CopyDocument(sDoc, SIZEOF(sDoc));
+ok2 := fbType.GetJsonFromSymbol('st_info', SIZEOF(st), ADR(st), n, ADR(sOut));
+tooSmall := fbType.GetJsonFromSymbol('ST_Info', SIZEOF(st), ADR(st), small, ADR(sOut));
+unknown := fbType.AddJsonValueFromSymbol(fbJson, 'ST_Nope', SIZEOF(st), ADR(st), hrErrorCode => hr);";
+    let main = pou("P", decl, body, "");
+    let mut plc = compile_ok(&[
+        ("E_Sev.TcDUT", &en),
+        ("ST_Info.TcDUT", &dut),
+        ("P.TcPOU", &main),
+    ]);
+    run(&mut plc, 1);
+    let json =
+        r#"{"msg":"say \"hi\"","id":7,"sev":2,"ok":true,"r":1.5,"a":[1,-2,3],"t":"T#1s500ms"}"#;
+    assert_eq!(lit(&plc, "sOut"), format!("'{json}'"));
+    assert_eq!(lit(&plc, "sDoc"), format!("'{{\"info\":{json}}}'"));
+    assert_eq!(lit(&plc, "n"), (json.len() + 1).to_string());
+    let flags: Vec<String> = ["ok1", "ok2", "tooSmall", "unknown", "small", "hr"]
+        .iter()
+        .map(|v| lit(&plc, v))
+        .collect();
+    assert_eq!(
+        flags,
+        ["TRUE", "TRUE", "FALSE", "FALSE", "10", "-2147467259"]
+    );
+}

@@ -8,21 +8,71 @@
 //! member per class, and `plcrun_EventText` as a function over a table of
 //! the texts, which replaces the TwinCAT library's (that one knows none).
 
-use crate::syntax::twincat::type_description::EventClassInfo;
+use crate::syntax::twincat::type_description::{EventClassInfo, guid_value};
+use std::collections::HashSet;
 
 /// The name of the source that declares them.
 pub(crate) const EVENT_CLASSES_SOURCE: &str = "<TwinCAT event classes>";
 
+/// TwinCAT's own event classes, which its installation describes: a
+/// project's type descriptions list the ones it uses only sometimes
+/// (lcls-twincat-general's logger names all five, its `.tsproj` none).
+/// Their GUIDs as TwinCAT's type descriptions give them; `None` for the
+/// one no public description we found gives (it gets the null GUID).
+const SYSTEM_CLASSES: [(&str, Option<&str>); 5] = [
+    (
+        "TcGeneralAdsEventClass",
+        Some("{7D760066-D373-4A0C-B0F1-328B1620B0F0}"),
+    ),
+    (
+        "TcRouterEventClass",
+        Some("{E759605A-2341-48FC-9F3F-C8FA405C4B24}"),
+    ),
+    ("TcRTimeEventClass", None),
+    (
+        "TcSystemEventClass",
+        Some("{BB2A9999-102E-421A-8D3D-B0660E07B1FE}"),
+    ),
+    (
+        "Win32EventClass",
+        Some("{4ABEFBBF-6620-4349-91AD-E6110A3BE851}"),
+    ),
+];
+
+/// TwinCAT's own classes that sources naming `used` (upper case) name.
+pub(crate) fn system_classes_named(used: &HashSet<String>) -> Vec<&'static str> {
+    SYSTEM_CLASSES
+        .iter()
+        .map(|(name, _)| *name)
+        .filter(|name| used.contains(&name.to_ascii_uppercase()))
+        .collect()
+}
+
 /// The source declaring `TC_EVENT_CLASSES` and, when an event has a text,
-/// `plcrun_EventText` for `classes`; `None` when there is no class.
-pub(crate) fn event_classes_source(classes: &[EventClassInfo]) -> Option<String> {
-    if classes.is_empty() {
-        return None;
-    }
-    let members: String = classes
+/// `plcrun_EventText` for `classes` and the TwinCAT classes `system` the
+/// sources name that no description declares; `None` when there is no
+/// class.
+pub(crate) fn event_classes_source(classes: &[EventClassInfo], system: &[&str]) -> Option<String> {
+    let mut members: String = classes
         .iter()
         .map(|c| format!("  {} : GUID := {};\n", c.name, c.guid))
         .collect();
+    for name in system {
+        if classes.iter().any(|c| c.name.eq_ignore_ascii_case(name)) {
+            continue;
+        }
+        let known = SYSTEM_CLASSES
+            .iter()
+            .find(|(n, _)| n == name)
+            .and_then(|(_, g)| g.and_then(guid_value));
+        members.push_str(&match known {
+            Some(guid) => format!("  {name} : GUID := {guid};\n"),
+            None => format!("  {name} : GUID; (* its GUID is not known to plcrun *)\n"),
+        });
+    }
+    if members.is_empty() {
+        return None;
+    }
     let mut text = format!(
         "TYPE TC_EVENT_CLASSES_LIST :\nSTRUCT\n{members}END_STRUCT\nEND_TYPE\n\
          VAR_GLOBAL CONSTANT\n  TC_EVENT_CLASSES : TC_EVENT_CLASSES_LIST;\nEND_VAR\n"

@@ -17,8 +17,10 @@
 //! Tc2_Utilities' `FB_HashTableCtrl` and system times (`TIMESTRUCT`,
 //! `T_FILETIME`, `FB_LocalSystemTime`, time zones, `SYSTEMTIME_TO_STRING`,
 //! `GUID_TO_STRING`, `LEN2`, `STRNCPY`, `FB_GetHostName`,
-//! `FB_GetAdaptersInfo`), Tc2_TcpIp's UDP socket blocks, Tc3_JsonXml's
-//! `FB_JsonSaxWriter` and `FB_JsonDomParser` (with `SJsonValue`),
+//! `FB_GetAdaptersInfo`, `FB_GetLocalAmsNetId`, `F_ToASC`, `F_ToCHR`),
+//! the application's information `PlcAppSystemInfo`, Tc2_TcpIp's UDP
+//! socket blocks, Tc3_JsonXml's `FB_JsonSaxWriter`,
+//! `FB_JsonReadWriteDataType` and `FB_JsonDomParser` (with `SJsonValue`),
 //! Tc2_Standard's `WLEN`, and the Base Interfaces library's `TypeClass`),
 //! written in ST by plcrun
 //! (`twincat_library.st`) and added as a source of its own when the

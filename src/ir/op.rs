@@ -139,7 +139,15 @@ pub enum StrFn {
     Replace,
     /// FIND(a, b) → integer position (1-based, 0 if absent).
     Find,
+    /// `__PLCRUN_JSON_OF_SYMBOL(type name, pointer image)`: the JSON text
+    /// of the value of that type the pointer designates, '' when there is
+    /// none (`vm::json_of_symbol`; Tc3_JsonXml's `...FromSymbol` methods).
+    JsonOfSymbol,
 }
+
+/// The most characters of [`StrFn::JsonOfSymbol`]'s text (the capacity of
+/// the STRING it is returned in).
+pub const JSON_OF_SYMBOL_MAX: u32 = 8191;
 
 /// The native standard function blocks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -36,6 +36,13 @@ impl BodyBuilder<'_> {
         let string_pos: &[usize] = match func {
             StrFn::Len | StrFn::Left | StrFn::Right | StrFn::Mid | StrFn::Delete => &[0],
             StrFn::Concat | StrFn::Insert | StrFn::Replace | StrFn::Find => &[0, 1],
+            StrFn::JsonOfSymbol => &[0],
+        };
+        // The other arguments are counts and positions; a pointer's
+        // integer image takes 64 bits.
+        let number = match func {
+            StrFn::JsonOfSymbol => ElemType::Ulint,
+            _ => ElemType::Dint,
         };
         let mut wide = false;
         let mut max = 0u32;
@@ -56,7 +63,7 @@ impl BodyBuilder<'_> {
                 }
                 slots.push(self.materialize(&v));
             } else {
-                let v = self.coerce(v, TypeTable::elem(ElemType::Dint), s, fname);
+                let v = self.coerce(v, TypeTable::elem(number), s, fname);
                 if v.is_error() {
                     return v;
                 }
@@ -75,7 +82,10 @@ impl BodyBuilder<'_> {
             self.block.emit(Op::StrCall { d, a, f: func });
             return Val::Slot(d, TypeTable::elem(ElemType::Int));
         }
-        let max = max.clamp(1, 65535);
+        let max = match func {
+            StrFn::JsonOfSymbol => crate::ir::op::JSON_OF_SYMBOL_MAX,
+            _ => max.clamp(1, 65535),
+        };
         let d = self.string_temp(max, wide);
         self.block.emit(Op::StrCall { d, a, f: func });
         let t = self.types.intern(crate::ir::type_table::TypeDef {

@@ -124,6 +124,7 @@ fn classify_own(n: &str) -> Option<Std> {
         "DELETE" => Some(Std::Str(StrFn::Delete)),
         "REPLACE" => Some(Std::Str(StrFn::Replace)),
         "FIND" => Some(Std::Str(StrFn::Find)),
+        "__PLCRUN_JSON_OF_SYMBOL" => Some(Std::Str(StrFn::JsonOfSymbol)),
         "CONCAT" => Some(Std::Concat),
         "PLC_CLOCK" => Some(Std::Clock),
         _ => None,
@@ -188,6 +189,7 @@ fn param_names(std: Std, n: usize) -> Vec<String> {
         Std::Str(StrFn::Replace) => v(&["IN1", "IN2", "L", "P"]),
         Std::Str(StrFn::Find) => v(&["IN1", "IN2"]),
         Std::Str(StrFn::Concat) => ins(2),
+        Std::Str(StrFn::JsonOfSymbol) => v(&["DATATYPE", "PDATA"]),
         Std::Clock => Vec::new(),
         _ => v(&["IN"]),
     }

@@ -19,6 +19,7 @@ mod fault;
 mod grafcet;
 mod host;
 mod interrupt;
+mod json_of_symbol;
 mod loop_kernels;
 pub(crate) mod native;
 mod refs;

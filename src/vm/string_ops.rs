@@ -2,9 +2,10 @@
 //! table, the formatter and the parser, and keeping that code out of the
 //! dispatch loop leaves its registers to the instructions that run often.
 
+use super::json_of_symbol::json_of_symbol;
 use super::{FaultKind, Machine, strings};
 use crate::ir::image::Image;
-use crate::ir::op::{Op, Slot};
+use crate::ir::op::{Op, Slot, StrFn};
 
 /// Runs one string instruction (`CmpStr`, `StrMov`, `StrConst`, `StrCall`,
 /// `ToStr`, `FromStr`; anything else does nothing) on the frame at `fp`.
@@ -40,6 +41,21 @@ pub(super) unsafe fn run(
         Op::StrConst { d, k } => {
             let di = r(d) as usize;
             m.strings[di].set(&img.str_consts[k.index()]);
+        }
+        Op::StrCall {
+            d,
+            a,
+            f: StrFn::JsonOfSymbol,
+        } => {
+            let name = m.strings.get(r(a) as usize).map(|s| s.text.clone());
+            let text = name.and_then(|name| {
+                json_of_symbol(img, &m.refs, &m.mem, &m.strings, &name, r(a.offset(1)))
+            });
+            let s = m
+                .strings
+                .get_mut(r(d) as usize)
+                .ok_or(FaultKind::BadAddress)?;
+            s.set(text.as_deref().unwrap_or(""));
         }
         Op::StrCall { d, a, f } => {
             let args = [r(a), r(a.offset(1)), r(a.offset(2)), r(a.offset(3))];

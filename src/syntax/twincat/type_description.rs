@@ -430,7 +430,7 @@ const SEVERITIES: [&str; 5] = ["Verbose", "Info", "Warning", "Error", "Critical"
 
 /// A GUID written `{XXXXXXXX-XXXX-XXXX-XXXX-XXXXXXXXXXXX}` as the
 /// initial value of a `GUID` structure.
-fn guid_value(text: &str) -> Option<String> {
+pub(crate) fn guid_value(text: &str) -> Option<String> {
     let hex = text.trim().trim_start_matches('{').trim_end_matches('}');
     let parts: Vec<&str> = hex.split('-').collect();
     let widths = [8, 4, 4, 4, 12];
