@@ -211,6 +211,7 @@ END_PROGRAM
 #[test]
 fn a_per_call_initial_value_reads_the_inputs_and_state_of_that_call() {
     let src = "
+VAR_GLOBAL calls : INT := 5; END_VAR
 FUNCTION F_Ratio : LREAL
 VAR_INPUT n : INT; END_VAR
 VAR
@@ -219,6 +220,10 @@ VAR
   k : INT := 3;
 END_VAR
 F_Ratio := rMax + rMin + k;
+END_FUNCTION
+FUNCTION F_Calls : INT
+VAR seen : INT := calls; END_VAR
+F_Calls := seen;
 END_FUNCTION
 FUNCTION_BLOCK FB
 VAR s : INT := 1; END_VAR
@@ -234,10 +239,12 @@ s := s + 1;
 got := M(n := 5);
 END_FUNCTION_BLOCK
 PROGRAM P
-VAR r2, r0 : LREAL; fb : FB; END_VAR
+VAR r2, r0 : LREAL; fb : FB; c : INT; END_VAR
 r2 := F_Ratio(2);
 r0 := F_Ratio(0);
 fb();
+calls := calls + 1;
+c := F_Calls();
 END_PROGRAM
 ";
     let mut plc = compile(src);
@@ -249,6 +256,9 @@ END_PROGRAM
     // 5 and s = 3, not their declared initial values.
     assert_eq!(lit(&plc, "fb.seen"), "20");
     assert_eq!(lit(&plc, "fb.got"), "8");
+    // A global as it is at the call (7 after two cycles), not its
+    // initial value.
+    assert_eq!(lit(&plc, "c"), "7");
 }
 
 /// What a static variable's initial value may not read: a variable

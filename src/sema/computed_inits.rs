@@ -56,6 +56,7 @@ impl Declarer<'_> {
         // A METHOD's variables live in its block, whose earlier variables
         // (the method's inputs among them) hold runtime values.
         consts.same_block = if method_local { &[] } else { earlier };
+        consts.globals_at_start = false;
         let folds = consts.resolve_init(init, ty, Some(vars)).is_some();
         if folds && !scratch.has_errors() {
             return false;

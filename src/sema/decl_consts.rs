@@ -29,6 +29,11 @@ pub(super) struct DeclConsts<'a> {
     /// also those of its earlier input, output and VAR blocks (layout.rs).
     /// Empty elsewhere, and for inputs (set by callers).
     pub(super) same_block: &'a [String],
+    /// The global variables hold their initial values when this initial
+    /// value is computed: true for a static variable (initialised at
+    /// start, after the global lists); false for one set afresh at each
+    /// call, which reads the globals as they are then (`computed_inits`).
+    pub(super) globals_at_start: bool,
 }
 
 impl DeclConsts<'_> {
@@ -161,7 +166,8 @@ impl DeclConsts<'_> {
         };
         let key = e.key();
         let (v, global) = self.variable(&key, local)?;
-        let readable = v.constant || global || self.same_block.contains(&key);
+        let readable =
+            v.constant || (global && self.globals_at_start) || self.same_block.contains(&key);
         (v.ty == ty && readable && v.location.is_none()).then(|| self.initial(v))
     }
 
@@ -675,7 +681,7 @@ impl DeclConsts<'_> {
                 let key = id.key();
                 let (var, global) = self.variable(&key, local)?;
                 let value = self.readable_value(&key, var).or_else(|| {
-                    let global = global && var.location.is_none();
+                    let global = global && var.location.is_none() && self.globals_at_start;
                     global.then(|| init_const(&self.initial(var))).flatten()
                 })?;
                 Some((value, var.ty))
@@ -691,7 +697,7 @@ impl DeclConsts<'_> {
                 let key = id.key();
                 let (var, global) = self.variable(&key, local)?;
                 let readable = var.constant
-                    || (global && var.location.is_none())
+                    || (global && var.location.is_none() && self.globals_at_start)
                     || self.same_block.contains(&key);
                 let TypeKind::Array { dims, elem } = &self.types.get(var.ty).kind else {
                     return None;

@@ -120,6 +120,7 @@ impl<'a> Declarer<'a> {
             model: &self.model,
             diags: self.diags,
             same_block: &[],
+            globals_at_start: true,
         }
     }
 

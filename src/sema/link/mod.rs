@@ -106,6 +106,7 @@ impl Linker<'_> {
             model: self.model,
             diags: self.diags,
             same_block: &[],
+            globals_at_start: true,
         }
     }
 
