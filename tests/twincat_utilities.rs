@@ -545,3 +545,64 @@ unknown := fbType.AddJsonValueFromSymbol(fbJson, 'ST_Nope', SIZEOF(st), ADR(st),
         ["TRUE", "TRUE", "FALSE", "FALSE", "10", "-2147467259"]
     );
 }
+
+/// `SetSymbolFromJson`: a structure filled from JSON text by its fields'
+/// names (a field without a key kept, a key without a field ignored,
+/// enumerations by number or name, durations as IEC literals), the text
+/// `GetJsonFromSymbol` wrote read back the same; text that does not fit
+/// the type (a fraction for an integer, a value out of range, not JSON)
+/// writes nothing.
+#[test]
+fn a_structure_is_filled_from_json_by_its_type_name() {
+    let en = crate::support::twincat::declaration(
+        "DUT",
+        "E_Sev",
+        "TYPE E_Sev : (Info := 1, Warn := 2); END_TYPE",
+    );
+    let dut = crate::support::twincat::declaration(
+        "DUT",
+        "ST_Cmd",
+        "TYPE ST_Cmd :\nSTRUCT\n  name : STRING(20);\n  n : SINT;\n  sev : E_Sev;\n  on : BOOL;\n  r : REAL;\n  a : ARRAY[0..2] OF INT;\n  t : TIME;\n  kept : INT := 9;\nEND_STRUCT\nEND_TYPE",
+    );
+    let decl = "PROGRAM P\nVAR\n  cmd, back, bad : ST_Cmd;\n  fbType : FB_JsonReadWriteDataType;\n  sOut : STRING(500); n : UDINT := 500;\n  ok1, ok2, frac, range, notJson : BOOL;\nEND_VAR";
+    let body = "ok1 := fbType.SetSymbolFromJson('{\"name\":\"pump 1\",\"N\":-5,\"sev\":\"Warn\",\"on\":true,\"r\":0.5,\"a\":[7,8,9,10],\"t\":\"T#2s\",\"extra\":1}', 'ST_Cmd', SIZEOF(cmd), ADR(cmd));
+fbType.GetJsonFromSymbol('ST_Cmd', SIZEOF(cmd), ADR(cmd), n, ADR(sOut));
+ok2 := fbType.SetSymbolFromJson(sOut, 'ST_Cmd', SIZEOF(back), ADR(back));
+frac := fbType.SetSymbolFromJson('{\"name\":\"x\",\"n\":1.5}', 'ST_Cmd', SIZEOF(bad), ADR(bad));
+range := fbType.SetSymbolFromJson('{\"n\":300}', 'ST_Cmd', SIZEOF(bad), ADR(bad));
+notJson := fbType.SetSymbolFromJson('{\"n\":', 'ST_Cmd', SIZEOF(bad), ADR(bad));";
+    let main = pou("P", decl, body, "");
+    let mut plc = compile_ok(&[
+        ("E_Sev.TcDUT", &en),
+        ("ST_Cmd.TcDUT", &dut),
+        ("P.TcPOU", &main),
+    ]);
+    run(&mut plc, 1);
+    let got: Vec<String> = [
+        "cmd.name", "cmd.n", "cmd.sev", "cmd.on", "cmd.r", "cmd.a[2]", "cmd.t", "cmd.kept",
+    ]
+    .iter()
+    .map(|v| lit(&plc, v))
+    .collect();
+    assert_eq!(
+        got,
+        ["'pump 1'", "-5", "Warn", "TRUE", "0.5", "9", "T#2s", "9"]
+    );
+    for v in ["name", "n", "sev", "r", "a[1]", "t"] {
+        assert_eq!(
+            lit(&plc, &format!("back.{v}")),
+            lit(&plc, &format!("cmd.{v}")),
+            "{v}"
+        );
+    }
+    let flags: Vec<String> = [
+        "ok1", "ok2", "frac", "range", "notJson", "bad.name", "bad.n",
+    ]
+    .iter()
+    .map(|v| lit(&plc, v))
+    .collect();
+    assert_eq!(
+        flags,
+        ["TRUE", "TRUE", "FALSE", "FALSE", "FALSE", "''", "0"]
+    );
+}

@@ -143,6 +143,11 @@ pub enum StrFn {
     /// of the value of that type the pointer designates, '' when there is
     /// none (`vm::json_of_symbol`; Tc3_JsonXml's `...FromSymbol` methods).
     JsonOfSymbol,
+    /// `__PLCRUN_SYMBOL_FROM_JSON(json text, type name, pointer image)`:
+    /// writes the value the JSON text gives into the value of that type
+    /// the pointer designates; 1 in `d`, or 0 with nothing written
+    /// (`vm::symbol_from_json`; Tc3_JsonXml's `SetSymbolFromJson`).
+    SymbolFromJson,
 }
 
 /// The most characters of [`StrFn::JsonOfSymbol`]'s text (the capacity of

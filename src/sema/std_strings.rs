@@ -35,13 +35,17 @@ impl BodyBuilder<'_> {
         // Which positions are strings.
         let string_pos: &[usize] = match func {
             StrFn::Len | StrFn::Left | StrFn::Right | StrFn::Mid | StrFn::Delete => &[0],
-            StrFn::Concat | StrFn::Insert | StrFn::Replace | StrFn::Find => &[0, 1],
+            StrFn::Concat
+            | StrFn::Insert
+            | StrFn::Replace
+            | StrFn::Find
+            | StrFn::SymbolFromJson => &[0, 1],
             StrFn::JsonOfSymbol => &[0],
         };
         // The other arguments are counts and positions; a pointer's
         // integer image takes 64 bits.
         let number = match func {
-            StrFn::JsonOfSymbol => ElemType::Ulint,
+            StrFn::JsonOfSymbol | StrFn::SymbolFromJson => ElemType::Ulint,
             _ => ElemType::Dint,
         };
         let mut wide = false;
@@ -77,7 +81,7 @@ impl BodyBuilder<'_> {
                 s,
             });
         }
-        if matches!(func, StrFn::Len | StrFn::Find) {
+        if matches!(func, StrFn::Len | StrFn::Find | StrFn::SymbolFromJson) {
             let d = self.block.temp();
             self.block.emit(Op::StrCall { d, a, f: func });
             return Val::Slot(d, TypeTable::elem(ElemType::Int));

@@ -125,6 +125,7 @@ fn classify_own(n: &str) -> Option<Std> {
         "REPLACE" => Some(Std::Str(StrFn::Replace)),
         "FIND" => Some(Std::Str(StrFn::Find)),
         "__PLCRUN_JSON_OF_SYMBOL" => Some(Std::Str(StrFn::JsonOfSymbol)),
+        "__PLCRUN_SYMBOL_FROM_JSON" => Some(Std::Str(StrFn::SymbolFromJson)),
         "CONCAT" => Some(Std::Concat),
         "PLC_CLOCK" => Some(Std::Clock),
         _ => None,
@@ -190,6 +191,7 @@ fn param_names(std: Std, n: usize) -> Vec<String> {
         Std::Str(StrFn::Find) => v(&["IN1", "IN2"]),
         Std::Str(StrFn::Concat) => ins(2),
         Std::Str(StrFn::JsonOfSymbol) => v(&["DATATYPE", "PDATA"]),
+        Std::Str(StrFn::SymbolFromJson) => v(&["JSON", "DATATYPE", "PDATA"]),
         Std::Clock => Vec::new(),
         _ => v(&["IN"]),
     }

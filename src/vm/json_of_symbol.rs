@@ -37,6 +37,20 @@ pub(super) fn json_of_symbol(
     image: u64,
 ) -> Option<String> {
     let ty = type_named(&img.types, datatype)?;
+    let at = address(img, table, ty, image)?;
+    let mut w = JsonWriter {
+        types: &img.types,
+        mem,
+        strings,
+        out: String::new(),
+    };
+    w.value(ty, at)?;
+    (w.out.chars().count() <= MAX_JSON as usize).then_some(w.out)
+}
+
+/// The absolute slot of the `ty` the pointer whose integer image is
+/// `image` designates, when its object holds one there (in size).
+pub(super) fn address(img: &Image, table: &RefTable, ty: TypeId, image: u64) -> Option<usize> {
     let r = super::refs::from_image(image);
     let n = refs::object_number(r);
     let obj = *table.object(n)?;
@@ -49,19 +63,12 @@ pub(super) fn json_of_symbol(
     if slot as u64 + img.types.size(ty) as u64 > obj.len as u64 {
         return None;
     }
-    let mut w = JsonWriter {
-        types: &img.types,
-        mem,
-        strings,
-        out: String::new(),
-    };
-    w.value(ty, obj.start as usize + slot as usize)?;
-    (w.out.chars().count() <= MAX_JSON as usize).then_some(w.out)
+    Some(obj.start as usize + slot as usize)
 }
 
 /// The declared type named `name` (any case): a structure first, then any
 /// other (an alias, an enumeration).
-fn type_named(types: &TypeTable, name: &str) -> Option<TypeId> {
+pub(super) fn type_named(types: &TypeTable, name: &str) -> Option<TypeId> {
     let named = |t: &TypeId| types.name(*t).eq_ignore_ascii_case(name.trim());
     let all = (0..types.len() as u32).map(TypeId);
     let mut found = all.filter(named);

@@ -25,6 +25,7 @@ pub(crate) mod native;
 mod refs;
 mod string_ops;
 mod strings;
+mod symbol_from_json;
 mod type_at;
 
 pub(crate) use debug::{ChartEvent, DebugFrame, DebugHook};

@@ -3,6 +3,7 @@
 //! dispatch loop leaves its registers to the instructions that run often.
 
 use super::json_of_symbol::json_of_symbol;
+use super::symbol_from_json::symbol_from_json;
 use super::{FaultKind, Machine, strings};
 use crate::ir::image::Image;
 use crate::ir::op::{Op, Slot, StrFn};
@@ -56,6 +57,30 @@ pub(super) unsafe fn run(
                 .get_mut(r(d) as usize)
                 .ok_or(FaultKind::BadAddress)?;
             s.set(text.as_deref().unwrap_or(""));
+        }
+        Op::StrCall {
+            d,
+            a,
+            f: StrFn::SymbolFromJson,
+        } => {
+            let text = |i: u32| {
+                m.strings
+                    .get(r(a.offset(i)) as usize)
+                    .map(|s| s.text.clone())
+            };
+            let ok = match (text(0), text(1)) {
+                (Some(json), Some(name)) => symbol_from_json(
+                    img,
+                    &m.refs,
+                    &mut m.mem,
+                    &mut m.strings,
+                    &json,
+                    &name,
+                    r(a.offset(2)),
+                ),
+                _ => false,
+            };
+            w(d, ok as u64);
         }
         Op::StrCall { d, a, f } => {
             let args = [r(a), r(a.offset(1)), r(a.offset(2)), r(a.offset(3))];

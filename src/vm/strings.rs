@@ -150,7 +150,7 @@ pub fn call(
     let result = match f {
         StrFn::Len => return Ok(Some(char_len(&strings[args[0] as usize].text) as u64)),
         // Needs the memory and the types: run by `string_ops`.
-        StrFn::JsonOfSymbol => return Ok(None),
+        StrFn::JsonOfSymbol | StrFn::SymbolFromJson => return Ok(None),
         StrFn::Find => {
             let hay = &strings[args[0] as usize].text;
             let needle = &strings[args[1] as usize].text;
