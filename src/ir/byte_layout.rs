@@ -84,7 +84,7 @@ impl ByteLayout {
         let (period, repeat) = match &types.get(ty).kind {
             TypeKind::Struct { .. } => (ty, 1),
             TypeKind::Array { dims, elem } => {
-                let inner = innermost(types, *elem);
+                let inner = types.innermost(*elem);
                 if !matches!(
                     types.get(inner).kind,
                     TypeKind::Struct { .. } | TypeKind::Str { .. }
@@ -235,14 +235,6 @@ fn append(
         }
         _ => None,
     }
-}
-
-/// The innermost element type of nested arrays.
-fn innermost(types: &TypeTable, mut t: TypeId) -> TypeId {
-    while let TypeKind::Array { elem, .. } = types.get(t).kind {
-        t = elem;
-    }
-    t
 }
 
 #[cfg(test)]

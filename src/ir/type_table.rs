@@ -345,6 +345,15 @@ impl TypeTable {
         self.get(id).size
     }
 
+    /// The innermost element type of nested arrays (`id` itself
+    /// otherwise).
+    pub fn innermost(&self, mut id: TypeId) -> TypeId {
+        while let TypeKind::Array { elem, .. } = self.get(id).kind {
+            id = elem;
+        }
+        id
+    }
+
     /// Display name.
     pub fn name(&self, id: TypeId) -> &str {
         &self.get(id).name

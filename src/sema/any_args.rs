@@ -14,7 +14,7 @@ use super::any_params::{GenericClass, type_class_name, type_class_of};
 use super::body::BodyBuilder;
 use super::consts::Const;
 use super::emit::{Place, PlaceRef, Ty, Val};
-use super::refs::{innermost, layout_code, size_bytes, view_unit};
+use super::refs::{layout_code, size_bytes, view_unit};
 use crate::elementary::ElemType;
 use crate::ir::op::{Op, Slot};
 use crate::ir::type_table::{TypeDef, TypeId, TypeKind, TypeTable};
@@ -224,7 +224,7 @@ impl BodyBuilder<'_> {
         let ty_name = self.types.name(ty).to_string();
         let strings_inside = matches!(self.types.get(ty).kind, TypeKind::Array { .. })
             && matches!(
-                self.types.get(innermost(self.types, ty)).kind,
+                self.types.get(self.types.innermost(ty)).kind,
                 TypeKind::Str { .. }
             );
         let Some(t) = type_class_of(self.types, ty) else {
@@ -300,7 +300,7 @@ impl BodyBuilder<'_> {
     /// docs/semantics.md) unless its elements are bytes already.
     fn any_pointer(&mut self, arg: &PlaceRef) -> Slot {
         let d = self.reference_value(arg);
-        let inner = innermost(self.types, arg.ty);
+        let inner = self.types.innermost(arg.ty);
         if self.types.get(inner).kind != TypeKind::Elem(ElemType::Byte) {
             self.block.emit(Op::RefView {
                 d,

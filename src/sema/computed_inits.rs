@@ -19,12 +19,10 @@
 use super::body::BodyBuilder;
 use super::declare::Declarer;
 use super::model::VarInfo;
-use super::ref_inits::every_call;
+use super::ref_inits::{every_call, init_assignment};
 use crate::diagnostics::Diagnostics;
 use crate::ir::type_table::TypeId;
-use crate::syntax::ast::{
-    Expr, ExprKind, Ident, Initializer, Pou, Stmt, StmtKind, VarBlock, VarDecl,
-};
+use crate::syntax::ast::{Ident, Initializer, Pou, Stmt, VarBlock, VarDecl};
 use indexmap::IndexMap;
 
 impl Declarer<'_> {
@@ -108,16 +106,7 @@ impl BodyBuilder<'_> {
                 d.names
                     .iter()
                     .filter(move |n| pick(b, n))
-                    .map(move |n| Stmt {
-                        kind: StmtKind::Assign {
-                            target: Expr {
-                                kind: ExprKind::Name(n.clone()),
-                                span: n.span,
-                            },
-                            value: e.clone(),
-                        },
-                        span: d.span,
-                    })
+                    .map(move |n| init_assignment(n, e, d))
             })
             .collect();
         self.stmts(&assignments);

@@ -26,7 +26,7 @@ use super::declare::Declarer;
 use crate::ir::op::{Op, Slot, Target};
 use crate::ir::type_table::{TypeId, TypeKind};
 use crate::syntax::ast::{
-    Expr, ExprKind, Initializer, Pou, PouKind, Stmt, StmtKind, VarBlock, VarDecl, VarKind,
+    Expr, ExprKind, Ident, Initializer, Pou, PouKind, Stmt, StmtKind, VarBlock, VarDecl, VarKind,
 };
 
 /// The `REF(x)` / `ADR(x)` initial value of `decl`, if it has one.
@@ -41,6 +41,21 @@ pub(super) fn reference_init(decl: &VarDecl) -> Option<&Expr> {
         return None;
     };
     matches!(f.key().as_str(), "REF" | "ADR").then_some(e)
+}
+
+/// `name := value`, the assignment the body makes of `decl`'s initial
+/// value (at `decl`'s place).
+pub(super) fn init_assignment(name: &Ident, value: &Expr, decl: &VarDecl) -> Stmt {
+    Stmt {
+        kind: StmtKind::Assign {
+            target: Expr {
+                kind: ExprKind::Name(name.clone()),
+                span: name.span,
+            },
+            value: value.clone(),
+        },
+        span: decl.span,
+    }
 }
 
 /// Whether `decl`'s initial value is `NULL` (every reference's initial
@@ -137,20 +152,9 @@ impl BodyBuilder<'_> {
             .flat_map(|b| b.decls.iter().map(move |d| (b, d)))
             .filter_map(|(b, d)| reference_init(d).map(|e| (b, d, e)))
             .flat_map(|(b, d, e)| {
-                d.names.iter().map(move |n| {
-                    let target = Expr {
-                        kind: ExprKind::Name(n.clone()),
-                        span: n.span,
-                    };
-                    let stmt = Stmt {
-                        kind: StmtKind::Assign {
-                            target,
-                            value: e.clone(),
-                        },
-                        span: d.span,
-                    };
-                    (every_call(pou, b), stmt)
-                })
+                d.names
+                    .iter()
+                    .map(move |n| (every_call(pou, b), init_assignment(n, e, d)))
             })
             .filter(|(_, s)| self.assigns_a_reference(s))
             .collect();

@@ -5,7 +5,7 @@
 //! a byte view reads the object's bytes only (`vm::byte_view`), and an
 //! integer turns back into a pointer only to the object a pointer gave it.
 
-use super::{innermost, ref_parts, view_unit, viewable};
+use super::{ref_parts, view_unit, viewable};
 use crate::elementary::ElemType;
 use crate::ir::op::{Cmp, Op};
 use crate::ir::type_table::{RefFlavor, TypeId, TypeTable};
@@ -86,7 +86,7 @@ impl BodyBuilder<'_> {
                 // Elementary values are read through the byte view; a
                 // structure or a STRING only as a value of its type found
                 // at the address (vm::type_at).
-                let ty = match viewable(self.types, innermost(self.types, target)) {
+                let ty = match viewable(self.types, self.types.innermost(target)) {
                     Some(_) => crate::ir::refs::NO_TYPE,
                     None => target.0,
                 };
@@ -101,7 +101,7 @@ impl BodyBuilder<'_> {
     /// `pt := ps` where the element types differ: a byte view (W306), or
     /// E256 when either side has no byte layout.
     fn byte_view(&mut self, v: &Val, ft: TypeId, tt: TypeId, to: TypeId, span: Span) -> Val {
-        let target = innermost(self.types, tt);
+        let target = self.types.innermost(tt);
         if self.object_layout(ft) == 0 || viewable(self.types, target).is_none() {
             let (a, b) = (self.ty_name(v.ty()), self.types.name(to).to_string());
             self.diags.error(
@@ -159,7 +159,7 @@ impl BodyBuilder<'_> {
         tb: TypeId,
         span: Span,
     ) -> Val {
-        let elementary = |me: &Self, t: TypeId| viewable(me.types, innermost(me.types, t));
+        let elementary = |me: &Self, t: TypeId| viewable(me.types, me.types.innermost(t));
         if elementary(self, ta).is_none() || elementary(self, tb).is_none() {
             let (a, b) = (self.ty_name(va.ty()), self.ty_name(vb.ty()));
             self.diags.error(

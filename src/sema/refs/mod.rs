@@ -101,7 +101,7 @@ fn elem_bytes(e: ElemType) -> u64 {
 /// innermost element's elementary type (STRING and WSTRING included), or
 /// 0 for a structure, an FB or anything else without one byte layout.
 pub(super) fn layout_code(types: &TypeTable, t: TypeId) -> u8 {
-    let inner = innermost(types, t);
+    let inner = types.innermost(t);
     let e = match &types.get(inner).kind {
         TypeKind::Str { wide: false, .. } => ElemType::String,
         TypeKind::Str { wide: true, .. } => ElemType::WString,
@@ -116,7 +116,7 @@ pub(super) fn layout_code(types: &TypeTable, t: TypeId) -> u8 {
 /// Bytes per slot of the innermost element of `t`: how a typed pointer's
 /// slot offset turns into bytes (1 for anything without a byte layout).
 pub(super) fn view_unit(types: &TypeTable, t: TypeId) -> u16 {
-    let inner = innermost(types, t);
+    let inner = types.innermost(t);
     match types.scalar(inner) {
         Some(e) if !matches!(e, ElemType::String | ElemType::WString) => {
             crate::ir::refs::elem_bytes(e) as u16
@@ -135,14 +135,4 @@ pub(super) fn viewable(types: &TypeTable, t: TypeId) -> Option<ElemType> {
     types
         .scalar(t)
         .filter(|e| !matches!(e, ElemType::String | ElemType::WString))
-}
-
-/// The innermost element type of nested arrays (`t` itself otherwise): a
-/// pointer may view an array through a pointer to its elements, or
-/// through a pointer to a longer array of the same elements.
-pub(super) fn innermost(types: &TypeTable, mut t: TypeId) -> TypeId {
-    while let TypeKind::Array { elem, .. } = types.get(t).kind {
-        t = elem;
-    }
-    t
 }

@@ -32,13 +32,14 @@ impl BodyBuilder<'_> {
         let Some(layout) = ByteLayout::of(self.types, t, &|u| unions.contains_key(&u)) else {
             return 0;
         };
-        let Ok(i) = u16::try_from(layouts.len()) else {
+        // Past the last code a `u16` holds, objects go without bytes.
+        let Some(code) = u16::try_from(layouts.len())
+            .ok()
+            .and_then(|i| FIRST_AGGREGATE_LAYOUT.checked_add(i))
+        else {
             return 0;
         };
-        if i > u16::MAX - FIRST_AGGREGATE_LAYOUT {
-            return 0;
-        }
         layouts.insert(t, layout);
-        FIRST_AGGREGATE_LAYOUT + i
+        code
     }
 }

@@ -1,6 +1,6 @@
 //! `NULL`, assignment compatibility, comparison and pointer arithmetic.
 
-use super::{innermost, null_type, ref_parts, size_bytes};
+use super::{null_type, ref_parts, size_bytes};
 use crate::elementary::ElemType;
 use crate::ir::op::{Cmp, Op};
 use crate::ir::type_table::{RefFlavor, TypeId, TypeTable};
@@ -60,7 +60,7 @@ impl BodyBuilder<'_> {
             return true;
         }
         let pointers = tf == RefFlavor::Pointer && ff == RefFlavor::Pointer;
-        pointers && innermost(self.types, ft) == innermost(self.types, tt)
+        pointers && self.types.innermost(ft) == self.types.innermost(tt)
     }
 
     /// `=` / `<>` on references and `pointer + n`, `pointer - n`; `None`
